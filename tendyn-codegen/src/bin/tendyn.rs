@@ -1,0 +1,179 @@
+//! The `tendyn` command line: check a mechanism, evaluate its dynamics, run the demo.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+use tendyn_codegen::report;
+use tendyn_core::{Model, Solver};
+
+#[derive(Parser)]
+#[command(
+    name = "tendyn",
+    version,
+    about = "Dynamics of tendon-driven mechanisms (recursive Newton-Euler)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Validate a mechanism file and print what the routing implies.
+    Check { file: String },
+    /// Evaluate inverse dynamics, M, h and g at a state.
+    Eval {
+        file: String,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        q: Vec<f64>,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        qd: Vec<f64>,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        qdd: Vec<f64>,
+        /// A CSV file with one state per line: q..., qd..., qdd... (3n numbers).
+        #[arg(long)]
+        states: Option<String>,
+        /// Print one JSON object per state.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Forward dynamics: joint accelerations from motor torques and tendon tensions.
+    Forward {
+        file: String,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        q: Vec<f64>,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        qd: Vec<f64>,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        torques: Vec<f64>,
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        tensions: Vec<f64>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Check and evaluate the paper's three built-in examples.
+    Demo,
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Check { file } => {
+            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            print!("{}", report::check_text(&m));
+            Ok(())
+        }
+        Command::Demo => {
+            for (file, text) in tendyn_codegen::report::BUILT_IN {
+                let m = tendyn_core::parse(text).map_err(|e| format!("{file}: {e}"))?;
+                print!("{}", report::check_text(&m));
+                let n = m.dof;
+                let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+                let qd: Vec<f64> = (0..n).map(|i| 1.0 - 0.5 * i as f64).collect();
+                let qdd: Vec<f64> = (0..n).map(|i| 2.0 + i as f64).collect();
+                println!("inverse dynamics at q = {q:?}, qd = {qd:?}, qdd = {qdd:?}:");
+                println!("{}", eval_json(&m, &q, &qd, &qdd)?);
+                println!();
+            }
+            Ok(())
+        }
+        Command::Eval {
+            file,
+            q,
+            qd,
+            qdd,
+            states,
+            json,
+        } => {
+            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let n = m.dof;
+            match states {
+                None => {
+                    let v = eval_json(&m, &q, &qd, &qdd)?;
+                    if json {
+                        println!("{v}");
+                    } else {
+                        println!(
+                            "{}",
+                            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
+                        );
+                    }
+                }
+                Some(path) => {
+                    let text =
+                        std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
+                    for (i, line) in text.lines().enumerate() {
+                        let line = line.trim();
+                        if line.is_empty() || line.starts_with('#') {
+                            continue;
+                        }
+                        let vals: Vec<f64> = line
+                            .split(',')
+                            .map(|x| {
+                                x.trim()
+                                    .parse::<f64>()
+                                    .map_err(|e| format!("{path}:{}: `{x}`: {e}", i + 1))
+                            })
+                            .collect::<Result<_, _>>()?;
+                        if vals.len() != 3 * n {
+                            return Err(format!(
+                                "{path}:{}: expected {} numbers (q, qd, qdd), got {}",
+                                i + 1,
+                                3 * n,
+                                vals.len()
+                            ));
+                        }
+                        let v = eval_json(&m, &vals[..n], &vals[n..2 * n], &vals[2 * n..])
+                            .map_err(|e| format!("{path}:{}: {e}", i + 1))?;
+                        println!("{v}");
+                    }
+                }
+            }
+            Ok(())
+        }
+        Command::Forward {
+            file,
+            q,
+            qd,
+            torques,
+            tensions,
+            json,
+        } => {
+            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let mut s = Solver::new(&m);
+            let qdd = s
+                .forward_dynamics(&q, &qd, &torques, &tensions)
+                .map_err(|e| e.to_string())?;
+            if json {
+                println!("{}", serde_json::json!({ "mechanism": m.name, "qdd": qdd }));
+            } else {
+                println!("qdd = {qdd:?}");
+            }
+            Ok(())
+        }
+    }
+}
+
+fn eval_json(
+    m: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Result<serde_json::Value, String> {
+    let mut s = Solver::new(m);
+    let r = s.inverse_dynamics(q, qd, qdd).map_err(|e| e.to_string())?;
+    let mass = s.mass_matrix(q).map_err(|e| e.to_string())?;
+    let bias = s.bias(q, qd).map_err(|e| e.to_string())?;
+    let gravity = s.gravity(q).map_err(|e| e.to_string())?;
+    Ok(report::inverse_json(
+        m, q, qd, qdd, &r, &mass, &bias, &gravity,
+    ))
+}

@@ -1,0 +1,208 @@
+//! Text and JSON renderings of what `tendyn-core` computes, shared by the CLI commands.
+//! Every JSON key is documented in `docs/outputs.md`.
+
+use serde_json::{json, Value};
+use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
+use tendyn_core::spatial::Vec3;
+use tendyn_core::InverseDynamics;
+
+fn v3(v: Vec3<f64>) -> Value {
+    json!([v.x, v.y, v.z])
+}
+
+fn unknown_name(m: &Model<f64>, u: &Unknown) -> String {
+    match u {
+        Unknown::Strand(s) => format!("tension {}", m.strands[*s].name),
+        Unknown::Explicit(k) => format!("tension {}", m.tendons[*k].name),
+        Unknown::Motor(k) => format!("torque {}", m.motors[*k].name),
+    }
+}
+
+fn row_name(m: &Model<f64>, r: &Row) -> String {
+    match r {
+        Row::Joint(j) => format!("joint {}", m.bodies[*j].name),
+        Row::Pulley(b) => format!("pulley {}", m.bodies[*b].name),
+        Row::Pretension(l) => format!("pretension {}", m.loops[*l].name),
+    }
+}
+
+/// What `tendyn check` prints: the validated structure and everything derived from the routing.
+pub fn check_text(m: &Model<f64>) -> String {
+    let mut s = String::new();
+    let mut line = |t: String| {
+        s.push_str(&t);
+        s.push('\n');
+    };
+    line(format!("mechanism `{}`: valid", m.name));
+    line(format!(
+        "  {} degrees of freedom, {} intermediate links, {} open-ended tendons, {} loops, {} motors",
+        m.dof,
+        m.bodies.len() - m.dof,
+        m.tendons.len(),
+        m.loops.len(),
+        m.motors.len()
+    ));
+    line("couplings (intermediate-link angle relative to its carrier = Σ ratio · q):".into());
+    for b in &m.bodies[m.dof..] {
+        if let BodyKind::Pulley { radius, role } = &b.kind {
+            let role = match role {
+                PulleyRole::Fixed => "fixed drum".to_string(),
+                PulleyRole::Idler { strand } => format!("idler of {}", m.strands[*strand].name),
+                PulleyRole::Driving => "driving pulley".to_string(),
+                PulleyRole::Coupled => "explicit coupling".to_string(),
+            };
+            line(format!(
+                "  {:<12} r = {:<8} {:<22} {}",
+                b.name,
+                radius,
+                role,
+                fmt_row(&b.coupling)
+            ));
+        }
+    }
+    if !m.tendons.is_empty() {
+        line("structure matrix A (rows: joints; columns: tendons), Q = A T:".into());
+        let names: Vec<&str> = m.tendons.iter().map(|t| t.name.as_str()).collect();
+        line(format!("  {:<12} {}", "", names.join("  ")));
+        for (j, row) in m.structure_matrix().iter().enumerate() {
+            line(format!("  {:<12} {}", m.bodies[j].name, fmt_row(row)));
+        }
+    }
+    line("tension system E x = b (rows: balances; columns: unknowns):".into());
+    for (r, row) in m.system.rows.iter().zip(&m.system.matrix) {
+        line(format!("  {:<22} {}", row_name(m, r), fmt_row(row)));
+    }
+    let names: Vec<String> = m
+        .system
+        .unknowns
+        .iter()
+        .map(|u| unknown_name(m, u))
+        .collect();
+    line(format!("  unknowns: {}", names.join(", ")));
+    line(format!(
+        "  condition number of E: {:.4}",
+        m.system.condition
+    ));
+    line(format!(
+        "  null space dimension: {}",
+        m.system.null_space.len()
+    ));
+    if let Some(p) = &m.system.positive_null {
+        line(format!("  positive null vector: {}", fmt_row(p)));
+    }
+    line("segments (frame, direction, length, acting angles in degrees):".into());
+    for st in &m.strands {
+        for (k, g) in st.segments.iter().enumerate() {
+            let frame = g
+                .frame
+                .map_or("base".to_string(), |f| m.bodies[f].name.clone());
+            line(format!(
+                "  {}#{k}: in {frame}, dir {}, {:.6} m, angles {:.3} / {:.3}",
+                st.name,
+                fmt_row(&g.dir.to_array()),
+                g.length,
+                g.acting_angles[0].to_degrees(),
+                g.acting_angles[1].to_degrees()
+            ));
+        }
+    }
+    s
+}
+
+fn fmt_row(r: &[f64]) -> String {
+    let cells: Vec<String> = r.iter().map(|x| format!("{:>10.6}", clean(*x))).collect();
+    format!("[{}]", cells.join(", "))
+}
+
+fn clean(x: f64) -> f64 {
+    if x.abs() < 1e-15 {
+        0.0
+    } else {
+        x
+    }
+}
+
+/// The JSON object `tendyn eval --json` prints for one state.
+pub fn inverse_json(
+    m: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    r: &InverseDynamics<f64>,
+    mass: &[Vec<f64>],
+    bias: &[f64],
+    gravity: &[f64],
+) -> Value {
+    let names = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>();
+    let mut out = json!({
+        "mechanism": m.name,
+        "joints": names(&mut m.bodies[..m.dof].iter().map(|b| b.name.clone())),
+        "q": q, "qd": qd, "qdd": qdd,
+        "generalized_forces": r.generalized_forces,
+        "motor_torques": m.motors.iter().zip(&r.motor_torques).map(|(mo, t)| (mo.name.clone(), json!(t))).collect::<serde_json::Map<_, _>>(),
+        "tendon_tensions": m.tendons.iter().zip(&r.tendon_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "minimal_norm_tensions": m.tendons.iter().zip(&r.minimal_norm_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "null_space_tensions": m.tendons.iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "loops": m.loops.iter().zip(&r.loop_sides).map(|(l, (s, slack))| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
+        "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "mass_matrix": mass,
+        "bias": bias,
+        "gravity": gravity,
+    });
+    let o = out.as_object_mut().expect("object");
+    o.insert(
+        "segment_tensions".into(),
+        match &r.segment_tensions {
+            Some(s) => m
+                .strands
+                .iter()
+                .zip(s)
+                .map(|(st, v)| (st.name.clone(), json!(v)))
+                .collect::<serde_json::Map<_, _>>()
+                .into(),
+            None => Value::Null,
+        },
+    );
+    o.insert(
+        "bearings".into(),
+        match &r.bearings {
+            Some(b) => m
+                .bodies
+                .iter()
+                .zip(b)
+                .map(|(body, (f, n))| {
+                    (
+                        body.name.clone(),
+                        json!({"force": v3(*f), "moment": v3(*n)}),
+                    )
+                })
+                .collect::<serde_json::Map<_, _>>()
+                .into(),
+            None => Value::Null,
+        },
+    );
+    o.insert(
+        "base_reaction".into(),
+        match &r.base_reaction {
+            Some((f, n)) => json!({"force": v3(*f), "moment": v3(*n)}),
+            None => Value::Null,
+        },
+    );
+    out
+}
+
+/// The paper's three mechanisms, built into the binary for `tendyn demo`.
+pub const BUILT_IN: [(&str, &str); 3] = [
+    (
+        "example1_endless.ron",
+        include_str!("../../examples/mechanisms/example1_endless.ron"),
+    ),
+    (
+        "example2_open_ended.ron",
+        include_str!("../../examples/mechanisms/example2_open_ended.ron"),
+    ),
+    (
+        "example3_stanford_jpl.ron",
+        include_str!("../../examples/mechanisms/example3_stanford_jpl.ron"),
+    ),
+];

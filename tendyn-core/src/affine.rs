@@ -1,0 +1,157 @@
+//! Quantities affine in the unknowns of the tension system.
+//!
+//! The paper carries tendon tensions as unknowns from the tip down to the base (Section 6):
+//! every force and moment of the backward recursion is `c + Σ_k a_k x_k`, where the `x_k`
+//! are the ground-level tensions, loop-side tensions and motor torques. The coefficients
+//! are stored inline (no heap), so the runtime solver allocates nothing per call and the
+//! symbolic scalar sees exactly this arithmetic.
+
+use crate::real::Real;
+use crate::spatial::{Mat3, Vec3};
+
+/// Most unknowns a mechanism may have (tendon tensions plus motor torques).
+pub const MAX_UNKNOWNS: usize = 12;
+
+/// A scalar `c + Σ_k a_k x_k` over `n` unknowns.
+#[derive(Clone, Copy, Debug)]
+pub struct Affine<T> {
+    pub constant: T,
+    pub coefficients: [T; MAX_UNKNOWNS],
+    pub n: usize,
+}
+
+impl<T: Real> Affine<T> {
+    pub fn constant(c: T, n: usize) -> Self {
+        Affine {
+            constant: c,
+            coefficients: [T::zero(); MAX_UNKNOWNS],
+            n,
+        }
+    }
+    /// `offset + x_k`.
+    pub fn unknown(k: usize, offset: T, n: usize) -> Self {
+        let mut a = Affine::constant(offset, n);
+        a.coefficients[k] = T::one();
+        a
+    }
+    pub fn add(&self, o: &Self) -> Self {
+        let mut r = *self;
+        r.constant = self.constant + o.constant;
+        for k in 0..self.n {
+            r.coefficients[k] = self.coefficients[k] + o.coefficients[k];
+        }
+        r
+    }
+    pub fn sub(&self, o: &Self) -> Self {
+        let mut r = *self;
+        r.constant = self.constant - o.constant;
+        for k in 0..self.n {
+            r.coefficients[k] = self.coefficients[k] - o.coefficients[k];
+        }
+        r
+    }
+    pub fn scale(&self, s: T) -> Self {
+        let mut r = *self;
+        r.constant = self.constant * s;
+        for k in 0..self.n {
+            r.coefficients[k] = self.coefficients[k] * s;
+        }
+        r
+    }
+    pub fn add_constant(&self, c: T) -> Self {
+        let mut r = *self;
+        r.constant = self.constant + c;
+        r
+    }
+    /// Value at the given unknowns.
+    pub fn eval(&self, x: &[T]) -> T {
+        let mut v = self.constant;
+        for k in 0..self.n {
+            v = v + self.coefficients[k] * x[k];
+        }
+        v
+    }
+}
+
+/// A three-vector whose components are affine in the unknowns.
+#[derive(Clone, Copy, Debug)]
+pub struct Aff3<T> {
+    pub constant: Vec3<T>,
+    pub coefficients: [Vec3<T>; MAX_UNKNOWNS],
+    pub n: usize,
+}
+
+impl<T: Real> Aff3<T> {
+    pub fn known(v: Vec3<T>, n: usize) -> Self {
+        Aff3 {
+            constant: v,
+            coefficients: [Vec3::zero(); MAX_UNKNOWNS],
+            n,
+        }
+    }
+    /// `dir · a` for a known direction and an affine magnitude (a tendon force `T d`).
+    pub fn along(dir: Vec3<T>, a: &Affine<T>) -> Self {
+        let mut r = Aff3::known(dir.scale(a.constant), a.n);
+        for k in 0..a.n {
+            r.coefficients[k] = dir.scale(a.coefficients[k]);
+        }
+        r
+    }
+    fn zip(&self, o: &Self, f: impl Fn(Vec3<T>, Vec3<T>) -> Vec3<T>) -> Self {
+        let mut r = *self;
+        r.constant = f(self.constant, o.constant);
+        for k in 0..self.n {
+            r.coefficients[k] = f(self.coefficients[k], o.coefficients[k]);
+        }
+        r
+    }
+    fn each(&self, f: impl Fn(Vec3<T>) -> Vec3<T>) -> Self {
+        let mut r = *self;
+        r.constant = f(self.constant);
+        for k in 0..self.n {
+            r.coefficients[k] = f(self.coefficients[k]);
+        }
+        r
+    }
+    pub fn add(&self, o: &Self) -> Self {
+        self.zip(o, |a, b| a + b)
+    }
+    pub fn sub(&self, o: &Self) -> Self {
+        self.zip(o, |a, b| a - b)
+    }
+    pub fn neg(&self) -> Self {
+        self.each(|a| -a)
+    }
+    pub fn add_known(&self, v: Vec3<T>) -> Self {
+        let mut r = *self;
+        r.constant = self.constant + v;
+        r
+    }
+    /// `r × self` for a known lever arm `r`.
+    pub fn moment_of(&self, r: Vec3<T>) -> Self {
+        self.each(|a| r.cross(a))
+    }
+    /// `R · self`.
+    pub fn rotate(&self, m: &Mat3<T>) -> Self {
+        self.each(|a| m.mul_vec(a))
+    }
+    /// `Rᵀ · self`.
+    pub fn rotate_back(&self, m: &Mat3<T>) -> Self {
+        self.each(|a| m.tr_mul_vec(a))
+    }
+    /// `u · self`.
+    pub fn dot(&self, u: Vec3<T>) -> Affine<T> {
+        let mut r = Affine::constant(u.dot(self.constant), self.n);
+        for k in 0..self.n {
+            r.coefficients[k] = u.dot(self.coefficients[k]);
+        }
+        r
+    }
+    pub fn eval(&self, x: &[T]) -> Vec3<T> {
+        let mut v = self.constant;
+        for k in 0..self.n {
+            v = v + self.coefficients[k].scale(x[k]);
+        }
+        v
+    }
+}

@@ -1,0 +1,1 @@
+//! placeholder while the double-double scalar is written

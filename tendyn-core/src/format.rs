@@ -1,0 +1,199 @@
+//! The RON mechanism file, exactly as documented in `docs/format.md`.
+//!
+//! These types are what serde reads; nothing here is checked yet. [`crate::validate`]
+//! turns a [`MechanismFile`] into a [`crate::Model`] or a named error. Units are SI
+//! (m, kg, kg·m², rad, N, N·m) throughout.
+
+use serde::Deserialize;
+
+/// A whole mechanism description.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MechanismFile {
+    /// Free-form name, used in messages and generated code.
+    pub name: String,
+    /// Gravitational acceleration in the base frame (m/s²). Default `(0, 0, -9.81)`.
+    #[serde(default = "default_gravity")]
+    pub gravity: [f64; 3],
+    /// The primary links of the serial chain, from the base outwards (link 1 first).
+    pub links: Vec<LinkSpec>,
+    /// Intermediate links (pulleys, idlers) and the drums fixed to primary links.
+    #[serde(default)]
+    pub pulleys: Vec<PulleySpec>,
+    /// Open-ended tendons, each anchored on a drum and pulled at ground level.
+    #[serde(default)]
+    pub tendons: Vec<TendonSpec>,
+    /// Endless tendon loops between a driven and a driving pulley.
+    #[serde(default)]
+    pub loops: Vec<LoopSpec>,
+    /// Torque sources between a body and its carrier.
+    #[serde(default)]
+    pub motors: Vec<MotorSpec>,
+    /// Default lowest tension (N) every open-ended tendon must keep (its pretension floor).
+    #[serde(default)]
+    pub tension_floor: f64,
+    /// A constant wrench applied to one link by its environment.
+    #[serde(default)]
+    pub external_wrench: Option<WrenchSpec>,
+}
+
+fn default_gravity() -> [f64; 3] {
+    [0.0, 0.0, -9.81]
+}
+
+/// Standard Denavit-Hartenberg parameters of the joint that moves this link:
+/// `{}^{i-1}A_i = RotZ(q_i + offset) · TransZ(d) · TransX(a) · RotX(alpha)`.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dh {
+    pub a: f64,
+    pub alpha: f64,
+    pub d: f64,
+    #[serde(default)]
+    pub offset: f64,
+}
+
+/// Inertia tensor about the centre of mass, axes parallel to the body frame.
+/// `xy`, `xz`, `yz` are the tensor's entries (`I_xy = -∫ x y dm`), not products of inertia.
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InertiaSpec {
+    pub xx: f64,
+    pub yy: f64,
+    pub zz: f64,
+    #[serde(default)]
+    pub xy: f64,
+    #[serde(default)]
+    pub xz: f64,
+    #[serde(default)]
+    pub yz: f64,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinkSpec {
+    pub name: String,
+    pub dh: Dh,
+    pub mass: f64,
+    /// Centre of mass in the link frame (the DH frame at the link's distal joint).
+    #[serde(default)]
+    pub com: [f64; 3],
+    #[serde(default)]
+    pub inertia: InertiaSpec,
+}
+
+/// Where a pulley sits on its carrier.
+#[derive(Clone, Debug, Deserialize)]
+pub enum Placement {
+    /// Coaxial with the axis of the joint that moves link `joint`, `height` metres along
+    /// that axis from the joint's DH origin; spins about the joint axis. The carrier must
+    /// be one of the two bodies the joint connects.
+    Joint { joint: String, height: f64 },
+    /// Anywhere on the carrier: origin and roll-pitch-yaw (`RotZ(yaw)·RotY(pitch)·RotX(roll)`)
+    /// of the pulley frame in the carrier frame; spins about its own z axis.
+    Pose { origin: [f64; 3], rpy: [f64; 3] },
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PulleySpec {
+    pub name: String,
+    /// `"base"` or the name of a primary link.
+    pub carrier: String,
+    pub at: Placement,
+    /// Pitch radius (m), where the tendon's centre line runs.
+    pub radius: f64,
+    /// `true` for a drum that is part of its carrier (it does not turn relative to it).
+    #[serde(default)]
+    pub fixed: bool,
+    #[serde(default)]
+    pub mass: f64,
+    /// Centre of mass in the pulley frame.
+    #[serde(default)]
+    pub com: [f64; 3],
+    #[serde(default)]
+    pub inertia: InertiaSpec,
+    /// Explicit coupling: angle relative to the carrier = Σ ratio_j · q_j (one ratio per
+    /// joint). Needed for a pulley no routing turns (a gear, a calibrated ratio); checked
+    /// against the routing when both are given.
+    #[serde(default)]
+    pub coupling: Option<Vec<f64>>,
+}
+
+/// The direction in which a tendon goes round a pulley's z axis (right-hand rule) when
+/// followed from its anchored (driven) end towards its ground (driving) end.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+pub enum Turn {
+    Ccw,
+    Cw,
+}
+
+/// One pulley on a tendon's route, and the way the tendon turns round it.
+#[derive(Clone, Debug, Deserialize)]
+pub struct Wrap(pub String, pub Turn);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TendonSpec {
+    pub name: String,
+    /// From the anchor drum (first, a `fixed` pulley) over idlers towards the actuator.
+    #[serde(default)]
+    pub route: Vec<Wrap>,
+    /// Point in the base frame where the tendon leaves towards its actuator.
+    #[serde(default)]
+    pub exit: Option<[f64; 3]>,
+    /// Lowest tension this tendon must keep (N); default: the file's `tension_floor`.
+    #[serde(default)]
+    pub floor: Option<f64>,
+    /// Highest tension its actuator can apply (N); default: unbounded.
+    #[serde(default)]
+    pub max_tension: Option<f64>,
+    /// Explicit structure-matrix column (one entry per joint, m): generalized force per
+    /// newton of tension. Replaces the route, or is checked against it.
+    #[serde(default)]
+    pub structure: Option<Vec<f64>>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoopSpec {
+    pub name: String,
+    /// The pulley the loop drives (usually a drum fixed to a link).
+    pub driven: String,
+    /// The pulley that drives the loop (turned by a motor or by a previous stage).
+    pub driving: String,
+    /// `false`: open belt (both pulleys turn the same way); `true`: crossed.
+    #[serde(default)]
+    pub crossed: bool,
+    /// Mean tension of the two sides at the driving pulley (N).
+    pub pretension: f64,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+pub enum MotorSite {
+    /// Between a primary link and the previous one, about the joint axis.
+    Joint(String),
+    /// Between a pulley and its carrier, about the pulley axis.
+    Pulley(String),
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorSpec {
+    pub name: String,
+    pub on: MotorSite,
+}
+
+/// Force and moment applied to `link` by its environment, in the link frame; the force
+/// acts at `point` (link frame).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WrenchSpec {
+    pub link: String,
+    #[serde(default)]
+    pub point: [f64; 3],
+    #[serde(default)]
+    pub force: [f64; 3],
+    #[serde(default)]
+    pub moment: [f64; 3],
+}

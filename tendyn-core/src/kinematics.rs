@@ -1,0 +1,113 @@
+//! Forward recursion: velocities and accelerations of every primary and intermediate
+//! link, from the base outwards (paper Eqs. 2-6 for primary links, 11-15 for intermediate
+//! links).
+//!
+//! Both kinds are one case here. A body's frame relative to its parent's is
+//! `pre · RotZ(angle) · post`: a DH link has `pre = I` and `post = TransZ(d)·TransX(a)·RotX(α)`
+//! (Eq. 1), a pulley has its placement as `pre` and `post = I` (Eq. 8). The joint point
+//! (on the axis) is the parent's `pre` origin, which the body shares with its parent, so
+//! its acceleration is the parent's there (Eq. 5, and Eq. 14 with the carrier's motion).
+//! Gravity enters as an upward acceleration of the base (`v̇_0 = −g`).
+
+use crate::model::{Body, Model};
+use crate::real::Real;
+use crate::spatial::{Mat3, Vec3};
+
+/// Motion of one body, in its own frame.
+#[derive(Clone, Copy, Debug)]
+pub struct Motion<T> {
+    /// `ᵇR_parent`: rotates parent-frame vectors into this body's frame.
+    pub rotation: Mat3<T>,
+    pub omega: Vec3<T>,
+    pub omega_dot: Vec3<T>,
+    /// Acceleration of the body-frame origin, gravity included as `−g`.
+    pub accel: Vec3<T>,
+    /// Acceleration of the centre of mass, gravity included.
+    pub com_accel: Vec3<T>,
+    /// Joint rate and acceleration `anglė`, `anglë`.
+    pub rate: T,
+    pub rate_dot: T,
+}
+
+impl<T: Real> Motion<T> {
+    pub fn rest() -> Self {
+        Motion {
+            rotation: Mat3::identity(),
+            omega: Vec3::zero(),
+            omega_dot: Vec3::zero(),
+            accel: Vec3::zero(),
+            com_accel: Vec3::zero(),
+            rate: T::zero(),
+            rate_dot: T::zero(),
+        }
+    }
+}
+
+/// `coupling · v` (Eqs. 9-10: a body's angle is linear in the joint coordinates).
+pub fn coupled<T: Real>(coupling: &[T], v: &[T]) -> T {
+    let mut s = T::zero();
+    for (c, x) in coupling.iter().zip(v) {
+        s = s + *c * *x;
+    }
+    s
+}
+
+/// `ᵇR_parent` of a body at joint coordinates `q`.
+pub fn body_rotation<T: Real>(b: &Body<T>, q: &[T]) -> Mat3<T> {
+    let down = if b.spins {
+        let (s, c) = (coupled(&b.coupling, q) + b.offset).sin_cos();
+        b.pre.rotation * Mat3::rot_z(s, c) * b.post.rotation
+    } else {
+        b.pre.rotation * b.post.rotation
+    };
+    down.transpose()
+}
+
+/// Runs the forward recursion and writes one [`Motion`] per body into `out`.
+/// With `gravity == false` the base does not accelerate (for `M` and `h`).
+pub fn forward<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    gravity: bool,
+    out: &mut [Motion<T>],
+) {
+    let base_accel = if gravity {
+        -model.gravity
+    } else {
+        Vec3::zero()
+    };
+    for (i, b) in model.bodies.iter().enumerate() {
+        let (w_p, wd_p, a_p) = match b.parent {
+            None => (Vec3::zero(), Vec3::zero(), base_accel),
+            Some(p) => (out[p].omega, out[p].omega_dot, out[p].accel),
+        };
+        let r = body_rotation(b, q);
+        let rate = coupled(&b.coupling, qd);
+        let rate_dot = coupled(&b.coupling, qdd);
+        // Eqs. 2-3 (11-12): ω = R(ω_p) + θ̇ z, ω̇ = R ω̇_p + θ̈ z + (R ω_p) × θ̇ z.
+        let w_in = r.mul_vec(w_p);
+        let spin = b.axis.scale(rate);
+        let omega = w_in + spin;
+        let omega_dot = r.mul_vec(wd_p) + b.axis.scale(rate_dot) + w_in.cross(spin);
+        // Eq. 5 (14): acceleration of the joint point as a point of the parent, carried
+        // into this frame, then out to this body's origin.
+        let j = b.pre.translation;
+        let a_joint = a_p + wd_p.cross(j) + w_p.cross(w_p.cross(j));
+        let p = b.joint_to_origin;
+        let accel = r.mul_vec(a_joint) + omega_dot.cross(p) + omega.cross(omega.cross(p));
+        // Eq. 6 (15): the centre of mass.
+        let c = b.com;
+        let com_accel = accel + omega_dot.cross(c) + omega.cross(omega.cross(c));
+        out[i] = Motion {
+            rotation: r,
+            omega,
+            omega_dot,
+            accel,
+            com_accel,
+            rate,
+            rate_dot,
+        };
+    }
+}

@@ -1,0 +1,364 @@
+//! The validated, immutable mechanism: every body, every tendon segment and the tension
+//! system, in the scalar the solver runs on.
+//!
+//! A [`Model`] is produced once by [`crate::validate`] in `f64` and never changes; work
+//! buffers live in the solver's workspace. [`Model::cast`] converts it to another scalar
+//! (a symbolic one for code generation); [`Model::cast_numeric`] also recomputes the
+//! tension system's pseudo-inverse and null space in the new precision.
+
+use crate::real::{Numeric, Real};
+use crate::spatial::{Mat3, Transform, Vec3};
+use crate::transmission::linalg;
+
+/// What a body is in the paper's terms.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BodyKind {
+    /// Primary link moved by joint `joint` (0-based: joint 0 is the paper's joint 1).
+    Link { joint: usize },
+    /// Intermediate link (pulley, idler, drum) of pitch radius `radius`.
+    Pulley { radius: f64, role: PulleyRole },
+}
+
+/// How a pulley's rotation is determined and balanced.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PulleyRole {
+    /// Part of its carrier: does not turn relative to it.
+    Fixed,
+    /// Turned by the one tendon strand that runs over it; its axial balance fixes the
+    /// tension difference across it (paper Eq. 24b).
+    Idler { strand: usize },
+    /// End of the strands of endless loops: its axial balance is a row of the tension system.
+    Driving,
+    /// Turned through an explicit coupling (gear, calibrated ratio); the transmission's
+    /// reaction is not modelled, so routing-dependent outputs are unavailable.
+    Coupled,
+}
+
+/// One rigid body of the expanded tree: a primary link or an intermediate link.
+///
+/// Its frame relative to its parent's is `pre · RotZ(angle) · post` with
+/// `angle = coupling · q + offset`.
+#[derive(Clone, Debug)]
+pub struct Body<T> {
+    pub name: String,
+    pub kind: BodyKind,
+    /// Parent (carrier) body index; `None` is the base.
+    pub parent: Option<usize>,
+    pub pre: Transform<T>,
+    pub post: Transform<T>,
+    pub offset: T,
+    /// Joint angle as a linear function of the joint coordinates (Eqs. 9-10, 26, 31, 34).
+    pub coupling: Vec<T>,
+    /// Whether the angle enters the body's orientation. `false` for fixed drums and for
+    /// axisymmetric pulleys, whose frame then stays the non-spinning housing frame.
+    pub spins: bool,
+    pub mass: T,
+    /// Centre of mass in the body frame.
+    pub com: Vec3<T>,
+    /// Inertia tensor about the centre of mass, body-frame axes.
+    pub inertia: Mat3<T>,
+    /// Joint axis in the body frame (`postᵀ z`).
+    pub axis: Vec3<T>,
+    /// Vector from the joint point (on the axis) to the body-frame origin, in the body
+    /// frame (paper Eq. 7 for links, zero for pulleys).
+    pub joint_to_origin: Vec3<T>,
+}
+
+/// How to rotate a vector given in a segment's frame into a contact body's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Via {
+    /// The segment is fixed in the body's carrier.
+    Carrier,
+    /// The segment is fixed in the carrier's parent (the pulley sits on the carrier's
+    /// proximal joint axis).
+    CarrierParent,
+    /// The segment is fixed in the given link, a child of the carrier across the joint
+    /// the pulley is coaxial with.
+    CarrierChild(usize),
+}
+
+/// Where a segment touches a pulley.
+#[derive(Clone, Debug)]
+pub struct Contact<T> {
+    /// The pulley body; `None` for the ground exit point (base frame).
+    pub body: Option<usize>,
+    /// Contact point minus pulley centre, in the segment frame (the exit point itself for
+    /// the ground end).
+    pub rel: Vec3<T>,
+    pub via: Via,
+}
+
+/// A straight piece of tendon between two contacts, fixed in one link's frame.
+#[derive(Clone, Debug)]
+pub struct Segment<T> {
+    pub from: Contact<T>,
+    pub to: Contact<T>,
+    /// The link (body index) in whose frame the segment is fixed; `None` is the base.
+    pub frame: Option<usize>,
+    /// Unit direction from `from` towards `to` in the segment frame: the tension pulls the
+    /// `from` body along `+dir` and the `to` body along `-dir` (paper Eq. 17).
+    pub dir: Vec3<T>,
+    pub length: f64,
+    /// Acting angles (Eq. 17) at both ends, about each pulley's axis from its frame's x axis.
+    pub acting_angles: [f64; 2],
+}
+
+/// An idler between segments `k` and `k + 1` of a strand.
+#[derive(Clone, Debug)]
+pub struct IdlerStep {
+    pub body: usize,
+    /// `+1` when the tendon turns counter-clockwise about the idler's axis.
+    pub turn: f64,
+    pub radius: f64,
+}
+
+/// One continuous run of tendon from a body it is fixed to (anchor drum, driven pulley) to
+/// the ground exit or a driving pulley. Its last segment's tension is an unknown of the
+/// tension system; the others follow from the idlers' balances.
+#[derive(Clone, Debug)]
+pub struct Strand<T> {
+    pub name: String,
+    pub segments: Vec<Segment<T>>,
+    pub idlers: Vec<IdlerStep>,
+    /// Index of the unknown (tension of the last segment).
+    pub unknown: usize,
+}
+
+/// An open-ended tendon.
+#[derive(Clone, Debug)]
+pub struct Tendon {
+    pub name: String,
+    /// The strand it runs as, `None` for a tendon given only by an explicit structure column.
+    pub strand: Option<usize>,
+    pub unknown: usize,
+    pub floor: f64,
+    pub max_tension: Option<f64>,
+    /// Its column of the structure matrix `A` (Eqs. 33, 35): generalized force per newton.
+    pub structure: Vec<f64>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Loop {
+    pub name: String,
+    pub driven: usize,
+    pub driving: usize,
+    pub crossed: bool,
+    pub pretension: f64,
+    /// The two strands: leaving the driven pulley counter-clockwise, then clockwise.
+    pub strands: [usize; 2],
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum MotorKind {
+    Joint(usize),
+    Pulley(usize),
+}
+
+#[derive(Clone, Debug)]
+pub struct Motor {
+    pub name: String,
+    pub kind: MotorKind,
+    pub unknown: usize,
+    /// Generalized force per newton-metre of motor torque.
+    pub column: Vec<f64>,
+}
+
+/// What an unknown of the tension system is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Unknown {
+    /// Tension of the last segment of a strand.
+    Strand(usize),
+    /// Tension of an open-ended tendon known only by its structure column.
+    Explicit(usize),
+    Motor(usize),
+}
+
+/// What a row of the tension system balances.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Row {
+    /// Moment about joint `j`'s axis.
+    Joint(usize),
+    /// Moment about a driving pulley's axis.
+    Pulley(usize),
+    /// Mean tension of a loop at its driving pulley.
+    Pretension(usize),
+}
+
+/// The linear system `E x = b` the unknown tensions and torques satisfy (the paper's
+/// `A T = B`, Eqs. 33 and 35, extended by motors and loops), with what its solution needs.
+#[derive(Clone, Debug)]
+pub struct TensionSystem<T> {
+    pub unknowns: Vec<Unknown>,
+    pub rows: Vec<Row>,
+    /// `E`, row-major, `rows.len() × unknowns.len()`.
+    pub matrix: Vec<Vec<T>>,
+    /// `Eᵀ (E Eᵀ)⁻¹`: maps `b` to the minimal-norm solution.
+    pub pseudo_inverse: Vec<Vec<T>>,
+    /// Orthonormal basis of the null space of `E`.
+    pub null_space: Vec<Vec<T>>,
+    /// A null vector whose open-ended-tendon components are all strictly positive, when
+    /// the null space is one-dimensional it spans it.
+    pub positive_null: Option<Vec<T>>,
+    /// 2-norm condition number of `E` (largest over smallest singular value).
+    pub condition: f64,
+}
+
+/// A constant wrench on one link by its environment (link frame).
+#[derive(Clone, Debug)]
+pub struct Wrench<T> {
+    pub link: usize,
+    pub point: Vec3<T>,
+    pub force: Vec3<T>,
+    pub moment: Vec3<T>,
+}
+
+/// A validated mechanism in scalar `T`.
+#[derive(Clone, Debug)]
+pub struct Model<T> {
+    pub name: String,
+    pub gravity: Vec3<T>,
+    /// Number of joint coordinates `n`.
+    pub dof: usize,
+    /// Links first (body `j` is moved by joint `j`), then pulleys; parents come first.
+    pub bodies: Vec<Body<T>>,
+    pub strands: Vec<Strand<T>>,
+    pub tendons: Vec<Tendon>,
+    pub loops: Vec<Loop>,
+    pub motors: Vec<Motor>,
+    pub system: TensionSystem<T>,
+    pub external_wrench: Option<Wrench<T>>,
+    /// Explicit couplings or structure columns are present: segment tensions and bearing
+    /// forces cannot be attributed and are reported as unavailable.
+    pub routing_incomplete: bool,
+}
+
+impl<T: Real> Model<T> {
+    pub fn joint_names(&self) -> impl Iterator<Item = &str> {
+        self.bodies[..self.dof].iter().map(|b| b.name.as_str())
+    }
+
+    /// Open-ended tendons whose tensions are unknowns (routed or explicit).
+    pub fn tendon_count(&self) -> usize {
+        self.tendons.len()
+    }
+
+    /// The structure matrix `A` (n × tendons): `Q = A T`.
+    pub fn structure_matrix(&self) -> Vec<Vec<f64>> {
+        (0..self.dof)
+            .map(|j| self.tendons.iter().map(|t| t.structure[j]).collect())
+            .collect()
+    }
+
+    /// The same model with every number converted by [`Real::from_f64`] semantics.
+    /// Numbers must come from an `f64` model; see [`Model::cast_numeric`] for a numeric
+    /// target whose derived linear algebra should be recomputed in its own precision.
+    pub fn map_scalar<U: Real>(&self, f: impl Fn(T) -> U + Copy) -> Model<U> {
+        let v = |x: Vec3<T>| x.map(f);
+        Model {
+            name: self.name.clone(),
+            gravity: v(self.gravity),
+            dof: self.dof,
+            bodies: self
+                .bodies
+                .iter()
+                .map(|b| Body {
+                    name: b.name.clone(),
+                    kind: b.kind.clone(),
+                    parent: b.parent,
+                    pre: b.pre.map(f),
+                    post: b.post.map(f),
+                    offset: f(b.offset),
+                    coupling: b.coupling.iter().map(|&c| f(c)).collect(),
+                    spins: b.spins,
+                    mass: f(b.mass),
+                    com: v(b.com),
+                    inertia: b.inertia.map(f),
+                    axis: v(b.axis),
+                    joint_to_origin: v(b.joint_to_origin),
+                })
+                .collect(),
+            strands: self
+                .strands
+                .iter()
+                .map(|s| Strand {
+                    name: s.name.clone(),
+                    segments: s
+                        .segments
+                        .iter()
+                        .map(|g| Segment {
+                            from: Contact {
+                                body: g.from.body,
+                                rel: v(g.from.rel),
+                                via: g.from.via,
+                            },
+                            to: Contact {
+                                body: g.to.body,
+                                rel: v(g.to.rel),
+                                via: g.to.via,
+                            },
+                            frame: g.frame,
+                            dir: v(g.dir),
+                            length: g.length,
+                            acting_angles: g.acting_angles,
+                        })
+                        .collect(),
+                    idlers: s.idlers.clone(),
+                    unknown: s.unknown,
+                })
+                .collect(),
+            tendons: self.tendons.clone(),
+            loops: self.loops.clone(),
+            motors: self.motors.clone(),
+            system: TensionSystem {
+                unknowns: self.system.unknowns.clone(),
+                rows: self.system.rows.clone(),
+                matrix: map2(&self.system.matrix, f),
+                pseudo_inverse: map2(&self.system.pseudo_inverse, f),
+                null_space: map2(&self.system.null_space, f),
+                positive_null: self
+                    .system
+                    .positive_null
+                    .as_ref()
+                    .map(|p| p.iter().map(|&x| f(x)).collect()),
+                condition: self.system.condition,
+            },
+            external_wrench: self.external_wrench.as_ref().map(|w| Wrench {
+                link: w.link,
+                point: v(w.point),
+                force: v(w.force),
+                moment: v(w.moment),
+            }),
+            routing_incomplete: self.routing_incomplete,
+        }
+    }
+}
+
+fn map2<T: Copy, U>(m: &[Vec<T>], f: impl Fn(T) -> U + Copy) -> Vec<Vec<U>> {
+    m.iter()
+        .map(|r| r.iter().map(|&x| f(x)).collect())
+        .collect()
+}
+
+impl Model<f64> {
+    /// The model in another scalar (a symbolic one for code generation): every number is
+    /// converted with [`Real::from_f64`].
+    pub fn cast<U: Real>(&self) -> Model<U> {
+        self.map_scalar(U::from_f64)
+    }
+
+    /// The model in another numeric scalar, with the tension system's pseudo-inverse and
+    /// null space recomputed in that precision (the accuracy reference needs this).
+    pub fn cast_numeric<U: Numeric>(&self) -> Model<U> {
+        let mut m = self.cast::<U>();
+        let (pinv, null) = linalg::pseudo_inverse_and_null_space(&m.system.matrix);
+        m.system.pseudo_inverse = pinv;
+        m.system.null_space = null;
+        if let Some(p) = &self.system.positive_null {
+            // Re-project the positive null vector onto the recomputed null space so that it
+            // is a null vector to the new precision.
+            let p: Vec<U> = p.iter().map(|&x| U::from_f64(x)).collect();
+            m.system.positive_null = Some(linalg::project_onto(&p, &m.system.null_space));
+        }
+        m
+    }
+}

@@ -1,0 +1,163 @@
+//! Backward recursion: Newton's and Euler's equations of every body from the tip to the
+//! base, with the tendon tensions left as unknowns (paper Eqs. 19-24).
+//!
+//! A primary link always has more unknowns than balance equations (joint force, joint
+//! moment and tendon tensions, Section 7), so every force here is affine in the unknowns
+//! of the tension system ([`crate::affine`]); the unknowns are solved at the base
+//! ([`crate::tension`]) and substituted back.
+//!
+//! For body `b` with parent `p`, in `b`'s frame, with `F = m a_c` and `N = I ω̇ + ω × I ω`
+//! (Eqs. 21-22):
+//!
+//! ```text
+//! f_b = F − Σ f_applied − Σ_children f_from_child                      (Eq. 19, 23)
+//! n_b = N + c × F − Σ r × f_applied − Σ moments from children − p_J × f_b  (Eq. 20, 24)
+//! ```
+//!
+//! where `f_b`, `n_b` are the force and moment the parent exerts on `b` through its
+//! joint, the moment taken about the joint point `p_J`. The moment includes the torque of
+//! a motor on that joint, if any; its component along the joint axis, `τ_b`, is what the
+//! rows of the tension system balance.
+
+use crate::affine::{Aff3, Affine};
+use crate::kinematics::Motion;
+use crate::model::{Contact, Model, Via};
+use crate::real::Real;
+use crate::spatial::{Mat3, Vec3};
+
+/// Forces and moments of the backward recursion, affine in the unknowns.
+#[derive(Clone, Debug)]
+pub struct Loads<T> {
+    /// Force on each body from its parent, body frame.
+    pub force: Vec<Aff3<T>>,
+    /// Moment on each body from its parent about the joint point, body frame, motor
+    /// torque included.
+    pub moment: Vec<Aff3<T>>,
+    /// `τ_b`: component of `moment` along the joint axis.
+    pub axial: Vec<Affine<T>>,
+    /// Total force of the base on the mechanism (bearings, motors, tendon exits), base frame.
+    pub base_force: Aff3<T>,
+    /// Total moment of the base on the mechanism about the base origin, base frame.
+    pub base_moment: Aff3<T>,
+}
+
+impl<T: Real> Loads<T> {
+    pub fn new(bodies: usize, unknowns: usize) -> Self {
+        Loads {
+            force: vec![Aff3::known(Vec3::zero(), unknowns); bodies],
+            moment: vec![Aff3::known(Vec3::zero(), unknowns); bodies],
+            axial: vec![Affine::constant(T::zero(), unknowns); bodies],
+            base_force: Aff3::known(Vec3::zero(), unknowns),
+            base_moment: Aff3::known(Vec3::zero(), unknowns),
+        }
+    }
+}
+
+/// `ᵇR_L` for a contact on pulley body `b` whose segment is fixed in frame `L`.
+fn contact_rotation<T: Real>(model: &Model<T>, motion: &[Motion<T>], c: &Contact<T>) -> Mat3<T> {
+    let b = c.body.expect("a body contact");
+    let own = motion[b].rotation;
+    match c.via {
+        Via::Carrier => own,
+        Via::CarrierParent => {
+            let carrier = model.bodies[b].parent.expect("a link carrier");
+            own * motion[carrier].rotation
+        }
+        Via::CarrierChild(l) => own * motion[l].rotation.transpose(),
+    }
+}
+
+/// The backward recursion. `tensions[s][k]` is the tension of segment `k` of strand `s`
+/// (affine in the unknowns), or `None` to leave every tendon out (the expanded-tree
+/// recursion behind `M`, `h` and `g`, where pulleys act through their couplings).
+/// `external` includes the model's external wrench.
+pub fn backward<T: Real>(
+    model: &Model<T>,
+    motion: &[Motion<T>],
+    tensions: Option<&[Vec<Affine<T>>]>,
+    unknowns: usize,
+    external: bool,
+    out: &mut Loads<T>,
+) {
+    let nb = model.bodies.len();
+    // Applied forces accumulate per body: `out.force` and `out.moment` hold, until a body
+    // is processed, the sum of forces applied to it and their moment about its origin.
+    for i in 0..nb {
+        out.force[i] = Aff3::known(Vec3::zero(), unknowns);
+        out.moment[i] = Aff3::known(Vec3::zero(), unknowns);
+    }
+    out.base_force = Aff3::known(Vec3::zero(), unknowns);
+    out.base_moment = Aff3::known(Vec3::zero(), unknowns);
+
+    // Tendon forces (Eqs. 17-18): each segment pulls its `from` pulley along +dir and its
+    // `to` pulley along −dir, at the contact points.
+    if let Some(tensions) = tensions {
+        for (strand, ts) in model.strands.iter().zip(tensions) {
+            for (seg, t) in strand.segments.iter().zip(ts) {
+                let pull = Aff3::along(seg.dir, t);
+                for (contact, f) in [(&seg.from, pull), (&seg.to, pull.neg())] {
+                    match contact.body {
+                        Some(b) => {
+                            let r = contact_rotation(model, motion, contact);
+                            let f_b = f.rotate(&r);
+                            let at = r.mul_vec(contact.rel);
+                            out.force[b] = out.force[b].add(&f_b);
+                            out.moment[b] = out.moment[b].add(&f_b.moment_of(at));
+                        }
+                        None => {
+                            // The ground exit: the base holds the tendon there and pulls it
+                            // on towards the actuator.
+                            let on_tendon = f.neg();
+                            out.base_force = out.base_force.add(&on_tendon);
+                            out.base_moment =
+                                out.base_moment.add(&on_tendon.moment_of(contact.rel));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if let Some(w) = model.external_wrench.as_ref().filter(|_| external) {
+        let f = Aff3::known(w.force, unknowns);
+        out.force[w.link] = out.force[w.link].add(&f);
+        out.moment[w.link] = out.moment[w.link]
+            .add(&f.moment_of(w.point))
+            .add_known(w.moment);
+    }
+
+    for i in (0..nb).rev() {
+        let b = &model.bodies[i];
+        let m = &motion[i];
+        // Inertia force and moment (Eqs. 21-22).
+        let inertia_force = m.com_accel.scale(b.mass);
+        let spin_momentum = b.inertia.mul_vec(m.omega);
+        let inertia_moment = b.inertia.mul_vec(m.omega_dot) + m.omega.cross(spin_momentum);
+        let joint_point = -b.joint_to_origin;
+        // Eq. 19 / 23: force from the parent.
+        let f = Aff3::known(inertia_force, unknowns).sub(&out.force[i]);
+        // Eq. 20 / 24: moment from the parent about the joint point.
+        let needed = inertia_moment + b.com.cross(inertia_force);
+        let n = Aff3::known(needed, unknowns)
+            .sub(&out.moment[i])
+            .sub(&f.moment_of(joint_point));
+        out.axial[i] = n.dot(b.axis);
+        // The reaction on the parent: −f at the joint point, −n.
+        let r = m.rotation;
+        let f_parent = f.rotate_back(&r).neg();
+        let n_parent = n.rotate_back(&r).neg();
+        let at = b.pre.translation;
+        let moment_parent = n_parent.add(&f_parent.moment_of(at));
+        match b.parent {
+            Some(p) => {
+                out.force[p] = out.force[p].add(&f_parent);
+                out.moment[p] = out.moment[p].add(&moment_parent);
+            }
+            None => {
+                out.base_force = out.base_force.sub(&f_parent);
+                out.base_moment = out.base_moment.sub(&moment_parent);
+            }
+        }
+        out.force[i] = f;
+        out.moment[i] = n;
+    }
+}

@@ -1,0 +1,95 @@
+//! The scalar the recursion is written in.
+//!
+//! [`Real`] asks only for what a symbolic expression can honestly provide as well: field
+//! arithmetic, `sin`/`cos`, `sqrt`, constants and one value-dependent hook, [`Real::max`]
+//! (the tension floor of a redundant routing). The code generator runs the very same
+//! recursion on its expression type, so nothing here may compare or branch on values.
+//!
+//! [`Numeric`] adds what only numbers have (ordering, finiteness, conversion back to `f64`);
+//! the validation-time linear algebra and the multi-dimensional tension distribution need it.
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A scalar the generic recursion runs on: `f32`, `f64`, [`crate::DoubleDouble`], or the
+/// symbolic expression handle of `tendyn-codegen`.
+pub trait Real:
+    Copy
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + 'static
+{
+    /// The nearest value of this scalar to `x` (exact for the types that hold an `f64`).
+    fn from_f64(x: f64) -> Self;
+    fn sin(self) -> Self;
+    fn cos(self) -> Self;
+    fn sqrt(self) -> Self;
+    /// The larger of the two. The only value-dependent operation the recursion uses;
+    /// a symbolic scalar maps it to a select node.
+    fn max(self, other: Self) -> Self;
+
+    fn zero() -> Self {
+        Self::from_f64(0.0)
+    }
+    fn one() -> Self {
+        Self::from_f64(1.0)
+    }
+    /// Sine and cosine of one angle; a symbolic scalar computes them together.
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
+}
+
+/// A [`Real`] that is a number: it can be ordered, tested and converted back to `f64`.
+pub trait Numeric: Real + PartialOrd {
+    fn to_f64(self) -> f64;
+    fn abs(self) -> Self;
+    fn is_finite(self) -> bool;
+    /// Unit round-off of the type (half the distance from 1 to the next number).
+    fn unit_roundoff() -> f64;
+}
+
+macro_rules! primitive_real {
+    ($t:ty) => {
+        impl Real for $t {
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            fn sin(self) -> Self {
+                <$t>::sin(self)
+            }
+            fn cos(self) -> Self {
+                <$t>::cos(self)
+            }
+            fn sin_cos(self) -> (Self, Self) {
+                <$t>::sin_cos(self)
+            }
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            fn max(self, other: Self) -> Self {
+                <$t>::max(self, other)
+            }
+        }
+        impl Numeric for $t {
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            fn unit_roundoff() -> f64 {
+                (<$t>::EPSILON as f64) / 2.0
+            }
+        }
+    };
+}
+primitive_real!(f32);
+primitive_real!(f64);

@@ -1,0 +1,202 @@
+//! Three-vectors, 3x3 matrices and rigid transforms, generic over [`Real`].
+//!
+//! Deliberately small: nalgebra's `RealField` asks for ordering and dozens of methods a
+//! symbolic scalar cannot provide, so the recursion uses these instead. Every operation
+//! is written out so that the code generator sees exactly the arithmetic that is done.
+
+use crate::real::Real;
+use core::ops::{Add, Mul, Neg, Sub};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vec3<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+}
+
+impl<T: Real> Vec3<T> {
+    pub fn new(x: T, y: T, z: T) -> Self {
+        Vec3 { x, y, z }
+    }
+    pub fn zero() -> Self {
+        Vec3::new(T::zero(), T::zero(), T::zero())
+    }
+    pub fn unit_z() -> Self {
+        Vec3::new(T::zero(), T::zero(), T::one())
+    }
+    pub fn from_array(a: [f64; 3]) -> Self {
+        Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
+    }
+    pub fn dot(self, o: Self) -> T {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    pub fn cross(self, o: Self) -> Self {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+    pub fn scale(self, s: T) -> Self {
+        Vec3::new(self.x * s, self.y * s, self.z * s)
+    }
+    pub fn to_array(self) -> [T; 3] {
+        [self.x, self.y, self.z]
+    }
+    pub fn map<U: Real>(self, f: impl Fn(T) -> U) -> Vec3<U> {
+        Vec3::new(f(self.x), f(self.y), f(self.z))
+    }
+}
+
+impl<T: Real> Add for Vec3<T> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+impl<T: Real> Sub for Vec3<T> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+impl<T: Real> Neg for Vec3<T> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Vec3::new(-self.x, -self.y, -self.z)
+    }
+}
+
+/// A 3x3 matrix stored by rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat3<T> {
+    pub rows: [[T; 3]; 3],
+}
+
+impl<T: Real> Mat3<T> {
+    pub fn identity() -> Self {
+        let (o, z) = (T::one(), T::zero());
+        Mat3 {
+            rows: [[o, z, z], [z, o, z], [z, z, o]],
+        }
+    }
+    pub fn from_rows(rows: [[f64; 3]; 3]) -> Self {
+        Mat3 {
+            rows: rows.map(|r| r.map(T::from_f64)),
+        }
+    }
+    /// Rotation about z by the angle whose sine and cosine are given.
+    pub fn rot_z(s: T, c: T) -> Self {
+        let (o, z) = (T::one(), T::zero());
+        Mat3 {
+            rows: [[c, -s, z], [s, c, z], [z, z, o]],
+        }
+    }
+    pub fn transpose(&self) -> Self {
+        let r = &self.rows;
+        Mat3 {
+            rows: [
+                [r[0][0], r[1][0], r[2][0]],
+                [r[0][1], r[1][1], r[2][1]],
+                [r[0][2], r[1][2], r[2][2]],
+            ],
+        }
+    }
+    pub fn mul_vec(&self, v: Vec3<T>) -> Vec3<T> {
+        let r = &self.rows;
+        Vec3::new(
+            r[0][0] * v.x + r[0][1] * v.y + r[0][2] * v.z,
+            r[1][0] * v.x + r[1][1] * v.y + r[1][2] * v.z,
+            r[2][0] * v.x + r[2][1] * v.y + r[2][2] * v.z,
+        )
+    }
+    /// `selfᵀ v` without forming the transpose.
+    pub fn tr_mul_vec(&self, v: Vec3<T>) -> Vec3<T> {
+        let r = &self.rows;
+        Vec3::new(
+            r[0][0] * v.x + r[1][0] * v.y + r[2][0] * v.z,
+            r[0][1] * v.x + r[1][1] * v.y + r[2][1] * v.z,
+            r[0][2] * v.x + r[1][2] * v.y + r[2][2] * v.z,
+        )
+    }
+    pub fn column(&self, j: usize) -> Vec3<T> {
+        Vec3::new(self.rows[0][j], self.rows[1][j], self.rows[2][j])
+    }
+    pub fn map<U: Real>(&self, f: impl Fn(T) -> U) -> Mat3<U> {
+        Mat3 {
+            rows: self.rows.map(|r| r.map(&f)),
+        }
+    }
+}
+
+impl<T: Real> Mul for Mat3<T> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        let a = &self.rows;
+        let b = &o.rows;
+        let mut rows = [[T::zero(); 3]; 3];
+        for (i, row) in rows.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+            }
+        }
+        Mat3 { rows }
+    }
+}
+
+/// A rigid transform `p ↦ rotation · p + translation` (the frame of a child expressed in
+/// its parent's frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform<T> {
+    pub rotation: Mat3<T>,
+    pub translation: Vec3<T>,
+}
+
+impl<T: Real> Transform<T> {
+    pub fn identity() -> Self {
+        Transform {
+            rotation: Mat3::identity(),
+            translation: Vec3::zero(),
+        }
+    }
+    pub fn compose(&self, o: &Self) -> Self {
+        Transform {
+            rotation: self.rotation * o.rotation,
+            translation: self.rotation.mul_vec(o.translation) + self.translation,
+        }
+    }
+    pub fn inverse(&self) -> Self {
+        let rt = self.rotation.transpose();
+        Transform {
+            rotation: rt,
+            translation: -rt.mul_vec(self.translation),
+        }
+    }
+    pub fn apply(&self, p: Vec3<T>) -> Vec3<T> {
+        self.rotation.mul_vec(p) + self.translation
+    }
+    pub fn map<U: Real>(&self, f: impl Fn(T) -> U + Copy) -> Transform<U> {
+        Transform {
+            rotation: self.rotation.map(f),
+            translation: self.translation.map(f),
+        }
+    }
+}
+
+/// Rotation matrix of `RotX(angle)` for a number known at validation time.
+pub fn rot_x(angle: f64) -> Mat3<f64> {
+    let (s, c) = angle.sin_cos();
+    Mat3::from_rows([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+}
+
+/// Rotation matrix of `RotY(angle)`.
+pub fn rot_y(angle: f64) -> Mat3<f64> {
+    let (s, c) = angle.sin_cos();
+    Mat3::from_rows([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+}
+
+/// Rotation matrix of `RotZ(angle)`.
+pub fn rot_z(angle: f64) -> Mat3<f64> {
+    let (s, c) = angle.sin_cos();
+    Mat3::rot_z(s, c)
+}

@@ -1,0 +1,677 @@
+//! Tendon routing → pulley couplings, segment geometry, structure matrix and the tension
+//! system (paper Eqs. 9-10, 17-18, 26, 31, 33-35).
+//!
+//! # The derivation
+//! Tendons are inextensible and do not slip on pulleys. A tendon is followed from the body
+//! it is fixed to (an anchor drum, or the driven pulley of a loop) towards its ground exit
+//! (or the driving pulley of a loop). Every straight segment is fixed in one link's frame:
+//! both pitch circles it touches must be fixed in that frame (a pulley's circle is fixed in
+//! its carrier and, when it is coaxial with a joint, in both bodies of that joint). The
+//! segment is the common tangent of the two circles on the sides the route names, so its
+//! direction and contact points are constants of that frame (Eq. 17).
+//!
+//! Where the tendon goes round a pulley of radius `r` with turn `s` (`+1` counter-clockwise
+//! about the pulley axis, followed towards the ground), the length wrapped there grows by
+//! `-s r θ̇` when the frame of the incoming segment turns by `θ̇` relative to the frame of
+//! the outgoing one about that axis. Summing over the route gives the rate at which the
+//! ground end is pulled in, `ẋ = Σ s r θ̇`, whose gradient in `q̇` is the tendon's column
+//! of the structure matrix `A` (so that `Q = A T` by virtual work). A free idler's rim
+//! moves with the tendon, which fixes its angle relative to its carrier as a linear
+//! function of `q` (Eqs. 9-10, 26, 31, 34); a loop's driving pulley follows from the
+//! loop's length staying constant.
+//!
+//! All of this is computed once, in `f64`, at validation.
+
+use crate::error::{Error, Location, Result};
+use crate::format::Turn;
+use crate::model::{Body, Contact, IdlerStep, Segment, Via};
+use crate::spatial::{Mat3, Transform, Vec3};
+
+/// A frame a segment can be fixed in: `None` is the base, `Some(i)` link body `i`.
+pub type Frame = Option<usize>;
+
+/// What validation knows about a pulley before its coupling is derived.
+#[derive(Clone, Debug)]
+pub struct PulleyInfo {
+    pub name: String,
+    pub at: Location,
+    pub body: usize,
+    pub carrier: Frame,
+    /// Joint (0-based) it is coaxial with, and its height along that joint's axis.
+    pub coaxial: Option<(usize, f64)>,
+    pub radius: f64,
+    pub fixed: bool,
+}
+
+/// A route as validation resolved it: pulley indices (into the `PulleyInfo` list) with
+/// turns, and where it ends.
+#[derive(Clone, Debug)]
+pub struct Route {
+    pub name: String,
+    pub at: Location,
+    pub wraps: Vec<(usize, Turn)>,
+    pub end: RouteEnd,
+}
+
+#[derive(Clone, Debug)]
+pub enum RouteEnd {
+    /// Leaves towards an actuator through this point of the base frame.
+    Exit([f64; 3]),
+    /// Ends fixed on this (driving) pulley, turning this way round it.
+    Pulley(usize, Turn),
+}
+
+/// A rate `θ̇` as a linear function of `q̇`, plus the rates of named pulley angles that are
+/// coordinates of their own in the tension system (driving pulleys).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rate {
+    pub joints: Vec<f64>,
+    pub pulleys: Vec<(usize, f64)>,
+}
+
+impl Rate {
+    fn zero(n: usize) -> Self {
+        Rate {
+            joints: vec![0.0; n],
+            pulleys: Vec::new(),
+        }
+    }
+    fn add_scaled(&mut self, o: &Rate, s: f64) {
+        for (a, b) in self.joints.iter_mut().zip(&o.joints) {
+            *a += s * b;
+        }
+        for &(p, c) in &o.pulleys {
+            self.add_pulley(p, s * c);
+        }
+    }
+    fn add_pulley(&mut self, p: usize, c: f64) {
+        match self.pulleys.iter_mut().find(|(q, _)| *q == p) {
+            Some((_, v)) => *v += c,
+            None => self.pulleys.push((p, c)),
+        }
+    }
+}
+
+/// One strand with its geometry and the rates the tension system needs.
+#[derive(Clone, Debug)]
+pub struct StrandGeometry {
+    pub segments: Vec<Segment<f64>>,
+    pub idlers: Vec<IdlerStep>,
+    /// `ẋ` of the strand: joints, plus the driving-pulley angles at its two ends.
+    pub pull_rate: Rate,
+}
+
+fn norm(v: Vec3<f64>) -> f64 {
+    v.dot(v).sqrt()
+}
+
+fn unit(v: Vec3<f64>) -> Vec3<f64> {
+    v.scale(1.0 / norm(v))
+}
+
+/// Frame of the body on the proximal side of joint `j`.
+pub fn joint_parent(j: usize) -> Frame {
+    if j == 0 {
+        None
+    } else {
+        Some(j - 1)
+    }
+}
+
+pub struct Routing<'a> {
+    pub bodies: &'a [Body<f64>],
+    pub pulleys: &'a [PulleyInfo],
+    pub dof: usize,
+}
+
+impl Routing<'_> {
+    /// Frames in which pulley `p`'s pitch circle is fixed.
+    pub fn frames_of(&self, p: usize) -> Vec<Frame> {
+        let info = &self.pulleys[p];
+        let mut f = vec![info.carrier];
+        if let Some((j, _)) = info.coaxial {
+            for other in [joint_parent(j), Some(j)] {
+                if other != info.carrier {
+                    f.push(other);
+                }
+            }
+        }
+        f
+    }
+
+    /// Centre and unit axis of pulley `p`'s pitch circle in `frame` (one of `frames_of`).
+    fn circle_in(&self, p: usize, frame: Frame) -> (Vec3<f64>, Vec3<f64>) {
+        let info = &self.pulleys[p];
+        let body = &self.bodies[info.body];
+        if frame == info.carrier {
+            return (body.pre.translation, body.pre.rotation.column(2));
+        }
+        let (j, h) = info
+            .coaxial
+            .expect("only coaxial pulleys have a second frame");
+        let on_axis = Vec3::new(0.0, 0.0, h);
+        if frame == Some(j) {
+            let post = self.bodies[j].post.inverse();
+            (post.apply(on_axis), post.rotation.column(2))
+        } else {
+            (on_axis, Vec3::unit_z())
+        }
+    }
+
+    /// `θ̇` of frame (or pulley body) `a` relative to frame `b`, about the axis of pulley
+    /// `p`; both must be among the frames `p`'s circle is fixed in.
+    fn relative_rate(&self, a: Frame, b: Frame, p: usize) -> Rate {
+        let mut r = Rate::zero(self.dof);
+        if a == b {
+            return r;
+        }
+        let (j, _) = self.pulleys[p]
+            .coaxial
+            .expect("distinct frames of one circle come from a coaxial joint");
+        r.joints[j] = if a == Some(j) { 1.0 } else { -1.0 };
+        r
+    }
+
+    /// `θ̇` of pulley `s`'s own body relative to `frame`, given its coupling `c_s`.
+    fn body_rate(&self, s: usize, coupling: &Rate, frame: Frame) -> Rate {
+        let mut r = coupling.clone();
+        r.add_scaled(&self.relative_rate(self.pulleys[s].carrier, frame, s), 1.0);
+        r
+    }
+
+    /// The frame two circles (or a circle and the base) share.
+    fn common_frame(&self, route: &Route, p: usize, q: Option<usize>) -> Result<Frame> {
+        let fp = self.frames_of(p);
+        let fq = match q {
+            Some(q) => self.frames_of(q),
+            None => vec![None],
+        };
+        let shared: Vec<Frame> = fp.iter().copied().filter(|f| fq.contains(f)).collect();
+        let qname = q.map_or("the ground exit".to_string(), |q| {
+            format!("pulley `{}`", self.pulleys[q].name)
+        });
+        match shared.as_slice() {
+            [f] => Ok(*f),
+            [] => Err(Error::Routing {
+                item: route.name.clone(),
+                at: route.at,
+                problem: format!(
+                    "the segment from pulley `{}` to {} is not fixed in any one link: \
+                     a pulley's circle is fixed only in its carrier and, when it sits on a \
+                     joint axis, in the two bodies of that joint; put both ends on a common \
+                     body or add an idler on the joint axis between them",
+                    self.pulleys[p].name, qname
+                ),
+            }),
+            _ => Err(Error::Routing {
+                item: route.name.clone(),
+                at: route.at,
+                problem: format!(
+                    "pulley `{}` and {} sit on the same joint axis: a segment cannot run along it",
+                    self.pulleys[p].name, qname
+                ),
+            }),
+        }
+    }
+
+    fn via(&self, p: usize, frame: Frame) -> Via {
+        let carrier = self.pulleys[p].carrier;
+        if frame == carrier {
+            Via::Carrier
+        } else if carrier.is_some_and(|c| joint_parent(c) == frame) {
+            Via::CarrierParent
+        } else {
+            Via::CarrierChild(frame.expect("a child frame is a link"))
+        }
+    }
+
+    /// Acting angle (Eq. 17) of a contact: angle of (contact − centre) about the pulley
+    /// axis from the pulley frame's x axis, with every joint at zero.
+    fn acting_angle(&self, p: usize, frame: Frame, rel: Vec3<f64>) -> f64 {
+        let info = &self.pulleys[p];
+        let body = &self.bodies[info.body];
+        // rotation of `frame` in the carrier frame at q = 0
+        let frame_in_carrier = if frame == info.carrier {
+            Mat3::identity()
+        } else {
+            let (j, _) = info.coaxial.expect("coaxial");
+            let link = &self.bodies[j];
+            let down = crate::spatial::rot_z(link.offset) * link.post.rotation;
+            if frame == Some(j) {
+                down
+            } else {
+                down.transpose()
+            }
+        };
+        let v = body.pre.rotation.tr_mul_vec(frame_in_carrier.mul_vec(rel));
+        v.y.atan2(v.x)
+    }
+
+    /// The segment from pulley `p` (turn `sp`) to pulley `q` (turn `sq`) or to the exit.
+    fn segment(&self, route: &Route, p: usize, sp: Turn, to: SegmentEnd) -> Result<Segment<f64>> {
+        let q = match to {
+            SegmentEnd::Pulley(q, _) => Some(q),
+            SegmentEnd::Exit(_) => None,
+        };
+        let frame = self.common_frame(route, p, q)?;
+        let (cp, np) = self.circle_in(p, frame);
+        let rp = self.pulleys[p].radius;
+        let tp = turn_sign(sp);
+        let (cq, nq, rq, tq) = match to {
+            SegmentEnd::Pulley(q, sq) => {
+                let (c, n) = self.circle_in(q, frame);
+                (c, n, self.pulleys[q].radius, turn_sign(sq))
+            }
+            SegmentEnd::Exit(x) => (Vec3::from_array(x), np, 0.0, 1.0),
+        };
+        let qname = q.map_or("the ground exit".to_string(), |q| {
+            format!("pulley `{}`", self.pulleys[q].name)
+        });
+        let fail = |problem: String| Error::Routing {
+            item: route.name.clone(),
+            at: route.at,
+            problem: format!(
+                "segment from pulley `{}` to {}: {problem}",
+                self.pulleys[p].name, qname
+            ),
+        };
+        let scale = 1.0 + norm(cq - cp) + rp + rq;
+        let tol = 1e-9 * scale;
+        let cross = np.cross(nq);
+        let dir = if norm(cross) < 1e-12 {
+            // Parallel axes: the tangent lies in the common plane (classical belt tangent).
+            let sigma = np.dot(nq).signum();
+            let delta = cq - cp;
+            if delta.dot(np).abs() > tol {
+                return Err(fail(format!(
+                    "the two circles are not in one plane (offset {:.3e} m along the axis); \
+                     move one of them along its axis so that the tendon runs in their common plane",
+                    delta.dot(np)
+                )));
+            }
+            let (ex, ey) = plane_basis(np);
+            let (dx, dy) = (delta.dot(ex), delta.dot(ey));
+            let dist = (dx * dx + dy * dy).sqrt();
+            let rho = tp * rp - sigma * tq * rq;
+            if dist <= rho.abs() {
+                return Err(fail(format!(
+                    "no common tangent on the given sides: the centres are {dist:.4e} m apart \
+                     but the tangent needs more than {:.4e} m; move the pulleys apart or change a turn",
+                    rho.abs()
+                )));
+            }
+            let psi = dy.atan2(dx);
+            let delta_angle = psi + (rho / dist).asin();
+            ex.scale(delta_angle.cos()) + ey.scale(delta_angle.sin())
+        } else {
+            // Non-parallel axes: the tangent is along the intersection of the two planes,
+            // and the circles must be placed so that it touches both.
+            let u = unit(cross);
+            let mut best: Option<(f64, Vec3<f64>)> = None;
+            for d in [u, -u] {
+                let a = cp + d.cross(np).scale(tp * rp);
+                let b = cq + d.cross(nq).scale(tq * rq);
+                let v = b - a;
+                let along = v.dot(d);
+                let resid = norm(v - d.scale(along));
+                let bad = if along > 0.0 {
+                    resid
+                } else {
+                    resid + along.abs() + 1.0
+                };
+                if best.is_none_or(|(r, _)| bad < r) {
+                    best = Some((bad, d));
+                }
+            }
+            let (bad, d) = best.expect("two candidates");
+            if bad > tol {
+                return Err(fail(format!(
+                    "the circles' axes are not parallel and no line touches both on the given \
+                     sides (misses by {bad:.3e} m); a tendon between non-parallel pulleys runs \
+                     along the intersection of their planes, so place each circle tangent to that line"
+                )));
+            }
+            d
+        };
+        let from_rel = dir.cross(np).scale(tp * rp);
+        let to_rel = dir.cross(nq).scale(tq * rq);
+        let length = (cq + to_rel - cp - from_rel).dot(dir);
+        let from = Contact {
+            body: Some(self.pulleys[p].body),
+            rel: from_rel,
+            via: self.via(p, frame),
+        };
+        let (to, to_angle) = match to {
+            SegmentEnd::Pulley(q, _) => (
+                Contact {
+                    body: Some(self.pulleys[q].body),
+                    rel: to_rel,
+                    via: self.via(q, frame),
+                },
+                self.acting_angle(q, frame, to_rel),
+            ),
+            SegmentEnd::Exit(x) => (
+                Contact {
+                    body: None,
+                    rel: Vec3::from_array(x),
+                    via: Via::Carrier,
+                },
+                f64::NAN,
+            ),
+        };
+        Ok(Segment {
+            acting_angles: [self.acting_angle(p, frame, from_rel), to_angle],
+            from,
+            to,
+            frame,
+            dir,
+            length,
+        })
+    }
+
+    /// Geometry of a route and the rates it implies. `couplings[p]` must already hold the
+    /// coupling of the route's first pulley; the couplings of the idlers it passes and of a
+    /// driving pulley it ends on are derived and stored.
+    ///
+    /// `start_is_coordinate`: the first pulley is itself a driving pulley (a multi-stage
+    /// drive), whose angle is a coordinate of the tension system.
+    pub fn trace(
+        &self,
+        route: &Route,
+        couplings: &mut [Option<Rate>],
+        start_is_coordinate: bool,
+    ) -> Result<StrandGeometry> {
+        let n = self.dof;
+        let (start, start_turn) = route.wraps[0];
+        let start_coupling = couplings[start].clone().expect("start coupling known");
+        let mut stops: Vec<(usize, Turn)> = route.wraps.clone();
+        let ends_on_pulley = match &route.end {
+            RouteEnd::Exit(_) => false,
+            RouteEnd::Pulley(e, t) => {
+                stops.push((*e, *t));
+                true
+            }
+        };
+        let mut segments = Vec::new();
+        for i in 0..stops.len() - usize::from(ends_on_pulley) {
+            let to = match stops.get(i + 1) {
+                Some(&(q, t)) => SegmentEnd::Pulley(q, t),
+                None => match &route.end {
+                    RouteEnd::Exit(x) => SegmentEnd::Exit(*x),
+                    RouteEnd::Pulley(..) => unreachable!("the last stop has no outgoing segment"),
+                },
+            };
+            segments.push(self.segment(route, stops[i].0, stops[i].1, to)?);
+        }
+
+        // ẋ accumulated along the route with every pulley angle expressed through q.
+        let mut pull = Rate::zero(n);
+        let s0 = turn_sign(start_turn);
+        let r0 = self.pulleys[start].radius;
+        pull.add_scaled(
+            &self.body_rate(start, &start_coupling, segments[0].frame),
+            s0 * r0,
+        );
+        let mut idlers = Vec::new();
+        for (i, &(p, turn)) in stops.iter().enumerate().skip(1) {
+            let (s, r) = (turn_sign(turn), self.pulleys[p].radius);
+            let incoming = segments[i - 1].frame;
+            // The rim moves with the tendon (Eqs. 9-10): coupling of this pulley.
+            let mut c = Rate::zero(n);
+            c.add_scaled(&pull, s / r);
+            c.add_scaled(
+                &self.relative_rate(incoming, self.pulleys[p].carrier, p),
+                1.0,
+            );
+            store_coupling(self, route, couplings, p, c)?;
+            if let Some(out) = segments.get(i) {
+                idlers.push(IdlerStep {
+                    body: self.pulleys[p].body,
+                    turn: s,
+                    radius: r,
+                });
+                pull.add_scaled(&self.relative_rate(incoming, out.frame, p), s * r);
+            }
+        }
+
+        // In the tension system a driving pulley's angle is a coordinate of its own.
+        let mut expanded = pull;
+        if start_is_coordinate {
+            let mut c = Rate::zero(n);
+            c.add_scaled(&start_coupling, -s0 * r0);
+            expanded.add_scaled(&c, 1.0);
+            expanded.add_pulley(start, s0 * r0);
+        }
+        if let RouteEnd::Pulley(e, t) = &route.end {
+            let (s, r) = (turn_sign(*t), self.pulleys[*e].radius);
+            let incoming = segments.last().expect("one segment at least").frame;
+            expanded.add_scaled(
+                &self.relative_rate(incoming, self.pulleys[*e].carrier, *e),
+                s * r,
+            );
+            expanded.add_pulley(*e, -s * r);
+        }
+        Ok(StrandGeometry {
+            segments,
+            idlers,
+            pull_rate: expanded,
+        })
+    }
+}
+
+#[derive(Clone, Debug)]
+enum SegmentEnd {
+    Pulley(usize, Turn),
+    Exit([f64; 3]),
+}
+
+fn store_coupling(
+    routing: &Routing,
+    route: &Route,
+    couplings: &mut [Option<Rate>],
+    p: usize,
+    c: Rate,
+) -> Result<()> {
+    if let Some(old) = &couplings[p] {
+        let same = old.pulleys == c.pulleys
+            && old
+                .joints
+                .iter()
+                .zip(&c.joints)
+                .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + a.abs()));
+        if !same {
+            return Err(Error::Routing {
+                item: route.name.clone(),
+                at: route.at,
+                problem: format!(
+                    "pulley `{}` would turn as {:?} by this route but as {:?} by another; \
+                     a free pulley carries one tendon, and both sides of a loop must agree \
+                     (check `crossed` and the radii)",
+                    routing.pulleys[p].name, c.joints, old.joints
+                ),
+            });
+        }
+    }
+    couplings[p] = Some(c);
+    Ok(())
+}
+
+pub fn turn_sign(t: Turn) -> f64 {
+    match t {
+        Turn::Ccw => 1.0,
+        Turn::Cw => -1.0,
+    }
+}
+
+/// Two unit vectors completing `n` to a right-handed orthonormal basis `(ex, ey, n)`.
+fn plane_basis(n: Vec3<f64>) -> (Vec3<f64>, Vec3<f64>) {
+    let seed = if n.x.abs() < 0.9 {
+        Vec3::new(1.0, 0.0, 0.0)
+    } else {
+        Vec3::new(0.0, 1.0, 0.0)
+    };
+    let ex = unit(seed - n.scale(seed.dot(n)));
+    (ex, n.cross(ex))
+}
+
+/// Transform of a body frame from its parent with the joint angle at `angle`.
+pub fn body_transform(b: &Body<f64>, angle: f64) -> Transform<f64> {
+    let rz = Transform {
+        rotation: crate::spatial::rot_z(angle),
+        translation: Vec3::zero(),
+    };
+    b.pre.compose(&rz).compose(&b.post)
+}
+
+/// Small dense linear algebra generic over [`crate::Numeric`], for the tension system
+/// (Householder QR, so the condition number is not squared).
+pub mod linalg {
+    use crate::real::Numeric;
+
+    /// Pseudo-inverse `Eᵀ(EEᵀ)⁻¹` and an orthonormal null-space basis of a full-row-rank
+    /// `E` (`r × m`, `r ≤ m`), by Householder QR of `Eᵀ`.
+    pub fn pseudo_inverse_and_null_space<U: Numeric>(e: &[Vec<U>]) -> (Vec<Vec<U>>, Vec<Vec<U>>) {
+        let r = e.len();
+        let m = if r == 0 { 0 } else { e[0].len() };
+        if r == 0 {
+            let null = (0..m)
+                .map(|i| {
+                    (0..m)
+                        .map(|k| if i == k { U::one() } else { U::zero() })
+                        .collect()
+                })
+                .collect();
+            return (Vec::new(), null);
+        }
+        // a = Eᵀ (m × r), factorized in place; q accumulates the Householder reflections.
+        let mut a: Vec<Vec<U>> = (0..m).map(|i| (0..r).map(|j| e[j][i]).collect()).collect();
+        let mut q: Vec<Vec<U>> = (0..m)
+            .map(|i| {
+                (0..m)
+                    .map(|k| if i == k { U::one() } else { U::zero() })
+                    .collect()
+            })
+            .collect();
+        for col in 0..r {
+            let mut norm2 = U::zero();
+            for row in a.iter().skip(col) {
+                norm2 = norm2 + row[col] * row[col];
+            }
+            let norm = norm2.sqrt();
+            if norm == U::zero() {
+                continue;
+            }
+            let alpha = if a[col][col] > U::zero() { -norm } else { norm };
+            let mut v: Vec<U> = vec![U::zero(); m];
+            for i in col..m {
+                v[i] = a[i][col];
+            }
+            v[col] = v[col] - alpha;
+            let mut vnorm2 = U::zero();
+            for x in v.iter().skip(col) {
+                vnorm2 = vnorm2 + *x * *x;
+            }
+            if vnorm2 == U::zero() {
+                continue;
+            }
+            let two = U::from_f64(2.0);
+            for j in 0..r {
+                let mut s = U::zero();
+                for i in col..m {
+                    s = s + v[i] * a[i][j];
+                }
+                let f = two * s / vnorm2;
+                for i in col..m {
+                    a[i][j] = a[i][j] - f * v[i];
+                }
+            }
+            // q ← q · H (H symmetric), so that Eᵀ = q · R
+            for row in q.iter_mut() {
+                let mut s = U::zero();
+                for i in col..m {
+                    s = s + row[i] * v[i];
+                }
+                let f = two * s / vnorm2;
+                for i in col..m {
+                    row[i] = row[i] - f * v[i];
+                }
+            }
+        }
+        // pinv = Q₁ R⁻ᵀ: column i solves Rᵀ y = e_i, then Q₁ y.
+        let mut pinv = vec![vec![U::zero(); r]; m];
+        for i in 0..r {
+            let mut y = vec![U::zero(); r];
+            for k in 0..r {
+                let mut s = if k == i { U::one() } else { U::zero() };
+                for l in 0..k {
+                    s = s - a[l][k] * y[l];
+                }
+                y[k] = s / a[k][k];
+            }
+            for (row, prow) in pinv.iter_mut().enumerate() {
+                let mut s = U::zero();
+                for k in 0..r {
+                    s = s + q[row][k] * y[k];
+                }
+                prow[i] = s;
+            }
+        }
+        let null = (r..m).map(|k| (0..m).map(|i| q[i][k]).collect()).collect();
+        (pinv, null)
+    }
+
+    /// Orthogonal projection of `v` onto the span of the orthonormal `basis`.
+    pub fn project_onto<U: Numeric>(v: &[U], basis: &[Vec<U>]) -> Vec<U> {
+        let mut out = vec![U::zero(); v.len()];
+        for b in basis {
+            let mut c = U::zero();
+            for (x, y) in v.iter().zip(b) {
+                c = c + *x * *y;
+            }
+            for (o, y) in out.iter_mut().zip(b) {
+                *o = *o + c * *y;
+            }
+        }
+        out
+    }
+
+    /// Solves `M x = rhs` for a symmetric positive definite `M` by Cholesky; `None` when
+    /// `M` is not positive definite to working precision.
+    pub fn cholesky_solve<U: Numeric>(m: &[Vec<U>], rhs: &[U]) -> Option<Vec<U>> {
+        let n = rhs.len();
+        let mut l = vec![vec![U::zero(); n]; n];
+        for i in 0..n {
+            for j in 0..=i {
+                let mut s = m[i][j];
+                for k in 0..j {
+                    s = s - l[i][k] * l[j][k];
+                }
+                if i == j {
+                    if !(s > U::zero()) || !s.is_finite() {
+                        return None;
+                    }
+                    l[i][i] = s.sqrt();
+                } else {
+                    l[i][j] = s / l[j][j];
+                }
+            }
+        }
+        let mut y = vec![U::zero(); n];
+        for i in 0..n {
+            let mut s = rhs[i];
+            for k in 0..i {
+                s = s - l[i][k] * y[k];
+            }
+            y[i] = s / l[i][i];
+        }
+        let mut x = vec![U::zero(); n];
+        for i in (0..n).rev() {
+            let mut s = y[i];
+            for k in i + 1..n {
+                s = s - l[k][i] * x[k];
+            }
+            x[i] = s / l[i][i];
+        }
+        Some(x)
+    }
+}

@@ -1,0 +1,1068 @@
+//! RON file → validated [`Model`], or an error that names the item, its line and what
+//! would fix it. Nothing is returned unless every check passes.
+
+use crate::error::{Error, Location, Result};
+use crate::format::{
+    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Placement, PulleySpec, Turn,
+};
+use crate::model::{
+    Body, BodyKind, Loop, Model, Motor, MotorKind, PulleyRole, Row, Strand, Tendon, TensionSystem,
+    Unknown, Wrench,
+};
+use crate::spatial::{rot_x, rot_y, rot_z, Mat3, Transform, Vec3};
+use crate::transmission::{
+    joint_parent, linalg, PulleyInfo, Rate, Route, RouteEnd, Routing, StrandGeometry,
+};
+use nalgebra::{DMatrix, Matrix3};
+
+/// Reads and validates a mechanism file.
+pub fn load(path: impl AsRef<std::path::Path>) -> Result<Model<f64>> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    parse(&text)
+}
+
+/// Validates a mechanism given as RON text.
+pub fn parse(text: &str) -> Result<Model<f64>> {
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let file: MechanismFile = options.from_str(text).map_err(|e| Error::Syntax {
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: e.code.to_string(),
+    })?;
+    Validator { text }.model(&file)
+}
+
+/// Validates an already parsed file (no source text: errors carry no line numbers).
+pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
+    Validator { text: "" }.model(file)
+}
+
+struct Validator<'a> {
+    text: &'a str,
+}
+
+/// Angles this close to a multiple of π/2 are taken as exactly that multiple, so that a
+/// twist written `1.5707963267948966` gives exact zeros and ones (which the code generator
+/// then removes).
+const RIGHT_ANGLE_SNAP: f64 = 1e-12;
+
+fn snapped_sin_cos(angle: f64) -> (f64, f64) {
+    let quarter = (angle / std::f64::consts::FRAC_PI_2).round();
+    if (angle - quarter * std::f64::consts::FRAC_PI_2).abs() <= RIGHT_ANGLE_SNAP {
+        match (quarter as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        angle.sin_cos()
+    }
+}
+
+fn snapped_rot(axis: usize, angle: f64) -> Mat3<f64> {
+    let (s, c) = snapped_sin_cos(angle);
+    match axis {
+        0 => Mat3::from_rows([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]),
+        1 => Mat3::from_rows([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]),
+        _ => Mat3::rot_z(s, c),
+    }
+}
+
+/// `TransZ(d) · TransX(a) · RotX(alpha)` of a DH link.
+pub fn dh_post(dh: &Dh) -> Transform<f64> {
+    Transform {
+        rotation: snapped_rot(0, dh.alpha),
+        translation: Vec3::new(dh.a, 0.0, dh.d),
+    }
+}
+
+fn inertia_matrix(i: &InertiaSpec) -> Mat3<f64> {
+    Mat3::from_rows([[i.xx, i.xy, i.xz], [i.xy, i.yy, i.yz], [i.xz, i.yz, i.zz]])
+}
+
+impl Validator<'_> {
+    /// Line and column of the item named `name` (its `name: "…"` field, or failing that
+    /// the first quoted occurrence).
+    fn locate(&self, name: &str) -> Location {
+        let quoted = format!("\"{name}\"");
+        let mut fallback = Location::default();
+        for (i, line) in self.text.lines().enumerate() {
+            if let Some(col) = line.find(&quoted) {
+                let at = Location {
+                    line: i + 1,
+                    column: col + 1,
+                };
+                if line[..col].trim_end().ends_with(':') && line[..col].contains("name") {
+                    return at;
+                }
+                if fallback.line == 0 {
+                    fallback = at;
+                }
+            }
+        }
+        fallback
+    }
+
+    fn invalid(&self, item: &str, problem: impl Into<String>) -> Error {
+        Error::Invalid {
+            item: item.to_string(),
+            at: self.locate(item),
+            problem: problem.into(),
+        }
+    }
+
+    fn routing(&self, item: &str, problem: impl Into<String>) -> Error {
+        Error::Routing {
+            item: item.to_string(),
+            at: self.locate(item),
+            problem: problem.into(),
+        }
+    }
+
+    fn finite(&self, item: &str, field: &str, values: &[f64]) -> Result<()> {
+        match values.iter().find(|v| !v.is_finite()) {
+            Some(v) => Err(self.invalid(
+                item,
+                format!("`{field}` is {v}; every number must be finite"),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn mass_properties(
+        &self,
+        item: &str,
+        mass: f64,
+        com: [f64; 3],
+        inertia: &InertiaSpec,
+    ) -> Result<()> {
+        self.finite(item, "mass", &[mass])?;
+        self.finite(item, "com", &com)?;
+        let i = inertia;
+        self.finite(item, "inertia", &[i.xx, i.yy, i.zz, i.xy, i.xz, i.yz])?;
+        let m = Matrix3::new(i.xx, i.xy, i.xz, i.xy, i.yy, i.yz, i.xz, i.yz, i.zz);
+        let nonzero_inertia = m.iter().any(|&x| x != 0.0);
+        if mass < 0.0 {
+            return Err(self.invalid(
+                item,
+                format!("mass is {mass} kg; a mass must be positive (or zero for a massless body)"),
+            ));
+        }
+        if mass == 0.0 && nonzero_inertia {
+            return Err(self.invalid(
+                item,
+                "mass is zero but the inertia is not: a body with inertia needs a positive mass",
+            ));
+        }
+        if nonzero_inertia {
+            let eig = m.symmetric_eigen().eigenvalues;
+            let mut l = [eig[0], eig[1], eig[2]];
+            l.sort_by(f64::total_cmp);
+            let scale = l[2].abs().max(f64::MIN_POSITIVE);
+            if l[0] < -1e-12 * scale {
+                return Err(self.invalid(
+                    item,
+                    format!(
+                        "inertia is not positive semi-definite (principal moments {:.6e}, {:.6e}, \
+                         {:.6e} kg·m²); off-diagonal entries are tensor entries I_xy = -∫xy dm, \
+                         check their signs and sizes",
+                        l[0], l[1], l[2]
+                    ),
+                ));
+            }
+            if l[0] + l[1] < l[2] * (1.0 - 1e-12) {
+                return Err(self.invalid(
+                    item,
+                    format!(
+                        "principal moments {:.6e}, {:.6e}, {:.6e} kg·m² violate the triangle \
+                         inequality (the two smaller must add up to at least the largest): no \
+                         mass distribution has this inertia",
+                        l[0], l[1], l[2]
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn model(&self, f: &MechanismFile) -> Result<Model<f64>> {
+        self.finite(&f.name, "gravity", &f.gravity)?;
+        if f.links.is_empty() {
+            return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
+        }
+        // Names are unique across every kind of item, and `base` is the ground.
+        let mut seen: Vec<&str> = vec!["base"];
+        let names = f
+            .links
+            .iter()
+            .map(|l| &l.name)
+            .chain(f.pulleys.iter().map(|p| &p.name))
+            .chain(f.tendons.iter().map(|t| &t.name))
+            .chain(f.loops.iter().map(|l| &l.name))
+            .chain(f.motors.iter().map(|m| &m.name));
+        for name in names {
+            if seen.contains(&name.as_str()) {
+                return Err(self.invalid(
+                    name,
+                    if name == "base" {
+                        "`base` is the ground and cannot name an item".to_string()
+                    } else {
+                        format!("the name `{name}` is used twice; every item needs its own name")
+                    },
+                ));
+            }
+            seen.push(name);
+        }
+        let n = f.links.len();
+        let link_index = |name: &str| f.links.iter().position(|l| l.name == name);
+
+        let mut bodies: Vec<Body<f64>> = f
+            .links
+            .iter()
+            .enumerate()
+            .map(|(j, l)| self.link_body(j, l, n))
+            .collect::<Result<_>>()?;
+
+        let mut pulleys: Vec<PulleyInfo> = Vec::new();
+        for p in &f.pulleys {
+            let (body, info) = self.pulley_body(p, f, &bodies, n)?;
+            pulleys.push(PulleyInfo {
+                body: bodies.len(),
+                ..info
+            });
+            bodies.push(body);
+        }
+        let pulley_index = |name: &str| f.pulleys.iter().position(|p| p.name == name);
+
+        // Routes.
+        let mut routes: Vec<(Route, Origin)> = Vec::new();
+        for (k, t) in f.tendons.iter().enumerate() {
+            self.finite(&t.name, "floor", &[t.floor.unwrap_or(0.0)])?;
+            if t.route.is_empty() {
+                if t.structure.is_none() {
+                    return Err(self.routing(
+                        &t.name,
+                        "has neither a `route` nor an explicit `structure` column",
+                    ));
+                }
+                continue;
+            }
+            let mut wraps = Vec::new();
+            for w in &t.route {
+                let p = pulley_index(&w.0).ok_or_else(|| {
+                    self.routing(
+                        &t.name,
+                        format!("its route names `{}`, which is not a pulley", w.0),
+                    )
+                })?;
+                wraps.push((p, w.1));
+            }
+            let anchor = &f.pulleys[wraps[0].0];
+            if !anchor.fixed {
+                return Err(self.routing(
+                    &t.name,
+                    format!(
+                        "its route must start on an anchor (a `fixed: true` drum on a link), \
+                         but `{}` turns freely; list the anchor drum first",
+                        anchor.name
+                    ),
+                ));
+            }
+            for &(p, _) in &wraps[1..] {
+                if f.pulleys[p].fixed {
+                    return Err(self.routing(
+                        &t.name,
+                        format!(
+                            "passes over `{}`, a fixed drum: a tendon would have to slide over \
+                             it; only its first pulley (the anchor) may be fixed",
+                            f.pulleys[p].name
+                        ),
+                    ));
+                }
+            }
+            let exit = t.exit.ok_or_else(|| {
+                self.routing(
+                    &t.name,
+                    "has a route but no `exit` point where it leaves for its actuator",
+                )
+            })?;
+            self.finite(&t.name, "exit", &exit)?;
+            routes.push((
+                Route {
+                    name: t.name.clone(),
+                    at: self.locate(&t.name),
+                    wraps,
+                    end: RouteEnd::Exit(exit),
+                },
+                Origin::Tendon(k),
+            ));
+        }
+        for (k, l) in f.loops.iter().enumerate() {
+            self.finite(&l.name, "pretension", &[l.pretension])?;
+            if l.pretension < 0.0 {
+                return Err(self.invalid(&l.name, "pretension must not be negative"));
+            }
+            let find = |name: &str| {
+                pulley_index(name)
+                    .ok_or_else(|| self.routing(&l.name, format!("`{name}` is not a pulley")))
+            };
+            let (driven, driving) = (find(&l.driven)?, find(&l.driving)?);
+            if driven == driving {
+                return Err(self.routing(&l.name, "drives its own pulley"));
+            }
+            if f.pulleys[driving].fixed {
+                return Err(self.routing(
+                    &l.name,
+                    format!(
+                        "its driving pulley `{}` is fixed to its carrier; a driving pulley turns",
+                        l.driving
+                    ),
+                ));
+            }
+            let other = |t: Turn| match (t, l.crossed) {
+                (t, false) => t,
+                (Turn::Ccw, true) => Turn::Cw,
+                (Turn::Cw, true) => Turn::Ccw,
+            };
+            for (side, turn) in [("ccw", Turn::Ccw), ("cw", Turn::Cw)] {
+                routes.push((
+                    Route {
+                        name: format!("{}/{side}", l.name),
+                        at: self.locate(&l.name),
+                        wraps: vec![(driven, turn)],
+                        end: RouteEnd::Pulley(driving, other(turn)),
+                    },
+                    Origin::Loop(k),
+                ));
+            }
+        }
+
+        // Couplings: fixed drums and explicit rows are known; routes derive the rest,
+        // each route once the coupling of the body it starts from is known.
+        let routing = Routing {
+            bodies: &bodies,
+            pulleys: &pulleys,
+            dof: n,
+        };
+        let mut couplings: Vec<Option<Rate>> = f
+            .pulleys
+            .iter()
+            .map(|p| {
+                p.fixed.then(|| Rate {
+                    joints: vec![0.0; n],
+                    pulleys: Vec::new(),
+                })
+            })
+            .collect();
+        let mut explicit: Vec<Option<Vec<f64>>> = vec![None; f.pulleys.len()];
+        for (i, p) in f.pulleys.iter().enumerate() {
+            if let Some(c) = &p.coupling {
+                if c.len() != n {
+                    return Err(self.invalid(
+                        &p.name,
+                        format!(
+                            "`coupling` has {} ratios but the mechanism has {n} joints",
+                            c.len()
+                        ),
+                    ));
+                }
+                self.finite(&p.name, "coupling", c)?;
+                if p.fixed && c.iter().any(|&x| x != 0.0) {
+                    return Err(self.invalid(&p.name, "a fixed drum cannot have a coupling"));
+                }
+                explicit[i] = Some(c.clone());
+            }
+        }
+        let routed_end: Vec<bool> = (0..f.pulleys.len())
+            .map(|p| {
+                routes
+                    .iter()
+                    .any(|(r, _)| matches!(r.end, RouteEnd::Pulley(e, _) if e == p))
+            })
+            .collect();
+        let routed_through: Vec<usize> = (0..f.pulleys.len())
+            .map(|p| {
+                routes
+                    .iter()
+                    .filter(|(r, _)| r.wraps[1..].iter().any(|&(q, _)| q == p))
+                    .count()
+            })
+            .collect();
+        for (i, c) in explicit.iter().enumerate() {
+            if c.is_some() && !routed_end[i] && routed_through[i] == 0 && !f.pulleys[i].fixed {
+                couplings[i] = c.clone().map(|joints| Rate {
+                    joints,
+                    pulleys: Vec::new(),
+                });
+            }
+        }
+        let mut geometry: Vec<Option<StrandGeometry>> = vec![None; routes.len()];
+        loop {
+            let mut progressed = false;
+            for (i, (route, _)) in routes.iter().enumerate() {
+                let start = route.wraps[0].0;
+                if geometry[i].is_some() || couplings[start].is_none() {
+                    continue;
+                }
+                geometry[i] = Some(routing.trace(route, &mut couplings, routed_end[start])?);
+                progressed = true;
+            }
+            if !progressed {
+                break;
+            }
+        }
+        if let Some(i) = geometry.iter().position(Option::is_none) {
+            let (route, _) = &routes[i];
+            return Err(self.routing(
+                route.name.split('/').next().unwrap_or(&route.name),
+                format!(
+                    "starts on `{}`, whose rotation nothing determines (loops that drive each \
+                     other in a circle, or a driven pulley with no coupling)",
+                    f.pulleys[route.wraps[0].0].name
+                ),
+            ));
+        }
+        for (i, p) in f.pulleys.iter().enumerate() {
+            if routed_through[i] > 1 {
+                return Err(self.routing(
+                    &p.name,
+                    "carries more than one tendon: a free idler's balance fixes the tension \
+                     difference of one tendon only; give each tendon its own idler",
+                ));
+            }
+            if routed_through[i] == 1 && routed_end[i] {
+                return Err(self.routing(
+                    &p.name,
+                    "is both an idler of one tendon and the driving pulley of a loop",
+                ));
+            }
+            let derived = couplings[i].as_ref().ok_or_else(|| {
+                self.routing(
+                    &p.name,
+                    "is turned by nothing: route a tendon over it, make it `fixed`, or give \
+                     it an explicit `coupling`",
+                )
+            })?;
+            if let Some(c) = &explicit[i] {
+                let agree = c
+                    .iter()
+                    .zip(&derived.joints)
+                    .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs())));
+                if !agree {
+                    return Err(self.routing(
+                        &p.name,
+                        format!(
+                            "its explicit coupling {c:?} disagrees with the routing, which turns it \
+                             as {:?}",
+                            derived.joints
+                        ),
+                    ));
+                }
+            }
+        }
+
+        // Strands, pulley roles and the unknowns of the tension system.
+        let mut strands = Vec::new();
+        let mut unknowns = Vec::new();
+        let mut tendons = Vec::new();
+        let mut loops = Vec::new();
+        let mut strand_of_route = vec![0; routes.len()];
+        let mut order: Vec<usize> = (0..routes.len())
+            .filter(|&i| matches!(routes[i].1, Origin::Tendon(_)))
+            .collect();
+        order.extend((0..routes.len()).filter(|&i| matches!(routes[i].1, Origin::Loop(_))));
+        for &i in &order {
+            let g = geometry[i].take().expect("traced");
+            strand_of_route[i] = strands.len();
+            unknowns.push(Unknown::Strand(strands.len()));
+            strands.push((routes[i].0.name.clone(), g));
+        }
+        let floor_default = f.tension_floor;
+        self.finite(&f.name, "tension_floor", &[floor_default])?;
+        for (k, t) in f.tendons.iter().enumerate() {
+            let floor = t.floor.unwrap_or(floor_default);
+            if floor < 0.0 {
+                return Err(self.invalid(&t.name, "the tension floor must not be negative"));
+            }
+            if let Some(mx) = t.max_tension {
+                self.finite(&t.name, "max_tension", &[mx])?;
+                if mx < floor {
+                    return Err(self.invalid(
+                        &t.name,
+                        format!("max_tension {mx} N is below its floor {floor} N"),
+                    ));
+                }
+            }
+            let routed = routes
+                .iter()
+                .position(|(_, o)| matches!(o, Origin::Tendon(kk) if *kk == k));
+            let (strand, unknown, mut column) = match routed {
+                Some(i) => {
+                    let s = strand_of_route[i];
+                    (Some(s), s, strands[s].1.pull_rate.joints.clone())
+                }
+                None => {
+                    unknowns.push(Unknown::Explicit(tendons.len()));
+                    (None, unknowns.len() - 1, Vec::new())
+                }
+            };
+            if let Some(col) = &t.structure {
+                if col.len() != n {
+                    return Err(self.invalid(
+                        &t.name,
+                        format!(
+                            "`structure` has {} entries but the mechanism has {n} joints",
+                            col.len()
+                        ),
+                    ));
+                }
+                self.finite(&t.name, "structure", col)?;
+                if strand.is_some() {
+                    let agree = col
+                        .iter()
+                        .zip(&column)
+                        .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs())));
+                    if !agree {
+                        return Err(self.routing(
+                            &t.name,
+                            format!(
+                                "its explicit structure column {col:?} disagrees with its route, \
+                                 which gives {column:?}"
+                            ),
+                        ));
+                    }
+                } else {
+                    column = col.clone();
+                }
+            }
+            tendons.push(Tendon {
+                name: t.name.clone(),
+                strand,
+                unknown,
+                floor,
+                max_tension: t.max_tension,
+                structure: column,
+            });
+        }
+        for (k, l) in f.loops.iter().enumerate() {
+            let mut s = [0; 2];
+            let mut side = 0;
+            for (i, (_, o)) in routes.iter().enumerate() {
+                if matches!(o, Origin::Loop(kk) if *kk == k) {
+                    s[side] = strand_of_route[i];
+                    side += 1;
+                }
+            }
+            loops.push(Loop {
+                name: l.name.clone(),
+                driven: pulleys[pulley_index(&l.driven).expect("checked")].body,
+                driving: pulleys[pulley_index(&l.driving).expect("checked")].body,
+                crossed: l.crossed,
+                pretension: l.pretension,
+                strands: s,
+            });
+        }
+        // Store couplings and roles on the pulley bodies.
+        for (i, info) in pulleys.iter().enumerate() {
+            let body = &mut bodies[info.body];
+            body.coupling = couplings[i].as_ref().expect("checked").joints.clone();
+            let role = if info.fixed {
+                PulleyRole::Fixed
+            } else if routed_end[i] {
+                PulleyRole::Driving
+            } else if routed_through[i] == 1 {
+                let s = routes
+                    .iter()
+                    .position(|(r, _)| r.wraps[1..].iter().any(|&(q, _)| q == i))
+                    .expect("counted");
+                PulleyRole::Idler {
+                    strand: strand_of_route[s],
+                }
+            } else {
+                PulleyRole::Coupled
+            };
+            body.kind = BodyKind::Pulley {
+                radius: info.radius,
+                role,
+            };
+        }
+
+        // Motors.
+        let mut motors = Vec::new();
+        for m in &f.motors {
+            let (kind, column) = match &m.on {
+                MotorSite::Joint(name) => {
+                    let j = link_index(name)
+                        .ok_or_else(|| self.invalid(&m.name, format!("`{name}` is not a link")))?;
+                    let mut c = vec![0.0; n];
+                    c[j] = 1.0;
+                    (MotorKind::Joint(j), c)
+                }
+                MotorSite::Pulley(name) => {
+                    let p = pulley_index(name).ok_or_else(|| {
+                        self.invalid(&m.name, format!("`{name}` is not a pulley"))
+                    })?;
+                    let b = pulleys[p].body;
+                    match &bodies[b].kind {
+                        BodyKind::Pulley {
+                            role: PulleyRole::Driving | PulleyRole::Coupled,
+                            ..
+                        } => {}
+                        _ => {
+                            return Err(self.invalid(
+                                &m.name,
+                                format!(
+                                    "drives `{name}`, which is neither the driving pulley of a \
+                                     loop nor explicitly coupled; a motor on a fixed drum or a \
+                                     free idler has nothing to act against"
+                                ),
+                            ))
+                        }
+                    }
+                    (MotorKind::Pulley(b), bodies[b].coupling.clone())
+                }
+            };
+            if motors.iter().any(|o: &Motor| o.kind == kind) {
+                return Err(self.invalid(&m.name, "a second motor on the same joint or pulley"));
+            }
+            unknowns.push(Unknown::Motor(motors.len()));
+            motors.push(Motor {
+                name: m.name.clone(),
+                kind,
+                unknown: unknowns.len() - 1,
+                column,
+            });
+        }
+        if unknowns.len() > crate::affine::MAX_UNKNOWNS {
+            return Err(self.invalid(
+                &f.name,
+                format!(
+                    "{} tendon strands and motors exceed the supported {}",
+                    unknowns.len(),
+                    crate::affine::MAX_UNKNOWNS
+                ),
+            ));
+        }
+
+        let external_wrench = match &f.external_wrench {
+            None => None,
+            Some(w) => {
+                let link = link_index(&w.link).ok_or_else(|| {
+                    self.invalid(
+                        &f.name,
+                        format!("external_wrench names `{}`, which is not a link", w.link),
+                    )
+                })?;
+                self.finite(
+                    &w.link,
+                    "external_wrench",
+                    &[w.point, w.force, w.moment].concat(),
+                )?;
+                Some(Wrench {
+                    link,
+                    point: Vec3::from_array(w.point),
+                    force: Vec3::from_array(w.force),
+                    moment: Vec3::from_array(w.moment),
+                })
+            }
+        };
+
+        let system =
+            self.tension_system(f, n, &bodies, &strands, &tendons, &loops, &motors, unknowns)?;
+        let routing_incomplete = tendons.iter().any(|t| t.strand.is_none())
+            || bodies.iter().any(|b| {
+                matches!(
+                    b.kind,
+                    BodyKind::Pulley {
+                        role: PulleyRole::Coupled,
+                        ..
+                    }
+                )
+            });
+        Ok(Model {
+            name: f.name.clone(),
+            gravity: Vec3::from_array(f.gravity),
+            dof: n,
+            bodies,
+            strands: strands
+                .into_iter()
+                .enumerate()
+                .map(|(i, (name, g))| Strand {
+                    name,
+                    segments: g.segments,
+                    idlers: g.idlers,
+                    unknown: i,
+                })
+                .collect(),
+            tendons,
+            loops,
+            motors,
+            system,
+            external_wrench,
+            routing_incomplete,
+        })
+    }
+
+    fn link_body(&self, j: usize, l: &LinkSpec, n: usize) -> Result<Body<f64>> {
+        let d = &l.dh;
+        self.finite(&l.name, "dh", &[d.a, d.alpha, d.d, d.offset])?;
+        self.mass_properties(&l.name, l.mass, l.com, &l.inertia)?;
+        let post = dh_post(d);
+        let mut coupling = vec![0.0; n];
+        coupling[j] = 1.0;
+        Ok(Body {
+            name: l.name.clone(),
+            kind: BodyKind::Link { joint: j },
+            parent: joint_parent(j),
+            pre: Transform::identity(),
+            post,
+            offset: d.offset,
+            coupling,
+            spins: true,
+            mass: l.mass,
+            com: Vec3::from_array(l.com),
+            inertia: inertia_matrix(&l.inertia),
+            axis: post.rotation.tr_mul_vec(Vec3::unit_z()),
+            joint_to_origin: post.rotation.tr_mul_vec(post.translation),
+        })
+    }
+
+    fn pulley_body(
+        &self,
+        p: &PulleySpec,
+        f: &MechanismFile,
+        links: &[Body<f64>],
+        n: usize,
+    ) -> Result<(Body<f64>, PulleyInfo)> {
+        self.mass_properties(&p.name, p.mass, p.com, &p.inertia)?;
+        self.finite(&p.name, "radius", &[p.radius])?;
+        if p.radius <= 0.0 {
+            return Err(self.invalid(
+                &p.name,
+                format!("radius is {} m; a pitch radius must be positive", p.radius),
+            ));
+        }
+        let carrier = if p.carrier == "base" {
+            None
+        } else {
+            Some(
+                f.links
+                    .iter()
+                    .position(|l| l.name == p.carrier)
+                    .ok_or_else(|| {
+                        self.invalid(
+                            &p.name,
+                            format!(
+                                "its carrier `{}` does not exist; a carrier is `base` or a link name",
+                                p.carrier
+                            ),
+                        )
+                    })?,
+            )
+        };
+        let (pre, coaxial) = match &p.at {
+            Placement::Joint { joint, height } => {
+                self.finite(&p.name, "height", &[*height])?;
+                let j = f
+                    .links
+                    .iter()
+                    .position(|l| &l.name == joint)
+                    .ok_or_else(|| {
+                        self.invalid(
+                            &p.name,
+                            format!("`at: Joint` names `{joint}`, which is not a link"),
+                        )
+                    })?;
+                let lift = Transform {
+                    rotation: Mat3::identity(),
+                    translation: Vec3::new(0.0, 0.0, *height),
+                };
+                let pre = if carrier == joint_parent(j) {
+                    lift
+                } else if carrier == Some(j) {
+                    links[j].post.inverse().compose(&lift)
+                } else {
+                    return Err(self.invalid(
+                        &p.name,
+                        format!(
+                            "sits on the axis of joint `{joint}` but is carried by `{}`; a pulley \
+                             on a joint axis is carried by one of the two bodies that joint connects",
+                            p.carrier
+                        ),
+                    ));
+                };
+                (pre, Some((j, *height)))
+            }
+            Placement::Pose { origin, rpy } => {
+                self.finite(&p.name, "origin", origin)?;
+                self.finite(&p.name, "rpy", rpy)?;
+                let r = snapped_rot(2, rpy[2]) * snapped_rot(1, rpy[1]) * snapped_rot(0, rpy[0]);
+                let _ = (rot_x, rot_y, rot_z);
+                (
+                    Transform {
+                        rotation: r,
+                        translation: Vec3::from_array(*origin),
+                    },
+                    None,
+                )
+            }
+        };
+        let i = &p.inertia;
+        // An axisymmetric pulley's inertia does not change as it spins, so its frame may
+        // stay the housing frame and its angle never needs a sine or cosine.
+        let axisymmetric = p.com[0] == 0.0
+            && p.com[1] == 0.0
+            && i.xx == i.yy
+            && i.xy == 0.0
+            && i.xz == 0.0
+            && i.yz == 0.0;
+        Ok((
+            Body {
+                name: p.name.clone(),
+                kind: BodyKind::Pulley {
+                    radius: p.radius,
+                    role: PulleyRole::Fixed,
+                },
+                parent: carrier,
+                pre,
+                post: Transform::identity(),
+                offset: 0.0,
+                coupling: vec![0.0; n],
+                spins: !(p.fixed || axisymmetric),
+                mass: p.mass,
+                com: Vec3::from_array(p.com),
+                inertia: inertia_matrix(&p.inertia),
+                axis: Vec3::unit_z(),
+                joint_to_origin: Vec3::zero(),
+            },
+            PulleyInfo {
+                name: p.name.clone(),
+                at: self.locate(&p.name),
+                body: 0,
+                carrier,
+                coaxial,
+                radius: p.radius,
+                fixed: p.fixed,
+            },
+        ))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn tension_system(
+        &self,
+        f: &MechanismFile,
+        n: usize,
+        bodies: &[Body<f64>],
+        strands: &[(String, StrandGeometry)],
+        tendons: &[Tendon],
+        loops: &[Loop],
+        motors: &[Motor],
+        unknowns: Vec<Unknown>,
+    ) -> Result<TensionSystem<f64>> {
+        let mut rows: Vec<Row> = (0..n).map(Row::Joint).collect();
+        let driving: Vec<usize> = (0..bodies.len())
+            .filter(|&b| {
+                matches!(
+                    bodies[b].kind,
+                    BodyKind::Pulley {
+                        role: PulleyRole::Driving,
+                        ..
+                    }
+                )
+            })
+            .collect();
+        rows.extend(driving.iter().map(|&b| Row::Pulley(b)));
+        rows.extend((0..loops.len()).map(Row::Pretension));
+        let body_of_pulley = |p: usize| bodies.iter().position(|b| b.name == f.pulleys[p].name);
+        let m = unknowns.len();
+        let mut e = vec![vec![0.0; m]; rows.len()];
+        for (col, u) in unknowns.iter().enumerate() {
+            match u {
+                Unknown::Strand(s) => {
+                    let rate = &strands[*s].1.pull_rate;
+                    for j in 0..n {
+                        e[j][col] = rate.joints[j];
+                    }
+                    for &(p, c) in &rate.pulleys {
+                        let b = body_of_pulley(p).expect("pulley body");
+                        let row = rows
+                            .iter()
+                            .position(|r| *r == Row::Pulley(b))
+                            .expect("driving row");
+                        e[row][col] = c;
+                    }
+                }
+                Unknown::Explicit(k) => {
+                    for j in 0..n {
+                        e[j][col] = tendons[*k].structure[j];
+                    }
+                }
+                Unknown::Motor(k) => match motors[*k].kind {
+                    MotorKind::Joint(j) => e[j][col] = 1.0,
+                    MotorKind::Pulley(b) => {
+                        if let Some(row) = rows.iter().position(|r| *r == Row::Pulley(b)) {
+                            e[row][col] = 1.0;
+                        } else {
+                            for j in 0..n {
+                                e[j][col] = motors[*k].column[j];
+                            }
+                        }
+                    }
+                },
+            }
+        }
+        for (k, l) in loops.iter().enumerate() {
+            let row = n + driving.len() + k;
+            for s in l.strands {
+                let col = unknowns
+                    .iter()
+                    .position(|u| *u == Unknown::Strand(s))
+                    .expect("strand");
+                e[row][col] = 0.5;
+            }
+        }
+        let what = |u: &Unknown| match u {
+            Unknown::Strand(s) => format!("tension `{}`", strands[*s].0),
+            Unknown::Explicit(k) => format!("tension `{}`", tendons[*k].name),
+            Unknown::Motor(k) => format!("motor `{}`", motors[*k].name),
+        };
+        let rows_len = rows.len();
+        if m < rows_len {
+            return Err(self.routing(
+                &f.name,
+                format!(
+                    "under-actuated: {rows_len} balances (one per joint, driving pulley and loop) \
+                     but only {m} tensions and motor torques to satisfy them; add motors or tendons"
+                ),
+            ));
+        }
+        let dm = DMatrix::from_fn(rows_len, m, |i, j| e[i][j]);
+        let svd = dm.clone().svd(false, false);
+        let sv = &svd.singular_values;
+        let smax = sv.iter().cloned().fold(0.0, f64::max);
+        let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
+        if !(smin > 1e-10 * smax) {
+            return Err(self.routing(
+                &f.name,
+                format!(
+                    "the structure matrix does not have full row rank (singular values {:?}): \
+                     some joint or driving pulley cannot be balanced independently of the others; \
+                     route a tendon over it with a different radius or turn, or add a motor",
+                    sv.as_slice()
+                ),
+            ));
+        }
+        let (pseudo_inverse, null_space) = linalg::pseudo_inverse_and_null_space(&e);
+        // Only open-ended tendons may be redundant: motors and loop sides are determined.
+        let is_tendon = |u: &Unknown| {
+            matches!(u, Unknown::Explicit(_))
+                || matches!(u, Unknown::Strand(s) if tendons.iter().any(|t| t.strand == Some(*s)))
+        };
+        for v in &null_space {
+            let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            for (u, x) in unknowns.iter().zip(v) {
+                if !is_tendon(u) && x.abs() > 1e-9 * scale {
+                    return Err(self.routing(
+                        &f.name,
+                        format!(
+                            "{} is not determined by the dynamics (it can trade against the \
+                             tendons' tensions); a motor or loop must not share its joint with \
+                             redundant tendons this way",
+                            what(u)
+                        ),
+                    ));
+                }
+            }
+        }
+        let tendon_cols: Vec<usize> = (0..m).filter(|&c| is_tendon(&unknowns[c])).collect();
+        let positive_null =
+            if tendon_cols.is_empty() {
+                None
+            } else {
+                match positive_null_vector(&null_space, &tendon_cols) {
+                    Some(v) => Some(v),
+                    None => return Err(self.routing(
+                        &f.name,
+                        if null_space.is_empty() {
+                            "not controllable by tendons: as many tendon tensions as balances, so \
+                             the dynamics fixes every tension and some must push; an open-ended \
+                             routing needs at least one tendon more than it has joints to drive"
+                                .to_string()
+                        } else {
+                            "not controllable by tendons: no combination of tensions that leaves \
+                             every joint balanced keeps all tendons taut (the structure matrix has \
+                             no strictly positive null vector); reverse the turn of a tendon on a \
+                             joint where all tendons pull the same way"
+                                .to_string()
+                        },
+                    )),
+                }
+            };
+        Ok(TensionSystem {
+            unknowns,
+            rows,
+            matrix: e,
+            pseudo_inverse,
+            null_space,
+            positive_null,
+            condition: smax / smin,
+        })
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Origin {
+    Tendon(usize),
+    Loop(usize),
+}
+
+/// A null vector whose components on `cols` are all strictly positive, found by the
+/// perceptron iteration on the null-space coordinates (it terminates when such a vector
+/// exists with a margin; the margin needed here is generous), scaled so that its smallest
+/// tendon component is 1.
+fn positive_null_vector(null: &[Vec<f64>], cols: &[usize]) -> Option<Vec<f64>> {
+    let d = null.len();
+    if d == 0 {
+        return None;
+    }
+    let rows: Vec<Vec<f64>> = cols
+        .iter()
+        .map(|&c| {
+            let r: Vec<f64> = null.iter().map(|v| v[c]).collect();
+            let nr = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            r.iter().map(|x| x / nr.max(f64::MIN_POSITIVE)).collect()
+        })
+        .collect();
+    let mut lambda: Vec<f64> = vec![0.0; d];
+    for r in &rows {
+        for (l, x) in lambda.iter_mut().zip(r) {
+            *l += x;
+        }
+    }
+    for _ in 0..100_000 {
+        let worst = rows
+            .iter()
+            .map(|r| r.iter().zip(&lambda).map(|(a, b)| a * b).sum::<f64>())
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .expect("at least one tendon");
+        let lnorm = lambda.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if worst.1 > 1e-9 * lnorm {
+            let v: Vec<f64> = (0..null[0].len())
+                .map(|i| null.iter().zip(&lambda).map(|(b, l)| b[i] * l).sum())
+                .collect();
+            let min = cols.iter().map(|&c| v[c]).fold(f64::INFINITY, f64::min);
+            return Some(v.iter().map(|x| x / min).collect());
+        }
+        for (l, x) in lambda.iter_mut().zip(&rows[worst.0]) {
+            *l += x;
+        }
+    }
+    None
+}

@@ -1,0 +1,26 @@
+//! Independent reference derivations of the dynamics of a [`Model`], for the specification
+//! tests to check the Newton-Euler solver against.
+//!
+//! Nothing here shares code with the solver's kinematics or dynamics: from `tendyn-core`
+//! only the model's data types are read (and, in [`fixtures`], a few constructors to fill
+//! them in). The derivations are different in kind from a recursion over bodies:
+//!
+//! - [`poses`]: each body's pose as the plain product of its stored transforms in nalgebra,
+//!   in a dual-number scalar; velocities are forward-mode derivatives of poses along the
+//!   motion, angular velocities read from `Ṙ Rᵀ`.
+//! - [`lagrangian`]: `T`, `V`, `M` (from Jacobians), and Lagrange's equations
+//!   `Q = d/dt(∂L/∂q̇) − ∂L/∂q = M q̈ + h + g` by nested dual numbers; energy rate.
+//! - [`momentum`]: accelerations, total momentum and its rate, and the base (or any
+//!   subtree's) reaction from the momentum balance of the whole mechanism.
+//!
+//! Everything is exact to `f64` rounding: no finite differences.
+//!
+//! [`Model`]: tendyn_core::model::Model
+
+pub mod fixtures;
+pub mod lagrangian;
+pub mod momentum;
+pub mod poses;
+
+#[cfg(test)]
+mod tests;
