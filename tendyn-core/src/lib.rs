@@ -31,7 +31,7 @@ pub mod tension;
 pub mod transmission;
 pub mod validate;
 
-// pub use double_double::DoubleDouble;
+pub use double_double::DoubleDouble;
 pub use dynamics::{InverseDynamics, Solver};
 pub use error::{Error, Result};
 pub use model::Model;
