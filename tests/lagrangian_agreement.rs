@@ -159,3 +159,21 @@ fn paper_examples_agree_with_lagrange_power_and_momentum() {
         println!("{}: worst relative error {worst:.2e}", m.name);
     }
 }
+
+#[test]
+fn random_spatial_mechanisms_agree_with_lagrange_power_and_momentum() {
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+    let mut shown = 0;
+    for seed in 0..16u64 {
+        let features = Features {
+            coupled_pulleys: seed % 2 == 1,
+            endless: seed % 4 == 2,
+        };
+        let (_, m) = valid_random_mechanism(seed, features);
+        let worst = check_mechanism(&m, 50, seed);
+        if shown < 16 {
+            println!("{} ({} links, {} pulleys, {} tendons): worst relative error {worst:.2e}", m.name, m.dof, m.bodies.len() - m.dof, m.tendons.len());
+            shown += 1;
+        }
+    }
+}

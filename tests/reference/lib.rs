@@ -21,6 +21,7 @@ pub mod fixtures;
 pub mod lagrangian;
 pub mod momentum;
 pub mod poses;
+pub mod random_mechanism;
 
 #[cfg(test)]
 mod tests;
