@@ -172,8 +172,107 @@ fn random_spatial_mechanisms_agree_with_lagrange_power_and_momentum() {
         let (_, m) = valid_random_mechanism(seed, features);
         let worst = check_mechanism(&m, 50, seed);
         if shown < 16 {
-            println!("{} ({} links, {} pulleys, {} tendons): worst relative error {worst:.2e}", m.name, m.dof, m.bodies.len() - m.dof, m.tendons.len());
+            println!(
+                "{} ({} links, {} pulleys, {} tendons): worst relative error {worst:.2e}",
+                m.name,
+                m.dof,
+                m.bodies.len() - m.dof,
+                m.tendons.len()
+            );
             shown += 1;
         }
+    }
+}
+
+/// Every body's bearing force and moment is what the momentum balance of the subtree it
+/// carries requires, given the tendon forces that cross into that subtree (tensions from
+/// the solver, geometry from the model, poses and momenta from the reference).
+fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
+    use nalgebra::{Matrix3, Vector3};
+    use tendyn_core::model::MotorKind;
+    use tendyn_spec::poses::world_poses;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut solver = Solver::new(model);
+    let v = |x: tendyn_core::spatial::Vec3<f64>| Vector3::new(x.x, x.y, x.z);
+    let mut worst = 0.0f64;
+    for _ in 0..states {
+        let (q, qd, qdd) = state(&mut rng, model.dof);
+        let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let (Some(bearings), Some(segments)) = (&id.bearings, &id.segment_tensions) else {
+            return worst;
+        };
+        let poses = world_poses::<f64>(model, &q);
+        let frame_rot = |f: Option<usize>| f.map_or(Matrix3::identity(), |l| poses[l].0);
+        for root in 0..model.bodies.len() {
+            let mut inside = vec![false; model.bodies.len()];
+            for (b, body) in model.bodies.iter().enumerate() {
+                inside[b] = b == root || body.parent.is_some_and(|p| inside[p]);
+            }
+            let (mut f_need, mut m_need) = momentum::subtree_reaction(model, &q, &qd, &qdd, root);
+            for (strand, tensions) in model.strands.iter().zip(segments) {
+                for (seg, t) in strand.segments.iter().zip(tensions) {
+                    let rl = frame_rot(seg.frame);
+                    let dir = rl * v(seg.dir) * *t;
+                    let point = |c: &tendyn_core::model::Contact<f64>| match c.body {
+                        Some(b) => poses[b].1 + rl * v(c.rel),
+                        None => v(c.rel),
+                    };
+                    let is_in =
+                        |c: &tendyn_core::model::Contact<f64>| c.body.is_some_and(|b| inside[b]);
+                    if is_in(&seg.from) && !is_in(&seg.to) {
+                        f_need -= dir;
+                        m_need -= point(&seg.from).cross(&dir);
+                    }
+                    if is_in(&seg.to) && !is_in(&seg.from) {
+                        f_need += dir;
+                        m_need += point(&seg.to).cross(&dir);
+                    }
+                }
+            }
+            let body = &model.bodies[root];
+            let (r, origin) = poses[root];
+            let (f, mut n) = bearings[root];
+            if let Some(mo) = model
+                .motors
+                .iter()
+                .find(|mo| mo.kind == MotorKind::Joint(root) || mo.kind == MotorKind::Pulley(root))
+            {
+                n = n + body.axis.scale(id.unknowns[mo.unknown]);
+            }
+            let joint_point = origin - r * v(body.joint_to_origin);
+            let f_w = r * v(f);
+            let m_w = r * v(n) + joint_point.cross(&f_w);
+            let scale = f_need.amax().max(1e-300);
+            let e = (f_w - f_need).amax() / scale;
+            let e_m = (m_w - m_need).amax() / m_need.amax().max(1e-300);
+            assert!(
+                e <= TOL && e_m <= TOL,
+                "{}: bearing of {} off by {e:.3e} (force) / {e_m:.3e} (moment)",
+                model.name,
+                body.name
+            );
+            worst = worst.max(e).max(e_m);
+        }
+    }
+    worst
+}
+
+#[test]
+fn bearing_forces_balance_the_momentum_of_each_subtree() {
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+    for (i, m) in examples().iter().enumerate() {
+        let worst = check_bearings(m, 100, 40 + i as u64);
+        println!("{}: worst {worst:.2e}", m.name);
+    }
+    for seed in 0..8u64 {
+        let (_, m) = valid_random_mechanism(
+            seed,
+            Features {
+                coupled_pulleys: false,
+                endless: seed % 3 == 1,
+            },
+        );
+        let worst = check_bearings(&m, 20, seed);
+        println!("{}: worst {worst:.2e}", m.name);
     }
 }

@@ -206,3 +206,82 @@ pub const BUILT_IN: [(&str, &str); 3] = [
         include_str!("../../examples/mechanisms/example3_stanford_jpl.ron"),
     ),
 ];
+
+/// A readable summary of inverse dynamics at one state (what `tendyn eval` prints without
+/// `--json`, and what `tendyn demo` shows).
+pub fn inverse_text(
+    m: &Model<f64>,
+    r: &InverseDynamics<f64>,
+    mass: &[Vec<f64>],
+    bias: &[f64],
+    gravity: &[f64],
+) -> String {
+    let mut s = String::new();
+    let mut line = |t: String| {
+        s.push_str(&t);
+        s.push('\n');
+    };
+    let joints: Vec<&str> = m.joint_names().collect();
+    line(format!(
+        "  generalized forces Q ({}): {} N·m",
+        joints.join(", "),
+        fmt_row(&r.generalized_forces)
+    ));
+    for (mo, t) in m.motors.iter().zip(&r.motor_torques) {
+        line(format!("  motor {:<12} {:>12.6} N·m", mo.name, t));
+    }
+    for (k, t) in m.tendons.iter().enumerate() {
+        line(format!(
+            "  tendon {:<11} {:>12.6} N  (minimal-norm {:.6} + null-space {:.6}, floor {})",
+            t.name,
+            r.tendon_tensions[k],
+            r.minimal_norm_tensions[k],
+            r.null_space_tensions[k],
+            t.floor
+        ));
+    }
+    for (l, (sides, slack)) in m.loops.iter().zip(&r.loop_sides) {
+        line(format!(
+            "  loop {:<13} ccw side {:.6} N, cw side {:.6} N{}",
+            l.name,
+            sides[0],
+            sides[1],
+            if *slack {
+                "  SLACK: raise the pretension"
+            } else {
+                ""
+            }
+        ));
+    }
+    if let Some(segs) = &r.segment_tensions {
+        for (st, v) in m.strands.iter().zip(segs) {
+            if v.len() > 1 {
+                line(format!(
+                    "  segments of {:<8} {} N (anchor side first)",
+                    st.name,
+                    fmt_row(v)
+                ));
+            }
+        }
+    }
+    for (b, v) in &r.pulley_demands {
+        line(format!(
+            "  pulley {:<11} needs {:>12.6e} N·m about its axis",
+            m.bodies[*b].name, v
+        ));
+    }
+    if let Some((f, n)) = &r.base_reaction {
+        line(format!(
+            "  base reaction: force {} N, moment {} N·m",
+            fmt_row(&f.to_array()),
+            fmt_row(&n.to_array())
+        ));
+    }
+    line("  mass matrix M:".into());
+    for row in mass {
+        line(format!("    {}", fmt_row(row)));
+    }
+    line(format!("  bias h: {}", fmt_row(bias)));
+    line(format!("  gravity g: {}", fmt_row(gravity)));
+    s
+}

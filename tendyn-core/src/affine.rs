@@ -66,8 +66,8 @@ impl<T: Real> Affine<T> {
     /// Value at the given unknowns.
     pub fn eval(&self, x: &[T]) -> T {
         let mut v = self.constant;
-        for k in 0..self.n {
-            v = v + self.coefficients[k] * x[k];
+        for (a, xk) in self.coefficients[..self.n].iter().zip(x) {
+            v = v + *a * *xk;
         }
         v
     }
@@ -149,8 +149,8 @@ impl<T: Real> Aff3<T> {
     }
     pub fn eval(&self, x: &[T]) -> Vec3<T> {
         let mut v = self.constant;
-        for k in 0..self.n {
-            v = v + self.coefficients[k].scale(x[k]);
+        for (a, xk) in self.coefficients[..self.n].iter().zip(x) {
+            v = v + a.scale(*xk);
         }
         v
     }

@@ -192,11 +192,10 @@ impl<'m, T: Numeric> Solver<'m, T> {
                 )));
             }
         }
-        let n = model.dof;
         let zeros = self.zeros.clone();
         let mut rhs = zeros.clone();
         self.expanded(q, qd, &zeros, true, true, &mut rhs);
-        for j in 0..n {
+        for (j, r) in rhs.iter_mut().enumerate() {
             let mut u = T::zero();
             for (m, t) in model.motors.iter().zip(motor_torques) {
                 u = u + T::from_f64(m.column[j]) * *t;
@@ -204,7 +203,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
             for (k, t) in model.tendons.iter().zip(tendon_tensions) {
                 u = u + T::from_f64(k.structure[j]) * *t;
             }
-            rhs[j] = u - rhs[j];
+            *r = u - *r;
         }
         let m = self.mass_matrix(q)?;
         linalg::cholesky_solve(&m, &rhs).ok_or_else(|| {

@@ -525,6 +525,8 @@ pub fn body_transform(b: &Body<f64>, angle: f64) -> Transform<f64> {
 
 /// Small dense linear algebra generic over [`crate::Numeric`], for the tension system
 /// (Householder QR, so the condition number is not squared).
+// Index loops read like the textbook algorithms here.
+#[allow(clippy::needless_range_loop)]
 pub mod linalg {
     use crate::real::Numeric;
 
@@ -647,7 +649,7 @@ pub mod linalg {
                     s = s - l[i][k] * l[j][k];
                 }
                 if i == j {
-                    if !(s > U::zero()) || !s.is_finite() {
+                    if s <= U::zero() || !s.is_finite() {
                         return None;
                     }
                     l[i][i] = s.sqrt();

@@ -54,6 +54,23 @@ enum Command {
     Demo,
 }
 
+/// Writes to stdout; a reader that went away (`tendyn demo | head`) ends the program quietly.
+fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if out
+        .write_all(text.as_bytes())
+        .and_then(|_| out.flush())
+        .is_err()
+    {
+        std::process::exit(0);
+    }
+}
+
+macro_rules! say {
+    ($($t:tt)*) => { emit(&format!("{}\n", format!($($t)*))) };
+}
+
 fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
@@ -68,20 +85,20 @@ fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Check { file } => {
             let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
-            print!("{}", report::check_text(&m));
+            emit(&report::check_text(&m));
             Ok(())
         }
         Command::Demo => {
             for (file, text) in tendyn_codegen::report::BUILT_IN {
                 let m = tendyn_core::parse(text).map_err(|e| format!("{file}: {e}"))?;
-                print!("{}", report::check_text(&m));
+                emit(&report::check_text(&m));
                 let n = m.dof;
                 let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
                 let qd: Vec<f64> = (0..n).map(|i| 1.0 - 0.5 * i as f64).collect();
                 let qdd: Vec<f64> = (0..n).map(|i| 2.0 + i as f64).collect();
-                println!("inverse dynamics at q = {q:?}, qd = {qd:?}, qdd = {qdd:?}:");
-                println!("{}", eval_json(&m, &q, &qd, &qdd)?);
-                println!();
+                say!("inverse dynamics at q = {q:?}, qd = {qd:?}, qdd = {qdd:?}:");
+                emit(&eval_text(&m, &q, &qd, &qdd)?);
+                say!("");
             }
             Ok(())
         }
@@ -97,14 +114,10 @@ fn run(cli: Cli) -> Result<(), String> {
             let n = m.dof;
             match states {
                 None => {
-                    let v = eval_json(&m, &q, &qd, &qdd)?;
                     if json {
-                        println!("{v}");
+                        say!("{}", eval_json(&m, &q, &qd, &qdd)?);
                     } else {
-                        println!(
-                            "{}",
-                            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
-                        );
+                        emit(&eval_text(&m, &q, &qd, &qdd)?);
                     }
                 }
                 Some(path) => {
@@ -133,7 +146,7 @@ fn run(cli: Cli) -> Result<(), String> {
                         }
                         let v = eval_json(&m, &vals[..n], &vals[n..2 * n], &vals[2 * n..])
                             .map_err(|e| format!("{path}:{}: {e}", i + 1))?;
-                        println!("{v}");
+                        say!("{v}");
                     }
                 }
             }
@@ -153,13 +166,22 @@ fn run(cli: Cli) -> Result<(), String> {
                 .forward_dynamics(&q, &qd, &torques, &tensions)
                 .map_err(|e| e.to_string())?;
             if json {
-                println!("{}", serde_json::json!({ "mechanism": m.name, "qdd": qdd }));
+                say!("{}", serde_json::json!({ "mechanism": m.name, "qdd": qdd }));
             } else {
-                println!("qdd = {qdd:?}");
+                say!("qdd = {qdd:?}");
             }
             Ok(())
         }
     }
+}
+
+fn eval_text(m: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<String, String> {
+    let mut s = Solver::new(m);
+    let r = s.inverse_dynamics(q, qd, qdd).map_err(|e| e.to_string())?;
+    let mass = s.mass_matrix(q).map_err(|e| e.to_string())?;
+    let bias = s.bias(q, qd).map_err(|e| e.to_string())?;
+    let gravity = s.gravity(q).map_err(|e| e.to_string())?;
+    Ok(report::inverse_text(m, &r, &mass, &bias, &gravity))
 }
 
 fn eval_json(
