@@ -1,0 +1,108 @@
+//! The `tendyn` binary as a user meets it.
+
+use std::process::Command;
+
+fn tendyn(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_tendyn"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("runs");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+#[test]
+fn demo_runs_the_three_paper_examples_without_arguments() {
+    let (ok, out, err) = tendyn(&["demo"]);
+    assert!(ok, "{err}");
+    for name in [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ] {
+        assert!(out.contains(&format!("mechanism `{name}`: valid")), "{out}");
+    }
+    assert!(out.contains("structure matrix A") && out.contains("mass matrix M"));
+}
+
+#[test]
+fn check_prints_couplings_structure_matrix_and_null_vector() {
+    let (ok, out, _) = tendyn(&["check", "examples/mechanisms/example2_open_ended.ron"]);
+    assert!(ok);
+    assert!(
+        out.contains("idler3")
+            && out.contains("positive null vector")
+            && out.contains("condition number")
+    );
+}
+
+#[test]
+fn eval_over_a_csv_of_states_prints_one_json_object_per_state() {
+    let dir = std::env::temp_dir().join(format!("tendyn_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("states.csv");
+    std::fs::write(
+        &csv,
+        "# q1,q2,qd1,qd2,qdd1,qdd2\n0.1,0.2,0,0,1,1\n0.3,-0.4,1,2,-3,4\n",
+    )
+    .unwrap();
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--states",
+        csv.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2);
+    for l in lines {
+        for key in [
+            "\"generalized_forces\"",
+            "\"tendon_tensions\"",
+            "\"bearings\"",
+            "\"mass_matrix\"",
+            "\"segment_tensions\"",
+            "\"base_reaction\"",
+        ] {
+            assert!(l.contains(key), "missing {key} in {l}");
+        }
+    }
+}
+
+#[test]
+fn forward_gives_joint_accelerations_and_bad_input_fails_with_the_reason() {
+    let (ok, out, err) = tendyn(&[
+        "forward",
+        "examples/mechanisms/example1_endless.ron",
+        "--q",
+        "0.3,0.5",
+        "--qd",
+        "1,-0.5",
+        "--torques",
+        "1.5,0.2",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    assert!(out.contains("\"qdd\""));
+    let (ok, _, err) = tendyn(&[
+        "forward",
+        "examples/mechanisms/example1_endless.ron",
+        "--q",
+        "0.3",
+        "--qd",
+        "1,-0.5",
+        "--torques",
+        "1.5,0.2",
+    ]);
+    assert!(
+        !ok && err.contains("q has 1 entries but the mechanism has 2 joints"),
+        "{err}"
+    );
+    let (ok, _, err) = tendyn(&["check", "does/not/exist.ron"]);
+    assert!(!ok && err.contains("does/not/exist.ron"), "{err}");
+}
