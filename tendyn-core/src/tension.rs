@@ -94,13 +94,29 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>) -> Vec<Affine<T
 }
 
 /// Minimal-norm solution `x₀ = E⁺ b`.
+///
+/// A loop's pretension is added exactly rather than through `E⁺`: the two strand columns
+/// of a loop are negatives of each other in every row but its pretension row (every term
+/// of a strand's rate carries one turn sign, and the two sides turn oppositely everywhere),
+/// so both sides at the pretension solve that part of `b` exactly, and that solution is
+/// orthogonal to the null space. Passing the pretension through the rounded `E⁺` instead
+/// leaves an error of about `u · pretension` in every motor torque.
 pub fn minimal_norm<T: Real>(model: &Model<T>, b: &[T], out: &mut [T]) {
+    let dynamic = |r: usize| !matches!(model.system.rows[r], Row::Pretension(_));
     for (o, row) in out.iter_mut().zip(&model.system.pseudo_inverse) {
         let mut s = T::zero();
-        for (p, v) in row.iter().zip(b) {
-            s = s + *p * *v;
+        for (r, (p, v)) in row.iter().zip(b).enumerate() {
+            if dynamic(r) {
+                s = s + *p * *v;
+            }
         }
         *o = s;
+    }
+    for l in &model.loops {
+        for strand in l.strands {
+            let k = model.strands[strand].unknown;
+            out[k] = out[k] + T::from_f64(l.pretension);
+        }
     }
 }
 
