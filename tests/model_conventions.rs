@@ -2,6 +2,9 @@
 //! use neither the model's internal representation nor the solver: a hand-written DH
 //! product, and a body made of point masses whose dynamics is summed particle by particle.
 
+// Matrix arithmetic reads best with index loops.
+#![allow(clippy::needless_range_loop)]
+
 use tendyn_core::spatial::Vec3;
 use tendyn_core::transmission::body_transform;
 use tendyn_core::Solver;
@@ -41,9 +44,18 @@ fn dh_parameters_compose_as_rotz_transz_transx_rotx_from_the_proximal_frame() {
         motors: [(name: "m1", on: Joint("l1")), (name: "m2", on: Joint("l2")), (name: "m3", on: Joint("l3"))],
     )"#;
     let m = tendyn_core::parse(text).unwrap();
-    let params = [(0.3, 0.7, 0.05, 0.2), (-0.1, -1.2, 0.15, -0.4), (0.2, 2.5, -0.07, 0.0)];
+    let params = [
+        (0.3, 0.7, 0.05, 0.2),
+        (-0.1, -1.2, 0.15, -0.4),
+        (0.2, 2.5, -0.07, 0.0),
+    ];
     let q = [0.9, -1.3, 2.1];
-    let mut want: M4 = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
+    let mut want: M4 = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
     let mut got = tendyn_core::spatial::Transform::<f64>::identity();
     for (j, &(a, alpha, d, offset)) in params.iter().enumerate() {
         want = mul(&want, &dh(q[j] + offset, d, a, alpha));
@@ -66,7 +78,11 @@ fn inertia_off_diagonals_are_tensor_entries_as_a_point_mass_body_shows() {
     // particle, Σ m a_i and Σ r_i × m a_i; the solver must report them as the bearing force,
     // bearing moment and motor torque.
     let a = 0.1;
-    let particles = [(0.3, [0.05, 0.02, 0.03]), (0.5, [-0.04, 0.06, -0.02]), (0.2, [0.01, -0.05, 0.07])];
+    let particles = [
+        (0.3, [0.05, 0.02, 0.03]),
+        (0.5, [-0.04, 0.06, -0.02]),
+        (0.2, [0.01, -0.05, 0.07]),
+    ];
     let mass: f64 = particles.iter().map(|p| p.0).sum();
     let mut com = [0.0; 3];
     for (m, p) in &particles {
@@ -108,9 +124,19 @@ fn inertia_off_diagonals_are_tensor_entries_as_a_point_mass_body_shows() {
         moment = moment + rvec.cross(acc.scale(*mp));
     }
     let close = |x: f64, y: f64| (x - y).abs() < 1e-13 * (1.0 + y.abs());
-    assert!(close(f.x, force.x) && close(f.y, force.y) && close(f.z, force.z), "force {f:?} vs {force:?}");
-    assert!(close(n.x, moment.x) && close(n.y, moment.y), "bearing moment {n:?} vs particle moment {moment:?}");
-    assert!(close(n.z, 0.0) && close(tau, moment.z), "motor torque {tau} vs {}", moment.z);
+    assert!(
+        close(f.x, force.x) && close(f.y, force.y) && close(f.z, force.z),
+        "force {f:?} vs {force:?}"
+    );
+    assert!(
+        close(n.x, moment.x) && close(n.y, moment.y),
+        "bearing moment {n:?} vs particle moment {moment:?}"
+    );
+    assert!(
+        close(n.z, 0.0) && close(tau, moment.z),
+        "motor torque {tau} vs {}",
+        moment.z
+    );
     // The off-diagonal entries matter here: with their signs flipped (products of inertia
     // typed where tensor entries belong) the bearing moment changes.
     let flipped = text
@@ -120,10 +146,20 @@ fn inertia_off_diagonals_are_tensor_entries_as_a_point_mass_body_shows() {
     // Here the flipped tensor is not even a physical inertia; either way the two readings
     // cannot both hold.
     match tendyn_core::parse(&flipped) {
-        Err(e) => assert!(e.to_string().contains("triangle inequality") || e.to_string().contains("semi-definite")),
+        Err(e) => assert!(
+            e.to_string().contains("triangle inequality")
+                || e.to_string().contains("semi-definite")
+        ),
         Ok(m2) => {
-            let (_, n2) = Solver::new(&m2).inverse_dynamics(&[q], &[qd], &[qdd]).unwrap().bearings.unwrap()[0];
-            assert!(!close(n2.x, moment.x) || !close(n2.y, moment.y), "the test cannot tell the conventions apart");
+            let (_, n2) = Solver::new(&m2)
+                .inverse_dynamics(&[q], &[qd], &[qdd])
+                .unwrap()
+                .bearings
+                .unwrap()[0];
+            assert!(
+                !close(n2.x, moment.x) || !close(n2.y, moment.y),
+                "the test cannot tell the conventions apart"
+            );
         }
     }
 }

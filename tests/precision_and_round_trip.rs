@@ -8,22 +8,45 @@ use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
 fn examples() -> Vec<Model<f64>> {
-    ["example1_endless", "example2_open_ended", "example3_stanford_jpl"]
-        .iter()
-        .map(|n| tendyn_core::load(format!("{}/../examples/mechanisms/{n}.ron", env!("CARGO_MANIFEST_DIR"))).unwrap())
-        .collect()
+    [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ]
+    .iter()
+    .map(|n| {
+        tendyn_core::load(format!(
+            "{}/../examples/mechanisms/{n}.ron",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap()
+    })
+    .collect()
 }
 
 fn mechanisms() -> Vec<Model<f64>> {
     let mut all = examples();
     for seed in 100..106u64 {
-        all.push(valid_random_mechanism(seed, Features { coupled_pulleys: seed % 2 == 0, endless: seed % 3 == 0 }).1);
+        all.push(
+            valid_random_mechanism(
+                seed,
+                Features {
+                    coupled_pulleys: seed % 2 == 0,
+                    endless: seed % 3 == 0,
+                },
+            )
+            .1,
+        );
     }
     all
 }
 
 fn state(rng: &mut ChaCha8Rng, n: usize) -> [Vec<f64>; 3] {
-    let mut v = |s: f64| (0..n).map(|_| rng.random_range(-s..s)).collect::<Vec<f64>>();
+    let mut v = |s: f64| {
+        (0..n)
+            .map(|_| rng.random_range(-s..s))
+            .collect::<Vec<f64>>()
+    };
     [v(std::f64::consts::PI), v(3.0), v(10.0)]
 }
 
@@ -45,7 +68,10 @@ fn flatten<T: Numeric>(r: &InverseDynamics<T>) -> Vec<f64> {
 
 fn rel(a: &[f64], b: &[f64]) -> f64 {
     let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
 }
 
 fn lift<T: Numeric>(v: &[f64]) -> Vec<T> {
@@ -62,16 +88,36 @@ fn double_double_agrees_with_f64_to_f64_precision_and_f32_to_f32_precision() {
         let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
         for _ in 0..50 {
             let [q, qd, qdd] = state(&mut rng, m.dof);
-            let reference = flatten(&sdd.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd)).unwrap());
+            let reference = flatten(
+                &sdd.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd))
+                    .unwrap(),
+            );
             let r64 = flatten(&s64.inverse_dynamics(&q, &qd, &qdd).unwrap());
-            let r32 = flatten(&s32.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd)).unwrap());
+            let r32 = flatten(
+                &s32.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd))
+                    .unwrap(),
+            );
             worst64 = worst64.max(rel(&r64, &reference));
             worst32 = worst32.max(rel(&r32, &reference));
         }
-        println!("{}: f64 {worst64:.2e}, f32 {worst32:.2e} (max-norm relative to double-double)", m.name);
-        assert!(worst64 < 1e-12, "{}: f64 is {worst64:.3e} from the double-double reference", m.name);
-        assert!(worst32 < 1e-4, "{}: f32 is {worst32:.3e} from the double-double reference", m.name);
-        assert!(worst64 > 0.0, "the reference must differ from f64 somewhere, else it is not more precise");
+        println!(
+            "{}: f64 {worst64:.2e}, f32 {worst32:.2e} (max-norm relative to double-double)",
+            m.name
+        );
+        assert!(
+            worst64 < 1e-12,
+            "{}: f64 is {worst64:.3e} from the double-double reference",
+            m.name
+        );
+        assert!(
+            worst32 < 1e-4,
+            "{}: f32 is {worst32:.3e} from the double-double reference",
+            m.name
+        );
+        assert!(
+            worst64 > 0.0,
+            "the reference must differ from f64 somewhere, else it is not more precise"
+        );
     }
 }
 
@@ -88,7 +134,12 @@ fn mass_matrix_is_symmetric_positive_definite() {
             let asym = (&dm - dm.transpose()).amax() / dm.amax();
             assert!(asym < 1e-14, "{}: M is asymmetric by {asym:.2e}", m.name);
             let eig = dm.symmetric_eigen().eigenvalues;
-            assert!(eig.min() > 0.0, "{}: M has eigenvalue {}", m.name, eig.min());
+            assert!(
+                eig.min() > 0.0,
+                "{}: M has eigenvalue {}",
+                m.name,
+                eig.min()
+            );
         }
     }
 }
@@ -102,7 +153,9 @@ fn forward_dynamics_undoes_inverse_dynamics() {
         for _ in 0..50 {
             let [q, qd, qdd] = state(&mut rng, m.dof);
             let id = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
-            let back = s.forward_dynamics(&q, &qd, &id.motor_torques, &id.tendon_tensions).unwrap();
+            let back = s
+                .forward_dynamics(&q, &qd, &id.motor_torques, &id.tendon_tensions)
+                .unwrap();
             worst = worst.max(rel(&back, &qdd));
         }
         assert!(worst < 1e-10, "{}: round trip off by {worst:.3e}", m.name);

@@ -64,9 +64,11 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
             // Minimal-norm part plus null-space part; the null-space part is a null vector and
             // the minimal-norm part is orthogonal to the null space.
             let a = m.structure_matrix();
-            for j in 0..m.dof {
-                let an: f64 = (0..t.len())
-                    .map(|k| a[j][k] * r.null_space_tensions[k])
+            for (j, row) in a.iter().enumerate() {
+                let an: f64 = row
+                    .iter()
+                    .zip(&r.null_space_tensions)
+                    .map(|(x, y)| x * y)
                     .sum();
                 assert!(
                     an.abs() < 1e-10 * (1.0 + t.iter().cloned().fold(0.0, f64::max)),
@@ -138,7 +140,9 @@ fn a_floor_that_needs_more_than_an_actuator_can_pull_is_an_error_naming_the_tend
 
 #[test]
 fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clears_it() {
-    let (q, qd, qdd) = ([0.3, 0.5], [1.0, 0.5], [2.0, 3.0]);
+    // q̈ = (20, 30) rad/s² needs about 68 N of tension difference: more than twice the 20 N
+    // pretension, so one side would have to push.
+    let (q, qd, qdd) = ([0.3, 0.5], [1.0, 0.5], [20.0, 30.0]);
     let low = tendyn_core::parse(&example("example1_endless")).unwrap();
     let r = Solver::new(&low).inverse_dynamics(&q, &qd, &qdd).unwrap();
     let ([ccw, cw], slack) = r.loop_sides[0];
@@ -147,7 +151,7 @@ fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clea
         "sides {ccw}, {cw}"
     );
     let high = tendyn_core::parse(
-        &example("example1_endless").replace("pretension: 20.0", "pretension: 30.0"),
+        &example("example1_endless").replace("pretension: 20.0", "pretension: 50.0"),
     )
     .unwrap();
     let r2 = Solver::new(&high).inverse_dynamics(&q, &qd, &qdd).unwrap();

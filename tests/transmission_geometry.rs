@@ -30,10 +30,29 @@ fn circle(model: &Model<f64>, poses: &[Pose<f64>], q: &[f64], b: usize) -> Circl
     let (r, o) = poses[b];
     let body = &model.bodies[b];
     let phi = angle(body, q);
-    let spin = Matrix3::new(phi.cos(), -phi.sin(), 0.0, phi.sin(), phi.cos(), 0.0, 0.0, 0.0, 1.0);
+    let spin = Matrix3::new(
+        phi.cos(),
+        -phi.sin(),
+        0.0,
+        phi.sin(),
+        phi.cos(),
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    );
     // The frame of a spinning body turns with it; otherwise it is the housing frame.
-    let (housing, material) = if body.spins { (r * spin.transpose(), r) } else { (r, r * spin) };
-    Circle { centre: o, axis: r * Vector3::z(), housing_mark: housing * Vector3::x(), body_mark: material * Vector3::x() }
+    let (housing, material) = if body.spins {
+        (r * spin.transpose(), r)
+    } else {
+        (r, r * spin)
+    };
+    Circle {
+        centre: o,
+        axis: r * Vector3::z(),
+        housing_mark: housing * Vector3::x(),
+        body_mark: material * Vector3::x(),
+    }
 }
 
 /// Signed angle from `a` to `b` about `n`, in (−π, π].
@@ -67,19 +86,31 @@ fn arcs(model: &Model<f64>, q: &[f64], strand: usize) -> Arcs {
         tendyn_core::model::BodyKind::Pulley { radius, .. } => radius,
         _ => unreachable!(),
     };
-    let travel = |c: &Circle, a: Vector3<f64>, b: Vector3<f64>, turn: f64| turn * turn_angle(a - c.centre, b - c.centre, c.axis);
+    let travel = |c: &Circle, a: Vector3<f64>, b: Vector3<f64>, turn: f64| {
+        turn * turn_angle(a - c.centre, b - c.centre, c.axis)
+    };
     // Tangency, in the world frame: contacts on their circles, direction along the segment
     // and perpendicular to the radius and the axis.
     for seg in &s.segments {
         let (a, b) = (contact(seg, &seg.from), contact(seg, &seg.to));
         let d = frame_rot(seg.frame) * v(seg.dir);
-        assert!(((b - a).norm() - seg.length).abs() < 1e-12 && (b - a).normalize().dot(&d) > 1.0 - 1e-12, "segment is not straight");
+        assert!(
+            ((b - a).norm() - seg.length).abs() < 1e-12
+                && (b - a).normalize().dot(&d) > 1.0 - 1e-12,
+            "segment is not straight"
+        );
         for (c, p) in [(&seg.from, a), (&seg.to, b)] {
             if let Some(body) = c.body {
                 let ci = circle(model, &poses, q, body);
                 let rad = p - ci.centre;
-                assert!((rad.norm() - radius(body)).abs() < 1e-12, "contact off the pitch circle");
-                assert!(rad.dot(&d).abs() < 1e-12 && ci.axis.dot(&d).abs() < 1e-12, "segment not tangent");
+                assert!(
+                    (rad.norm() - radius(body)).abs() < 1e-12,
+                    "contact off the pitch circle"
+                );
+                assert!(
+                    rad.dot(&d).abs() < 1e-12 && ci.axis.dot(&d).abs() < 1e-12,
+                    "segment not tangent"
+                );
             }
         }
     }
@@ -87,24 +118,48 @@ fn arcs(model: &Model<f64>, q: &[f64], strand: usize) -> Arcs {
     let first = &s.segments[0];
     let start = first.from.body.unwrap();
     let c = circle(model, &poses, q, start);
-    let start_turn = -travel(&c, c.centre + c.axis.cross(&(frame_rot(first.frame) * v(first.dir))), c.centre + c.body_mark, 1.0).signum();
+    let start_turn = -travel(
+        &c,
+        c.centre + c.axis.cross(&(frame_rot(first.frame) * v(first.dir))),
+        c.centre + c.body_mark,
+        1.0,
+    )
+    .signum();
     let _ = start_turn;
     // The turn at the start is the sign of the moment the first segment exerts (Eq. 17).
-    let t0 = c.axis.dot(&(contact(first, &first.from) - c.centre).cross(&(frame_rot(first.frame) * v(first.dir)))).signum();
-    wraps.push((radius(start), travel(&c, c.centre + c.body_mark, contact(first, &first.from), t0)));
+    let t0 = c
+        .axis
+        .dot(
+            &(contact(first, &first.from) - c.centre)
+                .cross(&(frame_rot(first.frame) * v(first.dir))),
+        )
+        .signum();
+    wraps.push((
+        radius(start),
+        travel(&c, c.centre + c.body_mark, contact(first, &first.from), t0),
+    ));
     for (k, idler) in s.idlers.iter().enumerate() {
         let (inc, out) = (&s.segments[k], &s.segments[k + 1]);
         let c = circle(model, &poses, q, idler.body);
         let a = contact(inc, &inc.to);
-        wraps.push((idler.radius, travel(&c, a, contact(out, &out.from), idler.turn)));
+        wraps.push((
+            idler.radius,
+            travel(&c, a, contact(out, &out.from), idler.turn),
+        ));
         to_housing.push(travel(&c, a, c.centre + c.housing_mark, idler.turn));
     }
     let last = s.segments.last().unwrap();
     if let Some(e) = last.to.body {
         let c = circle(model, &poses, q, e);
         let d = frame_rot(last.frame) * v(last.dir);
-        let te = -c.axis.dot(&(contact(last, &last.to) - c.centre).cross(&(-d))).signum();
-        wraps.push((radius(e), travel(&c, contact(last, &last.to), c.centre + c.body_mark, te)));
+        let te = -c
+            .axis
+            .dot(&(contact(last, &last.to) - c.centre).cross(&(-d)))
+            .signum();
+        wraps.push((
+            radius(e),
+            travel(&c, contact(last, &last.to), c.centre + c.body_mark, te),
+        ));
     }
     Arcs { wraps, to_housing }
 }
@@ -134,7 +189,8 @@ fn check(model: &Model<f64>, seed: u64) {
                 if i >= 1 && i <= strand.idlers.len() {
                     // Material passing the idler's housing mark moves its rim (no slip).
                     let j = i - 1;
-                    let arc = strand.idlers[j].radius * wrapped(now.to_housing[j] - prev.to_housing[j]);
+                    let arc =
+                        strand.idlers[j].radius * wrapped(now.to_housing[j] - prev.to_housing[j]);
                     rim[j] += -strand.idlers[j].turn * (before + arc);
                 }
                 before += dl;
@@ -145,28 +201,60 @@ fn check(model: &Model<f64>, seed: u64) {
         let dq: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| b - a).collect();
         if let Some(t) = model.tendons.iter().find(|t| t.strand == Some(s)) {
             let want: f64 = t.structure.iter().zip(&dq).map(|(a, d)| a * d).sum();
-            assert!((-pulled - want).abs() < 1e-12, "{} {}: ground end pulled in by {} but A·Δq = {want}", model.name, strand.name, -pulled);
+            assert!(
+                (-pulled - want).abs() < 1e-12,
+                "{} {}: ground end pulled in by {} but A·Δq = {want}",
+                model.name,
+                strand.name,
+                -pulled
+            );
         } else {
-            assert!(pulled.abs() < 1e-12, "{} {}: an endless loop changed length by {pulled}", model.name, strand.name);
+            assert!(
+                pulled.abs() < 1e-12,
+                "{} {}: an endless loop changed length by {pulled}",
+                model.name,
+                strand.name
+            );
         }
         for (j, idler) in strand.idlers.iter().enumerate() {
             let c = &model.bodies[idler.body].coupling;
             let want: f64 = idler.radius * c.iter().zip(&dq).map(|(a, d)| a * d).sum::<f64>();
-            assert!((rim[j] - want).abs() < 1e-12, "{} {}: idler {} rim moved {} but its coupling gives {want}", model.name, strand.name, model.bodies[idler.body].name, rim[j]);
+            assert!(
+                (rim[j] - want).abs() < 1e-12,
+                "{} {}: idler {} rim moved {} but its coupling gives {want}",
+                model.name,
+                strand.name,
+                model.bodies[idler.body].name,
+                rim[j]
+            );
         }
     }
 }
 
 #[test]
 fn tendon_geometry_moves_ground_ends_by_a_dq_and_idlers_by_their_couplings() {
-    for n in ["example1_endless", "example2_open_ended", "example3_stanford_jpl"] {
-        let m = tendyn_core::load(format!("{}/../examples/mechanisms/{n}.ron", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    for n in [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ] {
+        let m = tendyn_core::load(format!(
+            "{}/../examples/mechanisms/{n}.ron",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
         for seed in 0..5 {
             check(&m, seed);
         }
     }
     for seed in 0..8u64 {
-        let (_, m) = valid_random_mechanism(seed, Features { coupled_pulleys: false, endless: seed % 3 == 1 });
+        let (_, m) = valid_random_mechanism(
+            seed,
+            Features {
+                coupled_pulleys: false,
+                endless: seed % 3 == 1,
+            },
+        );
         check(&m, seed);
     }
 }

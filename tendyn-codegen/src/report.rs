@@ -6,6 +6,13 @@ use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
 use tendyn_core::spatial::Vec3;
 use tendyn_core::InverseDynamics;
 
+/// The joint-space terms evaluated beside inverse dynamics.
+pub struct JointSpace {
+    pub mass: Vec<Vec<f64>>,
+    pub bias: Vec<f64>,
+    pub gravity: Vec<f64>,
+}
+
 fn v3(v: Vec3<f64>) -> Value {
     json!([v.x, v.y, v.z])
 }
@@ -129,10 +136,9 @@ pub fn inverse_json(
     qd: &[f64],
     qdd: &[f64],
     r: &InverseDynamics<f64>,
-    mass: &[Vec<f64>],
-    bias: &[f64],
-    gravity: &[f64],
+    js: &JointSpace,
 ) -> Value {
+    let (mass, bias, gravity) = (&js.mass, &js.bias, &js.gravity);
     let names = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>();
     let mut out = json!({
         "mechanism": m.name,
@@ -209,13 +215,8 @@ pub const BUILT_IN: [(&str, &str); 3] = [
 
 /// A readable summary of inverse dynamics at one state (what `tendyn eval` prints without
 /// `--json`, and what `tendyn demo` shows).
-pub fn inverse_text(
-    m: &Model<f64>,
-    r: &InverseDynamics<f64>,
-    mass: &[Vec<f64>],
-    bias: &[f64],
-    gravity: &[f64],
-) -> String {
+pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -> String {
+    let (mass, bias, gravity) = (&js.mass, &js.bias, &js.gravity);
     let mut s = String::new();
     let mut line = |t: String| {
         s.push_str(&t);

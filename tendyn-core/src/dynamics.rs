@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::{forward, Motion};
 use crate::model::{BodyKind, Model, MotorKind};
 use crate::newton_euler::{backward, Loads};
-use crate::real::Numeric;
+use crate::real::{Numeric, Real};
 use crate::spatial::Vec3;
 use crate::tension;
 use crate::transmission::linalg;
@@ -38,13 +38,42 @@ pub struct InverseDynamics<T> {
     pub segment_tensions: Option<Vec<Vec<T>>>,
     /// Moment each intermediate link needs about its own axis (body index, N·m).
     pub pulley_demands: Vec<(usize, T)>,
-    /// Bearing force and moment on every body from its parent (body frame), the motor's
-    /// torque excluded; `None` if the routing is incomplete.
+    /// Bearing force and moment on every body from its parent, moment about the joint
+    /// point, the motor's torque excluded; links in their DH frame, pulleys in their housing
+    /// frame (the pulley frame at zero spin). `None` if the routing is incomplete.
     pub bearings: Option<Vec<(Vec3<T>, Vec3<T>)>>,
     /// Total force and moment (about the base origin) of the base on the mechanism.
     pub base_reaction: Option<(Vec3<T>, Vec3<T>)>,
     /// The solved unknowns of the tension system.
     pub unknowns: Vec<T>,
+}
+
+/// Generalized forces of the expanded tree, `Q = Σ_b c_bᵀ τ_b`, with the tendons left out
+/// (their forces are internal once the pulleys' couplings hold): `M q̈ + h + g` with
+/// `gravity`, minus the external wrench's generalized force with `external`. Generic over
+/// [`Real`], so the code generator traces exactly this.
+#[allow(clippy::too_many_arguments)]
+pub fn expanded_generalized_forces<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    gravity: bool,
+    external: bool,
+    motion: &mut [Motion<T>],
+    loads: &mut Loads<T>,
+    out: &mut [T],
+) {
+    forward(model, q, qd, qdd, gravity, motion);
+    backward(model, motion, None, 0, external, loads);
+    for o in out.iter_mut() {
+        *o = T::zero();
+    }
+    for (b, t) in model.bodies.iter().zip(&loads.axial) {
+        for (o, c) in out.iter_mut().zip(&b.coupling) {
+            *o = *o + *c * t.constant;
+        }
+    }
 }
 
 /// Work buffers for one model; the model itself stays immutable.
@@ -99,16 +128,17 @@ impl<'m, T: Numeric> Solver<'m, T> {
         external: bool,
         out: &mut [T],
     ) {
-        forward(self.model, q, qd, qdd, gravity, &mut self.motion);
-        backward(self.model, &self.motion, None, 0, external, &mut self.loads);
-        for o in out.iter_mut() {
-            *o = T::zero();
-        }
-        for (b, t) in self.model.bodies.iter().zip(&self.loads.axial) {
-            for (o, c) in out.iter_mut().zip(&b.coupling) {
-                *o = *o + *c * t.constant;
-            }
-        }
+        expanded_generalized_forces(
+            self.model,
+            q,
+            qd,
+            qdd,
+            gravity,
+            external,
+            &mut self.motion,
+            &mut self.loads,
+            out,
+        );
     }
 
     /// Generalized forces `Q = M q̈ + h + g − Jᵀ w_ext` from the expanded tree.
@@ -292,7 +322,16 @@ impl<'m, T: Numeric> Solver<'m, T> {
                     }) {
                         n = n - model.bodies[i].axis.scale(x[m.unknown]);
                     }
-                    (f, n)
+                    // A spinning pulley's frame turns with it; report it in its housing
+                    // frame (the pulley frame at zero spin) like every other pulley.
+                    let b = &model.bodies[i];
+                    if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
+                        let (sn, cs) = crate::kinematics::coupled(&b.coupling, q).sin_cos();
+                        let spin = crate::spatial::Mat3::rot_z(sn, cs);
+                        (spin.mul_vec(f), spin.mul_vec(n))
+                    } else {
+                        (f, n)
+                    }
                 })
                 .collect();
             let base = (

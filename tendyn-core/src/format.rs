@@ -84,6 +84,7 @@ pub struct LinkSpec {
 
 /// Where a pulley sits on its carrier.
 #[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Placement {
     /// Coaxial with the axis of the joint that moves link `joint`, `height` metres along
     /// that axis from the joint's DH origin; spins about the joint axis. The carrier must

@@ -212,59 +212,56 @@ fn least_norm_in_polyhedron<T: Numeric>(cons: &[(Vec<T>, T)], d: usize) -> Optio
     for size in 1..=d.min(m) {
         let mut idx: Vec<usize> = (0..size).collect();
         loop {
-            // Solve (A_S A_Sᵀ) μ = g_S, λ = A_Sᵀ μ; optimal if feasible and μ ≥ 0.
-            let gram: Vec<Vec<T>> = idx
-                .iter()
-                .map(|&i| {
-                    idx.iter()
-                        .map(|&j| {
-                            cons[i]
-                                .0
-                                .iter()
-                                .zip(&cons[j].0)
-                                .fold(T::zero(), |s, (x, y)| s + *x * *y)
-                        })
-                        .collect()
-                })
-                .collect();
-            let rhs: Vec<T> = idx.iter().map(|&i| cons[i].1).collect();
-            if let Some(mu) = crate::transmission::linalg::cholesky_solve(&gram, &rhs) {
-                if mu.iter().all(|&u| u >= T::zero()) {
-                    let mut l = vec![T::zero(); d];
-                    for (k, &i) in idx.iter().enumerate() {
-                        for (lv, a) in l.iter_mut().zip(&cons[i].0) {
-                            *lv = *lv + mu[k] * *a;
-                        }
-                    }
-                    if feasible(&l) {
-                        return Some(l);
-                    }
+            if let Some(l) = candidate(cons, &idx, d) {
+                if feasible(&l) {
+                    return Some(l);
                 }
             }
-            // next combination
-            let mut i = size;
-            loop {
-                if i == 0 {
-                    break;
-                }
-                i -= 1;
-                if idx[i] < m - size + i {
-                    idx[i] += 1;
-                    for k in i + 1..size {
-                        idx[k] = idx[k - 1] + 1;
-                    }
-                    break;
-                }
-                if i == 0 {
-                    idx.clear();
-                }
-            }
-            if idx.is_empty() || idx[0] > m - size {
+            if !next_combination(&mut idx, m) {
                 break;
             }
         }
     }
     None
+}
+
+/// The least-norm point on the active constraints `idx` (`λ = A_Sᵀ μ` with
+/// `(A_S A_Sᵀ) μ = g_S`), if they are independent and their multipliers `μ` are
+/// non-negative (otherwise this active set is not the optimum's).
+fn candidate<T: Numeric>(cons: &[(Vec<T>, T)], idx: &[usize], d: usize) -> Option<Vec<T>> {
+    let dot = |a: &[T], b: &[T]| a.iter().zip(b).fold(T::zero(), |s, (x, y)| s + *x * *y);
+    let gram: Vec<Vec<T>> = idx
+        .iter()
+        .map(|&i| idx.iter().map(|&j| dot(&cons[i].0, &cons[j].0)).collect())
+        .collect();
+    let rhs: Vec<T> = idx.iter().map(|&i| cons[i].1).collect();
+    let mu = crate::transmission::linalg::cholesky_solve(&gram, &rhs)?;
+    if mu.iter().any(|&u| u < T::zero()) {
+        return None;
+    }
+    let mut l = vec![T::zero(); d];
+    for (k, &i) in idx.iter().enumerate() {
+        for (lv, a) in l.iter_mut().zip(&cons[i].0) {
+            *lv = *lv + mu[k] * *a;
+        }
+    }
+    Some(l)
+}
+
+/// Advances `idx` (strictly increasing indices below `m`) to the next combination in
+/// lexicographic order; `false` after the last one.
+fn next_combination(idx: &mut [usize], m: usize) -> bool {
+    let k = idx.len();
+    for i in (0..k).rev() {
+        if idx[i] < m - k + i {
+            idx[i] += 1;
+            for j in i + 1..k {
+                idx[j] = idx[j - 1] + 1;
+            }
+            return true;
+        }
+    }
+    false
 }
 
 /// Whether unknown `k` is a tension of an open-ended tendon.

@@ -29,12 +29,72 @@ pub fn load(path: impl AsRef<std::path::Path>) -> Result<Model<f64>> {
 pub fn parse(text: &str) -> Result<Model<f64>> {
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let file: MechanismFile = options.from_str(text).map_err(|e| Error::Syntax {
-        line: e.span.start.line,
-        column: e.span.start.col,
-        message: e.code.to_string(),
-    })?;
+    let file: MechanismFile = options.from_str(text).map_err(|e| syntax_error(text, &e))?;
     Validator { text }.model(&file)
+}
+
+/// A RON error at the token it is about (ron's span may start on the whitespace before
+/// it), with a hint where ron's message alone does not say what would fix it.
+fn syntax_error(text: &str, e: &ron::error::SpannedError) -> Error {
+    let lines: Vec<&str> = text.lines().collect();
+    let (mut line, mut column) = (e.span.start.line, e.span.start.col);
+    // Skip forward over whitespace and `//` comments to the offending token (stay put at
+    // the end of the text).
+    let (mut l, mut c) = (line, column.max(1));
+    while l >= 1 && l <= lines.len() {
+        let rest: String = lines[l - 1].chars().skip(c - 1).collect();
+        match rest.find(|ch: char| !ch.is_whitespace()) {
+            Some(k) if !rest[k..].starts_with("//") => {
+                (line, column) = (l, c + rest[..k].chars().count());
+                break;
+            }
+            _ => (l, c) = (l + 1, 1),
+        }
+    }
+    let mut message = e.code.to_string();
+    match &e.code {
+        ron::Error::ExpectedComma => {
+            // The previous token (comments and blank lines skipped) on an earlier line: the
+            // comma is missing at the end of that line.
+            let code = |s: &str| s.split("//").next().unwrap_or("").trim_end().to_string();
+            let current = lines.get(line.saturating_sub(1)).copied().unwrap_or("");
+            let first_on_line = current
+                .chars()
+                .take(column.saturating_sub(1))
+                .all(char::is_whitespace);
+            if first_on_line {
+                let before = line.min(lines.len() + 1);
+                let prev = (1..before)
+                    .rev()
+                    .find(|&k| !code(lines[k - 1]).is_empty())
+                    .filter(|&k| !code(lines[k - 1]).ends_with([',', '(', '[', '{']));
+                if let Some(prev) = prev {
+                    message = format!(
+                        "{message}: a comma is missing at the end of line {prev}, after the value \
+                         there"
+                    );
+                }
+            } else {
+                let found: String = current
+                    .chars()
+                    .skip(column.saturating_sub(1))
+                    .take_while(|c| !c.is_whitespace())
+                    .take(20)
+                    .collect();
+                message = format!("{message}, found `{found}`");
+            }
+        }
+        ron::Error::MissingStructField { field, .. } => {
+            message =
+                format!("{message}: the item that ends here needs a `{field}: ...` entry; add it");
+        }
+        _ => {}
+    }
+    Error::Syntax {
+        line,
+        column,
+        message,
+    }
 }
 
 /// Validates an already parsed file (no source text: errors carry no line numbers).
@@ -82,31 +142,90 @@ pub fn dh_post(dh: &Dh) -> Transform<f64> {
     }
 }
 
+/// `x > y`, false when either is NaN (so that `!above(…)` flags NaN as well).
+fn above(x: f64, y: f64) -> bool {
+    x.partial_cmp(&y) == Some(std::cmp::Ordering::Greater)
+}
+
+/// Whether the text before a quoted string ends in `name:` (the string is an item's name).
+fn is_name_field(before: &str) -> bool {
+    let Some(rest) = before.trim_end().strip_suffix(':') else {
+        return false;
+    };
+    let Some(rest) = rest.trim_end().strip_suffix("name") else {
+        return false;
+    };
+    !rest
+        .chars()
+        .next_back()
+        .is_some_and(|c| c.is_alphanumeric() || c == '_')
+}
+
+/// `"the links are `a`, `b`"`: what a misspelt reference could have meant.
+fn candidates<'n>(kind: &str, names: impl Iterator<Item = &'n str>) -> String {
+    let names: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    if names.is_empty() {
+        format!("the file has no {kind}")
+    } else {
+        format!("the {kind} are {}", names.join(", "))
+    }
+}
+
 fn inertia_matrix(i: &InertiaSpec) -> Mat3<f64> {
     Mat3::from_rows([[i.xx, i.xy, i.xz], [i.xy, i.yy, i.yz], [i.xz, i.yz, i.zz]])
 }
 
 impl Validator<'_> {
-    /// Line and column of the item named `name` (its `name: "…"` field, or failing that
-    /// the first quoted occurrence).
+    /// Line and column of the item named `name`: its `name: "…"` field, or failing that
+    /// the first quoted occurrence. Text in `//` comments is not looked at.
     fn locate(&self, name: &str) -> Location {
+        self.locate_nth(name, 0)
+    }
+
+    /// Line and column of the `nth` (0-based) `name: "…"` definition of `name`, or
+    /// failing that the first quoted occurrence of it.
+    fn locate_nth(&self, name: &str, nth: usize) -> Location {
         let quoted = format!("\"{name}\"");
         let mut fallback = Location::default();
+        let mut found = 0;
         for (i, line) in self.text.lines().enumerate() {
-            if let Some(col) = line.find(&quoted) {
+            let code = line.find("//").map_or(line, |c| &line[..c]);
+            for (col, _) in code.match_indices(&quoted) {
                 let at = Location {
                     line: i + 1,
-                    column: col + 1,
+                    column: code[..col].chars().count() + 1,
                 };
-                if line[..col].trim_end().ends_with(':') && line[..col].contains("name") {
-                    return at;
-                }
-                if fallback.line == 0 {
+                if is_name_field(&code[..col]) {
+                    if found == nth {
+                        return at;
+                    }
+                    found += 1;
+                } else if fallback.line == 0 {
                     fallback = at;
                 }
             }
         }
         fallback
+    }
+
+    /// Line and column of a top-level field `key:` (`gravity`, `external_wrench`, …).
+    fn locate_key(&self, key: &str) -> Location {
+        for (i, line) in self.text.lines().enumerate() {
+            let code = line.find("//").map_or(line, |c| &line[..c]);
+            for (col, _) in code.match_indices(key) {
+                let before_ok = !code[..col]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_');
+                if before_ok && code[col + key.len()..].trim_start().starts_with(':') {
+                    return Location {
+                        line: i + 1,
+                        column: code[..col].chars().count() + 1,
+                    };
+                }
+            }
+        }
+        Location::default()
     }
 
     fn invalid(&self, item: &str, problem: impl Into<String>) -> Error {
@@ -126,11 +245,29 @@ impl Validator<'_> {
     }
 
     fn finite(&self, item: &str, field: &str, values: &[f64]) -> Result<()> {
+        self.finite_in(item, field, values, false)
+    }
+
+    /// Every number of `field` is finite; the error is at the item's line, or at the
+    /// top-level `field:` line when `top_level` (the mechanism's `gravity`, …).
+    fn finite_in(&self, item: &str, field: &str, values: &[f64], top_level: bool) -> Result<()> {
         match values.iter().find(|v| !v.is_finite()) {
-            Some(v) => Err(self.invalid(
-                item,
-                format!("`{field}` is {v}; every number must be finite"),
-            )),
+            Some(v) => {
+                let key = if top_level {
+                    self.locate_key(field)
+                } else {
+                    Location::default()
+                };
+                Err(Error::Invalid {
+                    item: item.to_string(),
+                    at: if key.line == 0 {
+                        self.locate(item)
+                    } else {
+                        key
+                    },
+                    problem: format!("`{field}` is {v}; every number must be finite"),
+                })
+            }
             None => Ok(()),
         }
     }
@@ -157,7 +294,8 @@ impl Validator<'_> {
         if mass == 0.0 && nonzero_inertia {
             return Err(self.invalid(
                 item,
-                "mass is zero but the inertia is not: a body with inertia needs a positive mass",
+                "mass is zero but the inertia is not: a body with inertia needs a positive mass; \
+                 give it its mass or drop its inertia",
             ));
         }
         if nonzero_inertia {
@@ -192,7 +330,7 @@ impl Validator<'_> {
     }
 
     fn model(&self, f: &MechanismFile) -> Result<Model<f64>> {
-        self.finite(&f.name, "gravity", &f.gravity)?;
+        self.finite_in(&f.name, "gravity", &f.gravity, true)?;
         if f.links.is_empty() {
             return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
         }
@@ -207,15 +345,37 @@ impl Validator<'_> {
             .chain(f.loops.iter().map(|l| &l.name))
             .chain(f.motors.iter().map(|m| &m.name));
         for name in names {
-            if seen.contains(&name.as_str()) {
+            if name.is_empty() || name.contains('/') {
                 return Err(self.invalid(
                     name,
-                    if name == "base" {
-                        "`base` is the ground and cannot name an item".to_string()
-                    } else {
-                        format!("the name `{name}` is used twice; every item needs its own name")
-                    },
+                    format!(
+                        "the name `{name}` cannot be used: names must be non-empty and must not \
+                         contain `/` (it separates a loop's name from its sides, `loop/ccw`)"
+                    ),
                 ));
+            }
+            if seen.contains(&name.as_str()) {
+                if name == "base" {
+                    return Err(self.invalid(
+                        name,
+                        "`base` is the ground and cannot name an item; rename it",
+                    ));
+                }
+                // Point at the second definition; the first is where the name is taken.
+                let first = self.locate_nth(name, 0);
+                let taken = if first.line == 0 {
+                    String::new()
+                } else {
+                    format!(" (first at line {})", first.line)
+                };
+                return Err(Error::Invalid {
+                    item: name.to_string(),
+                    at: self.locate_nth(name, 1),
+                    problem: format!(
+                        "the name `{name}` is used twice{taken}; every item needs its own name, \
+                         rename one of them"
+                    ),
+                });
             }
             seen.push(name);
         }
@@ -251,6 +411,13 @@ impl Validator<'_> {
                         "has neither a `route` nor an explicit `structure` column",
                     ));
                 }
+                if t.exit.is_some() {
+                    return Err(self.routing(
+                        &t.name,
+                        "has an `exit` but no `route`: an exit point only means something at the \
+                         end of a route; remove it or give the route",
+                    ));
+                }
                 continue;
             }
             let mut wraps = Vec::new();
@@ -258,7 +425,12 @@ impl Validator<'_> {
                 let p = pulley_index(&w.0).ok_or_else(|| {
                     self.routing(
                         &t.name,
-                        format!("its route names `{}`, which is not a pulley", w.0),
+                        format!(
+                            "its route names `{}`, which is not a pulley; check the spelling \
+                             ({})",
+                            w.0,
+                            candidates("pulleys", f.pulleys.iter().map(|p| p.name.as_str()))
+                        ),
                     )
                 })?;
                 wraps.push((p, w.1));
@@ -306,15 +478,32 @@ impl Validator<'_> {
         for (k, l) in f.loops.iter().enumerate() {
             self.finite(&l.name, "pretension", &[l.pretension])?;
             if l.pretension < 0.0 {
-                return Err(self.invalid(&l.name, "pretension must not be negative"));
+                return Err(self.invalid(
+                    &l.name,
+                    format!(
+                        "pretension is {} N; pretension must not be negative (a loop's sides \
+                         can only pull)",
+                        l.pretension
+                    ),
+                ));
             }
             let find = |name: &str| {
-                pulley_index(name)
-                    .ok_or_else(|| self.routing(&l.name, format!("`{name}` is not a pulley")))
+                pulley_index(name).ok_or_else(|| {
+                    self.routing(
+                        &l.name,
+                        format!(
+                            "`{name}` is not a pulley; check the spelling ({})",
+                            candidates("pulleys", f.pulleys.iter().map(|p| p.name.as_str()))
+                        ),
+                    )
+                })
             };
             let (driven, driving) = (find(&l.driven)?, find(&l.driving)?);
             if driven == driving {
-                return Err(self.routing(&l.name, "drives its own pulley"));
+                return Err(self.routing(
+                    &l.name,
+                    "drives its own pulley; its `driven` and `driving` pulleys must differ",
+                ));
             }
             if f.pulleys[driving].fixed {
                 return Err(self.routing(
@@ -374,7 +563,11 @@ impl Validator<'_> {
                 }
                 self.finite(&p.name, "coupling", c)?;
                 if p.fixed && c.iter().any(|&x| x != 0.0) {
-                    return Err(self.invalid(&p.name, "a fixed drum cannot have a coupling"));
+                    return Err(self.invalid(
+                        &p.name,
+                        "a fixed drum cannot have a coupling (it does not turn on its carrier); \
+                         remove the coupling or `fixed: true`",
+                    ));
                 }
                 explicit[i] = Some(c.clone());
             }
@@ -423,7 +616,9 @@ impl Validator<'_> {
                 route.name.split('/').next().unwrap_or(&route.name),
                 format!(
                     "starts on `{}`, whose rotation nothing determines (loops that drive each \
-                     other in a circle, or a driven pulley with no coupling)",
+                     other in a circle, or a driven pulley with no coupling); make it a `fixed` \
+                     drum, give it an explicit `coupling`, or drive it from a pulley whose \
+                     rotation is known",
                     f.pulleys[route.wraps[0].0].name
                 ),
             ));
@@ -439,7 +634,8 @@ impl Validator<'_> {
             if routed_through[i] == 1 && routed_end[i] {
                 return Err(self.routing(
                     &p.name,
-                    "is both an idler of one tendon and the driving pulley of a loop",
+                    "is both an idler of one tendon and the driving pulley of a loop; give the \
+                     tendon its own idler",
                 ));
             }
             let derived = couplings[i].as_ref().ok_or_else(|| {
@@ -449,6 +645,17 @@ impl Validator<'_> {
                      it an explicit `coupling`",
                 )
             })?;
+            if derived.joints.iter().any(|x| !x.is_finite()) {
+                return Err(self.routing(
+                    &p.name,
+                    format!(
+                        "the routing turns it at a rate that is not finite ({:?} per joint): a \
+                         radius along its tendon is too small to compute with; check the radii \
+                         and their units",
+                        derived.joints
+                    ),
+                ));
+            }
             if let Some(c) = &explicit[i] {
                 let agree = c
                     .iter()
@@ -459,7 +666,7 @@ impl Validator<'_> {
                         &p.name,
                         format!(
                             "its explicit coupling {c:?} disagrees with the routing, which turns it \
-                             as {:?}",
+                             as {:?}; correct the coupling or remove it (the routing defines it)",
                             derived.joints
                         ),
                     ));
@@ -484,11 +691,39 @@ impl Validator<'_> {
             strands.push((routes[i].0.name.clone(), g));
         }
         let floor_default = f.tension_floor;
-        self.finite(&f.name, "tension_floor", &[floor_default])?;
+        self.finite_in(&f.name, "tension_floor", &[floor_default], true)?;
         for (k, t) in f.tendons.iter().enumerate() {
-            let floor = t.floor.unwrap_or(floor_default);
+            // A negative default is an error even when every tendon overrides it.
+            let floor = if floor_default < 0.0 {
+                floor_default
+            } else {
+                t.floor.unwrap_or(floor_default)
+            };
             if floor < 0.0 {
-                return Err(self.invalid(&t.name, "the tension floor must not be negative"));
+                return Err(match t.floor.filter(|_| floor_default >= 0.0) {
+                    Some(_) => self.invalid(
+                        &t.name,
+                        format!(
+                            "`floor` is {floor} N; the tension floor must not be negative (a \
+                             tendon cannot push)"
+                        ),
+                    ),
+                    None => {
+                        let key = self.locate_key("tension_floor");
+                        Error::Invalid {
+                            item: f.name.clone(),
+                            at: if key.line == 0 {
+                                self.locate(&f.name)
+                            } else {
+                                key
+                            },
+                            problem: format!(
+                                "`tension_floor` is {floor} N; the tension floor must not be \
+                                 negative (a tendon cannot push)"
+                            ),
+                        }
+                    }
+                });
             }
             if let Some(mx) = t.max_tension {
                 self.finite(&t.name, "max_tension", &[mx])?;
@@ -533,7 +768,8 @@ impl Validator<'_> {
                             &t.name,
                             format!(
                                 "its explicit structure column {col:?} disagrees with its route, \
-                                 which gives {column:?}"
+                                 which gives {column:?}; correct the column or remove it (the route \
+                                 defines it)"
                             ),
                         ));
                     }
@@ -598,15 +834,29 @@ impl Validator<'_> {
         for m in &f.motors {
             let (kind, column) = match &m.on {
                 MotorSite::Joint(name) => {
-                    let j = link_index(name)
-                        .ok_or_else(|| self.invalid(&m.name, format!("`{name}` is not a link")))?;
+                    let j = link_index(name).ok_or_else(|| {
+                        self.invalid(
+                            &m.name,
+                            format!(
+                                "`{name}` is not a link; a `Joint` motor names the link its joint \
+                                 moves ({})",
+                                candidates("links", f.links.iter().map(|l| l.name.as_str()))
+                            ),
+                        )
+                    })?;
                     let mut c = vec![0.0; n];
                     c[j] = 1.0;
                     (MotorKind::Joint(j), c)
                 }
                 MotorSite::Pulley(name) => {
                     let p = pulley_index(name).ok_or_else(|| {
-                        self.invalid(&m.name, format!("`{name}` is not a pulley"))
+                        self.invalid(
+                            &m.name,
+                            format!(
+                                "`{name}` is not a pulley; check the spelling ({})",
+                                candidates("pulleys", f.pulleys.iter().map(|p| p.name.as_str()))
+                            ),
+                        )
                     })?;
                     let b = pulleys[p].body;
                     match &bodies[b].kind {
@@ -629,7 +879,10 @@ impl Validator<'_> {
                 }
             };
             if motors.iter().any(|o: &Motor| o.kind == kind) {
-                return Err(self.invalid(&m.name, "a second motor on the same joint or pulley"));
+                return Err(self.invalid(
+                    &m.name,
+                    "a second motor on the same joint or pulley; remove one of them",
+                ));
             }
             unknowns.push(Unknown::Motor(motors.len()));
             motors.push(Motor {
@@ -653,17 +906,27 @@ impl Validator<'_> {
         let external_wrench = match &f.external_wrench {
             None => None,
             Some(w) => {
-                let link = link_index(&w.link).ok_or_else(|| {
-                    self.invalid(
-                        &f.name,
-                        format!("external_wrench names `{}`, which is not a link", w.link),
-                    )
+                let at = self.locate_key("external_wrench");
+                let link = link_index(&w.link).ok_or_else(|| Error::Invalid {
+                    item: f.name.clone(),
+                    at,
+                    problem: format!(
+                        "external_wrench names `{}`, which is not a link ({})",
+                        w.link,
+                        candidates("links", f.links.iter().map(|l| l.name.as_str()))
+                    ),
                 })?;
-                self.finite(
-                    &w.link,
-                    "external_wrench",
-                    &[w.point, w.force, w.moment].concat(),
-                )?;
+                let values = [w.point, w.force, w.moment].concat();
+                if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                    return Err(Error::Invalid {
+                        item: f.name.clone(),
+                        at,
+                        problem: format!(
+                            "`external_wrench` on `{}` has {v} in it; every number must be finite",
+                            w.link
+                        ),
+                    });
+                }
                 Some(Wrench {
                     link,
                     point: Vec3::from_array(w.point),
@@ -759,8 +1022,10 @@ impl Validator<'_> {
                         self.invalid(
                             &p.name,
                             format!(
-                                "its carrier `{}` does not exist; a carrier is `base` or a link name",
-                                p.carrier
+                                "its carrier `{}` does not exist; a carrier is `base` or a link \
+                                 name ({})",
+                                p.carrier,
+                                candidates("links", f.links.iter().map(|l| l.name.as_str()))
                             ),
                         )
                     })?,
@@ -776,7 +1041,11 @@ impl Validator<'_> {
                     .ok_or_else(|| {
                         self.invalid(
                             &p.name,
-                            format!("`at: Joint` names `{joint}`, which is not a link"),
+                            format!(
+                                "`at: Joint` names `{joint}`, which is not a link; name the link \
+                                 the joint moves ({})",
+                                candidates("links", f.links.iter().map(|l| l.name.as_str()))
+                            ),
                         )
                     })?;
                 let lift = Transform {
@@ -788,11 +1057,15 @@ impl Validator<'_> {
                 } else if carrier == Some(j) {
                     links[j].post.inverse().compose(&lift)
                 } else {
+                    let proximal = j
+                        .checked_sub(1)
+                        .map_or("base", |k| f.links[k].name.as_str());
                     return Err(self.invalid(
                         &p.name,
                         format!(
                             "sits on the axis of joint `{joint}` but is carried by `{}`; a pulley \
-                             on a joint axis is carried by one of the two bodies that joint connects",
+                             on a joint axis is carried by one of the two bodies that joint connects \
+                             (`{proximal}` or `{joint}`)",
                             p.carrier
                         ),
                     ));
@@ -886,8 +1159,8 @@ impl Validator<'_> {
             match u {
                 Unknown::Strand(s) => {
                     let rate = &strands[*s].1.pull_rate;
-                    for j in 0..n {
-                        e[j][col] = rate.joints[j];
+                    for (row, &x) in e.iter_mut().zip(&rate.joints[..n]) {
+                        row[col] = x;
                     }
                     for &(p, c) in &rate.pulleys {
                         let b = body_of_pulley(p).expect("pulley body");
@@ -899,8 +1172,8 @@ impl Validator<'_> {
                     }
                 }
                 Unknown::Explicit(k) => {
-                    for j in 0..n {
-                        e[j][col] = tendons[*k].structure[j];
+                    for (row, &x) in e.iter_mut().zip(&tendons[*k].structure[..n]) {
+                        row[col] = x;
                     }
                 }
                 Unknown::Motor(k) => match motors[*k].kind {
@@ -909,8 +1182,8 @@ impl Validator<'_> {
                         if let Some(row) = rows.iter().position(|r| *r == Row::Pulley(b)) {
                             e[row][col] = 1.0;
                         } else {
-                            for j in 0..n {
-                                e[j][col] = motors[*k].column[j];
+                            for (row, &x) in e.iter_mut().zip(&motors[*k].column[..n]) {
+                                row[col] = x;
                             }
                         }
                     }
@@ -942,19 +1215,112 @@ impl Validator<'_> {
                 ),
             ));
         }
+        // The item an unknown belongs to: its tendon, loop or motor.
+        let item_of = |u: &Unknown| -> String {
+            match u {
+                Unknown::Strand(s) => strands[*s].0.split('/').next().unwrap_or("").to_string(),
+                Unknown::Explicit(k) => tendons[*k].name.clone(),
+                Unknown::Motor(k) => motors[*k].name.clone(),
+            }
+        };
+        // Numbers too large for the geometry overflow here; the SVD must not see them.
+        if let Some(col) = (0..m).find(|&c| e.iter().any(|row| !row[c].is_finite())) {
+            return Err(self.routing(
+                &item_of(&unknowns[col]),
+                format!(
+                    "the structure matrix column of {} is not finite ({:?}): its geometry \
+                     overflows; check the sizes and units of the numbers along it",
+                    what(&unknowns[col]),
+                    e.iter().map(|row| row[col]).collect::<Vec<_>>()
+                ),
+            ));
+        }
         let dm = DMatrix::from_fn(rows_len, m, |i, j| e[i][j]);
         let svd = dm.clone().svd(false, false);
         let sv = &svd.singular_values;
         let smax = sv.iter().cloned().fold(0.0, f64::max);
         let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
-        if !(smin > 1e-10 * smax) {
+        // What a row balances, and the item that names it.
+        let row_item = |r: &Row| -> (String, &str) {
+            match *r {
+                Row::Joint(j) => (format!("joint `{}`", f.links[j].name), &f.links[j].name),
+                Row::Pulley(b) => (
+                    format!("driving pulley `{}`", bodies[b].name),
+                    &bodies[b].name,
+                ),
+                Row::Pretension(k) => (
+                    format!("the pretension of loop `{}`", loops[k].name),
+                    &loops[k].name,
+                ),
+            }
+        };
+        if !above(smin, 1e-10 * smax) {
+            let values = sv.as_slice();
+            let row_norm = |i: usize| e[i].iter().map(|x| x * x).sum::<f64>().sqrt();
+            // A row nothing acts on (structure entries are radii in metres, motor and
+            // pretension entries are of order one: 1e-12 is nothing).
+            if let Some(i) = (0..rows_len).find(|&i| !above(row_norm(i), 1e-12)) {
+                let (what, item) = row_item(&rows[i]);
+                return Err(self.routing(
+                    item,
+                    format!(
+                        "the structure matrix does not have full row rank: {what} is acted on by \
+                         no tendon or motor (its row is zero), so nothing can balance it; route a \
+                         tendon across it or add a motor on it"
+                    ),
+                ));
+            }
+            // Rows that combine to (numerically) zero: the left singular vectors of the
+            // vanishing singular values.
+            let full = dm.clone().svd(true, false);
+            let fsv = &full.singular_values;
+            let involved: Vec<usize> = match &full.u {
+                Some(u) => (0..rows_len)
+                    .filter(|&i| {
+                        (0..fsv.len())
+                            .any(|k| !above(fsv[k], 1e-10 * smax) && u[(i, k)].abs() > 1e-6)
+                    })
+                    .collect(),
+                None => Vec::new(),
+            };
+            match involved.as_slice() {
+                [i] => {
+                    let (what, item) = row_item(&rows[*i]);
+                    return Err(self.routing(
+                        item,
+                        format!(
+                            "the structure matrix does not have full row rank (singular values \
+                             {values:?}): {what} is acted on so much more weakly than the others \
+                             (its row has norm {:.3e}, the matrix {smax:.3e}) that it is \
+                             numerically not acted on; check the sizes and units of the radii and \
+                             structure entries",
+                            row_norm(*i)
+                        ),
+                    ));
+                }
+                [first, ..] => {
+                    let names: Vec<String> =
+                        involved.iter().map(|&i| row_item(&rows[i]).0).collect();
+                    return Err(self.routing(
+                        row_item(&rows[*first]).1,
+                        format!(
+                            "the structure matrix does not have full row rank (singular values \
+                             {values:?}): the balances of {} are not independent (every tendon \
+                             and motor acts on them in the same proportions), so they cannot be \
+                             driven separately; route a tendon over one of them with a different \
+                             radius or turn, or add a motor",
+                            names.join(" and ")
+                        ),
+                    ));
+                }
+                [] => {}
+            }
             return Err(self.routing(
                 &f.name,
                 format!(
-                    "the structure matrix does not have full row rank (singular values {:?}): \
+                    "the structure matrix does not have full row rank (singular values {values:?}): \
                      some joint or driving pulley cannot be balanced independently of the others; \
-                     route a tendon over it with a different radius or turn, or add a motor",
-                    sv.as_slice()
+                     route a tendon over it with a different radius or turn, or add a motor"
                 ),
             ));
         }
@@ -969,7 +1335,7 @@ impl Validator<'_> {
             for (u, x) in unknowns.iter().zip(v) {
                 if !is_tendon(u) && x.abs() > 1e-9 * scale {
                     return Err(self.routing(
-                        &f.name,
+                        &item_of(u),
                         format!(
                             "{} is not determined by the dynamics (it can trade against the \
                              tendons' tensions); a motor or loop must not share its joint with \
@@ -981,29 +1347,64 @@ impl Validator<'_> {
             }
         }
         let tendon_cols: Vec<usize> = (0..m).filter(|&c| is_tendon(&unknowns[c])).collect();
-        let positive_null =
-            if tendon_cols.is_empty() {
-                None
-            } else {
-                match positive_null_vector(&null_space, &tendon_cols) {
-                    Some(v) => Some(v),
-                    None => return Err(self.routing(
-                        &f.name,
-                        if null_space.is_empty() {
-                            "not controllable by tendons: as many tendon tensions as balances, so \
-                             the dynamics fixes every tension and some must push; an open-ended \
-                             routing needs at least one tendon more than it has joints to drive"
-                                .to_string()
-                        } else {
-                            "not controllable by tendons: no combination of tensions that leaves \
-                             every joint balanced keeps all tendons taut (the structure matrix has \
-                             no strictly positive null vector); reverse the turn of a tendon on a \
-                             joint where all tendons pull the same way"
-                                .to_string()
-                        },
-                    )),
+        let positive_null = if tendon_cols.is_empty() {
+            None
+        } else if null_space.is_empty() {
+            return Err(self.routing(
+                &f.name,
+                "not controllable by tendons: as many tendon tensions as balances, so the \
+                 dynamics fixes every tension and some must push; an open-ended routing needs at \
+                 least one tendon more than it has joints to drive",
+            ));
+        } else if let Some(v) = positive_null_vector(&null_space, &tendon_cols) {
+            Some(v)
+        } else {
+            // A balance that every tendon acting on it pulls the same way: the other unknowns
+            // are fixed by the dynamics (checked above), so no taut tensions can meet it.
+            let one_sided = (0..rows_len).find_map(|i| {
+                let scale = tendon_cols
+                    .iter()
+                    .fold(0.0f64, |a, &c| a.max(e[i][c].abs()));
+                let acting: Vec<usize> = tendon_cols
+                    .iter()
+                    .copied()
+                    .filter(|&c| e[i][c].abs() > 1e-9 * scale)
+                    .collect();
+                let sign = acting.first().map(|&c| e[i][c].signum())?;
+                acting
+                    .iter()
+                    .all(|&c| e[i][c].signum() == sign)
+                    .then_some((i, sign, acting))
+            });
+            return Err(match one_sided {
+                Some((i, sign, acting)) => {
+                    let (what, item) = row_item(&rows[i]);
+                    let names: Vec<String> = acting
+                        .iter()
+                        .map(|&c| format!("`{}`", item_of(&unknowns[c])))
+                        .collect();
+                    self.routing(
+                        item,
+                        format!(
+                            "not controllable by tendons: every tendon acting on {what} ({}) \
+                             pulls it the same way ({} generalized force per newton), so \
+                             balancing it needs one of them to push (the structure matrix has no \
+                             strictly positive null vector); reverse the turn of one of them \
+                             round it, or route another tendon round it the other way",
+                            names.join(", "),
+                            if sign > 0.0 { "positive" } else { "negative" }
+                        ),
+                    )
                 }
-            };
+                None => self.routing(
+                    &f.name,
+                    "not controllable by tendons: no combination of tensions that leaves every \
+                     joint balanced keeps all tendons taut (the structure matrix has no strictly \
+                     positive null vector); reverse the turn of a tendon on a joint where all \
+                     tendons pull the same way",
+                ),
+            });
+        };
         Ok(TensionSystem {
             unknowns,
             rows,
@@ -1031,14 +1432,18 @@ fn positive_null_vector(null: &[Vec<f64>], cols: &[usize]) -> Option<Vec<f64>> {
     if d == 0 {
         return None;
     }
-    let rows: Vec<Vec<f64>> = cols
-        .iter()
-        .map(|&c| {
-            let r: Vec<f64> = null.iter().map(|v| v[c]).collect();
-            let nr = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-            r.iter().map(|x| x / nr.max(f64::MIN_POSITIVE)).collect()
-        })
-        .collect();
+    // A tendon's row of the (orthonormal) null basis holds its freedom. A row that is zero
+    // up to rounding means the dynamics fixes that tension: no null vector can lift it, and
+    // normalising the rounding noise would only fake one.
+    let mut rows: Vec<Vec<f64>> = Vec::with_capacity(cols.len());
+    for &c in cols {
+        let r: Vec<f64> = null.iter().map(|v| v[c]).collect();
+        let nr = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if nr <= 1e-9 {
+            return None;
+        }
+        rows.push(r.iter().map(|x| x / nr).collect());
+    }
     let mut lambda: Vec<f64> = vec![0.0; d];
     for r in &rows {
         for (l, x) in lambda.iter_mut().zip(r) {

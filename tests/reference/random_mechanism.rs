@@ -29,7 +29,11 @@ fn inertia<R: Rng>(rng: &mut R, mass: f64, size: f64) -> String {
     let a = rng.random_range(0.2..1.0) * mass * size * size;
     let b = rng.random_range(0.2..1.0) * mass * size * size;
     let c = rng.random_range((a - b).abs() * 1.01..(a + b) * 0.99);
-    let (r, p, y): (f64, f64, f64) = (rng.random_range(-3.0..3.0), rng.random_range(-1.5..1.5), rng.random_range(-3.0..3.0));
+    let (r, p, y): (f64, f64, f64) = (
+        rng.random_range(-3.0..3.0),
+        rng.random_range(-1.5..1.5),
+        rng.random_range(-3.0..3.0),
+    );
     let (sr, cr, sp, cp, sy, cy) = (r.sin(), r.cos(), p.sin(), p.cos(), y.sin(), y.cos());
     let rot = [
         [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -50,7 +54,12 @@ fn inertia<R: Rng>(rng: &mut R, mass: f64, size: f64) -> String {
 }
 
 fn v3<R: Rng>(rng: &mut R, s: f64) -> String {
-    format!("({:e}, {:e}, {:e})", rng.random_range(-s..s), rng.random_range(-s..s), rng.random_range(-s..s))
+    format!(
+        "({:e}, {:e}, {:e})",
+        rng.random_range(-s..s),
+        rng.random_range(-s..s),
+        rng.random_range(-s..s)
+    )
 }
 
 fn turn<R: Rng>(rng: &mut R) -> &'static str {
@@ -67,10 +76,19 @@ pub fn random_mechanism(seed: u64, features: Features) -> String {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let n: usize = rng.random_range(2..=7);
     // Tendon block: joints 1..=p with parallel axes.
-    let p: usize = if features.endless { 2 } else { rng.random_range(1..=n.min(3)) };
+    let p: usize = if features.endless {
+        2
+    } else {
+        rng.random_range(1..=n.min(3))
+    };
     let mut s = String::new();
     let g = v3(&mut rng, 10.0);
-    writeln!(s, "(\n  name: \"random_{seed}\",\n  gravity: {g},\n  tension_floor: {:e},", rng.random_range(0.0..5.0)).unwrap();
+    writeln!(
+        s,
+        "(\n  name: \"random_{seed}\",\n  gravity: {g},\n  tension_floor: {:e},",
+        rng.random_range(0.0..5.0)
+    )
+    .unwrap();
     let mut d = Vec::new();
     let mut a = Vec::new();
     writeln!(s, "  links: [").unwrap();
@@ -107,7 +125,15 @@ pub fn random_mechanism(seed: u64, features: Features) -> String {
     let mut motors = String::new();
     let disc = |rng: &mut ChaCha8Rng, r: f64| {
         let m = rng.random_range(0.01..0.2);
-        (m, format!("(xx: {:e}, yy: {:e}, zz: {:e})", m * r * r / 4.0, m * r * r / 4.0, m * r * r / 2.0))
+        (
+            m,
+            format!(
+                "(xx: {:e}, yy: {:e}, zz: {:e})",
+                m * r * r / 4.0,
+                m * r * r / 4.0,
+                m * r * r / 2.0
+            ),
+        )
     };
     if features.endless {
         let zeta = rng.random_range(-0.05..0.05);
@@ -128,13 +154,25 @@ pub fn random_mechanism(seed: u64, features: Features) -> String {
             let mut route = format!("(\"drum{k}\", {})", turn(&mut rng));
             for j in (1..link).rev() {
                 let r = rng.random_range(0.01..0.04);
-                let carrier = if rng.random_bool(0.5) { format!("l{j}") } else if j == 1 { "base".into() } else { format!("l{}", j - 1) };
+                let carrier = if rng.random_bool(0.5) {
+                    format!("l{j}")
+                } else if j == 1 {
+                    "base".into()
+                } else {
+                    format!("l{}", j - 1)
+                };
                 let (m, i) = disc(&mut rng, r);
                 writeln!(pulleys, "    (name: \"idler{k}_{j}\", carrier: \"{carrier}\", at: Joint(joint: \"l{j}\", height: {:e}), radius: {r:e}, mass: {m:e}, inertia: {i}),", height(j, zeta)).unwrap();
                 write!(route, ", (\"idler{k}_{j}\", {})", turn(&mut rng)).unwrap();
             }
             let ang: f64 = rng.random_range(-3.0..3.0);
-            writeln!(tendons, "    (name: \"t{k}\", route: [{route}], exit: ({:e}, {:e}, {zeta:e})),", 0.3 * ang.cos(), 0.3 * ang.sin()).unwrap();
+            writeln!(
+                tendons,
+                "    (name: \"t{k}\", route: [{route}], exit: ({:e}, {:e}, {zeta:e})),",
+                0.3 * ang.cos(),
+                0.3 * ang.sin()
+            )
+            .unwrap();
         }
     }
     for j in (p + 1)..=n {
@@ -146,7 +184,9 @@ pub fn random_mechanism(seed: u64, features: Features) -> String {
                 0 => "base".to_string(),
                 c => format!("l{c}"),
             };
-            let coupling: Vec<String> = (0..n).map(|_| format!("{:e}", rng.random_range(-2.0..2.0))).collect();
+            let coupling: Vec<String> = (0..n)
+                .map(|_| format!("{:e}", rng.random_range(-2.0..2.0)))
+                .collect();
             let mass = rng.random_range(0.05..0.5);
             writeln!(
                 pulleys,
@@ -162,7 +202,14 @@ pub fn random_mechanism(seed: u64, features: Features) -> String {
     }
     writeln!(s, "  pulleys: [\n{pulleys}  ],\n  tendons: [\n{tendons}  ],\n  loops: [\n{loops}  ],\n  motors: [\n{motors}  ],").unwrap();
     if rng.random_bool(0.5) {
-        writeln!(s, "  external_wrench: (link: \"l{n}\", point: {}, force: {}, moment: {}),", v3(&mut rng, 0.1), v3(&mut rng, 5.0), v3(&mut rng, 1.0)).unwrap();
+        writeln!(
+            s,
+            "  external_wrench: (link: \"l{n}\", point: {}, force: {}, moment: {}),",
+            v3(&mut rng, 0.1),
+            v3(&mut rng, 5.0),
+            v3(&mut rng, 1.0)
+        )
+        .unwrap();
     }
     s.push_str(")\n");
     s

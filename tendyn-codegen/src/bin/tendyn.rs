@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
-use tendyn_codegen::report;
-use tendyn_core::{Model, Solver};
+use tendyn_codegen::report::{self, JointSpace};
+use tendyn_core::{InverseDynamics, Model, Solver};
 
 #[derive(Parser)]
 #[command(
@@ -121,6 +121,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     }
                 }
                 Some(path) => {
+                    if !(q.is_empty() && qd.is_empty() && qdd.is_empty()) {
+                        return Err("give either --states or --q/--qd/--qdd, not both".into());
+                    }
                     let text =
                         std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
                     for (i, line) in text.lines().enumerate() {
@@ -175,13 +178,27 @@ fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-fn eval_text(m: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<String, String> {
+/// Inverse dynamics and the joint-space terms at one state.
+fn evaluate(
+    m: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Result<(InverseDynamics<f64>, JointSpace), String> {
     let mut s = Solver::new(m);
-    let r = s.inverse_dynamics(q, qd, qdd).map_err(|e| e.to_string())?;
-    let mass = s.mass_matrix(q).map_err(|e| e.to_string())?;
-    let bias = s.bias(q, qd).map_err(|e| e.to_string())?;
-    let gravity = s.gravity(q).map_err(|e| e.to_string())?;
-    Ok(report::inverse_text(m, &r, &mass, &bias, &gravity))
+    let e = |e: tendyn_core::Error| e.to_string();
+    let r = s.inverse_dynamics(q, qd, qdd).map_err(e)?;
+    let js = JointSpace {
+        mass: s.mass_matrix(q).map_err(e)?,
+        bias: s.bias(q, qd).map_err(e)?,
+        gravity: s.gravity(q).map_err(e)?,
+    };
+    Ok((r, js))
+}
+
+fn eval_text(m: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<String, String> {
+    let (r, js) = evaluate(m, q, qd, qdd)?;
+    Ok(report::inverse_text(m, &r, &js))
 }
 
 fn eval_json(
@@ -190,12 +207,6 @@ fn eval_json(
     qd: &[f64],
     qdd: &[f64],
 ) -> Result<serde_json::Value, String> {
-    let mut s = Solver::new(m);
-    let r = s.inverse_dynamics(q, qd, qdd).map_err(|e| e.to_string())?;
-    let mass = s.mass_matrix(q).map_err(|e| e.to_string())?;
-    let bias = s.bias(q, qd).map_err(|e| e.to_string())?;
-    let gravity = s.gravity(q).map_err(|e| e.to_string())?;
-    Ok(report::inverse_json(
-        m, q, qd, qdd, &r, &mass, &bias, &gravity,
-    ))
+    let (r, js) = evaluate(m, q, qd, qdd)?;
+    Ok(report::inverse_json(m, q, qd, qdd, &r, &js))
 }

@@ -1,0 +1,408 @@
+//! The hash-consed expression graph and the symbolic scalar [`Sym`].
+//!
+//! A [`Graph`] is a flat list of [`Node`]s in which children come before parents; a node
+//! is stored once (a memo map is consulted before every insertion), so equal
+//! subexpressions are shared by construction. The smart constructors fold what is known
+//! at generation time as the graph is built — constant arithmetic, `x + 0`, `x · 1`,
+//! `x · 0`, `x − x`, `−(−x)`, signs pulled out of products — so the zeros and ones of DH
+//! parameters and planar geometry never become nodes.
+//!
+//! [`Sym`] is a handle into the graph that is current on this thread (see [`Graph::scope`]);
+//! it implements [`tendyn_core::Real`], so the solver's generic recursion builds the
+//! graph when it runs on `Sym`.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use tendyn_core::Real;
+
+/// Index of a node in its graph.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Id(pub u32);
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A number, by its bits (`-0.0` is stored as `0.0`).
+    Const(u64),
+    /// Input `index` of the generated function (see [`Graph::input_names`]).
+    Input(u32),
+    Add(Id, Id),
+    Sub(Id, Id),
+    Mul(Id, Id),
+    Div(Id, Id),
+    Neg(Id),
+    Sin(Id),
+    Cos(Id),
+    Sqrt(Id),
+    Max(Id, Id),
+}
+
+impl Node {
+    pub fn children(&self) -> Vec<Id> {
+        match *self {
+            Node::Const(_) | Node::Input(_) => vec![],
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => vec![a],
+            Node::Add(a, b)
+            | Node::Sub(a, b)
+            | Node::Mul(a, b)
+            | Node::Div(a, b)
+            | Node::Max(a, b) => vec![a, b],
+        }
+    }
+}
+
+#[derive(Default, Debug, Clone)]
+pub struct Graph {
+    pub nodes: Vec<Node>,
+    memo: HashMap<Node, Id>,
+    /// Name of each input, by index (`q[0]`, `qd[1]`, ...).
+    pub input_names: Vec<String>,
+}
+
+thread_local! {
+    static CURRENT: RefCell<Option<Graph>> = const { RefCell::new(None) };
+}
+
+fn with<R>(f: impl FnOnce(&mut Graph) -> R) -> R {
+    CURRENT.with(|c| {
+        f(c.borrow_mut()
+            .as_mut()
+            .expect("a symbolic scalar is used outside Graph::scope"))
+    })
+}
+
+impl Graph {
+    /// Runs `build` with `self` as the graph that [`Sym`] values on this thread refer to,
+    /// and gives the graph back afterwards.
+    pub fn scope<R>(self, build: impl FnOnce() -> R) -> (Graph, R) {
+        CURRENT.with(|c| {
+            let previous = c.borrow_mut().replace(self);
+            assert!(previous.is_none(), "Graph::scope does not nest");
+        });
+        let r = build();
+        let g = CURRENT
+            .with(|c| c.borrow_mut().take())
+            .expect("graph present");
+        (g, r)
+    }
+
+    pub fn node(&self, id: Id) -> Node {
+        self.nodes[id.0 as usize]
+    }
+
+    pub fn constant_value(&self, id: Id) -> Option<f64> {
+        match self.node(id) {
+            Node::Const(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
+    /// The id of `n` if the graph holds it.
+    pub fn lookup(&self, n: Node) -> Option<Id> {
+        self.memo.get(&n).copied()
+    }
+
+    fn intern(&mut self, n: Node) -> Id {
+        if let Some(&id) = self.memo.get(&n) {
+            return id;
+        }
+        let id = Id(self.nodes.len() as u32);
+        self.nodes.push(n);
+        self.memo.insert(n, id);
+        id
+    }
+
+    pub fn constant(&mut self, x: f64) -> Id {
+        let x = if x == 0.0 { 0.0 } else { x };
+        self.intern(Node::Const(x.to_bits()))
+    }
+
+    pub fn input(&mut self, name: impl Into<String>) -> Id {
+        let index = self.input_names.len() as u32;
+        self.input_names.push(name.into());
+        self.intern(Node::Input(index))
+    }
+
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant_value(a), self.constant_value(b)) {
+            (Some(x), Some(y)) => return self.constant(x + y),
+            (Some(0.0), _) => return b,
+            (_, Some(0.0)) => return a,
+            _ => {}
+        }
+        match (self.node(a), self.node(b)) {
+            (_, Node::Neg(c)) => self.sub(a, c),
+            (Node::Neg(c), _) => self.sub(b, c),
+            _ => self.intern(Node::Add(a.min(b), a.max(b))),
+        }
+    }
+
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        if a == b {
+            return self.constant(0.0);
+        }
+        match (self.constant_value(a), self.constant_value(b)) {
+            (Some(x), Some(y)) => return self.constant(x - y),
+            (_, Some(0.0)) => return a,
+            (Some(0.0), _) => return self.neg(b),
+            _ => {}
+        }
+        match self.node(b) {
+            Node::Neg(c) => self.add(a, c),
+            _ => match self.node(a) {
+                // (−c) − b = −(c + b)
+                Node::Neg(c) => {
+                    let s = self.add(c, b);
+                    self.neg(s)
+                }
+                _ => self.intern(Node::Sub(a, b)),
+            },
+        }
+    }
+
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant_value(a), self.constant_value(b)) {
+            (Some(x), Some(y)) => return self.constant(x * y),
+            (Some(0.0), _) | (_, Some(0.0)) => return self.constant(0.0),
+            (Some(1.0), _) => return b,
+            (_, Some(1.0)) => return a,
+            (Some(-1.0), _) => return self.neg(b),
+            (_, Some(-1.0)) => return self.neg(a),
+            _ => {}
+        }
+        match (self.node(a), self.node(b)) {
+            (Node::Neg(x), Node::Neg(y)) => self.mul(x, y),
+            (Node::Neg(x), _) => {
+                let p = self.mul(x, b);
+                self.neg(p)
+            }
+            (_, Node::Neg(y)) => {
+                let p = self.mul(a, y);
+                self.neg(p)
+            }
+            // A negative constant factor becomes a negation of the positive one, so that
+            // `−k x` and `k x` share their product.
+            (Node::Const(bits), _) if f64::from_bits(bits) < 0.0 => {
+                let k = self.constant(-f64::from_bits(bits));
+                let p = self.mul(k, b);
+                self.neg(p)
+            }
+            (_, Node::Const(bits)) if f64::from_bits(bits) < 0.0 => {
+                let k = self.constant(-f64::from_bits(bits));
+                let p = self.mul(a, k);
+                self.neg(p)
+            }
+            _ => self.intern(Node::Mul(a.min(b), a.max(b))),
+        }
+    }
+
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant_value(a), self.constant_value(b)) {
+            (Some(x), Some(y)) => return self.constant(x / y),
+            (Some(0.0), _) => return self.constant(0.0),
+            (_, Some(1.0)) => return a,
+            // Division by a number becomes multiplication by its reciprocal.
+            (_, Some(y)) => {
+                let r = self.constant(1.0 / y);
+                return self.mul(a, r);
+            }
+            _ => {}
+        }
+        if a == b {
+            return self.constant(1.0);
+        }
+        self.intern(Node::Div(a, b))
+    }
+
+    pub fn neg(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(-x);
+        }
+        match self.node(a) {
+            Node::Neg(x) => x,
+            Node::Sub(x, y) => self.sub(y, x),
+            _ => self.intern(Node::Neg(a)),
+        }
+    }
+
+    pub fn sin(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(x.sin());
+        }
+        match self.node(a) {
+            Node::Neg(x) => {
+                let s = self.sin(x);
+                self.neg(s)
+            }
+            _ => self.intern(Node::Sin(a)),
+        }
+    }
+
+    pub fn cos(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(x.cos());
+        }
+        match self.node(a) {
+            Node::Neg(x) => self.cos(x),
+            _ => self.intern(Node::Cos(a)),
+        }
+    }
+
+    pub fn sqrt(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(x.sqrt());
+        }
+        self.intern(Node::Sqrt(a))
+    }
+
+    pub fn max(&mut self, a: Id, b: Id) -> Id {
+        if a == b {
+            return a;
+        }
+        if let (Some(x), Some(y)) = (self.constant_value(a), self.constant_value(b)) {
+            return self.constant(x.max(y));
+        }
+        self.intern(Node::Max(a.min(b), a.max(b)))
+    }
+
+    /// Every node the given roots depend on, in index (evaluation) order.
+    pub fn live(&self, roots: &[Id]) -> Vec<Id> {
+        let mut mark = vec![false; self.nodes.len()];
+        let mut stack: Vec<Id> = roots.to_vec();
+        while let Some(id) = stack.pop() {
+            if !std::mem::replace(&mut mark[id.0 as usize], true) {
+                stack.extend(self.node(id).children());
+            }
+        }
+        (0..self.nodes.len() as u32)
+            .map(Id)
+            .filter(|id| mark[id.0 as usize])
+            .collect()
+    }
+
+    /// Operation counts of the nodes the roots depend on.
+    pub fn count(&self, roots: &[Id]) -> OpCount {
+        let mut c = OpCount::default();
+        let live = self.live(roots);
+        let has = |n: Node| {
+            self.memo
+                .get(&n)
+                .is_some_and(|id| live.binary_search(id).is_ok())
+        };
+        for &id in &live {
+            match self.node(id) {
+                Node::Add(..) | Node::Sub(..) => c.add += 1,
+                Node::Mul(..) => c.mul += 1,
+                Node::Div(..) => c.div += 1,
+                Node::Neg(_) => c.neg += 1,
+                Node::Sin(a) => {
+                    // sin and cos of one angle are computed together, once.
+                    if has(Node::Cos(a)) {
+                        c.sin_cos += 1;
+                    } else {
+                        c.sin += 1;
+                    }
+                }
+                Node::Cos(a) => {
+                    if !has(Node::Sin(a)) {
+                        c.cos += 1;
+                    }
+                }
+                Node::Sqrt(_) => c.sqrt += 1,
+                Node::Max(..) => c.max += 1,
+                Node::Const(_) | Node::Input(_) => {}
+            }
+        }
+        c
+    }
+}
+
+/// Operations of a straight-line function.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct OpCount {
+    pub add: usize,
+    pub mul: usize,
+    pub div: usize,
+    pub neg: usize,
+    pub sin: usize,
+    pub cos: usize,
+    pub sin_cos: usize,
+    pub sqrt: usize,
+    pub max: usize,
+}
+
+impl OpCount {
+    /// Arithmetic operations (add, sub, mul, div, neg, max): what `peers.md` counts.
+    pub fn arithmetic(&self) -> usize {
+        self.add + self.mul + self.div + self.neg + self.max
+    }
+}
+
+impl std::fmt::Display for OpCount {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} arithmetic ({} add/sub, {} mul, {} div, {} neg, {} max), {} sin_cos, {} sin, {} cos, {} sqrt",
+            self.arithmetic(),
+            self.add,
+            self.mul,
+            self.div,
+            self.neg,
+            self.max,
+            self.sin_cos,
+            self.sin,
+            self.cos,
+            self.sqrt
+        )
+    }
+}
+
+/// The symbolic scalar: a node of the current graph.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Sym(pub Id);
+
+impl Sym {
+    pub fn input(name: impl Into<String>) -> Sym {
+        let name = name.into();
+        Sym(with(|g| g.input(name)))
+    }
+}
+
+macro_rules! binary {
+    ($tr:ident, $m:ident, $g:ident) => {
+        impl std::ops::$tr for Sym {
+            type Output = Sym;
+            fn $m(self, o: Sym) -> Sym {
+                Sym(with(|g| g.$g(self.0, o.0)))
+            }
+        }
+    };
+}
+binary!(Add, add, add);
+binary!(Sub, sub, sub);
+binary!(Mul, mul, mul);
+binary!(Div, div, div);
+
+impl std::ops::Neg for Sym {
+    type Output = Sym;
+    fn neg(self) -> Sym {
+        Sym(with(|g| g.neg(self.0)))
+    }
+}
+
+impl Real for Sym {
+    fn from_f64(x: f64) -> Self {
+        Sym(with(|g| g.constant(x)))
+    }
+    fn sin(self) -> Self {
+        Sym(with(|g| g.sin(self.0)))
+    }
+    fn cos(self) -> Self {
+        Sym(with(|g| g.cos(self.0)))
+    }
+    fn sqrt(self) -> Self {
+        Sym(with(|g| g.sqrt(self.0)))
+    }
+    fn max(self, other: Self) -> Self {
+        Sym(with(|g| g.max(self.0, other.0)))
+    }
+}

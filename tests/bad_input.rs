@@ -1,0 +1,891 @@
+//! Bad input gets a clear error and no output: every kind of mistake a mechanism file or a
+//! solver state can hold is rejected with an error that names the offending item, the line
+//! it is defined on, and what is wrong. Each test starts from a small valid mechanism (the
+//! paper's Examples 1 and 2), breaks one thing and checks the error.
+
+use tendyn_core::error::Location;
+use tendyn_core::{load, parse, Error, Solver};
+
+/// Paper Example 2: a planar 2-DOF arm driven by three open-ended tendons.
+const OPEN_ENDED: &str = r#"(
+    name: "open_ended",
+    gravity: (0.0, -9.81, 0.0),
+    tension_floor: 5.0,
+    links: [
+        (
+            name: "link1",
+            dh: (a: 0.30, alpha: 0.0, d: 0.0),
+            mass: 1.2,
+            com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0002, yy: 0.009, zz: 0.009),
+        ),
+        (
+            name: "link2",
+            dh: (a: 0.25, alpha: 0.0, d: 0.0),
+            mass: 0.8,
+            com: (-0.125, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667),
+        ),
+    ],
+    pulleys: [
+        (name: "drum2a", carrier: "link2", at: Joint(joint: "link2", height: 0.01), radius: 0.02, fixed: true),
+        (name: "drum2b", carrier: "link2", at: Joint(joint: "link2", height: -0.01), radius: 0.02, fixed: true),
+        (name: "drum1", carrier: "link1", at: Joint(joint: "link1", height: 0.0), radius: 0.04, fixed: true),
+        (
+            name: "idler3",
+            carrier: "base",
+            at: Joint(joint: "link1", height: 0.01),
+            radius: 0.03,
+            mass: 0.05,
+            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),
+        ),
+        (
+            name: "idler4",
+            carrier: "base",
+            at: Joint(joint: "link1", height: -0.01),
+            radius: 0.03,
+            mass: 0.05,
+            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),
+        ),
+    ],
+    tendons: [
+        (name: "T32", route: [("drum2a", Ccw), ("idler3", Cw)], exit: (-0.25, 0.05, 0.01)),
+        (name: "T42", route: [("drum2b", Cw), ("idler4", Cw)], exit: (-0.25, -0.05, -0.01)),
+        (name: "T11", route: [("drum1", Ccw)], exit: (-0.25, 0.10, 0.0)),
+    ],
+)
+"#;
+
+/// Paper Example 1: the same arm driven by a motor on joint 1 and an endless loop.
+const ENDLESS: &str = r#"(
+    name: "endless",
+    gravity: (0.0, -9.81, 0.0),
+    links: [
+        (name: "link1", dh: (a: 0.30, alpha: 0.0, d: 0.0), mass: 1.2, com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)),
+        (name: "link2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.8, com: (-0.125, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)),
+    ],
+    pulleys: [
+        (name: "pulley3", carrier: "base", at: Joint(joint: "link1", height: 0.02), radius: 0.03,
+            mass: 0.1, inertia: (xx: 0.0000225, yy: 0.0000225, zz: 0.000045)),
+        (name: "drum2", carrier: "link2", at: Joint(joint: "link2", height: 0.02), radius: 0.02, fixed: true),
+    ],
+    loops: [
+        (name: "belt", driven: "drum2", driving: "pulley3", crossed: false, pretension: 20.0),
+    ],
+    motors: [
+        (name: "motor1", on: Joint("link1")),
+        (name: "motor3", on: Pulley("pulley3")),
+    ],
+)
+"#;
+
+/// `text` with `from`, which must occur in it exactly once, replaced by `to`.
+fn with(text: &str, from: &str, to: &str) -> String {
+    assert_eq!(
+        text.matches(from).count(),
+        1,
+        "`{from}` must occur exactly once in the base mechanism"
+    );
+    text.replacen(from, to, 1)
+}
+
+/// The 1-based number of the one line of `text` that contains `needle`.
+fn line_of(text: &str, needle: &str) -> usize {
+    let hits: Vec<usize> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.contains(needle))
+        .map(|(i, _)| i + 1)
+        .collect();
+    assert_eq!(hits.len(), 1, "`{needle}` must be on exactly one line");
+    hits[0]
+}
+
+fn rejected(text: &str) -> Error {
+    match parse(text) {
+        Ok(_) => panic!("accepted a bad mechanism:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+/// The error is about `item`, located on the line holding `defined_by`, and says `phrase`.
+fn assert_names(err: &Error, text: &str, item: &str, defined_by: &str, phrase: &str) {
+    let shown = err.to_string();
+    let at = match err {
+        Error::Invalid { at, .. } | Error::Routing { at, .. } => *at,
+        other => panic!("expected an error about an item, got {other:?}"),
+    };
+    assert_eq!(err.item(), Some(item), "wrong item in: {shown}");
+    assert!(shown.starts_with(item), "item not named first in: {shown}");
+    let line = line_of(text, defined_by);
+    assert_eq!(at.line, line, "wrong line in: {shown}");
+    assert!(
+        shown.contains(&format!("(line {line}, column {})", at.column)),
+        "location not shown in: {shown}"
+    );
+    assert!(shown.contains(phrase), "`{phrase}` not said in: {shown}");
+}
+
+fn assert_invalid(text: &str, item: &str, defined_by: &str, phrase: &str) -> Error {
+    let err = rejected(text);
+    assert!(matches!(err, Error::Invalid { .. }), "{err:?}");
+    assert_names(&err, text, item, defined_by, phrase);
+    err
+}
+
+fn assert_routing(text: &str, item: &str, defined_by: &str, phrase: &str) -> Error {
+    let err = rejected(text);
+    assert!(matches!(err, Error::Routing { .. }), "{err:?}");
+    assert_names(&err, text, item, defined_by, phrase);
+    err
+}
+
+fn assert_syntax(text: &str, line: usize, column: usize, phrase: &str) {
+    match rejected(text) {
+        Error::Syntax {
+            line: l,
+            column: c,
+            message,
+        } => {
+            let shown = rejected(text).to_string();
+            assert_eq!((l, c), (line, column), "wrong position in: {shown}");
+            assert!(
+                shown.contains(&format!("line {line}, column {column}")),
+                "position not shown in: {shown}"
+            );
+            assert!(message.contains(phrase), "`{phrase}` not said in: {shown}");
+        }
+        other => panic!("expected a syntax error, got {other:?}"),
+    }
+}
+
+/// 1-based column of `needle` in the one line that holds it.
+fn column_of(text: &str, needle: &str) -> usize {
+    let line = text.lines().nth(line_of(text, needle) - 1).unwrap();
+    line[..line.find(needle).unwrap()].chars().count() + 1
+}
+
+#[test]
+fn the_base_mechanisms_are_valid() {
+    parse(OPEN_ENDED).unwrap();
+    parse(ENDLESS).unwrap();
+}
+
+// 1. RON syntax.
+
+#[test]
+fn ron_syntax_error_is_reported_at_the_line_and_column_of_the_offending_token() {
+    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: 0.8 @,");
+    let (line, column) = (line_of(&text, "@"), column_of(&text, "@"));
+    assert_syntax(&text, line, column, "Expected comma, found `@,`");
+}
+
+#[test]
+fn a_value_of_the_wrong_type_is_reported_at_the_value_not_at_the_space_before_it() {
+    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: \"heavy\",");
+    let (line, column) = (line_of(&text, "heavy"), column_of(&text, "\"heavy\""));
+    assert_syntax(&text, line, column, "Expected float");
+}
+
+#[test]
+fn a_missing_comma_at_the_end_of_a_line_is_reported_with_the_line_it_is_missing_from() {
+    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: 0.8");
+    let next = line_of(&text, "com: (-0.125, 0.0, 0.0)");
+    assert_syntax(
+        &text,
+        next,
+        column_of(&text, "com: (-0.125"),
+        &format!(
+            "a comma is missing at the end of line {}",
+            line_of(&text, "mass: 0.8")
+        ),
+    );
+}
+
+#[test]
+fn a_missing_field_is_reported_at_the_end_of_its_item_naming_the_field() {
+    let text = with(OPEN_ENDED, "            mass: 0.8,\n", "");
+    // The item ends on the line after link2's inertia.
+    let end = line_of(&text, "inertia: (xx: 0.0001,") + 1;
+    assert_syntax(
+        &text,
+        end,
+        9,
+        "missing field named `mass` in `LinkSpec`: the item that ends here needs a `mass: ...` entry",
+    );
+}
+
+// 2. Unknown and duplicate names.
+
+#[test]
+fn a_route_naming_a_pulley_that_does_not_exist_is_rejected_naming_the_tendon() {
+    let text = with(OPEN_ENDED, "(\"idler3\", Cw)", "(\"idler33\", Cw)");
+    let err = assert_routing(
+        &text,
+        "T32",
+        "name: \"T32\"",
+        "its route names `idler33`, which is not a pulley",
+    );
+    assert!(
+        err.to_string().contains("`idler3`"),
+        "no candidates in: {err}"
+    );
+}
+
+#[test]
+fn a_motor_on_a_link_that_does_not_exist_is_rejected_naming_the_motor() {
+    let text = with(ENDLESS, "on: Joint(\"link1\")", "on: Joint(\"link3\")");
+    assert_invalid(
+        &text,
+        "motor1",
+        "name: \"motor1\"",
+        "`link3` is not a link; a `Joint` motor names the link its joint moves (the links are `link1`, `link2`)",
+    );
+}
+
+#[test]
+fn a_loop_naming_a_pulley_that_does_not_exist_is_rejected_naming_the_loop() {
+    let text = with(ENDLESS, "driving: \"pulley3\"", "driving: \"pulley4\"");
+    assert_routing(&text, "belt", "name: \"belt\"", "`pulley4` is not a pulley");
+}
+
+#[test]
+fn a_duplicate_name_is_rejected_at_its_second_definition() {
+    let text = with(OPEN_ENDED, "(name: \"T11\"", "(name: \"T32\"");
+    let err = rejected(&text);
+    assert!(matches!(err, Error::Invalid { .. }), "{err:?}");
+    let second = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.contains("(name: \"T32\""))
+        .map(|(i, _)| i + 1)
+        .collect::<Vec<_>>();
+    assert_eq!(second.len(), 2);
+    let Error::Invalid { item, at, .. } = &err else {
+        unreachable!()
+    };
+    assert_eq!((item.as_str(), at.line), ("T32", second[1]), "{err}");
+    let shown = err.to_string();
+    assert!(
+        shown.contains(&format!(
+            "the name `T32` is used twice (first at line {})",
+            second[0]
+        )),
+        "{shown}"
+    );
+    assert!(shown.contains("rename one of them"), "{shown}");
+}
+
+#[test]
+fn an_item_named_base_is_rejected_because_base_is_the_ground() {
+    let text = with(OPEN_ENDED, "name: \"idler4\"", "name: \"base\"");
+    assert_invalid(
+        &text,
+        "base",
+        "name: \"base\"",
+        "`base` is the ground and cannot name an item",
+    );
+}
+
+// 3. Carriers.
+
+#[test]
+fn a_carrier_that_does_not_exist_is_rejected_naming_the_pulley() {
+    let text = with(
+        OPEN_ENDED,
+        "(name: \"drum1\", carrier: \"link1\"",
+        "(name: \"drum1\", carrier: \"link0\"",
+    );
+    assert_invalid(
+        &text,
+        "drum1",
+        "name: \"drum1\"",
+        "its carrier `link0` does not exist; a carrier is `base` or a link name",
+    );
+}
+
+// 4. Masses.
+
+#[test]
+fn a_negative_mass_is_rejected_naming_the_link() {
+    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: -0.8,");
+    assert_invalid(
+        &text,
+        "link2",
+        "name: \"link2\"",
+        "mass is -0.8 kg; a mass must be positive",
+    );
+}
+
+#[test]
+fn a_zero_mass_with_an_inertia_is_rejected_naming_the_pulley() {
+    let text = with(
+        OPEN_ENDED,
+        "radius: 0.03,\n            mass: 0.05,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+        "radius: 0.03,\n            mass: 0.0,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+    );
+    assert_invalid(
+        &text,
+        "idler3",
+        "name: \"idler3\"",
+        "mass is zero but the inertia is not",
+    );
+}
+
+#[test]
+fn the_line_is_that_of_the_definition_even_where_the_name_is_referenced_first() {
+    // Pulleys listed before links: `carrier: "link1"` and `joint: "link1"` come first.
+    let links_start = OPEN_ENDED.find("    links: [").unwrap();
+    let pulleys_start = OPEN_ENDED.find("    pulleys: [").unwrap();
+    let tendons_start = OPEN_ENDED.find("    tendons: [").unwrap();
+    let reordered = format!(
+        "{}{}{}{}",
+        &OPEN_ENDED[..links_start],
+        &OPEN_ENDED[pulleys_start..tendons_start],
+        &OPEN_ENDED[links_start..pulleys_start],
+        &OPEN_ENDED[tendons_start..]
+    );
+    parse(&reordered).unwrap();
+    let text = with(&reordered, "mass: 1.2,", "mass: -1.2,");
+    assert_invalid(&text, "link1", "name: \"link1\"", "mass is -1.2 kg");
+}
+
+// 5. Inertias.
+
+#[test]
+fn an_inertia_that_is_not_positive_semidefinite_is_rejected_naming_the_link() {
+    let text = with(
+        OPEN_ENDED,
+        "inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)",
+        "inertia: (xx: 0.0002, yy: 0.009, zz: 0.009, yz: 0.01)",
+    );
+    assert_invalid(
+        &text,
+        "link1",
+        "name: \"link1\"",
+        "inertia is not positive semi-definite",
+    );
+}
+
+#[test]
+fn inertia_violating_the_triangle_inequality_is_rejected_naming_the_link() {
+    let text = with(
+        OPEN_ENDED,
+        "inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)",
+        "inertia: (xx: 0.0001, yy: 0.001, zz: 0.0041667)",
+    );
+    assert_invalid(
+        &text,
+        "link2",
+        "name: \"link2\"",
+        "violate the triangle inequality",
+    );
+}
+
+// 6. Pulley radii.
+
+#[test]
+fn a_zero_pulley_radius_is_rejected_naming_the_pulley() {
+    let text = with(OPEN_ENDED, "radius: 0.04", "radius: 0.0");
+    assert_invalid(
+        &text,
+        "drum1",
+        "name: \"drum1\"",
+        "radius is 0 m; a pitch radius must be positive",
+    );
+}
+
+#[test]
+fn a_negative_pulley_radius_is_rejected_naming_the_pulley() {
+    let text = with(OPEN_ENDED, "radius: 0.04", "radius: -0.04");
+    assert_invalid(
+        &text,
+        "drum1",
+        "name: \"drum1\"",
+        "radius is -0.04 m; a pitch radius must be positive",
+    );
+}
+
+// 7. Anchors.
+
+#[test]
+fn a_route_whose_first_pulley_is_not_a_fixed_anchor_is_rejected_naming_the_tendon() {
+    let text = with(
+        OPEN_ENDED,
+        "route: [(\"drum2b\", Cw), (\"idler4\", Cw)]",
+        "route: [(\"idler4\", Cw), (\"drum2b\", Cw)]",
+    );
+    assert_routing(
+        &text,
+        "T42",
+        "name: \"T42\"",
+        "its route must start on an anchor (a `fixed: true` drum on a link), but `idler4` turns \
+         freely; list the anchor drum first",
+    );
+}
+
+// 8. Rank of the structure matrix.
+
+#[test]
+fn a_joint_nothing_acts_on_is_rejected_naming_the_joint() {
+    let text = r#"(
+    name: "idle_elbow",
+    links: [
+        (name: "link1", dh: (a: 0.30, alpha: 0.0, d: 0.0), mass: 1.2, com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)),
+        (name: "link2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.8, com: (-0.125, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)),
+    ],
+    pulleys: [
+        (name: "drum1a", carrier: "link1", at: Joint(joint: "link1", height: 0.0), radius: 0.04, fixed: true),
+        (name: "drum1b", carrier: "link1", at: Joint(joint: "link1", height: 0.01), radius: 0.03, fixed: true),
+    ],
+    tendons: [
+        (name: "T1", route: [("drum1a", Ccw)], exit: (-0.25, 0.10, 0.0)),
+        (name: "T2", route: [("drum1b", Cw)], exit: (-0.25, -0.10, 0.01)),
+    ],
+)
+"#;
+    assert_routing(
+        text,
+        "link2",
+        "name: \"link2\"",
+        "the structure matrix does not have full row rank: joint `link2` is acted on by no \
+         tendon or motor",
+    );
+}
+
+#[test]
+fn two_joints_driven_identically_are_rejected_naming_both_joints() {
+    let text = r#"(
+    name: "lockstep",
+    links: [
+        (name: "link1", dh: (a: 0.30, alpha: 0.0, d: 0.0), mass: 1.2, com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)),
+        (name: "link2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.8, com: (-0.125, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)),
+    ],
+    tendons: [
+        (name: "Ta", structure: [0.02, 0.02]),
+        (name: "Tb", structure: [-0.01, -0.01]),
+        (name: "Tc", structure: [0.03, 0.03]),
+    ],
+)
+"#;
+    assert_routing(
+        text,
+        "link1",
+        "name: \"link1\"",
+        "the balances of joint `link1` and joint `link2` are not independent",
+    );
+}
+
+#[test]
+fn a_joint_acted_on_numerically_nothing_beside_the_others_is_rejected_naming_the_joint() {
+    let text = r#"(
+    name: "lopsided",
+    links: [
+        (name: "link1", dh: (a: 0.30, alpha: 0.0, d: 0.0), mass: 1.2, com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)),
+        (name: "link2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.8, com: (-0.125, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)),
+    ],
+    tendons: [
+        (name: "Ta", structure: [1e200, 0.02]),
+        (name: "Tb", structure: [-0.01, -0.01]),
+        (name: "Tc", structure: [0.03, -0.03]),
+    ],
+)
+"#;
+    assert_routing(
+        text,
+        "link2",
+        "name: \"link2\"",
+        "joint `link2` is acted on so much more weakly than the others",
+    );
+}
+
+#[test]
+fn a_motor_that_can_trade_against_redundant_tendons_is_rejected_naming_the_motor() {
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    motors: [(name: \"m1\", on: Joint(\"link1\"))],\n    tendons: [",
+    );
+    assert_routing(
+        &text,
+        "m1",
+        "name: \"m1\"",
+        "motor `m1` is not determined by the dynamics",
+    );
+}
+
+// 9. Controllability of open-ended routings.
+
+#[test]
+fn a_joint_all_tendons_pull_the_same_way_is_not_controllable_and_the_message_says_why() {
+    // T11 reversed: all three tendons now turn joint 1 the same way.
+    let text = with(OPEN_ENDED, "[(\"drum1\", Ccw)]", "[(\"drum1\", Cw)]");
+    assert_routing(
+        &text,
+        "link1",
+        "name: \"link1\"",
+        "not controllable by tendons: every tendon acting on joint `link1` (`T32`, `T42`, `T11`) \
+         pulls it the same way",
+    );
+    assert!(rejected(&text)
+        .to_string()
+        .contains("no strictly positive null vector"));
+}
+
+#[test]
+fn as_many_tendons_as_joints_is_not_controllable_and_the_message_says_why() {
+    let text = with(
+        OPEN_ENDED,
+        "        (name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0)),\n",
+        "",
+    );
+    assert_routing(
+        &text,
+        "open_ended",
+        "name: \"open_ended\"",
+        "not controllable by tendons: as many tendon tensions as balances, so the dynamics fixes \
+         every tension and some must push",
+    );
+}
+
+// 10. Non-finite numbers.
+
+#[test]
+fn infinite_and_nan_literals_in_the_file_are_rejected_naming_the_item() {
+    for (from, to, item, field) in [
+        ("mass: 0.8,", "mass: inf,", "link2", "`mass` is inf"),
+        ("mass: 1.2,", "mass: -inf,", "link1", "`mass` is -inf"),
+        ("radius: 0.04", "radius: NaN", "drum1", "`radius` is NaN"),
+        (
+            "d: 0.0),\n            mass: 0.8",
+            "d: NaN),\n            mass: 0.8",
+            "link2",
+            "`dh` is NaN",
+        ),
+        (
+            "exit: (-0.25, 0.10, 0.0)",
+            "exit: (-0.25, inf, 0.0)",
+            "T11",
+            "`exit` is inf",
+        ),
+        (
+            "yy: 0.00001125, zz: 0.0000225),\n        ),\n    ],",
+            "yy: NaN, zz: 0.0000225),\n        ),\n    ],",
+            "idler4",
+            "`inertia` is NaN",
+        ),
+    ] {
+        let text = with(OPEN_ENDED, from, to);
+        let err = assert_invalid(
+            &text,
+            item,
+            &format!("name: \"{item}\""),
+            "every number must be finite",
+        );
+        assert!(err.to_string().contains(field), "{err}");
+    }
+}
+
+#[test]
+fn a_non_finite_gravity_is_rejected_at_the_gravity_line() {
+    let text = with(
+        OPEN_ENDED,
+        "gravity: (0.0, -9.81, 0.0)",
+        "gravity: (0.0, NaN, 0.0)",
+    );
+    let err = rejected(&text);
+    assert_eq!(err.item(), Some("open_ended"));
+    let Error::Invalid { at, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(
+        *at,
+        Location {
+            line: line_of(&text, "gravity:"),
+            column: 5
+        }
+    );
+    assert!(err
+        .to_string()
+        .contains("`gravity` is NaN; every number must be finite"));
+}
+
+#[test]
+fn a_radius_too_small_to_turn_its_pulley_at_a_finite_rate_is_rejected_naming_the_pulley() {
+    // A subnormal radius passes `radius > 0` but the routing would turn the idler at an
+    // infinite rate: the model would hold non-finite couplings.
+    let text = with(
+        OPEN_ENDED,
+        "height: 0.01),\n            radius: 0.03,",
+        "height: 0.01),\n            radius: 1e-320,",
+    );
+    assert_routing(
+        &text,
+        "idler3",
+        "name: \"idler3\"",
+        "the routing turns it at a rate that is not finite",
+    );
+}
+
+#[test]
+fn a_negative_default_tension_floor_is_rejected_at_the_tension_floor_line() {
+    let text = with(OPEN_ENDED, "tension_floor: 5.0", "tension_floor: -5.0");
+    let err = rejected(&text);
+    assert_eq!(err.item(), Some("open_ended"));
+    let Error::Invalid { at, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(at.line, line_of(&text, "tension_floor:"), "{err}");
+    assert!(
+        err.to_string()
+            .contains("`tension_floor` is -5 N; the tension floor must not be negative"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_external_wrench_on_a_link_that_does_not_exist_is_rejected_at_the_wrench() {
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    external_wrench: (link: \"link3\", force: (1.0, 0.0, 0.0)),\n    tendons: [",
+    );
+    let err = rejected(&text);
+    let Error::Invalid { at, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
+    assert!(
+        err.to_string()
+            .contains("external_wrench names `link3`, which is not a link"),
+        "{err}"
+    );
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    external_wrench: (link: \"link2\", force: (NaN, 0.0, 0.0)),\n    tendons: [",
+    );
+    let err = rejected(&text);
+    let Error::Invalid { at, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
+    assert!(
+        err.to_string()
+            .contains("`external_wrench` on `link2` has NaN in it; every number must be finite"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_nan_in_the_state_is_rejected_naming_the_vector_and_entry() {
+    let model = parse(OPEN_ENDED).unwrap();
+    let mut solver = Solver::new(&model);
+    let ok = [0.1, 0.2];
+    for (q, qd, qdd, named) in [
+        ([f64::NAN, 0.2], ok, ok, "q[0] is NaN"),
+        (ok, [0.1, f64::INFINITY], ok, "qd[1] is inf"),
+        (ok, ok, [f64::NEG_INFINITY, 0.0], "qdd[0] is -inf"),
+    ] {
+        match solver.inverse_dynamics(&q, &qd, &qdd) {
+            Err(e @ Error::State(_)) => {
+                let shown = e.to_string();
+                assert!(shown.contains(named), "{shown}");
+                assert!(shown.contains("every entry must be finite"), "{shown}");
+            }
+            other => panic!("expected a state error, got {other:?}"),
+        }
+    }
+    match solver.forward_dynamics(&ok, &ok, &[], &[10.0, f64::NAN, 10.0]) {
+        Err(e @ Error::State(_)) => assert!(e.to_string().contains("tendon tension is NaN"), "{e}"),
+        other => panic!("expected a state error, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_state_of_the_wrong_length_is_rejected_naming_the_vector() {
+    let model = parse(OPEN_ENDED).unwrap();
+    let mut solver = Solver::new(&model);
+    let ok = [0.1, 0.2];
+    for (q, qd, qdd, named) in [
+        (&[0.1][..], &ok[..], &ok[..], "q has 1 entries"),
+        (&ok[..], &[0.1, 0.2, 0.3][..], &ok[..], "qd has 3 entries"),
+        (&ok[..], &ok[..], &[][..], "qdd has 0 entries"),
+    ] {
+        match solver.inverse_dynamics(q, qd, qdd) {
+            Err(e @ Error::State(_)) => {
+                let shown = e.to_string();
+                assert!(shown.contains(named), "{shown}");
+                assert!(shown.contains("but the mechanism has 2 joints"), "{shown}");
+            }
+            other => panic!("expected a state error, got {other:?}"),
+        }
+    }
+}
+
+// 11. Routing geometry and explicit data that contradicts it.
+
+#[test]
+fn an_explicit_coupling_that_disagrees_with_the_routing_is_rejected_naming_the_pulley() {
+    let text = with(
+        OPEN_ENDED,
+        "at: Joint(joint: \"link1\", height: 0.01),\n            radius: 0.03,",
+        "at: Joint(joint: \"link1\", height: 0.01),\n            radius: 0.03,\n            coupling: [5.0, 5.0],",
+    );
+    assert_routing(
+        &text,
+        "idler3",
+        "name: \"idler3\"",
+        "its explicit coupling [5.0, 5.0] disagrees with the routing",
+    );
+}
+
+#[test]
+fn an_explicit_structure_column_that_disagrees_with_the_route_is_rejected_naming_the_tendon() {
+    let text = with(
+        OPEN_ENDED,
+        "exit: (-0.25, 0.10, 0.0))",
+        "exit: (-0.25, 0.10, 0.0), structure: [0.0, 0.04])",
+    );
+    assert_routing(
+        &text,
+        "T11",
+        "name: \"T11\"",
+        "its explicit structure column [0.0, 0.04] disagrees with its route",
+    );
+}
+
+#[test]
+fn overlapping_pulleys_with_no_common_tangent_are_rejected_naming_the_tendon() {
+    // idler3 (on joint 1's axis) grown until it overlaps drum2a (on joint 2's, 0.30 m away).
+    let text = with(
+        OPEN_ENDED,
+        "height: 0.01),\n            radius: 0.03,",
+        "height: 0.01),\n            radius: 0.29,",
+    );
+    assert_routing(
+        &text,
+        "T32",
+        "name: \"T32\"",
+        "segment from pulley `drum2a` to pulley `idler3`: no common tangent on the given sides",
+    );
+}
+
+#[test]
+fn a_pulley_on_a_joint_axis_carried_by_a_body_that_joint_does_not_connect_is_rejected() {
+    // idler4 rides on the base but is put on joint 2's axis (between link 1 and link 2).
+    let text = with(
+        OPEN_ENDED,
+        "at: Joint(joint: \"link1\", height: -0.01)",
+        "at: Joint(joint: \"link2\", height: -0.01)",
+    );
+    assert_invalid(
+        &text,
+        "idler4",
+        "name: \"idler4\"",
+        "sits on the axis of joint `link2` but is carried by `base`; a pulley on a joint axis is \
+         carried by one of the two bodies that joint connects (`link1` or `link2`)",
+    );
+}
+
+#[test]
+fn an_unreadable_file_path_is_reported_with_the_path() {
+    match load("/nonexistent.ron") {
+        Err(e @ Error::Io { .. }) => {
+            let Error::Io { path, .. } = &e else {
+                unreachable!()
+            };
+            assert_eq!(path, "/nonexistent.ron");
+            assert!(
+                e.to_string().starts_with("cannot read /nonexistent.ron: "),
+                "{e}"
+            );
+        }
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+}
+
+/// A joint that only one tendon acts on, while the other joint is redundantly driven.
+const ONE_TENDON_ON_JOINT2: &str = r#"(
+    name: "lonely",
+    gravity: (0.0, 0.0, -9.81),
+    tension_floor: 1.0,
+    links: [
+        (name: "link1", dh: (a: 0.30, alpha: 0.0, d: 0.0), mass: 1.2, com: (-0.15, 0.0, 0.0), inertia: (xx: 0.0002, yy: 0.009, zz: 0.009)),
+        (name: "link2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.8, com: (-0.125, 0.0, 0.0), inertia: (xx: 0.0001, yy: 0.004, zz: 0.004)),
+    ],
+    pulleys: [
+        (name: "drum2", carrier: "link2", at: Joint(joint: "link2", height: 0.01), radius: 0.02, fixed: true),
+        (name: "drum1", carrier: "link1", at: Joint(joint: "link1", height: 0.0), radius: 0.04, fixed: true),
+        (name: "idler", carrier: "base", at: Joint(joint: "link1", height: 0.01), radius: 0.03, mass: 0.05, inertia: (xx: 0.00001, yy: 0.00001, zz: 0.00002)),
+    ],
+    tendons: [
+        (name: "tA", route: [("drum2", Ccw), ("idler", Cw)], exit: (-0.25, 0.05, 0.01)),
+        (name: "tB", route: [("drum1", Cw)], exit: (-0.25, -0.10, 0.0)),
+        (name: "tC", route: [("drum1", Ccw)], exit: (-0.25, 0.10, 0.0)),
+    ],
+)"#;
+
+#[test]
+fn a_joint_that_one_tendon_alone_pulls_is_not_controllable_even_when_another_joint_is_redundant() {
+    // The null space is one-dimensional but has no component on tA: its tension is fixed
+    // by joint 2's dynamics and would have to push half the time.
+    assert_routing(
+        ONE_TENDON_ON_JOINT2,
+        "link2",
+        "name: \"link2\"",
+        "every tendon acting on joint `link2` (`tA`) pulls it the same way",
+    );
+}
+
+#[test]
+fn an_exit_point_without_a_route_is_rejected_naming_the_tendon() {
+    let text = with(
+        OPEN_ENDED,
+        "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0)),",
+        "(name: \"T11\", structure: [0.04, 0.0], exit: (-0.25, 0.10, 0.0)),",
+    );
+    assert_routing(
+        &text,
+        "T11",
+        "name: \"T11\"",
+        "has an `exit` but no `route`",
+    );
+}
+
+#[test]
+fn a_negative_default_floor_is_rejected_even_when_every_tendon_overrides_it() {
+    let text = with(OPEN_ENDED, "tension_floor: 5.0,", "tension_floor: -5.0,")
+        .replace(
+            "exit: (-0.25, 0.05, 0.01))",
+            "exit: (-0.25, 0.05, 0.01), floor: 1.0)",
+        )
+        .replace(
+            "exit: (-0.25, -0.05, -0.01))",
+            "exit: (-0.25, -0.05, -0.01), floor: 1.0)",
+        )
+        .replace(
+            "exit: (-0.25, 0.10, 0.0))",
+            "exit: (-0.25, 0.10, 0.0), floor: 1.0)",
+        );
+    let err = rejected(&text);
+    assert_eq!(err.item(), Some("open_ended"));
+    assert!(err.to_string().contains("`tension_floor` is -5 N"), "{err}");
+}
+
+#[test]
+fn names_with_a_slash_or_empty_names_are_rejected() {
+    let text = with(OPEN_ENDED, "name: \"T11\"", "name: \"T/11\"");
+    assert_invalid(&text, "T/11", "name: \"T/11\"", "must not contain `/`");
+    let text = with(OPEN_ENDED, "name: \"T11\"", "name: \"\"");
+    let err = rejected(&text);
+    assert!(err.to_string().contains("must be non-empty"), "{err}");
+}
