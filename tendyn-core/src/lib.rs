@@ -16,6 +16,24 @@
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code.
+//!
+//! ```
+//! # fn main() -> Result<(), tendyn_core::Error> {
+//! let model = tendyn_core::load("../examples/mechanisms/example3_stanford_jpl.ron")?;
+//! let mut solver = tendyn_core::Solver::new(&model);
+//! let r = solver.inverse_dynamics(&[0.1, 0.5, 0.3], &[0.0; 3], &[1.0, 0.0, 0.0])?;
+//! // Every tendon stays at or above the 5 N floor of the file.
+//! assert!(r.tendon_tensions.iter().all(|&t| t >= 5.0 - 1e-9));
+//!
+//! // The same model in double-double, for a reference to f64 precision and beyond.
+//! let reference = model.cast_numeric::<tendyn_core::DoubleDouble>();
+//! let q = [0.1, 0.5, 0.3].map(tendyn_core::DoubleDouble::from);
+//! let mut dd = tendyn_core::Solver::new(&reference);
+//! let m = dd.mass_matrix(&q)?;
+//! assert!(m[0][0].to_f64() > 0.0);
+//! # Ok(())
+//! # }
+//! ```
 
 pub mod affine;
 pub mod double_double;
