@@ -95,7 +95,7 @@ fn example1_tension_difference_satisfies_eq28_link2_moment_balance() {
         let r2 = 0.02;
         for [q, qd, qdd] in states(1, 500) {
             let id = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
-            let [t21, t22] = id.loop_sides[0].0;
+            let [t21, t22] = id.loop_sides[0];
             // Eq. 28 (+ gravity): r2 (T21 − T22) = cI2 (θ̈1 + θ̈2) + m2 (a2 − s2)[a1 (sin θ2 θ̇1² +
             // cos θ2 θ̈1) + (a2 − s2)(θ̈1 + θ̈2)] + m2 g (a2 − s2) cos(θ1 + θ2)
             let lc2 = ARM.a2 - ARM.s2;
@@ -120,7 +120,7 @@ fn example1_motor_torques_satisfy_eq29_and_corrected_eq30() {
         let gamma = r2 / r3;
         for [q, qd, qdd] in states(2, 500) {
             let id = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
-            let [t21, t22] = id.loop_sides[0].0;
+            let [t21, t22] = id.loop_sides[0];
             let (n10, n30) = (id.motor_torques[0], id.motor_torques[1]);
             // Eq. 29: n30 = r3 (T21 − T22) + cI3 (θ̈1 + γ23 θ̈2).
             close(

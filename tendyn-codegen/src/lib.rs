@@ -1,8 +1,113 @@
 //! `tendyn-codegen`: turns a validated mechanism into specialised straight-line Rust.
 //!
-//! The symbolic engine arrives with issue 4; for now this crate hosts the `tendyn` CLI
-//! (`src/bin/tendyn.rs`) and its report formatting ([`report`]).
+//! The pipeline, module by module:
+//!
+//! - [`expr`]: the hash-consed expression graph; [`expr::Sym`] implements
+//!   `tendyn_core::Real`, so the solver's generic recursion builds the graph when run on it;
+//! - [`outputs`]: which functions can be generated and how each is traced through
+//!   `tendyn-core` (the same code the runtime solver runs);
+//! - [`closed_form`]: the collected polynomial form in sines, cosines, velocities and
+//!   accelerations, kept per function when it has fewer operations;
+//! - [`emit`]: graph → Rust source (quote, prettyplease), with operation counts;
+//! - [`report`]: the CLI's text and JSON renderings of runtime results.
+//!
+//! [`generate`] runs the whole pipeline.
 
 pub mod closed_form;
+pub mod emit;
 pub mod expr;
+pub mod outputs;
 pub mod report;
+
+pub use emit::Scalar;
+pub use outputs::Output;
+
+/// The one error type of `tendyn-codegen`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Error {
+    /// The mechanism file is invalid.
+    Model(tendyn_core::Error),
+    /// A requested output cannot be generated for this mechanism.
+    Unavailable { output: Output, reason: String },
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Error::Model(e) => write!(f, "{e}"),
+            Error::Unavailable { output, reason } => {
+                write!(
+                    f,
+                    "output `{}` cannot be generated: {reason}",
+                    output.name()
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+impl From<tendyn_core::Error> for Error {
+    fn from(e: tendyn_core::Error) -> Self {
+        Error::Model(e)
+    }
+}
+
+impl From<outputs::Unavailable> for Error {
+    fn from(u: outputs::Unavailable) -> Self {
+        Error::Unavailable {
+            output: u.output,
+            reason: u.reason,
+        }
+    }
+}
+
+/// Generated source and what it costs.
+#[derive(Debug, Clone)]
+pub struct Generated {
+    pub source: String,
+    /// Per function: name, operations of the emitted form, whether it is the closed form.
+    pub functions: Vec<(Output, expr::OpCount, bool)>,
+    /// Operations of `all`.
+    pub all: expr::OpCount,
+}
+
+/// Traces, simplifies and emits `outputs` of `model`. `source` names the input in the
+/// generated file's header.
+pub fn generate(
+    model: &tendyn_core::Model<f64>,
+    outputs: &[Output],
+    scalar: Scalar,
+    source: &str,
+) -> Result<Generated, Error> {
+    let traced = outputs::trace(model, outputs)?;
+    let functions = traced
+        .functions
+        .iter()
+        .map(|f| {
+            let closed = f
+                .closed_ops
+                .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
+            (f.output, traced.graph.count(&f.results), closed)
+        })
+        .collect();
+    let roots: Vec<expr::Id> = traced
+        .functions
+        .iter()
+        .flat_map(|f| f.results.iter().copied())
+        .collect();
+    Ok(Generated {
+        source: emit::emit(model, &traced, scalar, source),
+        functions,
+        all: traced.graph.count(&roots),
+    })
+}
+
+/// The outputs `model` can provide (every output, less those [`outputs::check`] refuses).
+pub fn available_outputs(model: &tendyn_core::Model<f64>) -> Vec<Output> {
+    Output::ALL
+        .into_iter()
+        .filter(|o| outputs::check(model, &[*o]).is_ok())
+        .collect()
+}

@@ -149,7 +149,7 @@ pub fn inverse_json(
         "tendon_tensions": m.tendons.iter().zip(&r.tendon_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "minimal_norm_tensions": m.tendons.iter().zip(&r.minimal_norm_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "null_space_tensions": m.tendons.iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "loops": m.loops.iter().zip(&r.loop_sides).map(|(l, (s, slack))| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
+        "loops": m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "mass_matrix": mass,
         "bias": bias,
@@ -241,13 +241,13 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
             t.floor
         ));
     }
-    for (l, (sides, slack)) in m.loops.iter().zip(&r.loop_sides) {
+    for ((l, sides), slack) in m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()) {
         line(format!(
             "  loop {:<13} ccw side {:.6} N, cw side {:.6} N{}",
             l.name,
             sides[0],
             sides[1],
-            if *slack {
+            if slack {
                 "  SLACK: raise the pretension"
             } else {
                 ""

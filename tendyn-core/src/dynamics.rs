@@ -1,19 +1,24 @@
-//! The runtime solver: inverse dynamics with every tension and bearing force, the
-//! joint-space mass matrix, bias and gravity terms, and forward dynamics, all on top of
-//! the one recursion in [`crate::kinematics`] and [`crate::newton_euler`].
+//! Inverse dynamics with every tension and bearing force, the joint-space mass matrix,
+//! bias and gravity terms, and forward dynamics, all on top of the one recursion in
+//! [`crate::kinematics`] and [`crate::newton_euler`].
 //!
-//! `M`, `h` and `g` come from the expanded-tree form of the same recursion: every body's
-//! axial joint moment `τ_b` mapped to the joint coordinates through its coupling,
+//! Everything here is generic over [`Real`] — the code generator traces these very
+//! functions — except [`Solver`], the runtime front end, which adds what only numbers can
+//! do: input checks, the tension distribution for null spaces of any dimension, the
+//! positive-definiteness check of forward dynamics, and the slack flags of loops.
+//!
+//! `M`, `h` and `g` come from the expanded-tree form of the recursion: every body's axial
+//! joint moment `τ_b` mapped to the joint coordinates through its coupling,
 //! `Q = Σ_b c_bᵀ τ_b` (virtual work), with the tendons left out (their forces are internal
 //! once the pulleys' couplings hold).
 
 use crate::affine::Affine;
 use crate::error::{Error, Result};
-use crate::kinematics::{forward, Motion};
+use crate::kinematics::{coupled, forward, Motion};
 use crate::model::{BodyKind, Model, MotorKind};
 use crate::newton_euler::{backward, Loads};
 use crate::real::{Numeric, Real};
-use crate::spatial::Vec3;
+use crate::spatial::{Mat3, Vec3};
 use crate::tension;
 use crate::transmission::linalg;
 
@@ -32,8 +37,8 @@ pub struct InverseDynamics<T> {
     /// The null-space part added to keep every tendon at its floor.
     pub null_space_tensions: Vec<T>,
     /// Tension of both sides of each loop at its driving pulley (leaving the driven pulley
-    /// counter-clockwise, then clockwise), and whether a side would be slack (< 0).
-    pub loop_sides: Vec<([T; 2], bool)>,
+    /// counter-clockwise, then clockwise).
+    pub loop_sides: Vec<[T; 2]>,
     /// Tension of every segment of every strand, `None` if the routing is incomplete.
     pub segment_tensions: Option<Vec<Vec<T>>>,
     /// Moment each intermediate link needs about its own axis (body index, N·m).
@@ -48,10 +53,43 @@ pub struct InverseDynamics<T> {
     pub unknowns: Vec<T>,
 }
 
-/// Generalized forces of the expanded tree, `Q = Σ_b c_bᵀ τ_b`, with the tendons left out
-/// (their forces are internal once the pulleys' couplings hold): `M q̈ + h + g` with
-/// `gravity`, minus the external wrench's generalized force with `external`. Generic over
-/// [`Real`], so the code generator traces exactly this.
+impl<T: Numeric> InverseDynamics<T> {
+    /// Whether each loop has a side below zero tension (it would go slack: raise the
+    /// loop's pretension).
+    pub fn slack_loops(&self) -> Vec<bool> {
+        self.loop_sides
+            .iter()
+            .map(|s| s.iter().any(|&v| v < T::zero()))
+            .collect()
+    }
+}
+
+/// Work buffers of the recursion for one model; the model itself stays immutable.
+#[derive(Clone, Debug)]
+pub struct Workspace<T> {
+    pub motion: Vec<Motion<T>>,
+    pub loads: Loads<T>,
+    pub tensions: Vec<Vec<Affine<T>>>,
+}
+
+impl<T: Real> Workspace<T> {
+    pub fn new(model: &Model<T>) -> Self {
+        let nu = model.system.unknowns.len();
+        Workspace {
+            motion: vec![Motion::rest(); model.bodies.len()],
+            loads: Loads::new(model.bodies.len(), nu),
+            tensions: model
+                .strands
+                .iter()
+                .map(|s| vec![Affine::constant(T::zero(), nu); s.segments.len()])
+                .collect(),
+        }
+    }
+}
+
+/// Generalized forces of the expanded tree, `Q = Σ_b c_bᵀ τ_b`, with the tendons left out:
+/// `M q̈ + h + g` with `gravity`, minus the external wrench's generalized force with
+/// `external`.
 #[allow(clippy::too_many_arguments)]
 pub fn expanded_generalized_forces<T: Real>(
     model: &Model<T>,
@@ -60,44 +98,253 @@ pub fn expanded_generalized_forces<T: Real>(
     qdd: &[T],
     gravity: bool,
     external: bool,
-    motion: &mut [Motion<T>],
-    loads: &mut Loads<T>,
+    ws: &mut Workspace<T>,
     out: &mut [T],
 ) {
-    forward(model, q, qd, qdd, gravity, motion);
-    backward(model, motion, None, 0, external, loads);
+    forward(model, q, qd, qdd, gravity, &mut ws.motion);
+    backward(model, &ws.motion, None, 0, external, &mut ws.loads);
     for o in out.iter_mut() {
         *o = T::zero();
     }
-    for (b, t) in model.bodies.iter().zip(&loads.axial) {
+    for (b, t) in model.bodies.iter().zip(&ws.loads.axial) {
         for (o, c) in out.iter_mut().zip(&b.coupling) {
             *o = *o + *c * t.constant;
         }
     }
 }
 
-/// Work buffers for one model; the model itself stays immutable.
+/// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings: column
+/// `j` is the expanded tree's `Q` at `q̈ = e_j` with no velocity and no gravity. Only the
+/// upper triangle is computed from the recursion; the lower one mirrors it.
+pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], ws: &mut Workspace<T>) -> Vec<Vec<T>> {
+    let n = model.dof;
+    let zeros = vec![T::zero(); n];
+    let mut m = vec![vec![T::zero(); n]; n];
+    let mut unit = zeros.clone();
+    let mut col = zeros.clone();
+    for j in 0..n {
+        unit[j] = T::one();
+        expanded_generalized_forces(model, q, &zeros, &unit, false, false, ws, &mut col);
+        for i in 0..=j {
+            m[i][j] = col[i];
+            m[j][i] = col[i];
+        }
+        unit[j] = T::zero();
+    }
+    m
+}
+
+/// Bias `h(q, q̇)`: Coriolis and centrifugal generalized forces.
+pub fn bias<T: Real>(model: &Model<T>, q: &[T], qd: &[T], ws: &mut Workspace<T>) -> Vec<T> {
+    let zeros = vec![T::zero(); model.dof];
+    let mut out = zeros.clone();
+    expanded_generalized_forces(model, q, qd, &zeros, false, false, ws, &mut out);
+    out
+}
+
+/// Gravity generalized forces `g(q)`.
+pub fn gravity<T: Real>(model: &Model<T>, q: &[T], ws: &mut Workspace<T>) -> Vec<T> {
+    let zeros = vec![T::zero(); model.dof];
+    let mut out = zeros.clone();
+    expanded_generalized_forces(model, q, &zeros, &zeros, true, false, ws, &mut out);
+    out
+}
+
+/// The generalized forces the actuators deliver: `Σ motor columns · τ + A T`.
+pub fn actuator_forces<T: Real>(
+    model: &Model<T>,
+    motor_torques: &[T],
+    tendon_tensions: &[T],
+) -> Vec<T> {
+    (0..model.dof)
+        .map(|j| {
+            let mut u = T::zero();
+            for (m, t) in model.motors.iter().zip(motor_torques) {
+                u = u + T::from_f64(m.column[j]) * *t;
+            }
+            for (k, t) in model.tendons.iter().zip(tendon_tensions) {
+                u = u + T::from_f64(k.structure[j]) * *t;
+            }
+            u
+        })
+        .collect()
+}
+
+/// `M q̈ = Σ actuator forces − (h + g − Q_ext)`: the right-hand side of forward dynamics.
+pub fn forward_dynamics_rhs<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    motor_torques: &[T],
+    tendon_tensions: &[T],
+    ws: &mut Workspace<T>,
+) -> Vec<T> {
+    let zeros = vec![T::zero(); model.dof];
+    let mut c = zeros.clone();
+    expanded_generalized_forces(model, q, qd, &zeros, true, true, ws, &mut c);
+    actuator_forces(model, motor_torques, tendon_tensions)
+        .into_iter()
+        .zip(c)
+        .map(|(u, c)| u - c)
+        .collect()
+}
+
+/// Solves `M x = rhs` by `L D Lᵀ` without pivoting or checks: what generated code does
+/// (the runtime [`Solver`] uses a checked Cholesky instead).
+pub fn ldlt_solve<T: Real>(m: &[Vec<T>], rhs: &[T]) -> Vec<T> {
+    let n = rhs.len();
+    let mut l = vec![vec![T::zero(); n]; n];
+    let mut d = vec![T::zero(); n];
+    for j in 0..n {
+        let mut dj = m[j][j];
+        for k in 0..j {
+            dj = dj - l[j][k] * l[j][k] * d[k];
+        }
+        d[j] = dj;
+        for i in j + 1..n {
+            let mut s = m[i][j];
+            for k in 0..j {
+                s = s - l[i][k] * l[j][k] * d[k];
+            }
+            l[i][j] = s / dj;
+        }
+    }
+    let mut y = rhs.to_vec();
+    for i in 0..n {
+        for k in 0..i {
+            y[i] = y[i] - l[i][k] * y[k];
+        }
+    }
+    for (yi, di) in y.iter_mut().zip(&d) {
+        *yi = *yi / *di;
+    }
+    for i in (0..n).rev() {
+        for k in i + 1..n {
+            y[i] = y[i] - l[k][i] * y[k];
+        }
+    }
+    y
+}
+
+/// Inverse dynamics by the paper's recursion: tensions carried to the base as unknowns,
+/// `E x = b` solved there (`distribute` chooses among the solutions of a redundant
+/// routing), every segment tension and bearing force by back-substitution.
+pub fn inverse_dynamics<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    ws: &mut Workspace<T>,
+    distribute: impl FnOnce(&Model<T>, &mut [T]) -> Result<()>,
+) -> Result<InverseDynamics<T>> {
+    let nu = model.system.unknowns.len();
+    forward(model, q, qd, qdd, true, &mut ws.motion);
+    tension::segment_tensions(model, &ws.motion, nu, &mut ws.tensions);
+    backward(
+        model,
+        &ws.motion,
+        Some(&ws.tensions),
+        nu,
+        true,
+        &mut ws.loads,
+    );
+    let mut b = vec![T::zero(); model.system.rows.len()];
+    tension::demand(model, &ws.loads, &mut b);
+    let mut x = vec![T::zero(); nu];
+    tension::minimal_norm(model, &b, &mut x);
+    let x0 = x.clone();
+    distribute(model, &mut x)?;
+
+    let motor_torques: Vec<T> = model.motors.iter().map(|m| x[m.unknown]).collect();
+    let tendon_tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
+    let minimal_norm_tensions = model.tendons.iter().map(|t| x0[t.unknown]).collect();
+    let null_space_tensions = model
+        .tendons
+        .iter()
+        .map(|t| x[t.unknown] - x0[t.unknown])
+        .collect();
+    let generalized_forces = actuator_forces(model, &motor_torques, &tendon_tensions);
+    let loop_sides = model
+        .loops
+        .iter()
+        .map(|l| l.strands.map(|s| x[model.strands[s].unknown]))
+        .collect();
+    let pulley_demands = model
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| matches!(b.kind, BodyKind::Pulley { .. }))
+        .map(|(i, _)| (i, tension::axial_demand(model, &ws.motion, i)))
+        .collect();
+    let (segment_tensions, bearings, base_reaction) = if model.routing_incomplete {
+        (None, None, None)
+    } else {
+        let segs = ws
+            .tensions
+            .iter()
+            .map(|s| s.iter().map(|t| t.eval(&x)).collect())
+            .collect();
+        let bearings = (0..model.bodies.len())
+            .map(|i| bearing(model, ws, q, &x, i))
+            .collect();
+        let base = (ws.loads.base_force.eval(&x), ws.loads.base_moment.eval(&x));
+        (Some(segs), Some(bearings), Some(base))
+    };
+    Ok(InverseDynamics {
+        generalized_forces,
+        motor_torques,
+        tendon_tensions,
+        minimal_norm_tensions,
+        null_space_tensions,
+        loop_sides,
+        segment_tensions,
+        pulley_demands,
+        bearings,
+        base_reaction,
+        unknowns: x,
+    })
+}
+
+/// Bearing force and moment of body `i` at the solved unknowns `x`.
+fn bearing<T: Real>(
+    model: &Model<T>,
+    ws: &Workspace<T>,
+    q: &[T],
+    x: &[T],
+    i: usize,
+) -> (Vec3<T>, Vec3<T>) {
+    let b = &model.bodies[i];
+    let f = ws.loads.force[i].eval(x);
+    let mut n = ws.loads.moment[i].eval(x);
+    // The bearing carries what the motor on this joint does not.
+    if let Some(m) = model.motors.iter().find(|m| match m.kind {
+        MotorKind::Joint(j) => j == i,
+        MotorKind::Pulley(p) => p == i,
+    }) {
+        n = n - b.axis.scale(x[m.unknown]);
+    }
+    // A spinning pulley's frame turns with it; report it in its housing frame (the
+    // pulley frame at zero spin) like every other pulley.
+    if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
+        let (sn, cs) = coupled(&b.coupling, q).sin_cos();
+        let spin = Mat3::rot_z(sn, cs);
+        (spin.mul_vec(f), spin.mul_vec(n))
+    } else {
+        (f, n)
+    }
+}
+
+/// The runtime solver: the generic functions above with input checks, on numbers.
 pub struct Solver<'m, T> {
     pub model: &'m Model<T>,
-    motion: Vec<Motion<T>>,
-    loads: Loads<T>,
-    tensions: Vec<Vec<Affine<T>>>,
-    zeros: Vec<T>,
+    ws: Workspace<T>,
 }
 
 impl<'m, T: Numeric> Solver<'m, T> {
     pub fn new(model: &'m Model<T>) -> Self {
-        let nu = model.system.unknowns.len();
         Solver {
             model,
-            motion: vec![Motion::rest(); model.bodies.len()],
-            loads: Loads::new(model.bodies.len(), nu),
-            tensions: model
-                .strands
-                .iter()
-                .map(|s| vec![Affine::constant(T::zero(), nu); s.segments.len()])
-                .collect(),
-            zeros: vec![T::zero(); model.dof],
+            ws: Workspace::new(model),
         }
     }
 
@@ -118,75 +365,33 @@ impl<'m, T: Numeric> Solver<'m, T> {
         Ok(())
     }
 
-    /// `Σ_b c_bᵀ τ_b` of the expanded tree, tendons left out.
-    fn expanded(
-        &mut self,
-        q: &[T],
-        qd: &[T],
-        qdd: &[T],
-        gravity: bool,
-        external: bool,
-        out: &mut [T],
-    ) {
-        expanded_generalized_forces(
-            self.model,
-            q,
-            qd,
-            qdd,
-            gravity,
-            external,
-            &mut self.motion,
-            &mut self.loads,
-            out,
-        );
-    }
-
     /// Generalized forces `Q = M q̈ + h + g − Jᵀ w_ext` from the expanded tree.
     pub fn generalized_forces(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
         let mut out = vec![T::zero(); self.model.dof];
-        self.expanded(q, qd, qdd, true, true, &mut out);
+        expanded_generalized_forces(self.model, q, qd, qdd, true, true, &mut self.ws, &mut out);
         Ok(out)
     }
 
-    /// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings.
+    /// Joint-space mass matrix `M(q)`.
     pub fn mass_matrix(&mut self, q: &[T]) -> Result<Vec<Vec<T>>> {
         self.check_state("q", q)?;
-        let n = self.model.dof;
-        let zeros = self.zeros.clone();
-        let mut m = vec![vec![T::zero(); n]; n];
-        let mut unit = zeros.clone();
-        let mut col = zeros.clone();
-        for j in 0..n {
-            unit[j] = T::one();
-            self.expanded(q, &zeros, &unit, false, false, &mut col);
-            for i in 0..n {
-                m[i][j] = col[i];
-            }
-            unit[j] = T::zero();
-        }
-        Ok(m)
+        Ok(mass_matrix(self.model, q, &mut self.ws))
     }
 
-    /// Bias `h(q, q̇)`: Coriolis and centrifugal generalized forces.
+    /// Bias `h(q, q̇)`.
     pub fn bias(&mut self, q: &[T], qd: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
-        let zeros = self.zeros.clone();
-        let mut out = zeros.clone();
-        self.expanded(q, qd, &zeros, false, false, &mut out);
-        Ok(out)
+        Ok(bias(self.model, q, qd, &mut self.ws))
     }
 
     /// Gravity generalized forces `g(q)`.
     pub fn gravity(&mut self, q: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
-        let zeros = self.zeros.clone();
-        let mut out = zeros.clone();
-        self.expanded(q, &zeros, &zeros, true, false, &mut out);
-        Ok(out)
+        Ok(gravity(self.model, q, &mut self.ws))
     }
 
     /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
@@ -222,20 +427,8 @@ impl<'m, T: Numeric> Solver<'m, T> {
                 )));
             }
         }
-        let zeros = self.zeros.clone();
-        let mut rhs = zeros.clone();
-        self.expanded(q, qd, &zeros, true, true, &mut rhs);
-        for (j, r) in rhs.iter_mut().enumerate() {
-            let mut u = T::zero();
-            for (m, t) in model.motors.iter().zip(motor_torques) {
-                u = u + T::from_f64(m.column[j]) * *t;
-            }
-            for (k, t) in model.tendons.iter().zip(tendon_tensions) {
-                u = u + T::from_f64(k.structure[j]) * *t;
-            }
-            *r = u - *r;
-        }
-        let m = self.mass_matrix(q)?;
+        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        let m = mass_matrix(model, q, &mut self.ws);
         linalg::cholesky_solve(&m, &rhs).ok_or_else(|| {
             Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
@@ -245,119 +438,18 @@ impl<'m, T: Numeric> Solver<'m, T> {
         })
     }
 
-    /// Inverse dynamics by the paper's recursion: tensions carried to the base, `E x = b`
-    /// solved there, and every segment tension and bearing force by back-substitution.
+    /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
+    /// least-norm floor-respecting tension distribution for null spaces of any dimension.
     pub fn inverse_dynamics(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<InverseDynamics<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
-        let model = self.model;
-        let nu = model.system.unknowns.len();
-        forward(model, q, qd, qdd, true, &mut self.motion);
-        tension::segment_tensions(model, &self.motion, nu, &mut self.tensions);
-        backward(
-            model,
-            &self.motion,
-            Some(&self.tensions),
-            nu,
-            true,
-            &mut self.loads,
-        );
-        let mut b = vec![T::zero(); model.system.rows.len()];
-        tension::demand(model, &self.loads, &mut b);
-        let mut x = vec![T::zero(); nu];
-        tension::minimal_norm(model, &b, &mut x);
-        let x0 = x.clone();
-        tension::distribute(model, &mut x)?;
-
-        let motor_torques: Vec<T> = model.motors.iter().map(|m| x[m.unknown]).collect();
-        let tendon_tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
-        let minimal_norm_tensions: Vec<T> = model.tendons.iter().map(|t| x0[t.unknown]).collect();
-        let null_space_tensions: Vec<T> = model
-            .tendons
-            .iter()
-            .map(|t| x[t.unknown] - x0[t.unknown])
-            .collect();
-        let mut generalized_forces = vec![T::zero(); model.dof];
-        for (j, g) in generalized_forces.iter_mut().enumerate() {
-            for (m, t) in model.motors.iter().zip(&motor_torques) {
-                *g = *g + T::from_f64(m.column[j]) * *t;
-            }
-            for (k, t) in model.tendons.iter().zip(&tendon_tensions) {
-                *g = *g + T::from_f64(k.structure[j]) * *t;
-            }
-        }
-        let loop_sides = model
-            .loops
-            .iter()
-            .map(|l| {
-                let sides = l.strands.map(|s| x[model.strands[s].unknown]);
-                let slack = sides.iter().any(|&v| v < T::zero());
-                (sides, slack)
-            })
-            .collect();
-        let pulley_demands = model
-            .bodies
-            .iter()
-            .enumerate()
-            .filter(|(_, b)| matches!(b.kind, BodyKind::Pulley { .. }))
-            .map(|(i, _)| (i, tension::axial_demand(model, &self.motion, i)))
-            .collect();
-        let (segment_tensions, bearings, base_reaction) = if model.routing_incomplete {
-            (None, None, None)
-        } else {
-            let segs = self
-                .tensions
-                .iter()
-                .map(|s| s.iter().map(|t| t.eval(&x)).collect())
-                .collect();
-            let bearings = (0..model.bodies.len())
-                .map(|i| {
-                    let f = self.loads.force[i].eval(&x);
-                    let mut n = self.loads.moment[i].eval(&x);
-                    // The bearing carries what the motor on this joint does not.
-                    if let Some(m) = model.motors.iter().find(|m| match m.kind {
-                        MotorKind::Joint(j) => j == i,
-                        MotorKind::Pulley(b) => b == i,
-                    }) {
-                        n = n - model.bodies[i].axis.scale(x[m.unknown]);
-                    }
-                    // A spinning pulley's frame turns with it; report it in its housing
-                    // frame (the pulley frame at zero spin) like every other pulley.
-                    let b = &model.bodies[i];
-                    if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
-                        let (sn, cs) = crate::kinematics::coupled(&b.coupling, q).sin_cos();
-                        let spin = crate::spatial::Mat3::rot_z(sn, cs);
-                        (spin.mul_vec(f), spin.mul_vec(n))
-                    } else {
-                        (f, n)
-                    }
-                })
-                .collect();
-            let base = (
-                self.loads.base_force.eval(&x),
-                self.loads.base_moment.eval(&x),
-            );
-            (Some(segs), Some(bearings), Some(base))
-        };
-        Ok(InverseDynamics {
-            generalized_forces,
-            motor_torques,
-            tendon_tensions,
-            minimal_norm_tensions,
-            null_space_tensions,
-            loop_sides,
-            segment_tensions,
-            pulley_demands,
-            bearings,
-            base_reaction,
-            unknowns: x,
-        })
+        inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)
     }
 
     /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
     /// the recursion against the transmission's `E`).
     pub fn last_balance_rows(&self) -> Vec<Affine<T>> {
-        tension::balance_rows(self.model, &self.loads)
+        tension::balance_rows(self.model, &self.ws.loads)
     }
 }

@@ -15,7 +15,9 @@
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics.
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
-//! symbolic scalar of `tendyn-codegen` run the same code.
+//! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
+//! feature only [`Real`] remains (`no_std`, no `alloc`, math from `libm`): what generated
+//! code needs.
 //!
 //! ```
 //! # fn main() -> Result<(), tendyn_core::Error> {
@@ -35,23 +37,43 @@
 //! # }
 //! ```
 
-pub mod affine;
-pub mod double_double;
-pub mod dynamics;
-pub mod error;
-pub mod format;
-pub mod kinematics;
-pub mod model;
-pub mod newton_euler;
+#![cfg_attr(not(feature = "std"), no_std)]
+
 pub mod real;
+pub use real::{Numeric, Real};
+
+#[cfg(feature = "std")]
+pub mod affine;
+#[cfg(feature = "std")]
+pub mod double_double;
+#[cfg(feature = "std")]
+pub mod dynamics;
+#[cfg(feature = "std")]
+pub mod error;
+#[cfg(feature = "std")]
+pub mod format;
+#[cfg(feature = "std")]
+pub mod kinematics;
+#[cfg(feature = "std")]
+pub mod model;
+#[cfg(feature = "std")]
+pub mod newton_euler;
+#[cfg(feature = "std")]
 pub mod spatial;
+#[cfg(feature = "std")]
 pub mod tension;
+#[cfg(feature = "std")]
 pub mod transmission;
+#[cfg(feature = "std")]
 pub mod validate;
 
+#[cfg(feature = "std")]
 pub use double_double::DoubleDouble;
+#[cfg(feature = "std")]
 pub use dynamics::{InverseDynamics, Solver};
+#[cfg(feature = "std")]
 pub use error::{Error, Result};
+#[cfg(feature = "std")]
 pub use model::Model;
-pub use real::{Numeric, Real};
+#[cfg(feature = "std")]
 pub use validate::{load, parse};

@@ -54,22 +54,38 @@ pub trait Numeric: Real + PartialOrd {
 }
 
 macro_rules! primitive_real {
-    ($t:ty) => {
+    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident) => {
         impl Real for $t {
             fn from_f64(x: f64) -> Self {
                 x as $t
             }
+            #[cfg(feature = "std")]
             fn sin(self) -> Self {
                 <$t>::sin(self)
             }
+            #[cfg(feature = "std")]
             fn cos(self) -> Self {
                 <$t>::cos(self)
             }
+            #[cfg(feature = "std")]
             fn sin_cos(self) -> (Self, Self) {
                 <$t>::sin_cos(self)
             }
+            #[cfg(feature = "std")]
             fn sqrt(self) -> Self {
                 <$t>::sqrt(self)
+            }
+            #[cfg(not(feature = "std"))]
+            fn sin(self) -> Self {
+                libm::$sin(self)
+            }
+            #[cfg(not(feature = "std"))]
+            fn cos(self) -> Self {
+                libm::$cos(self)
+            }
+            #[cfg(not(feature = "std"))]
+            fn sqrt(self) -> Self {
+                libm::$sqrt(self)
             }
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
@@ -91,5 +107,5 @@ macro_rules! primitive_real {
         }
     };
 }
-primitive_real!(f32);
-primitive_real!(f64);
+primitive_real!(f32, sinf, cosf, sqrtf);
+primitive_real!(f64, sin, cos, sqrt);

@@ -1,0 +1,338 @@
+//! What can be generated, and how each output is traced: the generic functions of
+//! `tendyn-core` run on the symbolic scalar, so the generated code computes exactly what
+//! the runtime solver computes (the same recursion, written once).
+//!
+//! All requested functions are traced into one graph, so the function that returns every
+//! requested output shares their common work. Then, per function, the collected closed
+//! form ([`crate::closed_form`]) replaces the traced one when it has fewer operations.
+
+use crate::closed_form::{collect, StateRank};
+use crate::expr::{Graph, Id, OpCount, Sym};
+use tendyn_core::dynamics::{self, Workspace};
+use tendyn_core::model::{BodyKind, Model};
+use tendyn_core::{tension, Real};
+
+/// One generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Output {
+    /// `Q = M q̈ + h + g − Q_ext` (what the actuators deliver).
+    GeneralizedForces,
+    /// Motor torques and ground-level tendon tensions (the tension distribution included).
+    Actuation,
+    MassMatrix,
+    Bias,
+    Gravity,
+    /// `q̈` from motor torques and tendon tensions.
+    ForwardDynamics,
+    SegmentTensions,
+    Bearings,
+    BaseReaction,
+}
+
+impl Output {
+    pub const ALL: [Output; 9] = [
+        Output::GeneralizedForces,
+        Output::Actuation,
+        Output::MassMatrix,
+        Output::Bias,
+        Output::Gravity,
+        Output::ForwardDynamics,
+        Output::SegmentTensions,
+        Output::Bearings,
+        Output::BaseReaction,
+    ];
+
+    /// The name of the generated function (and of the output on the command line).
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::GeneralizedForces => "generalized_forces",
+            Output::Actuation => "actuation",
+            Output::MassMatrix => "mass_matrix",
+            Output::Bias => "bias",
+            Output::Gravity => "gravity",
+            Output::ForwardDynamics => "forward_dynamics",
+            Output::SegmentTensions => "segment_tensions",
+            Output::Bearings => "bearings",
+            Output::BaseReaction => "base_reaction",
+        }
+    }
+
+    pub fn parse(name: &str) -> Option<Output> {
+        Output::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// The inputs the function takes, in order.
+    pub fn params(self) -> &'static [Param] {
+        match self {
+            Output::MassMatrix | Output::Gravity => &[Param::Q],
+            Output::Bias => &[Param::Q, Param::Qd],
+            Output::ForwardDynamics => &[
+                Param::Q,
+                Param::Qd,
+                Param::MotorTorques,
+                Param::TendonTensions,
+            ],
+            _ => &[Param::Q, Param::Qd, Param::Qdd],
+        }
+    }
+}
+
+/// An array input of a generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Param {
+    Q,
+    Qd,
+    Qdd,
+    MotorTorques,
+    TendonTensions,
+}
+
+impl Param {
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::Q => "q",
+            Param::Qd => "qd",
+            Param::Qdd => "qdd",
+            Param::MotorTorques => "motor_torques",
+            Param::TendonTensions => "tendon_tensions",
+        }
+    }
+}
+
+/// How a function's flat list of results is shaped.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// `[T; n]`
+    Vector(usize),
+    /// `[[T; n]; n]`
+    Matrix(usize),
+    /// `([T; motors], [T; tendons])`
+    Actuation { motors: usize, tendons: usize },
+    /// `[[[T; 3]; 2]; count]`: force and moment per entry.
+    Wrenches(usize),
+}
+
+/// A traced function.
+#[derive(Clone, Debug)]
+pub struct Function {
+    pub output: Output,
+    pub shape: Shape,
+    /// Results, flattened in row-major order.
+    pub results: Vec<Id>,
+    /// Operations of the traced form and of the closed form (if it could be built).
+    pub traced_ops: OpCount,
+    pub closed_ops: Option<OpCount>,
+}
+
+/// Why an output cannot be generated for a mechanism.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unavailable {
+    pub output: Output,
+    pub reason: String,
+}
+
+/// Every requested function, traced into one graph.
+pub struct Traced {
+    pub graph: Graph,
+    pub functions: Vec<Function>,
+    pub dof: usize,
+}
+
+/// Inputs of the traced functions, created once so that every function shares them.
+struct Inputs {
+    q: Vec<Sym>,
+    qd: Vec<Sym>,
+    qdd: Vec<Sym>,
+    motor_torques: Vec<Sym>,
+    tendon_tensions: Vec<Sym>,
+}
+
+fn array(name: &str, n: usize) -> Vec<Sym> {
+    (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
+}
+
+/// Checks that every requested output can be generated for `model`.
+pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
+    for &o in outputs {
+        let reason = match o {
+            Output::Actuation if model.system.null_space.len() > 1 => Some(format!(
+                "the tension system has a {}-dimensional null space; generated code distributes \
+                 tensions in closed form for one-dimensional null spaces (n+1 routings) only — \
+                 use the runtime solver",
+                model.system.null_space.len()
+            )),
+            Output::Actuation if model.motors.is_empty() && model.tendons.is_empty() => {
+                Some("the mechanism has neither motors nor tendons".to_string())
+            }
+            Output::ForwardDynamics if model.motors.is_empty() && model.tendons.is_empty() => {
+                Some("the mechanism has neither motors nor tendons to drive it".to_string())
+            }
+            Output::SegmentTensions if model.strands.is_empty() => {
+                Some("the mechanism has no tendon segments (no routed tendon or loop)".to_string())
+            }
+            Output::SegmentTensions | Output::Bearings | Output::BaseReaction
+                if model.routing_incomplete =>
+            {
+                Some(
+                    "the routing is incomplete (an explicit coupling or structure column): where \
+                 those transmissions act is unknown"
+                        .to_string(),
+                )
+            }
+            _ => None,
+        };
+        if let Some(reason) = reason {
+            return Err(Unavailable { output: o, reason });
+        }
+    }
+    Ok(())
+}
+
+/// Traces the requested outputs of `model` (see [`check`] for which are available).
+pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailable> {
+    check(model, outputs)?;
+    let n = model.dof;
+    let (mut graph, results) = Graph::default().scope(|| {
+        let m = model.cast::<Sym>();
+        let inputs = Inputs {
+            q: array("q", n),
+            qd: array("qd", n),
+            qdd: array("qdd", n),
+            motor_torques: array("motor_torques", m.motors.len()),
+            tendon_tensions: array("tendon_tensions", m.tendons.len()),
+        };
+        let mut ws = Workspace::new(&m);
+        outputs
+            .iter()
+            .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws)))
+            .collect::<Vec<_>>()
+    });
+    let mut functions = Vec::new();
+    for (output, (shape, results)) in results {
+        let roots: Vec<Id> = results.iter().map(|s| s.0).collect();
+        let traced_ops = graph.count(&roots);
+        let closed = collect(&mut graph, &roots, &StateRank);
+        let closed_ops = closed.as_ref().map(|c| graph.count(c));
+        let results = match (&closed, closed_ops) {
+            (Some(c), Some(ops)) if ops.arithmetic() < traced_ops.arithmetic() => c.clone(),
+            _ => roots,
+        };
+        functions.push(Function {
+            output,
+            shape,
+            results,
+            traced_ops,
+            closed_ops,
+        });
+    }
+    Ok(Traced {
+        graph,
+        functions,
+        dof: n,
+    })
+}
+
+fn trace_one(m: &Model<Sym>, o: Output, i: &Inputs, ws: &mut Workspace<Sym>) -> (Shape, Vec<Sym>) {
+    let n = m.dof;
+    let zeros = vec![Sym::zero(); n];
+    match o {
+        Output::GeneralizedForces => {
+            let mut out = zeros.clone();
+            dynamics::expanded_generalized_forces(m, &i.q, &i.qd, &i.qdd, true, true, ws, &mut out);
+            (Shape::Vector(n), out)
+        }
+        Output::MassMatrix => {
+            let mm = dynamics::mass_matrix(m, &i.q, ws);
+            (Shape::Matrix(n), mm.into_iter().flatten().collect())
+        }
+        Output::Bias => (Shape::Vector(n), dynamics::bias(m, &i.q, &i.qd, ws)),
+        Output::Gravity => (Shape::Vector(n), dynamics::gravity(m, &i.q, ws)),
+        Output::ForwardDynamics => {
+            let rhs = dynamics::forward_dynamics_rhs(
+                m,
+                &i.q,
+                &i.qd,
+                &i.motor_torques,
+                &i.tendon_tensions,
+                ws,
+            );
+            let mm = dynamics::mass_matrix(m, &i.q, ws);
+            (Shape::Vector(n), dynamics::ldlt_solve(&mm, &rhs))
+        }
+        Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
+            let r = dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
+                if !model.system.null_space.is_empty() {
+                    tension::lift_to_floor(model, x);
+                }
+                Ok(())
+            })
+            .expect("the one-dimensional distribution cannot fail");
+            match o {
+                Output::Actuation => (
+                    Shape::Actuation {
+                        motors: m.motors.len(),
+                        tendons: m.tendons.len(),
+                    },
+                    r.motor_torques
+                        .into_iter()
+                        .chain(r.tendon_tensions)
+                        .collect(),
+                ),
+                Output::SegmentTensions => {
+                    let s: Vec<Sym> = r
+                        .segment_tensions
+                        .expect("routing complete")
+                        .into_iter()
+                        .flatten()
+                        .collect();
+                    (Shape::Vector(s.len()), s)
+                }
+                Output::Bearings => {
+                    let b = r.bearings.expect("routing complete");
+                    let shape = Shape::Wrenches(b.len());
+                    (
+                        shape,
+                        b.into_iter()
+                            .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
+                            .collect(),
+                    )
+                }
+                _ => {
+                    let (f, n) = r.base_reaction.expect("routing complete");
+                    (
+                        Shape::Wrenches(1),
+                        f.to_array().into_iter().chain(n.to_array()).collect(),
+                    )
+                }
+            }
+        }
+    }
+}
+
+/// Names of what each result of a function is, for documentation (`segment_tensions`:
+/// `strand#k`, `bearings`: body names).
+pub fn result_labels(model: &Model<f64>, o: Output) -> Vec<String> {
+    match o {
+        Output::SegmentTensions => model
+            .strands
+            .iter()
+            .flat_map(|s| (0..s.segments.len()).map(move |k| format!("{}#{k}", s.name)))
+            .collect(),
+        Output::Bearings => model.bodies.iter().map(|b| b.name.clone()).collect(),
+        Output::Actuation => model
+            .motors
+            .iter()
+            .map(|m| format!("motor {}", m.name))
+            .chain(model.tendons.iter().map(|t| format!("tendon {}", t.name)))
+            .collect(),
+        _ => model.bodies[..model.dof]
+            .iter()
+            .map(|b| b.name.clone())
+            .collect(),
+    }
+}
+
+/// Whether body `b` is a pulley (for documentation of bearings frames).
+pub fn is_pulley(model: &Model<f64>, b: usize) -> bool {
+    matches!(model.bodies[b].kind, BodyKind::Pulley { .. })
+}

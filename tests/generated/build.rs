@@ -1,0 +1,76 @@
+//! Generates code for the paper's three examples and twelve seeded random mechanisms into
+//! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
+//! mechanism that the agreement test calls with slices.
+
+use std::fmt::Write;
+use tendyn_codegen::{available_outputs, generate, Output, Scalar};
+use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+
+fn main() {
+    let out = std::path::PathBuf::from(std::env::var("OUT_DIR").unwrap());
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/mechanisms");
+    let mut mechanisms: Vec<(String, String)> = Vec::new();
+    for name in [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ] {
+        let path = root.join(format!("{name}.ron"));
+        println!("cargo:rerun-if-changed={}", path.display());
+        mechanisms.push((name.to_string(), std::fs::read_to_string(path).unwrap()));
+    }
+    for seed in 0..12u64 {
+        let features = Features {
+            coupled_pulleys: seed % 3 == 1,
+            endless: seed % 4 == 2,
+        };
+        let (text, _) = valid_random_mechanism(seed, features);
+        mechanisms.push((format!("random_{seed}"), text));
+    }
+    let mut registry = String::from("pub const MECHANISMS: &[Mechanism] = &[\n");
+    let mut modules = String::new();
+    for (name, text) in &mechanisms {
+        let model = tendyn_core::parse(text).unwrap();
+        let outputs = available_outputs(&model);
+        let generated =
+            generate(&model, &outputs, Scalar::Generic, &format!("{name}.ron")).unwrap();
+        std::fs::write(out.join(format!("{name}.rs")), &generated.source).unwrap();
+        std::fs::write(out.join(format!("{name}.ron")), text).unwrap();
+        // The adapter: slices in, one vector per output out.
+        let (n, nm, nt) = (model.dof, model.motors.len(), model.tendons.len());
+        let mut adapter = String::new();
+        writeln!(adapter, "pub fn evaluate(q: &[f64], qd: &[f64], qdd: &[f64], mt: &[f64], tt: &[f64]) -> Vec<(&'static str, Vec<f64>)> {{").unwrap();
+        writeln!(adapter, "let q: &[f64; {n}] = q.try_into().unwrap(); let qd: &[f64; {n}] = qd.try_into().unwrap(); let qdd: &[f64; {n}] = qdd.try_into().unwrap();").unwrap();
+        writeln!(adapter, "let mt: &[f64; {nm}] = mt.try_into().unwrap(); let tt: &[f64; {nt}] = tt.try_into().unwrap(); let _ = (mt, tt, qdd);").unwrap();
+        writeln!(
+            adapter,
+            "let mut v: Vec<(&'static str, Vec<f64>)> = Vec::new();"
+        )
+        .unwrap();
+        for o in &outputs {
+            let call = match o {
+                Output::MassMatrix => "code::mass_matrix(q).iter().flatten().copied().collect()".to_string(),
+                Output::Gravity => "code::gravity(q).to_vec()".to_string(),
+                Output::Bias => "code::bias(q, qd).to_vec()".to_string(),
+                Output::ForwardDynamics => "code::forward_dynamics(q, qd, mt, tt).to_vec()".to_string(),
+                Output::Actuation => "{ let (m, t) = code::actuation(q, qd, qdd); m.iter().chain(t.iter()).copied().collect() }".to_string(),
+                Output::Bearings | Output::BaseReaction => format!("code::{}(q, qd, qdd).iter().flatten().flatten().copied().collect()", o.name()),
+                _ => format!("code::{}(q, qd, qdd).to_vec()", o.name()),
+            };
+            writeln!(adapter, "v.push((\"{}\", {call}));", o.name()).unwrap();
+        }
+        writeln!(adapter, "v }}").unwrap();
+        writeln!(
+            modules,
+            "pub mod {name} {{\n pub mod code {{ include!(concat!(env!(\"OUT_DIR\"), \"/{name}.rs\")); }}\n pub const RON: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{name}.ron\"));\n {adapter}\n}}"
+        )
+        .unwrap();
+        writeln!(
+            registry,
+            "    Mechanism {{ name: \"{name}\", ron: {name}::RON, evaluate: {name}::evaluate }},"
+        )
+        .unwrap();
+    }
+    registry.push_str("];\n");
+    std::fs::write(out.join("mechanisms.rs"), format!("{modules}\n{registry}")).unwrap();
+}

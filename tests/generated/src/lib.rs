@@ -1,0 +1,13 @@
+//! Generated code for the paper's examples and seeded random mechanisms (see `build.rs`),
+//! compiled here so that `tests/agreement.rs` can check it against the runtime solver.
+
+/// One generated mechanism: its RON text and an adapter that evaluates every generated
+/// output at a state (`q`, `q̇`, `q̈`, motor torques, tendon tensions).
+pub struct Mechanism {
+    pub name: &'static str,
+    pub ron: &'static str,
+    #[allow(clippy::type_complexity)]
+    pub evaluate: fn(&[f64], &[f64], &[f64], &[f64], &[f64]) -> Vec<(&'static str, Vec<f64>)>,
+}
+
+include!(concat!(env!("OUT_DIR"), "/mechanisms.rs"));
