@@ -66,10 +66,14 @@ impl<T: Numeric> InverseDynamics<T> {
 
 /// Work buffers of the recursion for one model; the model itself stays immutable.
 #[derive(Clone, Debug)]
-pub struct Workspace<T> {
+pub struct Workspace<T: Real> {
     pub motion: Vec<Motion<T>>,
+    /// Loads affine in the unknowns (inverse dynamics with tensions).
     pub loads: Loads<T>,
+    /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
+    pub known: Loads<T, Vec3<T>>,
     pub tensions: Vec<Vec<Affine<T>>>,
+    zeros: Vec<T>,
 }
 
 impl<T: Real> Workspace<T> {
@@ -78,6 +82,8 @@ impl<T: Real> Workspace<T> {
         Workspace {
             motion: vec![Motion::rest(); model.bodies.len()],
             loads: Loads::new(model.bodies.len(), nu),
+            known: Loads::new(model.bodies.len(), 0),
+            zeros: vec![T::zero(); model.dof],
             tensions: model
                 .strands
                 .iter()
@@ -102,13 +108,13 @@ pub fn expanded_generalized_forces<T: Real>(
     out: &mut [T],
 ) {
     forward(model, q, qd, qdd, gravity, &mut ws.motion);
-    backward(model, &ws.motion, None, 0, external, &mut ws.loads);
+    backward(model, &ws.motion, None, 0, external, &mut ws.known);
     for o in out.iter_mut() {
         *o = T::zero();
     }
-    for (b, t) in model.bodies.iter().zip(&ws.loads.axial) {
+    for (b, t) in model.bodies.iter().zip(&ws.known.axial) {
         for (o, c) in out.iter_mut().zip(&b.coupling) {
-            *o = *o + *c * t.constant;
+            *o = *o + *c * *t;
         }
     }
 }
@@ -335,7 +341,7 @@ fn bearing<T: Real>(
 }
 
 /// The runtime solver: the generic functions above with input checks, on numbers.
-pub struct Solver<'m, T> {
+pub struct Solver<'m, T: Real> {
     pub model: &'m Model<T>,
     ws: Workspace<T>,
 }
@@ -370,7 +376,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
-        let mut out = vec![T::zero(); self.model.dof];
+        let mut out = self.ws.zeros.clone();
         expanded_generalized_forces(self.model, q, qd, qdd, true, true, &mut self.ws, &mut out);
         Ok(out)
     }

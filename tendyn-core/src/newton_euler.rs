@@ -25,30 +25,123 @@ use crate::model::{Contact, Model, Via};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
-/// Forces and moments of the backward recursion, affine in the unknowns.
-#[derive(Clone, Debug)]
-pub struct Loads<T> {
-    /// Force on each body from its parent, body frame.
-    pub force: Vec<Aff3<T>>,
-    /// Moment on each body from its parent about the joint point, body frame, motor
-    /// torque included.
-    pub moment: Vec<Aff3<T>>,
-    /// `τ_b`: component of `moment` along the joint axis.
-    pub axial: Vec<Affine<T>>,
-    /// Total force of the base on the mechanism (bearings, motors, tendon exits), base frame.
-    pub base_force: Aff3<T>,
-    /// Total moment of the base on the mechanism about the base origin, base frame.
-    pub base_moment: Aff3<T>,
+/// What a force or moment of the recursion is: a plain vector when everything is known
+/// (the expanded-tree pass behind `M`, `h`, `g`), or affine in the unknown tensions. The
+/// recursion is written once, over this.
+pub trait Load<T: Real>: Copy + core::fmt::Debug {
+    /// Its components' type (`T`, or [`Affine`]).
+    type Scalar: Copy + core::fmt::Debug;
+    fn known(v: Vec3<T>, unknowns: usize) -> Self;
+    /// `dir · s`: a force of known direction and (possibly unknown) magnitude.
+    fn along(dir: Vec3<T>, s: &Self::Scalar) -> Self;
+    fn add(&self, o: &Self) -> Self;
+    fn sub(&self, o: &Self) -> Self;
+    fn neg(&self) -> Self;
+    fn add_known(&self, v: Vec3<T>) -> Self;
+    /// `r × self`.
+    fn moment_of(&self, r: Vec3<T>) -> Self;
+    /// `R · self`.
+    fn rotate(&self, m: &Mat3<T>) -> Self;
+    /// `Rᵀ · self`.
+    fn rotate_back(&self, m: &Mat3<T>) -> Self;
+    /// `u · self`.
+    fn dot(&self, u: Vec3<T>) -> Self::Scalar;
 }
 
-impl<T: Real> Loads<T> {
+impl<T: Real> Load<T> for Vec3<T> {
+    type Scalar = T;
+    fn known(v: Vec3<T>, _: usize) -> Self {
+        v
+    }
+    fn along(dir: Vec3<T>, s: &T) -> Self {
+        dir.scale(*s)
+    }
+    fn add(&self, o: &Self) -> Self {
+        *self + *o
+    }
+    fn sub(&self, o: &Self) -> Self {
+        *self - *o
+    }
+    fn neg(&self) -> Self {
+        -*self
+    }
+    fn add_known(&self, v: Vec3<T>) -> Self {
+        *self + v
+    }
+    fn moment_of(&self, r: Vec3<T>) -> Self {
+        r.cross(*self)
+    }
+    fn rotate(&self, m: &Mat3<T>) -> Self {
+        m.mul_vec(*self)
+    }
+    fn rotate_back(&self, m: &Mat3<T>) -> Self {
+        m.tr_mul_vec(*self)
+    }
+    fn dot(&self, u: Vec3<T>) -> T {
+        u.dot(*self)
+    }
+}
+
+impl<T: Real> Load<T> for Aff3<T> {
+    type Scalar = Affine<T>;
+    fn known(v: Vec3<T>, unknowns: usize) -> Self {
+        Aff3::known(v, unknowns)
+    }
+    fn along(dir: Vec3<T>, s: &Affine<T>) -> Self {
+        Aff3::along(dir, s)
+    }
+    fn add(&self, o: &Self) -> Self {
+        Aff3::add(self, o)
+    }
+    fn sub(&self, o: &Self) -> Self {
+        Aff3::sub(self, o)
+    }
+    fn neg(&self) -> Self {
+        Aff3::neg(self)
+    }
+    fn add_known(&self, v: Vec3<T>) -> Self {
+        Aff3::add_known(self, v)
+    }
+    fn moment_of(&self, r: Vec3<T>) -> Self {
+        Aff3::moment_of(self, r)
+    }
+    fn rotate(&self, m: &Mat3<T>) -> Self {
+        Aff3::rotate(self, m)
+    }
+    fn rotate_back(&self, m: &Mat3<T>) -> Self {
+        Aff3::rotate_back(self, m)
+    }
+    fn dot(&self, u: Vec3<T>) -> Affine<T> {
+        Aff3::dot(self, u)
+    }
+}
+
+/// Forces and moments of the backward recursion, as [`Load`]s: affine in the unknowns by
+/// default.
+#[derive(Clone, Debug)]
+pub struct Loads<T: Real, L: Load<T> = Aff3<T>> {
+    /// Force on each body from its parent, body frame.
+    pub force: Vec<L>,
+    /// Moment on each body from its parent about the joint point, body frame, motor
+    /// torque included.
+    pub moment: Vec<L>,
+    /// `τ_b`: component of `moment` along the joint axis.
+    pub axial: Vec<L::Scalar>,
+    /// Total force of the base on the mechanism (bearings, motors, tendon exits), base frame.
+    pub base_force: L,
+    /// Total moment of the base on the mechanism about the base origin, base frame.
+    pub base_moment: L,
+}
+
+impl<T: Real, L: Load<T>> Loads<T, L> {
     pub fn new(bodies: usize, unknowns: usize) -> Self {
+        let zero = L::known(Vec3::zero(), unknowns);
         Loads {
-            force: vec![Aff3::known(Vec3::zero(), unknowns); bodies],
-            moment: vec![Aff3::known(Vec3::zero(), unknowns); bodies],
-            axial: vec![Affine::constant(T::zero(), unknowns); bodies],
-            base_force: Aff3::known(Vec3::zero(), unknowns),
-            base_moment: Aff3::known(Vec3::zero(), unknowns),
+            force: vec![zero; bodies],
+            moment: vec![zero; bodies],
+            axial: vec![zero.dot(Vec3::unit_z()); bodies],
+            base_force: zero,
+            base_moment: zero,
         }
     }
 }
@@ -71,30 +164,30 @@ fn contact_rotation<T: Real>(model: &Model<T>, motion: &[Motion<T>], c: &Contact
 /// (affine in the unknowns), or `None` to leave every tendon out (the expanded-tree
 /// recursion behind `M`, `h` and `g`, where pulleys act through their couplings).
 /// `external` includes the model's external wrench.
-pub fn backward<T: Real>(
+pub fn backward<T: Real, L: Load<T>>(
     model: &Model<T>,
     motion: &[Motion<T>],
-    tensions: Option<&[Vec<Affine<T>>]>,
+    tensions: Option<&[Vec<L::Scalar>]>,
     unknowns: usize,
     external: bool,
-    out: &mut Loads<T>,
+    out: &mut Loads<T, L>,
 ) {
     let nb = model.bodies.len();
     // Applied forces accumulate per body: `out.force` and `out.moment` hold, until a body
     // is processed, the sum of forces applied to it and their moment about its origin.
     for i in 0..nb {
-        out.force[i] = Aff3::known(Vec3::zero(), unknowns);
-        out.moment[i] = Aff3::known(Vec3::zero(), unknowns);
+        out.force[i] = L::known(Vec3::zero(), unknowns);
+        out.moment[i] = L::known(Vec3::zero(), unknowns);
     }
-    out.base_force = Aff3::known(Vec3::zero(), unknowns);
-    out.base_moment = Aff3::known(Vec3::zero(), unknowns);
+    out.base_force = L::known(Vec3::zero(), unknowns);
+    out.base_moment = L::known(Vec3::zero(), unknowns);
 
     // Tendon forces (Eqs. 17-18): each segment pulls its `from` pulley along +dir and its
     // `to` pulley along −dir, at the contact points.
     if let Some(tensions) = tensions {
         for (strand, ts) in model.strands.iter().zip(tensions) {
             for (seg, t) in strand.segments.iter().zip(ts) {
-                let pull = Aff3::along(seg.dir, t);
+                let pull = L::along(seg.dir, t);
                 for (contact, f) in [(&seg.from, pull), (&seg.to, pull.neg())] {
                     match contact.body {
                         Some(b) => {
@@ -118,7 +211,7 @@ pub fn backward<T: Real>(
         }
     }
     if let Some(w) = model.external_wrench.as_ref().filter(|_| external) {
-        let f = Aff3::known(w.force, unknowns);
+        let f = L::known(w.force, unknowns);
         out.force[w.link] = out.force[w.link].add(&f);
         out.moment[w.link] = out.moment[w.link]
             .add(&f.moment_of(w.point))
@@ -134,10 +227,10 @@ pub fn backward<T: Real>(
         let inertia_moment = b.inertia.mul_vec(m.omega_dot) + m.omega.cross(spin_momentum);
         let joint_point = -b.joint_to_origin;
         // Eq. 19 / 23: force from the parent.
-        let f = Aff3::known(inertia_force, unknowns).sub(&out.force[i]);
+        let f = L::known(inertia_force, unknowns).sub(&out.force[i]);
         // Eq. 20 / 24: moment from the parent about the joint point.
         let needed = inertia_moment + b.com.cross(inertia_force);
-        let n = Aff3::known(needed, unknowns)
+        let n = L::known(needed, unknowns)
             .sub(&out.moment[i])
             .sub(&f.moment_of(joint_point));
         out.axial[i] = n.dot(b.axis);

@@ -50,6 +50,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Generate straight-line Rust for a mechanism's dynamics.
+    Generate {
+        file: String,
+        /// Comma-separated outputs (default: every output the mechanism can provide):
+        /// generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics,
+        /// segment_tensions, bearings, base_reaction.
+        #[arg(long, value_delimiter = ',')]
+        outputs: Vec<String>,
+        /// generic (over tendyn_core::Real), f64 or f32.
+        #[arg(long, default_value = "generic")]
+        scalar: String,
+        /// Write the source here instead of to standard output.
+        #[arg(short = 'o', long)]
+        out: Option<String>,
+    },
     /// Check and evaluate the paper's three built-in examples.
     Demo,
 }
@@ -153,6 +168,65 @@ fn run(cli: Cli) -> Result<(), String> {
                     }
                 }
             }
+            Ok(())
+        }
+        Command::Generate {
+            file,
+            outputs,
+            scalar,
+            out,
+        } => {
+            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let outputs: Vec<tendyn_codegen::Output> = if outputs.is_empty() {
+                tendyn_codegen::available_outputs(&m)
+            } else {
+                outputs
+                    .iter()
+                    .map(|o| {
+                        tendyn_codegen::Output::parse(o).ok_or_else(|| {
+                            let names: Vec<&str> = tendyn_codegen::Output::ALL
+                                .iter()
+                                .map(|o| o.name())
+                                .collect();
+                            format!("unknown output `{o}`; the outputs are {}", names.join(", "))
+                        })
+                    })
+                    .collect::<Result<_, _>>()?
+            };
+            let scalar = tendyn_codegen::Scalar::parse(&scalar)
+                .ok_or_else(|| format!("unknown scalar `{scalar}`; use generic, f64 or f32"))?;
+            let source = std::path::Path::new(&file)
+                .file_name()
+                .map_or(file.clone(), |n| n.to_string_lossy().into_owned());
+            let start = std::time::Instant::now();
+            let g = tendyn_codegen::generate(&m, &outputs, scalar, &source)
+                .map_err(|e| format!("{file}: {e}"))?;
+            let elapsed = start.elapsed();
+            match out {
+                Some(path) => {
+                    std::fs::write(&path, &g.source).map_err(|e| format!("{path}: {e}"))?
+                }
+                None => emit(&g.source),
+            }
+            eprintln!(
+                "generated {} functions for `{}` in {:.2} ms:",
+                g.functions.len(),
+                m.name,
+                elapsed.as_secs_f64() * 1e3
+            );
+            for (o, ops, closed) in &g.functions {
+                eprintln!(
+                    "  {:<20} {} ({})",
+                    o.name(),
+                    ops,
+                    if *closed {
+                        "closed form"
+                    } else {
+                        "traced recursion"
+                    }
+                );
+            }
+            eprintln!("  {:<20} {}", "all", g.all);
             Ok(())
         }
         Command::Forward {
