@@ -20,7 +20,7 @@ use crate::expr::{Graph, Id, Node};
 use std::collections::BTreeMap;
 use tendyn_core::DoubleDouble;
 
-/// Largest number of terms one intermediate polynomial may have.
+/// Largest number of terms one intermediate polynomial may ever have.
 pub const MAX_TERMS: usize = 4000;
 
 /// A monomial: sorted `(variable, power)` pairs.
@@ -53,9 +53,13 @@ impl Rank for StateRank {
     }
 }
 
-struct Expander<'g> {
+struct Expander<'g, 'r> {
     g: &'g mut Graph,
+    rank: &'r dyn Rank,
     memo: BTreeMap<Id, Option<Poly>>,
+    /// Largest number of terms an intermediate polynomial may have before the expansion
+    /// gives up (a form with more terms than the traced one has operations cannot win).
+    max_terms: usize,
 }
 
 fn constant(c: f64) -> Poly {
@@ -98,8 +102,8 @@ fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     out
 }
 
-fn product(a: &Poly, b: &Poly) -> Option<Poly> {
-    if a.len().saturating_mul(b.len()) > MAX_TERMS * 4 {
+fn product(a: &Poly, b: &Poly, max_terms: usize) -> Option<Poly> {
+    if a.len().saturating_mul(b.len()) > max_terms * 4 {
         return None;
     }
     let mut out = Poly::new();
@@ -111,10 +115,10 @@ fn product(a: &Poly, b: &Poly) -> Option<Poly> {
             *e += *ca * *cb;
         }
     }
-    (out.len() <= MAX_TERMS).then_some(out)
+    (out.len() <= max_terms).then_some(out)
 }
 
-impl Expander<'_> {
+impl Expander<'_, '_> {
     fn expand(&mut self, id: Id) -> Option<Poly> {
         if let Some(p) = self.memo.get(&id) {
             return p.clone();
@@ -137,7 +141,7 @@ impl Expander<'_> {
                 };
                 let mut p = self.expand(a)?;
                 add_into(&mut p, &self.expand(b)?, sign);
-                if p.len() > MAX_TERMS {
+                if p.len() > self.max_terms {
                     return None;
                 }
                 p
@@ -147,7 +151,7 @@ impl Expander<'_> {
                 add_into(&mut p, &self.expand(a)?, -one);
                 p
             }
-            Node::Mul(a, b) => product(&self.expand(a)?, &self.expand(b)?)?,
+            Node::Mul(a, b) => product(&self.expand(a)?, &self.expand(b)?, self.max_terms)?,
             Node::Div(a, b) => {
                 let pb = self.expand(b)?;
                 match (pb.len(), pb.get(&Vec::new())) {
@@ -156,7 +160,11 @@ impl Expander<'_> {
                         add_into(&mut p, &self.expand(a)?, one / *c);
                         p
                     }
-                    _ => variable(id),
+                    // Not a polynomial: a new variable, its operands collected themselves.
+                    _ => {
+                        let (a, b) = (self.collected(a)?, self.rebuild(pb));
+                        variable(self.g.div(a, b))
+                    }
                 }
             }
             Node::Sin(a) | Node::Cos(a) => {
@@ -205,8 +213,26 @@ impl Expander<'_> {
                     _ => variable(id),
                 }
             }
-            Node::Sqrt(_) | Node::Max(..) => variable(id),
+            Node::Sqrt(a) => {
+                let a = self.collected(a)?;
+                variable(self.g.sqrt(a))
+            }
+            Node::Max(a, b) => {
+                let (a, b) = (self.collected(a)?, self.collected(b)?);
+                variable(self.g.max(a, b))
+            }
         })
+    }
+
+    /// The closed form of `id` as a node, for the operand of a non-polynomial node.
+    fn collected(&mut self, id: Id) -> Option<Id> {
+        let p = self.expand(id)?;
+        Some(self.rebuild(p))
+    }
+
+    fn rebuild(&mut self, p: Poly) -> Id {
+        let p = clean(reduce_pythagoras(self.g, p));
+        horner(self.g, self.rank, &p)
     }
 }
 
@@ -314,21 +340,26 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
     }
 }
 
-/// The collected closed form of `roots`, built into `g`; `None` if an expansion exceeds
-/// [`MAX_TERMS`].
-pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank) -> Option<Vec<Id>> {
-    let polys: Vec<BTreeMap<Monomial, f64>> = {
-        let mut e = Expander {
-            g,
-            memo: BTreeMap::new(),
-        };
-        let mut v = Vec::new();
-        for &r in roots {
-            v.push(e.expand(r)?);
-        }
-        v.into_iter()
-            .map(|p| clean(reduce_pythagoras(g, p)))
-            .collect()
+/// The collected closed form of `roots`, built into `g`; `None` if an intermediate
+/// polynomial exceeds `max_terms` terms (at most [`MAX_TERMS`]).
+pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank, max_terms: usize) -> Option<Vec<Id>> {
+    let mut e = Expander {
+        g,
+        rank,
+        memo: BTreeMap::new(),
+        max_terms: max_terms.min(MAX_TERMS),
     };
-    Some(polys.iter().map(|p| horner(g, rank, p)).collect())
+    // Every term costs at least a multiply-add: give up as soon as the results together
+    // have more terms than the budget.
+    let mut total = 0;
+    let mut polys = Vec::with_capacity(roots.len());
+    for &r in roots {
+        let p = e.expand(r)?;
+        total += p.len();
+        if total > e.max_terms {
+            return None;
+        }
+        polys.push(p);
+    }
+    Some(polys.into_iter().map(|p| e.rebuild(p)).collect())
 }

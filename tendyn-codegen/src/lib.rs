@@ -92,11 +92,7 @@ pub fn generate(
             (f.output, traced.graph.count(&f.results), closed)
         })
         .collect();
-    let roots: Vec<expr::Id> = traced
-        .functions
-        .iter()
-        .flat_map(|f| f.results.iter().copied())
-        .collect();
+    let roots = traced.all_roots();
     Ok(Generated {
         source: emit::emit(model, &traced, scalar, source),
         functions,

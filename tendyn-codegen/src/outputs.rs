@@ -117,8 +117,10 @@ pub enum Shape {
 pub struct Function {
     pub output: Output,
     pub shape: Shape,
-    /// Results, flattened in row-major order.
+    /// Results, flattened in row-major order, in the form chosen for this function.
     pub results: Vec<Id>,
+    /// The same results as traced (before any closed form).
+    pub traced: Vec<Id>,
     /// Operations of the traced form and of the closed form (if it could be built).
     pub traced_ops: OpCount,
     pub closed_ops: Option<OpCount>,
@@ -136,6 +138,28 @@ pub struct Traced {
     pub graph: Graph,
     pub functions: Vec<Function>,
     pub dof: usize,
+}
+
+impl Traced {
+    /// Results of every function for `all`: each function's chosen form, or every function
+    /// traced if that shares more and so costs less in total.
+    pub fn all_roots(&self) -> Vec<Id> {
+        let chosen: Vec<Id> = self
+            .functions
+            .iter()
+            .flat_map(|f| f.results.iter().copied())
+            .collect();
+        let traced: Vec<Id> = self
+            .functions
+            .iter()
+            .flat_map(|f| f.traced.iter().copied())
+            .collect();
+        if self.graph.count(&traced).arithmetic() < self.graph.count(&chosen).arithmetic() {
+            traced
+        } else {
+            chosen
+        }
+    }
 }
 
 /// Inputs of the traced functions, created once so that every function shares them.
@@ -211,16 +235,19 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     for (output, (shape, results)) in results {
         let roots: Vec<Id> = results.iter().map(|s| s.0).collect();
         let traced_ops = graph.count(&roots);
-        let closed = collect(&mut graph, &roots, &StateRank);
+        // A closed form with more terms than the trace has operations cannot win.
+        let budget = traced_ops.arithmetic() + 32;
+        let closed = collect(&mut graph, &roots, &StateRank, budget);
         let closed_ops = closed.as_ref().map(|c| graph.count(c));
         let results = match (&closed, closed_ops) {
             (Some(c), Some(ops)) if ops.arithmetic() < traced_ops.arithmetic() => c.clone(),
-            _ => roots,
+            _ => roots.clone(),
         };
         functions.push(Function {
             output,
             shape,
             results,
+            traced: roots,
             traced_ops,
             closed_ops,
         });

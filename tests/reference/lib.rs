@@ -20,6 +20,7 @@
 pub mod fixtures;
 pub mod lagrangian;
 pub mod momentum;
+pub mod paper;
 pub mod poses;
 pub mod random_mechanism;
 

@@ -100,3 +100,25 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
     }
     println!("{}", summary.join("\n"));
 }
+
+#[test]
+fn the_no_std_build_of_the_finger_links_into_a_host_program_and_agrees() {
+    use tendyn_no_std_check::finger;
+    let model = tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/mechanisms/example3_stanford_jpl.ron"
+    ))
+    .unwrap();
+    let mut s = Solver::new(&model);
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for _ in 0..100 {
+        let mut v = |x: f64| -> [f64; 3] { std::array::from_fn(|_| rng.random_range(-x..x)) };
+        let (q, qd, qdd) = (v(3.0), v(3.0), v(10.0));
+        let want = s.inverse_dynamics(&q, &qd, &qdd).unwrap().tendon_tensions;
+        let (_, got) = finger::actuation::<f64>(&q, &qd, &qdd);
+        let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in got.iter().zip(&want) {
+            assert!((a - b).abs() <= 1e-12 * scale, "{got:?} vs {want:?}");
+        }
+    }
+}

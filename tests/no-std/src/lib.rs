@@ -1,0 +1,10 @@
+//! The generated dynamics of the Stanford/JPL finger in a `#![no_std]` crate that has no
+//! `alloc`: built on its own (`cargo build -p tendyn-no-std-check`, as CI does), this
+//! compiles `tendyn-core` without its `std` feature too, so anything in the generated code
+//! or in `tendyn_core::Real` that needed `std` or `alloc` would fail to build here.
+#![no_std]
+
+/// The golden generated code of the paper's Example 3.
+pub mod finger {
+    include!("../../../tendyn-codegen/golden/example3_stanford_jpl.rs");
+}
