@@ -184,9 +184,36 @@ fn ron_syntax_error_is_reported_at_the_line_and_column_of_the_offending_token() 
 
 #[test]
 fn a_value_of_the_wrong_type_is_reported_at_the_value_not_at_the_space_before_it() {
-    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: \"heavy\",");
-    let (line, column) = (line_of(&text, "heavy"), column_of(&text, "\"heavy\""));
+    // (`a` is geometry, which cannot name a runtime parameter.)
+    let text = with(OPEN_ENDED, "dh: (a: 0.25,", "dh: (a: \"long\",");
+    let (line, column) = (line_of(&text, "long"), column_of(&text, "\"long\""));
     assert_syntax(&text, line, column, "Expected float");
+}
+
+#[test]
+fn a_mass_naming_an_undeclared_parameter_is_rejected_naming_the_link_and_the_parameter() {
+    let text = with(OPEN_ENDED, "mass: 0.8,", "mass: \"payload\",");
+    assert_invalid(
+        &text,
+        "link2",
+        "name: \"link2\"",
+        "names the parameter `payload`, which is not declared",
+    );
+}
+
+#[test]
+fn a_declared_parameter_that_nothing_uses_is_rejected() {
+    let text = with(
+        OPEN_ENDED,
+        "tension_floor: 5.0,",
+        "tension_floor: 5.0,\n    parameters: [(name: \"spare\", value: 1.0)],",
+    );
+    let err = rejected(&text);
+    assert_eq!(err.item(), Some("spare"), "{err}");
+    assert!(
+        err.to_string().contains("declared but no number uses it"),
+        "{err}"
+    );
 }
 
 #[test]

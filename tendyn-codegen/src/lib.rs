@@ -15,6 +15,7 @@
 
 pub mod closed_form;
 pub mod emit;
+pub mod equations;
 pub mod expr;
 pub mod outputs;
 pub mod report;

@@ -106,3 +106,49 @@ fn forward_gives_joint_accelerations_and_bad_input_fails_with_the_reason() {
     let (ok, _, err) = tendyn(&["check", "does/not/exist.ron"]);
     assert!(!ok && err.contains("does/not/exist.ron"), "{err}");
 }
+
+#[test]
+fn generate_writes_straight_line_rust_and_reports_operation_counts() {
+    let dir = std::env::temp_dir().join(format!("tendyn_gen_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("finger.rs");
+    let (ok, _, err) = tendyn(&[
+        "generate",
+        "examples/mechanisms/example3_stanford_jpl.ron",
+        "--outputs",
+        "generalized_forces,actuation",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let src = std::fs::read_to_string(&out).unwrap();
+    assert!(src.contains(
+        "pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 3]"
+    ));
+    assert!(src.contains("pub fn actuation<T: Real>"));
+    assert!(
+        !src.contains("for ") && !src.contains("Vec") && !src.contains("while "),
+        "not straight-line"
+    );
+    assert!(
+        err.contains("generalized_forces") && err.contains("arithmetic"),
+        "{err}"
+    );
+    let (ok, _, err) = tendyn(&[
+        "generate",
+        "examples/mechanisms/example1_endless.ron",
+        "--outputs",
+        "torque",
+    ]);
+    assert!(!ok && err.contains("unknown output `torque`"), "{err}");
+}
+
+#[test]
+fn equations_print_the_collected_closed_form_with_paper_style_names() {
+    let (ok, out, err) = tendyn(&["equations", "examples/mechanisms/example1_endless.ron"]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("generalized_forces link2 = ") && out.contains("th1dd") && out.contains("S2"),
+        "{out}"
+    );
+}

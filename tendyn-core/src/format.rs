@@ -6,15 +6,49 @@
 
 use serde::Deserialize;
 
+/// A number, or the name of a runtime parameter (declared in `parameters`) where the
+/// field allows one: masses, centres of mass, inertias, gravity, the external wrench.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum Num {
+    Value(f64),
+    Param(String),
+}
+
+impl Default for Num {
+    fn default() -> Self {
+        Num::Value(0.0)
+    }
+}
+
+impl From<f64> for Num {
+    fn from(x: f64) -> Self {
+        Num::Value(x)
+    }
+}
+
+/// A runtime parameter: a number that generated code takes as an input (a payload mass, a
+/// calibrated inertia) instead of folding it in. `value` is its nominal value, used for
+/// validation and by the runtime solver unless overridden.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterSpec {
+    pub name: String,
+    pub value: f64,
+}
+
 /// A whole mechanism description.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MechanismFile {
     /// Free-form name, used in messages and generated code.
     pub name: String,
+    /// Runtime parameters that numbers elsewhere may name.
+    #[serde(default)]
+    pub parameters: Vec<ParameterSpec>,
     /// Gravitational acceleration in the base frame (m/s²). Default `(0, 0, -9.81)`.
     #[serde(default = "default_gravity")]
-    pub gravity: [f64; 3],
+    pub gravity: [Num; 3],
     /// The primary links of the serial chain, from the base outwards (link 1 first).
     pub links: Vec<LinkSpec>,
     /// Intermediate links (pulleys, idlers) and the drums fixed to primary links.
@@ -37,8 +71,8 @@ pub struct MechanismFile {
     pub external_wrench: Option<WrenchSpec>,
 }
 
-fn default_gravity() -> [f64; 3] {
-    [0.0, 0.0, -9.81]
+fn default_gravity() -> [Num; 3] {
+    [Num::Value(0.0), Num::Value(0.0), Num::Value(-9.81)]
 }
 
 /// Standard Denavit-Hartenberg parameters of the joint that moves this link:
@@ -55,18 +89,18 @@ pub struct Dh {
 
 /// Inertia tensor about the centre of mass, axes parallel to the body frame.
 /// `xy`, `xz`, `yz` are the tensor's entries (`I_xy = -∫ x y dm`), not products of inertia.
-#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InertiaSpec {
-    pub xx: f64,
-    pub yy: f64,
-    pub zz: f64,
+    pub xx: Num,
+    pub yy: Num,
+    pub zz: Num,
     #[serde(default)]
-    pub xy: f64,
+    pub xy: Num,
     #[serde(default)]
-    pub xz: f64,
+    pub xz: Num,
     #[serde(default)]
-    pub yz: f64,
+    pub yz: Num,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -74,10 +108,10 @@ pub struct InertiaSpec {
 pub struct LinkSpec {
     pub name: String,
     pub dh: Dh,
-    pub mass: f64,
+    pub mass: Num,
     /// Centre of mass in the link frame (the DH frame at the link's distal joint).
     #[serde(default)]
-    pub com: [f64; 3],
+    pub com: [Num; 3],
     #[serde(default)]
     pub inertia: InertiaSpec,
 }
@@ -108,10 +142,10 @@ pub struct PulleySpec {
     #[serde(default)]
     pub fixed: bool,
     #[serde(default)]
-    pub mass: f64,
+    pub mass: Num,
     /// Centre of mass in the pulley frame.
     #[serde(default)]
-    pub com: [f64; 3],
+    pub com: [Num; 3],
     #[serde(default)]
     pub inertia: InertiaSpec,
     /// Explicit coupling: angle relative to the carrier = Σ ratio_j · q_j (one ratio per
@@ -192,9 +226,9 @@ pub struct MotorSpec {
 pub struct WrenchSpec {
     pub link: String,
     #[serde(default)]
-    pub point: [f64; 3],
+    pub point: [Num; 3],
     #[serde(default)]
-    pub force: [f64; 3],
+    pub force: [Num; 3],
     #[serde(default)]
-    pub moment: [f64; 3],
+    pub moment: [Num; 3],
 }

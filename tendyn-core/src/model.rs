@@ -212,11 +212,36 @@ pub struct Wrench<T> {
     pub moment: Vec3<T>,
 }
 
+/// A runtime parameter of the mechanism file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameter {
+    pub name: String,
+    /// Nominal value (what the model holds until [`Model::with_parameters`]).
+    pub value: f64,
+}
+
+/// A number of the model that a parameter sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    Mass(usize),
+    Com(usize, usize),
+    /// Inertia entry `(row, column)` of a body (and its mirror).
+    Inertia(usize, usize, usize),
+    Gravity(usize),
+    WrenchPoint(usize),
+    WrenchForce(usize),
+    WrenchMoment(usize),
+}
+
 /// A validated mechanism in scalar `T`.
 #[derive(Clone, Debug)]
 pub struct Model<T> {
     pub name: String,
     pub gravity: Vec3<T>,
+    /// Runtime parameters, in file order.
+    pub parameters: Vec<Parameter>,
+    /// Which numbers each parameter (by index) sets.
+    pub parameter_slots: Vec<(Slot, usize)>,
     /// Number of joint coordinates `n`.
     pub dof: usize,
     /// Links first (body `j` is moved by joint `j`), then pulleys; parents come first.
@@ -257,6 +282,8 @@ impl<T: Real> Model<T> {
         Model {
             name: self.name.clone(),
             gravity: v(self.gravity),
+            parameters: self.parameters.clone(),
+            parameter_slots: self.parameter_slots.clone(),
             dof: self.dof,
             bodies: self
                 .bodies
@@ -333,6 +360,48 @@ impl<T: Real> Model<T> {
     }
 }
 
+impl<T: Real> Model<T> {
+    /// Sets every number a parameter names to `values[parameter]` (no checks: for a
+    /// symbolic model whose parameters are inputs, and for [`Model::with_parameters`]).
+    pub fn set_parameters(&mut self, values: &[T]) {
+        for &(slot, k) in &self.parameter_slots {
+            let v = values[k];
+            match slot {
+                Slot::Mass(b) => self.bodies[b].mass = v,
+                Slot::Com(b, c) => set3(&mut self.bodies[b].com, c, v),
+                Slot::Inertia(b, r, c) => {
+                    self.bodies[b].inertia.rows[r][c] = v;
+                    self.bodies[b].inertia.rows[c][r] = v;
+                }
+                Slot::Gravity(c) => set3(&mut self.gravity, c, v),
+                Slot::WrenchPoint(c) => set3(
+                    &mut self.external_wrench.as_mut().expect("wrench").point,
+                    c,
+                    v,
+                ),
+                Slot::WrenchForce(c) => set3(
+                    &mut self.external_wrench.as_mut().expect("wrench").force,
+                    c,
+                    v,
+                ),
+                Slot::WrenchMoment(c) => set3(
+                    &mut self.external_wrench.as_mut().expect("wrench").moment,
+                    c,
+                    v,
+                ),
+            }
+        }
+    }
+}
+
+fn set3<T>(v: &mut Vec3<T>, c: usize, x: T) {
+    match c {
+        0 => v.x = x,
+        1 => v.y = x,
+        _ => v.z = x,
+    }
+}
+
 fn map2<T: Copy, U>(m: &[Vec<T>], f: impl Fn(T) -> U + Copy) -> Vec<Vec<U>> {
     m.iter()
         .map(|r| r.iter().map(|&x| f(x)).collect())
@@ -340,6 +409,35 @@ fn map2<T: Copy, U>(m: &[Vec<T>], f: impl Fn(T) -> U + Copy) -> Vec<Vec<U>> {
 }
 
 impl Model<f64> {
+    /// The same mechanism with its runtime parameters set to `values` (file order), checked
+    /// as validation checks the file: finite numbers, non-negative masses, physical inertias.
+    pub fn with_parameters(&self, values: &[f64]) -> crate::Result<Model<f64>> {
+        if values.len() != self.parameters.len() {
+            return Err(crate::Error::State(format!(
+                "{} parameter values given but the mechanism declares {}",
+                values.len(),
+                self.parameters.len()
+            )));
+        }
+        if let Some((p, v)) = self
+            .parameters
+            .iter()
+            .zip(values)
+            .find(|(_, v)| !v.is_finite())
+        {
+            return Err(crate::Error::State(format!(
+                "parameter `{}` is {v}; it must be finite",
+                p.name
+            )));
+        }
+        let mut m = self.clone();
+        m.set_parameters(values);
+        for b in &m.bodies {
+            crate::validate::check_mass_properties(&b.name, b.mass, &b.inertia)?;
+        }
+        Ok(m)
+    }
+
     /// The model in another scalar (a symbolic one for code generation): every number is
     /// converted with [`Real::from_f64`].
     pub fn cast<U: Real>(&self) -> Model<U> {

@@ -3,11 +3,11 @@
 
 use crate::error::{Error, Location, Result};
 use crate::format::{
-    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Placement, PulleySpec, Turn,
+    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Placement, PulleySpec, Turn,
 };
 use crate::model::{
-    Body, BodyKind, Loop, Model, Motor, MotorKind, PulleyRole, Row, Strand, Tendon, TensionSystem,
-    Unknown, Wrench,
+    Body, BodyKind, Loop, Model, Motor, MotorKind, Parameter, PulleyRole, Row, Slot, Strand,
+    Tendon, TensionSystem, Unknown, Wrench,
 };
 use crate::spatial::{rot_x, rot_y, rot_z, Mat3, Transform, Vec3};
 use crate::transmission::{
@@ -30,7 +30,12 @@ pub fn parse(text: &str) -> Result<Model<f64>> {
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let file: MechanismFile = options.from_str(text).map_err(|e| syntax_error(text, &e))?;
-    Validator { text }.model(&file)
+    let params = Validator {
+        text,
+        params: Vec::new(),
+    }
+    .parameters(&file)?;
+    Validator { text, params }.model(&file)
 }
 
 /// A RON error at the token it is about (ron's span may start on the whitespace before
@@ -99,11 +104,26 @@ fn syntax_error(text: &str, e: &ron::error::SpannedError) -> Error {
 
 /// Validates an already parsed file (no source text: errors carry no line numbers).
 pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
-    Validator { text: "" }.model(file)
+    let params = Validator {
+        text: "",
+        params: Vec::new(),
+    }
+    .parameters(file)?;
+    Validator { text: "", params }.model(file)
 }
 
 struct Validator<'a> {
     text: &'a str,
+    /// Runtime parameters and their nominal values, which validation checks.
+    params: Vec<(String, f64)>,
+}
+
+/// The nominal values of a body's mass properties.
+struct MassProperties {
+    mass: f64,
+    com: [f64; 3],
+    /// xx, yy, zz, xy, xz, yz
+    inertia: [f64; 6],
 }
 
 /// Angles this close to a multiple of π/2 are taken as exactly that multiple, so that a
@@ -171,8 +191,18 @@ fn candidates<'n>(kind: &str, names: impl Iterator<Item = &'n str>) -> String {
     }
 }
 
-fn inertia_matrix(i: &InertiaSpec) -> Mat3<f64> {
-    Mat3::from_rows([[i.xx, i.xy, i.xz], [i.xy, i.yy, i.yz], [i.xz, i.yz, i.zz]])
+struct InertiaValues {
+    xx: f64,
+    yy: f64,
+    zz: f64,
+    xy: f64,
+    xz: f64,
+    yz: f64,
+}
+
+fn inertia_matrix(i: [f64; 6]) -> Mat3<f64> {
+    let [xx, yy, zz, xy, xz, yz] = i;
+    Mat3::from_rows([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
 }
 
 impl Validator<'_> {
@@ -272,17 +302,45 @@ impl Validator<'_> {
         }
     }
 
-    fn mass_properties(
-        &self,
-        item: &str,
-        mass: f64,
-        com: [f64; 3],
-        inertia: &InertiaSpec,
-    ) -> Result<()> {
+    /// A number's nominal value (a parameter's declared value).
+    fn num(&self, n: &Num) -> f64 {
+        match n {
+            Num::Value(x) => *x,
+            Num::Param(name) => self
+                .params
+                .iter()
+                .find(|(p, _)| p == name)
+                .map(|(_, v)| *v)
+                .expect("parameter references are checked first"),
+        }
+    }
+
+    fn nums<const K: usize>(&self, n: &[Num; K]) -> [f64; K] {
+        std::array::from_fn(|k| self.num(&n[k]))
+    }
+
+    fn mass_of(&self, mass: &Num, com: &[Num; 3], i: &InertiaSpec) -> MassProperties {
+        MassProperties {
+            mass: self.num(mass),
+            com: self.nums(com),
+            inertia: [&i.xx, &i.yy, &i.zz, &i.xy, &i.xz, &i.yz].map(|x| self.num(x)),
+        }
+    }
+
+    fn mass_properties(&self, item: &str, mp: &MassProperties) -> Result<()> {
+        let (mass, com) = (mp.mass, mp.com);
+        let [xx, yy, zz, xy, xz, yz] = mp.inertia;
         self.finite(item, "mass", &[mass])?;
         self.finite(item, "com", &com)?;
-        let i = inertia;
-        self.finite(item, "inertia", &[i.xx, i.yy, i.zz, i.xy, i.xz, i.yz])?;
+        self.finite(item, "inertia", &mp.inertia)?;
+        let i = InertiaValues {
+            xx,
+            yy,
+            zz,
+            xy,
+            xz,
+            yz,
+        };
         let m = Matrix3::new(i.xx, i.xy, i.xz, i.xy, i.yy, i.yz, i.xz, i.yz, i.zz);
         let nonzero_inertia = m.iter().any(|&x| x != 0.0);
         if mass < 0.0 {
@@ -329,8 +387,52 @@ impl Validator<'_> {
         Ok(())
     }
 
+    /// Declared parameters: unique, finite, and every reference to one names a declared
+    /// one; a declared parameter nothing uses is an error too.
+    fn parameters(&self, f: &MechanismFile) -> Result<Vec<(String, f64)>> {
+        let mut params: Vec<(String, f64)> = Vec::new();
+        for p in &f.parameters {
+            if params.iter().any(|(n, _)| *n == p.name) {
+                return Err(self.invalid(
+                    &p.name,
+                    format!("the parameter `{}` is declared twice", p.name),
+                ));
+            }
+            self.finite(&p.name, "value", &[p.value])?;
+            params.push((p.name.clone(), p.value));
+        }
+        let mut used = vec![false; params.len()];
+        for (item, field, n) in numbers(f) {
+            if let Num::Param(name) = n {
+                match params.iter().position(|(p, _)| p == name) {
+                    Some(k) => used[k] = true,
+                    None => {
+                        return Err(self.invalid(
+                            item,
+                            format!(
+                                "`{field}` names the parameter `{name}`, which is not declared; add \
+                                 `(name: \"{name}\", value: ...)` to `parameters` or write a number"
+                            ),
+                        ))
+                    }
+                }
+            }
+        }
+        if let Some(k) = used.iter().position(|u| !u) {
+            let name = &params[k].0;
+            return Err(self.invalid(
+                name,
+                format!(
+                    "the parameter `{name}` is declared but no number uses it; remove it or use it"
+                ),
+            ));
+        }
+        Ok(params)
+    }
+
     fn model(&self, f: &MechanismFile) -> Result<Model<f64>> {
-        self.finite_in(&f.name, "gravity", &f.gravity, true)?;
+        let gravity = self.nums(&f.gravity);
+        self.finite_in(&f.name, "gravity", &gravity, true)?;
         if f.links.is_empty() {
             return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
         }
@@ -916,7 +1018,12 @@ impl Validator<'_> {
                         candidates("links", f.links.iter().map(|l| l.name.as_str()))
                     ),
                 })?;
-                let values = [w.point, w.force, w.moment].concat();
+                let (point, force, moment) = (
+                    self.nums(&w.point),
+                    self.nums(&w.force),
+                    self.nums(&w.moment),
+                );
+                let values = [point, force, moment].concat();
                 if let Some(v) = values.iter().find(|v| !v.is_finite()) {
                     return Err(Error::Invalid {
                         item: f.name.clone(),
@@ -929,9 +1036,9 @@ impl Validator<'_> {
                 }
                 Some(Wrench {
                     link,
-                    point: Vec3::from_array(w.point),
-                    force: Vec3::from_array(w.force),
-                    moment: Vec3::from_array(w.moment),
+                    point: Vec3::from_array(point),
+                    force: Vec3::from_array(force),
+                    moment: Vec3::from_array(moment),
                 })
             }
         };
@@ -950,7 +1057,16 @@ impl Validator<'_> {
             });
         Ok(Model {
             name: f.name.clone(),
-            gravity: Vec3::from_array(f.gravity),
+            gravity: Vec3::from_array(gravity),
+            parameters: f
+                .parameters
+                .iter()
+                .map(|p| Parameter {
+                    name: p.name.clone(),
+                    value: p.value,
+                })
+                .collect(),
+            parameter_slots: parameter_slots(f),
             dof: n,
             bodies,
             strands: strands
@@ -975,7 +1091,8 @@ impl Validator<'_> {
     fn link_body(&self, j: usize, l: &LinkSpec, n: usize) -> Result<Body<f64>> {
         let d = &l.dh;
         self.finite(&l.name, "dh", &[d.a, d.alpha, d.d, d.offset])?;
-        self.mass_properties(&l.name, l.mass, l.com, &l.inertia)?;
+        let mp = self.mass_of(&l.mass, &l.com, &l.inertia);
+        self.mass_properties(&l.name, &mp)?;
         let post = dh_post(d);
         let mut coupling = vec![0.0; n];
         coupling[j] = 1.0;
@@ -988,9 +1105,9 @@ impl Validator<'_> {
             offset: d.offset,
             coupling,
             spins: true,
-            mass: l.mass,
-            com: Vec3::from_array(l.com),
-            inertia: inertia_matrix(&l.inertia),
+            mass: mp.mass,
+            com: Vec3::from_array(mp.com),
+            inertia: inertia_matrix(mp.inertia),
             axis: post.rotation.tr_mul_vec(Vec3::unit_z()),
             joint_to_origin: post.rotation.tr_mul_vec(post.translation),
         })
@@ -1003,7 +1120,8 @@ impl Validator<'_> {
         links: &[Body<f64>],
         n: usize,
     ) -> Result<(Body<f64>, PulleyInfo)> {
-        self.mass_properties(&p.name, p.mass, p.com, &p.inertia)?;
+        let mp = self.mass_of(&p.mass, &p.com, &p.inertia);
+        self.mass_properties(&p.name, &mp)?;
         self.finite(&p.name, "radius", &[p.radius])?;
         if p.radius <= 0.0 {
             return Err(self.invalid(
@@ -1086,15 +1204,28 @@ impl Validator<'_> {
                 )
             }
         };
-        let i = &p.inertia;
         // An axisymmetric pulley's inertia does not change as it spins, so its frame may
-        // stay the housing frame and its angle never needs a sine or cosine.
-        let axisymmetric = p.com[0] == 0.0
-            && p.com[1] == 0.0
-            && i.xx == i.yy
-            && i.xy == 0.0
-            && i.xz == 0.0
-            && i.yz == 0.0;
+        // stay the housing frame and its angle never needs a sine or cosine. Parameters can
+        // take any value at run time, so a pulley with one in its mass properties spins.
+        let [xx, yy, _, xy, xz, yz] = mp.inertia;
+        let parametric = [
+            &p.com[0],
+            &p.com[1],
+            &p.inertia.xx,
+            &p.inertia.yy,
+            &p.inertia.xy,
+            &p.inertia.xz,
+            &p.inertia.yz,
+        ]
+        .iter()
+        .any(|n| matches!(n, Num::Param(_)));
+        let axisymmetric = !parametric
+            && mp.com[0] == 0.0
+            && mp.com[1] == 0.0
+            && xx == yy
+            && xy == 0.0
+            && xz == 0.0
+            && yz == 0.0;
         Ok((
             Body {
                 name: p.name.clone(),
@@ -1108,9 +1239,9 @@ impl Validator<'_> {
                 offset: 0.0,
                 coupling: vec![0.0; n],
                 spins: !(p.fixed || axisymmetric),
-                mass: p.mass,
-                com: Vec3::from_array(p.com),
-                inertia: inertia_matrix(&p.inertia),
+                mass: mp.mass,
+                com: Vec3::from_array(mp.com),
+                inertia: inertia_matrix(mp.inertia),
                 axis: Vec3::unit_z(),
                 joint_to_origin: Vec3::zero(),
             },
@@ -1470,4 +1601,104 @@ fn positive_null_vector(null: &[Vec<f64>], cols: &[usize]) -> Option<Vec<f64>> {
         }
     }
     None
+}
+
+/// Every number of the file that may name a parameter: (item, field, number).
+fn numbers(f: &MechanismFile) -> Vec<(&str, &'static str, &Num)> {
+    let mut v: Vec<(&str, &'static str, &Num)> = Vec::new();
+    for g in &f.gravity {
+        v.push((&f.name, "gravity", g));
+    }
+    let bodies = f
+        .links
+        .iter()
+        .map(|l| (&l.name, &l.mass, &l.com, &l.inertia))
+        .chain(
+            f.pulleys
+                .iter()
+                .map(|p| (&p.name, &p.mass, &p.com, &p.inertia)),
+        );
+    for (name, mass, com, i) in bodies {
+        v.push((name, "mass", mass));
+        for c in com {
+            v.push((name, "com", c));
+        }
+        for x in [&i.xx, &i.yy, &i.zz, &i.xy, &i.xz, &i.yz] {
+            v.push((name, "inertia", x));
+        }
+    }
+    if let Some(w) = &f.external_wrench {
+        for (field, arr) in [
+            ("point", &w.point),
+            ("force", &w.force),
+            ("moment", &w.moment),
+        ] {
+            for x in arr {
+                v.push((&f.name, field, x));
+            }
+        }
+    }
+    v
+}
+
+/// Which model numbers each parameter sets (links are bodies `0..n`, pulleys follow in
+/// file order).
+fn parameter_slots(f: &MechanismFile) -> Vec<(Slot, usize)> {
+    let index = |n: &Num| match n {
+        Num::Param(name) => f.parameters.iter().position(|p| p.name == *name),
+        Num::Value(_) => None,
+    };
+    let mut slots = Vec::new();
+    let mut push = |n: &Num, slot: Slot| {
+        if let Some(k) = index(n) {
+            slots.push((slot, k));
+        }
+    };
+    for (c, g) in f.gravity.iter().enumerate() {
+        push(g, Slot::Gravity(c));
+    }
+    let bodies = f
+        .links
+        .iter()
+        .map(|l| (&l.mass, &l.com, &l.inertia))
+        .chain(f.pulleys.iter().map(|p| (&p.mass, &p.com, &p.inertia)));
+    for (b, (mass, com, i)) in bodies.enumerate() {
+        push(mass, Slot::Mass(b));
+        for (c, x) in com.iter().enumerate() {
+            push(x, Slot::Com(b, c));
+        }
+        for (x, (r, c)) in [&i.xx, &i.yy, &i.zz, &i.xy, &i.xz, &i.yz].into_iter().zip([
+            (0, 0),
+            (1, 1),
+            (2, 2),
+            (0, 1),
+            (0, 2),
+            (1, 2),
+        ]) {
+            push(x, Slot::Inertia(b, r, c));
+        }
+    }
+    if let Some(w) = &f.external_wrench {
+        for c in 0..3 {
+            push(&w.point[c], Slot::WrenchPoint(c));
+            push(&w.force[c], Slot::WrenchForce(c));
+            push(&w.moment[c], Slot::WrenchMoment(c));
+        }
+    }
+    slots
+}
+
+/// The mass and inertia checks of validation, for parameter values set at run time.
+pub fn check_mass_properties(item: &str, mass: f64, inertia: &Mat3<f64>) -> Result<()> {
+    let r = &inertia.rows;
+    let mp = MassProperties {
+        mass,
+        com: [0.0; 3],
+        inertia: [r[0][0], r[1][1], r[2][2], r[0][1], r[0][2], r[1][2]],
+    };
+    Validator {
+        text: "",
+        params: Vec::new(),
+    }
+    .mass_properties(item, &mp)
 }

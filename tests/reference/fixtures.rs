@@ -71,6 +71,8 @@ pub fn with_inertia(
 /// A model of these bodies with no tendons, motors or external wrench.
 pub fn model(dof: usize, gravity: [f64; 3], bodies: Vec<Body<f64>>) -> Model<f64> {
     Model {
+        parameters: Vec::new(),
+        parameter_slots: Vec::new(),
         name: "fixture".into(),
         gravity: Vec3::from_array(gravity),
         dof,

@@ -65,6 +65,13 @@ enum Command {
         #[arg(short = 'o', long)]
         out: Option<String>,
     },
+    /// Print the closed-form equations in readable notation (beside the paper's Eqs. 28-35).
+    Equations {
+        file: String,
+        /// Comma-separated outputs (default: generalized_forces and actuation).
+        #[arg(long, value_delimiter = ',')]
+        outputs: Vec<String>,
+    },
     /// Check and evaluate the paper's three built-in examples.
     Demo,
 }
@@ -227,6 +234,31 @@ fn run(cli: Cli) -> Result<(), String> {
                 );
             }
             eprintln!("  {:<20} {}", "all", g.all);
+            Ok(())
+        }
+        Command::Equations { file, outputs } => {
+            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let outputs: Vec<tendyn_codegen::Output> = if outputs.is_empty() {
+                [
+                    tendyn_codegen::Output::GeneralizedForces,
+                    tendyn_codegen::Output::Actuation,
+                ]
+                .into_iter()
+                .filter(|o| tendyn_codegen::outputs::check(&m, &[*o]).is_ok())
+                .collect()
+            } else {
+                outputs
+                    .iter()
+                    .map(|o| {
+                        tendyn_codegen::Output::parse(o)
+                            .ok_or_else(|| format!("unknown output `{o}`"))
+                    })
+                    .collect::<Result<_, _>>()?
+            };
+            emit(
+                &tendyn_codegen::equations::equations(&m, &outputs)
+                    .map_err(|e| format!("{file}: {e}"))?,
+            );
             Ok(())
         }
         Command::Forward {
