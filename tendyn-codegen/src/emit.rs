@@ -7,12 +7,20 @@
 //! loops, no allocation, no panics, no arithmetic on known zeros (those never became nodes).
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
+//!
+//! The function bodies, nearly all of the output, are built as `syn` syntax trees directly;
+//! only the small item skeletons (signatures, constants, the `Outputs` struct) go through
+//! `quote!` and `parse_quote!`. Writing the bodies as tokens and parsing them back cost most
+//! of the generation time. prettyplease prints the tree as it is, so the tree carries
+//! exactly the parentheses a parser would have produced from the written code.
 
 use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, Function, Output, Param, Shape, Traced};
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::{Literal, Span, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::{BTreeMap, BTreeSet};
+use std::cell::OnceCell;
+use syn::punctuated::Punctuated;
+use syn::{parse_quote, BinOp, Expr, Ident, Stmt};
 use tendyn_core::Model;
 
 /// The scalar type of the emitted functions.
@@ -48,43 +56,277 @@ impl Scalar {
     }
 }
 
-/// Writes one function body: `let`s for shared nodes, then the result expression.
-struct Body<'g> {
-    g: &'g Graph,
-    scalar: Scalar,
-    names: BTreeMap<Id, TokenStream>,
-    stmts: Vec<TokenStream>,
+/// Syntax-tree constructors for the expression forms the bodies use.
+mod ast {
+    use super::*;
+
+    pub fn ident(name: &str) -> Ident {
+        Ident::new(name, Span::call_site())
+    }
+
+    /// `a::b::c` (or a plain variable).
+    pub fn path(segments: &[&str]) -> Expr {
+        Expr::Path(syn::ExprPath {
+            attrs: Vec::new(),
+            qself: None,
+            path: syn::Path {
+                leading_colon: None,
+                segments: segments
+                    .iter()
+                    .map(|s| syn::PathSegment::from(ident(s)))
+                    .collect(),
+            },
+        })
+    }
+
+    pub fn var(name: Ident) -> Expr {
+        Expr::Path(syn::ExprPath {
+            attrs: Vec::new(),
+            qself: None,
+            path: name.into(),
+        })
+    }
+
+    pub fn lit(l: Literal) -> Expr {
+        Expr::Lit(syn::ExprLit {
+            attrs: Vec::new(),
+            lit: syn::Lit::new(l),
+        })
+    }
+
+    /// `-e`
+    pub fn neg(e: Expr) -> Expr {
+        Expr::Unary(syn::ExprUnary {
+            attrs: Vec::new(),
+            op: syn::UnOp::Neg(Default::default()),
+            expr: Box::new(e),
+        })
+    }
+
+    pub fn binary(left: Expr, op: BinOp, right: Expr) -> Expr {
+        Expr::Binary(syn::ExprBinary {
+            attrs: Vec::new(),
+            left: Box::new(left),
+            op,
+            right: Box::new(right),
+        })
+    }
+
+    /// `(e)`
+    pub fn paren(e: Expr) -> Expr {
+        Expr::Paren(syn::ExprParen {
+            attrs: Vec::new(),
+            paren_token: Default::default(),
+            expr: Box::new(e),
+        })
+    }
+
+    /// `f(arg)`
+    pub fn call(func: Expr, arg: Expr) -> Expr {
+        Expr::Call(syn::ExprCall {
+            attrs: Vec::new(),
+            func: Box::new(func),
+            paren_token: Default::default(),
+            args: Punctuated::from_iter([arg]),
+        })
+    }
+
+    /// `receiver.method(args)`
+    pub fn method(receiver: Expr, method: &str, args: Option<Expr>) -> Expr {
+        Expr::MethodCall(syn::ExprMethodCall {
+            attrs: Vec::new(),
+            receiver: Box::new(receiver),
+            dot_token: Default::default(),
+            method: ident(method),
+            turbofish: None,
+            paren_token: Default::default(),
+            args: args.into_iter().collect(),
+        })
+    }
+
+    /// `array[index]`
+    pub fn index(array: &str, index: usize) -> Expr {
+        Expr::Index(syn::ExprIndex {
+            attrs: Vec::new(),
+            expr: Box::new(path(&[array])),
+            bracket_token: Default::default(),
+            index: Box::new(lit(Literal::usize_unsuffixed(index))),
+        })
+    }
+
+    /// `[a, b, ...]`
+    pub fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
+        Expr::Array(syn::ExprArray {
+            attrs: Vec::new(),
+            bracket_token: Default::default(),
+            elems: elems.into_iter().collect(),
+        })
+    }
+
+    /// `(a, b)`
+    pub fn pair(a: Expr, b: Expr) -> Expr {
+        Expr::Tuple(syn::ExprTuple {
+            attrs: Vec::new(),
+            paren_token: Default::default(),
+            elems: Punctuated::from_iter([a, b]),
+        })
+    }
+
+    /// `Name { field: value, ... }`
+    pub fn struct_literal(name: &str, fields: impl IntoIterator<Item = (Ident, Expr)>) -> Expr {
+        Expr::Struct(syn::ExprStruct {
+            attrs: Vec::new(),
+            qself: None,
+            path: ident(name).into(),
+            brace_token: Default::default(),
+            fields: fields
+                .into_iter()
+                .map(|(member, expr)| syn::FieldValue {
+                    attrs: Vec::new(),
+                    member: syn::Member::Named(member),
+                    colon_token: Some(Default::default()),
+                    expr,
+                })
+                .collect(),
+            dot2_token: None,
+            rest: None,
+        })
+    }
+
+    fn pat(name: Ident) -> syn::Pat {
+        syn::Pat::Ident(syn::PatIdent {
+            attrs: Vec::new(),
+            by_ref: None,
+            mutability: None,
+            ident: name,
+            subpat: None,
+        })
+    }
+
+    fn local(pat: syn::Pat, value: Expr) -> Stmt {
+        Stmt::Local(syn::Local {
+            attrs: Vec::new(),
+            let_token: Default::default(),
+            modifiers: Default::default(),
+            pat,
+            init: Some(syn::LocalInit {
+                eq_token: Default::default(),
+                expr: Box::new(value),
+                diverge: None,
+            }),
+            semi_token: Default::default(),
+        })
+    }
+
+    /// `let name = value;`
+    pub fn let_one(name: Ident, value: Expr) -> Stmt {
+        local(pat(name), value)
+    }
+
+    /// `let (a, b) = value;`
+    pub fn let_pair(a: Ident, b: Ident, value: Expr) -> Stmt {
+        let pair = syn::Pat::Tuple(syn::PatTuple {
+            attrs: Vec::new(),
+            paren_token: Default::default(),
+            elems: Punctuated::from_iter([pat(a), pat(b)]),
+        });
+        local(pair, value)
+    }
 }
 
-impl Body<'_> {
-    fn constant(&self, c: f64) -> TokenStream {
-        let lit = match self.scalar {
-            Scalar::F32 => Literal::f32_unsuffixed((c as f32).abs()),
-            _ => Literal::f64_unsuffixed(c.abs()),
-        };
-        let lit = if c < 0.0 { quote!(-#lit) } else { quote!(#lit) };
-        match self.scalar {
-            Scalar::Generic => quote!(T::from_f64(#lit)),
-            Scalar::F64 => {
-                let lit = Literal::f64_suffixed(c.abs());
-                if c < 0.0 {
-                    quote!(-#lit)
-                } else {
-                    quote!(#lit)
-                }
-            }
-            Scalar::F32 => {
-                let lit = Literal::f32_suffixed((c as f32).abs());
-                if c < 0.0 {
-                    quote!(-#lit)
-                } else {
-                    quote!(#lit)
-                }
-            }
+/// The operands of a node (without allocating, unlike [`Node::children`]).
+fn operands(node: Node) -> impl Iterator<Item = Id> {
+    let (ids, n) = match node {
+        Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
+        Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => ([a, a], 1),
+        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Max(a, b) => {
+            ([a, b], 2)
+        }
+    };
+    ids.into_iter().take(n)
+}
+
+/// The expressions of constants and inputs, by node index, shared by every body: the same
+/// few recur throughout, and cloning a tree is cheaper than formatting and parsing a literal.
+struct Atoms<'g> {
+    g: &'g Graph,
+    scalar: Scalar,
+    exprs: Vec<OnceCell<(Expr, u8)>>,
+}
+
+impl<'g> Atoms<'g> {
+    fn new(g: &'g Graph, scalar: Scalar) -> Self {
+        Atoms {
+            g,
+            scalar,
+            exprs: vec![OnceCell::new(); g.nodes.len()],
         }
     }
 
-    fn expr(&self, id: Id) -> TokenStream {
+    /// The expression of a constant or input node and its precedence (see
+    /// [`Body::expr_prec`]).
+    fn get(&self, id: Id) -> (Expr, u8) {
+        let atom = || match self.g.node(id) {
+            Node::Const(bits) => self.constant(f64::from_bits(bits)),
+            Node::Input(i) => self.input(i),
+            _ => unreachable!("only constants and inputs are atoms"),
+        };
+        self.exprs[id.0 as usize].get_or_init(atom).clone()
+    }
+
+    fn constant(&self, c: f64) -> (Expr, u8) {
+        let signed = |lit: Literal| {
+            let lit = ast::lit(lit);
+            if c < 0.0 {
+                ast::neg(lit)
+            } else {
+                lit
+            }
+        };
+        // A negative literal is a unary minus, except as the argument of `from_f64`.
+        let negated = if c < 0.0 { 3 } else { 4 };
+        match self.scalar {
+            Scalar::Generic => {
+                let value = signed(Literal::f64_unsuffixed(c.abs()));
+                (ast::call(ast::path(&["T", "from_f64"]), value), 4)
+            }
+            Scalar::F64 => (signed(Literal::f64_suffixed(c.abs())), negated),
+            Scalar::F32 => (signed(Literal::f32_suffixed((c as f32).abs())), negated),
+        }
+    }
+
+    fn input(&self, i: u32) -> (Expr, u8) {
+        let name = &self.g.input_names[i as usize];
+        let (array, index) = name.split_once('[').expect("inputs are array elements");
+        let index: usize = index.trim_end_matches(']').parse().expect("an index");
+        (ast::index(array, index), 4)
+    }
+}
+
+/// Writes one function body: `let`s for shared nodes, then the result expression.
+struct Body<'g> {
+    g: &'g Graph,
+    atoms: &'g Atoms<'g>,
+    /// The variable bound to each node, by node index.
+    names: Vec<Option<Ident>>,
+    stmts: Vec<Stmt>,
+}
+
+impl<'g> Body<'g> {
+    fn new(atoms: &'g Atoms<'g>) -> Self {
+        Body {
+            g: atoms.g,
+            atoms,
+            names: vec![None; atoms.g.nodes.len()],
+            stmts: Vec::new(),
+        }
+    }
+
+    fn name(&self, id: Id) -> Option<&Ident> {
+        self.names[id.0 as usize].as_ref()
+    }
+
+    fn expr(&self, id: Id) -> Expr {
         self.expr_prec(id).0
     }
 
@@ -92,108 +334,82 @@ impl Body<'_> {
     /// 4: atoms and method calls). Parentheses are added where the child binds less
     /// tightly, and around a right operand of equal precedence: floating-point addition and
     /// multiplication are not associative, so the emitted grouping must be the graph's.
-    fn expr_prec(&self, id: Id) -> (TokenStream, u8) {
-        if let Some(name) = self.names.get(&id) {
-            return (name.clone(), 4);
+    fn expr_prec(&self, id: Id) -> (Expr, u8) {
+        if let Some(name) = self.name(id) {
+            return (ast::var(name.clone()), 4);
         }
         let operand = |x: Id, min: u8| {
-            let (t, p) = self.expr_prec(x);
+            let (e, p) = self.expr_prec(x);
             if p < min {
-                quote!((#t))
+                ast::paren(e)
             } else {
-                t
+                e
             }
         };
+        let binary = |a: Id, op: BinOp, b: Id, p: u8| {
+            // The right operand of equal precedence is parenthesized (see above).
+            let (a, b) = (operand(a, p), operand(b, p + 1));
+            (ast::binary(a, op, b), p)
+        };
         match self.g.node(id) {
-            Node::Const(bits) => {
-                let c = f64::from_bits(bits);
-                (
-                    self.constant(c),
-                    if c < 0.0 && self.scalar != Scalar::Generic {
-                        3
-                    } else {
-                        4
-                    },
-                )
-            }
-            Node::Input(i) => {
-                let name = &self.g.input_names[i as usize];
-                let (array, index) = name.split_once('[').expect("inputs are array elements");
-                let array = format_ident!("{array}");
-                let index: usize = index.trim_end_matches(']').parse().expect("an index");
-                let index = Literal::usize_unsuffixed(index);
-                (quote!(#array[#index]), 4)
-            }
-            Node::Add(a, b) => {
-                let (a, b) = (operand(a, 1), operand(b, 2));
-                (quote!(#a + #b), 1)
-            }
-            Node::Sub(a, b) => {
-                let (a, b) = (operand(a, 1), operand(b, 2));
-                (quote!(#a - #b), 1)
-            }
-            Node::Mul(a, b) => {
-                let (a, b) = (operand(a, 2), operand(b, 3));
-                (quote!(#a * #b), 2)
-            }
-            Node::Div(a, b) => {
-                let (a, b) = (operand(a, 2), operand(b, 3));
-                (quote!(#a / #b), 2)
-            }
-            Node::Neg(a) => {
-                let a = operand(a, 3);
-                (quote!(-#a), 3)
-            }
-            Node::Sin(a) => {
-                let a = operand(a, 4);
-                (quote!(#a.sin()), 4)
-            }
-            Node::Cos(a) => {
-                let a = operand(a, 4);
-                (quote!(#a.cos()), 4)
-            }
-            Node::Sqrt(a) => {
-                let a = operand(a, 4);
-                (quote!(#a.sqrt()), 4)
-            }
-            Node::Max(a, b) => {
-                let (a, b) = (operand(a, 4), self.expr(b));
-                (quote!(#a.max(#b)), 4)
-            }
+            Node::Const(_) | Node::Input(_) => self.atoms.get(id),
+            Node::Add(a, b) => binary(a, BinOp::Add(Default::default()), b, 1),
+            Node::Sub(a, b) => binary(a, BinOp::Sub(Default::default()), b, 1),
+            Node::Mul(a, b) => binary(a, BinOp::Mul(Default::default()), b, 2),
+            Node::Div(a, b) => binary(a, BinOp::Div(Default::default()), b, 2),
+            Node::Neg(a) => (ast::neg(operand(a, 3)), 3),
+            Node::Sin(a) => (ast::method(operand(a, 4), "sin", None), 4),
+            Node::Cos(a) => (ast::method(operand(a, 4), "cos", None), 4),
+            Node::Sqrt(a) => (ast::method(operand(a, 4), "sqrt", None), 4),
+            Node::Max(a, b) => (ast::method(operand(a, 4), "max", Some(self.expr(b))), 4),
         }
     }
 
     /// Emits the `let`s needed by `roots`.
     fn bind(&mut self, roots: &[Id]) {
-        let live = self.g.live(roots);
-        let mut uses: BTreeMap<Id, usize> = BTreeMap::new();
-        for &id in &live {
-            for c in self.g.node(id).children() {
-                *uses.entry(c).or_default() += 1;
+        let g = self.g;
+        // The nodes the roots depend on (as `Graph::live`), and how often each is used.
+        let mut is_live = vec![false; g.nodes.len()];
+        let mut stack = roots.to_vec();
+        while let Some(id) = stack.pop() {
+            if !std::mem::replace(&mut is_live[id.0 as usize], true) {
+                stack.extend(operands(g.node(id)));
+            }
+        }
+        let live = || {
+            (0..g.nodes.len() as u32)
+                .map(Id)
+                .filter(|id| is_live[id.0 as usize])
+        };
+        let mut uses = vec![0usize; g.nodes.len()];
+        for id in live() {
+            for c in operands(g.node(id)) {
+                uses[c.0 as usize] += 1;
             }
         }
         for r in roots {
-            *uses.entry(*r).or_default() += 2;
+            uses[r.0 as usize] += 2;
         }
-        let live_set: BTreeSet<Id> = live.iter().copied().collect();
-        let mut sizes: BTreeMap<Id, usize> = BTreeMap::new();
-        for &id in &live {
-            if self.names.contains_key(&id) {
+        let mut sizes = vec![0usize; g.nodes.len()];
+        for id in live() {
+            if self.name(id).is_some() {
                 continue;
             }
-            let node = self.g.node(id);
+            let node = g.node(id);
             match node {
                 Node::Const(_) | Node::Input(_) => continue,
                 Node::Sin(a) | Node::Cos(a) => {
-                    let (sin, cos) = (self.g.lookup(Node::Sin(a)), self.g.lookup(Node::Cos(a)));
+                    let (sin, cos) = (g.lookup(Node::Sin(a)), g.lookup(Node::Cos(a)));
                     if let (Some(s), Some(c)) = (sin, cos) {
-                        if live_set.contains(&s) && live_set.contains(&c) {
+                        if is_live[s.0 as usize] && is_live[c.0 as usize] {
                             let (arg, p) = self.expr_prec(a);
-                            let arg = if p < 4 { quote!((#arg)) } else { arg };
+                            let arg = if p < 4 { ast::paren(arg) } else { arg };
                             let (sn, cn) = (format_ident!("s{}", s.0), format_ident!("c{}", c.0));
-                            self.stmts.push(quote!(let (#sn, #cn) = #arg.sin_cos();));
-                            self.names.insert(s, quote!(#sn));
-                            self.names.insert(c, quote!(#cn));
+                            let value = ast::method(arg, "sin_cos", None);
+                            self.stmts
+                                .push(ast::let_pair(sn.clone(), cn.clone(), value));
+                            self.names[s.0 as usize] = Some(sn);
+                            self.names[c.0 as usize] = Some(cn);
                             continue;
                         }
                     }
@@ -202,41 +418,36 @@ impl Body<'_> {
             }
             // Inline size of this node's expression: a node used once is still bound when
             // its expression grows large, which keeps lines readable and emission linear.
-            let size = 1 + node
-                .children()
-                .iter()
-                .filter(|c| !self.names.contains_key(c))
-                .map(|c| sizes.get(c).copied().unwrap_or(0))
+            let size = 1 + operands(node)
+                .filter(|&c| self.name(c).is_none())
+                .map(|c| sizes[c.0 as usize])
                 .sum::<usize>();
-            sizes.insert(id, size);
-            if uses.get(&id).copied().unwrap_or(0) > 1 || size > 12 {
+            sizes[id.0 as usize] = size;
+            if uses[id.0 as usize] > 1 || size > 12 {
                 let value = self.expr(id);
                 let name = format_ident!("t{}", id.0);
-                self.stmts.push(quote!(let #name = #value;));
-                self.names.insert(id, quote!(#name));
+                self.stmts.push(ast::let_one(name.clone(), value));
+                self.names[id.0 as usize] = Some(name);
             }
         }
     }
 }
 
-fn shaped(f: &Function, values: &[TokenStream]) -> TokenStream {
+/// The flat results of `f` arranged in its shape.
+fn shaped(f: &Function, values: Vec<Expr>) -> Expr {
+    let mut values = values.into_iter();
+    let mut take = |n: usize| ast::array(values.by_ref().take(n));
     match &f.shape {
-        Shape::Vector(_) => quote!([#(#values),*]),
-        Shape::Matrix(n) => {
-            let rows = values.chunks(*n).map(|r| quote!([#(#r),*]));
-            quote!([#(#rows),*])
+        Shape::Vector(n) => take(*n),
+        Shape::Matrix(n) => ast::array((0..*n).map(|_| take(*n))),
+        Shape::Actuation { motors, tendons } => {
+            let m = take(*motors);
+            ast::pair(m, take(*tendons))
         }
-        Shape::Actuation { motors, .. } => {
-            let (m, t) = values.split_at(*motors);
-            quote!(([#(#m),*], [#(#t),*]))
-        }
-        Shape::Wrenches(_) => {
-            let w = values.chunks(6).map(|c| {
-                let (f, n) = c.split_at(3);
-                quote!([[#(#f),*], [#(#n),*]])
-            });
-            quote!([#(#w),*])
-        }
+        Shape::Wrenches(n) => ast::array((0..*n).map(|_| {
+            let force = take(3);
+            ast::array([force, take(3)])
+        })),
     }
 }
 
@@ -300,7 +511,6 @@ fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
 pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -> String {
     let t = scalar.ty();
     let generics = scalar.generics();
-    let mut items = Vec::new();
     let n = model.dof;
     let (nm, nt) = (model.motors.len(), model.tendons.len());
     let a = model.structure_matrix();
@@ -321,36 +531,36 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         Literal::usize_unsuffixed(nt),
     );
     let a_doc = " The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).";
-    items.push(quote! {
+    let mut file: syn::File = parse_quote! {
+        #[allow(unused_imports)]
+        use tendyn_core::real::Real;
         #[doc = #a_doc]
         pub const STRUCTURE_MATRIX: [[f64; #nt]; #n] = [#(#a_rows),*];
-    });
-    items.push(quote! {
         /// Degrees of freedom (joint coordinates `q`).
         pub const DOF: usize = #n;
         /// Motors, in file order.
         pub const MOTORS: usize = #nm;
         /// Open-ended tendons, in file order.
         pub const TENDONS: usize = #nt;
-    });
+    };
+    let params = |params: &[Param]| -> Vec<TokenStream> {
+        params
+            .iter()
+            .map(|&p| {
+                let pn = format_ident!("{}", p.name());
+                let len = Literal::usize_unsuffixed(param_len(model, p));
+                quote!(#pn: &[#t; #len])
+            })
+            .collect()
+    };
+    let atoms = Atoms::new(&traced.graph, scalar);
     for f in &traced.functions {
-        let mut body = Body {
-            g: &traced.graph,
-            scalar,
-            names: BTreeMap::new(),
-            stmts: Vec::new(),
-        };
+        let mut body = Body::new(&atoms);
         body.bind(&f.results);
-        let values: Vec<TokenStream> = f.results.iter().map(|&r| body.expr(r)).collect();
+        let values = f.results.iter().map(|&r| body.expr(r)).collect();
         let ret = return_type(f, &t);
-        let result = shaped(f, &values);
         let name = format_ident!("{}", f.output.name());
-        let params = f.output.params().iter().map(|&p| {
-            let pn = format_ident!("{}", p.name());
-            let len = Literal::usize_unsuffixed(param_len(model, p));
-            quote!(#pn: &[#t; #len])
-        });
-        let stmts = &body.stmts;
+        let params = params(f.output.params());
         let closed = f
             .closed_ops
             .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
@@ -364,22 +574,22 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
             },
         );
         let d = d.lines().map(|l| quote!(#[doc = #l]));
-        items.push(quote! {
+        let mut item: syn::ItemFn = parse_quote! {
             #(#d)*
             #[inline]
             #[allow(unused_variables, unused_parens, clippy::all)]
-            pub fn #name #generics (#(#params),*) -> #ret {
-                #(#stmts)*
-                #result
-            }
-        });
+            pub fn #name #generics (#(#params),*) -> #ret {}
+        };
+        item.block.stmts = body.stmts;
+        item.block.stmts.push(Stmt::Expr(shaped(f, values), None));
+        file.items.push(syn::Item::Fn(item));
     }
     // `all`: every output, sharing their work.
-    let mut params: Vec<Param> = Vec::new();
+    let mut all_params: Vec<Param> = Vec::new();
     for f in &traced.functions {
         for &p in f.output.params() {
-            if !params.contains(&p) {
-                params.push(p);
+            if !all_params.contains(&p) {
+                all_params.push(p);
             }
         }
     }
@@ -388,12 +598,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         .iter()
         .flat_map(|f| f.results.iter().copied())
         .collect();
-    let mut body = Body {
-        g: &traced.graph,
-        scalar,
-        names: BTreeMap::new(),
-        stmts: Vec::new(),
-    };
+    let mut body = Body::new(&atoms);
     body.bind(&roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
@@ -402,22 +607,19 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         quote!(#[doc = #d] pub #name: #ty)
     });
     let mut offset = 0;
-    let inits = traced.functions.iter().map(|f| {
-        let name = format_ident!("{}", f.output.name());
-        let values: Vec<TokenStream> = roots[offset..offset + f.results.len()]
-            .iter()
-            .map(|&r| body.expr(r))
-            .collect();
-        offset += f.results.len();
-        let v = shaped(f, &values);
-        quote!(#name: #v)
-    });
-    let stmts = &body.stmts;
-    let param_tokens = params.iter().map(|&p| {
-        let pn = format_ident!("{}", p.name());
-        let len = Literal::usize_unsuffixed(param_len(model, p));
-        quote!(#pn: &[#t; #len])
-    });
+    let inits: Vec<(Ident, Expr)> = traced
+        .functions
+        .iter()
+        .map(|f| {
+            let values = roots[offset..offset + f.results.len()]
+                .iter()
+                .map(|&r| body.expr(r))
+                .collect();
+            offset += f.results.len();
+            (ast::ident(f.output.name()), shaped(f, values))
+        })
+        .collect();
+    let param_tokens = params(&all_params);
     let count = traced.graph.count(&roots);
     let all_doc =
         format!(" Every generated output at once, sharing their common work. Operations: {count}.");
@@ -425,27 +627,25 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         Scalar::Generic => quote!(<T>),
         _ => quote!(),
     };
-    items.push(quote! {
+    let outputs: syn::Item = parse_quote! {
         /// Every requested output of [`all`].
         #[derive(Clone, Copy, Debug)]
         pub struct Outputs #struct_generics {
             #(#fields),*
         }
+    };
+    let mut all: syn::ItemFn = parse_quote! {
         #[doc = #all_doc]
         #[inline]
         #[allow(unused_variables, unused_parens, clippy::all)]
-        pub fn all #generics (#(#param_tokens),*) -> Outputs #struct_generics {
-            #(#stmts)*
-            Outputs { #(#inits),* }
-        }
-    });
-    let file = quote! {
-        #[allow(unused_imports)]
-        use tendyn_core::real::Real;
-        #(#items)*
+        pub fn all #generics (#(#param_tokens),*) -> Outputs #struct_generics {}
     };
-    let parsed: syn::File = syn::parse2(file).expect("emitted code parses");
-    let pretty = prettyplease::unparse(&parsed);
+    all.block.stmts = body.stmts;
+    all.block
+        .stmts
+        .push(Stmt::Expr(ast::struct_literal("Outputs", inits), None));
+    file.items.extend([outputs, syn::Item::Fn(all)]);
+    let pretty = prettyplease::unparse(&file);
     let outputs: Vec<&str> = traced.functions.iter().map(|f| f.output.name()).collect();
     format!(
         "// @generated by tendyn-codegen {} from `{}` ({source}). Do not edit.\n\
