@@ -11,13 +11,8 @@ fn example(name: &str) -> String {
     .unwrap()
 }
 
-/// Example 3 with link 3's mass and inertia, a pulley's inertia and gravity as parameters.
 fn parametric_finger() -> String {
-    example("example3_stanford_jpl")
-        .replacen("    tension_floor: 5.0,", "    tension_floor: 5.0,\n    parameters: [(name: \"m3\", value: 0.02), (name: \"i3zz\", value: 0.0000030), (name: \"g\", value: -9.81), (name: \"i8\", value: 0.000000049)],", 1)
-        .replacen("gravity: (0.0, 0.0, -9.81)", "gravity: (0.0, 0.0, \"g\")", 1)
-        .replacen("            mass: 0.02,\n            com: (-0.02, 0.0, 0.0),\n            inertia: (xx: 0.0000006, yy: 0.0000030, zz: 0.0000030),", "            mass: \"m3\",\n            com: (-0.02, 0.0, 0.0),\n            inertia: (xx: 0.0000006, yy: 0.0000030, zz: \"i3zz\"),", 1)
-        .replacen("yy: 0.0000000245, zz: 0.000000049)", "yy: 0.0000000245, zz: \"i8\")", 1)
+    tendyn_spec::parametric::finger()
 }
 
 #[test]

@@ -4,12 +4,16 @@
 #[allow(unused_imports)]
 use tendyn_core::real::Real;
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
+#[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 0]; 2] = [[], []];
 /// Degrees of freedom (joint coordinates `q`).
+#[allow(dead_code)]
 pub const DOF: usize = 2;
 /// Motors, in file order.
+#[allow(dead_code)]
 pub const MOTORS: usize = 2;
 /// Open-ended tendons, in file order.
+#[allow(dead_code)]
 pub const TENDONS: usize = 0;
 /// Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext` (N·m, per joint).
 ///
@@ -17,7 +21,7 @@ pub const TENDONS: usize = 0;
 ///
 /// Operations (closed form): 20 arithmetic (7 add/sub, 13 mul, 0 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
     let t620 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
@@ -34,7 +38,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
 ///
 /// Operations (closed form): 27 arithmetic (9 add/sub, 18 mul, 0 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T; 0]) {
     let (s68, c69) = q[1].sin_cos();
     let t667 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
@@ -57,7 +61,7 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T;
 ///
 /// Operations (closed form): 4 arithmetic (2 add/sub, 2 mul, 0 div, 0 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t69 = q[1].cos();
     let t616 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
@@ -70,7 +74,7 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 ///
 /// Operations (closed form): 9 arithmetic (1 add/sub, 7 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 1 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t68 = q[1].sin();
     let t627 = T::from_f64(0.03) * t68;
@@ -84,7 +88,7 @@ pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
 ///
 /// Operations (traced recursion): 0 arithmetic (0 add/sub, 0 mul, 0 div, 0 neg, 0 max), 0 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
     [T::from_f64(0.0), T::from_f64(0.0)]
 }
@@ -94,7 +98,7 @@ pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
 ///
 /// Operations (closed form): 37 arithmetic (13 add/sub, 21 mul, 3 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -122,7 +126,7 @@ pub fn forward_dynamics<T: Real>(
 ///
 /// Operations (closed form): 20 arithmetic (8 add/sub, 12 mul, 0 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
     let t736 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
@@ -140,7 +144,7 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
 ///
 /// Operations (traced recursion): 223 arithmetic (97 add/sub, 126 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
@@ -247,11 +251,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
-/// Entries: link1, link2.
+/// Entries: force, moment about the base origin.
 ///
 /// Operations (traced recursion): 230 arithmetic (97 add/sub, 133 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -368,9 +372,9 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 385 arithmetic (165 add/sub, 216 mul, 3 div, 1 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 344 arithmetic (153 add/sub, 188 mul, 3 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -384,13 +388,15 @@ pub fn all<T: Real>(
     let (s68, c69) = q[1].sin_cos();
     let t71 = qd[0] + qd[1];
     let t72 = qdd[0] + qdd[1];
+    let t73 = t57 * c69;
+    let t77 = t57 * s68;
+    let t83 = t71 * (T::from_f64(0.25) * t71);
+    let t92 = t71 * (t71 * T::from_f64(0.125));
     let t105 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t108 = T::from_f64(0.8)
-        * (t55 * s68 - t57 * c69 - t71 * (T::from_f64(0.25) * t71)
-            + t71 * (t71 * T::from_f64(0.125)));
+    let t108 = T::from_f64(0.8) * (t55 * s68 - t73 - t83 + t92);
     let t109 = T::from_f64(0.8)
-        * (t57 * s68 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
+        * (t77 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
     let t120 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
         + T::from_f64(0.25) * t109;
     let t131 = s68 * T::from_f64(0.9810000000000001);
@@ -402,6 +408,8 @@ pub fn all<T: Real>(
         - T::from_f64(5.886);
     let t157 = t120 + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
         + T::from_f64(0.3) * t143;
+    let t179 = t105 + t157;
+    let t181 = t120 + T::from_f64(0.6666666666666667) * t105;
     let t184 = c69 * T::from_f64(0.9994442900376633);
     let t186 = T::from_f64(0.03333333333333362) * s68;
     let t187 = t186 - t184;
@@ -451,6 +459,10 @@ pub fn all<T: Real>(
     let t322 = s68 * t262 + c69 * t264;
     let t333 = t289 + T::from_f64(0.3) * t297;
     let t334 = t290 + T::from_f64(0.3) * t304;
+    let t401 = t157 - t120 * T::from_f64(1.4999999999999958);
+    let t405 = t105
+        + (T::from_f64(0.0000000000000000047704895589362195) * t157
+            + T::from_f64(1.5000000000000002) * t120);
     let t406 = T::from_f64(20.0)
         + (T::from_f64(25.0) * t120
             - t157 * T::from_f64(0.000000000000000009071958584846753));
@@ -461,8 +473,7 @@ pub fn all<T: Real>(
     let t417 = t143 + t297 * t406 + t304 * t407;
     let t427 = t131 + t311 * t406 + t319 * t407;
     let t428 = t156 + t315 * t406 + t322 * t407;
-    let t430 = t157 + t333 * t406 + t334 * t407
-        - (t157 - t120 * T::from_f64(1.4999999999999958));
+    let t430 = t157 + t333 * t406 + t334 * t407 - t401;
     let t431 = t252 * t406;
     let t432 = t191 * t406;
     let t436 = t223 * t407;
@@ -474,10 +485,7 @@ pub fn all<T: Real>(
     let t451 = t120 + t289 * t406 + t290 * t407;
     let t458 = t272 * t407 - t205 * t406;
     let t459 = t271 * t406 - t243 * t407;
-    let t464 = t105 + t274 * t406 + t275 * t407
-        - (t105
-            + (T::from_f64(0.0000000000000000047704895589362195) * t157
-                + T::from_f64(1.5000000000000002) * t120));
+    let t464 = t105 + t274 * t406 + t275 * t407 - t405;
     let t465 = t431 + t436;
     let t466 = t437 - t432;
     let t469 = (t200 - t199) * t406 + (t237 - t236) * t407;
@@ -491,52 +499,35 @@ pub fn all<T: Real>(
     let t489 = s52 * t131 + c53 * t156
         + (s52 * t311 + c53 * t315 - T::from_f64(0.02) * t205) * t406
         + (s52 * t319 + c53 * t322 - T::from_f64(0.02) * t241) * t407;
-    let t490 = t105 + t157 + (t274 + t333) * t406 + (t275 + t334) * t407;
-    let t614 = c69 * T::from_f64(0.06);
-    let t616 = t614 + T::from_f64(0.1247117);
-    let t618 = T::from_f64(0.03) * c69;
-    let t620 = t618 + T::from_f64(0.016696700000000002);
-    let t623 = s68 * T::from_f64(0.06);
-    let t627 = T::from_f64(0.03) * s68;
-    let t629 = qd[1] * t627;
-    let t633 = qd[1] * (qd[0] * t623 + t629);
-    let t634 = -t633;
-    let t636 = qdd[0] * t616 + (qdd[1] * t620 - t633);
-    let t639 = qd[0] * t627;
-    let t640 = qd[0] * t639;
-    let t642 = qdd[0] * t620 + (qdd[1] * T::from_f64(0.0166867) + t640);
-    let t668 = qdd[0]
-        * (c69 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + (qdd[1] * (t618 + T::from_f64(-0.00833334999999993))
-            - (qd[0] * (qd[0] * (s68 * T::from_f64(0.04499999999999987)) + qd[1] * t623)
-                + qd[1] * t629));
-    let t680 = qdd[0]
-        * (c69 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
-        + (qdd[1] * T::from_f64(0.025030050000000005)
-            + qd[0] * (qd[0] * (s68 * T::from_f64(0.045000000000000005))));
-    let t682 = t618 + T::from_f64(0.0166967);
-    let t685 = t682 / t616;
-    let t713 = motor_torques[1] * (T::from_f64(0.6666666666666667) - t685)
-        - motor_torques[0] * t685 - qd[1] * (qd[1] * (s68 * (T::from_f64(0.03) * t685)))
-        - qd[0] * (t639 + qd[1] * (s68 * (T::from_f64(0.06) * t685)));
-    let t720 = t713
-        / (T::from_f64(0.0166867) + t685 * (t685 * (T::from_f64(-0.1247117) - t614)));
-    let t724 = (motor_torques[0] + motor_torques[1] + t633) / t616 - t685 * t720;
-    let t736 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
-        + (qdd[1] * T::from_f64(0.4166675)
-            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s68 * T::from_f64(0.75)))));
-    let t755 = qdd[0]
-        * (T::from_f64(-0.4166675000000001) - c69 * T::from_f64(0.7500000000000001))
-        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s68 * T::from_f64(0.7500000000000001)))
-            - qdd[1] * T::from_f64(0.4166675000000001));
+    let t490 = t179 + (t274 + t333) * t406 + (t275 + t334) * t407;
+    let t498 = T::from_f64(0.8)
+        * (T::from_f64(-0.125) + (T::from_f64(0.25) + T::from_f64(0.3) * c69));
+    let t522 = T::from_f64(0.0041667) - T::from_f64(0.125) * t498
+        + T::from_f64(0.25) * t498 + T::from_f64(-0.018000000000000002)
+        + T::from_f64(0.3)
+            * (s68 * (T::from_f64(0.8) * (T::from_f64(0.3) * s68)) + c69 * t498
+                + T::from_f64(0.18));
+    let t533 = T::from_f64(0.000045) + t522;
+    let t561 = T::from_f64(0.000030000000000000004)
+        + (T::from_f64(0.0166667) + T::from_f64(0.3) * (T::from_f64(0.1) * c69));
+    let t569 = T::from_f64(0.8) * t77;
+    let t574 = T::from_f64(0.25) * t569 - T::from_f64(0.125) * t569;
+    let t588 = t574
+        + T::from_f64(0.3)
+            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t569);
+    let t601 = motor_torques[0] + motor_torques[1] - t588;
+    let t603 = t561 / t533;
+    let t610 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t574 - t601 * t603)
+        / (T::from_f64(0.0166867) - t533 * (t603 * t603));
+    let t612 = t601 / t533 - t603 * t610;
     Outputs {
-        generalized_forces: [t636, t642],
-        actuation: ([t668, t680], []),
-        mass_matrix: [[t616, t682], [t682, T::from_f64(0.0166867)]],
-        bias: [t634, t640],
+        generalized_forces: [t179, t181],
+        actuation: ([t401, t405], []),
+        mass_matrix: [[t533, t561], [t561, T::from_f64(0.0166867)]],
+        bias: [t588, t574],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t724, t720],
-        segment_tensions: [t736, t755],
+        forward_dynamics: [t612, t610],
+        segment_tensions: [t406, t407],
         bearings: [
             [[t416, t417, T::from_f64(19.62)], [t427, t428, t430]],
             [[t438, t439, T::from_f64(7.848000000000001)], [t449, t450, t451]],

@@ -4,15 +4,19 @@
 #[allow(unused_imports)]
 use tendyn_core::real::Real;
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
+#[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 3]; 2] = [
     [-0.03f64, -0.03f64, 0.04f64],
     [0.02f64, -0.02f64, 0f64],
 ];
 /// Degrees of freedom (joint coordinates `q`).
+#[allow(dead_code)]
 pub const DOF: usize = 2;
 /// Motors, in file order.
+#[allow(dead_code)]
 pub const MOTORS: usize = 0;
 /// Open-ended tendons, in file order.
+#[allow(dead_code)]
 pub const TENDONS: usize = 3;
 /// Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext` (N·m, per joint).
 ///
@@ -20,51 +24,49 @@ pub const TENDONS: usize = 3;
 ///
 /// Operations (closed form): 20 arithmetic (7 add/sub, 13 mul, 0 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s89, c90) = q[1].sin_cos();
-    let t991 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
-    let t998 = s89 * T::from_f64(0.03);
-    let t1007 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t991 - qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t998));
-    let t1013 = qdd[0] * t991
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t998));
-    [t1007, t1013]
+    let t989 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
+    let t996 = s89 * T::from_f64(0.03);
+    let t1005 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t989 - qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t996));
+    let t1011 = qdd[0] * t989
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t996));
+    [t1005, t1011]
 }
 /// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
 ///
 /// Entries: tendon T32, tendon T42, tendon T11.
 ///
-/// Operations (closed form): 100 arithmetic (39 add/sub, 58 mul, 0 div, 0 neg, 3 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (closed form): 90 arithmetic (39 add/sub, 48 mul, 0 div, 0 neg, 3 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 0], [T; 3]) {
     let (s89, c90) = q[1].sin_cos();
-    let t1016 = c90 * T::from_f64(0.22058823529411686);
-    let t1022 = c90 * T::from_f64(0.2647058823529412);
-    let t1040 = qd[0]
+    let t1014 = c90 * T::from_f64(0.22058823529411686);
+    let t1020 = c90 * T::from_f64(0.2647058823529412);
+    let t1038 = qd[0]
         * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
             + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t1047 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t1085 = qdd[1]
-        * (c90 * T::from_f64(0.26470588235294107) + T::from_f64(0.5642266176470586))
-        + (qd[0]
-            * (qd[0] * (s89 * T::from_f64(0.7499999999999997))
-                - qd[1] * (s89 * T::from_f64(0.5294117647058821)))
-            + (T::from_f64(4.999999999999999)
-                - qd[1] * (qd[1] * (s89 * T::from_f64(0.26470588235294107)))));
-    let t1087 = T::from_f64(0.0)
+    let t1045 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
+    let t1053 = c90 * T::from_f64(1.279411764705882);
+    let t1058 = c90 * T::from_f64(0.2647058823529411);
+    let t1064 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
+    let t1069 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
+    let t1078 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
+    let t1084 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t1016)
-                + (qdd[1] * (t1022 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t1047 - t1040)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t1014)
+                + (qdd[1] * (t1020 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t1045 - t1038)),
         )
         .max(
-            qdd[0]
-                * (c90 * T::from_f64(1.2794117647058818)
-                    + T::from_f64(1.5170648529411759)) + t1085,
+            qdd[0] * (t1053 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t1058 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t1064 - t1069) + (T::from_f64(5.0) - t1078))),
         );
-    let t1112 = qdd[0]
+    let t1109 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
@@ -72,29 +74,22 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 0], [T;
                 * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t1113 = t1087.max(t1112);
-    let t1124 = qdd[0] * (t1016 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1022)
-            + (t1040 + (t1047 + t1113)));
-    let t1156 = qdd[1]
-        * (T::from_f64(-0.5642266176470587) - c90 * T::from_f64(0.2647058823529411))
-        + (qd[0]
-            * (qd[1] * (s89 * T::from_f64(0.5294117647058822))
-                - qd[0] * (s89 * T::from_f64(0.7499999999999998)))
-            + (qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)))
-                + T::from_f64(1.0000000000000002) * t1113));
-    let t1157 = qdd[0]
-        * (T::from_f64(-1.517064852941176) - c90 * T::from_f64(1.279411764705882))
-        + t1156;
-    let t1186 = qdd[0]
+    let t1110 = t1084.max(t1109);
+    let t1121 = qdd[0] * (t1014 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1020)
+            + (t1038 + (t1045 + t1110)));
+    let t1139 = qdd[0] * (T::from_f64(-1.517064852941176) - t1053)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1058)
+            + (qd[0] * (t1069 - t1064) + (t1078 + t1110)));
+    let t1168 = qdd[0]
         * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t1113
+            + (T::from_f64(1.5000000000000002) * t1110
                 - qd[1]
                     * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    ([], [t1124, t1157, t1186])
+    ([], [t1121, t1139, t1168])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -102,12 +97,12 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 0], [T;
 ///
 /// Operations (closed form): 4 arithmetic (2 add/sub, 2 mul, 0 div, 0 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t90 = q[1].cos();
-    let t988 = t90 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t991 = T::from_f64(0.0166667) + t90 * T::from_f64(0.03);
-    [[t988, t991], [t991, T::from_f64(0.0166867)]]
+    let t986 = t90 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t989 = T::from_f64(0.0166667) + t90 * T::from_f64(0.03);
+    [[t986, t989], [t989, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -115,13 +110,13 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 ///
 /// Operations (closed form): 9 arithmetic (1 add/sub, 7 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 1 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t89 = q[1].sin();
-    let t998 = t89 * T::from_f64(0.03);
-    let t1005 = -(qd[1] * (qd[0] * (t89 * T::from_f64(0.06)) + qd[1] * t998));
-    let t1011 = qd[0] * (qd[0] * t998);
-    [t1005, t1011]
+    let t996 = t89 * T::from_f64(0.03);
+    let t1003 = -(qd[1] * (qd[0] * (t89 * T::from_f64(0.06)) + qd[1] * t996));
+    let t1009 = qd[0] * (qd[0] * t996);
+    [t1003, t1009]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -129,7 +124,7 @@ pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
 ///
 /// Operations (traced recursion): 0 arithmetic (0 add/sub, 0 mul, 0 div, 0 neg, 0 max), 0 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
     [T::from_f64(0.0), T::from_f64(0.0)]
 }
@@ -139,7 +134,7 @@ pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
 ///
 /// Operations (closed form): 45 arithmetic (16 add/sub, 26 mul, 3 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -147,58 +142,56 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s89, c90) = q[1].sin_cos();
-    let t986 = c90 * T::from_f64(0.06);
-    let t988 = t986 + T::from_f64(0.1247117);
-    let t998 = s89 * T::from_f64(0.03);
-    let t1191 = (T::from_f64(0.0166667) + c90 * T::from_f64(0.03)) / t988;
-    let t1203 = T::from_f64(0.03) * t1191;
-    let t1223 = tendon_tensions[0] * (T::from_f64(0.02) + t1203)
-        + (tendon_tensions[1] * (T::from_f64(-0.02) + t1203)
-            - tendon_tensions[2] * (T::from_f64(0.04) * t1191))
-        - qd[1] * (qd[1] * (s89 * t1203))
-        - qd[0] * (qd[0] * t998 + qd[1] * (s89 * (T::from_f64(0.06) * t1191)));
-    let t1230 = t1223
-        / (T::from_f64(0.0166867) + t1191 * (t1191 * (T::from_f64(-0.1247117) - t986)));
-    let t1235 = (qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t998)
+    let t984 = c90 * T::from_f64(0.06);
+    let t986 = t984 + T::from_f64(0.1247117);
+    let t996 = s89 * T::from_f64(0.03);
+    let t1173 = (T::from_f64(0.0166667) + c90 * T::from_f64(0.03)) / t986;
+    let t1185 = T::from_f64(0.03) * t1173;
+    let t1205 = tendon_tensions[0] * (T::from_f64(0.02) + t1185)
+        + (tendon_tensions[1] * (T::from_f64(-0.02) + t1185)
+            - tendon_tensions[2] * (T::from_f64(0.04) * t1173))
+        - qd[1] * (qd[1] * (s89 * t1185))
+        - qd[0] * (qd[0] * t996 + qd[1] * (s89 * (T::from_f64(0.06) * t1173)));
+    let t1212 = t1205
+        / (T::from_f64(0.0166867) + t1173 * (t1173 * (T::from_f64(-0.1247117) - t984)));
+    let t1217 = (qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t996)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
-            - tendon_tensions[0] * T::from_f64(0.03))) / t988 - t1191 * t1230;
-    [t1235, t1230]
+            - tendon_tensions[0] * T::from_f64(0.03))) / t986 - t1173 * t1212;
+    [t1217, t1212]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: T32#0, T32#1, T42#0, T42#1, T11#0.
 ///
-/// Operations (closed form): 112 arithmetic (47 add/sub, 62 mul, 0 div, 0 neg, 3 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (closed form): 102 arithmetic (47 add/sub, 52 mul, 0 div, 0 neg, 3 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s89, c90) = q[1].sin_cos();
-    let t1016 = c90 * T::from_f64(0.22058823529411686);
-    let t1022 = c90 * T::from_f64(0.2647058823529412);
-    let t1040 = qd[0]
+    let t1014 = c90 * T::from_f64(0.22058823529411686);
+    let t1020 = c90 * T::from_f64(0.2647058823529412);
+    let t1038 = qd[0]
         * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
             + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t1047 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t1085 = qdd[1]
-        * (c90 * T::from_f64(0.26470588235294107) + T::from_f64(0.5642266176470586))
-        + (qd[0]
-            * (qd[0] * (s89 * T::from_f64(0.7499999999999997))
-                - qd[1] * (s89 * T::from_f64(0.5294117647058821)))
-            + (T::from_f64(4.999999999999999)
-                - qd[1] * (qd[1] * (s89 * T::from_f64(0.26470588235294107)))));
-    let t1087 = T::from_f64(0.0)
+    let t1045 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
+    let t1053 = c90 * T::from_f64(1.279411764705882);
+    let t1058 = c90 * T::from_f64(0.2647058823529411);
+    let t1064 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
+    let t1069 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
+    let t1078 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
+    let t1084 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t1016)
-                + (qdd[1] * (t1022 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t1047 - t1040)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t1014)
+                + (qdd[1] * (t1020 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t1045 - t1038)),
         )
         .max(
-            qdd[0]
-                * (c90 * T::from_f64(1.2794117647058818)
-                    + T::from_f64(1.5170648529411759)) + t1085,
+            qdd[0] * (t1053 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t1058 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t1064 - t1069) + (T::from_f64(5.0) - t1078))),
         );
-    let t1112 = qdd[0]
+    let t1109 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
@@ -206,40 +199,34 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
                 * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t1113 = t1087.max(t1112);
-    let t1122 = t1040 + (t1047 + t1113);
-    let t1124 = qdd[0] * (t1016 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1022) + t1122);
-    let t1127 = c90 * T::from_f64(1.279411764705882);
-    let t1134 = c90 * T::from_f64(0.2647058823529411);
-    let t1155 = qd[0]
-        * (qd[1] * (s89 * T::from_f64(0.5294117647058822))
-            - qd[0] * (s89 * T::from_f64(0.7499999999999998)))
-        + (qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)))
-            + T::from_f64(1.0000000000000002) * t1113);
-    let t1157 = qdd[0] * (T::from_f64(-1.517064852941176) - t1127)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1134) + t1155);
-    let t1186 = qdd[0]
+    let t1110 = t1084.max(t1109);
+    let t1119 = t1038 + (t1045 + t1110);
+    let t1121 = qdd[0] * (t1014 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1020) + t1119);
+    let t1137 = qd[0] * (t1069 - t1064) + (t1078 + t1110);
+    let t1139 = qdd[0] * (T::from_f64(-1.517064852941176) - t1053)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1058) + t1137);
+    let t1168 = qdd[0]
         * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t1113
+            + (T::from_f64(1.5000000000000002) * t1110
                 - qd[1]
                     * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    let t1243 = qdd[0] * (t1016 + T::from_f64(-0.6829798529411769))
-        + (t1122 + qdd[1] * (T::from_f64(0.26960838235294077) - t1022));
-    let t1251 = qdd[0] * (T::from_f64(-1.516314852941176) - t1127)
-        + (t1155 + qdd[1] * (T::from_f64(-0.5637266176470587) - t1134));
-    [t1243, t1124, t1251, t1157, t1186]
+    let t1225 = qdd[0] * (t1014 + T::from_f64(-0.6829798529411769))
+        + (t1119 + qdd[1] * (T::from_f64(0.26960838235294077) - t1020));
+    let t1233 = qdd[0] * (T::from_f64(-1.516314852941176) - t1053)
+        + (t1137 + qdd[1] * (T::from_f64(-0.5637266176470587) - t1058));
+    [t1225, t1121, t1233, t1139, t1168]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 351 arithmetic (152 add/sub, 192 mul, 0 div, 4 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 349 arithmetic (152 add/sub, 190 mul, 0 div, 4 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
     let (s73, c74) = q[0].sin_cos();
     let t76 = T::from_f64(0.3) * qdd[0];
@@ -354,73 +341,73 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         + t527 * T::from_f64(24.999999999999993);
     let t705 = T::from_f64(11.764705882352942) * t601
         + T::from_f64(0.000000000000002943923360032077) * t527;
-    let t716 = T::from_f64(0.0)
+    let t715 = T::from_f64(0.0)
         .max(T::from_f64(5.0) - t694)
-        .max((t701 + T::from_f64(5.0)) * T::from_f64(0.9999999999999998))
+        .max(t701 + T::from_f64(5.0))
         .max((T::from_f64(5.0) - t705) * T::from_f64(0.6666666666666665));
-    let t717 = t694 + t716;
-    let t719 = T::from_f64(1.0000000000000002) * t716 - t701;
-    let t721 = t705 + T::from_f64(1.5000000000000002) * t716;
-    let t742 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78)
-        - (s89 * t514 - c90 * t513) + (c90 * t245 - s89 * t490) * t717;
-    let t748 = (t400 - t402) * t721;
-    let t749 = t407 * t721;
-    let t750 = -t749;
-    let t751 = t742 + (c90 * t332 - s89 * t472) * t719 + t748;
-    let t752 = t590 + t543 * t717 + t550 * t719 - t749;
-    let t763 = c90 * t515 - s89 * t526 + (c90 * t499 - s89 * t501) * t717
-        + (s89 * t483 - c90 * t481) * t719;
-    let t764 = T::from_f64(1.7658) + (s89 * t515 + c90 * t526) - T::from_f64(5.886)
-        + (s89 * t499 + c90 * t501) * t717 - (s89 * t481 + c90 * t483) * t719;
-    let t767 = t601 + (t528 + T::from_f64(0.3) * t543) * t717
-        + (t529 + T::from_f64(0.3) * t550) * t719 + (t468 - (t415 - t416) - t468) * t721;
-    let t768 = t245 * t717;
-    let t769 = t490 * t717;
-    let t772 = t332 * t719;
-    let t773 = t472 * t719;
-    let t774 = t513 + t768 + t772;
-    let t775 = t514 + t769 + t773;
-    let t787 = t515 + t499 * t717 - t481 * t719;
-    let t788 = t526 + t501 * t717 - t483 * t719;
-    let t789 = t527 + t528 * t717 + t529 * t719;
-    let t790 = t235 + t768;
-    let t791 = t238 - t237 + t769;
-    let t795 = -(t264 + t268 * t717);
-    let t796 = t322 + t772;
-    let t797 = t325 - t324 + t773;
-    let t799 = t351 - t350 + (t354 - t353) * t719;
-    let t800 = (t416 - t415) * t721;
-    let t805 = t270 - t269 - (T::from_f64(-0.9506914539363203) + t279) * t717;
-    let t807 = -(t275 + (T::from_f64(0.31013829078726374) + t282) * t717);
-    let t810 = t136 - (t275 * t287 - (t269 - t270) * t291)
-        - (t282 * t287 - t279 * t291 + T::from_f64(-0.029999999999999995)) * t717;
-    let t815 = t357 - t356 - (T::from_f64(-0.9968453000901664) + t366) * t719;
-    let t817 = -(t362 + (T::from_f64(-0.0793690600180332) + t369) * t719);
-    let t820 = t132 - (t362 * t374 - (t356 - t357) * t378)
-        - (T::from_f64(-0.03) + (t369 * t374 - t366 * t378)) * t719;
+    let t716 = t694 + t715;
+    let t717 = t715 - t701;
+    let t719 = t705 + T::from_f64(1.5000000000000002) * t715;
+    let t740 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78)
+        - (s89 * t514 - c90 * t513) + (c90 * t245 - s89 * t490) * t716;
+    let t746 = (t400 - t402) * t719;
+    let t747 = t407 * t719;
+    let t748 = -t747;
+    let t749 = t740 + (c90 * t332 - s89 * t472) * t717 + t746;
+    let t750 = t590 + t543 * t716 + t550 * t717 - t747;
+    let t761 = c90 * t515 - s89 * t526 + (c90 * t499 - s89 * t501) * t716
+        + (s89 * t483 - c90 * t481) * t717;
+    let t762 = T::from_f64(1.7658) + (s89 * t515 + c90 * t526) - T::from_f64(5.886)
+        + (s89 * t499 + c90 * t501) * t716 - (s89 * t481 + c90 * t483) * t717;
+    let t765 = t601 + (t528 + T::from_f64(0.3) * t543) * t716
+        + (t529 + T::from_f64(0.3) * t550) * t717 + (t468 - (t415 - t416) - t468) * t719;
+    let t766 = t245 * t716;
+    let t767 = t490 * t716;
+    let t770 = t332 * t717;
+    let t771 = t472 * t717;
+    let t772 = t513 + t766 + t770;
+    let t773 = t514 + t767 + t771;
+    let t785 = t515 + t499 * t716 - t481 * t717;
+    let t786 = t526 + t501 * t716 - t483 * t717;
+    let t787 = t527 + t528 * t716 + t529 * t717;
+    let t788 = t235 + t766;
+    let t789 = t238 - t237 + t767;
+    let t793 = -(t264 + t268 * t716);
+    let t794 = t322 + t770;
+    let t795 = t325 - t324 + t771;
+    let t797 = t351 - t350 + (t354 - t353) * t717;
+    let t798 = (t416 - t415) * t719;
+    let t803 = t270 - t269 - (T::from_f64(-0.9506914539363203) + t279) * t716;
+    let t805 = -(t275 + (T::from_f64(0.31013829078726374) + t282) * t716);
+    let t808 = t136 - (t275 * t287 - (t269 - t270) * t291)
+        - (t282 * t287 - t279 * t291 + T::from_f64(-0.029999999999999995)) * t716;
+    let t813 = t357 - t356 - (T::from_f64(-0.9968453000901664) + t366) * t717;
+    let t815 = -(t362 + (T::from_f64(-0.0793690600180332) + t369) * t717);
+    let t818 = t132 - (t362 * t374 - (t356 - t357) * t378)
+        - (T::from_f64(-0.03) + (t369 * t374 - t366 * t378)) * t717;
     [
-        [[t751, t752, T::from_f64(19.62)], [t763, t764, t767]],
-        [[t774, t775, T::from_f64(7.848000000000001)], [t787, t788, t789]],
-        [[t790, t791, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t795]],
-        [[t796, t797, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t799]],
-        [[t748, t750, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t800]],
+        [[t749, t750, T::from_f64(19.62)], [t761, t762, t765]],
+        [[t772, t773, T::from_f64(7.848000000000001)], [t785, t786, t787]],
+        [[t788, t789, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t793]],
+        [[t794, t795, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t797]],
+        [[t746, t748, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t798]],
         [
-            [t805, t807, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t810],
+            [t803, t805, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t808],
         ],
         [
-            [t815, t817, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t820],
+            [t813, t815, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t818],
         ],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
-/// Entries: link1, link2.
+/// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 383 arithmetic (171 add/sub, 209 mul, 0 div, 0 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 381 arithmetic (171 add/sub, 207 mul, 0 div, 0 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -554,41 +541,41 @@ pub fn base_reaction<T: Real>(
         + t527 * T::from_f64(24.999999999999993);
     let t705 = T::from_f64(11.764705882352942) * t601
         + T::from_f64(0.000000000000002943923360032077) * t527;
-    let t716 = T::from_f64(0.0)
+    let t715 = T::from_f64(0.0)
         .max(T::from_f64(5.0) - t694)
-        .max((t701 + T::from_f64(5.0)) * T::from_f64(0.9999999999999998))
+        .max(t701 + T::from_f64(5.0))
         .max((T::from_f64(5.0) - t705) * T::from_f64(0.6666666666666665));
-    let t717 = t694 + t716;
-    let t719 = T::from_f64(1.0000000000000002) * t716 - t701;
-    let t721 = t705 + T::from_f64(1.5000000000000002) * t716;
-    let t823 = t357 - t356 - t272 - (s73 * t590 - c74 * t589)
-        + (T::from_f64(-0.9506914539363203) - t300 - (s73 * t543 - c74 * t540)) * t717;
-    let t828 = s73 * t589 + c74 * t590 - (t275 + t362)
-        + (T::from_f64(0.31013829078726374) - t301 + (s73 * t540 + c74 * t543)) * t717
-        + (T::from_f64(-0.0793690600180332) - t388 + (s73 * t547 + c74 * t550)) * t719;
-    let t831 = t823
-        + (T::from_f64(-0.9968453000901664) - t387 - (s73 * t550 - c74 * t547)) * t719
-        + (T::from_f64(-0.9733466865996102) + (c74 * t465 + s73 * t407)) * t721;
-    let t832 = t828
-        + (T::from_f64(0.22933867463984403) - (c74 * t407 - s73 * t465)) * t721;
-    let t836 = T::from_f64(0.01) * t275 - T::from_f64(0.01) * t362
+    let t716 = t694 + t715;
+    let t717 = t715 - t701;
+    let t719 = t705 + T::from_f64(1.5000000000000002) * t715;
+    let t821 = t357 - t356 - t272 - (s73 * t590 - c74 * t589)
+        + (T::from_f64(-0.9506914539363203) - t300 - (s73 * t543 - c74 * t540)) * t716;
+    let t826 = s73 * t589 + c74 * t590 - (t275 + t362)
+        + (T::from_f64(0.31013829078726374) - t301 + (s73 * t540 + c74 * t543)) * t716
+        + (T::from_f64(-0.0793690600180332) - t388 + (s73 * t547 + c74 * t550)) * t717;
+    let t829 = t821
+        + (T::from_f64(-0.9968453000901664) - t387 - (s73 * t550 - c74 * t547)) * t717
+        + (T::from_f64(-0.9733466865996102) + (c74 * t465 + s73 * t407)) * t719;
+    let t830 = t826
+        + (T::from_f64(0.22933867463984403) - (c74 * t407 - s73 * t465)) * t719;
+    let t834 = T::from_f64(0.01) * t275 - T::from_f64(0.01) * t362
         - (s73 * t600 - c74 * t560)
         + (T::from_f64(-0.0031013829078726375) + T::from_f64(0.01) * t301
-            - (s73 * t570 - c74 * t567)) * t717;
-    let t837 = T::from_f64(0.01) * t359 - T::from_f64(0.01) * t272
+            - (s73 * t570 - c74 * t567)) * t716;
+    let t835 = T::from_f64(0.01) * t359 - T::from_f64(0.01) * t272
         + (s73 * t560 + c74 * t600)
         + (T::from_f64(-0.009506914539363203) - T::from_f64(0.01) * t300
-            + (s73 * t567 + c74 * t570)) * t717;
-    let t842 = t836
+            + (s73 * t567 + c74 * t570)) * t716;
+    let t840 = t834
         + (T::from_f64(-0.0007936906001803321) - T::from_f64(0.01) * t388
-            + (c74 * t574 + s73 * t579)) * t719;
-    let t843 = t837
+            + (c74 * t574 + s73 * t579)) * t717;
+    let t841 = t835
         + (T::from_f64(0.009968453000901665) + T::from_f64(0.01) * t387
-            - (c74 * t579 - s73 * t574)) * t719;
-    let t844 = t132 - (t362 * t374 - t359 * t378) - (t275 * t287 - t272 * t291 - t136)
-        + t601 + t685 * t717 + t688 * t719;
-    let t846 = t844 + t689 * t721;
-    [[[t831, t832, T::from_f64(20.601000000000003)], [t842, t843, t846]]]
+            - (c74 * t579 - s73 * t574)) * t717;
+    let t842 = t132 - (t362 * t374 - t359 * t378) - (t275 * t287 - t272 * t291 - t136)
+        + t601 + t685 * t716 + t688 * t717;
+    let t844 = t842 + t689 * t719;
+    [[[t829, t830, T::from_f64(20.601000000000003)], [t840, t841, t844]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -612,9 +599,9 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 629 arithmetic (281 add/sub, 334 mul, 3 div, 5 neg, 6 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 533 arithmetic (251 add/sub, 272 mul, 3 div, 4 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
     q: &[T; 2],
     qd: &[T; 2],
@@ -628,12 +615,24 @@ pub fn all<T: Real>(
     let (s89, c90) = q[1].sin_cos();
     let t92 = qd[0] + qd[1];
     let t93 = qdd[0] + qdd[1];
+    let t94 = t78 * c90;
+    let t98 = t78 * s89;
+    let t104 = t92 * (T::from_f64(0.25) * t92);
+    let t113 = t92 * (t92 * T::from_f64(0.125));
     let t125 = T::from_f64(0.6666666666666667) * qdd[1];
     let t132 = T::from_f64(0.0000225) * (qdd[0] + t125);
     let t136 = T::from_f64(0.0000225) * (qdd[0] - t125);
+    let t140 = T::from_f64(0.8) * (t76 * s89 - t94 - t104 + t113);
     let t141 = T::from_f64(0.8)
-        * (t78 * s89 + t76 * c90 + T::from_f64(0.25) * t93 - t93 * T::from_f64(0.125));
+        * (t98 + t76 * c90 + T::from_f64(0.25) * t93 - t93 * T::from_f64(0.125));
+    let t148 = T::from_f64(0.0041667) * t93 - T::from_f64(0.125) * t141;
+    let t153 = t148 + T::from_f64(0.25) * t141;
     let t170 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
+    let t181 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t170;
+    let t216 = t132
+        + (t136 + (t153 + t181 + T::from_f64(0.3) * (s89 * t140 + c90 * t141 + t170)));
+    let t218 = t153 - T::from_f64(0.6666666666666667) * t136
+        + T::from_f64(0.6666666666666667) * t132;
     let t221 = t136 * T::from_f64(33.333333333333336);
     let t223 = t132 * T::from_f64(33.333333333333336);
     let t226 = t221 * T::from_f64(0.9860132971832694);
@@ -723,15 +722,13 @@ pub fn all<T: Real>(
     let t490 = t249 - t247;
     let t499 = T::from_f64(0.01) * t251;
     let t501 = T::from_f64(0.01) * t245;
-    let t513 = T::from_f64(0.8)
-        * (t76 * s89 - t78 * c90 - t92 * (T::from_f64(0.25) * t92)
-            + t92 * (t92 * T::from_f64(0.125))) + (t235 + t322);
+    let t513 = t140 + (t235 + t322);
     let t514 = t141 - (t240 + t327);
     let t515 = T::from_f64(0.01) * t240 - T::from_f64(0.01) * t327;
     let t526 = T::from_f64(0.9810000000000001)
         - (T::from_f64(0.01) * t322 - T::from_f64(0.01) * t235)
         - T::from_f64(1.9620000000000002);
-    let t527 = T::from_f64(0.0041667) * t93 - T::from_f64(0.125) * t141
+    let t527 = t148
         - (t350 - t351 - T::from_f64(0.25) * t327 + (t264 - T::from_f64(0.25) * t240))
         + T::from_f64(0.25) * t514;
     let t528 = T::from_f64(0.25) * t251 - t268 + T::from_f64(0.25) * t490;
@@ -750,8 +747,7 @@ pub fn all<T: Real>(
     let t590 = t170 + (s89 * t513 + c90 * t514);
     let t593 = t468 - (t415 - t416);
     let t600 = T::from_f64(1.7658) + (s89 * t515 + c90 * t526) - T::from_f64(5.886);
-    let t601 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t170 + t527
-        + T::from_f64(0.3) * t590;
+    let t601 = t181 + t527 + T::from_f64(0.3) * t590;
     let t602 = t528 + T::from_f64(0.3) * t543;
     let t603 = t529 + T::from_f64(0.3) * t550;
     let t694 = T::from_f64(24.999999999999975) * t527
@@ -760,176 +756,122 @@ pub fn all<T: Real>(
         + t527 * T::from_f64(24.999999999999993);
     let t705 = T::from_f64(11.764705882352942) * t601
         + T::from_f64(0.000000000000002943923360032077) * t527;
-    let t716 = T::from_f64(0.0)
+    let t715 = T::from_f64(0.0)
         .max(T::from_f64(5.0) - t694)
-        .max((t701 + T::from_f64(5.0)) * T::from_f64(0.9999999999999998))
+        .max(t701 + T::from_f64(5.0))
         .max((T::from_f64(5.0) - t705) * T::from_f64(0.6666666666666665));
-    let t717 = t694 + t716;
-    let t719 = T::from_f64(1.0000000000000002) * t716 - t701;
-    let t721 = t705 + T::from_f64(1.5000000000000002) * t716;
-    let t748 = t465 * t721;
-    let t749 = t407 * t721;
-    let t750 = -t749;
-    let t751 = t589 + t540 * t717 + t547 * t719 + t748;
-    let t752 = t590 + t543 * t717 + t550 * t719 - t749;
-    let t763 = t560 + t567 * t717 + t574 * t719;
-    let t764 = t600 + t570 * t717 - t579 * t719;
-    let t767 = t601 + t602 * t717 + t603 * t719 + (t593 - t468) * t721;
-    let t768 = t245 * t717;
-    let t769 = t490 * t717;
-    let t772 = t332 * t719;
-    let t773 = t472 * t719;
-    let t774 = t513 + t768 + t772;
-    let t775 = t514 + t769 + t773;
-    let t787 = t515 + t499 * t717 - t481 * t719;
-    let t788 = t526 + t501 * t717 - t483 * t719;
-    let t789 = t527 + t528 * t717 + t529 * t719;
-    let t790 = t235 + t768;
-    let t791 = t238 - t237 + t769;
-    let t795 = -(t264 + t268 * t717);
-    let t796 = t322 + t772;
-    let t797 = t325 - t324 + t773;
-    let t799 = t351 - t350 + (t354 - t353) * t719;
-    let t800 = (t416 - t415) * t721;
-    let t805 = t270 - t269 - t300 * t717;
-    let t807 = -(t275 + t301 * t717);
-    let t810 = t136 - t294 - t305 * t717;
-    let t815 = t421 - t387 * t719;
-    let t817 = -(t362 + t388 * t719);
-    let t820 = t425 - t391 * t719;
-    let t827 = t421 - t272 - (s73 * t590 - c74 * t589)
-        + (T::from_f64(-0.9506914539363203) - t300 - (s73 * t543 - c74 * t540)) * t717
-        + (T::from_f64(-0.9968453000901664) - t387 - (s73 * t550 - c74 * t547)) * t719;
-    let t828 = s73 * t589 + c74 * t590 - (t275 + t362)
-        + (T::from_f64(0.31013829078726374) - t301 + (s73 * t540 + c74 * t543)) * t717
-        + (T::from_f64(-0.0793690600180332) - t388 + (s73 * t547 + c74 * t550)) * t719;
-    let t831 = t827
-        + (T::from_f64(-0.9733466865996102) + (c74 * t465 + s73 * t407)) * t721;
-    let t832 = t828
-        + (T::from_f64(0.22933867463984403) - (c74 * t407 - s73 * t465)) * t721;
-    let t836 = T::from_f64(0.01) * t275 - T::from_f64(0.01) * t362
+    let t716 = t694 + t715;
+    let t717 = t715 - t701;
+    let t719 = t705 + T::from_f64(1.5000000000000002) * t715;
+    let t736 = t221 + t716;
+    let t737 = t223 + t717;
+    let t746 = t465 * t719;
+    let t747 = t407 * t719;
+    let t748 = -t747;
+    let t749 = t589 + t540 * t716 + t547 * t717 + t746;
+    let t750 = t590 + t543 * t716 + t550 * t717 - t747;
+    let t761 = t560 + t567 * t716 + t574 * t717;
+    let t762 = t600 + t570 * t716 - t579 * t717;
+    let t765 = t601 + t602 * t716 + t603 * t717 + (t593 - t468) * t719;
+    let t766 = t245 * t716;
+    let t767 = t490 * t716;
+    let t770 = t332 * t717;
+    let t771 = t472 * t717;
+    let t772 = t513 + t766 + t770;
+    let t773 = t514 + t767 + t771;
+    let t785 = t515 + t499 * t716 - t481 * t717;
+    let t786 = t526 + t501 * t716 - t483 * t717;
+    let t787 = t527 + t528 * t716 + t529 * t717;
+    let t788 = t235 + t766;
+    let t789 = t238 - t237 + t767;
+    let t793 = -(t264 + t268 * t716);
+    let t794 = t322 + t770;
+    let t795 = t325 - t324 + t771;
+    let t797 = t351 - t350 + (t354 - t353) * t717;
+    let t798 = (t416 - t415) * t719;
+    let t803 = t270 - t269 - t300 * t716;
+    let t805 = -(t275 + t301 * t716);
+    let t808 = t136 - t294 - t305 * t716;
+    let t813 = t421 - t387 * t717;
+    let t815 = -(t362 + t388 * t717);
+    let t818 = t425 - t391 * t717;
+    let t825 = t421 - t272 - (s73 * t590 - c74 * t589)
+        + (T::from_f64(-0.9506914539363203) - t300 - (s73 * t543 - c74 * t540)) * t716
+        + (T::from_f64(-0.9968453000901664) - t387 - (s73 * t550 - c74 * t547)) * t717;
+    let t826 = s73 * t589 + c74 * t590 - (t275 + t362)
+        + (T::from_f64(0.31013829078726374) - t301 + (s73 * t540 + c74 * t543)) * t716
+        + (T::from_f64(-0.0793690600180332) - t388 + (s73 * t547 + c74 * t550)) * t717;
+    let t829 = t825
+        + (T::from_f64(-0.9733466865996102) + (c74 * t465 + s73 * t407)) * t719;
+    let t830 = t826
+        + (T::from_f64(0.22933867463984403) - (c74 * t407 - s73 * t465)) * t719;
+    let t834 = T::from_f64(0.01) * t275 - T::from_f64(0.01) * t362
         - (s73 * t600 - c74 * t560)
         + (T::from_f64(-0.0031013829078726375) + T::from_f64(0.01) * t301
-            - (s73 * t570 - c74 * t567)) * t717;
-    let t837 = T::from_f64(0.01) * t359 - T::from_f64(0.01) * t272
+            - (s73 * t570 - c74 * t567)) * t716;
+    let t835 = T::from_f64(0.01) * t359 - T::from_f64(0.01) * t272
         + (s73 * t560 + c74 * t600)
         + (T::from_f64(-0.009506914539363203) - T::from_f64(0.01) * t300
-            + (s73 * t567 + c74 * t570)) * t717;
-    let t842 = t836
+            + (s73 * t567 + c74 * t570)) * t716;
+    let t840 = t834
         + (T::from_f64(-0.0007936906001803321) - T::from_f64(0.01) * t388
-            + (c74 * t574 + s73 * t579)) * t719;
-    let t843 = t837
+            + (c74 * t574 + s73 * t579)) * t717;
+    let t841 = t835
         + (T::from_f64(0.009968453000901665) + T::from_f64(0.01) * t387
-            - (c74 * t579 - s73 * t574)) * t719;
-    let t846 = t425 - (t294 - t136) + t601
-        + (T::from_f64(-0.029999999999999916) - t305 + t602) * t717
-        + (T::from_f64(-0.03000000000000002) - t391 + t603) * t719
-        + (T::from_f64(0.04000000000000002) - (t468 - t593)) * t721;
-    let t986 = c90 * T::from_f64(0.06);
-    let t988 = t986 + T::from_f64(0.1247117);
-    let t991 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
-    let t998 = s89 * T::from_f64(0.03);
-    let t1004 = qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t998);
-    let t1005 = -t1004;
-    let t1007 = qdd[0] * t988 + (qdd[1] * t991 - t1004);
-    let t1010 = qd[0] * t998;
-    let t1011 = qd[0] * t1010;
-    let t1013 = qdd[0] * t991 + (qdd[1] * T::from_f64(0.0166867) + t1011);
-    let t1016 = c90 * T::from_f64(0.22058823529411686);
-    let t1022 = c90 * T::from_f64(0.2647058823529412);
-    let t1040 = qd[0]
-        * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
-            + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t1047 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t1085 = qdd[1]
-        * (c90 * T::from_f64(0.26470588235294107) + T::from_f64(0.5642266176470586))
-        + (qd[0]
-            * (qd[0] * (s89 * T::from_f64(0.7499999999999997))
-                - qd[1] * (s89 * T::from_f64(0.5294117647058821)))
-            + (T::from_f64(4.999999999999999)
-                - qd[1] * (qd[1] * (s89 * T::from_f64(0.26470588235294107)))));
-    let t1087 = T::from_f64(0.0)
-        .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t1016)
-                + (qdd[1] * (t1022 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t1047 - t1040)),
-        )
-        .max(
-            qdd[0]
-                * (c90 * T::from_f64(1.2794117647058818)
-                    + T::from_f64(1.5170648529411759)) + t1085,
-        );
-    let t1112 = qdd[0]
-        * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
-        + (qdd[1]
-            * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
-            + (qd[1]
-                * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
-                    + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
-                + T::from_f64(3.3333333333333326)));
-    let t1113 = t1087.max(t1112);
-    let t1122 = t1040 + (t1047 + t1113);
-    let t1124 = qdd[0] * (t1016 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1022) + t1122);
-    let t1127 = c90 * T::from_f64(1.279411764705882);
-    let t1134 = c90 * T::from_f64(0.2647058823529411);
-    let t1155 = qd[0]
-        * (qd[1] * (s89 * T::from_f64(0.5294117647058822))
-            - qd[0] * (s89 * T::from_f64(0.7499999999999998)))
-        + (qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)))
-            + T::from_f64(1.0000000000000002) * t1113);
-    let t1157 = qdd[0] * (T::from_f64(-1.517064852941176) - t1127)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1134) + t1155);
-    let t1186 = qdd[0]
-        * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
-        + (qdd[1]
-            * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t1113
-                - qd[1]
-                    * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    let t1191 = t991 / t988;
-    let t1203 = T::from_f64(0.03) * t1191;
-    let t1223 = tendon_tensions[0] * (T::from_f64(0.02) + t1203)
-        + (tendon_tensions[1] * (T::from_f64(-0.02) + t1203)
-            - tendon_tensions[2] * (T::from_f64(0.04) * t1191))
-        - qd[1] * (qd[1] * (s89 * t1203))
-        - qd[0] * (t1010 + qd[1] * (s89 * (T::from_f64(0.06) * t1191)));
-    let t1230 = t1223
-        / (T::from_f64(0.0166867) + t1191 * (t1191 * (T::from_f64(-0.1247117) - t986)));
-    let t1235 = (t1004
-        + (T::from_f64(0.04) * tendon_tensions[2]
-            - tendon_tensions[1] * T::from_f64(0.03)
-            - tendon_tensions[0] * T::from_f64(0.03))) / t988 - t1191 * t1230;
-    let t1243 = qdd[0] * (t1016 + T::from_f64(-0.6829798529411769))
-        + (t1122 + qdd[1] * (T::from_f64(0.26960838235294077) - t1022));
-    let t1251 = qdd[0] * (T::from_f64(-1.516314852941176) - t1127)
-        + (t1155 + qdd[1] * (T::from_f64(-0.5637266176470587) - t1134));
+            - (c74 * t579 - s73 * t574)) * t717;
+    let t844 = t425 - (t294 - t136) + t601
+        + (T::from_f64(-0.029999999999999916) - t305 + t602) * t716
+        + (T::from_f64(-0.03000000000000002) - t391 + t603) * t717
+        + (T::from_f64(0.04000000000000002) - (t468 - t593)) * t719;
+    let t853 = T::from_f64(0.8)
+        * (T::from_f64(-0.125) + (T::from_f64(0.25) + T::from_f64(0.3) * c90));
+    let t877 = T::from_f64(0.0041667) - T::from_f64(0.125) * t853
+        + T::from_f64(0.25) * t853 + T::from_f64(-0.018000000000000002)
+        + T::from_f64(0.3)
+            * (s89 * (T::from_f64(0.8) * (T::from_f64(0.3) * s89)) + c90 * t853
+                + T::from_f64(0.18));
+    let t892 = T::from_f64(0.0000225) + (T::from_f64(0.0000225) + t877);
+    let t922 = T::from_f64(0.000015000000000000002)
+        + (T::from_f64(-0.000015000000000000002)
+            + (T::from_f64(0.0166667) + T::from_f64(0.3) * (T::from_f64(0.1) * c90)));
+    let t929 = T::from_f64(0.8) * t98;
+    let t934 = T::from_f64(0.25) * t929 - T::from_f64(0.125) * t929;
+    let t948 = t934
+        + T::from_f64(0.3)
+            * (s89 * (T::from_f64(0.8) * (t113 - (t94 + t104))) + c90 * t929);
+    let t971 = T::from_f64(0.04) * tendon_tensions[2]
+        - (tendon_tensions[0] * T::from_f64(0.03)
+            + tendon_tensions[1] * T::from_f64(0.03)) - t948;
+    let t973 = t922 / t892;
+    let t980 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - t934 - t971 * t973)
+        / (T::from_f64(0.0166867) - t892 * (t973 * t973));
+    let t982 = t971 / t892 - t973 * t980;
     Outputs {
-        generalized_forces: [t1007, t1013],
-        actuation: ([], [t1124, t1157, t1186]),
-        mass_matrix: [[t988, t991], [t991, T::from_f64(0.0166867)]],
-        bias: [t1005, t1011],
+        generalized_forces: [t216, t218],
+        actuation: ([], [t716, t717, t719]),
+        mass_matrix: [[t892, t922], [t922, T::from_f64(0.0166867)]],
+        bias: [t948, t934],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1235, t1230],
-        segment_tensions: [t1243, t1124, t1251, t1157, t1186],
+        forward_dynamics: [t982, t980],
+        segment_tensions: [t736, t716, t737, t717, t719],
         bearings: [
-            [[t751, t752, T::from_f64(19.62)], [t763, t764, t767]],
-            [[t774, t775, T::from_f64(7.848000000000001)], [t787, t788, t789]],
-            [[t790, t791, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t795]],
-            [[t796, t797, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t799]],
-            [[t748, t750, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t800]],
+            [[t749, t750, T::from_f64(19.62)], [t761, t762, t765]],
+            [[t772, t773, T::from_f64(7.848000000000001)], [t785, t786, t787]],
+            [[t788, t789, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t793]],
+            [[t794, t795, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t797]],
+            [[t746, t748, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t798]],
             [
-                [t805, t807, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t810],
+                [t803, t805, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t808],
             ],
             [
-                [t815, t817, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t820],
+                [t813, t815, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t818],
             ],
         ],
         base_reaction: [
-            [[t831, t832, T::from_f64(20.601000000000003)], [t842, t843, t846]],
+            [[t829, t830, T::from_f64(20.601000000000003)], [t840, t841, t844]],
         ],
     }
 }

@@ -4,16 +4,20 @@
 #[allow(unused_imports)]
 use tendyn_core::real::Real;
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
+#[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 4]; 3] = [
     [-0.006f64, -0.009f64, 0.008f64, 0.008f64],
     [0.007f64, -0.007f64, 0.01f64, -0.01f64],
     [0.008f64, -0.008f64, 0f64, 0f64],
 ];
 /// Degrees of freedom (joint coordinates `q`).
+#[allow(dead_code)]
 pub const DOF: usize = 3;
 /// Motors, in file order.
+#[allow(dead_code)]
 pub const MOTORS: usize = 0;
 /// Open-ended tendons, in file order.
+#[allow(dead_code)]
 pub const TENDONS: usize = 4;
 /// Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext` (N·m, per joint).
 ///
@@ -21,79 +25,79 @@ pub const TENDONS: usize = 4;
 ///
 /// Operations (closed form): 126 arithmetic (58 add/sub, 68 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 3] {
     let (s119, c120) = q[1].sin_cos();
     let (s180, c181) = q[2].sin_cos();
-    let t2386 = c181 * T::from_f64(0.0000208);
-    let t2389 = T::from_f64(-0.00004) - t2386;
-    let t2391 = s180 * T::from_f64(0.0000208);
-    let t2398 = c181 * T::from_f64(0.00004);
-    let t2406 = c181 * T::from_f64(0.000009600000000000001);
-    let t2420 = s119
-        * (s180 * (c120 * t2389 + (s119 * t2391 + T::from_f64(-0.000009600000000000001)))
-            + s119 * (T::from_f64(-0.00008495) - t2398))
-        + (c120 * (t2406 + T::from_f64(0.000042000000000000004))
-            + (t2398 + T::from_f64(0.00009551400000000001)
+    let t2384 = c181 * T::from_f64(0.0000208);
+    let t2387 = T::from_f64(-0.00004) - t2384;
+    let t2389 = s180 * T::from_f64(0.0000208);
+    let t2396 = c181 * T::from_f64(0.00004);
+    let t2404 = c181 * T::from_f64(0.000009600000000000001);
+    let t2418 = s119
+        * (s180 * (c120 * t2387 + (s119 * t2389 + T::from_f64(-0.000009600000000000001)))
+            + s119 * (T::from_f64(-0.00008495) - t2396))
+        + (c120 * (t2404 + T::from_f64(0.000042000000000000004))
+            + (t2396 + T::from_f64(0.00009551400000000001)
                 - s180 * (s180 * T::from_f64(0.0000104))));
-    let t2428 = s180 * (s180 * T::from_f64(0.0000416));
-    let t2437 = c181 * T::from_f64(0.0000416);
-    let t2450 = s180 * (t2389 - c120 * T::from_f64(0.000009600000000000001));
-    let t2452 = qd[1]
+    let t2426 = s180 * (s180 * T::from_f64(0.0000416));
+    let t2435 = c181 * T::from_f64(0.0000416);
+    let t2448 = s180 * (t2387 - c120 * T::from_f64(0.000009600000000000001));
+    let t2450 = qd[1]
         * (s119
-            * (c120 * (t2428 + (T::from_f64(-0.0001699) - c181 * T::from_f64(0.00008)))
-                + (s119 * (s180 * (T::from_f64(0.00008) + t2437))
-                    + (T::from_f64(-0.000042000000000000004) - t2406))) + t2450);
-    let t2465 = qd[0]
-        * (t2452
+            * (c120 * (t2426 + (T::from_f64(-0.0001699) - c181 * T::from_f64(0.00008)))
+                + (s119 * (s180 * (T::from_f64(0.00008) + t2435))
+                    + (T::from_f64(-0.000042000000000000004) - t2404))) + t2448);
+    let t2463 = qd[0]
+        * (t2450
             + qd[2]
-                * (t2450
+                * (t2448
                     + s119
-                        * (c120 * (t2428 + (T::from_f64(-0.0000208) - t2398))
-                            + (s119 * (s180 * (T::from_f64(0.00004) + t2437))
-                                - t2406))));
-    let t2468 = qdd[0] * t2420
+                        * (c120 * (t2426 + (T::from_f64(-0.0000208) - t2396))
+                            + (s119 * (s180 * (T::from_f64(0.00004) + t2435))
+                                - t2404))));
+    let t2466 = qdd[0] * t2418
         + (qdd[1] * T::from_f64(0.000000021000000000000006)
-            + (qdd[2] * T::from_f64(0.000000024000000000000006) + t2465));
-    let t2473 = c181 * T::from_f64(0.00002);
-    let t2475 = t2473 + T::from_f64(0.000011224000000000001);
-    let t2479 = s180 * t2391;
-    let t2488 = c181 * T::from_f64(0.000004800000000000001);
-    let t2498 = s180
+            + (qdd[2] * T::from_f64(0.000000024000000000000006) + t2463));
+    let t2471 = c181 * T::from_f64(0.00002);
+    let t2473 = t2471 + T::from_f64(0.000011224000000000001);
+    let t2477 = s180 * t2389;
+    let t2486 = c181 * T::from_f64(0.000004800000000000001);
+    let t2496 = s180
         * (c120 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c181 * T::from_f64(0.0000104)));
-    let t2507 = s180 * T::from_f64(0.00002);
-    let t2516 = c181 * T::from_f64(0.003924);
-    let t2523 = s119 * (s180 * T::from_f64(0.003924));
-    let t2527 = qd[0]
+    let t2505 = s180 * T::from_f64(0.00002);
+    let t2514 = c181 * T::from_f64(0.003924);
+    let t2521 = s119 * (s180 * T::from_f64(0.003924));
+    let t2525 = qd[0]
         * (qd[0]
             * (s119
-                * (c120 * (t2398 + T::from_f64(0.00008495) - t2479)
-                    + (s119 * (s180 * t2389)
-                        + (t2488 + T::from_f64(0.000021000000000000002)))) + t2498))
-        + (c120 * (t2516 + T::from_f64(0.017167500000000002)) - t2523
-            - qd[2] * (qd[1] * (s180 * T::from_f64(0.00004)) + qd[2] * t2507));
-    let t2530 = qdd[1] * (t2398 + T::from_f64(0.000086946))
-        + (qdd[2] * t2475 + (qdd[0] * T::from_f64(0.000000021000000000000006) + t2527));
-    let t2551 = qd[0]
+                * (c120 * (t2396 + T::from_f64(0.00008495) - t2477)
+                    + (s119 * (s180 * t2387)
+                        + (t2486 + T::from_f64(0.000021000000000000002)))) + t2496))
+        + (c120 * (t2514 + T::from_f64(0.017167500000000002)) - t2521
+            - qd[2] * (qd[1] * (s180 * T::from_f64(0.00004)) + qd[2] * t2505));
+    let t2528 = qdd[1] * (t2396 + T::from_f64(0.000086946))
+        + (qdd[2] * t2473 + (qdd[0] * T::from_f64(0.000000021000000000000006) + t2525));
+    let t2549 = qd[0]
         * (qd[0]
-            * (t2498
+            * (t2496
                 + s119
-                    * (c120 * (T::from_f64(0.0000104) + t2473 - t2479)
-                        + (t2488 + s119 * (s180 * (T::from_f64(-0.00002) - t2386))))))
-        + (qd[1] * (qd[1] * t2507) + (c120 * t2516 - t2523));
-    let t2554 = qdd[1] * t2475
+                    * (c120 * (T::from_f64(0.0000104) + t2471 - t2477)
+                        + (t2486 + s119 * (s180 * (T::from_f64(-0.00002) - t2384))))))
+        + (qd[1] * (qd[1] * t2505) + (c120 * t2514 - t2521));
+    let t2552 = qdd[1] * t2473
         + (qdd[0] * T::from_f64(0.000000024000000000000006)
-            + (qdd[2] * T::from_f64(0.000011256) + t2551));
-    [t2468, t2530, t2554]
+            + (qdd[2] * T::from_f64(0.000011256) + t2549));
+    [t2466, t2528, t2552]
 }
 /// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 345 arithmetic (143 add/sub, 198 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 343 arithmetic (143 add/sub, 196 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> ([T; 0], [T; 4]) {
     let t106 = T::from_f64(0.012) * qdd[0];
     let t110 = qd[0] * (T::from_f64(0.012) * qd[0]);
@@ -226,16 +230,16 @@ pub fn actuation<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> ([T; 0], [T;
         - t1112 * T::from_f64(49.98700623700625);
     let t1432 = T::from_f64(33.26403326403329) * t1309 - t1192 * T::from_f64(50.0)
         + T::from_f64(37.512993762993766) * t1112;
-    let t1447 = T::from_f64(0.0)
+    let t1446 = T::from_f64(0.0)
         .max((T::from_f64(5.0) - t1405) * T::from_f64(0.9374999999999998))
         .max((t1417 + T::from_f64(5.0)) * T::from_f64(0.9375000000000002))
-        .max((T::from_f64(5.0) - t1425) * T::from_f64(0.9999999999999998))
+        .max(T::from_f64(5.0) - t1425)
         .max(T::from_f64(5.0) - t1432);
-    let t1449 = t1405 + T::from_f64(1.0666666666666669) * t1447;
-    let t1451 = T::from_f64(1.0666666666666664) * t1447 - t1417;
-    let t1453 = t1425 + T::from_f64(1.0000000000000002) * t1447;
-    let t1454 = t1432 + t1447;
-    ([], [t1449, t1451, t1453, t1454])
+    let t1448 = t1405 + T::from_f64(1.0666666666666669) * t1446;
+    let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
+    let t1451 = t1425 + t1446;
+    let t1452 = t1432 + t1446;
+    ([], [t1448, t1450, t1451, t1452])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -243,32 +247,32 @@ pub fn actuation<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> ([T; 0], [T;
 ///
 /// Operations (closed form): 25 arithmetic (12 add/sub, 13 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
     let (s119, c120) = q[1].sin_cos();
     let (s180, c181) = q[2].sin_cos();
-    let t2398 = c181 * T::from_f64(0.00004);
-    let t2420 = s119
+    let t2396 = c181 * T::from_f64(0.00004);
+    let t2418 = s119
         * (s180
             * (c120 * (T::from_f64(-0.00004) - c181 * T::from_f64(0.0000208))
                 + (s119 * (s180 * T::from_f64(0.0000208))
                     + T::from_f64(-0.000009600000000000001)))
-            + s119 * (T::from_f64(-0.00008495) - t2398))
+            + s119 * (T::from_f64(-0.00008495) - t2396))
         + (c120
             * (c181 * T::from_f64(0.000009600000000000001)
                 + T::from_f64(0.000042000000000000004))
-            + (t2398 + T::from_f64(0.00009551400000000001)
+            + (t2396 + T::from_f64(0.00009551400000000001)
                 - s180 * (s180 * T::from_f64(0.0000104))));
-    let t2470 = t2398 + T::from_f64(0.000086946);
-    let t2475 = c181 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
+    let t2468 = t2396 + T::from_f64(0.000086946);
+    let t2473 = c181 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
     [
         [
-            t2420,
+            t2418,
             T::from_f64(0.000000021000000000000003),
             T::from_f64(0.000000024000000000000003),
         ],
-        [T::from_f64(0.000000021000000000000003), t2470, t2475],
-        [T::from_f64(0.000000024000000000000003), t2475, T::from_f64(0.000011256)],
+        [T::from_f64(0.000000021000000000000003), t2468, t2473],
+        [T::from_f64(0.000000024000000000000003), t2473, T::from_f64(0.000011256)],
     ]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
@@ -277,52 +281,52 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
 ///
 /// Operations (closed form): 79 arithmetic (33 add/sub, 46 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
     let (s119, c120) = q[1].sin_cos();
     let (s180, c181) = q[2].sin_cos();
-    let t2386 = c181 * T::from_f64(0.0000208);
-    let t2389 = T::from_f64(-0.00004) - t2386;
-    let t2398 = c181 * T::from_f64(0.00004);
-    let t2406 = c181 * T::from_f64(0.000009600000000000001);
-    let t2428 = s180 * (s180 * T::from_f64(0.0000416));
-    let t2437 = c181 * T::from_f64(0.0000416);
-    let t2450 = s180 * (t2389 - c120 * T::from_f64(0.000009600000000000001));
-    let t2452 = qd[1]
+    let t2384 = c181 * T::from_f64(0.0000208);
+    let t2387 = T::from_f64(-0.00004) - t2384;
+    let t2396 = c181 * T::from_f64(0.00004);
+    let t2404 = c181 * T::from_f64(0.000009600000000000001);
+    let t2426 = s180 * (s180 * T::from_f64(0.0000416));
+    let t2435 = c181 * T::from_f64(0.0000416);
+    let t2448 = s180 * (t2387 - c120 * T::from_f64(0.000009600000000000001));
+    let t2450 = qd[1]
         * (s119
-            * (c120 * (t2428 + (T::from_f64(-0.0001699) - c181 * T::from_f64(0.00008)))
-                + (s119 * (s180 * (T::from_f64(0.00008) + t2437))
-                    + (T::from_f64(-0.000042000000000000004) - t2406))) + t2450);
-    let t2465 = qd[0]
-        * (t2452
+            * (c120 * (t2426 + (T::from_f64(-0.0001699) - c181 * T::from_f64(0.00008)))
+                + (s119 * (s180 * (T::from_f64(0.00008) + t2435))
+                    + (T::from_f64(-0.000042000000000000004) - t2404))) + t2448);
+    let t2463 = qd[0]
+        * (t2450
             + qd[2]
-                * (t2450
+                * (t2448
                     + s119
-                        * (c120 * (t2428 + (T::from_f64(-0.0000208) - t2398))
-                            + (s119 * (s180 * (T::from_f64(0.00004) + t2437))
-                                - t2406))));
-    let t2479 = s180 * (s180 * T::from_f64(0.0000208));
-    let t2488 = c181 * T::from_f64(0.000004800000000000001);
-    let t2498 = s180
+                        * (c120 * (t2426 + (T::from_f64(-0.0000208) - t2396))
+                            + (s119 * (s180 * (T::from_f64(0.00004) + t2435))
+                                - t2404))));
+    let t2477 = s180 * (s180 * T::from_f64(0.0000208));
+    let t2486 = c181 * T::from_f64(0.000004800000000000001);
+    let t2496 = s180
         * (c120 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c181 * T::from_f64(0.0000104)));
-    let t2507 = s180 * T::from_f64(0.00002);
-    let t2545 = qd[0]
+    let t2505 = s180 * T::from_f64(0.00002);
+    let t2543 = qd[0]
         * (qd[0]
-            * (t2498
+            * (t2496
                 + s119
                     * (c120
-                        * (T::from_f64(0.0000104) + c181 * T::from_f64(0.00002) - t2479)
-                        + (t2488 + s119 * (s180 * (T::from_f64(-0.00002) - t2386))))));
-    let t3152 = qd[0]
+                        * (T::from_f64(0.0000104) + c181 * T::from_f64(0.00002) - t2477)
+                        + (t2486 + s119 * (s180 * (T::from_f64(-0.00002) - t2384))))));
+    let t3149 = qd[0]
         * (qd[0]
             * (s119
-                * (c120 * (t2398 + T::from_f64(0.00008495) - t2479)
-                    + (s119 * (s180 * t2389)
-                        + (t2488 + T::from_f64(0.000021000000000000002)))) + t2498))
-        - qd[2] * (qd[1] * (s180 * T::from_f64(0.00004)) + qd[2] * t2507);
-    let t3153 = t2545 + qd[1] * (qd[1] * t2507);
-    [t2465, t3152, t3153]
+                * (c120 * (t2396 + T::from_f64(0.00008495) - t2477)
+                    + (s119 * (s180 * t2387)
+                        + (t2486 + T::from_f64(0.000021000000000000002)))) + t2496))
+        - qd[2] * (qd[1] * (s180 * T::from_f64(0.00004)) + qd[2] * t2505);
+    let t3150 = t2543 + qd[1] * (qd[1] * t2505);
+    [t2463, t3149, t3150]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -330,15 +334,15 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
 ///
 /// Operations (closed form): 8 arithmetic (3 add/sub, 5 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
     let (s119, c120) = q[1].sin_cos();
     let (s180, c181) = q[2].sin_cos();
-    let t2516 = c181 * T::from_f64(0.003924);
-    let t2523 = s119 * (s180 * T::from_f64(0.003924));
-    let t2525 = c120 * (t2516 + T::from_f64(0.017167500000000002)) - t2523;
-    let t2549 = c120 * t2516 - t2523;
-    [T::from_f64(0.0), t2525, t2549]
+    let t2514 = c181 * T::from_f64(0.003924);
+    let t2521 = s119 * (s180 * T::from_f64(0.003924));
+    let t2523 = c120 * (t2514 + T::from_f64(0.017167500000000002)) - t2521;
+    let t2547 = c120 * t2514 - t2521;
+    [T::from_f64(0.0), t2523, t2547]
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
 ///
@@ -346,7 +350,7 @@ pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
 ///
 /// Operations (traced recursion): 293 arithmetic (124 add/sub, 163 mul, 6 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics<T: Real>(
     q: &[T; 3],
     qd: &[T; 3],
@@ -376,110 +380,110 @@ pub fn forward_dynamics<T: Real>(
     let t493 = T::from_f64(0.000001) * t122;
     let t494 = T::from_f64(0.0000068) * t123;
     let t495 = T::from_f64(0.0000068) * qd[1];
-    let t1712 = T::from_f64(-0.012) - T::from_f64(0.05) * c120;
-    let t1722 = c120 * c181 - s119 * s180;
-    let t1757 = T::from_f64(0.02)
-        * (t1712 - T::from_f64(0.04) * t1722 + T::from_f64(0.02) * t1722);
-    let t1758 = T::from_f64(0.0000006) * (s119 * c181 + c120 * s180);
-    let t1765 = T::from_f64(0.000003) * t1722 + T::from_f64(0.02) * t1757
-        - T::from_f64(0.04) * t1757;
-    let t1776 = T::from_f64(0.03) * (t1712 + c120 * T::from_f64(0.025));
-    let t1779 = t1757 + t1776;
-    let t1795 = s119 * (T::from_f64(0.000001) * s119 - (s180 * t1765 - c181 * t1758))
+    let t1710 = T::from_f64(-0.012) - T::from_f64(0.05) * c120;
+    let t1720 = c120 * c181 - s119 * s180;
+    let t1755 = T::from_f64(0.02)
+        * (t1710 - T::from_f64(0.04) * t1720 + T::from_f64(0.02) * t1720);
+    let t1756 = T::from_f64(0.0000006) * (s119 * c181 + c120 * s180);
+    let t1763 = T::from_f64(0.000003) * t1720 + T::from_f64(0.02) * t1755
+        - T::from_f64(0.04) * t1755;
+    let t1774 = T::from_f64(0.03) * (t1710 + c120 * T::from_f64(0.025));
+    let t1777 = t1755 + t1774;
+    let t1793 = s119 * (T::from_f64(0.000001) * s119 - (s180 * t1763 - c181 * t1756))
         + c120
-            * (s180 * t1758 + c181 * t1765
-                + (T::from_f64(0.0000068) * c120 + T::from_f64(0.025) * t1776)
-                - T::from_f64(0.05) * t1779);
-    let t1836 = T::from_f64(0.000000064)
+            * (s180 * t1756 + c181 * t1763
+                + (T::from_f64(0.0000068) * c120 + T::from_f64(0.025) * t1774)
+                - T::from_f64(0.05) * t1777);
+    let t1834 = T::from_f64(0.000000064)
         + (T::from_f64(0.000000064)
             + (T::from_f64(0.000000081)
                 + (T::from_f64(0.000000036)
                     + (T::from_f64(-0.00000006000000000000001)
-                        - (T::from_f64(-0.000000283) - t1795)
+                        - (T::from_f64(-0.000000283) - t1793)
                         - T::from_f64(0.012)
                             * (T::from_f64(-0.00006)
-                                - (T::from_f64(0.000048) - t1779))))));
-    let t1848 = T::from_f64(0.02)
+                                - (T::from_f64(0.000048) - t1777))))));
+    let t1846 = T::from_f64(0.02)
         * (T::from_f64(-0.02) + (T::from_f64(0.04) + T::from_f64(0.05) * c181));
-    let t1872 = T::from_f64(0.000003) - T::from_f64(0.02) * t1848
-        + T::from_f64(0.04) * t1848 + T::from_f64(-0.000011950000000000002)
+    let t1870 = T::from_f64(0.000003) - T::from_f64(0.02) * t1846
+        + T::from_f64(0.04) * t1846 + T::from_f64(-0.000011950000000000002)
         + T::from_f64(0.05)
-            * (s180 * (T::from_f64(0.02) * (T::from_f64(0.05) * s180)) + c181 * t1848
+            * (s180 * (T::from_f64(0.02) * (T::from_f64(0.05) * s180)) + c181 * t1846
                 + T::from_f64(0.00075));
-    let t1969 = t122 * t144 + T::from_f64(0.05) * t127;
-    let t1987 = qd[2] * t185 + (t126 * s180 + t127 * c181);
-    let t2037 = T::from_f64(0.002) * t110;
-    let t2052 = T::from_f64(0.02)
-        * (t185 * t216 + (t1969 + T::from_f64(0.04) * t1987) - T::from_f64(0.02) * t1987
+    let t1967 = t122 * t144 + T::from_f64(0.05) * t127;
+    let t1985 = qd[2] * t185 + (t126 * s180 + t127 * c181);
+    let t2035 = T::from_f64(0.002) * t110;
+    let t2050 = T::from_f64(0.02)
+        * (t185 * t216 + (t1967 + T::from_f64(0.04) * t1985) - T::from_f64(0.02) * t1985
             - t185 * t236);
-    let t2056 = t189 * t442 - t190 * t441
+    let t2054 = t189 * t442 - t190 * t441
         + T::from_f64(0.0000006) * (qd[2] * t189 + (t126 * c181 - t127 * s180));
-    let t2068 = t190 * t440 - t185 * t442 - T::from_f64(0.000003) * t1987
-        + T::from_f64(0.02) * t2052 - T::from_f64(0.04) * t2052;
-    let t2092 = T::from_f64(0.03)
-        * (t1969 - t127 * T::from_f64(0.025) - t122 * (qd[1] * T::from_f64(0.025)));
-    let t2100 = t2052 + t2092;
-    let t2114 = s180 * t2056 + c181 * t2068
+    let t2066 = t190 * t440 - t185 * t442 - T::from_f64(0.000003) * t1985
+        + T::from_f64(0.02) * t2050 - T::from_f64(0.04) * t2050;
+    let t2090 = T::from_f64(0.03)
+        * (t1967 - t127 * T::from_f64(0.025) - t122 * (qd[1] * T::from_f64(0.025)));
+    let t2098 = t2050 + t2090;
+    let t2112 = s180 * t2054 + c181 * t2066
         + (qd[1] * t493 - t122 * t495 - T::from_f64(0.0000068) * t127
-            + T::from_f64(0.025) * t2092) - T::from_f64(0.05) * t2100;
-    let t2143 = s119
+            + T::from_f64(0.025) * t2090) - T::from_f64(0.05) * t2098;
+    let t2141 = s119
         * (t123 * t495 - qd[1] * t494 + T::from_f64(0.000001) * t126
-            - (s180 * t2068 - c181 * t2056)) + c120 * t2114
-        - (T::from_f64(0.009) * t2037 + T::from_f64(0.006) * t2037);
-    let t2239 = t110 * s119 + T::from_f64(9.81) * c120 + t122 * t145;
-    let t2262 = T::from_f64(0.02)
-        * (t185 * t217 + (c181 * t2239 - t155 * s180) - t185 * t238);
-    let t2268 = t185 * t441 - t189 * t440 - T::from_f64(0.02) * t2262
-        + T::from_f64(0.04) * t2262;
-    let t2273 = s180
+            - (s180 * t2066 - c181 * t2054)) + c120 * t2112
+        - (T::from_f64(0.009) * t2035 + T::from_f64(0.006) * t2035);
+    let t2237 = t110 * s119 + T::from_f64(9.81) * c120 + t122 * t145;
+    let t2260 = T::from_f64(0.02)
+        * (t185 * t217 + (c181 * t2237 - t155 * s180) - t185 * t238);
+    let t2266 = t185 * t441 - t189 * t440 - T::from_f64(0.02) * t2260
+        + T::from_f64(0.04) * t2260;
+    let t2271 = s180
         * (T::from_f64(0.02)
             * (t189 * t238 + t190 * t236
-                + (t155 * c181 + s180 * t2239 - (t189 * t217 + t190 * t216))));
-    let t2279 = T::from_f64(0.03) * (t2239 - t122 * (t123 * T::from_f64(0.025)));
-    let t2351 = T::from_f64(0.008) * tendon_tensions[2]
+                + (t155 * c181 + s180 * t2237 - (t189 * t217 + t190 * t216))));
+    let t2277 = T::from_f64(0.03) * (t2237 - t122 * (t123 * T::from_f64(0.025)));
+    let t2349 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
-        - (t2143
+        - (t2141
             - T::from_f64(0.012)
-                * (t2100
+                * (t2098
                     - (T::from_f64(0.002) * (qd[0] * (T::from_f64(0.009) * qd[0]))
                         + T::from_f64(0.002) * (qd[0] * (T::from_f64(0.006) * qd[0])))));
-    let t2352 = T::from_f64(0.007) * tendon_tensions[0]
+    let t2350 = T::from_f64(0.007) * tendon_tensions[0]
         - T::from_f64(0.007) * tendon_tensions[1]
         + T::from_f64(0.01) * tendon_tensions[2] - T::from_f64(0.01) * tendon_tensions[3]
-        - (t2268 + (t122 * t494 - t123 * t493 - T::from_f64(0.025) * t2279)
-            + T::from_f64(0.05) * (t2273 + c181 * t2262 + t2279));
-    let t2354 = T::from_f64(0.000000021000000000000003) / t1836;
-    let t2355 = T::from_f64(0.000000024000000000000003) / t1836;
-    let t2358 = T::from_f64(0.0000001)
-        + (T::from_f64(0.000000049) + (T::from_f64(0.000000049) + t1872)
+        - (t2266 + (t122 * t494 - t123 * t493 - T::from_f64(0.025) * t2277)
+            + T::from_f64(0.05) * (t2271 + c181 * t2260 + t2277));
+    let t2352 = T::from_f64(0.000000021000000000000003) / t1834;
+    let t2353 = T::from_f64(0.000000024000000000000003) / t1834;
+    let t2356 = T::from_f64(0.0000001)
+        + (T::from_f64(0.000000049) + (T::from_f64(0.000000049) + t1870)
             + T::from_f64(0.00000004899999999999998)
             + T::from_f64(0.000000048999999999999995) + T::from_f64(0.0000001))
-        - t1836 * (t2354 * t2354);
-    let t2362 = (T::from_f64(0.000000056)
+        - t1834 * (t2352 * t2352);
+    let t2360 = (T::from_f64(0.000000056)
         + (T::from_f64(0.000000055999999999999985)
             + (T::from_f64(0.00000005600000000000001)
                 + (T::from_f64(0.00000005600000000000001)
                     + (T::from_f64(0.000011000000000000001)
                         + T::from_f64(0.05) * (c181 * T::from_f64(0.0004))))))
-        - t1836 * (t2354 * t2355)) / t2358;
-    let t2370 = t2352 - t2351 * t2354;
-    let t2377 = (T::from_f64(0.008) * tendon_tensions[0]
-        - T::from_f64(0.008) * tendon_tensions[1] - t2268 - t2351 * t2355
-        - t2362 * t2370)
-        / (T::from_f64(0.000011256) - t1836 * (t2355 * t2355) - t2358 * (t2362 * t2362));
-    let t2379 = t2370 / t2358 - t2362 * t2377;
-    let t2383 = t2351 / t1836 - t2354 * t2379 - t2355 * t2377;
-    [t2383, t2379, t2377]
+        - t1834 * (t2352 * t2353)) / t2356;
+    let t2368 = t2350 - t2349 * t2352;
+    let t2375 = (T::from_f64(0.008) * tendon_tensions[0]
+        - T::from_f64(0.008) * tendon_tensions[1] - t2266 - t2349 * t2353
+        - t2360 * t2368)
+        / (T::from_f64(0.000011256) - t1834 * (t2353 * t2353) - t2356 * (t2360 * t2360));
+    let t2377 = t2368 / t2356 - t2360 * t2375;
+    let t2381 = t2349 / t1834 - t2352 * t2377 - t2353 * t2375;
+    [t2381, t2377, t2375]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: Ta#0, Ta#1, Ta#2, Tb#0, Tb#1, Tb#2, Tc#0, Tc#1, Td#0, Td#1.
 ///
-/// Operations (traced recursion): 351 arithmetic (149 add/sub, 198 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 349 arithmetic (149 add/sub, 196 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 10] {
     let t106 = T::from_f64(0.012) * qdd[0];
     let t110 = qd[0] * (T::from_f64(0.012) * qd[0]);
@@ -612,30 +616,30 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
         - t1112 * T::from_f64(49.98700623700625);
     let t1432 = T::from_f64(33.26403326403329) * t1309 - t1192 * T::from_f64(50.0)
         + T::from_f64(37.512993762993766) * t1112;
-    let t1447 = T::from_f64(0.0)
+    let t1446 = T::from_f64(0.0)
         .max((T::from_f64(5.0) - t1405) * T::from_f64(0.9374999999999998))
         .max((t1417 + T::from_f64(5.0)) * T::from_f64(0.9375000000000002))
-        .max((T::from_f64(5.0) - t1425) * T::from_f64(0.9999999999999998))
+        .max(T::from_f64(5.0) - t1425)
         .max(T::from_f64(5.0) - t1432);
-    let t1449 = t1405 + T::from_f64(1.0666666666666669) * t1447;
-    let t1451 = T::from_f64(1.0666666666666664) * t1447 - t1417;
-    let t1453 = t1425 + T::from_f64(1.0000000000000002) * t1447;
-    let t1454 = t1432 + t1447;
-    let t1482 = t634 + t1449;
-    let t1483 = t629 + t1449;
-    let t1484 = t640 + t1451;
-    let t1485 = t637 + t1451;
-    let t1486 = t1453 - t642;
-    let t1487 = t1454 - t644;
-    [t1482, t1483, t1449, t1484, t1485, t1451, t1486, t1453, t1487, t1454]
+    let t1448 = t1405 + T::from_f64(1.0666666666666669) * t1446;
+    let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
+    let t1451 = t1425 + t1446;
+    let t1452 = t1432 + t1446;
+    let t1480 = t634 + t1448;
+    let t1481 = t629 + t1448;
+    let t1482 = t640 + t1450;
+    let t1483 = t637 + t1450;
+    let t1484 = t1451 - t642;
+    let t1485 = t1452 - t644;
+    [t1480, t1481, t1448, t1482, t1483, t1450, t1484, t1451, t1485, t1452]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: knuckle, proximal, distal, drum3a, drum3b, drum2, idler8, idler9, idler4, idler5, idler6, idler7.
 ///
-/// Operations (traced recursion): 774 arithmetic (352 add/sub, 410 mul, 0 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 772 arithmetic (352 add/sub, 408 mul, 0 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2]; 12] {
     let (s102, c103) = q[0].sin_cos();
     let t106 = T::from_f64(0.012) * qdd[0];
@@ -868,118 +872,118 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         - t1112 * T::from_f64(49.98700623700625);
     let t1432 = T::from_f64(33.26403326403329) * t1309 - t1192 * T::from_f64(50.0)
         + T::from_f64(37.512993762993766) * t1112;
-    let t1447 = T::from_f64(0.0)
+    let t1446 = T::from_f64(0.0)
         .max((T::from_f64(5.0) - t1405) * T::from_f64(0.9374999999999998))
         .max((t1417 + T::from_f64(5.0)) * T::from_f64(0.9375000000000002))
-        .max((T::from_f64(5.0) - t1425) * T::from_f64(0.9999999999999998))
+        .max(T::from_f64(5.0) - t1425)
         .max(T::from_f64(5.0) - t1432);
-    let t1449 = t1405 + T::from_f64(1.0666666666666669) * t1447;
-    let t1451 = T::from_f64(1.0666666666666664) * t1447 - t1417;
-    let t1453 = t1425 + T::from_f64(1.0000000000000002) * t1447;
-    let t1454 = t1432 + t1447;
-    let t1491 = T::from_f64(0.01) * (t117 - t110)
+    let t1448 = t1405 + T::from_f64(1.0666666666666669) * t1446;
+    let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
+    let t1451 = t1425 + t1446;
+    let t1452 = t1432 + t1446;
+    let t1489 = T::from_f64(0.01) * (t117 - t110)
         - (t1004 + t1022 + (s119 * t1180 - c120 * t1179))
-        - (t726 + (s119 * t1128 - c120 * t1125)) * t1449;
-    let t1497 = t1289 + t1291 * t1449 + t1293 * t1451;
-    let t1501 = t1491 - (t822 + (s119 * t1135 - c120 * t1131)) * t1451 + t1220 * t1453
-        + t1220 * t1454;
-    let t1505 = t405 + T::from_f64(0.009) * t1005 + (t405 + T::from_f64(0.006) * t1023)
+        - (t726 + (s119 * t1128 - c120 * t1125)) * t1448;
+    let t1495 = t1289 + t1291 * t1448 + t1293 * t1450;
+    let t1499 = t1489 - (t822 + (s119 * t1135 - c120 * t1131)) * t1450 + t1220 * t1451
+        + t1220 * t1452;
+    let t1503 = t405 + T::from_f64(0.009) * t1005 + (t405 + T::from_f64(0.006) * t1023)
         - (s119 * t1191 - c120 * t1181)
-        + (T::from_f64(0.006) * t703 - (s119 * t1155 - c120 * t1152)) * t1449;
-    let t1507 = T::from_f64(-0.0005886000000000001)
+        + (T::from_f64(0.006) * t703 - (s119 * t1155 - c120 * t1152)) * t1448;
+    let t1505 = T::from_f64(-0.0005886000000000001)
         - (t825 - t401 + (t729 - t401) - t1192) + T::from_f64(0.012) * t1289
-        + (t1193 - (T::from_f64(0.007) - t723) + T::from_f64(0.012) * t1291) * t1449;
-    let t1512 = t1309 + (s119 * t1152 + c120 * t1155 - T::from_f64(0.006) * t726) * t1449
-        + (s119 * t1158 + c120 * t1162 - T::from_f64(0.009) * t822) * t1451;
-    let t1517 = (t1052 - t866 - t1052) * t1453;
-    let t1524 = (t866 + t1052 - t1052) * t1454;
-    let t1525 = t1505
-        + (T::from_f64(0.009) * t803 - (s119 * t1162 - c120 * t1158)) * t1451
-        + t1254 * t1453 + t1254 * t1454;
-    let t1526 = t1512 - t1259 * t1453 - t1259 * t1454;
-    let t1527 = t1507 + (t1194 - t826 + T::from_f64(0.012) * t1293) * t1451 + t1517
-        + t1524;
-    let t1536 = c120 * t1453;
-    let t1537 = s119 * t1453;
-    let t1541 = c120 * t1454;
-    let t1542 = s119 * t1454;
-    let t1544 = t1179 + t1125 * t1449 + t1131 * t1451 + t1536 + t1541;
-    let t1545 = t1180 + t1128 * t1449 + t1135 * t1451 - t1537 - t1542;
-    let t1569 = t1181 + t1152 * t1449 + t1158 * t1451 - t1048 * t1453 - t1048 * t1454;
-    let t1570 = t1191 + t1155 * t1449 + t1162 * t1451 - t1050 * t1453 - t1050 * t1454;
-    let t1571 = t1524 + (t1517 + (t1192 + t1193 * t1449 + t1194 * t1451));
-    let t1572 = t666 * t1449;
-    let t1573 = t1077 * t1449;
-    let t1576 = t1060 * t1451;
-    let t1577 = t770 * t1451;
-    let t1579 = t1100 + t1572 + t1576;
-    let t1580 = t1101 + t1573 - t1577;
-    let t1591 = t1102 + t1086 * t1449 + t1067 * t1451;
-    let t1592 = t1111 + t1088 * t1449 - t1069 * t1451;
-    let t1593 = t1112 + t1113 * t1449 + t1114 * t1451;
-    let t1594 = t656 + t1572;
-    let t1595 = t659 - t658 + t1573;
-    let t1599 = -(t685 + t689 * t1449);
-    let t1600 = t760 - t762 + t1576;
-    let t1602 = -(t766 + t1577);
-    let t1604 = t784 + t789 * t1451;
-    let t1607 = t1541 + (t1536 - t900);
-    let t1608 = t901 - t1537 - t1542;
-    let t1613 = t861 - t906 - t866 * t1453 + t866 * t1454;
-    let t1618 = t417 - t725 - t726 * t1449;
-    let t1619 = T::from_f64(0.019620000000000002) - t696 - t703 * t1449;
-    let t1621 = t401 - t729 + (t723 - T::from_f64(0.007)) * t1449;
-    let t1625 = t394 - t821 - t822 * t1451;
-    let t1626 = T::from_f64(0.019620000000000002) - t797 + (t801 - t701) * t1451;
-    let t1629 = t401 - t825 - t826 * t1451;
-    let t1635 = -(t731 + (T::from_f64(-0.9971835337589565) + c103) * t1449);
-    let t1637 = -(t732 + (T::from_f64(0.07499999999999996) + s102) * t1449);
-    let t1640 = t390 - (t732 * t733 + t731 * t734)
-        - (T::from_f64(-0.006) + (s102 * t733 + c103 * t734)) * t1449;
-    let t1646 = -(t827 + (T::from_f64(-0.99365172470036) + c103) * t1451);
-    let t1648 = -(t828 + (T::from_f64(0.11250000000000027) + s102) * t1451);
-    let t1651 = t385 - (t828 * t829 + t827 * t830)
-        - (s102 * t829 + c103 * t830 + T::from_f64(-0.009000000000000001)) * t1451;
-    let t1656 = t867 - t886 * t1453;
-    let t1657 = t869 - t887 * t1453;
-    let t1659 = t380 - (t869 * t871 + t867 * t873) + t922 * t1453;
-    let t1664 = t910 - t886 * t1454;
-    let t1665 = t912 - t887 * t1454;
-    let t1667 = t376 - (t871 * t912 + t873 * t910) + t922 * t1454;
+        + (t1193 - (T::from_f64(0.007) - t723) + T::from_f64(0.012) * t1291) * t1448;
+    let t1510 = t1309 + (s119 * t1152 + c120 * t1155 - T::from_f64(0.006) * t726) * t1448
+        + (s119 * t1158 + c120 * t1162 - T::from_f64(0.009) * t822) * t1450;
+    let t1515 = (t1052 - t866 - t1052) * t1451;
+    let t1522 = (t866 + t1052 - t1052) * t1452;
+    let t1523 = t1503
+        + (T::from_f64(0.009) * t803 - (s119 * t1162 - c120 * t1158)) * t1450
+        + t1254 * t1451 + t1254 * t1452;
+    let t1524 = t1510 - t1259 * t1451 - t1259 * t1452;
+    let t1525 = t1505 + (t1194 - t826 + T::from_f64(0.012) * t1293) * t1450 + t1515
+        + t1522;
+    let t1534 = c120 * t1451;
+    let t1535 = s119 * t1451;
+    let t1539 = c120 * t1452;
+    let t1540 = s119 * t1452;
+    let t1542 = t1179 + t1125 * t1448 + t1131 * t1450 + t1534 + t1539;
+    let t1543 = t1180 + t1128 * t1448 + t1135 * t1450 - t1535 - t1540;
+    let t1567 = t1181 + t1152 * t1448 + t1158 * t1450 - t1048 * t1451 - t1048 * t1452;
+    let t1568 = t1191 + t1155 * t1448 + t1162 * t1450 - t1050 * t1451 - t1050 * t1452;
+    let t1569 = t1522 + (t1515 + (t1192 + t1193 * t1448 + t1194 * t1450));
+    let t1570 = t666 * t1448;
+    let t1571 = t1077 * t1448;
+    let t1574 = t1060 * t1450;
+    let t1575 = t770 * t1450;
+    let t1577 = t1100 + t1570 + t1574;
+    let t1578 = t1101 + t1571 - t1575;
+    let t1589 = t1102 + t1086 * t1448 + t1067 * t1450;
+    let t1590 = t1111 + t1088 * t1448 - t1069 * t1450;
+    let t1591 = t1112 + t1113 * t1448 + t1114 * t1450;
+    let t1592 = t656 + t1570;
+    let t1593 = t659 - t658 + t1571;
+    let t1597 = -(t685 + t689 * t1448);
+    let t1598 = t760 - t762 + t1574;
+    let t1600 = -(t766 + t1575);
+    let t1602 = t784 + t789 * t1450;
+    let t1605 = t1539 + (t1534 - t900);
+    let t1606 = t901 - t1535 - t1540;
+    let t1611 = t861 - t906 - t866 * t1451 + t866 * t1452;
+    let t1616 = t417 - t725 - t726 * t1448;
+    let t1617 = T::from_f64(0.019620000000000002) - t696 - t703 * t1448;
+    let t1619 = t401 - t729 + (t723 - T::from_f64(0.007)) * t1448;
+    let t1623 = t394 - t821 - t822 * t1450;
+    let t1624 = T::from_f64(0.019620000000000002) - t797 + (t801 - t701) * t1450;
+    let t1627 = t401 - t825 - t826 * t1450;
+    let t1633 = -(t731 + (T::from_f64(-0.9971835337589565) + c103) * t1448);
+    let t1635 = -(t732 + (T::from_f64(0.07499999999999996) + s102) * t1448);
+    let t1638 = t390 - (t732 * t733 + t731 * t734)
+        - (T::from_f64(-0.006) + (s102 * t733 + c103 * t734)) * t1448;
+    let t1644 = -(t827 + (T::from_f64(-0.99365172470036) + c103) * t1450);
+    let t1646 = -(t828 + (T::from_f64(0.11250000000000027) + s102) * t1450);
+    let t1649 = t385 - (t828 * t829 + t827 * t830)
+        - (s102 * t829 + c103 * t830 + T::from_f64(-0.009000000000000001)) * t1450;
+    let t1654 = t867 - t886 * t1451;
+    let t1655 = t869 - t887 * t1451;
+    let t1657 = t380 - (t869 * t871 + t867 * t873) + t922 * t1451;
+    let t1662 = t910 - t886 * t1452;
+    let t1663 = t912 - t887 * t1452;
+    let t1665 = t376 - (t871 * t912 + t873 * t910) + t922 * t1452;
     [
-        [[t1501, t1497, t565], [t1525, t1526, t1527]],
-        [[t1544, t1545, t513], [t1569, t1570, t1571]],
-        [[t1579, t1580, t439], [t1591, t1592, t1593]],
-        [[t1594, t1595, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1599]],
-        [[t1600, t1602, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1604]],
-        [[t1607, t1608, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1613]],
-        [[t1618, t1619, t419], [t405, t400, t1621]],
-        [[t1625, t1626, t396], [t405, t400, t1629]],
+        [[t1499, t1495, t565], [t1523, t1524, t1525]],
+        [[t1542, t1543, t513], [t1567, t1568, t1569]],
+        [[t1577, t1578, t439], [t1589, t1590, t1591]],
+        [[t1592, t1593, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1597]],
+        [[t1598, t1600, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1602]],
+        [[t1605, t1606, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1611]],
+        [[t1616, t1617, t419], [t405, t400, t1619]],
+        [[t1623, t1624, t396], [t405, t400, t1627]],
         [
-            [t1635, t1637, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1640],
+            [t1633, t1635, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1638],
         ],
         [
-            [t1646, t1648, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1651],
+            [t1644, t1646, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1649],
         ],
         [
-            [t1656, t1657, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1659],
+            [t1654, t1655, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1657],
         ],
         [
-            [t1664, t1665, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1667],
+            [t1662, t1663, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1665],
         ],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
-/// Entries: knuckle, proximal, distal.
+/// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 764 arithmetic (354 add/sub, 406 mul, 0 div, 0 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 762 arithmetic (354 add/sub, 404 mul, 0 div, 0 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
     q: &[T; 3],
     qd: &[T; 3],
@@ -1229,58 +1233,58 @@ pub fn base_reaction<T: Real>(
         - t1112 * T::from_f64(49.98700623700625);
     let t1432 = T::from_f64(33.26403326403329) * t1309 - t1192 * T::from_f64(50.0)
         + T::from_f64(37.512993762993766) * t1112;
-    let t1447 = T::from_f64(0.0)
+    let t1446 = T::from_f64(0.0)
         .max((T::from_f64(5.0) - t1405) * T::from_f64(0.9374999999999998))
         .max((t1417 + T::from_f64(5.0)) * T::from_f64(0.9375000000000002))
-        .max((T::from_f64(5.0) - t1425) * T::from_f64(0.9999999999999998))
+        .max(T::from_f64(5.0) - t1425)
         .max(T::from_f64(5.0) - t1432);
-    let t1449 = t1405 + T::from_f64(1.0666666666666669) * t1447;
-    let t1451 = T::from_f64(1.0666666666666664) * t1447 - t1417;
-    let t1453 = t1425 + T::from_f64(1.0000000000000002) * t1447;
-    let t1454 = t1432 + t1447;
-    let t1675 = t867 + t910 - t827 - t731 + (s102 * t565 + c103 * t1288)
-        + (T::from_f64(-0.9971835337589565) - t746 - c103 * t1275) * t1449
-        + (T::from_f64(-0.99365172470036) - t842 - c103 * t1277) * t1451;
-    let t1676 = t869 + t912 - t828 - t732 - (c103 * t565 - s102 * t1288)
-        + (T::from_f64(0.07499999999999996) - t747 - s102 * t1275) * t1449
-        + (T::from_f64(0.11250000000000027) - t843 - s102 * t1277) * t1451;
-    let t1677 = t1293 * t1451
+    let t1448 = t1405 + T::from_f64(1.0666666666666669) * t1446;
+    let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
+    let t1451 = t1425 + t1446;
+    let t1452 = t1432 + t1446;
+    let t1673 = t867 + t910 - t827 - t731 + (s102 * t565 + c103 * t1288)
+        + (T::from_f64(-0.9971835337589565) - t746 - c103 * t1275) * t1448
+        + (T::from_f64(-0.99365172470036) - t842 - c103 * t1277) * t1450;
+    let t1674 = t869 + t912 - t828 - t732 - (c103 * t565 - s102 * t1288)
+        + (T::from_f64(0.07499999999999996) - t747 - s102 * t1275) * t1448
+        + (T::from_f64(0.11250000000000027) - t843 - s102 * t1277) * t1450;
+    let t1675 = t1293 * t1450
         + (T::from_f64(0.07848000000000001) - (t1274 - T::from_f64(0.0981))
-            + t1291 * t1449);
-    let t1684 = t1675 + t1383 * t1453 + t1383 * t1454;
-    let t1685 = t1676 + t1384 * t1453 + t1384 * t1454;
-    let t1689 = T::from_f64(0.01) * t912 - T::from_f64(0.01) * t869
+            + t1291 * t1448);
+    let t1682 = t1673 + t1383 * t1451 + t1383 * t1452;
+    let t1683 = t1674 + t1384 * t1451 + t1384 * t1452;
+    let t1687 = T::from_f64(0.01) * t912 - T::from_f64(0.01) * t869
         - T::from_f64(0.007) * t828 + T::from_f64(0.007) * t732
         + (c103 * t1294 + s102 * t1310)
         + (T::from_f64(-0.0005249999999999998) + T::from_f64(0.007) * t747
-            + (c103 * t1297 + s102 * t1311)) * t1449;
-    let t1690 = T::from_f64(0.01) * t867 - T::from_f64(0.01) * t910
+            + (c103 * t1297 + s102 * t1311)) * t1448;
+    let t1688 = T::from_f64(0.01) * t867 - T::from_f64(0.01) * t910
         + T::from_f64(0.007) * t827 - T::from_f64(0.007) * t731
         - (c103 * t1310 - s102 * t1294)
         + (T::from_f64(-0.0069802847363126955) - T::from_f64(0.007) * t746
-            - (c103 * t1311 - s102 * t1297)) * t1449;
-    let t1691 = t971 - (t732 * t733 + t731 * t734 - t390) - (t573 - t1295)
+            - (c103 * t1311 - s102 * t1297)) * t1448;
+    let t1689 = t971 - (t732 * t733 + t731 * t734 - t390) - (t573 - t1295)
         + (T::from_f64(-0.005999999999999997)
             - (T::from_f64(-0.006) + (s102 * t733 + c103 * t734))
-            - (T::from_f64(0.006) * t726 - (s119 * t1152 + c120 * t1155))) * t1449;
-    let t1697 = t1691
+            - (T::from_f64(0.006) * t726 - (s119 * t1152 + c120 * t1155))) * t1448;
+    let t1695 = t1689
         + (T::from_f64(-0.009000000000000022)
             - (s102 * t829 + c103 * t830 + T::from_f64(-0.009000000000000001))
-            - (T::from_f64(0.009) * t822 - (s119 * t1158 + c120 * t1162))) * t1451;
-    let t1701 = t1689
+            - (T::from_f64(0.009) * t822 - (s119 * t1158 + c120 * t1162))) * t1450;
+    let t1699 = t1687
         + (T::from_f64(0.0007875000000000018) - T::from_f64(0.007) * t843
-            + (c103 * t1300 + s102 * t1312)) * t1451
-        + (T::from_f64(0.0009999999999999983) + t928 + (t1353 + s102 * t1195)) * t1453;
-    let t1702 = t1690
+            + (c103 * t1300 + s102 * t1312)) * t1450
+        + (T::from_f64(0.0009999999999999983) + t928 + (t1353 + s102 * t1195)) * t1451;
+    let t1700 = t1688
         + (T::from_f64(0.00695556207290252) + T::from_f64(0.007) * t842
-            - (c103 * t1312 - s102 * t1300)) * t1451
-        + (T::from_f64(-0.0099498743710662) - t930 - (c103 * t1195 - t1356)) * t1453;
-    let t1707 = t1701
-        + (T::from_f64(-0.0009999999999999983) - t928 + (t1353 + s102 * t1196)) * t1454;
-    let t1708 = t1702
-        + (T::from_f64(0.0099498743710662) + t930 - (c103 * t1196 - t1356)) * t1454;
-    let t1709 = t1697 + t1396 * t1453 + t1396 * t1454;
-    [[[t1684, t1685, t1677], [t1707, t1708, t1709]]]
+            - (c103 * t1312 - s102 * t1300)) * t1450
+        + (T::from_f64(-0.0099498743710662) - t930 - (c103 * t1195 - t1356)) * t1451;
+    let t1705 = t1699
+        + (T::from_f64(-0.0009999999999999983) - t928 + (t1353 + s102 * t1196)) * t1452;
+    let t1706 = t1700
+        + (T::from_f64(0.0099498743710662) + t930 - (c103 * t1196 - t1356)) * t1452;
+    let t1707 = t1695 + t1396 * t1451 + t1396 * t1452;
+    [[[t1682, t1683, t1675], [t1705, t1706, t1707]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -1304,9 +1308,9 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 1283 arithmetic (624 add/sub, 641 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 1254 arithmetic (620 add/sub, 616 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
-#[allow(unused_variables, unused_parens, clippy::all)]
+#[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
     q: &[T; 3],
     qd: &[T; 3],
@@ -1326,12 +1330,17 @@ pub fn all<T: Real>(
     let t127 = qd[1] * t122;
     let t129 = qdd[0] * s119 + t126;
     let t130 = qdd[0] * c120 - t127;
-    let t137 = t110 * s119 + T::from_f64(9.81) * c120;
+    let t131 = t110 * c120;
+    let t133 = T::from_f64(9.81) * s119;
+    let t135 = t110 * s119;
+    let t136 = T::from_f64(9.81) * c120;
+    let t137 = t135 + t136;
     let t144 = T::from_f64(0.05) * qd[1];
     let t145 = T::from_f64(0.05) * t123;
+    let t150 = t123 * t145 + qd[1] * t144;
     let t152 = t122 * t145;
     let t154 = t122 * t144;
-    let t155 = T::from_f64(9.81) * s119 - t110 * c120 - (t123 * t145 + qd[1] * t144);
+    let t155 = t133 - t131 - t150;
     let t156 = t137 + T::from_f64(0.05) * qdd[1] + t152;
     let t157 = t154 - (t106 + T::from_f64(0.05) * t130);
     let t165 = qd[1] * T::from_f64(0.025);
@@ -1381,6 +1390,7 @@ pub fn all<T: Real>(
     let t417 = T::from_f64(0.002) * (t112 - t110);
     let t418 = T::from_f64(0.002) * (t106 + t117);
     let t419 = -t418;
+    let t437 = T::from_f64(0.02) * (t204 + t156 * s180 - t222 + t243);
     let t438 = T::from_f64(0.02)
         * (t156 * c181 - t207 + T::from_f64(0.04) * t198 + t224
             - T::from_f64(0.02) * t198 - t244);
@@ -1392,6 +1402,12 @@ pub fn all<T: Real>(
     let t448 = t189 * t442 - t190 * t441;
     let t451 = t190 * t440 - t185 * t442;
     let t454 = t185 * t441 - t189 * t440;
+    let t455 = T::from_f64(0.0000006) * (t129 * c181 + t130 * s180 + t199) + t448;
+    let t462 = T::from_f64(0.000003) * t203 + t451 + T::from_f64(0.02) * t439;
+    let t463 = T::from_f64(0.000003) * t198 + t454 - T::from_f64(0.02) * t438;
+    let t464 = T::from_f64(0.04) * t439;
+    let t468 = t462 - t464;
+    let t469 = t463 + T::from_f64(0.04) * t438;
     let t491 = T::from_f64(0.03) * (t156 - qdd[1] * T::from_f64(0.025) - t173);
     let t492 = T::from_f64(0.03) * (t157 + t130 * T::from_f64(0.025) - t175);
     let t493 = T::from_f64(0.000001) * t122;
@@ -1400,10 +1416,27 @@ pub fn all<T: Real>(
     let t501 = t123 * t495 - qd[1] * t494;
     let t504 = qd[1] * t493 - t122 * t495;
     let t507 = t122 * t494 - t123 * t493;
+    let t508 = T::from_f64(0.000001) * t129 + t501;
     let t513 = t439 + t492;
+    let t518 = T::from_f64(0.0000068) * t130 + t504 + T::from_f64(0.025) * t492;
+    let t519 = T::from_f64(0.0000068) * qdd[1] + t507 - T::from_f64(0.025) * t491;
+    let t523 = T::from_f64(0.05) * t513;
+    let t553 = t400 + T::from_f64(0.009) * t394 + (t400 + T::from_f64(0.006) * t417)
+        + (s119 * (t508 - (s180 * t468 - c181 * t455))
+            + c120 * (s180 * t455 + c181 * t468 + t518 - t523));
     let t559 = T::from_f64(0.01) * (t112 - t106);
     let t565 = t559 - (t395 + t418 - t513);
+    let t569 = T::from_f64(0.0000003) * qdd[0] + T::from_f64(0.006) * t559;
     let t573 = T::from_f64(0.012) * t565;
+    let t604 = T::from_f64(1.142857142857143) * t401;
+    let t617 = t401
+        + (t401 + (t469 + t519 + T::from_f64(0.05) * (s180 * t437 + c181 * t438 + t491)))
+        - T::from_f64(1.1666666666666665) * t390
+        + T::from_f64(0.7777777777777778) * t385;
+    let t619 = t604 + (t469 + t604) - T::from_f64(1.3333333333333333) * t390
+        + T::from_f64(0.888888888888889) * t385;
+    let t623 = t376 + (t380 + (t385 + (t390 + (t553 + t569 - t573))));
+    let t626 = t617 + T::from_f64(1.25) * t380 - T::from_f64(1.25) * t376;
     let t629 = t390 * T::from_f64(166.66666666666666);
     let t632 = t401 * T::from_f64(142.85714285714286);
     let t634 = t629 - t632;
@@ -1523,14 +1556,11 @@ pub fn all<T: Real>(
     let t1077 = t670 - t668;
     let t1086 = T::from_f64(0.006) * t672;
     let t1088 = T::from_f64(0.006) * t666;
-    let t1100 = T::from_f64(0.02) * (t204 + t156 * s180 - t222 + t243) - (t763 - t656);
+    let t1100 = t437 - (t763 - t656);
     let t1101 = t438 - (t661 + t766);
-    let t1102 = T::from_f64(0.0000006) * (t129 * c181 + t130 * s180 + t199) + t448
-        + (T::from_f64(0.009) * t766 + T::from_f64(0.006) * t661);
-    let t1111 = T::from_f64(0.000003) * t203 + t451 + T::from_f64(0.02) * t439
-        - (T::from_f64(0.009) * t763 - T::from_f64(0.006) * t656)
-        - T::from_f64(0.04) * t439;
-    let t1112 = T::from_f64(0.000003) * t198 + t454 - T::from_f64(0.02) * t438
+    let t1102 = t455 + (T::from_f64(0.009) * t766 + T::from_f64(0.006) * t661);
+    let t1111 = t462 - (T::from_f64(0.009) * t763 - T::from_f64(0.006) * t656) - t464;
+    let t1112 = t463
         - (t685 - T::from_f64(0.04) * t661 - (t784 + T::from_f64(0.04) * t766))
         + T::from_f64(0.04) * t1101;
     let t1113 = T::from_f64(0.04) * t672 - t689 + T::from_f64(0.04) * t1077;
@@ -1546,13 +1576,11 @@ pub fn all<T: Real>(
     let t1179 = T::from_f64(0.03) * (t155 + (t123 * t167 + qd[1] * t165))
         - (t900 + (s180 * t1101 - c181 * t1100));
     let t1180 = t491 + (t901 + (s180 * t1100 + c181 * t1101));
-    let t1181 = T::from_f64(0.000001) * t129 + t501
-        - (s180 * t1111 - c181 * t1102 - T::from_f64(0.008) * t901);
-    let t1191 = T::from_f64(0.0000068) * t130 + t504 + T::from_f64(0.025) * t492
-        + (T::from_f64(0.008) * t900 + (s180 * t1102 + c181 * t1111))
-        - T::from_f64(0.05) * t513;
-    let t1192 = T::from_f64(0.0000068) * qdd[1] + t507 - T::from_f64(0.025) * t491
-        - (t906 - t861 + T::from_f64(0.05) * t901 - t1112) + T::from_f64(0.05) * t1180;
+    let t1181 = t508 - (s180 * t1111 - c181 * t1102 - T::from_f64(0.008) * t901);
+    let t1191 = t518 + (T::from_f64(0.008) * t900 + (s180 * t1102 + c181 * t1111))
+        - t523;
+    let t1192 = t519 - (t906 - t861 + T::from_f64(0.05) * t901 - t1112)
+        + T::from_f64(0.05) * t1180;
     let t1193 = t1113 + T::from_f64(0.05) * t1128;
     let t1194 = t1114 + T::from_f64(0.05) * t1135;
     let t1195 = t1052 - t866 - t1052;
@@ -1572,7 +1600,7 @@ pub fn all<T: Real>(
     let t1293 = s119 * t1131 + c120 * t1135 - t803;
     let t1294 = t405 + T::from_f64(0.009) * t1005 + (t405 + T::from_f64(0.006) * t1023)
         - (s119 * t1191 - c120 * t1181);
-    let t1295 = T::from_f64(0.0000003) * qdd[0] + T::from_f64(0.006) * t559
+    let t1295 = t569
         - (T::from_f64(0.009) * t1004 - t400 + (T::from_f64(0.006) * t1022 - t400)
             - (s119 * t1181 + c120 * t1191));
     let t1297 = T::from_f64(0.006) * t703 - (s119 * t1155 - c120 * t1152);
@@ -1598,327 +1626,278 @@ pub fn all<T: Real>(
         - t1112 * T::from_f64(49.98700623700625);
     let t1432 = T::from_f64(33.26403326403329) * t1309 - t1192 * T::from_f64(50.0)
         + T::from_f64(37.512993762993766) * t1112;
-    let t1447 = T::from_f64(0.0)
+    let t1446 = T::from_f64(0.0)
         .max((T::from_f64(5.0) - t1405) * T::from_f64(0.9374999999999998))
         .max((t1417 + T::from_f64(5.0)) * T::from_f64(0.9375000000000002))
-        .max((T::from_f64(5.0) - t1425) * T::from_f64(0.9999999999999998))
+        .max(T::from_f64(5.0) - t1425)
         .max(T::from_f64(5.0) - t1432);
-    let t1449 = t1405 + T::from_f64(1.0666666666666669) * t1447;
-    let t1451 = T::from_f64(1.0666666666666664) * t1447 - t1417;
-    let t1453 = t1425 + T::from_f64(1.0000000000000002) * t1447;
-    let t1454 = t1432 + t1447;
-    let t1482 = t634 + t1449;
-    let t1483 = t629 + t1449;
-    let t1484 = t640 + t1451;
-    let t1485 = t637 + t1451;
-    let t1486 = t1453 - t642;
-    let t1487 = t1454 - t644;
-    let t1490 = t1291 * t1449;
-    let t1495 = t1293 * t1451;
-    let t1497 = t1289 + t1490 + t1495;
-    let t1501 = t1288 - t1275 * t1449 - t1277 * t1451 + t1220 * t1453 + t1220 * t1454;
-    let t1517 = t1195 * t1453;
-    let t1524 = t1196 * t1454;
-    let t1525 = t1294 + t1297 * t1449 + t1300 * t1451 + t1254 * t1453 + t1254 * t1454;
-    let t1526 = t1309 + (t1243 - t1030) * t1449 + (t1250 - t1012) * t1451 - t1259 * t1453
-        - t1259 * t1454;
-    let t1527 = t1310 + t1311 * t1449 + t1312 * t1451 + t1517 + t1524;
-    let t1536 = c120 * t1453;
-    let t1537 = s119 * t1453;
-    let t1541 = c120 * t1454;
-    let t1542 = s119 * t1454;
-    let t1544 = t1179 + t1125 * t1449 + t1131 * t1451 + t1536 + t1541;
-    let t1545 = t1180 + t1128 * t1449 + t1135 * t1451 - t1537 - t1542;
-    let t1569 = t1181 + t1152 * t1449 + t1158 * t1451 - t1048 * t1453 - t1048 * t1454;
-    let t1570 = t1191 + t1155 * t1449 + t1162 * t1451 - t1050 * t1453 - t1050 * t1454;
-    let t1571 = t1524 + (t1517 + (t1192 + t1193 * t1449 + t1194 * t1451));
-    let t1572 = t666 * t1449;
-    let t1573 = t1077 * t1449;
-    let t1576 = t1060 * t1451;
-    let t1577 = t770 * t1451;
-    let t1579 = t1100 + t1572 + t1576;
-    let t1580 = t1101 + t1573 - t1577;
-    let t1591 = t1102 + t1086 * t1449 + t1067 * t1451;
-    let t1592 = t1111 + t1088 * t1449 - t1069 * t1451;
-    let t1593 = t1112 + t1113 * t1449 + t1114 * t1451;
-    let t1594 = t656 + t1572;
-    let t1595 = t659 - t658 + t1573;
-    let t1599 = -(t685 + t689 * t1449);
-    let t1600 = t760 - t762 + t1576;
-    let t1602 = -(t766 + t1577);
-    let t1604 = t784 + t789 * t1451;
-    let t1607 = t1541 + (t1536 - t900);
-    let t1608 = t901 - t1537 - t1542;
-    let t1613 = t861 - t906 - t866 * t1453 + t866 * t1454;
-    let t1618 = t417 - t725 - t726 * t1449;
-    let t1619 = T::from_f64(0.019620000000000002) - t696 - t703 * t1449;
-    let t1621 = t401 - t729 + (t723 - T::from_f64(0.007)) * t1449;
-    let t1625 = t394 - t821 - t822 * t1451;
-    let t1626 = T::from_f64(0.019620000000000002) - t797 + (t801 - t701) * t1451;
-    let t1629 = t401 - t825 - t826 * t1451;
-    let t1635 = -(t731 + t746 * t1449);
-    let t1637 = -(t732 + t747 * t1449);
-    let t1640 = t390 - t739 - t750 * t1449;
-    let t1646 = -(t827 + t842 * t1451);
-    let t1648 = -(t828 + t843 * t1451);
-    let t1651 = t385 - t835 - t847 * t1451;
-    let t1656 = t867 - t886 * t1453;
-    let t1657 = t869 - t887 * t1453;
-    let t1659 = t380 - t878 + t922 * t1453;
-    let t1664 = t910 - t886 * t1454;
-    let t1665 = t912 - t887 * t1454;
-    let t1667 = t921 + t922 * t1454;
-    let t1675 = t867 + t910 - t827 - t731 + (s102 * t565 + c103 * t1288)
-        + (T::from_f64(-0.9971835337589565) - t746 - c103 * t1275) * t1449
-        + (T::from_f64(-0.99365172470036) - t842 - c103 * t1277) * t1451;
-    let t1676 = t869 + t912 - t828 - t732 - (c103 * t565 - s102 * t1288)
-        + (T::from_f64(0.07499999999999996) - t747 - s102 * t1275) * t1449
-        + (T::from_f64(0.11250000000000027) - t843 - s102 * t1277) * t1451;
-    let t1677 = t1495
-        + (T::from_f64(0.07848000000000001) - (t1274 - T::from_f64(0.0981)) + t1490);
-    let t1684 = t1675 + t1383 * t1453 + t1383 * t1454;
-    let t1685 = t1676 + t1384 * t1453 + t1384 * t1454;
-    let t1689 = T::from_f64(0.01) * t912 - T::from_f64(0.01) * t869
+    let t1448 = t1405 + T::from_f64(1.0666666666666669) * t1446;
+    let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
+    let t1451 = t1425 + t1446;
+    let t1452 = t1432 + t1446;
+    let t1480 = t634 + t1448;
+    let t1481 = t629 + t1448;
+    let t1482 = t640 + t1450;
+    let t1483 = t637 + t1450;
+    let t1484 = t1451 - t642;
+    let t1485 = t1452 - t644;
+    let t1488 = t1291 * t1448;
+    let t1493 = t1293 * t1450;
+    let t1495 = t1289 + t1488 + t1493;
+    let t1499 = t1288 - t1275 * t1448 - t1277 * t1450 + t1220 * t1451 + t1220 * t1452;
+    let t1515 = t1195 * t1451;
+    let t1522 = t1196 * t1452;
+    let t1523 = t1294 + t1297 * t1448 + t1300 * t1450 + t1254 * t1451 + t1254 * t1452;
+    let t1524 = t1309 + (t1243 - t1030) * t1448 + (t1250 - t1012) * t1450 - t1259 * t1451
+        - t1259 * t1452;
+    let t1525 = t1310 + t1311 * t1448 + t1312 * t1450 + t1515 + t1522;
+    let t1534 = c120 * t1451;
+    let t1535 = s119 * t1451;
+    let t1539 = c120 * t1452;
+    let t1540 = s119 * t1452;
+    let t1542 = t1179 + t1125 * t1448 + t1131 * t1450 + t1534 + t1539;
+    let t1543 = t1180 + t1128 * t1448 + t1135 * t1450 - t1535 - t1540;
+    let t1567 = t1181 + t1152 * t1448 + t1158 * t1450 - t1048 * t1451 - t1048 * t1452;
+    let t1568 = t1191 + t1155 * t1448 + t1162 * t1450 - t1050 * t1451 - t1050 * t1452;
+    let t1569 = t1522 + (t1515 + (t1192 + t1193 * t1448 + t1194 * t1450));
+    let t1570 = t666 * t1448;
+    let t1571 = t1077 * t1448;
+    let t1574 = t1060 * t1450;
+    let t1575 = t770 * t1450;
+    let t1577 = t1100 + t1570 + t1574;
+    let t1578 = t1101 + t1571 - t1575;
+    let t1589 = t1102 + t1086 * t1448 + t1067 * t1450;
+    let t1590 = t1111 + t1088 * t1448 - t1069 * t1450;
+    let t1591 = t1112 + t1113 * t1448 + t1114 * t1450;
+    let t1592 = t656 + t1570;
+    let t1593 = t659 - t658 + t1571;
+    let t1597 = -(t685 + t689 * t1448);
+    let t1598 = t760 - t762 + t1574;
+    let t1600 = -(t766 + t1575);
+    let t1602 = t784 + t789 * t1450;
+    let t1605 = t1539 + (t1534 - t900);
+    let t1606 = t901 - t1535 - t1540;
+    let t1611 = t861 - t906 - t866 * t1451 + t866 * t1452;
+    let t1616 = t417 - t725 - t726 * t1448;
+    let t1617 = T::from_f64(0.019620000000000002) - t696 - t703 * t1448;
+    let t1619 = t401 - t729 + (t723 - T::from_f64(0.007)) * t1448;
+    let t1623 = t394 - t821 - t822 * t1450;
+    let t1624 = T::from_f64(0.019620000000000002) - t797 + (t801 - t701) * t1450;
+    let t1627 = t401 - t825 - t826 * t1450;
+    let t1633 = -(t731 + t746 * t1448);
+    let t1635 = -(t732 + t747 * t1448);
+    let t1638 = t390 - t739 - t750 * t1448;
+    let t1644 = -(t827 + t842 * t1450);
+    let t1646 = -(t828 + t843 * t1450);
+    let t1649 = t385 - t835 - t847 * t1450;
+    let t1654 = t867 - t886 * t1451;
+    let t1655 = t869 - t887 * t1451;
+    let t1657 = t380 - t878 + t922 * t1451;
+    let t1662 = t910 - t886 * t1452;
+    let t1663 = t912 - t887 * t1452;
+    let t1665 = t921 + t922 * t1452;
+    let t1673 = t867 + t910 - t827 - t731 + (s102 * t565 + c103 * t1288)
+        + (T::from_f64(-0.9971835337589565) - t746 - c103 * t1275) * t1448
+        + (T::from_f64(-0.99365172470036) - t842 - c103 * t1277) * t1450;
+    let t1674 = t869 + t912 - t828 - t732 - (c103 * t565 - s102 * t1288)
+        + (T::from_f64(0.07499999999999996) - t747 - s102 * t1275) * t1448
+        + (T::from_f64(0.11250000000000027) - t843 - s102 * t1277) * t1450;
+    let t1675 = t1493
+        + (T::from_f64(0.07848000000000001) - (t1274 - T::from_f64(0.0981)) + t1488);
+    let t1682 = t1673 + t1383 * t1451 + t1383 * t1452;
+    let t1683 = t1674 + t1384 * t1451 + t1384 * t1452;
+    let t1687 = T::from_f64(0.01) * t912 - T::from_f64(0.01) * t869
         - T::from_f64(0.007) * t828 + T::from_f64(0.007) * t732
         + (c103 * t1294 + s102 * t1310)
         + (T::from_f64(-0.0005249999999999998) + T::from_f64(0.007) * t747
-            + (c103 * t1297 + s102 * t1311)) * t1449;
-    let t1690 = T::from_f64(0.01) * t867 - T::from_f64(0.01) * t910
+            + (c103 * t1297 + s102 * t1311)) * t1448;
+    let t1688 = T::from_f64(0.01) * t867 - T::from_f64(0.01) * t910
         + T::from_f64(0.007) * t827 - T::from_f64(0.007) * t731
         - (c103 * t1310 - s102 * t1294)
         + (T::from_f64(-0.0069802847363126955) - T::from_f64(0.007) * t746
-            - (c103 * t1311 - s102 * t1297)) * t1449;
-    let t1691 = t921 - (t878 - t380) - (t835 - t385) - (t739 - t390) - (t573 - t1295)
-        + (T::from_f64(-0.005999999999999997) - t750 - (t1030 - t1243)) * t1449;
-    let t1701 = t1689
+            - (c103 * t1311 - s102 * t1297)) * t1448;
+    let t1689 = t921 - (t878 - t380) - (t835 - t385) - (t739 - t390) - (t573 - t1295)
+        + (T::from_f64(-0.005999999999999997) - t750 - (t1030 - t1243)) * t1448;
+    let t1699 = t1687
         + (T::from_f64(0.0007875000000000018) - T::from_f64(0.007) * t843
-            + (c103 * t1300 + s102 * t1312)) * t1451
-        + (T::from_f64(0.0009999999999999983) + t928 + (t1353 + s102 * t1195)) * t1453;
-    let t1702 = t1690
+            + (c103 * t1300 + s102 * t1312)) * t1450
+        + (T::from_f64(0.0009999999999999983) + t928 + (t1353 + s102 * t1195)) * t1451;
+    let t1700 = t1688
         + (T::from_f64(0.00695556207290252) + T::from_f64(0.007) * t842
-            - (c103 * t1312 - s102 * t1300)) * t1451
-        + (T::from_f64(-0.0099498743710662) - t930 - (c103 * t1195 - t1356)) * t1453;
-    let t1707 = t1701
-        + (T::from_f64(-0.0009999999999999983) - t928 + (t1353 + s102 * t1196)) * t1454;
-    let t1708 = t1702
-        + (T::from_f64(0.0099498743710662) + t930 - (c103 * t1196 - t1356)) * t1454;
-    let t1709 = t1691
-        + (T::from_f64(-0.009000000000000022) - t847 - (t1012 - t1250)) * t1451
-        + t1396 * t1453 + t1396 * t1454;
-    let t1712 = T::from_f64(-0.012) - T::from_f64(0.05) * c120;
-    let t1722 = c120 * c181 - s119 * s180;
-    let t1757 = T::from_f64(0.02)
-        * (t1712 - T::from_f64(0.04) * t1722 + T::from_f64(0.02) * t1722);
-    let t1758 = T::from_f64(0.0000006) * (s119 * c181 + c120 * s180);
-    let t1765 = T::from_f64(0.000003) * t1722 + T::from_f64(0.02) * t1757
-        - T::from_f64(0.04) * t1757;
-    let t1776 = T::from_f64(0.03) * (t1712 + c120 * T::from_f64(0.025));
-    let t1779 = t1757 + t1776;
-    let t1795 = s119 * (T::from_f64(0.000001) * s119 - (s180 * t1765 - c181 * t1758))
+            - (c103 * t1312 - s102 * t1300)) * t1450
+        + (T::from_f64(-0.0099498743710662) - t930 - (c103 * t1195 - t1356)) * t1451;
+    let t1705 = t1699
+        + (T::from_f64(-0.0009999999999999983) - t928 + (t1353 + s102 * t1196)) * t1452;
+    let t1706 = t1700
+        + (T::from_f64(0.0099498743710662) + t930 - (c103 * t1196 - t1356)) * t1452;
+    let t1707 = t1689
+        + (T::from_f64(-0.009000000000000022) - t847 - (t1012 - t1250)) * t1450
+        + t1396 * t1451 + t1396 * t1452;
+    let t1710 = T::from_f64(-0.012) - T::from_f64(0.05) * c120;
+    let t1720 = c120 * c181 - s119 * s180;
+    let t1755 = T::from_f64(0.02)
+        * (t1710 - T::from_f64(0.04) * t1720 + T::from_f64(0.02) * t1720);
+    let t1756 = T::from_f64(0.0000006) * (s119 * c181 + c120 * s180);
+    let t1763 = T::from_f64(0.000003) * t1720 + T::from_f64(0.02) * t1755
+        - T::from_f64(0.04) * t1755;
+    let t1774 = T::from_f64(0.03) * (t1710 + c120 * T::from_f64(0.025));
+    let t1777 = t1755 + t1774;
+    let t1793 = s119 * (T::from_f64(0.000001) * s119 - (s180 * t1763 - c181 * t1756))
         + c120
-            * (s180 * t1758 + c181 * t1765
-                + (T::from_f64(0.0000068) * c120 + T::from_f64(0.025) * t1776)
-                - T::from_f64(0.05) * t1779);
-    let t1836 = T::from_f64(0.000000064)
+            * (s180 * t1756 + c181 * t1763
+                + (T::from_f64(0.0000068) * c120 + T::from_f64(0.025) * t1774)
+                - T::from_f64(0.05) * t1777);
+    let t1834 = T::from_f64(0.000000064)
         + (T::from_f64(0.000000064)
             + (T::from_f64(0.000000081)
                 + (T::from_f64(0.000000036)
                     + (T::from_f64(-0.00000006000000000000001)
-                        - (T::from_f64(-0.000000283) - t1795)
+                        - (T::from_f64(-0.000000283) - t1793)
                         - T::from_f64(0.012)
                             * (T::from_f64(-0.00006)
-                                - (T::from_f64(0.000048) - t1779))))));
-    let t1848 = T::from_f64(0.02)
+                                - (T::from_f64(0.000048) - t1777))))));
+    let t1846 = T::from_f64(0.02)
         * (T::from_f64(-0.02) + (T::from_f64(0.04) + T::from_f64(0.05) * c181));
-    let t1872 = T::from_f64(0.000003) - T::from_f64(0.02) * t1848
-        + T::from_f64(0.04) * t1848 + T::from_f64(-0.000011950000000000002)
+    let t1870 = T::from_f64(0.000003) - T::from_f64(0.02) * t1846
+        + T::from_f64(0.04) * t1846 + T::from_f64(-0.000011950000000000002)
         + T::from_f64(0.05)
-            * (s180 * (T::from_f64(0.02) * (T::from_f64(0.05) * s180)) + c181 * t1848
+            * (s180 * (T::from_f64(0.02) * (T::from_f64(0.05) * s180)) + c181 * t1846
                 + T::from_f64(0.00075));
-    let t1969 = t154 + T::from_f64(0.05) * t127;
-    let t1987 = t200 + (t126 * s180 + t127 * c181);
-    let t2037 = T::from_f64(0.002) * t110;
-    let t2052 = T::from_f64(0.02)
-        * (t226 + (t1969 + T::from_f64(0.04) * t1987) - T::from_f64(0.02) * t1987
-            - t246);
-    let t2056 = t448 + T::from_f64(0.0000006) * (t199 + (t126 * c181 - t127 * s180));
-    let t2068 = t451 - T::from_f64(0.000003) * t1987 + T::from_f64(0.02) * t2052
-        - T::from_f64(0.04) * t2052;
-    let t2092 = T::from_f64(0.03) * (t1969 - t127 * T::from_f64(0.025) - t175);
-    let t2100 = t2052 + t2092;
-    let t2132 = s119
-        * (t501 + T::from_f64(0.000001) * t126 - (s180 * t2068 - c181 * t2056))
-        + c120
-            * (s180 * t2056 + c181 * t2068
-                + (t504 - T::from_f64(0.0000068) * t127 + T::from_f64(0.025) * t2092)
-                - T::from_f64(0.05) * t2100);
-    let t2239 = t137 + t152;
-    let t2262 = T::from_f64(0.02) * (t224 + (c181 * t2239 - t207) - t244);
-    let t2268 = t454 - T::from_f64(0.02) * t2262 + T::from_f64(0.04) * t2262;
-    let t2279 = T::from_f64(0.03) * (t2239 - t173);
-    let t2288 = t2268 + (t507 - T::from_f64(0.025) * t2279)
-        + T::from_f64(0.05)
-            * (s180 * (T::from_f64(0.02) * (t243 + (t204 + s180 * t2239 - t222)))
-                + c181 * t2262 + t2279);
-    let t2351 = T::from_f64(0.008) * tendon_tensions[2]
-        - (T::from_f64(0.006) * tendon_tensions[0]
-            + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3]
-        - (t2132 - (T::from_f64(0.009) * t2037 + T::from_f64(0.006) * t2037)
-            - T::from_f64(0.012)
-                * (t2100 - (T::from_f64(0.002) * t340 + T::from_f64(0.002) * t117)));
-    let t2354 = T::from_f64(0.000000021000000000000003) / t1836;
-    let t2355 = T::from_f64(0.000000024000000000000003) / t1836;
-    let t2358 = T::from_f64(0.0000001)
-        + (T::from_f64(0.000000049) + (T::from_f64(0.000000049) + t1872)
+    let t1909 = T::from_f64(0.0000001)
+        + (T::from_f64(0.000000049) + (T::from_f64(0.000000049) + t1870)
             + T::from_f64(0.00000004899999999999998)
-            + T::from_f64(0.000000048999999999999995) + T::from_f64(0.0000001))
-        - t1836 * (t2354 * t2354);
-    let t2362 = (T::from_f64(0.000000056)
+            + T::from_f64(0.000000048999999999999995) + T::from_f64(0.0000001));
+    let t1960 = T::from_f64(0.000000056)
         + (T::from_f64(0.000000055999999999999985)
             + (T::from_f64(0.00000005600000000000001)
                 + (T::from_f64(0.00000005600000000000001)
                     + (T::from_f64(0.000011000000000000001)
-                        + T::from_f64(0.05) * (c181 * T::from_f64(0.0004))))))
-        - t1836 * (t2354 * t2355)) / t2358;
-    let t2370 = T::from_f64(0.007) * tendon_tensions[0]
+                        + T::from_f64(0.05) * (c181 * T::from_f64(0.0004))))));
+    let t1964 = t131 + t150;
+    let t1966 = t135 + t152;
+    let t1967 = t154 + T::from_f64(0.05) * t127;
+    let t1985 = t200 + (t126 * s180 + t127 * c181);
+    let t2035 = T::from_f64(0.002) * t110;
+    let t2049 = T::from_f64(0.02) * (t224 + (s180 * t1964 + c181 * t1966) - t244);
+    let t2050 = T::from_f64(0.02)
+        * (t226 + (t1967 + T::from_f64(0.04) * t1985) - T::from_f64(0.02) * t1985
+            - t246);
+    let t2054 = t448 + T::from_f64(0.0000006) * (t199 + (t126 * c181 - t127 * s180));
+    let t2066 = t451 - T::from_f64(0.000003) * t1985 + T::from_f64(0.02) * t2050
+        - T::from_f64(0.04) * t2050;
+    let t2067 = t454 - T::from_f64(0.02) * t2049 + T::from_f64(0.04) * t2049;
+    let t2089 = T::from_f64(0.03) * (t1966 - t173);
+    let t2090 = T::from_f64(0.03) * (t1967 - t127 * T::from_f64(0.025) - t175);
+    let t2098 = t2050 + t2090;
+    let t2113 = t2067 + (t507 - T::from_f64(0.025) * t2089)
+        + T::from_f64(0.05)
+            * (s180 * (T::from_f64(0.02) * (t243 + (s180 * t1966 - c181 * t1964 - t222)))
+                + c181 * t2049 + t2089);
+    let t2130 = s119
+        * (t501 + T::from_f64(0.000001) * t126 - (s180 * t2066 - c181 * t2054))
+        + c120
+            * (s180 * t2054 + c181 * t2066
+                + (t504 - T::from_f64(0.0000068) * t127 + T::from_f64(0.025) * t2090)
+                - T::from_f64(0.05) * t2098);
+    let t2146 = t2130 - (T::from_f64(0.009) * t2035 + T::from_f64(0.006) * t2035)
+        - T::from_f64(0.012)
+            * (t2098 - (T::from_f64(0.002) * t340 + T::from_f64(0.002) * t117));
+    let t2176 = T::from_f64(0.02) * (t136 * c181 - t133 * s180);
+    let t2177 = T::from_f64(0.02) * t2176;
+    let t2179 = T::from_f64(0.04) * t2176;
+    let t2181 = t2179 - t2177;
+    let t2193 = T::from_f64(0.03) * t136;
+    let t2202 = T::from_f64(0.05)
+        * (s180 * (T::from_f64(0.02) * (t133 * c181 + t136 * s180)) + c181 * t2176
+            + t2193) - (t2177 - t2179 + T::from_f64(0.025) * t2193);
+    let t2237 = t137 + t152;
+    let t2260 = T::from_f64(0.02) * (t224 + (c181 * t2237 - t207) - t244);
+    let t2266 = t454 - T::from_f64(0.02) * t2260 + T::from_f64(0.04) * t2260;
+    let t2277 = T::from_f64(0.03) * (t2237 - t173);
+    let t2286 = t2266 + (t507 - T::from_f64(0.025) * t2277)
+        + T::from_f64(0.05)
+            * (s180 * (T::from_f64(0.02) * (t243 + (t204 + s180 * t2237 - t222)))
+                + c181 * t2260 + t2277);
+    let t2349 = T::from_f64(0.008) * tendon_tensions[2]
+        - (T::from_f64(0.006) * tendon_tensions[0]
+            + T::from_f64(0.009) * tendon_tensions[1])
+        + T::from_f64(0.008) * tendon_tensions[3] - t2146;
+    let t2352 = T::from_f64(0.000000021000000000000003) / t1834;
+    let t2353 = T::from_f64(0.000000024000000000000003) / t1834;
+    let t2356 = t1909 - t1834 * (t2352 * t2352);
+    let t2360 = (t1960 - t1834 * (t2352 * t2353)) / t2356;
+    let t2368 = T::from_f64(0.007) * tendon_tensions[0]
         - T::from_f64(0.007) * tendon_tensions[1]
         + T::from_f64(0.01) * tendon_tensions[2] - T::from_f64(0.01) * tendon_tensions[3]
-        - t2288 - t2351 * t2354;
-    let t2377 = (T::from_f64(0.008) * tendon_tensions[0]
-        - T::from_f64(0.008) * tendon_tensions[1] - t2268 - t2351 * t2355
-        - t2362 * t2370)
-        / (T::from_f64(0.000011256) - t1836 * (t2355 * t2355) - t2358 * (t2362 * t2362));
-    let t2379 = t2370 / t2358 - t2362 * t2377;
-    let t2383 = t2351 / t1836 - t2354 * t2379 - t2355 * t2377;
-    let t2386 = c181 * T::from_f64(0.0000208);
-    let t2389 = T::from_f64(-0.00004) - t2386;
-    let t2391 = s180 * T::from_f64(0.0000208);
-    let t2398 = c181 * T::from_f64(0.00004);
-    let t2406 = c181 * T::from_f64(0.000009600000000000001);
-    let t2420 = s119
-        * (s180 * (c120 * t2389 + (s119 * t2391 + T::from_f64(-0.000009600000000000001)))
-            + s119 * (T::from_f64(-0.00008495) - t2398))
-        + (c120 * (t2406 + T::from_f64(0.000042000000000000004))
-            + (t2398 + T::from_f64(0.00009551400000000001)
-                - s180 * (s180 * T::from_f64(0.0000104))));
-    let t2428 = s180 * (s180 * T::from_f64(0.0000416));
-    let t2437 = c181 * T::from_f64(0.0000416);
-    let t2450 = s180 * (t2389 - c120 * T::from_f64(0.000009600000000000001));
-    let t2452 = qd[1]
-        * (s119
-            * (c120 * (t2428 + (T::from_f64(-0.0001699) - c181 * T::from_f64(0.00008)))
-                + (s119 * (s180 * (T::from_f64(0.00008) + t2437))
-                    + (T::from_f64(-0.000042000000000000004) - t2406))) + t2450);
-    let t2465 = qd[0]
-        * (t2452
-            + qd[2]
-                * (t2450
-                    + s119
-                        * (c120 * (t2428 + (T::from_f64(-0.0000208) - t2398))
-                            + (s119 * (s180 * (T::from_f64(0.00004) + t2437))
-                                - t2406))));
-    let t2468 = qdd[0] * t2420
-        + (qdd[1] * T::from_f64(0.000000021000000000000006)
-            + (qdd[2] * T::from_f64(0.000000024000000000000006) + t2465));
-    let t2470 = t2398 + T::from_f64(0.000086946);
-    let t2473 = c181 * T::from_f64(0.00002);
-    let t2475 = t2473 + T::from_f64(0.000011224000000000001);
-    let t2479 = s180 * t2391;
-    let t2488 = c181 * T::from_f64(0.000004800000000000001);
-    let t2498 = s180
-        * (c120 * T::from_f64(0.000004800000000000001)
-            + (T::from_f64(0.00002) + c181 * T::from_f64(0.0000104)));
-    let t2501 = qd[0]
-        * (qd[0]
-            * (s119
-                * (c120 * (t2398 + T::from_f64(0.00008495) - t2479)
-                    + (s119 * (s180 * t2389)
-                        + (t2488 + T::from_f64(0.000021000000000000002)))) + t2498));
-    let t2507 = s180 * T::from_f64(0.00002);
-    let t2513 = qd[2] * (qd[1] * (s180 * T::from_f64(0.00004)) + qd[2] * t2507);
-    let t2516 = c181 * T::from_f64(0.003924);
-    let t2523 = s119 * (s180 * T::from_f64(0.003924));
-    let t2525 = c120 * (t2516 + T::from_f64(0.017167500000000002)) - t2523;
-    let t2530 = qdd[1] * t2470
-        + (qdd[2] * t2475
-            + (qdd[0] * T::from_f64(0.000000021000000000000006)
-                + (t2501 + (t2525 - t2513))));
-    let t2545 = qd[0]
-        * (qd[0]
-            * (t2498
-                + s119
-                    * (c120 * (T::from_f64(0.0000104) + t2473 - t2479)
-                        + (t2488 + s119 * (s180 * (T::from_f64(-0.00002) - t2386))))));
-    let t2547 = qd[1] * (qd[1] * t2507);
-    let t2549 = c120 * t2516 - t2523;
-    let t2554 = qdd[1] * t2475
-        + (qdd[0] * T::from_f64(0.000000024000000000000006)
-            + (qdd[2] * T::from_f64(0.000011256) + (t2545 + (t2547 + t2549))));
-    let t3152 = t2501 - t2513;
-    let t3153 = t2545 + t2547;
+        - t2286 - t2349 * t2352;
+    let t2375 = (T::from_f64(0.008) * tendon_tensions[0]
+        - T::from_f64(0.008) * tendon_tensions[1] - t2266 - t2349 * t2353
+        - t2360 * t2368)
+        / (T::from_f64(0.000011256) - t1834 * (t2353 * t2353) - t2356 * (t2360 * t2360));
+    let t2377 = t2368 / t2356 - t2360 * t2375;
+    let t2381 = t2349 / t1834 - t2352 * t2377 - t2353 * t2375;
     Outputs {
-        generalized_forces: [t2468, t2530, t2554],
-        actuation: ([], [t1449, t1451, t1453, t1454]),
+        generalized_forces: [t623, t626, t619],
+        actuation: ([], [t1448, t1450, t1451, t1452]),
         mass_matrix: [
             [
-                t2420,
+                t1834,
                 T::from_f64(0.000000021000000000000003),
                 T::from_f64(0.000000024000000000000003),
             ],
-            [T::from_f64(0.000000021000000000000003), t2470, t2475],
-            [T::from_f64(0.000000024000000000000003), t2475, T::from_f64(0.000011256)],
+            [T::from_f64(0.000000021000000000000003), t1909, t1960],
+            [T::from_f64(0.000000024000000000000003), t1960, T::from_f64(0.000011256)],
         ],
-        bias: [t2465, t3152, t3153],
-        gravity: [T::from_f64(0.0), t2525, t2549],
-        forward_dynamics: [t2383, t2379, t2377],
+        bias: [t2146, t2113, t2067],
+        gravity: [T::from_f64(0.0), t2202, t2181],
+        forward_dynamics: [t2381, t2377, t2375],
         segment_tensions: [
+            t1480,
+            t1481,
+            t1448,
             t1482,
             t1483,
-            t1449,
+            t1450,
             t1484,
-            t1485,
             t1451,
-            t1486,
-            t1453,
-            t1487,
-            t1454,
+            t1485,
+            t1452,
         ],
         bearings: [
-            [[t1501, t1497, t565], [t1525, t1526, t1527]],
-            [[t1544, t1545, t513], [t1569, t1570, t1571]],
-            [[t1579, t1580, t439], [t1591, t1592, t1593]],
+            [[t1499, t1495, t565], [t1523, t1524, t1525]],
+            [[t1542, t1543, t513], [t1567, t1568, t1569]],
+            [[t1577, t1578, t439], [t1589, t1590, t1591]],
             [
-                [t1594, t1595, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1599],
+                [t1592, t1593, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1597],
             ],
             [
-                [t1600, t1602, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1604],
+                [t1598, t1600, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1602],
             ],
             [
-                [t1607, t1608, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1613],
+                [t1605, t1606, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1611],
             ],
-            [[t1618, t1619, t419], [t405, t400, t1621]],
-            [[t1625, t1626, t396], [t405, t400, t1629]],
+            [[t1616, t1617, t419], [t405, t400, t1619]],
+            [[t1623, t1624, t396], [t405, t400, t1627]],
             [
-                [t1635, t1637, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1640],
-            ],
-            [
-                [t1646, t1648, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1651],
+                [t1633, t1635, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1638],
             ],
             [
-                [t1656, t1657, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1659],
+                [t1644, t1646, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1649],
             ],
             [
-                [t1664, t1665, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1667],
+                [t1654, t1655, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1657],
+            ],
+            [
+                [t1662, t1663, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1665],
             ],
         ],
-        base_reaction: [[[t1684, t1685, t1677], [t1707, t1708, t1709]]],
+        base_reaction: [[[t1682, t1683, t1675], [t1705, t1706, t1707]]],
     }
 }

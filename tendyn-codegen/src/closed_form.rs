@@ -162,7 +162,7 @@ impl Expander<'_, '_> {
                     }
                     // Not a polynomial: a new variable, its operands collected themselves.
                     _ => {
-                        let (a, b) = (self.collected(a)?, self.rebuild(pb));
+                        let (a, b) = (self.collected(a)?, self.rebuild(pb)?);
                         variable(self.g.div(a, b))
                     }
                 }
@@ -227,12 +227,12 @@ impl Expander<'_, '_> {
     /// The closed form of `id` as a node, for the operand of a non-polynomial node.
     fn collected(&mut self, id: Id) -> Option<Id> {
         let p = self.expand(id)?;
-        Some(self.rebuild(p))
+        self.rebuild(p)
     }
 
-    fn rebuild(&mut self, p: Poly) -> Id {
-        let p = clean(reduce_pythagoras(self.g, p));
-        horner(self.g, self.rank, &p)
+    fn rebuild(&mut self, p: Poly) -> Option<Id> {
+        let p = clean(reduce_pythagoras(self.g, p))?;
+        Some(horner(self.g, self.rank, &p))
     }
 }
 
@@ -280,13 +280,30 @@ fn sin_id(g: &Graph, a: Id) -> Id {
     g.lookup(Node::Sin(a)).expect("checked")
 }
 
-/// Drops coefficients that are rounding noise next to the largest one of the polynomial.
-fn clean(p: Poly) -> BTreeMap<Monomial, f64> {
-    let max = p.values().map(|c| c.to_f64().abs()).fold(0.0, f64::max);
-    p.into_iter()
-        .map(|(m, c)| (m, c.to_f64()))
-        .filter(|(_, c)| c.abs() > 1e-15 * max)
-        .collect()
+/// Rounds the coefficients to f64, drops those that are rounding noise next to the largest
+/// one of the polynomial, and snaps those within 4 ulp of ±1 to ±1 (so that no
+/// multiplication by a one survives). `None` if a coefficient is not finite: a singular
+/// step (a division by a zero polynomial) must stay traced and give inf or NaN, not vanish.
+fn clean(p: Poly) -> Option<BTreeMap<Monomial, f64>> {
+    let rounded: Vec<(Monomial, f64)> = p.into_iter().map(|(m, c)| (m, c.to_f64())).collect();
+    if rounded.iter().any(|(_, c)| !c.is_finite()) {
+        return None;
+    }
+    let max = rounded.iter().map(|(_, c)| c.abs()).fold(0.0, f64::max);
+    Some(
+        rounded
+            .into_iter()
+            .filter(|(_, c)| c.abs() > 1e-15 * max)
+            .map(|(m, c)| {
+                let snapped = if (c.abs() - 1.0).abs() <= 4.0 * f64::EPSILON {
+                    c.signum()
+                } else {
+                    c
+                };
+                (m, snapped)
+            })
+            .collect(),
+    )
 }
 
 /// Builds a polynomial back into the graph by greedy multivariate Horner factoring.
@@ -361,5 +378,5 @@ pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank, max_terms: usize) -
         }
         polys.push(p);
     }
-    Some(polys.into_iter().map(|p| e.rebuild(p)).collect())
+    polys.into_iter().map(|p| e.rebuild(p)).collect()
 }

@@ -480,6 +480,7 @@ fn param_len(model: &Model<f64>, p: Param) -> usize {
         Param::Q | Param::Qd | Param::Qdd => model.dof,
         Param::MotorTorques => model.motors.len(),
         Param::TendonTensions => model.tendons.len(),
+        Param::Parameters => model.parameters.len(),
     }
 }
 
@@ -535,12 +536,16 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         #[allow(unused_imports)]
         use tendyn_core::real::Real;
         #[doc = #a_doc]
+        #[allow(dead_code)]
         pub const STRUCTURE_MATRIX: [[f64; #nt]; #n] = [#(#a_rows),*];
         /// Degrees of freedom (joint coordinates `q`).
+        #[allow(dead_code)]
         pub const DOF: usize = #n;
         /// Motors, in file order.
+        #[allow(dead_code)]
         pub const MOTORS: usize = #nm;
         /// Open-ended tendons, in file order.
+        #[allow(dead_code)]
         pub const TENDONS: usize = #nt;
     };
     let params = |params: &[Param]| -> Vec<TokenStream> {
@@ -560,7 +565,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         let values = f.results.iter().map(|&r| body.expr(r)).collect();
         let ret = return_type(f, &t);
         let name = format_ident!("{}", f.output.name());
-        let params = params(f.output.params());
+        let params = params(&traced.params(f.output));
         let closed = f
             .closed_ops
             .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
@@ -577,7 +582,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         let mut item: syn::ItemFn = parse_quote! {
             #(#d)*
             #[inline]
-            #[allow(unused_variables, unused_parens, clippy::all)]
+            #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
             pub fn #name #generics (#(#params),*) -> #ret {}
         };
         item.block.stmts = body.stmts;
@@ -585,19 +590,17 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         file.items.push(syn::Item::Fn(item));
     }
     // `all`: every output, sharing their work.
-    let mut all_params: Vec<Param> = Vec::new();
-    for f in &traced.functions {
-        for &p in f.output.params() {
-            if !all_params.contains(&p) {
-                all_params.push(p);
-            }
-        }
-    }
-    let roots: Vec<Id> = traced
-        .functions
-        .iter()
-        .flat_map(|f| f.results.iter().copied())
+    // The union of the functions' inputs, in the canonical order of `Param::ALL`.
+    let all_params: Vec<Param> = Param::ALL
+        .into_iter()
+        .filter(|p| {
+            traced
+                .functions
+                .iter()
+                .any(|f| traced.params(f.output).contains(p))
+        })
         .collect();
+    let roots = traced.all_roots();
     let mut body = Body::new(&atoms);
     body.bind(&roots);
     let fields = traced.functions.iter().map(|f| {
@@ -637,7 +640,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
     let mut all: syn::ItemFn = parse_quote! {
         #[doc = #all_doc]
         #[inline]
-        #[allow(unused_variables, unused_parens, clippy::all)]
+        #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
         pub fn all #generics (#(#param_tokens),*) -> Outputs #struct_generics {}
     };
     all.block.stmts = body.stmts;

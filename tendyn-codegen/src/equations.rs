@@ -8,11 +8,17 @@ use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, trace, Output, Traced};
 use tendyn_core::Model;
 
+thread_local! {
+    /// Names of the runtime parameters of the mechanism being printed.
+    static PARAMETERS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
 fn input_name(g: &Graph, i: u32) -> String {
     let name = &g.input_names[i as usize];
     let (array, index) = name.split_once('[').expect("array input");
     let k: usize = index.trim_end_matches(']').parse::<usize>().expect("index") + 1;
     match array {
+        "params" => PARAMETERS.with(|p| p.borrow()[k - 1].clone()),
         "q" => format!("th{k}"),
         "qd" => format!("th{k}d"),
         "qdd" => format!("th{k}dd"),
@@ -85,6 +91,8 @@ fn trig(g: &Graph, f: &str, a: Id, names: &dyn Fn(Id) -> Option<String>) -> Stri
 /// actuation when there are tendons or motors) as text.
 pub fn equations(model: &Model<f64>, outputs: &[Output]) -> Result<String, crate::Error> {
     let traced: Traced = trace(model, outputs)?;
+    PARAMETERS
+        .with(|p| *p.borrow_mut() = model.parameters.iter().map(|p| p.name.clone()).collect());
     let g = &traced.graph;
     let mut out = String::new();
     out.push_str(&format!(

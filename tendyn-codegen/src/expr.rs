@@ -160,6 +160,19 @@ impl Graph {
     }
 
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        // A factor within 4 ulp of ±1 is a one that rounding bent (the model's constants
+        // are products of f64 numbers, e.g. (s/r)·r): it multiplies by exactly ±1.
+        let near_one = |x: Option<f64>| x.filter(|c| (c.abs() - 1.0).abs() <= 4.0 * f64::EPSILON);
+        if let Some(c) =
+            near_one(self.constant_value(a)).filter(|_| self.constant_value(b).is_none())
+        {
+            return if c > 0.0 { b } else { self.neg(b) };
+        }
+        if let Some(c) =
+            near_one(self.constant_value(b)).filter(|_| self.constant_value(a).is_none())
+        {
+            return if c > 0.0 { a } else { self.neg(a) };
+        }
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => return self.constant(x * y),
             (Some(0.0), _) | (_, Some(0.0)) => return self.constant(0.0),

@@ -85,9 +85,20 @@ pub enum Param {
     Qdd,
     MotorTorques,
     TendonTensions,
+    /// The mechanism's runtime parameters, in declaration order.
+    Parameters,
 }
 
 impl Param {
+    pub const ALL: [Param; 6] = [
+        Param::Q,
+        Param::Qd,
+        Param::Qdd,
+        Param::MotorTorques,
+        Param::TendonTensions,
+        Param::Parameters,
+    ];
+
     pub fn name(self) -> &'static str {
         match self {
             Param::Q => "q",
@@ -95,6 +106,7 @@ impl Param {
             Param::Qdd => "qdd",
             Param::MotorTorques => "motor_torques",
             Param::TendonTensions => "tendon_tensions",
+            Param::Parameters => "params",
         }
     }
 }
@@ -138,9 +150,21 @@ pub struct Traced {
     pub graph: Graph,
     pub functions: Vec<Function>,
     pub dof: usize,
+    /// Number of runtime parameters (inputs of every function).
+    pub parameters: usize,
 }
 
 impl Traced {
+    /// The inputs of `o`'s function: its state inputs, then the runtime parameters if the
+    /// mechanism has any.
+    pub fn params(&self, o: Output) -> Vec<Param> {
+        let mut p = o.params().to_vec();
+        if self.parameters > 0 {
+            p.push(Param::Parameters);
+        }
+        p
+    }
+
     /// Results of every function for `all`: each function's chosen form, or every function
     /// traced if that shares more and so costs less in total.
     pub fn all_roots(&self) -> Vec<Id> {
@@ -215,9 +239,20 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
 /// Traces the requested outputs of `model` (see [`check`] for which are available).
 pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailable> {
     check(model, outputs)?;
+    // Each output once, in the order asked for.
+    let mut unique: Vec<Output> = Vec::new();
+    for &o in outputs {
+        if !unique.contains(&o) {
+            unique.push(o);
+        }
+    }
+    let outputs = &unique[..];
     let n = model.dof;
     let (mut graph, results) = Graph::default().scope(|| {
-        let m = model.cast::<Sym>();
+        let mut m = model.cast::<Sym>();
+        // Runtime parameters stay symbols: inputs of every function.
+        let params = array("params", model.parameters.len());
+        m.set_parameters(&params);
         let inputs = Inputs {
             q: array("q", n),
             qd: array("qd", n),
@@ -256,6 +291,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         graph,
         functions,
         dof: n,
+        parameters: model.parameters.len(),
     })
 }
 
@@ -352,6 +388,10 @@ pub fn result_labels(model: &Model<f64>, o: Output) -> Vec<String> {
             .map(|m| format!("motor {}", m.name))
             .chain(model.tendons.iter().map(|t| format!("tendon {}", t.name)))
             .collect(),
+        Output::BaseReaction => vec![
+            "force".to_string(),
+            "moment about the base origin".to_string(),
+        ],
         _ => model.bodies[..model.dof]
             .iter()
             .map(|b| b.name.clone())

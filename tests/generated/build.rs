@@ -19,6 +19,10 @@ fn main() {
         println!("cargo:rerun-if-changed={}", path.display());
         mechanisms.push((name.to_string(), std::fs::read_to_string(path).unwrap()));
     }
+    mechanisms.push((
+        "parametric_finger".to_string(),
+        tendyn_spec::parametric::finger(),
+    ));
     for seed in 0..12u64 {
         let features = Features {
             coupled_pulleys: seed % 3 == 1,
@@ -39,7 +43,15 @@ fn main() {
         // The adapter: slices in, one vector per output out.
         let (n, nm, nt) = (model.dof, model.motors.len(), model.tendons.len());
         let mut adapter = String::new();
-        writeln!(adapter, "pub fn evaluate(q: &[f64], qd: &[f64], qdd: &[f64], mt: &[f64], tt: &[f64]) -> Vec<(&'static str, Vec<f64>)> {{").unwrap();
+        let np = model.parameters.len();
+        writeln!(adapter, "pub fn evaluate(q: &[f64], qd: &[f64], qdd: &[f64], mt: &[f64], tt: &[f64], p: &[f64]) -> Vec<(&'static str, Vec<f64>)> {{").unwrap();
+        writeln!(
+            adapter,
+            "let p: &[f64; {np}] = p.try_into().unwrap(); let _ = p;"
+        )
+        .unwrap();
+        // Generated functions take the parameters last, when the mechanism has any.
+        let pa = if np > 0 { ", p" } else { "" };
         writeln!(adapter, "let q: &[f64; {n}] = q.try_into().unwrap(); let qd: &[f64; {n}] = qd.try_into().unwrap(); let qdd: &[f64; {n}] = qdd.try_into().unwrap();").unwrap();
         writeln!(adapter, "let mt: &[f64; {nm}] = mt.try_into().unwrap(); let tt: &[f64; {nt}] = tt.try_into().unwrap(); let _ = (mt, tt, qdd);").unwrap();
         writeln!(
@@ -49,13 +61,13 @@ fn main() {
         .unwrap();
         for o in &outputs {
             let call = match o {
-                Output::MassMatrix => "code::mass_matrix(q).iter().flatten().copied().collect()".to_string(),
-                Output::Gravity => "code::gravity(q).to_vec()".to_string(),
-                Output::Bias => "code::bias(q, qd).to_vec()".to_string(),
-                Output::ForwardDynamics => "code::forward_dynamics(q, qd, mt, tt).to_vec()".to_string(),
-                Output::Actuation => "{ let (m, t) = code::actuation(q, qd, qdd); m.iter().chain(t.iter()).copied().collect() }".to_string(),
-                Output::Bearings | Output::BaseReaction => format!("code::{}(q, qd, qdd).iter().flatten().flatten().copied().collect()", o.name()),
-                _ => format!("code::{}(q, qd, qdd).to_vec()", o.name()),
+                Output::MassMatrix => format!("code::mass_matrix(q{pa}).iter().flatten().copied().collect()"),
+                Output::Gravity => format!("code::gravity(q{pa}).to_vec()"),
+                Output::Bias => format!("code::bias(q, qd{pa}).to_vec()"),
+                Output::ForwardDynamics => format!("code::forward_dynamics(q, qd, mt, tt{pa}).to_vec()"),
+                Output::Actuation => format!("{{ let (m, t) = code::actuation(q, qd, qdd{pa}); m.iter().chain(t.iter()).copied().collect() }}"),
+                Output::Bearings | Output::BaseReaction => format!("code::{}(q, qd, qdd{pa}).iter().flatten().flatten().copied().collect()", o.name()),
+                _ => format!("code::{}(q, qd, qdd{pa}).to_vec()", o.name()),
             };
             writeln!(adapter, "v.push((\"{}\", {call}));", o.name()).unwrap();
         }

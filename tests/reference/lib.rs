@@ -21,6 +21,7 @@ pub mod fixtures;
 pub mod lagrangian;
 pub mod momentum;
 pub mod paper;
+pub mod parametric;
 pub mod poses;
 pub mod random_mechanism;
 

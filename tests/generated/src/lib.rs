@@ -2,12 +2,13 @@
 //! compiled here so that `tests/agreement.rs` can check it against the runtime solver.
 
 /// One generated mechanism: its RON text and an adapter that evaluates every generated
-/// output at a state (`q`, `q̇`, `q̈`, motor torques, tendon tensions).
+/// output at a state (`q`, `q̇`, `q̈`, motor torques, tendon tensions, runtime parameters).
 pub struct Mechanism {
     pub name: &'static str,
     pub ron: &'static str,
     #[allow(clippy::type_complexity)]
-    pub evaluate: fn(&[f64], &[f64], &[f64], &[f64], &[f64]) -> Vec<(&'static str, Vec<f64>)>,
+    pub evaluate:
+        fn(&[f64], &[f64], &[f64], &[f64], &[f64], &[f64]) -> Vec<(&'static str, Vec<f64>)>,
 }
 
 include!(concat!(env!("OUT_DIR"), "/mechanisms.rs"));
