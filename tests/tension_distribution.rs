@@ -12,21 +12,7 @@ fn example(name: &str) -> String {
     .unwrap()
 }
 
-/// One joint pulled by three tendons (two one way, one the other): a two-dimensional null space.
-const THREE_ON_ONE: &str = r#"(
-    name: "three_on_one", gravity: (0.0, -9.81, 0.0), tension_floor: 2.0,
-    links: [(name: "l1", dh: (a: 0.3, alpha: 0.0, d: 0.0), mass: 1.0, com: (-0.15, 0.0, 0.0), inertia: (xx: 0.001, yy: 0.008, zz: 0.008))],
-    pulleys: [
-        (name: "d1", carrier: "l1", at: Joint(joint: "l1", height: 0.00), radius: 0.02, fixed: true),
-        (name: "d2", carrier: "l1", at: Joint(joint: "l1", height: 0.01), radius: 0.03, fixed: true),
-        (name: "d3", carrier: "l1", at: Joint(joint: "l1", height: 0.02), radius: 0.025, fixed: true),
-    ],
-    tendons: [
-        (name: "a", route: [("d1", Ccw)], exit: (-0.2, 0.1, 0.00)),
-        (name: "b", route: [("d2", Ccw)], exit: (-0.2, -0.1, 0.01), floor: 4.0),
-        (name: "c", route: [("d3", Cw)], exit: (0.0, -0.2, 0.02)),
-    ],
-)"#;
+use tendyn_spec::redundant::THREE_ON_ONE;
 
 #[test]
 fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
@@ -163,5 +149,36 @@ fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clea
     assert!(((ccw2 - cw2) - (ccw - cw)).abs() < 1e-12);
     for (a, b) in r.motor_torques.iter().zip(&r2.motor_torques) {
         assert!((a - b).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn the_fixed_size_distribution_of_generated_code_matches_the_runtime_solver_in_a_2d_null_space() {
+    // The runtime solver's distribution (active sets over Vec) and the no_std, fixed-size
+    // routine generated code calls must choose the same tensions.
+    let m = tendyn_core::parse(THREE_ON_ONE).unwrap();
+    assert_eq!(m.system.null_space.len(), 2);
+    let cols: Vec<usize> = m.tendons.iter().map(|t| t.unknown).collect();
+    let null: [[f64; 3]; 2] =
+        std::array::from_fn(|d| std::array::from_fn(|k| m.system.null_space[d][cols[k]]));
+    let floor: [f64; 3] = std::array::from_fn(|k| m.tendons[k].floor);
+    let mut s = Solver::new(&m);
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    for _ in 0..500 {
+        let (q, qd, qdd) = (
+            [rng.random_range(-3.0..3.0)],
+            [rng.random_range(-3.0..3.0)],
+            [rng.random_range(-10.0..10.0)],
+        );
+        let r = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let x0: [f64; 3] = std::array::from_fn(|k| r.minimal_norm_tensions[k]);
+        let got = tendyn_core::distribution::least_norm_with_floor::<f64, 3, 2>(x0, &null, &floor);
+        for (g, w) in got.iter().zip(&r.tendon_tensions) {
+            assert!(
+                (g - w).abs() <= 1e-12 * w.abs().max(1.0),
+                "{got:?} vs {:?}",
+                r.tendon_tensions
+            );
+        }
     }
 }

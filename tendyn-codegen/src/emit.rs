@@ -56,6 +56,15 @@ impl Scalar {
     }
 }
 
+/// The generic parameter of a function: `T: Real`, and `PartialOrd` too where it calls the
+/// tension distribution (which compares).
+fn bound(scalar: Scalar, compares: bool) -> TokenStream {
+    match (scalar, compares) {
+        (Scalar::Generic, true) => quote!(<T: Real + PartialOrd>),
+        _ => scalar.generics(),
+    }
+}
+
 /// Syntax-tree constructors for the expression forms the bodies use.
 mod ast {
     use super::*;
@@ -434,7 +443,7 @@ impl<'g> Body<'g> {
 }
 
 /// The flat results of `f` arranged in its shape.
-fn shaped(f: &Function, values: Vec<Expr>) -> Expr {
+fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream) -> Expr {
     let mut values = values.into_iter();
     let mut take = |n: usize| ast::array(values.by_ref().take(n));
     match &f.shape {
@@ -442,7 +451,33 @@ fn shaped(f: &Function, values: Vec<Expr>) -> Expr {
         Shape::Matrix(n) => ast::array((0..*n).map(|_| take(*n))),
         Shape::Actuation { motors, tendons } => {
             let m = take(*motors);
-            ast::pair(m, take(*tendons))
+            let x0 = take(*tendons);
+            let tensions = match &f.distribution {
+                None => x0,
+                // The floor-respecting least-norm tensions of a many-dimensional null
+                // space, by the fixed-size routine of tendyn-core.
+                Some(dist) => {
+                    let (k, d) = (
+                        Literal::usize_unsuffixed(*tendons),
+                        Literal::usize_unsuffixed(dist.null.len()),
+                    );
+                    let lit = |x: f64| {
+                        let l = Literal::f64_suffixed(x.abs());
+                        if x < 0.0 {
+                            quote!(-#l)
+                        } else {
+                            quote!(#l)
+                        }
+                    };
+                    let rows = dist.null.iter().map(|r| {
+                        let cells = r.iter().map(|&x| lit(x));
+                        quote!([#(#cells),*])
+                    });
+                    let floor = dist.floor.iter().map(|&x| lit(x));
+                    parse_quote!(tendyn_core::distribution::least_norm_with_floor::<#t, #k, #d>(#x0, &[#(#rows),*], &[#(#floor),*]))
+                }
+            };
+            ast::pair(m, tensions)
         }
         Shape::Wrenches(n) => ast::array((0..*n).map(|_| {
             let force = take(3);
@@ -511,7 +546,6 @@ fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
 /// Rust source for every traced function, and `all`.
 pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -> String {
     let t = scalar.ty();
-    let generics = scalar.generics();
     let n = model.dof;
     let (nm, nt) = (model.motors.len(), model.tendons.len());
     let a = model.structure_matrix();
@@ -579,6 +613,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
             },
         );
         let d = d.lines().map(|l| quote!(#[doc = #l]));
+        let generics = bound(scalar, f.distribution.is_some());
         let mut item: syn::ItemFn = parse_quote! {
             #(#d)*
             #[inline]
@@ -586,7 +621,9 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
             pub fn #name #generics (#(#params),*) -> #ret {}
         };
         item.block.stmts = body.stmts;
-        item.block.stmts.push(Stmt::Expr(shaped(f, values), None));
+        item.block
+            .stmts
+            .push(Stmt::Expr(shaped(f, values, &t), None));
         file.items.push(syn::Item::Fn(item));
     }
     // `all`: every output, sharing their work.
@@ -619,7 +656,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
                 .map(|&r| body.expr(r))
                 .collect();
             offset += f.results.len();
-            (ast::ident(f.output.name()), shaped(f, values))
+            (ast::ident(f.output.name()), shaped(f, values, &t))
         })
         .collect();
     let param_tokens = params(&all_params);
@@ -637,6 +674,10 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
             #(#fields),*
         }
     };
+    let generics = bound(
+        scalar,
+        traced.functions.iter().any(|f| f.distribution.is_some()),
+    );
     let mut all: syn::ItemFn = parse_quote! {
         #[doc = #all_doc]
         #[inline]

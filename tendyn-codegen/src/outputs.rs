@@ -136,6 +136,18 @@ pub struct Function {
     /// Operations of the traced form and of the closed form (if it could be built).
     pub traced_ops: OpCount,
     pub closed_ops: Option<OpCount>,
+    /// For `actuation` with a null space of more than one dimension: the tendon results are
+    /// the minimal-norm tensions, which the emitted code hands to
+    /// `tendyn_core::distribution::least_norm_with_floor` with these constants.
+    pub distribution: Option<Distribution>,
+}
+
+/// The constants of the fixed-size tension distribution (see [`Function::distribution`]).
+#[derive(Clone, Debug)]
+pub struct Distribution {
+    /// Null-space basis restricted to the tendons: `null[d][k]`.
+    pub null: Vec<Vec<f64>>,
+    pub floor: Vec<f64>,
 }
 
 /// Why an output cannot be generated for a mechanism.
@@ -203,12 +215,16 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
-            Output::Actuation if model.system.null_space.len() > 1 => Some(format!(
-                "the tension system has a {}-dimensional null space; generated code distributes \
-                 tensions in closed form for one-dimensional null spaces (n+1 routings) only — \
-                 use the runtime solver",
-                model.system.null_space.len()
-            )),
+            Output::SegmentTensions | Output::Bearings | Output::BaseReaction
+                if model.system.null_space.len() > 1 =>
+            {
+                Some(format!(
+                    "the tension system has a {}-dimensional null space: generated code \
+                     distributes the ground-level tensions (actuation) through a numeric routine, \
+                     and does not carry them on to segments and bearings — use the runtime solver",
+                    model.system.null_space.len()
+                ))
+            }
             Output::Actuation if model.motors.is_empty() && model.tendons.is_empty() => {
                 Some("the mechanism has neither motors nor tendons".to_string())
             }
@@ -285,6 +301,17 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             traced: roots,
             traced_ops,
             closed_ops,
+            distribution: (output == Output::Actuation && model.system.null_space.len() > 1).then(
+                || Distribution {
+                    null: model
+                        .system
+                        .null_space
+                        .iter()
+                        .map(|v| model.tendons.iter().map(|t| v[t.unknown]).collect())
+                        .collect(),
+                    floor: model.tendons.iter().map(|t| t.floor).collect(),
+                },
+            ),
         });
     }
     Ok(Traced {
@@ -323,8 +350,10 @@ fn trace_one(m: &Model<Sym>, o: Output, i: &Inputs, ws: &mut Workspace<Sym>) -> 
             (Shape::Vector(n), dynamics::ldlt_solve(&mm, &rhs))
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
+            // One-dimensional null spaces: the closed-form floor (a `max`); larger ones are
+            // distributed by the emitted call (see `Function::distribution`).
             let r = dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
-                if !model.system.null_space.is_empty() {
+                if model.system.null_space.len() == 1 {
                     tension::lift_to_floor(model, x);
                 }
                 Ok(())

@@ -39,6 +39,7 @@
 
 #![cfg_attr(not(feature = "std"), no_std)]
 
+pub mod distribution;
 pub mod real;
 pub use real::{Numeric, Real};
 

@@ -23,6 +23,10 @@ fn main() {
         "parametric_finger".to_string(),
         tendyn_spec::parametric::finger(),
     ));
+    mechanisms.push((
+        "three_on_one".to_string(),
+        tendyn_spec::redundant::THREE_ON_ONE.to_string(),
+    ));
     for seed in 0..12u64 {
         let features = Features {
             coupled_pulleys: seed % 3 == 1,

@@ -24,6 +24,7 @@ pub mod paper;
 pub mod parametric;
 pub mod poses;
 pub mod random_mechanism;
+pub mod redundant;
 
 #[cfg(test)]
 mod tests;
