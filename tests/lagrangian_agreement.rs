@@ -14,20 +14,7 @@ use tendyn_spec::{lagrangian, momentum};
 const TOL: f64 = 1e-12;
 
 fn examples() -> Vec<Model<f64>> {
-    [
-        "example1_endless",
-        "example2_open_ended",
-        "example3_stanford_jpl",
-    ]
-    .iter()
-    .map(|n| {
-        tendyn_core::load(format!(
-            "{}/../examples/mechanisms/{n}.ron",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap_or_else(|e| panic!("{n}: {e}"))
-    })
-    .collect()
+    tendyn_spec::examples::all()
 }
 
 fn rel(a: &[f64], b: &[f64]) -> f64 {

@@ -8,20 +8,7 @@ use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
 fn examples() -> Vec<Model<f64>> {
-    [
-        "example1_endless",
-        "example2_open_ended",
-        "example3_stanford_jpl",
-    ]
-    .iter()
-    .map(|n| {
-        tendyn_core::load(format!(
-            "{}/../examples/mechanisms/{n}.ron",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap()
-    })
-    .collect()
+    tendyn_spec::examples::all()
 }
 
 fn mechanisms() -> Vec<Model<f64>> {

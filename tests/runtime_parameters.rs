@@ -4,11 +4,7 @@
 use tendyn_core::Solver;
 
 fn example(name: &str) -> String {
-    std::fs::read_to_string(format!(
-        "{}/../examples/mechanisms/{name}.ron",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
+    tendyn_spec::examples::text(name)
 }
 
 fn parametric_finger() -> String {

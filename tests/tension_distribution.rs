@@ -5,11 +5,7 @@ use rand_chacha::ChaCha8Rng;
 use tendyn_core::{Error, Solver};
 
 fn example(name: &str) -> String {
-    std::fs::read_to_string(format!(
-        "{}/../examples/mechanisms/{name}.ron",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
+    tendyn_spec::examples::text(name)
 }
 
 use tendyn_spec::redundant::THREE_ON_ONE;

@@ -17,6 +17,7 @@
 //!
 //! [`Model`]: tendyn_core::model::Model
 
+pub mod examples;
 pub mod fixtures;
 pub mod lagrangian;
 pub mod momentum;

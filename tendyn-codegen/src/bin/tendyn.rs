@@ -16,6 +16,15 @@ struct Cli {
     command: Command,
 }
 
+/// Joint positions and velocities, comma-separated, in joint order.
+#[derive(clap::Args)]
+struct State {
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    q: Vec<f64>,
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    qd: Vec<f64>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Validate a mechanism file and print what the routing implies.
@@ -23,10 +32,8 @@ enum Command {
     /// Evaluate inverse dynamics, M, h and g at a state.
     Eval {
         file: String,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        q: Vec<f64>,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        qd: Vec<f64>,
+        #[command(flatten)]
+        state: State,
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         qdd: Vec<f64>,
         /// A CSV file with one state per line: q..., qd..., qdd... (3n numbers).
@@ -39,10 +46,8 @@ enum Command {
     /// Forward dynamics: joint accelerations from motor torques and tendon tensions.
     Forward {
         file: String,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        q: Vec<f64>,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        qd: Vec<f64>,
+        #[command(flatten)]
+        state: State,
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         torques: Vec<f64>,
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
@@ -126,8 +131,7 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Eval {
             file,
-            q,
-            qd,
+            state: State { q, qd },
             qdd,
             states,
             json,
@@ -263,8 +267,7 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Forward {
             file,
-            q,
-            qd,
+            state: State { q, qd },
             torques,
             tensions,
             json,
