@@ -357,26 +357,63 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
     }
 }
 
-/// The collected closed form of `roots`, built into `g`; `None` if an intermediate
-/// polynomial exceeds `max_terms` terms (at most [`MAX_TERMS`]).
-pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank, max_terms: usize) -> Option<Vec<Id>> {
-    let mut e = Expander {
-        g,
-        rank,
-        memo: BTreeMap::new(),
-        max_terms: max_terms.min(MAX_TERMS),
-    };
-    // Every term costs at least a multiply-add: give up as soon as the results together
-    // have more terms than the budget.
-    let mut total = 0;
-    let mut polys = Vec::with_capacity(roots.len());
-    for &r in roots {
-        let p = e.expand(r)?;
-        total += p.len();
-        if total > e.max_terms {
-            return None;
+/// Collects the closed forms of several functions of one graph, sharing the expansions
+/// of the subexpressions they have in common (the outputs of inverse dynamics share most).
+pub struct Collector {
+    memo: BTreeMap<Id, Option<Poly>>,
+    /// Largest intermediate polynomial any function may use.
+    max_terms: usize,
+}
+
+impl Collector {
+    /// `max_terms`: the largest budget any function will ask for (at most [`MAX_TERMS`]).
+    pub fn new(max_terms: usize) -> Self {
+        Collector {
+            memo: BTreeMap::new(),
+            max_terms: max_terms.min(MAX_TERMS),
         }
-        polys.push(p);
     }
-    polys.into_iter().map(|p| e.rebuild(p)).collect()
+
+    /// The collected closed form of `roots`, built into `g`; `None` if an intermediate
+    /// polynomial exceeds the collector's limit or the results together have more than
+    /// `budget` terms (every term costs at least a multiply-add, so such a form cannot beat
+    /// a trace of about `budget` operations).
+    pub fn collect(
+        &mut self,
+        g: &mut Graph,
+        roots: &[Id],
+        rank: &dyn Rank,
+        budget: usize,
+    ) -> Option<Vec<Id>> {
+        let mut e = Expander {
+            g,
+            rank,
+            memo: std::mem::take(&mut self.memo),
+            max_terms: self.max_terms,
+        };
+        let mut total = 0;
+        let mut polys = Some(Vec::with_capacity(roots.len()));
+        for &r in roots {
+            match e.expand(r) {
+                Some(p) if total + p.len() <= budget => {
+                    total += p.len();
+                    if let Some(v) = polys.as_mut() {
+                        v.push(p);
+                    }
+                }
+                _ => {
+                    polys = None;
+                    break;
+                }
+            }
+        }
+        let result = polys.and_then(|ps| ps.into_iter().map(|p| e.rebuild(p)).collect());
+        self.memo = e.memo;
+        result
+    }
+}
+
+/// The collected closed form of `roots`, built into `g` (see [`Collector::collect`]).
+pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank, max_terms: usize) -> Option<Vec<Id>> {
+    Collector::new(max_terms).collect(g, roots, rank, max_terms)
 }

@@ -6,7 +6,7 @@
 //! requested output shares their common work. Then, per function, the collected closed
 //! form ([`crate::closed_form`]) replaces the traced one when it has fewer operations.
 
-use crate::closed_form::{collect, StateRank};
+use crate::closed_form::{Collector, StateRank};
 use crate::expr::{Graph, Id, OpCount, Sym};
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model};
@@ -277,18 +277,27 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             tendon_tensions: array("tendon_tensions", m.tendons.len()),
         };
         let mut ws = Workspace::new(&m);
+        let mut shared = Shared::default();
         outputs
             .iter()
-            .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws)))
+            .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws, &mut shared)))
             .collect::<Vec<_>>()
     });
     let mut functions = Vec::new();
+    // One collector for all functions, so that shared subexpressions are expanded once;
+    // its limit is the largest function's budget.
+    let budget_of = |ops: OpCount| ops.arithmetic() + 32;
+    let largest = results
+        .iter()
+        .map(|(_, (_, r))| budget_of(graph.count(&r.iter().map(|s| s.0).collect::<Vec<_>>())))
+        .max()
+        .unwrap_or(0);
+    let mut collector = Collector::new(largest);
     for (output, (shape, results)) in results {
         let roots: Vec<Id> = results.iter().map(|s| s.0).collect();
         let traced_ops = graph.count(&roots);
         // A closed form with more terms than the trace has operations cannot win.
-        let budget = traced_ops.arithmetic() + 32;
-        let closed = collect(&mut graph, &roots, &StateRank, budget);
+        let closed = collector.collect(&mut graph, &roots, &StateRank, budget_of(traced_ops));
         let closed_ops = closed.as_ref().map(|c| graph.count(c));
         let results = match (&closed, closed_ops) {
             (Some(c), Some(ops)) if ops.arithmetic() < traced_ops.arithmetic() => c.clone(),
@@ -322,7 +331,49 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     })
 }
 
-fn trace_one(m: &Model<Sym>, o: Output, i: &Inputs, ws: &mut Workspace<Sym>) -> (Shape, Vec<Sym>) {
+/// Recursions several outputs share, traced once: inverse dynamics (behind actuation,
+/// segment tensions, bearings and the base reaction) and the mass matrix (behind itself and
+/// forward dynamics). Hash-consing would merge the nodes anyway; this saves the tracing work.
+#[derive(Default)]
+struct Shared {
+    inverse: Option<dynamics::InverseDynamics<Sym>>,
+    mass: Option<Vec<Vec<Sym>>>,
+}
+
+impl Shared {
+    fn inverse(
+        &mut self,
+        m: &Model<Sym>,
+        i: &Inputs,
+        ws: &mut Workspace<Sym>,
+    ) -> &dynamics::InverseDynamics<Sym> {
+        self.inverse.get_or_insert_with(|| {
+            // One-dimensional null spaces: the closed-form floor (a `max`); larger ones are
+            // distributed by the emitted call (see `Function::distribution`).
+            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
+                if model.system.null_space.len() == 1 {
+                    tension::lift_to_floor(model, x);
+                }
+                Ok(())
+            })
+            .expect("the one-dimensional distribution cannot fail")
+        })
+    }
+
+    fn mass(&mut self, m: &Model<Sym>, i: &Inputs, ws: &mut Workspace<Sym>) -> Vec<Vec<Sym>> {
+        self.mass
+            .get_or_insert_with(|| dynamics::mass_matrix(m, &i.q, ws))
+            .clone()
+    }
+}
+
+fn trace_one(
+    m: &Model<Sym>,
+    o: Output,
+    i: &Inputs,
+    ws: &mut Workspace<Sym>,
+    shared: &mut Shared,
+) -> (Shape, Vec<Sym>) {
     let n = m.dof;
     let zeros = vec![Sym::zero(); n];
     match o {
@@ -332,7 +383,7 @@ fn trace_one(m: &Model<Sym>, o: Output, i: &Inputs, ws: &mut Workspace<Sym>) -> 
             (Shape::Vector(n), out)
         }
         Output::MassMatrix => {
-            let mm = dynamics::mass_matrix(m, &i.q, ws);
+            let mm = shared.mass(m, i, ws);
             (Shape::Matrix(n), mm.into_iter().flatten().collect())
         }
         Output::Bias => (Shape::Vector(n), dynamics::bias(m, &i.q, &i.qd, ws)),
@@ -346,19 +397,11 @@ fn trace_one(m: &Model<Sym>, o: Output, i: &Inputs, ws: &mut Workspace<Sym>) -> 
                 &i.tendon_tensions,
                 ws,
             );
-            let mm = dynamics::mass_matrix(m, &i.q, ws);
+            let mm = shared.mass(m, i, ws);
             (Shape::Vector(n), dynamics::ldlt_solve(&mm, &rhs))
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
-            // One-dimensional null spaces: the closed-form floor (a `max`); larger ones are
-            // distributed by the emitted call (see `Function::distribution`).
-            let r = dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
-                if model.system.null_space.len() == 1 {
-                    tension::lift_to_floor(model, x);
-                }
-                Ok(())
-            })
-            .expect("the one-dimensional distribution cannot fail");
+            let r = shared.inverse(m, i, ws).clone();
             match o {
                 Output::Actuation => (
                     Shape::Actuation {
