@@ -12,7 +12,8 @@
 //! - [`newton_euler`]: backward recursion with forces affine in the unknown tensions
 //!   (Eqs. 19-24);
 //! - [`tension`]: `E x = b`, the tension distribution with a floor, segment tensions;
-//! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics.
+//! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics;
+//! - [`distribution`]: the fixed-size tension distribution generated code calls.
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
