@@ -4,7 +4,7 @@
 //!
 //! The modules follow the data flow, file by file:
 //!
-//! - [`format`]: the RON file as serde reads it;
+//! - [`format`](mod@format): the RON file as serde reads it;
 //! - [`validate`]: file → [`Model`], every check with a named error ([`Error`]);
 //! - [`transmission`]: tendon routing → pulley couplings, segment geometry, structure
 //!   matrix `A` and the tension system (paper Eqs. 9-10, 17-18, 26, 31, 33-35);
