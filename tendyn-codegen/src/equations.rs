@@ -1,8 +1,9 @@
-//! Readable closed-form equations for `tendyn equations`: the collected form of the
-//! generated functions printed in mathematical notation, with the joint variables named as
-//! in the paper (`th1`, `th1d`, `th1dd`; `S2 = sin th2`, `C2 = cos th2`) and runtime
-//! parameters by their names, so they can be set beside the paper's Eqs. 28-30, 33 and 35.
-//! Numbers are the file's, collected.
+//! Readable equations for `tendyn equations`: the generated functions printed in
+//! mathematical notation, with the joint variables named as in the paper (`th1`, `th1d`,
+//! `th1dd`; `S2 = sin th2`, `C2 = cos th2`), every mass, centre of mass, inertia entry and
+//! gravity component by name (`m2`, `c2x`, `I2zz`, `gy`) and runtime parameters by theirs,
+//! so they can be set beside the paper's Eqs. 28-30, 33 and 35. Lengths and radii are the
+//! file's numbers (the routing is derived from them).
 
 use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, trace, Output, Traced};
@@ -87,9 +88,62 @@ fn trig(g: &Graph, f: &str, a: Id, names: &dyn Fn(Id) -> Option<String>) -> Stri
     }
 }
 
+/// `model` with every non-zero mass, centre-of-mass component, inertia entry and gravity
+/// component made a named parameter (`m2`, `c2x`, `I2zz`, `gy`; pulleys `m_idler3`, ...), so
+/// that the equations show them by name. Geometry (lengths, radii) stays numeric: the
+/// routing is derived from it.
+fn with_named_quantities(model: &Model<f64>) -> Model<f64> {
+    use tendyn_core::model::{Parameter, Slot};
+    let mut m = model.clone();
+    let taken: Vec<Slot> = m.parameter_slots.iter().map(|(s, _)| *s).collect();
+    let add = |m: &mut Model<f64>, slot: Slot, name: String, value: f64| {
+        if value != 0.0 && !taken.contains(&slot) {
+            m.parameter_slots.push((slot, m.parameters.len()));
+            m.parameters.push(Parameter { name, value });
+        }
+    };
+    let axes = ["x", "y", "z"];
+    for b in 0..model.bodies.len() {
+        let body = &model.bodies[b];
+        let tag = if b < model.dof {
+            format!("{}", b + 1)
+        } else {
+            format!("_{}", body.name)
+        };
+        add(&mut m, Slot::Mass(b), format!("m{tag}"), body.mass);
+        for (c, axis) in axes.iter().enumerate() {
+            add(
+                &mut m,
+                Slot::Com(b, c),
+                format!("c{tag}{axis}"),
+                body.com.to_array()[c],
+            );
+        }
+        for (r, c) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)] {
+            add(
+                &mut m,
+                Slot::Inertia(b, r, c),
+                format!("I{tag}{}{}", axes[r], axes[c]),
+                body.inertia.rows[r][c],
+            );
+        }
+    }
+    for (c, axis) in axes.iter().enumerate() {
+        add(
+            &mut m,
+            Slot::Gravity(c),
+            format!("g{axis}"),
+            model.gravity.to_array()[c],
+        );
+    }
+    m
+}
+
 /// The equations of `outputs` (default: generalized forces, and the tension system's
 /// actuation when there are tendons or motors) as text.
 pub fn equations(model: &Model<f64>, outputs: &[Output]) -> Result<String, crate::Error> {
+    let named = with_named_quantities(model);
+    let model = &named;
     let traced: Traced = trace(model, outputs)?;
     PARAMETERS
         .with(|p| *p.borrow_mut() = model.parameters.iter().map(|p| p.name.clone()).collect());
