@@ -30,6 +30,9 @@ fn input_name(g: &Graph, i: u32) -> String {
 }
 
 fn number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
     let s = format!("{x:.6e}");
     // 1.234500e-2 → 1.2345e-2; short numbers in plain form
     if (1e-3..1e4).contains(&x.abs()) {
