@@ -680,36 +680,29 @@ fn a_negative_default_tension_floor_is_rejected_at_the_tension_floor_line() {
 
 #[test]
 fn an_external_wrench_on_a_link_that_does_not_exist_is_rejected_at_the_wrench() {
-    let text = with(
-        OPEN_ENDED,
-        "    tendons: [",
-        "    external_wrench: (link: \"link3\", force: (1.0, 0.0, 0.0)),\n    tendons: [",
-    );
-    let err = rejected(&text);
-    let Error::Invalid { at, .. } = &err else {
-        panic!("{err:?}")
-    };
-    assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
-    assert!(
-        err.to_string()
-            .contains("external_wrench names `link3`, which is not a link"),
-        "{err}"
-    );
-    let text = with(
-        OPEN_ENDED,
-        "    tendons: [",
-        "    external_wrench: (link: \"link2\", force: (NaN, 0.0, 0.0)),\n    tendons: [",
-    );
-    let err = rejected(&text);
-    let Error::Invalid { at, .. } = &err else {
-        panic!("{err:?}")
-    };
-    assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
-    assert!(
-        err.to_string()
-            .contains("`external_wrench` on `link2` has NaN in it; every number must be finite"),
-        "{err}"
-    );
+    // Each bad wrench is reported at the `external_wrench:` line, saying what is wrong.
+    for (wrench, phrase) in [
+        (
+            "(link: \"link3\", force: (1.0, 0.0, 0.0))",
+            "external_wrench names `link3`, which is not a link",
+        ),
+        (
+            "(link: \"link2\", force: (NaN, 0.0, 0.0))",
+            "`external_wrench` on `link2` has NaN in it; every number must be finite",
+        ),
+    ] {
+        let text = with(
+            OPEN_ENDED,
+            "    tendons: [",
+            &format!("    external_wrench: {wrench},\n    tendons: ["),
+        );
+        let err = rejected(&text);
+        let Error::Invalid { at, .. } = &err else {
+            panic!("{err:?}")
+        };
+        assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
+        assert!(err.to_string().contains(phrase), "{err}");
+    }
 }
 
 #[test]

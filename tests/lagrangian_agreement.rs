@@ -5,33 +5,17 @@
 //! `‖a − b‖∞ / ‖b‖∞`, and must be 1e-12 or better in f64.
 
 use nalgebra::{DMatrix, DVector};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::{Model, Row};
 use tendyn_core::Solver;
+use tendyn_spec::measure::{max_rel as rel, random_state, routed_random_mechanisms};
 use tendyn_spec::{lagrangian, momentum};
 
 const TOL: f64 = 1e-12;
 
 fn examples() -> Vec<Model<f64>> {
     tendyn_spec::examples::all()
-}
-
-fn rel(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
-}
-
-fn state(rng: &mut ChaCha8Rng, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-    let mut v = |s: f64| {
-        (0..n)
-            .map(|_| rng.random_range(-s..s))
-            .collect::<Vec<f64>>()
-    };
-    (v(std::f64::consts::PI), v(3.0), v(10.0))
 }
 
 fn flat(m: &DMatrix<f64>) -> Vec<f64> {
@@ -45,7 +29,7 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut worst = 0.0f64;
     let n = model.dof;
     for _ in 0..states {
-        let (q, qd, qdd) = state(&mut rng, n);
+        let [q, qd, qdd] = random_state(&mut rng, n);
         let m = solver.mass_matrix(&q).unwrap();
         let m_flat: Vec<f64> = (0..n)
             .flat_map(|j| (0..n).map(move |i| (i, j)))
@@ -183,7 +167,7 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let v = |x: tendyn_core::spatial::Vec3<f64>| Vector3::new(x.x, x.y, x.z);
     let mut worst = 0.0f64;
     for _ in 0..states {
-        let (q, qd, qdd) = state(&mut rng, model.dof);
+        let [q, qd, qdd] = random_state(&mut rng, model.dof);
         let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
         let (Some(bearings), Some(segments)) = (&id.bearings, &id.segment_tensions) else {
             return worst;
@@ -246,20 +230,12 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
 
 #[test]
 fn bearing_forces_balance_the_momentum_of_each_subtree() {
-    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
     for (i, m) in examples().iter().enumerate() {
         let worst = check_bearings(m, 100, 40 + i as u64);
         println!("{}: worst {worst:.2e}", m.name);
     }
-    for seed in 0..8u64 {
-        let (_, m) = valid_random_mechanism(
-            seed,
-            Features {
-                coupled_pulleys: false,
-                endless: seed % 3 == 1,
-            },
-        );
-        let worst = check_bearings(&m, 20, seed);
+    for (seed, m) in routed_random_mechanisms(8).iter().enumerate() {
+        let worst = check_bearings(m, 20, seed as u64);
         println!("{}: worst {worst:.2e}", m.name);
     }
 }

@@ -2,9 +2,10 @@
 //! to f64 precision (and f32 to f32 precision), `M` is symmetric positive definite, and
 //! forward dynamics undoes inverse dynamics. Errors are max-norm relative, `‖a − b‖∞ / ‖b‖∞`.
 
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
+use tendyn_spec::measure::{max_rel as rel, random_state as state};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
 fn examples() -> Vec<Model<f64>> {
@@ -28,15 +29,6 @@ fn mechanisms() -> Vec<Model<f64>> {
     all
 }
 
-fn state(rng: &mut ChaCha8Rng, n: usize) -> [Vec<f64>; 3] {
-    let mut v = |s: f64| {
-        (0..n)
-            .map(|_| rng.random_range(-s..s))
-            .collect::<Vec<f64>>()
-    };
-    [v(std::f64::consts::PI), v(3.0), v(10.0)]
-}
-
 /// Every number inverse dynamics reports, flattened, as f64.
 fn flatten<T: Numeric>(r: &InverseDynamics<T>) -> Vec<f64> {
     let mut v: Vec<f64> = Vec::new();
@@ -51,14 +43,6 @@ fn flatten<T: Numeric>(r: &InverseDynamics<T>) -> Vec<f64> {
         }
     }
     v
-}
-
-fn rel(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
 }
 
 fn lift<T: Numeric>(v: &[f64]) -> Vec<T> {

@@ -11,7 +11,6 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::{Contact, Model};
 use tendyn_spec::poses::{angle, world_poses, Pose};
-use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
 fn v(x: tendyn_core::spatial::Vec3<f64>) -> Vector3<f64> {
     Vector3::new(x.x, x.y, x.z)
@@ -233,28 +232,15 @@ fn check(model: &Model<f64>, seed: u64) {
 
 #[test]
 fn tendon_geometry_moves_ground_ends_by_a_dq_and_idlers_by_their_couplings() {
-    for n in [
-        "example1_endless",
-        "example2_open_ended",
-        "example3_stanford_jpl",
-    ] {
-        let m = tendyn_core::load(format!(
-            "{}/../examples/mechanisms/{n}.ron",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap();
+    for m in tendyn_spec::examples::all() {
         for seed in 0..5 {
             check(&m, seed);
         }
     }
-    for seed in 0..8u64 {
-        let (_, m) = valid_random_mechanism(
-            seed,
-            Features {
-                coupled_pulleys: false,
-                endless: seed % 3 == 1,
-            },
-        );
-        check(&m, seed);
+    for (seed, m) in tendyn_spec::measure::routed_random_mechanisms(8)
+        .iter()
+        .enumerate()
+    {
+        check(m, seed as u64);
     }
 }

@@ -637,9 +637,9 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
                 .any(|f| traced.params(f.output).contains(p))
         })
         .collect();
-    let roots = traced.all_roots();
+    let roots = &traced.all;
     let mut body = Body::new(&atoms);
-    body.bind(&roots);
+    body.bind(roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
         let ty = return_type(f, &t);
@@ -660,7 +660,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         })
         .collect();
     let param_tokens = params(&all_params);
-    let count = traced.graph.count(&roots);
+    let count = traced.all_ops;
     let all_doc =
         format!(" Every generated output at once, sharing their common work. Operations: {count}.");
     let struct_generics = match scalar {

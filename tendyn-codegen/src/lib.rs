@@ -93,11 +93,10 @@ pub fn generate(
             (f.output, traced.graph.count(&f.results), closed)
         })
         .collect();
-    let roots = traced.all_roots();
     Ok(Generated {
         source: emit::emit(model, &traced, scalar, source),
         functions,
-        all: traced.graph.count(&roots),
+        all: traced.all_ops,
     })
 }
 

@@ -164,6 +164,11 @@ pub struct Traced {
     pub dof: usize,
     /// Number of runtime parameters (inputs of every function).
     pub parameters: usize,
+    /// Results of every function for `all`, in function order: each function's chosen
+    /// form, or every function traced if that shares more and so costs less in total.
+    pub all: Vec<Id>,
+    /// Operations of `all`.
+    pub all_ops: OpCount,
 }
 
 impl Traced {
@@ -175,26 +180,6 @@ impl Traced {
             p.push(Param::Parameters);
         }
         p
-    }
-
-    /// Results of every function for `all`: each function's chosen form, or every function
-    /// traced if that shares more and so costs less in total.
-    pub fn all_roots(&self) -> Vec<Id> {
-        let chosen: Vec<Id> = self
-            .functions
-            .iter()
-            .flat_map(|f| f.results.iter().copied())
-            .collect();
-        let traced: Vec<Id> = self
-            .functions
-            .iter()
-            .flat_map(|f| f.traced.iter().copied())
-            .collect();
-        if self.graph.count(&traced).arithmetic() < self.graph.count(&chosen).arithmetic() {
-            traced
-        } else {
-            chosen
-        }
     }
 }
 
@@ -287,15 +272,17 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     // One collector for all functions, so that shared subexpressions are expanded once;
     // its limit is the largest function's budget.
     let budget_of = |ops: OpCount| ops.arithmetic() + 32;
-    let largest = results
-        .iter()
-        .map(|(_, (_, r))| budget_of(graph.count(&r.iter().map(|s| s.0).collect::<Vec<_>>())))
-        .max()
-        .unwrap_or(0);
+    let traced: Vec<(Output, Shape, Vec<Id>, OpCount)> = results
+        .into_iter()
+        .map(|(o, (shape, r))| {
+            let roots: Vec<Id> = r.iter().map(|s| s.0).collect();
+            let ops = graph.count(&roots);
+            (o, shape, roots, ops)
+        })
+        .collect();
+    let largest = traced.iter().map(|t| budget_of(t.3)).max().unwrap_or(0);
     let mut collector = Collector::new(largest);
-    for (output, (shape, results)) in results {
-        let roots: Vec<Id> = results.iter().map(|s| s.0).collect();
-        let traced_ops = graph.count(&roots);
+    for (output, shape, roots, traced_ops) in traced {
         // A closed form with more terms than the trace has operations cannot win.
         let closed = collector.collect(&mut graph, &roots, &StateRank, budget_of(traced_ops));
         let closed_ops = closed.as_ref().map(|c| graph.count(c));
@@ -323,11 +310,27 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             ),
         });
     }
+    let chosen: Vec<Id> = functions
+        .iter()
+        .flat_map(|f| f.results.iter().copied())
+        .collect();
+    let traced: Vec<Id> = functions
+        .iter()
+        .flat_map(|f| f.traced.iter().copied())
+        .collect();
+    let (chosen_ops, traced_ops) = (graph.count(&chosen), graph.count(&traced));
+    let (all, all_ops) = if traced_ops.arithmetic() < chosen_ops.arithmetic() {
+        (traced, traced_ops)
+    } else {
+        (chosen, chosen_ops)
+    };
     Ok(Traced {
         graph,
         functions,
         dof: n,
         parameters: model.parameters.len(),
+        all,
+        all_ops,
     })
 }
 

@@ -42,7 +42,7 @@ fn no_node_of_any_generated_function_does_arithmetic_on_a_known_zero_or_one() {
         ))
         .unwrap();
         let t = trace(&m, &tendyn_codegen::available_outputs(&m)).unwrap();
-        let roots = t.all_roots();
+        let roots = &t.all;
         let is = |id, v: f64| t.graph.constant_value(id) == Some(v);
         for id in t.graph.live(&roots) {
             let bad = match t.graph.node(id) {

@@ -20,6 +20,7 @@
 pub mod examples;
 pub mod fixtures;
 pub mod lagrangian;
+pub mod measure;
 pub mod momentum;
 pub mod paper;
 pub mod parametric;

@@ -1,0 +1,40 @@
+//! How the specification tests draw states and measure agreement, in one place.
+
+use rand::Rng;
+use tendyn_core::Model;
+
+use crate::random_mechanism::{valid_random_mechanism, Features};
+
+/// Max-norm relative error `‖a − b‖∞ / ‖b‖∞` (the norm every agreement figure states).
+pub fn max_rel(a: &[f64], b: &[f64]) -> f64 {
+    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
+}
+
+/// A random state of `n` joints with the ranges of the benchmark protocol: q in [−π, π],
+/// q̇ in [−3, 3], q̈ in [−10, 10].
+pub fn random_state(rng: &mut impl Rng, n: usize) -> [Vec<f64>; 3] {
+    let mut v = |s: f64| {
+        (0..n)
+            .map(|_| rng.random_range(-s..s))
+            .collect::<Vec<f64>>()
+    };
+    [v(std::f64::consts::PI), v(3.0), v(10.0)]
+}
+
+/// Random mechanisms with a complete routing (no explicit couplings, so every segment
+/// tension and bearing force is available), every third one driven by an endless loop.
+pub fn routed_random_mechanisms(count: u64) -> Vec<Model<f64>> {
+    (0..count)
+        .map(|seed| {
+            let features = Features {
+                coupled_pulleys: false,
+                endless: seed % 3 == 1,
+            };
+            valid_random_mechanism(seed, features).1
+        })
+        .collect()
+}
