@@ -44,7 +44,7 @@ fn no_node_of_any_generated_function_does_arithmetic_on_a_known_zero_or_one() {
         let t = trace(&m, &tendyn_codegen::available_outputs(&m)).unwrap();
         let roots = &t.all;
         let is = |id, v: f64| t.graph.constant_value(id) == Some(v);
-        for id in t.graph.live(&roots) {
+        for id in t.graph.live(roots) {
             let bad = match t.graph.node(id) {
                 Node::Add(a, b) | Node::Sub(a, b) => is(a, 0.0) || is(b, 0.0),
                 Node::Mul(a, b) => {
