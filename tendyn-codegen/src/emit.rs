@@ -443,7 +443,7 @@ impl<'g> Body<'g> {
 }
 
 /// The flat results of `f` arranged in its shape.
-fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream) -> Expr {
+fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream, core: &syn::Path) -> Expr {
     let mut values = values.into_iter();
     let mut take = |n: usize| ast::array(values.by_ref().take(n));
     match &f.shape {
@@ -474,7 +474,7 @@ fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream) -> Expr {
                         quote!([#(#cells),*])
                     });
                     let floor = dist.floor.iter().map(|&x| lit(x));
-                    parse_quote!(tendyn_core::distribution::least_norm_with_floor::<#t, #k, #d>(#x0, &[#(#rows),*], &[#(#floor),*]))
+                    parse_quote!(#core::distribution::least_norm_with_floor::<#t, #k, #d>(#x0, &[#(#rows),*], &[#(#floor),*]))
                 }
             };
             ast::pair(m, tensions)
@@ -543,8 +543,16 @@ fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
     )
 }
 
-/// Rust source for every traced function, and `all`.
-pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -> String {
+/// Rust source for every traced function, and `all`. `core` is the path by which the
+/// emitted file reaches `tendyn-core` (`tendyn_core` for a crate that depends on it,
+/// `::tendyn::core` behind the front crate).
+pub fn emit(
+    model: &Model<f64>,
+    traced: &Traced,
+    scalar: Scalar,
+    source: &str,
+    core: &syn::Path,
+) -> String {
     let t = scalar.ty();
     let n = model.dof;
     let (nm, nt) = (model.motors.len(), model.tendons.len());
@@ -568,7 +576,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
     let a_doc = " The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).";
     let mut file: syn::File = parse_quote! {
         #[allow(unused_imports)]
-        use tendyn_core::real::Real;
+        use #core::real::Real;
         #[doc = #a_doc]
         #[allow(dead_code)]
         pub const STRUCTURE_MATRIX: [[f64; #nt]; #n] = [#(#a_rows),*];
@@ -623,7 +631,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
         item.block.stmts = body.stmts;
         item.block
             .stmts
-            .push(Stmt::Expr(shaped(f, values, &t), None));
+            .push(Stmt::Expr(shaped(f, values, &t, core), None));
         file.items.push(syn::Item::Fn(item));
     }
     // `all`: every output, sharing their work.
@@ -656,7 +664,7 @@ pub fn emit(model: &Model<f64>, traced: &Traced, scalar: Scalar, source: &str) -
                 .map(|&r| body.expr(r))
                 .collect();
             offset += f.results.len();
-            (ast::ident(f.output.name()), shaped(f, values, &t))
+            (ast::ident(f.output.name()), shaped(f, values, &t, core))
         })
         .collect();
     let param_tokens = params(&all_params);

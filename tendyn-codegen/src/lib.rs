@@ -30,6 +30,8 @@ pub enum Error {
     Model(tendyn_core::Error),
     /// A requested output cannot be generated for this mechanism.
     Unavailable { output: Output, reason: String },
+    /// The path given for `tendyn-core` is not a Rust path.
+    CorePath { path: String },
 }
 
 impl std::fmt::Display for Error {
@@ -43,6 +45,10 @@ impl std::fmt::Display for Error {
                     output.name()
                 )
             }
+            Error::CorePath { path } => write!(
+                f,
+                "`{path}` is not a Rust path to tendyn-core (write `tendyn_core` or `::tendyn::core`)"
+            ),
         }
     }
 }
@@ -74,14 +80,49 @@ pub struct Generated {
     pub all: expr::OpCount,
 }
 
-/// Traces, simplifies and emits `outputs` of `model`. `source` names the input in the
-/// generated file's header.
+/// How to emit: the scalar, the name of the input for the file's header, and the path by
+/// which the emitted code reaches `tendyn-core`.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub scalar: Scalar,
+    /// Names the input in the generated file's header (a file name, say).
+    pub source: String,
+    /// `tendyn_core` for a crate that depends on `tendyn-core`; `::tendyn::core` behind the
+    /// front crate `tendyn`.
+    pub core_path: String,
+}
+
+impl Options {
+    /// Generic code for a crate that depends on `tendyn-core` directly.
+    pub fn new(scalar: Scalar, source: &str) -> Options {
+        Options {
+            scalar,
+            source: source.to_string(),
+            core_path: "tendyn_core".to_string(),
+        }
+    }
+}
+
+/// Traces, simplifies and emits `outputs` of `model`, for a crate that depends on
+/// `tendyn-core`. `source` names the input in the generated file's header.
 pub fn generate(
     model: &tendyn_core::Model<f64>,
     outputs: &[Output],
     scalar: Scalar,
     source: &str,
 ) -> Result<Generated, Error> {
+    generate_with(model, outputs, &Options::new(scalar, source))
+}
+
+/// [`generate`] with every emission option.
+pub fn generate_with(
+    model: &tendyn_core::Model<f64>,
+    outputs: &[Output],
+    options: &Options,
+) -> Result<Generated, Error> {
+    let core: syn::Path = syn::parse_str(&options.core_path).map_err(|_| Error::CorePath {
+        path: options.core_path.clone(),
+    })?;
     let traced = outputs::trace(model, outputs)?;
     let functions = traced
         .functions
@@ -94,7 +135,7 @@ pub fn generate(
         })
         .collect();
     Ok(Generated {
-        source: emit::emit(model, &traced, scalar, source),
+        source: emit::emit(model, &traced, options.scalar, &options.source, &core),
         functions,
         all: traced.all_ops,
     })
