@@ -9,10 +9,12 @@
 //! - [`closed_form`]: the collected polynomial form in sines, cosines, velocities and
 //!   accelerations, kept per function when it has fewer operations;
 //! - [`emit`]: graph → Rust source (quote, prettyplease), with operation counts;
-//! - [`report`]: the CLI's text and JSON renderings of runtime results.
+//! - [`report`]: the CLI's text and JSON renderings of runtime results;
+//! - [`builder`]: [`Builder`], generation from a build script into `OUT_DIR`.
 //!
 //! [`generate`] runs the whole pipeline.
 
+pub mod builder;
 pub mod closed_form;
 pub mod emit;
 pub mod equations;
@@ -20,6 +22,7 @@ pub mod expr;
 pub mod outputs;
 pub mod report;
 
+pub use builder::Builder;
 pub use emit::Scalar;
 pub use outputs::Output;
 
@@ -32,6 +35,16 @@ pub enum Error {
     Unavailable { output: Output, reason: String },
     /// The path given for `tendyn-core` is not a Rust path.
     CorePath { path: String },
+    /// A mechanism file of a [`Builder`] is unreadable or invalid.
+    File {
+        path: String,
+        error: tendyn_core::Error,
+    },
+    /// An output name that is not one of [`Output::ALL`].
+    UnknownOutput(String),
+    /// The build environment is not what [`Builder`] needs (no `OUT_DIR`, an unwritable
+    /// file).
+    Build(String),
 }
 
 impl std::fmt::Display for Error {
@@ -45,6 +58,13 @@ impl std::fmt::Display for Error {
                     output.name()
                 )
             }
+            Error::File { path, error } => write!(f, "{path}: {error}"),
+            Error::UnknownOutput(name) => write!(
+                f,
+                "unknown output `{name}`: the outputs are {}",
+                Output::ALL.map(|o| o.name()).join(", ")
+            ),
+            Error::Build(problem) => write!(f, "{problem}"),
             Error::CorePath { path } => write!(
                 f,
                 "`{path}` is not a Rust path to tendyn-core (write `tendyn_core` or `::tendyn::core`)"

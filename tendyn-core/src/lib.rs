@@ -13,11 +13,13 @@
 //!   (Eqs. 19-24);
 //! - [`tension`]: `E x = b`, the tension distribution with a floor, segment tensions;
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics;
-//! - [`distribution`]: the fixed-size tension distribution generated code calls.
+//! - [`distribution`]: the fixed-size tension distribution generated code calls;
+//! - [`mechanism`]: the [`TendonMechanism`] trait of generated dynamics and
+//!   [`include_mechanism!`] for code a build script generated.
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
-//! feature only [`Real`] remains (`no_std`, no `alloc`, math from `libm`): what generated
+//! feature only [`Real`], `distribution` and `mechanism` remain (`no_std`, no `alloc`, math from `libm`): what generated
 //! code needs.
 //!
 //! ```
@@ -41,7 +43,9 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 
 pub mod distribution;
+pub mod mechanism;
 pub mod real;
+pub use mechanism::TendonMechanism;
 pub use real::{Numeric, Real};
 
 #[cfg(feature = "std")]

@@ -1,3 +1,518 @@
-//! `#[derive(TendonMechanism)]`: generated dynamics from a RON file at compile time.
+//! `#[derive(TendonMechanism)]`: the closed-form dynamics of a tendon-driven mechanism,
+//! generated from its RON file at compile time. Use it through the front crate `tendyn`.
 //!
-//! Empty for now: the derive is built on top of `tendyn-codegen` (issue 5).
+//! ```ignore
+//! #[derive(tendyn::TendonMechanism)]
+//! #[tendyn(file = "mechanisms/finger.ron", outputs(generalized_forces, actuation), scalar = f64)]
+//! struct Finger { payload: f64 }
+//! ```
+//!
+//! The attribute:
+//! - `file = "path"`: the mechanism, relative to the crate's manifest directory (editing
+//!   it rebuilds the crate); or `ron = "..."`: the mechanism inline;
+//! - `outputs(...)`: the functions to generate (default: every output the mechanism can
+//!   provide): `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`,
+//!   `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`;
+//! - `scalar = f64` (default) or `f32`;
+//! - `crate = "path"`: where the front crate is (default `::tendyn`).
+//!
+//! The struct's fields are the mechanism's runtime parameters, one field per declared
+//! parameter, of the scalar type. The expansion is a hidden module with the code
+//! `tendyn-codegen` emits, inherent methods (one per output, plus `all`) that pass the
+//! fields as the parameters, and an implementation of `tendyn::TendonMechanism`.
+//!
+//! Every problem becomes a compile error at the attribute: an unreadable file, a RON
+//! syntax error or an invalid mechanism (quoting the file, line and column of the item),
+//! an output the mechanism cannot provide, an unknown output or scalar, or fields that do
+//! not match the declared parameters (naming both sides).
+//!
+//! For tests run through `trybuild`, whose crates live in a scratch directory, the
+//! environment variable `TENDYN_MANIFEST_DIR` replaces `CARGO_MANIFEST_DIR` as the base of
+//! relative paths.
+
+use proc_macro2::{Span, TokenStream};
+use quote::{format_ident, quote, quote_spanned};
+use syn::spanned::Spanned;
+use syn::{parse_macro_input, DeriveInput, Ident, LitStr};
+use tendyn_codegen::{Options, Output, Scalar};
+
+#[proc_macro_derive(TendonMechanism, attributes(tendyn))]
+pub fn derive_tendon_mechanism(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    expand(&input)
+        .unwrap_or_else(syn::Error::into_compile_error)
+        .into()
+}
+
+/// Where the mechanism comes from.
+enum Source {
+    File(LitStr),
+    Inline(LitStr),
+}
+
+/// The parsed `#[tendyn(...)]` attribute.
+struct Attribute {
+    source: Source,
+    outputs: Option<Vec<Ident>>,
+    scalar: (Scalar, Span),
+    krate: syn::Path,
+}
+
+fn parse_attribute(input: &DeriveInput) -> syn::Result<Attribute> {
+    let mut source = None;
+    let mut outputs = None;
+    let mut scalar = (Scalar::F64, Span::call_site());
+    let mut krate: syn::Path = syn::parse_quote!(::tendyn);
+    let mut found = false;
+    for attr in input.attrs.iter().filter(|a| a.path().is_ident("tendyn")) {
+        found = true;
+        attr.parse_nested_meta(|meta| {
+            let set_source = |source: &mut Option<Source>, s: Source| {
+                if source.is_some() {
+                    return Err(
+                        meta.error("give the mechanism once: `file = \"...\"` or `ron = \"...\"`")
+                    );
+                }
+                *source = Some(s);
+                Ok(())
+            };
+            if meta.path.is_ident("file") {
+                set_source(&mut source, Source::File(meta.value()?.parse()?))
+            } else if meta.path.is_ident("ron") {
+                set_source(&mut source, Source::Inline(meta.value()?.parse()?))
+            } else if meta.path.is_ident("outputs") {
+                let mut list = Vec::new();
+                meta.parse_nested_meta(|o| {
+                    list.push(o.path.require_ident()?.clone());
+                    Ok(())
+                })?;
+                outputs = Some(list);
+                Ok(())
+            } else if meta.path.is_ident("scalar") {
+                let ident: Ident = meta.value()?.parse()?;
+                scalar =
+                    match ident.to_string().as_str() {
+                        "f64" => (Scalar::F64, ident.span()),
+                        "f32" => (Scalar::F32, ident.span()),
+                        other => return Err(syn::Error::new(
+                            ident.span(),
+                            format!(
+                                "unknown scalar `{other}`: write `scalar = f64` or `scalar = f32`"
+                            ),
+                        )),
+                    };
+                Ok(())
+            } else if meta.path.is_ident("crate") {
+                let path: LitStr = meta.value()?.parse()?;
+                krate = path.parse()?;
+                Ok(())
+            } else {
+                Err(meta.error(
+                    "unknown key: the keys are `file`, `ron`, `outputs(...)`, `scalar` and `crate`",
+                ))
+            }
+        })?;
+    }
+    if !found {
+        return Err(syn::Error::new(
+            input.ident.span(),
+            "missing `#[tendyn(file = \"mechanism.ron\")]`: say which mechanism to generate",
+        ));
+    }
+    let source = source.ok_or_else(|| {
+        syn::Error::new(
+            input.ident.span(),
+            "missing the mechanism: add `file = \"mechanism.ron\"` (relative to the crate's \
+             manifest directory) or `ron = \"...\"` to `#[tendyn(...)]`",
+        )
+    })?;
+    Ok(Attribute {
+        source,
+        outputs,
+        scalar,
+        krate,
+    })
+}
+
+/// The model, and the text to embed so that cargo rebuilds when the file changes.
+fn load(source: &Source) -> syn::Result<(tendyn_core::Model<f64>, Option<String>)> {
+    match source {
+        Source::Inline(lit) => {
+            let model = tendyn_core::parse(&lit.value())
+                .map_err(|e| syn::Error::new(lit.span(), located("inline RON", &e)))?;
+            Ok((model, None))
+        }
+        Source::File(lit) => {
+            let written = lit.value();
+            let base = std::env::var_os("TENDYN_MANIFEST_DIR")
+                .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
+                .map(std::path::PathBuf::from)
+                .unwrap_or_default();
+            let path = base.join(&written);
+            let text = std::fs::read_to_string(&path).map_err(|e| {
+                syn::Error::new(
+                    lit.span(),
+                    format!(
+                        "cannot read `{written}` (relative to the crate's manifest directory): {}",
+                        io_reason(&e)
+                    ),
+                )
+            })?;
+            let model = tendyn_core::parse(&text)
+                .map_err(|e| syn::Error::new(lit.span(), located(&written, &e)))?;
+            Ok((model, Some(path.to_string_lossy().into_owned())))
+        }
+    }
+}
+
+fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file".to_string(),
+        _ => e.to_string(),
+    }
+}
+
+/// `path:line:column: item: problem`, the way compilers quote a place in a file.
+fn located(path: &str, e: &tendyn_core::Error) -> String {
+    use tendyn_core::Error as E;
+    match e {
+        E::Syntax {
+            line,
+            column,
+            message,
+        } => format!("{path}:{line}:{column}: RON syntax error: {message}"),
+        E::Invalid { item, at, problem } | E::Routing { item, at, problem } if at.line > 0 => {
+            format!("{path}:{}:{}: {item}: {problem}", at.line, at.column)
+        }
+        other => format!("{path}: {other}"),
+    }
+}
+
+fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
+    let attr = parse_attribute(input)?;
+    if !input.generics.params.is_empty() {
+        return Err(syn::Error::new(
+            input.generics.span(),
+            "`TendonMechanism` is derived for a concrete type: remove the generic parameters \
+             (choose the scalar with `scalar = f64` or `scalar = f32`)",
+        ));
+    }
+    let (model, tracked) = load(&attr.source)?;
+    let source_span = match &attr.source {
+        Source::File(l) | Source::Inline(l) => l.span(),
+    };
+
+    // The fields are the runtime parameters, one for one.
+    let fields = parameter_fields(input, &model)?;
+
+    let outputs: Vec<Output> = match &attr.outputs {
+        None => tendyn_codegen::available_outputs(&model),
+        Some(list) => list
+            .iter()
+            .map(|ident| {
+                Output::parse(&ident.to_string()).ok_or_else(|| {
+                    syn::Error::new(
+                        ident.span(),
+                        format!(
+                            "unknown output `{ident}`: the outputs are {}",
+                            Output::ALL.map(|o| o.name()).join(", ")
+                        ),
+                    )
+                })
+            })
+            .collect::<syn::Result<_>>()?,
+    };
+    if let Err(u) = tendyn_codegen::outputs::check(&model, &outputs) {
+        let span = attr
+            .outputs
+            .iter()
+            .flatten()
+            .find(|i| *i == u.output.name())
+            .map_or(source_span, Ident::span);
+        return Err(syn::Error::new(
+            span,
+            format!(
+                "mechanism `{}` cannot provide `{}`: {}",
+                model.name,
+                u.output.name(),
+                u.reason
+            ),
+        ));
+    }
+
+    let krate = &attr.krate;
+    let core_path = quote!(#krate::core).to_string().replace(' ', "");
+    let options = Options {
+        scalar: attr.scalar.0,
+        source: match &attr.source {
+            Source::File(l) => l.value(),
+            Source::Inline(_) => "inline RON".to_string(),
+        },
+        core_path,
+    };
+    let generated = tendyn_codegen::generate_with(&model, &outputs, &options)
+        .map_err(|e| syn::Error::new(source_span, e.to_string()))?;
+    let file = syn::parse_file(&generated.source)
+        .map_err(|e| syn::Error::new(source_span, format!("internal error: {e}")))?;
+
+    let ident = &input.ident;
+    let module = format_ident!("__tendyn_{}", snake(&ident.to_string()));
+    let items = &file.items;
+    let scalar = match attr.scalar.0 {
+        Scalar::F32 => quote_spanned!(attr.scalar.1=> f32),
+        _ => quote_spanned!(attr.scalar.1=> f64),
+    };
+
+    let params_value = if model.parameters.is_empty() {
+        None
+    } else {
+        let values = fields.iter().map(|f| quote_spanned!(f.span()=> self.#f));
+        Some(quote!(&[#(#values),*]))
+    };
+    let functions: Vec<&syn::ItemFn> = file
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            syn::Item::Fn(f) => Some(f),
+            _ => None,
+        })
+        .collect();
+    let find = |name: &str| functions.iter().copied().find(|f| f.sig.ident == name);
+
+    // Inherent methods: each generated function with the parameters taken from `self`.
+    let inherent = functions.iter().map(|f| {
+        let name = &f.sig.ident;
+        let inputs: Vec<&syn::PatType> = f
+            .sig
+            .inputs
+            .iter()
+            .filter_map(|a| match a {
+                syn::FnArg::Typed(t) if !is_params(t) => Some(t),
+                _ => None,
+            })
+            .collect();
+        let args = inputs.iter().map(|t| &t.pat);
+        let params = params_value.iter();
+        let output = match &f.sig.output {
+            syn::ReturnType::Type(..) if name == "all" => quote!(#module::Outputs),
+            syn::ReturnType::Type(_, ty) => quote!(#ty),
+            syn::ReturnType::Default => quote!(()),
+        };
+        let docs = f.attrs.iter().filter(|a| a.path().is_ident("doc"));
+        quote! {
+            #(#docs)*
+            #[inline]
+            pub fn #name(&self, #(#inputs),*) -> #output {
+                #module::#name(#(#args,)* #(#params)*)
+            }
+        }
+    });
+
+    // The trait: the associated types are the generated functions' shapes.
+    let (n, m, t) = (model.dof, model.motors.len(), model.tendons.len());
+    let return_of = |name: &str| match find(name).map(|f| &f.sig.output) {
+        Some(syn::ReturnType::Type(_, ty)) => quote!(#ty),
+        _ => quote!(()),
+    };
+    let segments = return_of("segment_tensions");
+    let bearings = return_of("bearings");
+    let base_reaction = return_of("base_reaction");
+    let trait_methods = outputs.iter().map(|o| {
+        let name = format_ident!("{}", o.name());
+        let params = params_value.iter();
+        let (signature, args) = match o {
+            Output::MassMatrix | Output::Gravity => (quote!(q: &Self::Joints), quote!(q)),
+            Output::Bias => (quote!(q: &Self::Joints, qd: &Self::Joints), quote!(q, qd)),
+            Output::ForwardDynamics => (
+                quote!(q: &Self::Joints, qd: &Self::Joints, motor_torques: &Self::Motors, tendon_tensions: &Self::Tendons),
+                quote!(q, qd, motor_torques, tendon_tensions),
+            ),
+            _ => (
+                quote!(q: &Self::Joints, qd: &Self::Joints, qdd: &Self::Joints),
+                quote!(q, qd, qdd),
+            ),
+        };
+        let ret = match o {
+            Output::GeneralizedForces | Output::Bias | Output::Gravity | Output::ForwardDynamics => {
+                quote!(Self::Joints)
+            }
+            Output::Actuation => quote!((Self::Motors, Self::Tendons)),
+            Output::MassMatrix => quote!(Self::MassMatrix),
+            Output::SegmentTensions => quote!(Self::Segments),
+            Output::Bearings => quote!(Self::Bearings),
+            Output::BaseReaction => quote!(Self::BaseReaction),
+        };
+        quote! {
+            #[inline]
+            fn #name(&self, #signature) -> ::core::option::Option<#ret> {
+                ::core::option::Option::Some(#module::#name(#args, #(#params)*))
+            }
+        }
+    });
+    let names = |v: Vec<&String>| quote!(&[#(#v),*]);
+    let joint_names = names(model.bodies[..n].iter().map(|b| &b.name).collect());
+    let motor_names = names(model.motors.iter().map(|x| &x.name).collect());
+    let tendon_names = names(model.tendons.iter().map(|x| &x.name).collect());
+    let parameter_names = names(model.parameters.iter().map(|x| &x.name).collect());
+    let output_names = outputs.iter().map(|o| o.name());
+    let structure_rows = model.structure_matrix().into_iter().map(|row| {
+        let cells = row.into_iter().map(|x| {
+            let lit = proc_macro2::Literal::f64_suffixed(x.abs());
+            if x < 0.0 {
+                quote!(-#lit)
+            } else {
+                quote!(#lit)
+            }
+        });
+        quote!(&[#(#cells),*])
+    });
+    let name = &model.name;
+    let track = tracked.map(|path| {
+        quote!(
+            const _: &[u8] = include_bytes!(#path);
+        )
+    });
+    let doc = format!(
+        " Code generated by `#[derive(TendonMechanism)]` for `{ident}` from {}.",
+        options.source
+    );
+
+    Ok(quote! {
+        #[doc = #doc]
+        #[doc(hidden)]
+        #[allow(clippy::all, unused_imports, dead_code, non_snake_case)]
+        pub mod #module {
+            #(#items)*
+        }
+
+        // Cargo rebuilds the crate when the mechanism file changes.
+        #track
+
+        impl #ident {
+            #(#inherent)*
+        }
+
+        impl #krate::TendonMechanism for #ident {
+            type Scalar = #scalar;
+            type Joints = [#scalar; #n];
+            type Motors = [#scalar; #m];
+            type Tendons = [#scalar; #t];
+            type MassMatrix = [[#scalar; #n]; #n];
+            type Segments = #segments;
+            type Bearings = #bearings;
+            type BaseReaction = #base_reaction;
+            const NAME: &'static str = #name;
+            const DOF: usize = #n;
+            const MOTORS: usize = #m;
+            const TENDONS: usize = #t;
+            const JOINT_NAMES: &'static [&'static str] = #joint_names;
+            const MOTOR_NAMES: &'static [&'static str] = #motor_names;
+            const TENDON_NAMES: &'static [&'static str] = #tendon_names;
+            const PARAMETER_NAMES: &'static [&'static str] = #parameter_names;
+            const OUTPUTS: &'static [&'static str] = &[#(#output_names),*];
+            const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[#(#structure_rows),*];
+            #(#trait_methods)*
+        }
+    })
+}
+
+fn is_params(t: &syn::PatType) -> bool {
+    matches!(&*t.pat, syn::Pat::Ident(i) if i.ident == "params")
+}
+
+/// The struct's fields, in the order of the declared parameters; a compile error naming
+/// both sides when they differ.
+fn parameter_fields(
+    input: &DeriveInput,
+    model: &tendyn_core::Model<f64>,
+) -> syn::Result<Vec<Ident>> {
+    let declared: Vec<&str> = model.parameters.iter().map(|p| p.name.as_str()).collect();
+    let list = |v: &[&str]| {
+        if v.is_empty() {
+            "none".to_string()
+        } else {
+            v.iter()
+                .map(|s| format!("`{s}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    };
+    let fields: Vec<Ident> =
+        match &input.data {
+            syn::Data::Struct(s) => match &s.fields {
+                syn::Fields::Named(named) => {
+                    named.named.iter().filter_map(|f| f.ident.clone()).collect()
+                }
+                syn::Fields::Unit => Vec::new(),
+                syn::Fields::Unnamed(u) => {
+                    return Err(syn::Error::new(
+                        u.span(),
+                        format!(
+                        "the fields of a `TendonMechanism` are its runtime parameters by name: \
+                         use named fields ({})",
+                        list(&declared)
+                    ),
+                    ))
+                }
+            },
+            _ => return Err(syn::Error::new(
+                input.ident.span(),
+                "`TendonMechanism` is derived for a struct whose fields are the runtime parameters",
+            )),
+        };
+    let have: Vec<String> = fields.iter().map(Ident::to_string).collect();
+    let have_refs: Vec<&str> = have.iter().map(String::as_str).collect();
+    if let Some(extra) = fields
+        .iter()
+        .find(|f| !declared.contains(&f.to_string().as_str()))
+    {
+        return Err(syn::Error::new(
+            extra.span(),
+            format!(
+                "field `{extra}` is not a runtime parameter of mechanism `{}`: it declares {}",
+                model.name,
+                list(&declared)
+            ),
+        ));
+    }
+    let missing: Vec<&str> = declared
+        .iter()
+        .copied()
+        .filter(|d| !have_refs.contains(d))
+        .collect();
+    if !missing.is_empty() {
+        return Err(syn::Error::new(
+            input.ident.span(),
+            format!(
+                "mechanism `{}` declares the runtime parameter{} {}, missing from the fields of \
+                 `{}` (fields: {}); add one field per parameter, of the scalar type",
+                model.name,
+                if missing.len() > 1 { "s" } else { "" },
+                list(&missing),
+                input.ident,
+                list(&have_refs)
+            ),
+        ));
+    }
+    // Every declared parameter has its field (checked above): in declaration order.
+    Ok(declared
+        .iter()
+        .filter_map(|d| fields.iter().find(|f| *f == d).cloned())
+        .collect())
+}
+
+/// `StanfordFinger` → `stanford_finger`.
+fn snake(name: &str) -> String {
+    let mut s = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_uppercase() {
+            if i > 0 {
+                s.push('_');
+            }
+            s.extend(c.to_lowercase());
+        } else {
+            s.push(c);
+        }
+    }
+    s
+}

@@ -1,0 +1,11 @@
+#[derive(tendyn::TendonMechanism)]
+#[tendyn(file = "tests/ui/mechanisms/parametric_finger.ron", outputs(generalized_forces))]
+struct Finger {
+    m3: f64,
+    i3zz: f64,
+    g: f64,
+    i8: f64,
+    payload: f64,
+}
+
+fn main() {}

@@ -1,0 +1,4 @@
+#[derive(tendyn::TendonMechanism)]
+struct Finger;
+
+fn main() {}

@@ -1,0 +1,5 @@
+#[derive(tendyn::TendonMechanism)]
+#[tendyn(file = "tests/ui/mechanisms/syntax_error.ron")]
+struct Arm;
+
+fn main() {}
