@@ -1,0 +1,167 @@
+//! The three ways to get a mechanism's dynamics agree, for each of the paper's examples:
+//! the derive and the build script run the same generator, so their results must be
+//! identical to the bit (compared through `Debug`, which prints every f64 exactly); both
+//! must equal the runtime solver to 1e-12, max-norm relative per output vector
+//! (`tendyn_spec::measure::max_rel`; forward dynamics relative to the size of the terms it
+//! sums, `forward_dynamics_term_scale`), at 1,000 seeded random states.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use tendyn_core::{Model, Solver};
+use tendyn_frontends_tests::{built, derived};
+use tendyn_spec::measure::{forward_dynamics_term_scale, max_rel, random_state};
+
+/// Everything the runtime solver says at a state, flattened per output as generated code
+/// shapes it.
+fn runtime(
+    model: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Vec<(&'static str, Vec<f64>)> {
+    let mut s = Solver::new(model);
+    let r = s.inverse_dynamics(q, qd, qdd).unwrap();
+    let mut out = vec![
+        ("generalized_forces", r.generalized_forces.clone()),
+        (
+            "actuation",
+            r.motor_torques
+                .iter()
+                .chain(&r.tendon_tensions)
+                .copied()
+                .collect(),
+        ),
+        ("mass_matrix", s.mass_matrix(q).unwrap().concat()),
+        ("bias", s.bias(q, qd).unwrap()),
+        ("gravity", s.gravity(q).unwrap()),
+        (
+            "forward_dynamics",
+            s.forward_dynamics(q, qd, &r.motor_torques, &r.tendon_tensions)
+                .unwrap(),
+        ),
+    ];
+    if let Some(seg) = &r.segment_tensions {
+        out.push(("segment_tensions", seg.concat()));
+    }
+    if let Some(b) = &r.bearings {
+        out.push((
+            "bearings",
+            b.iter()
+                .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
+                .collect(),
+        ));
+    }
+    if let Some((f, n)) = &r.base_reaction {
+        out.push((
+            "base_reaction",
+            f.to_array().into_iter().chain(n.to_array()).collect(),
+        ));
+    }
+    out
+}
+
+/// Checks one example: `$derived` (a value) against `$built` (a module) and the runtime.
+macro_rules! agree {
+    ($file:literal, $derived:expr, $built:path, $n:literal) => {{
+        use $built as built;
+        let model = tendyn_core::load(concat!("../../examples/mechanisms/", $file)).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut worst = 0.0f64;
+        for _ in 0..1000 {
+            let [q, qd, qdd] = random_state(&mut rng, $n);
+            let (q, qd, qdd): ([f64; $n], [f64; $n], [f64; $n]) = (
+                q.try_into().unwrap(),
+                qd.try_into().unwrap(),
+                qdd.try_into().unwrap(),
+            );
+            let want = runtime(&model, &q, &qd, &qdd);
+            let (mt, tt) = $derived.actuation(&q, &qd, &qdd);
+            let d = $derived.all(&q, &qd, &qdd, &mt, &tt);
+            let b = built::all(&q, &qd, &qdd, &mt, &tt);
+            assert_eq!(
+                format!("{d:?}"),
+                format!("{b:?}"),
+                "derive and build.rs differ"
+            );
+            let got: Vec<(&str, Vec<f64>)> = vec![
+                ("generalized_forces", d.generalized_forces.to_vec()),
+                (
+                    "actuation",
+                    d.actuation
+                        .0
+                        .iter()
+                        .chain(&d.actuation.1)
+                        .copied()
+                        .collect(),
+                ),
+                ("mass_matrix", d.mass_matrix.concat()),
+                ("bias", d.bias.to_vec()),
+                ("gravity", d.gravity.to_vec()),
+                ("forward_dynamics", d.forward_dynamics.to_vec()),
+                ("segment_tensions", d.segment_tensions.to_vec()),
+                (
+                    "bearings",
+                    d.bearings.iter().flatten().flatten().copied().collect(),
+                ),
+                (
+                    "base_reaction",
+                    d.base_reaction
+                        .iter()
+                        .flatten()
+                        .flatten()
+                        .copied()
+                        .collect(),
+                ),
+            ];
+            for (name, want) in &want {
+                let (_, got) = got.iter().find(|(g, _)| g == name).unwrap();
+                let mut err = max_rel(got, want);
+                if *name == "forward_dynamics" {
+                    let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                    let terms = forward_dynamics_term_scale(&model, &q, &qd, &mt, &tt);
+                    err *= scale / scale.max(terms);
+                }
+                assert!(
+                    err <= 1e-12,
+                    "{} {name}: {err:.2e} from the runtime solver",
+                    $file
+                );
+                worst = worst.max(err);
+            }
+        }
+        println!(
+            "{}: derive ≡ build.rs bit for bit; worst against the runtime solver {worst:.1e}",
+            $file
+        );
+    }};
+}
+
+#[test]
+fn example1_derive_build_script_and_runtime_agree() {
+    agree!(
+        "example1_endless.ron",
+        derived::Example1,
+        built::example1,
+        2
+    );
+}
+
+#[test]
+fn example2_derive_build_script_and_runtime_agree() {
+    agree!(
+        "example2_open_ended.ron",
+        derived::Example2,
+        built::example2,
+        2
+    );
+}
+
+#[test]
+fn example3_derive_build_script_and_runtime_agree() {
+    agree!(
+        "example3_stanford_jpl.ron",
+        derived::Example3,
+        built::example3,
+        3
+    );
+}
