@@ -90,17 +90,18 @@ fn parse_attribute(input: &DeriveInput) -> syn::Result<Attribute> {
                 Ok(())
             } else if meta.path.is_ident("scalar") {
                 let ident: Ident = meta.value()?.parse()?;
-                scalar =
-                    match ident.to_string().as_str() {
-                        "f64" => (Scalar::F64, ident.span()),
-                        "f32" => (Scalar::F32, ident.span()),
-                        other => return Err(syn::Error::new(
+                scalar = match ident.to_string().as_str() {
+                    "f64" => (Scalar::F64, ident.span()),
+                    "f32" => (Scalar::F32, ident.span()),
+                    other => {
+                        return Err(syn::Error::new(
                             ident.span(),
                             format!(
                                 "unknown scalar `{other}`: write `scalar = f64` or `scalar = f32`"
                             ),
-                        )),
-                    };
+                        ))
+                    }
+                };
                 Ok(())
             } else if meta.path.is_ident("crate") {
                 let path: LitStr = meta.value()?.parse()?;
