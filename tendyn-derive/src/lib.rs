@@ -517,3 +517,62 @@ fn snake(name: &str) -> String {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn expand_str(input: DeriveInput) -> String {
+        expand(&input).map_or_else(|e| e.to_string(), |t| t.to_string())
+    }
+
+    #[test]
+    fn a_file_mechanism_is_embedded_by_its_absolute_path_so_editing_it_rebuilds_the_crate() {
+        let out = expand_str(syn::parse_quote! {
+            #[tendyn(file = "../examples/mechanisms/example1_endless.ron", outputs(gravity))]
+            struct Arm;
+        });
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../examples/mechanisms/example1_endless.ron");
+        let embedded = format!("include_bytes ! ({:?})", path.to_string_lossy());
+        assert!(out.contains(&embedded), "{out}");
+    }
+
+    #[test]
+    fn an_inline_mechanism_embeds_no_file() {
+        let out = expand_str(syn::parse_quote! {
+            #[tendyn(ron = r#"(
+                name: "pendulum",
+                links: [(name: "link1", dh: (a: 0.5, alpha: 0.0, d: 0.0), mass: 2.0,
+                    com: (0.0, 0.0, 0.0), inertia: (xx: 0.0, yy: 0.0, zz: 0.0))],
+                motors: [(name: "motor1", on: Joint("link1"))],
+            )"#, outputs(gravity))]
+            struct Pendulum;
+        });
+        assert!(out.contains("fn gravity"), "{out}");
+        assert!(!out.contains("include_bytes"), "{out}");
+    }
+
+    #[test]
+    fn only_the_requested_outputs_become_methods_and_the_trait_lists_them() {
+        let out = expand_str(syn::parse_quote! {
+            #[tendyn(file = "../examples/mechanisms/example2_open_ended.ron", outputs(mass_matrix, actuation))]
+            struct Arm;
+        });
+        assert!(out.contains("pub fn mass_matrix"), "{out}");
+        assert!(out.contains("pub fn actuation"), "{out}");
+        assert!(!out.contains("fn bearings"), "{out}");
+        assert!(
+            out.contains(
+                r#"const OUTPUTS : & 'static [& 'static str] = & ["mass_matrix" , "actuation"]"#
+            ),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn struct_names_become_snake_case_module_names() {
+        assert_eq!(snake("StanfordFinger"), "stanford_finger");
+        assert_eq!(snake("Arm"), "arm");
+    }
+}
