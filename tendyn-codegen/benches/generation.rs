@@ -1,0 +1,64 @@
+//! How long generation takes (issue 4: under 10 ms for each paper example, well under a
+//! second for a 7-link chain with a dozen pulleys), every available output, generic scalar.
+//!
+//! Per mechanism: loading and validation, then `generate` as a whole, then its two phases
+//! (`outputs::trace`: tracing and the closed forms; `emit::emit`: syntax tree and
+//! prettyplease), so that a regression points at its phase.
+//!
+//! `cargo bench -p tendyn-codegen --bench generation` (the CLI's `generate` also prints the
+//! time of one run).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use tendyn_codegen::{available_outputs, emit, generate, outputs, Scalar};
+
+/// The paper's examples, and a 7-link spatial chain whose four parallel proximal joints
+/// are driven by five tendons over 14 drums and idlers (`benches/chain7.ron`).
+const MECHANISMS: [&str; 4] = [
+    "/../examples/mechanisms/example1_endless.ron",
+    "/../examples/mechanisms/example2_open_ended.ron",
+    "/../examples/mechanisms/example3_stanford_jpl.ron",
+    "/benches/chain7.ron",
+];
+
+fn generation(c: &mut Criterion) {
+    for file in MECHANISMS {
+        let path = format!("{}{file}", env!("CARGO_MANIFEST_DIR"));
+        let model = tendyn_core::load(&path).unwrap();
+        let all = available_outputs(&model);
+        let core: syn::Path = syn::parse_quote!(tendyn_core);
+        let mut group = c.benchmark_group(&model.name);
+        group.bench_function("load and validate", |b| {
+            b.iter(|| tendyn_core::load(black_box(&path)).unwrap())
+        });
+        group.bench_function("generate (all outputs)", |b| {
+            b.iter(|| generate(black_box(&model), &all, Scalar::Generic, "bench.ron").unwrap())
+        });
+        group.bench_function("trace and collect", |b| {
+            b.iter(|| outputs::trace(black_box(&model), &all).unwrap())
+        });
+        let traced = outputs::trace(&model, &all).unwrap();
+        group.bench_function("emit", |b| {
+            b.iter(|| {
+                emit::emit(
+                    &model,
+                    black_box(&traced),
+                    Scalar::Generic,
+                    "bench.ron",
+                    &core,
+                )
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(30)
+        .warm_up_time(std::time::Duration::from_millis(500))
+        .measurement_time(std::time::Duration::from_secs(3));
+    targets = generation
+}
+criterion_main!(benches);
