@@ -221,6 +221,14 @@ pub struct Parameter {
 }
 
 /// A number of the model that a parameter sets.
+///
+/// Validation creates only the mass-property, gravity and wrench slots: the numbers a
+/// mechanism file may name as runtime parameters (`docs/format.md` §9a).
+/// [`Slot::Geometry`] is for `tendyn equations` alone, which makes lengths and radii named
+/// symbols of a traced model so that they print by name. Geometry must never become a
+/// runtime parameter: validation derives the routing from it once, in `f64` (segment
+/// directions, couplings, `E`, its pseudo-inverse and null space), and a length or radius
+/// changed at run time would leave all of that stale.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Slot {
     Mass(usize),
@@ -231,6 +239,31 @@ pub enum Slot {
     WrenchPoint(usize),
     WrenchForce(usize),
     WrenchMoment(usize),
+    /// The number(s) at a [`Place`] are proportional to the parameter's quantity raised to
+    /// the given power (a DH length in a translation, a radius in a contact point, a ratio
+    /// of radii in a coupling). [`Model::set_parameters`] rescales them by
+    /// `(value / nominal)^power`, all factors of one place at once with their constant part
+    /// folded into one number, so that on a symbolic scalar a factor that is one disappears
+    /// (`r2/r3`, not `33.3*r2*0.03/r3`). Never created by validation (see above).
+    Geometry(Place, i8),
+}
+
+/// Where the numbers of a [`Slot::Geometry`] sit in the model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Place {
+    /// Component `(body, axis)` of the translation of a body's `pre` transform.
+    Pre(usize, usize),
+    /// Component `(body, axis)` of the translation of a body's `post` transform.
+    Post(usize, usize),
+    /// Component `(body, axis)` of a body's `joint_to_origin`.
+    JointToOrigin(usize, usize),
+    /// Entry `(body, joint)` of a body's coupling.
+    Coupling(usize, usize),
+    /// The contact point `rel` (all three components) of end `end` (0: `from`, 1: `to`) of
+    /// segment `segment` of strand `strand`: `(strand, segment, end)`.
+    Contact(usize, usize, usize),
+    /// Entry `(unknown, row)` of the tension system's pseudo-inverse.
+    PseudoInverse(usize, usize),
 }
 
 /// A validated mechanism in scalar `T`.
@@ -363,10 +396,19 @@ impl<T: Real> Model<T> {
 impl<T: Real> Model<T> {
     /// Sets every number a parameter names to `values[parameter]` (no checks: for a
     /// symbolic model whose parameters are inputs, and for [`Model::with_parameters`]).
+    /// Geometry slots rescale their places (see [`Slot::Geometry`]).
     pub fn set_parameters(&mut self, values: &[T]) {
+        // Factors `(parameter, power)` of each geometric place, in order of appearance.
+        let mut geometry: Vec<(Place, Vec<(usize, i8)>)> = Vec::new();
         for &(slot, k) in &self.parameter_slots {
             let v = values[k];
             match slot {
+                Slot::Geometry(place, power) => {
+                    match geometry.iter_mut().find(|(p, _)| *p == place) {
+                        Some((_, factors)) => factors.push((k, power)),
+                        None => geometry.push((place, vec![(k, power)])),
+                    }
+                }
                 Slot::Mass(b) => self.bodies[b].mass = v,
                 Slot::Com(b, c) => set3(&mut self.bodies[b].com, c, v),
                 Slot::Inertia(b, r, c) => {
@@ -389,6 +431,64 @@ impl<T: Real> Model<T> {
                     c,
                     v,
                 ),
+            }
+        }
+        for (place, factors) in geometry {
+            // x ↦ (x · Π nominal^−power) · (Π value^power): the constant part folds into one
+            // number, which a symbolic scalar drops when it is ±1 (the sign then leads).
+            let nominal: f64 = factors
+                .iter()
+                .map(|&(k, p)| self.parameters[k].value.powi(-i32::from(p)))
+                .product();
+            let mut numerator: Option<T> = None;
+            for &(k, p) in factors.iter().filter(|(_, p)| *p > 0) {
+                for _ in 0..p {
+                    numerator = Some(numerator.map_or(values[k], |y| y * values[k]));
+                }
+            }
+            let divide = |mut y: T| {
+                for &(k, p) in factors.iter().filter(|(_, p)| *p < 0) {
+                    for _ in 0..-p {
+                        y = y / values[k];
+                    }
+                }
+                y
+            };
+            let quantity = numerator.map(divide);
+            self.map_place(place, |x| {
+                let constant = x * T::from_f64(nominal);
+                match quantity {
+                    Some(q) => constant * q,
+                    // Only divisors: `c / r` rather than `c · (1 / r)`.
+                    None => divide(constant),
+                }
+            });
+        }
+    }
+
+    /// Applies `f` to the number(s) at `place`.
+    fn map_place(&mut self, place: Place, f: impl Fn(T) -> T) {
+        let in3 = |v: &mut Vec3<T>, c: usize| set3(v, c, f(v.to_array()[c]));
+        match place {
+            Place::Pre(b, c) => in3(&mut self.bodies[b].pre.translation, c),
+            Place::Post(b, c) => in3(&mut self.bodies[b].post.translation, c),
+            Place::JointToOrigin(b, c) => in3(&mut self.bodies[b].joint_to_origin, c),
+            Place::Coupling(b, j) => {
+                let x = &mut self.bodies[b].coupling[j];
+                *x = f(*x);
+            }
+            Place::Contact(s, k, end) => {
+                let segment = &mut self.strands[s].segments[k];
+                let contact = if end == 0 {
+                    &mut segment.from
+                } else {
+                    &mut segment.to
+                };
+                contact.rel = Vec3::new(f(contact.rel.x), f(contact.rel.y), f(contact.rel.z));
+            }
+            Place::PseudoInverse(u, r) => {
+                let x = &mut self.system.pseudo_inverse[u][r];
+                *x = f(*x);
             }
         }
     }
