@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t620 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
-    let t627 = T::from_f64(0.03) * s68;
-    let t636 = qdd[0] * (c69 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t620 - qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t627));
-    let t642 = qdd[0] * t620
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t627));
-    [t636, t642]
+    let t597 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
+    let t604 = T::from_f64(0.03) * s68;
+    let t613 = qdd[0] * (c69 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t597 - qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t604));
+    let t619 = qdd[0] * t597
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t604));
+    [t613, t619]
 }
 /// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
 ///
@@ -41,19 +41,19 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T; 0]) {
     let (s68, c69) = q[1].sin_cos();
-    let t667 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
+    let t644 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
         - (qd[0]
             * (qd[0] * (s68 * T::from_f64(0.04499999999999987))
                 + qd[1] * (s68 * T::from_f64(0.06)))
             + qd[1] * (qd[1] * (T::from_f64(0.03) * s68)));
-    let t668 = qdd[0]
+    let t645 = qdd[0]
         * (c69 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t667;
-    let t680 = qdd[0]
+        + t644;
+    let t657 = qdd[0]
         * (c69 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
             + qd[0] * (qd[0] * (s68 * T::from_f64(0.045000000000000005))));
-    ([t668, t680], [])
+    ([t645, t657], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -64,9 +64,9 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t69 = q[1].cos();
-    let t616 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t682 = T::from_f64(0.03) * t69 + T::from_f64(0.0166967);
-    [[t616, t682], [t682, T::from_f64(0.0166867)]]
+    let t593 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t659 = T::from_f64(0.03) * t69 + T::from_f64(0.0166967);
+    [[t593, t659], [t659, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -77,10 +77,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t68 = q[1].sin();
-    let t627 = T::from_f64(0.03) * t68;
-    let t634 = -(qd[1] * (qd[0] * (t68 * T::from_f64(0.06)) + qd[1] * t627));
-    let t640 = qd[0] * (qd[0] * t627);
-    [t634, t640]
+    let t604 = T::from_f64(0.03) * t68;
+    let t611 = -(qd[1] * (qd[0] * (t68 * T::from_f64(0.06)) + qd[1] * t604));
+    let t617 = qd[0] * (qd[0] * t604);
+    [t611, t617]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -106,19 +106,19 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t614 = c69 * T::from_f64(0.06);
-    let t616 = t614 + T::from_f64(0.1247117);
-    let t627 = T::from_f64(0.03) * s68;
-    let t685 = (T::from_f64(0.03) * c69 + T::from_f64(0.0166967)) / t616;
-    let t713 = motor_torques[1] * (T::from_f64(0.6666666666666667) - t685)
-        - motor_torques[0] * t685 - qd[1] * (qd[1] * (s68 * (T::from_f64(0.03) * t685)))
-        - qd[0] * (qd[0] * t627 + qd[1] * (s68 * (T::from_f64(0.06) * t685)));
-    let t720 = t713
-        / (T::from_f64(0.0166867) + t685 * (t685 * (T::from_f64(-0.1247117) - t614)));
-    let t724 = (motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t627)) / t616
-        - t685 * t720;
-    [t724, t720]
+    let t591 = c69 * T::from_f64(0.06);
+    let t593 = t591 + T::from_f64(0.1247117);
+    let t604 = T::from_f64(0.03) * s68;
+    let t662 = (T::from_f64(0.03) * c69 + T::from_f64(0.0166967)) / t593;
+    let t690 = motor_torques[1] * (T::from_f64(0.6666666666666667) - t662)
+        - motor_torques[0] * t662 - qd[1] * (qd[1] * (s68 * (T::from_f64(0.03) * t662)))
+        - qd[0] * (qd[0] * t604 + qd[1] * (s68 * (T::from_f64(0.06) * t662)));
+    let t697 = t690
+        / (T::from_f64(0.0166867) + t662 * (t662 * (T::from_f64(-0.1247117) - t591)));
+    let t701 = (motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t604)) / t593
+        - t662 * t697;
+    [t701, t697]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -129,14 +129,14 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t736 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let t713 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
             + (T::from_f64(20.0) + qd[0] * (qd[0] * (s68 * T::from_f64(0.75)))));
-    let t755 = qdd[0]
+    let t732 = qdd[0]
         * (T::from_f64(-0.4166675000000001) - c69 * T::from_f64(0.7500000000000001))
         + (T::from_f64(20.0) - qd[0] * (qd[0] * (s68 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
-    [t736, t755]
+    [t713, t732]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -204,56 +204,56 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t407 = T::from_f64(20.0)
         - (t157 * T::from_f64(0.00000000000000003335808724852205)
             + t120 * T::from_f64(25.000000000000004));
-    let t412 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
+    let t410 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
         - (s68 * t109 - c69 * t108) + (c69 * t252 + s68 * t191) * t406;
-    let t416 = t412 + (c69 * t223 - s68 * t254) * t407;
-    let t417 = t143 + t297 * t406 + t304 * t407;
-    let t427 = s68 * T::from_f64(0.9810000000000001) + (c69 * t257 + s68 * t259) * t406
+    let t414 = t410 + (c69 * t223 - s68 * t254) * t407;
+    let t415 = t143 + t297 * t406 + t304 * t407;
+    let t425 = s68 * T::from_f64(0.9810000000000001) + (c69 * t257 + s68 * t259) * t406
         + (c69 * t262 - s68 * t264) * t407;
-    let t428 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
+    let t426 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886) + (s68 * t257 - c69 * t259) * t406
         + (s68 * t262 + c69 * t264) * t407;
-    let t430 = t157 + (t289 + T::from_f64(0.3) * t297) * t406
+    let t428 = t157 + (t289 + T::from_f64(0.3) * t297) * t406
         + (t290 + T::from_f64(0.3) * t304) * t407
         - (t157 - t120 * T::from_f64(1.4999999999999958));
-    let t431 = t252 * t406;
-    let t432 = t191 * t406;
-    let t436 = t223 * t407;
-    let t437 = t254 * t407;
-    let t438 = t108 + t431 + t436;
-    let t439 = t109 - t432 + t437;
-    let t449 = t257 * t406 + t262 * t407;
-    let t450 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
-    let t451 = t120 + t289 * t406 + t290 * t407;
-    let t458 = (t239 - t202) * t407 - t205 * t406;
-    let t459 = (t207 - t206) * t406 - t243 * t407;
-    let t463 = t105
+    let t429 = t252 * t406;
+    let t430 = t191 * t406;
+    let t434 = t223 * t407;
+    let t435 = t254 * t407;
+    let t436 = t108 + t429 + t434;
+    let t437 = t109 - t430 + t435;
+    let t447 = t257 * t406 + t262 * t407;
+    let t448 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
+    let t449 = t120 + t289 * t406 + t290 * t407;
+    let t456 = (t239 - t202) * t407 - t205 * t406;
+    let t457 = (t207 - t206) * t406 - t243 * t407;
+    let t461 = t105
         + (t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
             - (t206 - t207) * (T::from_f64(0.0010000000000000085) * c53 - t211)) * t406
         + ((t202 - t239) * (T::from_f64(0.0010000000000000009) * s52 - t215)
             - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53)) * t407;
-    let t464 = t463
+    let t462 = t461
         - (t105
             + (T::from_f64(0.0000000000000000047704895589362195) * t157
                 + T::from_f64(1.5000000000000002) * t120));
-    let t465 = t431 + t436;
-    let t466 = t437 - t432;
-    let t469 = (t200 - t199) * t406 + (t237 - t236) * t407;
+    let t463 = t429 + t434;
+    let t464 = t435 - t430;
+    let t467 = (t200 - t199) * t406 + (t237 - t236) * t407;
     [
-        [[t416, t417, T::from_f64(19.62)], [t427, t428, t430]],
-        [[t438, t439, T::from_f64(7.848000000000001)], [t449, t450, t451]],
+        [[t414, t415, T::from_f64(19.62)], [t425, t426, t428]],
+        [[t436, t437, T::from_f64(7.848000000000001)], [t447, t448, t449]],
         [
-            [t458, t459, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t464],
+            [t456, t457, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t462],
         ],
-        [[t465, t466, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t469]],
+        [[t463, t464, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t467]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 230 arithmetic (97 add/sub, 133 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 69 arithmetic (27 add/sub, 42 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -272,8 +272,6 @@ pub fn base_reaction<T: Real>(
             + t71 * (t71 * T::from_f64(0.125)));
     let t109 = T::from_f64(0.8)
         * (t57 * s68 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t120 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
-        + T::from_f64(0.25) * t109;
     let t131 = s68 * T::from_f64(0.9810000000000001);
     let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
     let t142 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
@@ -281,74 +279,17 @@ pub fn base_reaction<T: Real>(
     let t143 = s68 * t108 + c69 * t109 + t137;
     let t156 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t157 = t120 + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
-        + T::from_f64(0.3) * t143;
-    let t184 = c69 * T::from_f64(0.9994442900376633);
-    let t186 = T::from_f64(0.03333333333333362) * s68;
-    let t187 = t186 - t184;
-    let t188 = s68 * T::from_f64(0.9994442900376633);
-    let t191 = t188 + T::from_f64(0.03333333333333362) * c69;
-    let t193 = T::from_f64(0.019988885800753267) * s68;
-    let t197 = T::from_f64(0.019988885800753267) * c69;
-    let t202 = c53 * T::from_f64(0.9994442900376633);
-    let t205 = t202 + T::from_f64(0.03333333333333362) * s52;
-    let t206 = s52 * T::from_f64(0.9994442900376633);
-    let t207 = T::from_f64(0.03333333333333362) * c53;
-    let t209 = t206 - t207;
-    let t211 = T::from_f64(0.029983328701129897) * s52;
-    let t215 = T::from_f64(0.029983328701129897) * c53;
-    let t223 = t184 + s68 * T::from_f64(0.03333333333333337);
-    let t225 = c69 * T::from_f64(0.03333333333333337);
-    let t227 = t188 - t225;
-    let t239 = s52 * T::from_f64(0.03333333333333337);
-    let t241 = t202 - t239;
-    let t243 = t206 + c53 * T::from_f64(0.03333333333333337);
-    let t252 = t184 - t186;
-    let t254 = t225 - t188;
-    let t257 = T::from_f64(0.02) * t191;
-    let t259 = T::from_f64(0.02) * t187;
-    let t260 = T::from_f64(0.25) * t191;
-    let t262 = T::from_f64(0.02) * t227;
-    let t264 = T::from_f64(0.02) * t223;
-    let t293 = c69 * t252 + s68 * t191;
-    let t297 = s68 * t252 - c69 * t191;
-    let t301 = c69 * t223 - s68 * t254;
-    let t304 = s68 * t223 + c69 * t254;
-    let t311 = c69 * t257 + s68 * t259;
-    let t315 = s68 * t257 - c69 * t259;
-    let t319 = c69 * t262 - s68 * t264;
-    let t322 = s68 * t262 + c69 * t264;
-    let t334 = T::from_f64(0.25) * t227
-        - (t227 * (T::from_f64(0.0006666666666666674) * c69 - t193)
-            - t223 * (t197 + T::from_f64(0.0006666666666666674) * s68))
-        + T::from_f64(0.25) * t254 + T::from_f64(0.3) * t304;
-    let t380 = t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
-        - t209 * (T::from_f64(0.0010000000000000085) * c53 - t211)
-        + (t260
-            - (t191 * (T::from_f64(0.0006666666666666724) * c69 + t193)
-                - t187 * (t197 - T::from_f64(0.0006666666666666724) * s68)) - t260
-            + T::from_f64(0.3) * t297);
-    let t406 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t120
-            - t157 * T::from_f64(0.000000000000000009071958584846753));
-    let t407 = T::from_f64(20.0)
-        - (t157 * T::from_f64(0.00000000000000003335808724852205)
-            + t120 * T::from_f64(25.000000000000004));
-    let t477 = c53 * t142 - s52 * t143 - (t205 + (s52 * t297 - c53 * t293)) * t406
-        + (t239 - t202 - (s52 * t304 - c53 * t301)) * t407;
-    let t478 = s52 * t142 + c53 * t143 + (t207 - t206 + (s52 * t293 + c53 * t297)) * t406
-        + (s52 * t301 + c53 * t304 - t243) * t407;
-    let t488 = c53 * t131 - s52 * t156
-        + (T::from_f64(0.02) * t209 - (s52 * t315 - c53 * t311)) * t406
-        + (T::from_f64(0.02) * t243 - (s52 * t322 - c53 * t319)) * t407;
-    let t489 = s52 * t131 + c53 * t156
-        + (s52 * t311 + c53 * t315 - T::from_f64(0.02) * t205) * t406
-        + (s52 * t319 + c53 * t322 - T::from_f64(0.02) * t241) * t407;
-    let t490 = T::from_f64(0.000045)
-        * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]) + t157 + t380 * t406
-        + (t241 * (T::from_f64(0.0010000000000000009) * s52 - t215)
-            - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53) + t334) * t407;
-    [[[t477, t478, T::from_f64(20.601000000000003)], [t488, t489, t490]]]
+    let t161 = c53 * t142 - s52 * t143;
+    let t164 = s52 * t142 + c53 * t143;
+    let t171 = c53 * t131 - s52 * t156;
+    let t174 = s52 * t131 + c53 * t156;
+    let t179 = T::from_f64(0.000045)
+        * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
+        + (T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
+            + T::from_f64(0.25) * t109
+            + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
+            + T::from_f64(0.3) * t143);
+    [[[t161, t164, T::from_f64(20.601000000000003)], [t171, t174, t179]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -372,7 +313,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 344 arithmetic (153 add/sub, 188 mul, 3 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 286 arithmetic (125 add/sub, 158 mul, 3 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -408,6 +349,10 @@ pub fn all<T: Real>(
         - T::from_f64(5.886);
     let t157 = t120 + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
         + T::from_f64(0.3) * t143;
+    let t161 = c53 * t142 - s52 * t143;
+    let t164 = s52 * t142 + c53 * t143;
+    let t171 = c53 * t131 - s52 * t156;
+    let t174 = s52 * t131 + c53 * t156;
     let t179 = t105 + t157;
     let t181 = t120 + T::from_f64(0.6666666666666667) * t105;
     let t184 = c69 * T::from_f64(0.9994442900376633);
@@ -423,7 +368,6 @@ pub fn all<T: Real>(
     let t205 = t202 + T::from_f64(0.03333333333333362) * s52;
     let t206 = s52 * T::from_f64(0.9994442900376633);
     let t207 = T::from_f64(0.03333333333333362) * c53;
-    let t209 = t206 - t207;
     let t211 = T::from_f64(0.029983328701129897) * s52;
     let t215 = T::from_f64(0.029983328701129897) * c53;
     let t223 = t184 + s68 * T::from_f64(0.03333333333333337);
@@ -432,7 +376,6 @@ pub fn all<T: Real>(
     let t236 = t227 * (T::from_f64(0.0006666666666666674) * c69 - t193);
     let t237 = t223 * (t197 + T::from_f64(0.0006666666666666674) * s68);
     let t239 = s52 * T::from_f64(0.03333333333333337);
-    let t241 = t202 - t239;
     let t243 = t206 + c53 * T::from_f64(0.03333333333333337);
     let t252 = t184 - t186;
     let t254 = t225 - t188;
@@ -441,24 +384,10 @@ pub fn all<T: Real>(
     let t260 = T::from_f64(0.25) * t191;
     let t262 = T::from_f64(0.02) * t227;
     let t264 = T::from_f64(0.02) * t223;
-    let t271 = t207 - t206;
-    let t272 = t239 - t202;
-    let t274 = t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
-        - t209 * (T::from_f64(0.0010000000000000085) * c53 - t211);
-    let t275 = t241 * (T::from_f64(0.0010000000000000009) * s52 - t215)
-        - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53);
     let t289 = t260 - (t199 - t200) - t260;
     let t290 = T::from_f64(0.25) * t227 - (t236 - t237) + T::from_f64(0.25) * t254;
-    let t293 = c69 * t252 + s68 * t191;
     let t297 = s68 * t252 - c69 * t191;
-    let t301 = c69 * t223 - s68 * t254;
     let t304 = s68 * t223 + c69 * t254;
-    let t311 = c69 * t257 + s68 * t259;
-    let t315 = s68 * t257 - c69 * t259;
-    let t319 = c69 * t262 - s68 * t264;
-    let t322 = s68 * t262 + c69 * t264;
-    let t333 = t289 + T::from_f64(0.3) * t297;
-    let t334 = t290 + T::from_f64(0.3) * t304;
     let t401 = t157 - t120 * T::from_f64(1.4999999999999958);
     let t405 = t105
         + (T::from_f64(0.0000000000000000047704895589362195) * t157
@@ -469,76 +398,74 @@ pub fn all<T: Real>(
     let t407 = T::from_f64(20.0)
         - (t157 * T::from_f64(0.00000000000000003335808724852205)
             + t120 * T::from_f64(25.000000000000004));
-    let t416 = t142 + t293 * t406 + t301 * t407;
-    let t417 = t143 + t297 * t406 + t304 * t407;
-    let t427 = t131 + t311 * t406 + t319 * t407;
-    let t428 = t156 + t315 * t406 + t322 * t407;
-    let t430 = t157 + t333 * t406 + t334 * t407 - t401;
-    let t431 = t252 * t406;
-    let t432 = t191 * t406;
-    let t436 = t223 * t407;
-    let t437 = t254 * t407;
-    let t438 = t108 + t431 + t436;
-    let t439 = t109 - t432 + t437;
-    let t449 = t257 * t406 + t262 * t407;
-    let t450 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
-    let t451 = t120 + t289 * t406 + t290 * t407;
-    let t458 = t272 * t407 - t205 * t406;
-    let t459 = t271 * t406 - t243 * t407;
-    let t464 = t105 + t274 * t406 + t275 * t407 - t405;
-    let t465 = t431 + t436;
-    let t466 = t437 - t432;
-    let t469 = (t200 - t199) * t406 + (t237 - t236) * t407;
-    let t477 = c53 * t142 - s52 * t143 - (t205 + (s52 * t297 - c53 * t293)) * t406
-        + (t272 - (s52 * t304 - c53 * t301)) * t407;
-    let t478 = s52 * t142 + c53 * t143 + (t271 + (s52 * t293 + c53 * t297)) * t406
-        + (s52 * t301 + c53 * t304 - t243) * t407;
-    let t488 = c53 * t131 - s52 * t156
-        + (T::from_f64(0.02) * t209 - (s52 * t315 - c53 * t311)) * t406
-        + (T::from_f64(0.02) * t243 - (s52 * t322 - c53 * t319)) * t407;
-    let t489 = s52 * t131 + c53 * t156
-        + (s52 * t311 + c53 * t315 - T::from_f64(0.02) * t205) * t406
-        + (s52 * t319 + c53 * t322 - T::from_f64(0.02) * t241) * t407;
-    let t490 = t179 + (t274 + t333) * t406 + (t275 + t334) * t407;
-    let t498 = T::from_f64(0.8)
+    let t414 = t142 + (c69 * t252 + s68 * t191) * t406
+        + (c69 * t223 - s68 * t254) * t407;
+    let t415 = t143 + t297 * t406 + t304 * t407;
+    let t425 = t131 + (c69 * t257 + s68 * t259) * t406
+        + (c69 * t262 - s68 * t264) * t407;
+    let t426 = t156 + (s68 * t257 - c69 * t259) * t406
+        + (s68 * t262 + c69 * t264) * t407;
+    let t428 = t157 + (t289 + T::from_f64(0.3) * t297) * t406
+        + (t290 + T::from_f64(0.3) * t304) * t407 - t401;
+    let t429 = t252 * t406;
+    let t430 = t191 * t406;
+    let t434 = t223 * t407;
+    let t435 = t254 * t407;
+    let t436 = t108 + t429 + t434;
+    let t437 = t109 - t430 + t435;
+    let t447 = t257 * t406 + t262 * t407;
+    let t448 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
+    let t449 = t120 + t289 * t406 + t290 * t407;
+    let t456 = (t239 - t202) * t407 - t205 * t406;
+    let t457 = (t207 - t206) * t406 - t243 * t407;
+    let t461 = t105
+        + (t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
+            - (t206 - t207) * (T::from_f64(0.0010000000000000085) * c53 - t211)) * t406
+        + ((t202 - t239) * (T::from_f64(0.0010000000000000009) * s52 - t215)
+            - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53)) * t407;
+    let t462 = t461 - t405;
+    let t463 = t429 + t434;
+    let t464 = t435 - t430;
+    let t467 = (t200 - t199) * t406 + (t237 - t236) * t407;
+    let t475 = T::from_f64(0.8)
         * (T::from_f64(-0.125) + (T::from_f64(0.25) + T::from_f64(0.3) * c69));
-    let t522 = T::from_f64(0.0041667) - T::from_f64(0.125) * t498
-        + T::from_f64(0.25) * t498 + T::from_f64(-0.018000000000000002)
+    let t499 = T::from_f64(0.0041667) - T::from_f64(0.125) * t475
+        + T::from_f64(0.25) * t475 + T::from_f64(-0.018000000000000002)
         + T::from_f64(0.3)
-            * (s68 * (T::from_f64(0.8) * (T::from_f64(0.3) * s68)) + c69 * t498
+            * (s68 * (T::from_f64(0.8) * (T::from_f64(0.3) * s68)) + c69 * t475
                 + T::from_f64(0.18));
-    let t533 = T::from_f64(0.000045) + t522;
-    let t561 = T::from_f64(0.000030000000000000004)
+    let t510 = T::from_f64(0.000045) + t499;
+    let t538 = T::from_f64(0.000030000000000000004)
         + (T::from_f64(0.0166667) + T::from_f64(0.3) * (T::from_f64(0.1) * c69));
-    let t569 = T::from_f64(0.8) * t77;
-    let t574 = T::from_f64(0.25) * t569 - T::from_f64(0.125) * t569;
-    let t588 = t574
+    let t546 = T::from_f64(0.8) * t77;
+    let t551 = T::from_f64(0.25) * t546 - T::from_f64(0.125) * t546;
+    let t565 = t551
         + T::from_f64(0.3)
-            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t569);
-    let t601 = motor_torques[0] + motor_torques[1] - t588;
-    let t603 = t561 / t533;
-    let t610 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t574 - t601 * t603)
-        / (T::from_f64(0.0166867) - t533 * (t603 * t603));
-    let t612 = t601 / t533 - t603 * t610;
+            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t546);
+    let t578 = motor_torques[0] + motor_torques[1] - t565;
+    let t580 = t538 / t510;
+    let t587 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t551 - t578 * t580)
+        / (T::from_f64(0.0166867) - t510 * (t580 * t580));
+    let t589 = t578 / t510 - t580 * t587;
     Outputs {
         generalized_forces: [t179, t181],
         actuation: ([t401, t405], []),
-        mass_matrix: [[t533, t561], [t561, T::from_f64(0.0166867)]],
-        bias: [t588, t574],
+        mass_matrix: [[t510, t538], [t538, T::from_f64(0.0166867)]],
+        bias: [t565, t551],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t612, t610],
+        forward_dynamics: [t589, t587],
         segment_tensions: [t406, t407],
         bearings: [
-            [[t416, t417, T::from_f64(19.62)], [t427, t428, t430]],
-            [[t438, t439, T::from_f64(7.848000000000001)], [t449, t450, t451]],
+            [[t414, t415, T::from_f64(19.62)], [t425, t426, t428]],
+            [[t436, t437, T::from_f64(7.848000000000001)], [t447, t448, t449]],
             [
-                [t458, t459, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t464],
+                [t456, t457, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t462],
             ],
-            [[t465, t466, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t469]],
+            [[t463, t464, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t467]],
         ],
         base_reaction: [
-            [[t477, t478, T::from_f64(20.601000000000003)], [t488, t489, t490]],
+            [[t161, t164, T::from_f64(20.601000000000003)], [t171, t174, t179]],
         ],
     }
 }

@@ -26,7 +26,9 @@ use crate::transmission::linalg;
 /// frames and signs.
 #[derive(Clone, Debug)]
 pub struct InverseDynamics<T> {
-    /// Generalized forces the actuators deliver, `Q = Σ motor columns · τ + A T` (N·m).
+    /// Generalized forces the actuators deliver, `Q = Σ motor columns · τ + A T` (N·m),
+    /// evaluated as the `M q̈ + h + g − Q_ext` it equals (the tension-free pass), so that
+    /// tensions far above what the motion needs cost it no accuracy.
     pub generalized_forces: Vec<T>,
     /// One torque per motor, in file order (N·m).
     pub motor_torques: Vec<T>,
@@ -109,10 +111,15 @@ pub fn expanded_generalized_forces<T: Real>(
 ) {
     forward(model, q, qd, qdd, gravity, &mut ws.motion);
     backward(model, &ws.motion, None, 0, external, &mut ws.known);
+    expanded_sum(model, &ws.known, out);
+}
+
+/// `Q = Σ_b c_bᵀ τ_b` of a tension-free backward pass, written into `out`.
+fn expanded_sum<T: Real>(model: &Model<T>, known: &Loads<T, Vec3<T>>, out: &mut [T]) {
     for o in out.iter_mut() {
         *o = T::zero();
     }
-    for (b, t) in model.bodies.iter().zip(&ws.known.axial) {
+    for (b, t) in model.bodies.iter().zip(&known.axial) {
         for (o, c) in out.iter_mut().zip(&b.coupling) {
             *o = *o + *c * *t;
         }
@@ -269,7 +276,15 @@ pub fn inverse_dynamics<T: Real>(
         .iter()
         .map(|t| x[t.unknown] - x0[t.unknown])
         .collect();
-    let generalized_forces = actuator_forces(model, &motor_torques, &tendon_tensions);
+    // What the actuators deliver, `Σ c_m τ_m + A T`, is `M q̈ + h + g − Q_ext`: take it from
+    // the tension-free pass over the same motion rather than from the solved tensions. A
+    // redundant routing's null-space part, `A N λ`, vanishes only to rounding, so summing
+    // `A T` loses `u·|A||T|`: everything when the floors lift the tensions far above what
+    // the motion needs. The base reaction likewise (momentum balance: the tendons are
+    // internal between the mechanism and its base, so their pulls cancel in it).
+    backward(model, &ws.motion, None, 0, true, &mut ws.known);
+    let mut generalized_forces = vec![T::zero(); model.dof];
+    expanded_sum(model, &ws.known, &mut generalized_forces);
     let loop_sides = model
         .loops
         .iter()
@@ -293,7 +308,7 @@ pub fn inverse_dynamics<T: Real>(
         let bearings = (0..model.bodies.len())
             .map(|i| bearing(model, ws, q, &x, i))
             .collect();
-        let base = (ws.loads.base_force.eval(&x), ws.loads.base_moment.eval(&x));
+        let base = (ws.known.base_force, ws.known.base_moment);
         (Some(segs), Some(bearings), Some(base))
     };
     Ok(InverseDynamics {
@@ -340,6 +355,20 @@ fn bearing<T: Real>(
     }
 }
 
+/// `Err` when a result is not finite although the inputs were: some intermediate value
+/// overflowed the scalar (a speed of 1e200 rad/s squares to infinity). The solver returns
+/// this error rather than a non-finite number.
+fn finite<'a, T: Numeric>(what: &str, values: impl IntoIterator<Item = &'a T>) -> Result<()> {
+    match values.into_iter().find(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(x) => Err(Error::State(format!(
+            "the {what} is {} at this state although every input is finite: an intermediate \
+             value overflowed (speeds, accelerations or sizes too large for the scalar)",
+            x.to_f64()
+        ))),
+    }
+}
+
 /// The runtime solver: the generic functions above with input checks, on numbers.
 pub struct Solver<'m, T: Real> {
     pub model: &'m Model<T>,
@@ -378,26 +407,33 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("qdd", qdd)?;
         let mut out = self.ws.zeros.clone();
         expanded_generalized_forces(self.model, q, qd, qdd, true, true, &mut self.ws, &mut out);
+        finite("generalized forces", &out)?;
         Ok(out)
     }
 
     /// Joint-space mass matrix `M(q)`.
     pub fn mass_matrix(&mut self, q: &[T]) -> Result<Vec<Vec<T>>> {
         self.check_state("q", q)?;
-        Ok(mass_matrix(self.model, q, &mut self.ws))
+        let m = mass_matrix(self.model, q, &mut self.ws);
+        finite("mass matrix", m.iter().flatten())?;
+        Ok(m)
     }
 
     /// Bias `h(q, q̇)`.
     pub fn bias(&mut self, q: &[T], qd: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
-        Ok(bias(self.model, q, qd, &mut self.ws))
+        let h = bias(self.model, q, qd, &mut self.ws);
+        finite("bias", &h)?;
+        Ok(h)
     }
 
     /// Gravity generalized forces `g(q)`.
     pub fn gravity(&mut self, q: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
-        Ok(gravity(self.model, q, &mut self.ws))
+        let g = gravity(self.model, q, &mut self.ws);
+        finite("gravity", &g)?;
+        Ok(g)
     }
 
     /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
@@ -434,14 +470,18 @@ impl<'m, T: Numeric> Solver<'m, T> {
             }
         }
         let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        finite("right-hand side of forward dynamics", &rhs)?;
         let m = mass_matrix(model, q, &mut self.ws);
-        linalg::cholesky_solve(&m, &rhs).ok_or_else(|| {
+        finite("mass matrix", m.iter().flatten())?;
+        let qdd = linalg::cholesky_solve(&m, &rhs).ok_or_else(|| {
             Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
                  link whose motion nothing resists)"
                     .into(),
             )
-        })
+        })?;
+        finite("joint acceleration", &qdd)?;
+        Ok(qdd)
     }
 
     /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
@@ -450,7 +490,24 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
-        inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)
+        let r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)?;
+        finite("generalized forces", &r.generalized_forces)?;
+        finite("tension or motor torque", &r.unknowns)?;
+        finite("pulley moment", r.pulley_demands.iter().map(|(_, v)| v))?;
+        if let Some(s) = &r.segment_tensions {
+            finite("segment tension", s.iter().flatten())?;
+        }
+        let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| f.to_array().into_iter().chain(n.to_array());
+        if let Some(b) = &r.bearings {
+            finite(
+                "bearing force",
+                &b.iter().flat_map(wrench).collect::<Vec<T>>(),
+            )?;
+        }
+        if let Some(b) = &r.base_reaction {
+            finite("base reaction", &wrench(b).collect::<Vec<T>>())?;
+        }
+        Ok(r)
     }
 
     /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of

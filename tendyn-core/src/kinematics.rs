@@ -24,6 +24,10 @@ pub struct Motion<T> {
     pub accel: Vec3<T>,
     /// Acceleration of the centre of mass, gravity included.
     pub com_accel: Vec3<T>,
+    /// Acceleration of the joint point (the parent's `pre` origin), gravity included, in
+    /// the **parent's** frame: what the backward recursion hands a pulley's inertial force
+    /// back to its carrier in (see `newton_euler::backward`).
+    pub joint_accel: Vec3<T>,
     /// Joint rate and acceleration `anglė`, `anglë`.
     pub rate: T,
     pub rate_dot: T,
@@ -37,6 +41,7 @@ impl<T: Real> Motion<T> {
             omega_dot: Vec3::zero(),
             accel: Vec3::zero(),
             com_accel: Vec3::zero(),
+            joint_accel: Vec3::zero(),
             rate: T::zero(),
             rate_dot: T::zero(),
         }
@@ -106,6 +111,7 @@ pub fn forward<T: Real>(
             omega_dot,
             accel,
             com_accel,
+            joint_accel: a_joint,
             rate,
             rate_dot,
         };

@@ -15,13 +15,15 @@
 //! ```
 //!
 //! where `f_b`, `n_b` are the force and moment the parent exerts on `b` through its
-//! joint, the moment taken about the joint point `p_J`. The moment includes the torque of
+//! joint, the moment taken about the joint point `p_J`. (For a spinning pulley, the part
+//! `m a_J` of `F` due to the joint point's acceleration reaches the parent in the parent's
+//! frame directly; see [`backward`].) The moment includes the torque of
 //! a motor on that joint, if any; its component along the joint axis, `τ_b`, is what the
 //! rows of the tension system balance.
 
 use crate::affine::{Aff3, Affine};
 use crate::kinematics::Motion;
-use crate::model::{Contact, Model, Via};
+use crate::model::{BodyKind, Contact, Model, Via};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
@@ -236,7 +238,24 @@ pub fn backward<T: Real, L: Load<T>>(
         out.axial[i] = n.dot(b.axis);
         // The reaction on the parent: −f at the joint point, −n.
         let r = m.rotation;
-        let f_parent = f.rotate_back(&r).neg();
+        let f_parent = if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
+            // A spinning pulley: its frame turns with it, and `Rᵀ (m R a_J)` is `m a_J` only
+            // to rounding, in a direction the spin angle scrambles. For an idler whose mass
+            // sits on its carrier's joint axis, that residue (u·m|a_J|) reaches joints its
+            // mass does not otherwise load (a centripetal force through an axis has no
+            // moment about it) and can swamp them when the pulley is heavy. So the part of
+            // its inertial force due to the joint point's acceleration stays in the parent's
+            // frame, where `a_J` was computed; only the rest turns.
+            let pc = b.joint_to_origin + b.com;
+            let rel = m.omega_dot.cross(pc) + m.omega.cross(m.omega.cross(pc));
+            L::known(rel.scale(b.mass), unknowns)
+                .sub(&out.force[i])
+                .rotate_back(&r)
+                .add_known(m.joint_accel.scale(b.mass))
+                .neg()
+        } else {
+            f.rotate_back(&r).neg()
+        };
         let n_parent = n.rotate_back(&r).neg();
         let at = b.pre.translation;
         let moment_parent = n_parent.add(&f_parent.moment_of(at));
