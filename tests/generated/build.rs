@@ -1,4 +1,5 @@
-//! Generates code for the paper's three examples and twelve seeded random mechanisms into
+//! Generates code for the paper's three examples, twelve seeded random mechanisms and a few
+//! mechanisms of the stress suite into
 //! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
 //! mechanism that the agreement test calls with slices.
 
@@ -35,9 +36,21 @@ fn main() {
         let (text, _) = valid_random_mechanism(seed, features);
         mechanisms.push((format!("random_{seed}"), text));
     }
+    // Representative stress mechanisms, in a registry of their own (`STRESS`):
+    // `tests/stress.rs` checks them against the double-double reference under the stress
+    // suite's condition rule.
+    let first_stress = mechanisms.len();
+    println!("cargo:rerun-if-changed=../mechanisms/stress");
+    for case in tendyn_spec::stress::generated_cases() {
+        let name = format!("stress_{}", tendyn_spec::stress::ident(&case.name));
+        mechanisms.push((name, case.text));
+    }
     let mut registry = String::from("pub const MECHANISMS: &[Mechanism] = &[\n");
     let mut modules = String::new();
-    for (name, text) in &mechanisms {
+    for (index, (name, text)) in mechanisms.iter().enumerate() {
+        if index == first_stress {
+            registry.push_str("];\npub const STRESS: &[Mechanism] = &[\n");
+        }
         let model = tendyn_core::parse(text).unwrap();
         let outputs = available_outputs(&model);
         let generated =

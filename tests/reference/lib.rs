@@ -15,6 +15,9 @@
 //!
 //! Everything is exact to `f64` rounding: no finite differences.
 //!
+//! [`stress`] is of another kind: the stress suite's cases and [`stress::measure_case`],
+//! which runs the solver itself in `f64`, `f32` and double-double to measure its accuracy.
+//!
 //! [`Model`]: tendyn_core::model::Model
 
 pub mod examples;
@@ -27,6 +30,7 @@ pub mod parametric;
 pub mod poses;
 pub mod random_mechanism;
 pub mod redundant;
+pub mod stress;
 
 #[cfg(test)]
 mod tests;
