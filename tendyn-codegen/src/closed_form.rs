@@ -16,8 +16,11 @@
 //! The expansion is bounded ([`MAX_TERMS`]): a long chain whose polynomial would blow up
 //! returns `None`, and the caller keeps the traced recursion.
 
-use crate::expr::{Graph, Id, Node};
+use crate::expr::{Graph, Id, Node, NodeMap};
+use std::cmp::Ordering;
+use std::collections::hash_map::Entry;
 use std::collections::BTreeMap;
+use std::rc::Rc;
 use tendyn_core::DoubleDouble;
 
 /// Largest number of terms one intermediate polynomial may ever have.
@@ -25,7 +28,86 @@ pub const MAX_TERMS: usize = 4000;
 
 /// A monomial: sorted `(variable, power)` pairs.
 type Monomial = Vec<(Id, u32)>;
-type Poly = BTreeMap<Monomial, DoubleDouble>;
+
+/// A monomial by its number in [`Monomials`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Mono(u32);
+
+/// The monomial 1 (no variable).
+const ONE: Mono = Mono(0);
+
+/// Every monomial met in a collection, stored once, and the products already formed: a
+/// term is then a number and a coefficient, and the product of two terms a table lookup
+/// (a monomial of its own per term cost an allocation per term).
+struct Monomials {
+    list: Vec<Monomial>,
+    numbers: NodeMap<Monomial, Mono>,
+    products: NodeMap<(Mono, Mono), Mono>,
+}
+
+impl Monomials {
+    fn new() -> Self {
+        let mut m = Monomials {
+            list: Vec::new(),
+            numbers: NodeMap::default(),
+            products: NodeMap::default(),
+        };
+        assert_eq!(m.intern(Vec::new()), ONE);
+        m
+    }
+
+    fn intern(&mut self, m: Monomial) -> Mono {
+        if let Some(&n) = self.numbers.get(&m) {
+            return n;
+        }
+        let n = Mono(self.list.len() as u32);
+        self.list.push(m.clone());
+        self.numbers.insert(m, n);
+        n
+    }
+
+    fn get(&self, m: Mono) -> &Monomial {
+        &self.list[m.0 as usize]
+    }
+
+    /// The order polynomials are sorted in: that of the sorted pairs.
+    fn cmp(&self, a: Mono, b: Mono) -> Ordering {
+        if a == b {
+            Ordering::Equal
+        } else {
+            self.get(a).cmp(self.get(b))
+        }
+    }
+
+    fn mul(&mut self, a: Mono, b: Mono) -> Mono {
+        if a == ONE {
+            return b;
+        }
+        if b == ONE {
+            return a;
+        }
+        let key = if a.0 <= b.0 { (a, b) } else { (b, a) };
+        if let Some(&p) = self.products.get(&key) {
+            return p;
+        }
+        let p = self.intern(mul_monomials(self.get(a), self.get(b)));
+        self.products.insert(key, p);
+        p
+    }
+}
+
+/// A polynomial: its terms sorted by monomial (see [`Monomials::cmp`]), each monomial
+/// once. A coefficient that cancelled to zero keeps its term until [`clean`], as it did
+/// when this was a map: term counts bound the expansion, so they must not depend on the
+/// representation.
+///
+/// Every coefficient is accumulated from zero in the order the terms are generated
+/// (the sorted order of the operands), so the double-double sums, and hence the emitted
+/// constants, are independent of how the terms are stored.
+type Poly = Vec<Term>;
+type Term = (Mono, DoubleDouble);
+/// Expansions are shared: a subexpression is expanded once and read by every parent.
+type Shared = Option<Rc<Poly>>;
 
 /// How variables rank when factoring (higher first).
 pub trait Rank {
@@ -56,31 +138,70 @@ impl Rank for StateRank {
 struct Expander<'g, 'r> {
     g: &'g mut Graph,
     rank: &'r dyn Rank,
-    memo: BTreeMap<Id, Option<Poly>>,
+    memo: NodeMap<Id, Shared>,
+    monos: &'g mut Monomials,
+    /// Where each monomial of the product being formed is (reused between products).
+    slots: NodeMap<Mono, usize>,
     /// Largest number of terms an intermediate polynomial may have before the expansion
     /// gives up (a form with more terms than the traced one has operations cannot win).
     max_terms: usize,
 }
 
+fn zero() -> DoubleDouble {
+    DoubleDouble::from(0.0)
+}
+
+/// `0 + x`, as a coefficient's first contribution is accumulated (see [`Poly`]).
+fn first(x: DoubleDouble) -> DoubleDouble {
+    let mut e = zero();
+    e += x;
+    e
+}
+
 fn constant(c: f64) -> Poly {
-    let mut p = Poly::new();
     if c != 0.0 {
-        p.insert(Vec::new(), DoubleDouble::from(c));
+        vec![(ONE, DoubleDouble::from(c))]
+    } else {
+        Vec::new()
     }
-    p
 }
 
-fn variable(v: Id) -> Poly {
-    let mut p = Poly::new();
-    p.insert(vec![(v, 1)], DoubleDouble::from(1.0));
-    p
+/// `scale · p`.
+fn scaled(p: &[Term], scale: DoubleDouble) -> Poly {
+    p.iter().map(|&(m, c)| (m, first(c * scale))).collect()
 }
 
-fn add_into(acc: &mut Poly, p: &Poly, scale: DoubleDouble) {
-    for (m, c) in p {
-        let e = acc.entry(m.clone()).or_insert(DoubleDouble::from(0.0));
-        *e += *c * scale;
+/// `a + scale · b`, by merging the sorted terms.
+fn add_scaled(monos: &Monomials, a: &[Term], b: &[Term], scale: DoubleDouble) -> Poly {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    loop {
+        let order = match (a.get(i), b.get(j)) {
+            (None, None) => break,
+            (Some(_), None) => Ordering::Less,
+            (None, Some(_)) => Ordering::Greater,
+            (Some(&(ma, _)), Some(&(mb, _))) => monos.cmp(ma, mb),
+        };
+        match order {
+            Ordering::Less => {
+                out.push(a[i]);
+                i += 1;
+            }
+            Ordering::Greater => {
+                let (mb, cb) = b[j];
+                out.push((mb, first(cb * scale)));
+                j += 1;
+            }
+            Ordering::Equal => {
+                let ((m, mut e), (_, cb)) = (a[i], b[j]);
+                e += cb * scale;
+                out.push((m, e));
+                i += 1;
+                j += 1;
+            }
+        }
     }
+    out
 }
 
 fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
@@ -102,28 +223,44 @@ fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     out
 }
 
-fn product(a: &Poly, b: &Poly, max_terms: usize) -> Option<Poly> {
+/// `a · b`; `slots` is scratch space.
+fn product(
+    monos: &mut Monomials,
+    slots: &mut NodeMap<Mono, usize>,
+    a: &[Term],
+    b: &[Term],
+    max_terms: usize,
+) -> Option<Poly> {
     if a.len().saturating_mul(b.len()) > max_terms * 4 {
         return None;
     }
-    let mut out = Poly::new();
-    for (ma, ca) in a {
-        for (mb, cb) in b {
-            let e = out
-                .entry(mul_monomials(ma, mb))
-                .or_insert(DoubleDouble::from(0.0));
-            *e += *ca * *cb;
+    slots.clear();
+    let mut out: Poly = Vec::new();
+    for &(ma, ca) in a {
+        for &(mb, cb) in b {
+            let (m, c) = (monos.mul(ma, mb), ca * cb);
+            match slots.entry(m) {
+                Entry::Occupied(slot) => out[*slot.get()].1 += c,
+                Entry::Vacant(slot) => {
+                    slot.insert(out.len());
+                    out.push((m, first(c)));
+                }
+            }
         }
     }
-    (out.len() <= max_terms).then_some(out)
+    if out.len() > max_terms {
+        return None;
+    }
+    out.sort_unstable_by(|x, y| monos.cmp(x.0, y.0));
+    Some(out)
 }
 
 impl Expander<'_, '_> {
-    fn expand(&mut self, id: Id) -> Option<Poly> {
+    fn expand(&mut self, id: Id) -> Shared {
         if let Some(p) = self.memo.get(&id) {
             return p.clone();
         }
-        let p = self.expand_node(id);
+        let p = self.expand_node(id).map(Rc::new);
         self.memo.insert(id, p.clone());
         p
     }
@@ -132,38 +269,34 @@ impl Expander<'_, '_> {
         let one = DoubleDouble::from(1.0);
         Some(match self.g.node(id) {
             Node::Const(bits) => constant(f64::from_bits(bits)),
-            Node::Input(_) => variable(id),
+            Node::Input(_) => self.variable(id),
             Node::Add(a, b) | Node::Sub(a, b) => {
                 let sign = if matches!(self.g.node(id), Node::Sub(..)) {
                     -one
                 } else {
                     one
                 };
-                let mut p = self.expand(a)?;
-                add_into(&mut p, &self.expand(b)?, sign);
+                let (pa, pb) = (self.expand(a)?, self.expand(b)?);
+                let p = add_scaled(self.monos, &pa, &pb, sign);
                 if p.len() > self.max_terms {
                     return None;
                 }
                 p
             }
-            Node::Neg(a) => {
-                let mut p = Poly::new();
-                add_into(&mut p, &self.expand(a)?, -one);
-                p
+            Node::Neg(a) => scaled(&self.expand(a)?, -one),
+            Node::Mul(a, b) => {
+                let (pa, pb) = (self.expand(a)?, self.expand(b)?);
+                product(self.monos, &mut self.slots, &pa, &pb, self.max_terms)?
             }
-            Node::Mul(a, b) => product(&self.expand(a)?, &self.expand(b)?, self.max_terms)?,
             Node::Div(a, b) => {
                 let pb = self.expand(b)?;
-                match (pb.len(), pb.get(&Vec::new())) {
-                    (1, Some(c)) => {
-                        let mut p = Poly::new();
-                        add_into(&mut p, &self.expand(a)?, one / *c);
-                        p
-                    }
+                match pb.as_slice() {
+                    [(ONE, c)] => scaled(&self.expand(a)?, one / *c),
                     // Not a polynomial: a new variable, its operands collected themselves.
                     _ => {
-                        let (a, b) = (self.collected(a)?, self.rebuild(pb)?);
-                        variable(self.g.div(a, b))
+                        let (a, b) = (self.collected(a)?, self.rebuild(&pb)?);
+                        let v = self.g.div(a, b);
+                        self.variable(v)
                     }
                 }
             }
@@ -189,49 +322,54 @@ impl Expander<'_, '_> {
                         let (sx, cx) = (self.g.sin(x), self.g.cos(x));
                         let (sc, cc) = (DoubleDouble::from(c).sin(), DoubleDouble::from(c).cos());
                         let (ps, pc) = (self.expand(sx)?, self.expand(cx)?);
-                        let mut p = Poly::new();
+                        // `first · a + second · b`
+                        let monos = &*self.monos;
+                        let sum = |a: &[Term], first: DoubleDouble, b: &[Term], second| {
+                            add_scaled(monos, &scaled(a, first), b, second)
+                        };
                         if matches!(self.g.node(a), Node::Sub(..))
                             && self.g.constant_value(u).is_some()
                         {
                             // sin(c − x) = sin c cos x − cos c sin x; cos(c − x) = cos c cos x + sin c sin x
                             if is_sin {
-                                add_into(&mut p, &pc, sc);
-                                add_into(&mut p, &ps, -cc);
+                                sum(&pc, sc, &ps, -cc)
                             } else {
-                                add_into(&mut p, &pc, cc);
-                                add_into(&mut p, &ps, sc);
+                                sum(&pc, cc, &ps, sc)
                             }
                         } else if is_sin {
-                            add_into(&mut p, &ps, cc);
-                            add_into(&mut p, &pc, sc);
+                            sum(&ps, cc, &pc, sc)
                         } else {
-                            add_into(&mut p, &pc, cc);
-                            add_into(&mut p, &ps, -sc);
+                            sum(&pc, cc, &ps, -sc)
                         }
-                        p
                     }
-                    _ => variable(id),
+                    _ => self.variable(id),
                 }
             }
             Node::Sqrt(a) => {
                 let a = self.collected(a)?;
-                variable(self.g.sqrt(a))
+                let v = self.g.sqrt(a);
+                self.variable(v)
             }
             Node::Max(a, b) => {
                 let (a, b) = (self.collected(a)?, self.collected(b)?);
-                variable(self.g.max(a, b))
+                let v = self.g.max(a, b);
+                self.variable(v)
             }
         })
+    }
+
+    fn variable(&mut self, v: Id) -> Poly {
+        vec![(self.monos.intern(vec![(v, 1)]), DoubleDouble::from(1.0))]
     }
 
     /// The closed form of `id` as a node, for the operand of a non-polynomial node.
     fn collected(&mut self, id: Id) -> Option<Id> {
         let p = self.expand(id)?;
-        self.rebuild(p)
+        self.rebuild(&p)
     }
 
-    fn rebuild(&mut self, p: Poly) -> Option<Id> {
-        let p = clean(reduce_pythagoras(self.g, p))?;
+    fn rebuild(&mut self, p: &[Term]) -> Option<Id> {
+        let p = clean(reduce_pythagoras(self.g, self.monos, p))?;
         Some(horner(self.g, self.rank, &p))
     }
 }
@@ -239,18 +377,19 @@ impl Expander<'_, '_> {
 use tendyn_core::Real;
 
 /// Replaces `cos^k` (k ≥ 2) by `cos^(k−2) (1 − sin²)` for every angle whose sine and cosine
-/// both occur, until no such power is left.
-fn reduce_pythagoras(g: &Graph, p: Poly) -> Poly {
-    let mut pending: Vec<(Monomial, DoubleDouble)> = p.into_iter().collect();
-    let mut out = Poly::new();
+/// both occur, until no such power is left. The terms come out in no particular order
+/// (what follows does not depend on it).
+fn reduce_pythagoras(g: &Graph, monos: &Monomials, p: &[Term]) -> Vec<(Monomial, DoubleDouble)> {
+    let mut pending: Vec<(Monomial, DoubleDouble)> =
+        p.iter().map(|&(m, c)| (monos.get(m).clone(), c)).collect();
+    let mut out: NodeMap<Monomial, DoubleDouble> = NodeMap::default();
     while let Some((m, c)) = pending.pop() {
         let hit = m
             .iter()
             .position(|&(v, k)| k >= 2 && matches!(g.node(v), Node::Cos(a) if g_has_sin(g, a)));
         match hit {
             None => {
-                let e = out.entry(m).or_insert(DoubleDouble::from(0.0));
-                *e += c;
+                *out.entry(m).or_insert(zero()) += c;
             }
             Some(i) => {
                 let (v, k) = m[i];
@@ -258,18 +397,19 @@ fn reduce_pythagoras(g: &Graph, p: Poly) -> Poly {
                     unreachable!()
                 };
                 let s = sin_id(g, a);
-                let mut lowered = m.clone();
+                let mut lowered = m;
                 if k == 2 {
                     lowered.remove(i);
                 } else {
                     lowered[i].1 -= 2;
                 }
-                pending.push((lowered.clone(), c));
-                pending.push((mul_monomials(&lowered, &vec![(s, 2)]), -c));
+                let with_sine = mul_monomials(&lowered, &vec![(s, 2)]);
+                pending.push((lowered, c));
+                pending.push((with_sine, -c));
             }
         }
     }
-    out
+    out.into_iter().collect()
 }
 
 fn g_has_sin(g: &Graph, a: Id) -> bool {
@@ -284,7 +424,7 @@ fn sin_id(g: &Graph, a: Id) -> Id {
 /// one of the polynomial, and snaps those within 4 ulp of ±1 to ±1 (so that no
 /// multiplication by a one survives). `None` if a coefficient is not finite: a singular
 /// step (a division by a zero polynomial) must stay traced and give inf or NaN, not vanish.
-fn clean(p: Poly) -> Option<BTreeMap<Monomial, f64>> {
+fn clean(p: Vec<(Monomial, DoubleDouble)>) -> Option<Vec<(Monomial, f64)>> {
     let rounded: Vec<(Monomial, f64)> = p.into_iter().map(|(m, c)| (m, c.to_f64())).collect();
     if rounded.iter().any(|(_, c)| !c.is_finite()) {
         return None;
@@ -306,19 +446,18 @@ fn clean(p: Poly) -> Option<BTreeMap<Monomial, f64>> {
     )
 }
 
-/// Builds a polynomial back into the graph by greedy multivariate Horner factoring.
-fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
-    if p.is_empty() {
-        return g.constant(0.0);
-    }
-    if p.len() == 1 {
-        if let Some(c) = p.get(&Vec::new()) {
-            return g.constant(*c);
-        }
+/// Builds a polynomial (terms in any order, each monomial once) back into the graph by
+/// greedy multivariate Horner factoring.
+fn horner(g: &mut Graph, rank: &dyn Rank, p: &[(Monomial, f64)]) -> Id {
+    let constant_term = || p.iter().find(|(m, _)| m.is_empty()).map(|(_, c)| *c);
+    match p {
+        [] => return g.constant(0.0),
+        [(m, c)] if m.is_empty() => return g.constant(*c),
+        _ => {}
     }
     // The variable to pull out: highest rank, then most terms, then lowest id.
     let mut counts: BTreeMap<Id, usize> = BTreeMap::new();
-    for m in p.keys() {
+    for (m, _) in p {
         for &(v, _) in m {
             *counts.entry(v).or_default() += 1;
         }
@@ -327,10 +466,10 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
         .iter()
         .max_by_key(|(&v, &n)| (rank.rank(g, v), n, std::cmp::Reverse(v)))
     else {
-        return g.constant(*p.get(&Vec::new()).expect("a constant polynomial"));
+        return g.constant(constant_term().expect("a constant polynomial"));
     };
-    let mut with = BTreeMap::new();
-    let mut without = BTreeMap::new();
+    let mut with = Vec::new();
+    let mut without = Vec::new();
     for (m, c) in p {
         match m.iter().position(|&(x, _)| x == v) {
             Some(i) => {
@@ -340,11 +479,9 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
                 } else {
                     m2[i].1 -= 1;
                 }
-                with.insert(m2, *c);
+                with.push((m2, *c));
             }
-            None => {
-                without.insert(m.clone(), *c);
-            }
+            None => without.push((m.clone(), *c)),
         }
     }
     let inner = horner(g, rank, &with);
@@ -360,7 +497,8 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: &BTreeMap<Monomial, f64>) -> Id {
 /// Collects the closed forms of several functions of one graph, sharing the expansions
 /// of the subexpressions they have in common (the outputs of inverse dynamics share most).
 pub struct Collector {
-    memo: BTreeMap<Id, Option<Poly>>,
+    memo: NodeMap<Id, Shared>,
+    monos: Monomials,
     /// Largest intermediate polynomial any function may use.
     max_terms: usize,
 }
@@ -369,7 +507,8 @@ impl Collector {
     /// `max_terms`: the largest budget any function will ask for (at most [`MAX_TERMS`]).
     pub fn new(max_terms: usize) -> Self {
         Collector {
-            memo: BTreeMap::new(),
+            memo: NodeMap::default(),
+            monos: Monomials::new(),
             max_terms: max_terms.min(MAX_TERMS),
         }
     }
@@ -389,6 +528,8 @@ impl Collector {
             g,
             rank,
             memo: std::mem::take(&mut self.memo),
+            monos: &mut self.monos,
+            slots: NodeMap::default(),
             max_terms: self.max_terms,
         };
         let mut total = 0;
@@ -407,7 +548,7 @@ impl Collector {
                 }
             }
         }
-        let result = polys.and_then(|ps| ps.into_iter().map(|p| e.rebuild(p)).collect());
+        let result = polys.and_then(|ps| ps.iter().map(|p| e.rebuild(p)).collect());
         self.memo = e.memo;
         result
     }

@@ -13,7 +13,49 @@
 
 use std::cell::RefCell;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use tendyn_core::Real;
+
+/// The memo's hasher. Interning hashes every node the recursion builds, so the hash is
+/// most of the cost of tracing; std's SipHash resists flooding by crafted keys, which
+/// nodes numbered by this graph cannot be. This is the multiply-rotate hash of rustc
+/// (`FxHasher`): one multiplication per word of the key.
+#[derive(Default, Clone, Copy)]
+pub struct NodeHasher(u64);
+
+impl Hasher for NodeHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+    fn write_u8(&mut self, x: u8) {
+        self.write_u64(x.into());
+    }
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(x.into());
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
+    fn write_isize(&mut self, x: isize) {
+        self.write_u64(x as u64);
+    }
+    fn finish(&self) -> u64 {
+        // hashbrown takes its 7-bit tag from the top bits and the bucket from the low
+        // ones; the multiplication leaves the low bits depending on the key's low bits
+        // only, so the top is folded into them.
+        self.0 ^ (self.0 >> 32)
+    }
+}
+
+/// A map keyed by nodes or ids of one graph.
+pub type NodeMap<K, V> = HashMap<K, V, BuildHasherDefault<NodeHasher>>;
 
 /// Index of a node in its graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -37,6 +79,20 @@ pub enum Node {
 }
 
 impl Node {
+    /// The operands of the node, without allocating.
+    pub fn operands(self) -> impl Iterator<Item = Id> {
+        let (ids, n) = match self {
+            Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => ([a, a], 1),
+            Node::Add(a, b)
+            | Node::Sub(a, b)
+            | Node::Mul(a, b)
+            | Node::Div(a, b)
+            | Node::Max(a, b) => ([a, b], 2),
+        };
+        ids.into_iter().take(n)
+    }
+
     pub fn children(&self) -> Vec<Id> {
         match *self {
             Node::Const(_) | Node::Input(_) => vec![],
@@ -53,7 +109,7 @@ impl Node {
 #[derive(Default, Debug, Clone)]
 pub struct Graph {
     pub nodes: Vec<Node>,
-    memo: HashMap<Node, Id>,
+    memo: NodeMap<Node, Id>,
     /// Name of each input, by index (`q[0]`, `qd[1]`, ...).
     pub input_names: Vec<String>,
 }
@@ -301,15 +357,21 @@ impl Graph {
         roots.iter().map(|r| value[r.0 as usize]).collect()
     }
 
-    /// Every node the given roots depend on, in index (evaluation) order.
-    pub fn live(&self, roots: &[Id]) -> Vec<Id> {
+    /// Whether each node (by index) is one the given roots depend on.
+    pub fn live_mask(&self, roots: &[Id]) -> Vec<bool> {
         let mut mark = vec![false; self.nodes.len()];
         let mut stack: Vec<Id> = roots.to_vec();
         while let Some(id) = stack.pop() {
             if !std::mem::replace(&mut mark[id.0 as usize], true) {
-                stack.extend(self.node(id).children());
+                stack.extend(self.node(id).operands());
             }
         }
+        mark
+    }
+
+    /// Every node the given roots depend on, in index (evaluation) order.
+    pub fn live(&self, roots: &[Id]) -> Vec<Id> {
+        let mark = self.live_mask(roots);
         (0..self.nodes.len() as u32)
             .map(Id)
             .filter(|id| mark[id.0 as usize])
@@ -319,13 +381,12 @@ impl Graph {
     /// Operation counts of the nodes the roots depend on.
     pub fn count(&self, roots: &[Id]) -> OpCount {
         let mut c = OpCount::default();
-        let live = self.live(roots);
-        let has = |n: Node| {
-            self.memo
-                .get(&n)
-                .is_some_and(|id| live.binary_search(id).is_ok())
-        };
-        for &id in &live {
+        let mark = self.live_mask(roots);
+        let live = (0..self.nodes.len() as u32)
+            .map(Id)
+            .filter(|id| mark[id.0 as usize]);
+        let has = |n: Node| self.memo.get(&n).is_some_and(|id| mark[id.0 as usize]);
+        for id in live {
             match self.node(id) {
                 Node::Add(..) | Node::Sub(..) => c.add += 1,
                 Node::Mul(..) => c.mul += 1,
