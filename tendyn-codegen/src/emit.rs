@@ -8,11 +8,14 @@
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
 //!
-//! The function bodies, nearly all of the output, are built as `syn` syntax trees directly;
-//! only the small item skeletons (signatures, constants, the `Outputs` struct) go through
-//! `quote!` and `parse_quote!`. Writing the bodies as tokens and parsing them back cost most
-//! of the generation time. prettyplease prints the tree as it is, so the tree carries
-//! exactly the parentheses a parser would have produced from the written code.
+//! The file is what prettyplease prints from one syntax tree. The item skeletons
+//! (signatures, constants, the `Outputs` struct) go through `quote!` and `parse_quote!`;
+//! the function bodies, nearly all of the output, are built as `syn` trees directly, except
+//! that a `let` which fits on one line, most of them, is written as text in prettyplease's
+//! layout and never becomes a tree (see `Body`): building, printing and dropping those
+//! trees was most of the generation time. prettyplease prints a tree as it is, so the tree
+//! (and the text) carries exactly the parentheses a parser would have produced from the
+//! written code.
 
 use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, Function, Output, Param, Shape, Traced};
@@ -243,24 +246,14 @@ mod ast {
     }
 }
 
-/// The operands of a node (without allocating, unlike [`Node::children`]).
-fn operands(node: Node) -> impl Iterator<Item = Id> {
-    let (ids, n) = match node {
-        Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
-        Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => ([a, a], 1),
-        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Max(a, b) => {
-            ([a, b], 2)
-        }
-    };
-    ids.into_iter().take(n)
-}
-
 /// The expressions of constants and inputs, by node index, shared by every body: the same
 /// few recur throughout, and cloning a tree is cheaper than formatting and parsing a literal.
 struct Atoms<'g> {
     g: &'g Graph,
     scalar: Scalar,
     exprs: Vec<OnceCell<(Expr, u8)>>,
+    /// The same, as prettyplease prints them.
+    texts: Vec<OnceCell<(String, u8)>>,
 }
 
 impl<'g> Atoms<'g> {
@@ -269,7 +262,35 @@ impl<'g> Atoms<'g> {
             g,
             scalar,
             exprs: vec![OnceCell::new(); g.nodes.len()],
+            texts: vec![OnceCell::new(); g.nodes.len()],
         }
+    }
+
+    /// The text of [`Atoms::get`]'s expression, and its precedence.
+    fn text(&self, id: Id) -> &(String, u8) {
+        self.texts[id.0 as usize].get_or_init(|| match self.g.node(id) {
+            Node::Const(bits) => {
+                let c = f64::from_bits(bits);
+                let sign = if c < 0.0 { "-" } else { "" };
+                match self.scalar {
+                    Scalar::Generic => {
+                        let lit = Literal::f64_unsuffixed(c.abs());
+                        (format!("T::from_f64({sign}{lit})"), 4)
+                    }
+                    Scalar::F64 => {
+                        let lit = Literal::f64_suffixed(c.abs());
+                        (format!("{sign}{lit}"), if c < 0.0 { 3 } else { 4 })
+                    }
+                    Scalar::F32 => {
+                        let lit = Literal::f32_suffixed((c as f32).abs());
+                        (format!("{sign}{lit}"), if c < 0.0 { 3 } else { 4 })
+                    }
+                }
+            }
+            // Input names are written as the emitted code indexes them: `q[0]`.
+            Node::Input(i) => (self.g.input_names[i as usize].clone(), 4),
+            _ => unreachable!("only constants and inputs are atoms"),
+        })
     }
 
     /// The expression of a constant or input node and its precedence (see
@@ -313,39 +334,153 @@ impl<'g> Atoms<'g> {
 }
 
 /// Writes one function body: `let`s for shared nodes, then the result expression.
+///
+/// The `let`s are most of the file. Building each as a syntax tree for prettyplease, and
+/// dropping it afterwards, took most of the emission time, so a statement that fits on one
+/// line is written as text directly, as prettyplease prints it (one space around binary
+/// operators, nothing else). A longer one, which prettyplease breaks over lines, goes into
+/// the tree; each run of text lines stands in the tree as a marker statement, [`LETS`],
+/// replaced by the text after printing. The file is the one prettyplease prints from the
+/// whole tree (a test checks this).
 struct Body<'g> {
     g: &'g Graph,
     atoms: &'g Atoms<'g>,
     /// The variable bound to each node, by node index.
-    names: Vec<Option<Ident>>,
+    names: Vec<Option<String>>,
+    /// Longest `let` line (indentation included) written as text.
+    one_line: usize,
+    /// The statements for prettyplease: the long `let`s, and a marker for each run of text.
     stmts: Vec<Stmt>,
+    /// The text of each marker, in order.
+    runs: Vec<String>,
+    /// The run being written.
+    run: String,
 }
 
 impl<'g> Body<'g> {
-    fn new(atoms: &'g Atoms<'g>) -> Self {
+    fn new(atoms: &'g Atoms<'g>, one_line: usize) -> Self {
         Body {
             g: atoms.g,
             atoms,
             names: vec![None; atoms.g.nodes.len()],
+            one_line,
             stmts: Vec::new(),
+            runs: Vec::new(),
+            run: String::new(),
         }
     }
 
-    fn name(&self, id: Id) -> Option<&Ident> {
-        self.names[id.0 as usize].as_ref()
+    /// Ends the run of text lines, if any, with its marker.
+    fn end_run(&mut self) {
+        if !self.run.is_empty() {
+            self.stmts.push(marker());
+            self.runs.push(std::mem::take(&mut self.run));
+        }
+    }
+
+    fn name(&self, id: Id) -> Option<&str> {
+        self.names[id.0 as usize].as_deref()
     }
 
     fn expr(&self, id: Id) -> Expr {
         self.expr_prec(id).0
     }
 
+    /// The precedence of [`Body::expr_prec`]'s expression, without building it.
+    fn prec(&self, id: Id) -> u8 {
+        if self.name(id).is_some() {
+            return 4;
+        }
+        match self.g.node(id) {
+            Node::Const(_) | Node::Input(_) => self.atoms.text(id).1,
+            Node::Add(..) | Node::Sub(..) => 1,
+            Node::Mul(..) | Node::Div(..) => 2,
+            Node::Neg(_) => 3,
+            Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..) => 4,
+        }
+    }
+
+    /// Appends [`Body::expr_prec`]'s expression as prettyplease prints it on one line.
+    fn write(&self, id: Id, out: &mut String) {
+        if let Some(name) = self.name(id) {
+            out.push_str(name);
+            return;
+        }
+        let binary = |a: Id, op: &str, b: Id, p: u8, out: &mut String| {
+            self.write_operand(a, p, out);
+            out.push_str(op);
+            self.write_operand(b, p + 1, out);
+        };
+        let method = |a: Id, call: &str, out: &mut String| {
+            self.write_operand(a, 4, out);
+            out.push_str(call);
+        };
+        match self.g.node(id) {
+            Node::Const(_) | Node::Input(_) => out.push_str(&self.atoms.text(id).0),
+            Node::Add(a, b) => binary(a, " + ", b, 1, out),
+            Node::Sub(a, b) => binary(a, " - ", b, 1, out),
+            Node::Mul(a, b) => binary(a, " * ", b, 2, out),
+            Node::Div(a, b) => binary(a, " / ", b, 2, out),
+            Node::Neg(a) => {
+                out.push('-');
+                self.write_operand(a, 3, out);
+            }
+            Node::Sin(a) => method(a, ".sin()", out),
+            Node::Cos(a) => method(a, ".cos()", out),
+            Node::Sqrt(a) => method(a, ".sqrt()", out),
+            Node::Max(a, b) => {
+                method(a, ".max(", out);
+                self.write(b, out);
+                out.push(')');
+            }
+        }
+    }
+
+    /// [`Body::write`], in parentheses if `x` binds less tightly than `min`.
+    fn write_operand(&self, x: Id, min: u8, out: &mut String) {
+        if self.prec(x) < min {
+            out.push('(');
+            self.write(x, out);
+            out.push(')');
+        } else {
+            self.write(x, out);
+        }
+    }
+
+    /// Appends `let <pattern> = <value of id><call>;`: written directly if it fits on one
+    /// line, else printed by prettyplease from `stmt`.
+    fn push_let(&mut self, pattern: &str, id: Id, call: &str, stmt: impl FnOnce(&Self) -> Stmt) {
+        let start = self.run.len();
+        let mut line = std::mem::take(&mut self.run);
+        line.push_str("    let ");
+        line.push_str(pattern);
+        line.push_str(" = ");
+        if call.is_empty() {
+            self.write(id, &mut line);
+        } else {
+            self.write_operand(id, 4, &mut line);
+            line.push_str(call);
+        }
+        line.push_str(";\n");
+        // Lengths in bytes are columns: the code is ASCII.
+        let long = line.len() - start - 1 > self.one_line;
+        if long {
+            line.truncate(start);
+        }
+        self.run = line;
+        if long {
+            self.end_run();
+            let stmt = stmt(self);
+            self.stmts.push(stmt);
+        }
+    }
     /// The expression of `id` and its precedence (1: `+ -`, 2: `* /`, 3: unary minus,
     /// 4: atoms and method calls). Parentheses are added where the child binds less
     /// tightly, and around a right operand of equal precedence: floating-point addition and
     /// multiplication are not associative, so the emitted grouping must be the graph's.
     fn expr_prec(&self, id: Id) -> (Expr, u8) {
         if let Some(name) = self.name(id) {
-            return (ast::var(name.clone()), 4);
+            return (ast::var(ast::ident(name)), 4);
         }
         let operand = |x: Id, min: u8| {
             let (e, p) = self.expr_prec(x);
@@ -382,7 +517,7 @@ impl<'g> Body<'g> {
         let mut stack = roots.to_vec();
         while let Some(id) = stack.pop() {
             if !std::mem::replace(&mut is_live[id.0 as usize], true) {
-                stack.extend(operands(g.node(id)));
+                stack.extend(g.node(id).operands());
             }
         }
         let live = || {
@@ -392,7 +527,7 @@ impl<'g> Body<'g> {
         };
         let mut uses = vec![0usize; g.nodes.len()];
         for id in live() {
-            for c in operands(g.node(id)) {
+            for c in g.node(id).operands() {
                 uses[c.0 as usize] += 1;
             }
         }
@@ -411,12 +546,14 @@ impl<'g> Body<'g> {
                     let (sin, cos) = (g.lookup(Node::Sin(a)), g.lookup(Node::Cos(a)));
                     if let (Some(s), Some(c)) = (sin, cos) {
                         if is_live[s.0 as usize] && is_live[c.0 as usize] {
-                            let (arg, p) = self.expr_prec(a);
-                            let arg = if p < 4 { ast::paren(arg) } else { arg };
-                            let (sn, cn) = (format_ident!("s{}", s.0), format_ident!("c{}", c.0));
-                            let value = ast::method(arg, "sin_cos", None);
-                            self.stmts
-                                .push(ast::let_pair(sn.clone(), cn.clone(), value));
+                            let (sn, cn) = (format!("s{}", s.0), format!("c{}", c.0));
+                            let pattern = format!("({sn}, {cn})");
+                            self.push_let(&pattern, a, ".sin_cos()", |body| {
+                                let (arg, p) = body.expr_prec(a);
+                                let arg = if p < 4 { ast::paren(arg) } else { arg };
+                                let value = ast::method(arg, "sin_cos", None);
+                                ast::let_pair(ast::ident(&sn), ast::ident(&cn), value)
+                            });
                             self.names[s.0 as usize] = Some(sn);
                             self.names[c.0 as usize] = Some(cn);
                             continue;
@@ -427,19 +564,26 @@ impl<'g> Body<'g> {
             }
             // Inline size of this node's expression: a node used once is still bound when
             // its expression grows large, which keeps lines readable and emission linear.
-            let size = 1 + operands(node)
+            let size = 1 + node
+                .operands()
                 .filter(|&c| self.name(c).is_none())
                 .map(|c| sizes[c.0 as usize])
                 .sum::<usize>();
             sizes[id.0 as usize] = size;
             if uses[id.0 as usize] > 1 || size > 12 {
-                let value = self.expr(id);
-                let name = format_ident!("t{}", id.0);
-                self.stmts.push(ast::let_one(name.clone(), value));
+                let name = format!("t{}", id.0);
+                self.push_let(&name, id, "", |body| {
+                    ast::let_one(ast::ident(&name), body.expr(id))
+                });
                 self.names[id.0 as usize] = Some(name);
             }
         }
     }
+}
+
+/// The statement that stands for a run of `let` lines written as text (see [`Body`]).
+fn marker() -> Stmt {
+    Stmt::Expr(ast::path(&[LETS]), Some(Default::default()))
 }
 
 /// The flat results of `f` arranged in its shape.
@@ -553,6 +697,28 @@ pub fn emit(
     source: &str,
     core: &syn::Path,
 ) -> String {
+    emit_with(model, traced, scalar, source, core, ONE_LINE)
+}
+
+/// Longest `let` line written without prettyplease. prettyplease keeps a statement on one
+/// line when it fits in its margin of 89 columns; the test
+/// `direct_lets_are_what_prettyplease_prints` checks this bound on every statement of
+/// several mechanisms and scalars.
+const ONE_LINE: usize = 89;
+
+/// The marker statement of a run of `let` lines written as text (see [`Body`]).
+const LETS: &str = "__tendyn_lets";
+
+/// [`emit`], writing `let` lines up to `one_line` columns as text: any bound gives the same
+/// file, byte for byte, and 0 has prettyplease print everything (the reference in tests).
+fn emit_with(
+    model: &Model<f64>,
+    traced: &Traced,
+    scalar: Scalar,
+    source: &str,
+    core: &syn::Path,
+    one_line: usize,
+) -> String {
     let t = scalar.ty();
     let n = model.dof;
     let (nm, nt) = (model.motors.len(), model.tendons.len());
@@ -601,8 +767,10 @@ pub fn emit(
             .collect()
     };
     let atoms = Atoms::new(&traced.graph, scalar);
+    // The text of every marker, in file order.
+    let mut runs = Vec::new();
     for f in &traced.functions {
-        let mut body = Body::new(&atoms);
+        let mut body = Body::new(&atoms, one_line);
         body.bind(&f.results);
         let values = f.results.iter().map(|&r| body.expr(r)).collect();
         let ret = return_type(f, &t);
@@ -628,6 +796,8 @@ pub fn emit(
             #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
             pub fn #name #generics (#(#params),*) -> #ret {}
         };
+        body.end_run();
+        runs.append(&mut body.runs);
         item.block.stmts = body.stmts;
         item.block
             .stmts
@@ -646,7 +816,7 @@ pub fn emit(
         })
         .collect();
     let roots = &traced.all;
-    let mut body = Body::new(&atoms);
+    let mut body = Body::new(&atoms, one_line);
     body.bind(roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
@@ -692,12 +862,23 @@ pub fn emit(
         #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
         pub fn all #generics (#(#param_tokens),*) -> Outputs #struct_generics {}
     };
+    body.end_run();
+    runs.append(&mut body.runs);
     all.block.stmts = body.stmts;
     all.block
         .stmts
         .push(Stmt::Expr(ast::struct_literal("Outputs", inits), None));
     file.items.extend([outputs, syn::Item::Fn(all)]);
-    let pretty = prettyplease::unparse(&file);
+    let skeleton = prettyplease::unparse(&file);
+    let pieces: Vec<&str> = skeleton.split(&format!("    {LETS};\n")).collect();
+    assert_eq!(pieces.len(), runs.len() + 1, "one marker per run of text");
+    let mut pretty =
+        String::with_capacity(skeleton.len() + runs.iter().map(String::len).sum::<usize>());
+    pretty.push_str(pieces[0]);
+    for (run, piece) in runs.iter().zip(&pieces[1..]) {
+        pretty.push_str(run);
+        pretty.push_str(piece);
+    }
     let outputs: Vec<&str> = traced.functions.iter().map(|f| f.output.name()).collect();
     format!(
         "// @generated by tendyn-codegen {} from `{}` ({source}). Do not edit.\n\
@@ -712,4 +893,56 @@ pub fn emit(
         },
         pretty
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+
+    /// The direct text of the `let`s is what prettyplease prints from their trees: every
+    /// output of the paper's examples, a 7-link chain and random mechanisms (coupled
+    /// pulleys, endless loops), in every scalar; statements of all lengths, around the
+    /// one-line bound too.
+    #[test]
+    fn direct_lets_are_what_prettyplease_prints() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let mut models: Vec<Model<f64>> = tendyn_spec::examples::all();
+        models
+            .push(tendyn_core::load(format!("{root}/tendyn-codegen/benches/chain7.ron")).unwrap());
+        for seed in 0..4 {
+            let features = Features {
+                coupled_pulleys: seed % 2 == 0,
+                endless: seed % 4 == 1,
+            };
+            models.push(valid_random_mechanism(seed, features).1);
+        }
+        let core: syn::Path = parse_quote!(tendyn_core);
+        let mut near_bound = 0;
+        for model in &models {
+            let traced = crate::outputs::trace(model, &crate::available_outputs(model)).unwrap();
+            for scalar in [Scalar::Generic, Scalar::F64, Scalar::F32] {
+                let emit = |one_line| emit_with(model, &traced, scalar, "t.ron", &core, one_line);
+                let (direct, reference) = (emit(ONE_LINE), emit(0));
+                if let Some((k, (a, b))) = direct
+                    .lines()
+                    .zip(reference.lines())
+                    .enumerate()
+                    .find(|(_, (a, b))| a != b)
+                {
+                    panic!(
+                        "{} ({scalar:?}), line {}:\n  direct:       {a}\n  prettyplease: {b}",
+                        model.name,
+                        k + 1
+                    );
+                }
+                assert_eq!(direct, reference, "{}", model.name);
+                near_bound += direct
+                    .lines()
+                    .filter(|l| (ONE_LINE - 3..=ONE_LINE + 3).contains(&l.len()))
+                    .count();
+            }
+        }
+        assert!(near_bound > 20, "few lines near the bound: {near_bound}");
+    }
 }
