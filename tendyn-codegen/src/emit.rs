@@ -9,13 +9,12 @@
 //! needs neither `std` nor `alloc`.
 //!
 //! The file is what prettyplease prints from one syntax tree. The item skeletons
-//! (signatures, constants, the `Outputs` struct) go through `quote!` and `parse_quote!`;
-//! the function bodies, nearly all of the output, are built as `syn` trees directly, except
-//! that a `let` which fits on one line, most of them, is written as text in prettyplease's
-//! layout and never becomes a tree (see `Body`): building, printing and dropping those
-//! trees was most of the generation time. prettyplease prints a tree as it is, so the tree
-//! (and the text) carries exactly the parentheses a parser would have produced from the
-//! written code.
+//! (signatures, constants, the `Outputs` struct) go through `quote!` and `parse_quote!`,
+//! and the results of each function are built as `syn` trees; the `let`s, nearly all of
+//! the output, are written as text in prettyplease's layout (see `Body` and `layout`):
+//! building, printing and dropping their trees was most of the generation time.
+//! prettyplease prints a tree as it is, so the tree (and the text) carries exactly the
+//! parentheses a parser would have produced from the written code.
 
 use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, Function, Output, Param, Shape, Traced};
@@ -246,6 +245,258 @@ mod ast {
     }
 }
 
+/// prettyplease's layout of a long `let`, without building its syntax tree: the tokens
+/// prettyplease's printer receives for the few expression forms the bodies use (boxes,
+/// breaks and words, see `Body::lay_out`), and its printer (Oppen's algorithm after rustc's
+/// `pp`, with its margin of 89 columns), which decides where lines break.
+mod layout {
+    const MARGIN: isize = 89;
+    const INDENT: isize = 4;
+    /// Every line may use at least this much, however deep its indentation.
+    const MIN_SPACE: isize = 60;
+    /// The width of a break that must be taken.
+    const HARD: isize = 0xffff;
+
+    #[derive(Clone, Copy, Debug)]
+    enum Token {
+        /// Words, by byte range in [`Tokens::text`].
+        Text(usize, usize),
+        /// A place to break: `blank` spaces if not taken; if taken, a new line indented by
+        /// the enclosing box's indentation plus `offset`, after a comma if `comma`.
+        Break {
+            blank: isize,
+            offset: isize,
+            comma: bool,
+            never: bool,
+        },
+        /// A box: breaks directly in a consistent box are all taken if the box does not
+        /// fit on the line; in an inconsistent one, each where the text up to the next
+        /// break does not fit.
+        Begin {
+            offset: isize,
+            consistent: bool,
+        },
+        End,
+    }
+
+    /// The token stream of one statement, and where its words are (buffers reused from
+    /// statement to statement).
+    #[derive(Default)]
+    pub struct Tokens {
+        text: String,
+        tokens: Vec<Token>,
+        sizes: Vec<isize>,
+        open: Vec<usize>,
+    }
+
+    impl Tokens {
+        pub fn clear(&mut self) {
+            self.text.clear();
+            self.tokens.clear();
+        }
+
+        pub fn word(&mut self, word: &str) {
+            let start = self.text.len();
+            self.text.push_str(word);
+            match self.tokens.last_mut() {
+                Some(Token::Text(_, end)) => *end = self.text.len(),
+                _ => self.tokens.push(Token::Text(start, self.text.len())),
+            }
+        }
+
+        fn begin(&mut self, offset: isize, consistent: bool) {
+            self.tokens.push(Token::Begin { offset, consistent });
+        }
+
+        pub fn ibox(&mut self, offset: isize) {
+            self.begin(offset, false);
+        }
+
+        pub fn cbox(&mut self, offset: isize) {
+            self.begin(offset, true);
+        }
+
+        /// Ends a box; a box holding only a break vanishes (prettyplease's `scan_end`).
+        pub fn end(&mut self) {
+            if let [.., Token::Begin { .. }, Token::Break { .. }] = self.tokens[..] {
+                self.tokens.truncate(self.tokens.len() - 2);
+            } else {
+                self.tokens.push(Token::End);
+            }
+        }
+
+        fn brk(&mut self, blank: isize, comma: bool, never: bool) {
+            self.tokens.push(Token::Break {
+                blank,
+                offset: 0,
+                comma,
+                never,
+            });
+        }
+
+        pub fn zerobreak(&mut self) {
+            self.brk(0, false, false);
+        }
+
+        pub fn space(&mut self) {
+            self.brk(1, false, false);
+        }
+
+        pub fn neverbreak(&mut self) {
+            self.brk(0, false, true);
+        }
+
+        pub fn hardbreak(&mut self) {
+            self.brk(HARD, false, false);
+        }
+
+        /// A break that writes a comma when taken (after the last argument of a call).
+        pub fn trailing_comma(&mut self) {
+            self.brk(0, true, false);
+        }
+
+        /// Shifts the indentation of the last token if it is a break.
+        pub fn offset(&mut self, delta: isize) {
+            if let Some(Token::Break { offset, .. }) = self.tokens.last_mut() {
+                *offset += delta;
+            }
+        }
+
+        /// Appends the text of the statement, in a function body (one indentation level).
+        pub fn print(&mut self, out: &mut String) {
+            self.compute_sizes();
+            let sizes = &self.sizes;
+            #[derive(Clone, Copy)]
+            enum Frame {
+                Fits,
+                Broken { indent: isize, consistent: bool },
+            }
+            // The statement sits in the function's block, which is broken.
+            let mut stack = vec![Frame::Broken {
+                indent: 0,
+                consistent: true,
+            }];
+            let mut indent = INDENT;
+            let mut space = MARGIN - INDENT;
+            let mut pending = INDENT;
+            for (&token, &size) in self.tokens.iter().zip(sizes) {
+                match token {
+                    Token::Text(start, end) => {
+                        out.extend(std::iter::repeat_n(' ', pending as usize));
+                        pending = 0;
+                        out.push_str(&self.text[start..end]);
+                        space -= (end - start) as isize;
+                    }
+                    Token::Begin { offset, consistent } => {
+                        if size > space {
+                            stack.push(Frame::Broken { indent, consistent });
+                            indent += offset;
+                        } else {
+                            stack.push(Frame::Fits);
+                        }
+                    }
+                    Token::End => {
+                        if let Some(Frame::Broken { indent: outer, .. }) = stack.pop() {
+                            indent = outer;
+                        }
+                    }
+                    Token::Break {
+                        blank,
+                        offset,
+                        comma,
+                        never,
+                    } => {
+                        let fits = never
+                            || match stack.last().expect("the block's frame") {
+                                Frame::Fits => true,
+                                Frame::Broken {
+                                    consistent: true, ..
+                                } => false,
+                                Frame::Broken {
+                                    consistent: false, ..
+                                } => size <= space,
+                            };
+                        if fits {
+                            pending += blank;
+                            space -= blank;
+                        } else {
+                            if comma {
+                                out.extend(std::iter::repeat_n(' ', pending as usize));
+                                out.push(',');
+                            }
+                            out.push('\n');
+                            pending = indent + offset;
+                            space = (MARGIN - pending).max(MIN_SPACE);
+                        }
+                    }
+                }
+            }
+        }
+
+        /// The size of each token as the printer sees it: a word's length; for a box or a
+        /// break, the width from it to the next break outside the box or at the break's
+        /// level (breaks counted by their blanks).
+        fn compute_sizes(&mut self) {
+            let sizes = &mut self.sizes;
+            sizes.clear();
+            sizes.resize(self.tokens.len(), 0);
+            // Tokens whose size is not known yet (prettyplease's `scan_stack`).
+            let open = &mut self.open;
+            open.clear();
+            let tokens = &self.tokens;
+            let mut total = 0;
+            let settle = |open: &mut Vec<usize>, sizes: &mut Vec<isize>, total: isize| {
+                let mut depth = 0;
+                while let Some(&i) = open.last() {
+                    match tokens[i] {
+                        Token::Begin { .. } => {
+                            if depth == 0 {
+                                break;
+                            }
+                            open.pop();
+                            sizes[i] += total;
+                            depth -= 1;
+                        }
+                        Token::End => {
+                            open.pop();
+                            sizes[i] = 1;
+                            depth += 1;
+                        }
+                        Token::Break { .. } => {
+                            open.pop();
+                            sizes[i] += total;
+                            if depth == 0 {
+                                break;
+                            }
+                        }
+                        Token::Text(..) => unreachable!("words are never open"),
+                    }
+                }
+            };
+            for (i, token) in tokens.iter().enumerate() {
+                match *token {
+                    Token::Text(start, end) => {
+                        sizes[i] = (end - start) as isize;
+                        total += sizes[i];
+                    }
+                    Token::Begin { .. } => {
+                        sizes[i] = -total;
+                        open.push(i);
+                    }
+                    Token::End => open.push(i),
+                    Token::Break { blank, .. } => {
+                        settle(open, sizes, total);
+                        sizes[i] = -total;
+                        open.push(i);
+                        total += blank;
+                    }
+                }
+            }
+            settle(open, sizes, total);
+        }
+    }
+}
+
 /// The expressions of constants and inputs, by node index, shared by every body: the same
 /// few recur throughout, and cloning a tree is cheaper than formatting and parsing a literal.
 struct Atoms<'g> {
@@ -336,37 +587,41 @@ impl<'g> Atoms<'g> {
 /// Writes one function body: `let`s for shared nodes, then the result expression.
 ///
 /// The `let`s are most of the file. Building each as a syntax tree for prettyplease, and
-/// dropping it afterwards, took most of the emission time, so a statement that fits on one
-/// line is written as text directly, as prettyplease prints it (one space around binary
-/// operators, nothing else). A longer one, which prettyplease breaks over lines, goes into
-/// the tree; each run of text lines stands in the tree as a marker statement, [`LETS`],
-/// replaced by the text after printing. The file is the one prettyplease prints from the
-/// whole tree (a test checks this).
+/// dropping it afterwards, took most of the emission time, so they are written as text in
+/// prettyplease's layout: a statement that fits on one line as it is (one space around
+/// binary operators, nothing else); a longer one, which prettyplease breaks over lines, by
+/// [`layout`], which runs prettyplease's printing algorithm on the tokens prettyplease
+/// would produce. Only a long `let (s, c) = x.sin_cos();` (none in practice) still goes
+/// into the tree; each run of text lines then stands in the tree as a marker statement,
+/// [`LETS`], replaced by the text after printing. The file is the one prettyplease prints
+/// from the whole tree (a test checks this, statement by statement).
 struct Body<'g> {
     g: &'g Graph,
     atoms: &'g Atoms<'g>,
     /// The variable bound to each node, by node index.
     names: Vec<Option<String>>,
-    /// Longest `let` line (indentation included) written as text.
-    one_line: usize,
+    style: Style,
     /// The statements for prettyplease: the long `let`s, and a marker for each run of text.
     stmts: Vec<Stmt>,
     /// The text of each marker, in order.
     runs: Vec<String>,
     /// The run being written.
     run: String,
+    /// Scratch space for laying out long `let`s.
+    tokens: layout::Tokens,
 }
 
 impl<'g> Body<'g> {
-    fn new(atoms: &'g Atoms<'g>, one_line: usize) -> Self {
+    fn new(atoms: &'g Atoms<'g>, style: Style) -> Self {
         Body {
             g: atoms.g,
             atoms,
             names: vec![None; atoms.g.nodes.len()],
-            one_line,
+            style,
             stmts: Vec::new(),
             runs: Vec::new(),
             run: String::new(),
+            tokens: layout::Tokens::default(),
         }
     }
 
@@ -463,16 +718,179 @@ impl<'g> Body<'g> {
         }
         line.push_str(";\n");
         // Lengths in bytes are columns: the code is ASCII.
-        let long = line.len() - start - 1 > self.one_line;
+        let long = line.len() - start - 1 > self.style.one_line;
         if long {
             line.truncate(start);
         }
-        self.run = line;
-        if long {
+        if long && self.style.layout && call.is_empty() {
+            let mut t = std::mem::take(&mut self.tokens);
+            t.clear();
+            t.ibox(0);
+            t.word("let ");
+            t.word(pattern);
+            t.word(" = ");
+            t.neverbreak();
+            self.lay_out(id, &mut t);
+            t.end();
+            t.word(";");
+            t.hardbreak();
+            t.print(&mut line);
+            self.run = line;
+            self.tokens = t;
+        } else if long {
+            // (`let (s, c) = x.sin_cos();` is never long in practice.)
+            self.run = line;
             self.end_run();
             let stmt = stmt(self);
             self.stmts.push(stmt);
+        } else {
+            self.run = line;
         }
+    }
+
+    /// Appends the tokens prettyplease's printer receives for [`Body::expr_prec`]'s
+    /// expression (from its `expr_binary`, `expr_unary`, `expr_paren`, `expr_call`,
+    /// `call_args`, `expr_method_call`, `prefix_subexpr`): what [`Body::write`] writes, with
+    /// the boxes and breaks that decide where long lines break.
+    fn lay_out(&self, id: Id, t: &mut layout::Tokens) {
+        if let Some(name) = self.name(id) {
+            t.word(name);
+            return;
+        }
+        let binary = |a: Id, op: &str, b: Id, p: u8, t: &mut layout::Tokens| {
+            t.ibox(4);
+            t.ibox(-4);
+            self.lay_out_operand(a, p, t);
+            t.end();
+            t.space();
+            t.word(op);
+            t.word(" ");
+            self.lay_out_operand(b, p + 1, t);
+            t.end();
+        };
+        match self.g.node(id) {
+            Node::Const(_) => self.lay_out_constant(id, false, t),
+            Node::Input(_) => t.word(&self.atoms.text(id).0),
+            Node::Add(a, b) => binary(a, "+", b, 1, t),
+            Node::Sub(a, b) => binary(a, "-", b, 1, t),
+            Node::Mul(a, b) => binary(a, "*", b, 2, t),
+            Node::Div(a, b) => binary(a, "/", b, 2, t),
+            Node::Neg(a) => {
+                t.word("-");
+                self.lay_out_operand(a, 3, t);
+            }
+            Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..) => {
+                t.cbox(4);
+                self.lay_out_method(id, t);
+                t.end();
+            }
+        }
+    }
+
+    /// [`Body::lay_out`], in parentheses if `x` binds less tightly than `min`.
+    fn lay_out_operand(&self, x: Id, min: u8, t: &mut layout::Tokens) {
+        if self.prec(x) < min {
+            t.word("(");
+            self.lay_out(x, t);
+            t.word(")");
+        } else {
+            self.lay_out(x, t);
+        }
+    }
+
+    /// A constant; as the receiver of a method call, `T::from_f64` is boxed alone.
+    fn lay_out_constant(&self, id: Id, receiver: bool, t: &mut layout::Tokens) {
+        // The atom's text, `T::from_f64(-0.5)` or `-0.5f64`, in its parts.
+        let text = self.atoms.text(id).0.as_str();
+        let value = text
+            .strip_prefix("T::from_f64(")
+            .and_then(|v| v.strip_suffix(')'))
+            .unwrap_or(text);
+        let (sign, literal) = match value.strip_prefix('-') {
+            Some(literal) => ("-", literal),
+            None => ("", value),
+        };
+        match self.atoms.scalar {
+            Scalar::Generic => {
+                if receiver {
+                    t.cbox(-4);
+                    t.word("T::from_f64");
+                    t.end();
+                    t.word("(");
+                } else {
+                    t.word("T::from_f64(");
+                }
+                t.cbox(4);
+                t.zerobreak();
+                t.word(sign);
+                t.word(literal);
+                t.trailing_comma();
+                t.offset(-4);
+                t.end();
+                t.word(")");
+            }
+            Scalar::F64 | Scalar::F32 => {
+                t.word(sign);
+                t.word(literal);
+            }
+        }
+    }
+
+    /// A method call on a node's operand, without the box around the whole call (as
+    /// prettyplease's `prefix_subexpr_method_call`, which chains calls in one box).
+    fn lay_out_method(&self, id: Id, t: &mut layout::Tokens) {
+        let (receiver, method, argument) = match self.g.node(id) {
+            Node::Sin(a) => (a, "sin", None),
+            Node::Cos(a) => (a, "cos", None),
+            Node::Sqrt(a) => (a, "sqrt", None),
+            Node::Max(a, b) => (a, "max", Some(b)),
+            _ => unreachable!("a method call"),
+        };
+        // The receiver, as `prefix_subexpr` prints it.
+        let chained = self.name(receiver).is_none()
+            && matches!(
+                self.g.node(receiver),
+                Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..)
+            );
+        let input =
+            matches!(self.g.node(receiver), Node::Input(_)) && self.name(receiver).is_none();
+        if chained {
+            self.lay_out_method(receiver, t);
+        } else if input {
+            // `q[0]`: the array alone is boxed.
+            let text = &self.atoms.text(receiver).0;
+            let (array, index) = text.split_once('[').expect("an indexed input");
+            t.cbox(-4);
+            t.word(array);
+            t.end();
+            t.word("[");
+            t.word(index);
+        } else if let (Scalar::Generic, Node::Const(_), true) = (
+            self.atoms.scalar,
+            self.g.node(receiver),
+            self.name(receiver).is_none(),
+        ) {
+            self.lay_out_constant(receiver, true, t);
+        } else {
+            t.cbox(-4);
+            self.lay_out_operand(receiver, 4, t);
+            t.end();
+        }
+        t.zerobreak();
+        t.word(".");
+        t.word(method);
+        t.cbox(0);
+        t.word("(");
+        t.cbox(4);
+        t.zerobreak();
+        if let Some(b) = argument {
+            self.lay_out(b, t);
+            t.trailing_comma();
+        }
+        t.offset(-4);
+        t.end();
+        t.word(")");
+        t.end();
     }
     /// The expression of `id` and its precedence (1: `+ -`, 2: `* /`, 3: unary minus,
     /// 4: atoms and method calls). Parentheses are added where the child binds less
@@ -697,8 +1115,24 @@ pub fn emit(
     source: &str,
     core: &syn::Path,
 ) -> String {
-    emit_with(model, traced, scalar, source, core, ONE_LINE)
+    emit_with(model, traced, scalar, source, core, DIRECT)
 }
+
+/// How the `let`s are written (see [`Body`]).
+#[derive(Clone, Copy, Debug)]
+struct Style {
+    /// Longest `let` line (indentation included) written as text directly.
+    one_line: usize,
+    /// Longer `let`s of one variable are laid out by [`layout`] rather than printed by
+    /// prettyplease from a tree.
+    layout: bool,
+}
+
+/// The fast style. Every style gives the same file (a test checks it).
+const DIRECT: Style = Style {
+    one_line: ONE_LINE,
+    layout: true,
+};
 
 /// Longest `let` line written without prettyplease. prettyplease keeps a statement on one
 /// line when it fits in its margin of 89 columns; the test
@@ -709,15 +1143,15 @@ const ONE_LINE: usize = 89;
 /// The marker statement of a run of `let` lines written as text (see [`Body`]).
 const LETS: &str = "__tendyn_lets";
 
-/// [`emit`], writing `let` lines up to `one_line` columns as text: any bound gives the same
-/// file, byte for byte, and 0 has prettyplease print everything (the reference in tests).
+/// [`emit`] in a given style: every style gives the same file, byte for byte; with
+/// `one_line: 0` and no layout, prettyplease prints everything (the reference in tests).
 fn emit_with(
     model: &Model<f64>,
     traced: &Traced,
     scalar: Scalar,
     source: &str,
     core: &syn::Path,
-    one_line: usize,
+    style: Style,
 ) -> String {
     let t = scalar.ty();
     let n = model.dof;
@@ -770,7 +1204,7 @@ fn emit_with(
     // The text of every marker, in file order.
     let mut runs = Vec::new();
     for f in &traced.functions {
-        let mut body = Body::new(&atoms, one_line);
+        let mut body = Body::new(&atoms, style);
         body.bind(&f.results);
         let values = f.results.iter().map(|&r| body.expr(r)).collect();
         let ret = return_type(f, &t);
@@ -816,7 +1250,7 @@ fn emit_with(
         })
         .collect();
     let roots = &traced.all;
-    let mut body = Body::new(&atoms, one_line);
+    let mut body = Body::new(&atoms, style);
     body.bind(roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
@@ -922,21 +1356,31 @@ mod tests {
         for model in &models {
             let traced = crate::outputs::trace(model, &crate::available_outputs(model)).unwrap();
             for scalar in [Scalar::Generic, Scalar::F64, Scalar::F32] {
-                let emit = |one_line| emit_with(model, &traced, scalar, "t.ron", &core, one_line);
-                let (direct, reference) = (emit(ONE_LINE), emit(0));
-                if let Some((k, (a, b))) = direct
-                    .lines()
-                    .zip(reference.lines())
-                    .enumerate()
-                    .find(|(_, (a, b))| a != b)
-                {
-                    panic!(
-                        "{} ({scalar:?}), line {}:\n  direct:       {a}\n  prettyplease: {b}",
-                        model.name,
-                        k + 1
-                    );
+                let emit = |style| emit_with(model, &traced, scalar, "t.ron", &core, style);
+                let reference = emit(Style {
+                    one_line: 0,
+                    layout: false,
+                });
+                let laid_out = Style {
+                    one_line: 0,
+                    layout: true,
+                };
+                let direct = emit(DIRECT);
+                for (style, text) in [(DIRECT, &direct), (laid_out, &emit(laid_out))] {
+                    if let Some((k, (a, b))) = text
+                        .lines()
+                        .zip(reference.lines())
+                        .enumerate()
+                        .find(|(_, (a, b))| a != b)
+                    {
+                        panic!(
+                            "{} ({scalar:?}, {style:?}), line {}:\n  direct:       {a}\n  prettyplease: {b}",
+                            model.name,
+                            k + 1
+                        );
+                    }
+                    assert_eq!(text, &reference, "{}", model.name);
                 }
-                assert_eq!(direct, reference, "{}", model.name);
                 near_bound += direct
                     .lines()
                     .filter(|l| (ONE_LINE - 3..=ONE_LINE + 3).contains(&l.len()))
