@@ -19,7 +19,6 @@
 use crate::expr::{Graph, Id, Node, NodeMap};
 use std::cmp::Ordering;
 use std::collections::hash_map::Entry;
-use std::collections::BTreeMap;
 use std::rc::Rc;
 use tendyn_core::DoubleDouble;
 
@@ -41,6 +40,9 @@ const ONE: Mono = Mono(0);
 /// (a monomial of its own per term cost an allocation per term).
 struct Monomials {
     list: Vec<Monomial>,
+    /// The first two pairs of each monomial packed into a number that sorts as they do,
+    /// so that most comparisons need not read the monomials.
+    keys: Vec<u128>,
     numbers: NodeMap<Monomial, Mono>,
     products: NodeMap<(Mono, Mono), Mono>,
 }
@@ -49,6 +51,7 @@ impl Monomials {
     fn new() -> Self {
         let mut m = Monomials {
             list: Vec::new(),
+            keys: Vec::new(),
             numbers: NodeMap::default(),
             products: NodeMap::default(),
         };
@@ -57,13 +60,24 @@ impl Monomials {
     }
 
     fn intern(&mut self, m: Monomial) -> Mono {
-        if let Some(&n) = self.numbers.get(&m) {
-            return n;
+        match self.numbers.entry(m) {
+            Entry::Occupied(e) => *e.get(),
+            Entry::Vacant(e) => {
+                let n = Mono(self.list.len() as u32);
+                // A pair packs as `id · 2³² + power` (a power is at least 1, so a missing
+                // pair, 0, sorts first, as a shorter monomial does).
+                let pack = |k: usize| {
+                    e.key()
+                        .get(k)
+                        .map_or(0, |&(v, p)| (u64::from(v.0) << 32) | u64::from(p))
+                };
+                self.keys
+                    .push((u128::from(pack(0)) << 64) | u128::from(pack(1)));
+                self.list.push(e.key().clone());
+                e.insert(n);
+                n
+            }
         }
-        let n = Mono(self.list.len() as u32);
-        self.list.push(m.clone());
-        self.numbers.insert(m, n);
-        n
     }
 
     fn get(&self, m: Mono) -> &Monomial {
@@ -73,10 +87,12 @@ impl Monomials {
     /// The order polynomials are sorted in: that of the sorted pairs.
     fn cmp(&self, a: Mono, b: Mono) -> Ordering {
         if a == b {
-            Ordering::Equal
-        } else {
-            self.get(a).cmp(self.get(b))
+            return Ordering::Equal;
         }
+        let key = |m: Mono| self.keys[m.0 as usize];
+        key(a)
+            .cmp(&key(b))
+            .then_with(|| self.get(a).cmp(self.get(b)))
     }
 
     fn mul(&mut self, a: Mono, b: Mono) -> Mono {
@@ -140,8 +156,9 @@ struct Expander<'g, 'r> {
     rank: &'r dyn Rank,
     memo: NodeMap<Id, Shared>,
     monos: &'g mut Monomials,
-    /// Where each monomial of the product being formed is (reused between products).
-    slots: NodeMap<Mono, usize>,
+    /// Where each monomial of the product being formed is, plus one, by monomial (0: not
+    /// yet); reused between products, all 0 between them.
+    slots: Vec<u32>,
     /// Largest number of terms an intermediate polynomial may have before the expansion
     /// gives up (a form with more terms than the traced one has operations cannot win).
     max_terms: usize,
@@ -223,10 +240,10 @@ fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     out
 }
 
-/// `a · b`; `slots` is scratch space.
+/// `a · b`; `slots` is scratch space (see [`Expander::slots`]).
 fn product(
     monos: &mut Monomials,
-    slots: &mut NodeMap<Mono, usize>,
+    slots: &mut Vec<u32>,
     a: &[Term],
     b: &[Term],
     max_terms: usize,
@@ -234,19 +251,24 @@ fn product(
     if a.len().saturating_mul(b.len()) > max_terms * 4 {
         return None;
     }
-    slots.clear();
     let mut out: Poly = Vec::new();
     for &(ma, ca) in a {
         for &(mb, cb) in b {
             let (m, c) = (monos.mul(ma, mb), ca * cb);
-            match slots.entry(m) {
-                Entry::Occupied(slot) => out[*slot.get()].1 += c,
-                Entry::Vacant(slot) => {
-                    slot.insert(out.len());
+            if slots.len() <= m.0 as usize {
+                slots.resize(monos.list.len(), 0);
+            }
+            match slots[m.0 as usize] {
+                0 => {
                     out.push((m, first(c)));
+                    slots[m.0 as usize] = out.len() as u32;
                 }
+                slot => out[slot as usize - 1].1 += c,
             }
         }
+    }
+    for &(m, _) in &out {
+        slots[m.0 as usize] = 0;
     }
     if out.len() > max_terms {
         return None;
@@ -370,7 +392,7 @@ impl Expander<'_, '_> {
 
     fn rebuild(&mut self, p: &[Term]) -> Option<Id> {
         let p = clean(reduce_pythagoras(self.g, self.monos, p))?;
-        Some(horner(self.g, self.rank, &p))
+        Some(horner(self.g, self.rank, p))
     }
 }
 
@@ -448,48 +470,45 @@ fn clean(p: Vec<(Monomial, DoubleDouble)>) -> Option<Vec<(Monomial, f64)>> {
 
 /// Builds a polynomial (terms in any order, each monomial once) back into the graph by
 /// greedy multivariate Horner factoring.
-fn horner(g: &mut Graph, rank: &dyn Rank, p: &[(Monomial, f64)]) -> Id {
-    let constant_term = || p.iter().find(|(m, _)| m.is_empty()).map(|(_, c)| *c);
-    match p {
+fn horner(g: &mut Graph, rank: &dyn Rank, p: Vec<(Monomial, f64)>) -> Id {
+    match p.as_slice() {
         [] => return g.constant(0.0),
         [(m, c)] if m.is_empty() => return g.constant(*c),
         _ => {}
     }
     // The variable to pull out: highest rank, then most terms, then lowest id.
-    let mut counts: BTreeMap<Id, usize> = BTreeMap::new();
-    for (m, _) in p {
+    let mut counts: Vec<(Id, usize)> = Vec::new();
+    for (m, _) in &p {
         for &(v, _) in m {
-            *counts.entry(v).or_default() += 1;
-        }
-    }
-    let Some((&v, _)) = counts
-        .iter()
-        .max_by_key(|(&v, &n)| (rank.rank(g, v), n, std::cmp::Reverse(v)))
-    else {
-        return g.constant(constant_term().expect("a constant polynomial"));
-    };
-    let mut with = Vec::new();
-    let mut without = Vec::new();
-    for (m, c) in p {
-        match m.iter().position(|&(x, _)| x == v) {
-            Some(i) => {
-                let mut m2 = m.clone();
-                if m2[i].1 == 1 {
-                    m2.remove(i);
-                } else {
-                    m2[i].1 -= 1;
-                }
-                with.push((m2, *c));
+            match counts.iter_mut().find(|(x, _)| *x == v) {
+                Some((_, n)) => *n += 1,
+                None => counts.push((v, 1)),
             }
-            None => without.push((m.clone(), *c)),
         }
     }
-    let inner = horner(g, rank, &with);
+    let Some(&(v, _)) = counts
+        .iter()
+        .max_by_key(|&&(v, n)| (rank.rank(g, v), n, std::cmp::Reverse(v)))
+    else {
+        unreachable!("a polynomial of several terms has a variable")
+    };
+    let (mut with, without): (Vec<_>, Vec<_>) = p
+        .into_iter()
+        .partition(|(m, _)| m.iter().any(|&(x, _)| x == v));
+    for (m, _) in &mut with {
+        let i = m.iter().position(|&(x, _)| x == v).expect("partitioned");
+        if m[i].1 == 1 {
+            m.remove(i);
+        } else {
+            m[i].1 -= 1;
+        }
+    }
+    let inner = horner(g, rank, with);
     let term = g.mul(v, inner);
     if without.is_empty() {
         term
     } else {
-        let rest = horner(g, rank, &without);
+        let rest = horner(g, rank, without);
         g.add(term, rest)
     }
 }
@@ -529,7 +548,7 @@ impl Collector {
             rank,
             memo: std::mem::take(&mut self.memo),
             monos: &mut self.monos,
-            slots: NodeMap::default(),
+            slots: Vec::new(),
             max_terms: self.max_terms,
         };
         let mut total = 0;

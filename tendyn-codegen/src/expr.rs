@@ -158,13 +158,12 @@ impl Graph {
     }
 
     fn intern(&mut self, n: Node) -> Id {
-        if let Some(&id) = self.memo.get(&n) {
-            return id;
-        }
-        let id = Id(self.nodes.len() as u32);
-        self.nodes.push(n);
-        self.memo.insert(n, id);
-        id
+        let next = Id(self.nodes.len() as u32);
+        let nodes = &mut self.nodes;
+        *self.memo.entry(n).or_insert_with(|| {
+            nodes.push(n);
+            next
+        })
     }
 
     pub fn constant(&mut self, x: f64) -> Id {
