@@ -19,7 +19,6 @@
 use crate::expr::{Graph, Id, Node, NodeMap};
 use std::cmp::Ordering;
 use std::collections::hash_map::Entry;
-use std::rc::Rc;
 use tendyn_core::DoubleDouble;
 
 /// Largest number of terms one intermediate polynomial may ever have.
@@ -40,11 +39,13 @@ const ONE: Mono = Mono(0);
 /// (a monomial of its own per term cost an allocation per term).
 struct Monomials {
     list: Vec<Monomial>,
-    /// The first two pairs of each monomial packed into a number that sorts as they do,
-    /// so that most comparisons need not read the monomials.
-    keys: Vec<u128>,
+    /// The first four pairs of each monomial packed into a number that sorts as they do
+    /// (see [`Monomials::cmp`]), so that most comparisons need not read the monomials;
+    /// `None` if a variable or power is too large to pack.
+    keys: Vec<Option<u128>>,
     numbers: NodeMap<Monomial, Mono>,
-    products: NodeMap<(Mono, Mono), Mono>,
+    /// The product of two monomials, by their numbers (the smaller in the high half).
+    products: NodeMap<u64, Mono>,
 }
 
 impl Monomials {
@@ -64,15 +65,19 @@ impl Monomials {
             Entry::Occupied(e) => *e.get(),
             Entry::Vacant(e) => {
                 let n = Mono(self.list.len() as u32);
-                // A pair packs as `id · 2³² + power` (a power is at least 1, so a missing
-                // pair, 0, sorts first, as a shorter monomial does).
-                let pack = |k: usize| {
+                // A pair packs into 32 bits as `id · 2⁸ + power`, the first pair highest (a
+                // power is at least 1, so a missing pair, 0, sorts first, as a shorter
+                // monomial does).
+                let key =
                     e.key()
-                        .get(k)
-                        .map_or(0, |&(v, p)| (u64::from(v.0) << 32) | u64::from(p))
-                };
-                self.keys
-                    .push((u128::from(pack(0)) << 64) | u128::from(pack(1)));
+                        .iter()
+                        .take(4)
+                        .enumerate()
+                        .try_fold(0u128, |key, (k, &(v, p))| {
+                            let packable = v.0 < 1 << 24 && (1..1 << 8).contains(&p);
+                            packable.then(|| key | u128::from(v.0 << 8 | p) << (96 - 32 * k))
+                        });
+                self.keys.push(key);
                 self.list.push(e.key().clone());
                 e.insert(n);
                 n
@@ -89,10 +94,10 @@ impl Monomials {
         if a == b {
             return Ordering::Equal;
         }
-        let key = |m: Mono| self.keys[m.0 as usize];
-        key(a)
-            .cmp(&key(b))
-            .then_with(|| self.get(a).cmp(self.get(b)))
+        match (self.keys[a.0 as usize], self.keys[b.0 as usize]) {
+            (Some(x), Some(y)) if x != y => x.cmp(&y),
+            _ => self.get(a).cmp(self.get(b)),
+        }
     }
 
     fn mul(&mut self, a: Mono, b: Mono) -> Mono {
@@ -102,7 +107,7 @@ impl Monomials {
         if b == ONE {
             return a;
         }
-        let key = if a.0 <= b.0 { (a, b) } else { (b, a) };
+        let key = (u64::from(a.0.min(b.0)) << 32) | u64::from(a.0.max(b.0));
         if let Some(&p) = self.products.get(&key) {
             return p;
         }
@@ -122,8 +127,21 @@ impl Monomials {
 /// constants, are independent of how the terms are stored.
 type Poly = Vec<Term>;
 type Term = (Mono, DoubleDouble);
-/// Expansions are shared: a subexpression is expanded once and read by every parent.
-type Shared = Option<Rc<Poly>>;
+
+/// A polynomial kept in a collection's store of terms: `terms[start..start + len]`. Every
+/// expansion is kept (a subexpression is expanded once and read by every parent), so one
+/// growing store replaces a vector per polynomial.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    start: u32,
+    len: u32,
+}
+
+impl Span {
+    fn range(self) -> std::ops::Range<usize> {
+        self.start as usize..(self.start + self.len) as usize
+    }
+}
 
 /// How variables rank when factoring (higher first).
 pub trait Rank {
@@ -154,11 +172,14 @@ impl Rank for StateRank {
 struct Expander<'g, 'r> {
     g: &'g mut Graph,
     rank: &'r dyn Rank,
-    memo: NodeMap<Id, Shared>,
+    memo: &'g mut NodeMap<Id, Option<Span>>,
+    terms: &'g mut Vec<Term>,
     monos: &'g mut Monomials,
     /// Where each monomial of the product being formed is, plus one, by monomial (0: not
     /// yet); reused between products, all 0 between them.
     slots: Vec<u32>,
+    /// Buffers for expansions under way (one per level of the recursion), reused.
+    buffers: Vec<Poly>,
     /// Largest number of terms an intermediate polynomial may have before the expansion
     /// gives up (a form with more terms than the traced one has operations cannot win).
     max_terms: usize,
@@ -175,22 +196,13 @@ fn first(x: DoubleDouble) -> DoubleDouble {
     e
 }
 
-fn constant(c: f64) -> Poly {
-    if c != 0.0 {
-        vec![(ONE, DoubleDouble::from(c))]
-    } else {
-        Vec::new()
-    }
+/// `scale · p`, into `out`.
+fn scaled(p: &[Term], scale: DoubleDouble, out: &mut Poly) {
+    out.extend(p.iter().map(|&(m, c)| (m, first(c * scale))));
 }
 
-/// `scale · p`.
-fn scaled(p: &[Term], scale: DoubleDouble) -> Poly {
-    p.iter().map(|&(m, c)| (m, first(c * scale))).collect()
-}
-
-/// `a + scale · b`, by merging the sorted terms.
-fn add_scaled(monos: &Monomials, a: &[Term], b: &[Term], scale: DoubleDouble) -> Poly {
-    let mut out = Vec::with_capacity(a.len() + b.len());
+/// `a + scale · b`, by merging the sorted terms, into `out`.
+fn add_scaled(monos: &Monomials, a: &[Term], b: &[Term], scale: DoubleDouble, out: &mut Poly) {
     let (mut i, mut j) = (0, 0);
     loop {
         let order = match (a.get(i), b.get(j)) {
@@ -218,7 +230,6 @@ fn add_scaled(monos: &Monomials, a: &[Term], b: &[Term], scale: DoubleDouble) ->
             }
         }
     }
-    out
 }
 
 fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
@@ -240,18 +251,19 @@ fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     out
 }
 
-/// `a · b`; `slots` is scratch space (see [`Expander::slots`]).
+/// `a · b`, into `out` (empty); `slots` is scratch space (see [`Expander::slots`]). `None`
+/// if it has too many terms.
 fn product(
     monos: &mut Monomials,
     slots: &mut Vec<u32>,
     a: &[Term],
     b: &[Term],
     max_terms: usize,
-) -> Option<Poly> {
+    out: &mut Poly,
+) -> Option<()> {
     if a.len().saturating_mul(b.len()) > max_terms * 4 {
         return None;
     }
-    let mut out: Poly = Vec::new();
     for &(ma, ca) in a {
         for &(mb, cb) in b {
             let (m, c) = (monos.mul(ma, mb), ca * cb);
@@ -267,31 +279,51 @@ fn product(
             }
         }
     }
-    for &(m, _) in &out {
+    for &(m, _) in out.iter() {
         slots[m.0 as usize] = 0;
     }
     if out.len() > max_terms {
         return None;
     }
     out.sort_unstable_by(|x, y| monos.cmp(x.0, y.0));
-    Some(out)
+    Some(())
 }
 
 impl Expander<'_, '_> {
-    fn expand(&mut self, id: Id) -> Shared {
-        if let Some(p) = self.memo.get(&id) {
-            return p.clone();
+    fn expand(&mut self, id: Id) -> Option<Span> {
+        if let Some(&p) = self.memo.get(&id) {
+            return p;
         }
-        let p = self.expand_node(id).map(Rc::new);
-        self.memo.insert(id, p.clone());
+        let mut out = self.buffers.pop().unwrap_or_default();
+        out.clear();
+        let p = self.expand_node(id, &mut out).map(|()| {
+            let start = self.terms.len() as u32;
+            self.terms.extend_from_slice(&out);
+            Span {
+                start,
+                len: out.len() as u32,
+            }
+        });
+        self.buffers.push(out);
+        self.memo.insert(id, p);
         p
     }
 
-    fn expand_node(&mut self, id: Id) -> Option<Poly> {
+    fn poly(&self, p: Span) -> &[Term] {
+        &self.terms[p.range()]
+    }
+
+    /// The expansion of node `id`, into `out` (empty); `None` if it is too large.
+    fn expand_node(&mut self, id: Id, out: &mut Poly) -> Option<()> {
         let one = DoubleDouble::from(1.0);
-        Some(match self.g.node(id) {
-            Node::Const(bits) => constant(f64::from_bits(bits)),
-            Node::Input(_) => self.variable(id),
+        match self.g.node(id) {
+            Node::Const(bits) => {
+                let c = f64::from_bits(bits);
+                if c != 0.0 {
+                    out.push((ONE, DoubleDouble::from(c)));
+                }
+            }
+            Node::Input(_) => self.variable(id, out),
             Node::Add(a, b) | Node::Sub(a, b) => {
                 let sign = if matches!(self.g.node(id), Node::Sub(..)) {
                     -one
@@ -299,26 +331,40 @@ impl Expander<'_, '_> {
                     one
                 };
                 let (pa, pb) = (self.expand(a)?, self.expand(b)?);
-                let p = add_scaled(self.monos, &pa, &pb, sign);
-                if p.len() > self.max_terms {
+                let terms = &self.terms;
+                add_scaled(
+                    self.monos,
+                    &terms[pa.range()],
+                    &terms[pb.range()],
+                    sign,
+                    out,
+                );
+                if out.len() > self.max_terms {
                     return None;
                 }
-                p
             }
-            Node::Neg(a) => scaled(&self.expand(a)?, -one),
+            Node::Neg(a) => {
+                let pa = self.expand(a)?;
+                scaled(self.poly(pa), -one, out);
+            }
             Node::Mul(a, b) => {
                 let (pa, pb) = (self.expand(a)?, self.expand(b)?);
-                product(self.monos, &mut self.slots, &pa, &pb, self.max_terms)?
+                let terms = &self.terms;
+                let (a, b) = (&terms[pa.range()], &terms[pb.range()]);
+                product(self.monos, &mut self.slots, a, b, self.max_terms, out)?;
             }
             Node::Div(a, b) => {
                 let pb = self.expand(b)?;
-                match pb.as_slice() {
-                    [(ONE, c)] => scaled(&self.expand(a)?, one / *c),
+                match *self.poly(pb) {
+                    [(ONE, c)] => {
+                        let pa = self.expand(a)?;
+                        scaled(self.poly(pa), one / c, out);
+                    }
                     // Not a polynomial: a new variable, its operands collected themselves.
                     _ => {
-                        let (a, b) = (self.collected(a)?, self.rebuild(&pb)?);
+                        let (a, b) = (self.collected(a)?, self.rebuild(pb)?);
                         let v = self.g.div(a, b);
-                        self.variable(v)
+                        self.variable(v, out);
                     }
                 }
             }
@@ -344,55 +390,63 @@ impl Expander<'_, '_> {
                         let (sx, cx) = (self.g.sin(x), self.g.cos(x));
                         let (sc, cc) = (DoubleDouble::from(c).sin(), DoubleDouble::from(c).cos());
                         let (ps, pc) = (self.expand(sx)?, self.expand(cx)?);
+                        let (ps, pc) = (self.poly(ps), self.poly(pc));
                         // `first · a + second · b`
                         let monos = &*self.monos;
-                        let sum = |a: &[Term], first: DoubleDouble, b: &[Term], second| {
-                            add_scaled(monos, &scaled(a, first), b, second)
+                        let mut sum = |a: &[Term], first: DoubleDouble, b: &[Term], second| {
+                            let mut scaled_a = Vec::with_capacity(a.len());
+                            scaled(a, first, &mut scaled_a);
+                            add_scaled(monos, &scaled_a, b, second, out);
                         };
                         if matches!(self.g.node(a), Node::Sub(..))
                             && self.g.constant_value(u).is_some()
                         {
                             // sin(c − x) = sin c cos x − cos c sin x; cos(c − x) = cos c cos x + sin c sin x
                             if is_sin {
-                                sum(&pc, sc, &ps, -cc)
+                                sum(pc, sc, ps, -cc)
                             } else {
-                                sum(&pc, cc, &ps, sc)
+                                sum(pc, cc, ps, sc)
                             }
                         } else if is_sin {
-                            sum(&ps, cc, &pc, sc)
+                            sum(ps, cc, pc, sc)
                         } else {
-                            sum(&pc, cc, &ps, -sc)
+                            sum(pc, cc, ps, -sc)
                         }
                     }
-                    _ => self.variable(id),
+                    _ => self.variable(id, out),
                 }
             }
             Node::Sqrt(a) => {
                 let a = self.collected(a)?;
                 let v = self.g.sqrt(a);
-                self.variable(v)
+                self.variable(v, out);
             }
             Node::Max(a, b) => {
                 let (a, b) = (self.collected(a)?, self.collected(b)?);
                 let v = self.g.max(a, b);
-                self.variable(v)
+                self.variable(v, out);
             }
-        })
+        }
+        Some(())
     }
 
-    fn variable(&mut self, v: Id) -> Poly {
-        vec![(self.monos.intern(vec![(v, 1)]), DoubleDouble::from(1.0))]
+    fn variable(&mut self, v: Id, out: &mut Poly) {
+        out.push((self.monos.intern(vec![(v, 1)]), DoubleDouble::from(1.0)));
     }
 
     /// The closed form of `id` as a node, for the operand of a non-polynomial node.
     fn collected(&mut self, id: Id) -> Option<Id> {
         let p = self.expand(id)?;
-        self.rebuild(&p)
+        self.rebuild(p)
     }
 
-    fn rebuild(&mut self, p: &[Term]) -> Option<Id> {
-        let p = clean(reduce_pythagoras(self.g, self.monos, p))?;
-        Some(horner(self.g, self.rank, p))
+    fn rebuild(&mut self, p: Span) -> Option<Id> {
+        let mut p = clean(reduce_pythagoras(
+            self.g,
+            self.monos,
+            &self.terms[p.range()],
+        ))?;
+        Some(horner(self.g, self.rank, &mut p))
     }
 }
 
@@ -469,16 +523,17 @@ fn clean(p: Vec<(Monomial, DoubleDouble)>) -> Option<Vec<(Monomial, f64)>> {
 }
 
 /// Builds a polynomial (terms in any order, each monomial once) back into the graph by
-/// greedy multivariate Horner factoring.
-fn horner(g: &mut Graph, rank: &dyn Rank, p: Vec<(Monomial, f64)>) -> Id {
-    match p.as_slice() {
+/// greedy multivariate Horner factoring. The terms are reordered and their monomials
+/// divided in place.
+fn horner(g: &mut Graph, rank: &dyn Rank, p: &mut [(Monomial, f64)]) -> Id {
+    match p {
         [] => return g.constant(0.0),
         [(m, c)] if m.is_empty() => return g.constant(*c),
         _ => {}
     }
     // The variable to pull out: highest rank, then most terms, then lowest id.
     let mut counts: Vec<(Id, usize)> = Vec::new();
-    for (m, _) in &p {
+    for (m, _) in p.iter() {
         for &(v, _) in m {
             match counts.iter_mut().find(|(x, _)| *x == v) {
                 Some((_, n)) => *n += 1,
@@ -492,10 +547,16 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: Vec<(Monomial, f64)>) -> Id {
     else {
         unreachable!("a polynomial of several terms has a variable")
     };
-    let (mut with, without): (Vec<_>, Vec<_>) = p
-        .into_iter()
-        .partition(|(m, _)| m.iter().any(|&(x, _)| x == v));
-    for (m, _) in &mut with {
+    // The terms with `v` first, then divided by it.
+    let mut k = 0;
+    for i in 0..p.len() {
+        if p[i].0.iter().any(|&(x, _)| x == v) {
+            p.swap(i, k);
+            k += 1;
+        }
+    }
+    let (with, without) = p.split_at_mut(k);
+    for (m, _) in with.iter_mut() {
         let i = m.iter().position(|&(x, _)| x == v).expect("partitioned");
         if m[i].1 == 1 {
             m.remove(i);
@@ -516,7 +577,8 @@ fn horner(g: &mut Graph, rank: &dyn Rank, p: Vec<(Monomial, f64)>) -> Id {
 /// Collects the closed forms of several functions of one graph, sharing the expansions
 /// of the subexpressions they have in common (the outputs of inverse dynamics share most).
 pub struct Collector {
-    memo: NodeMap<Id, Shared>,
+    memo: NodeMap<Id, Option<Span>>,
+    terms: Vec<Term>,
     monos: Monomials,
     /// Largest intermediate polynomial any function may use.
     max_terms: usize,
@@ -527,6 +589,7 @@ impl Collector {
     pub fn new(max_terms: usize) -> Self {
         Collector {
             memo: NodeMap::default(),
+            terms: Vec::new(),
             monos: Monomials::new(),
             max_terms: max_terms.min(MAX_TERMS),
         }
@@ -546,17 +609,19 @@ impl Collector {
         let mut e = Expander {
             g,
             rank,
-            memo: std::mem::take(&mut self.memo),
+            memo: &mut self.memo,
+            terms: &mut self.terms,
             monos: &mut self.monos,
             slots: Vec::new(),
+            buffers: Vec::new(),
             max_terms: self.max_terms,
         };
         let mut total = 0;
         let mut polys = Some(Vec::with_capacity(roots.len()));
         for &r in roots {
             match e.expand(r) {
-                Some(p) if total + p.len() <= budget => {
-                    total += p.len();
+                Some(p) if total + p.len as usize <= budget => {
+                    total += p.len as usize;
                     if let Some(v) = polys.as_mut() {
                         v.push(p);
                     }
@@ -567,9 +632,7 @@ impl Collector {
                 }
             }
         }
-        let result = polys.and_then(|ps| ps.iter().map(|p| e.rebuild(p)).collect());
-        self.memo = e.memo;
-        result
+        polys.and_then(|ps| ps.into_iter().map(|p| e.rebuild(p)).collect())
     }
 }
 

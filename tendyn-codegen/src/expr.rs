@@ -110,6 +110,10 @@ impl Node {
 pub struct Graph {
     pub nodes: Vec<Node>,
     memo: NodeMap<Node, Id>,
+    /// The constants, by their bits: kept apart from `memo` because tracing makes most of
+    /// its nodes from numbers (the model's, and products of them folded as they are built),
+    /// and a bare number hashes and compares faster than a node.
+    constants: NodeMap<u64, Id>,
     /// Name of each input, by index (`q[0]`, `qd[1]`, ...).
     pub input_names: Vec<String>,
 }
@@ -154,7 +158,10 @@ impl Graph {
 
     /// The id of `n` if the graph holds it.
     pub fn lookup(&self, n: Node) -> Option<Id> {
-        self.memo.get(&n).copied()
+        match n {
+            Node::Const(bits) => self.constants.get(&bits).copied(),
+            _ => self.memo.get(&n).copied(),
+        }
     }
 
     fn intern(&mut self, n: Node) -> Id {
@@ -167,8 +174,13 @@ impl Graph {
     }
 
     pub fn constant(&mut self, x: f64) -> Id {
-        let x = if x == 0.0 { 0.0 } else { x };
-        self.intern(Node::Const(x.to_bits()))
+        let bits = if x == 0.0 { 0.0f64 } else { x }.to_bits();
+        let next = Id(self.nodes.len() as u32);
+        let nodes = &mut self.nodes;
+        *self.constants.entry(bits).or_insert_with(|| {
+            nodes.push(Node::Const(bits));
+            next
+        })
     }
 
     pub fn input(&mut self, name: impl Into<String>) -> Id {
