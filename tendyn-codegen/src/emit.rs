@@ -296,8 +296,13 @@ mod layout {
         }
 
         pub fn word(&mut self, word: &str) {
+            self.word_with(|text| text.push_str(word));
+        }
+
+        /// A word written by `write` (appending to the text).
+        pub fn word_with(&mut self, write: impl FnOnce(&mut String)) {
             let start = self.text.len();
-            self.text.push_str(word);
+            write(&mut self.text);
             match self.tokens.last_mut() {
                 Some(Token::Text(_, end)) => *end = self.text.len(),
                 _ => self.tokens.push(Token::Text(start, self.text.len())),
@@ -584,6 +589,36 @@ impl<'g> Atoms<'g> {
     }
 }
 
+/// The variable a node is bound to: `t`, `s` or `c` and the node's number.
+#[derive(Clone, Copy)]
+struct Name {
+    prefix: u8,
+    id: u32,
+}
+
+impl Name {
+    fn push_to(self, out: &mut String) {
+        out.push(char::from(self.prefix));
+        let mut digits = [0u8; 10];
+        let (mut i, mut n) = (digits.len(), self.id);
+        loop {
+            i -= 1;
+            digits[i] = b'0' + (n % 10) as u8;
+            n /= 10;
+            if n == 0 {
+                break;
+            }
+        }
+        out.push_str(std::str::from_utf8(&digits[i..]).expect("ASCII digits"));
+    }
+
+    fn ident(self) -> Ident {
+        let mut name = String::new();
+        self.push_to(&mut name);
+        ast::ident(&name)
+    }
+}
+
 /// Writes one function body: `let`s for shared nodes, then the result expression.
 ///
 /// The `let`s are most of the file. Building each as a syntax tree for prettyplease, and
@@ -598,8 +633,9 @@ impl<'g> Atoms<'g> {
 struct Body<'g> {
     g: &'g Graph,
     atoms: &'g Atoms<'g>,
-    /// The variable bound to each node, by node index.
-    names: Vec<Option<String>>,
+    /// The prefix of the variable bound to each node, by node index (0: none; see
+    /// [`Name`]).
+    names: Vec<u8>,
     style: Style,
     /// The statements for prettyplease: the long `let`s, and a marker for each run of text.
     stmts: Vec<Stmt>,
@@ -616,7 +652,7 @@ impl<'g> Body<'g> {
         Body {
             g: atoms.g,
             atoms,
-            names: vec![None; atoms.g.nodes.len()],
+            names: vec![0; atoms.g.nodes.len()],
             style,
             stmts: Vec::new(),
             runs: Vec::new(),
@@ -633,8 +669,11 @@ impl<'g> Body<'g> {
         }
     }
 
-    fn name(&self, id: Id) -> Option<&str> {
-        self.names[id.0 as usize].as_deref()
+    fn name(&self, id: Id) -> Option<Name> {
+        match self.names[id.0 as usize] {
+            0 => None,
+            prefix => Some(Name { prefix, id: id.0 }),
+        }
     }
 
     fn expr(&self, id: Id) -> Expr {
@@ -658,7 +697,7 @@ impl<'g> Body<'g> {
     /// Appends [`Body::expr_prec`]'s expression as prettyplease prints it on one line.
     fn write(&self, id: Id, out: &mut String) {
         if let Some(name) = self.name(id) {
-            out.push_str(name);
+            name.push_to(out);
             return;
         }
         let binary = |a: Id, op: &str, b: Id, p: u8, out: &mut String| {
@@ -704,11 +743,17 @@ impl<'g> Body<'g> {
 
     /// Appends `let <pattern> = <value of id><call>;`: written directly if it fits on one
     /// line, else printed by prettyplease from `stmt`.
-    fn push_let(&mut self, pattern: &str, id: Id, call: &str, stmt: impl FnOnce(&Self) -> Stmt) {
+    fn push_let(
+        &mut self,
+        pattern: impl Fn(&mut String),
+        id: Id,
+        call: &str,
+        stmt: impl FnOnce(&Self) -> Stmt,
+    ) {
         let start = self.run.len();
         let mut line = std::mem::take(&mut self.run);
         line.push_str("    let ");
-        line.push_str(pattern);
+        pattern(&mut line);
         line.push_str(" = ");
         if call.is_empty() {
             self.write(id, &mut line);
@@ -727,7 +772,7 @@ impl<'g> Body<'g> {
             t.clear();
             t.ibox(0);
             t.word("let ");
-            t.word(pattern);
+            t.word_with(&pattern);
             t.word(" = ");
             t.neverbreak();
             self.lay_out(id, &mut t);
@@ -754,7 +799,7 @@ impl<'g> Body<'g> {
     /// the boxes and breaks that decide where long lines break.
     fn lay_out(&self, id: Id, t: &mut layout::Tokens) {
         if let Some(name) = self.name(id) {
-            t.word(name);
+            t.word_with(|text| name.push_to(text));
             return;
         }
         let binary = |a: Id, op: &str, b: Id, p: u8, t: &mut layout::Tokens| {
@@ -898,7 +943,7 @@ impl<'g> Body<'g> {
     /// multiplication are not associative, so the emitted grouping must be the graph's.
     fn expr_prec(&self, id: Id) -> (Expr, u8) {
         if let Some(name) = self.name(id) {
-            return (ast::var(ast::ident(name)), 4);
+            return (ast::var(name.ident()), 4);
         }
         let operand = |x: Id, min: u8| {
             let (e, p) = self.expr_prec(x);
@@ -964,16 +1009,29 @@ impl<'g> Body<'g> {
                     let (sin, cos) = (g.lookup(Node::Sin(a)), g.lookup(Node::Cos(a)));
                     if let (Some(s), Some(c)) = (sin, cos) {
                         if is_live[s.0 as usize] && is_live[c.0 as usize] {
-                            let (sn, cn) = (format!("s{}", s.0), format!("c{}", c.0));
-                            let pattern = format!("({sn}, {cn})");
-                            self.push_let(&pattern, a, ".sin_cos()", |body| {
+                            let sn = Name {
+                                prefix: b's',
+                                id: s.0,
+                            };
+                            let cn = Name {
+                                prefix: b'c',
+                                id: c.0,
+                            };
+                            let pattern = |out: &mut String| {
+                                out.push('(');
+                                sn.push_to(out);
+                                out.push_str(", ");
+                                cn.push_to(out);
+                                out.push(')');
+                            };
+                            self.push_let(pattern, a, ".sin_cos()", |body| {
                                 let (arg, p) = body.expr_prec(a);
                                 let arg = if p < 4 { ast::paren(arg) } else { arg };
                                 let value = ast::method(arg, "sin_cos", None);
-                                ast::let_pair(ast::ident(&sn), ast::ident(&cn), value)
+                                ast::let_pair(sn.ident(), cn.ident(), value)
                             });
-                            self.names[s.0 as usize] = Some(sn);
-                            self.names[c.0 as usize] = Some(cn);
+                            self.names[s.0 as usize] = b's';
+                            self.names[c.0 as usize] = b'c';
                             continue;
                         }
                     }
@@ -989,11 +1047,17 @@ impl<'g> Body<'g> {
                 .sum::<usize>();
             sizes[id.0 as usize] = size;
             if uses[id.0 as usize] > 1 || size > 12 {
-                let name = format!("t{}", id.0);
-                self.push_let(&name, id, "", |body| {
-                    ast::let_one(ast::ident(&name), body.expr(id))
-                });
-                self.names[id.0 as usize] = Some(name);
+                let name = Name {
+                    prefix: b't',
+                    id: id.0,
+                };
+                self.push_let(
+                    |out| name.push_to(out),
+                    id,
+                    "",
+                    |body| ast::let_one(name.ident(), body.expr(id)),
+                );
+                self.names[id.0 as usize] = b't';
             }
         }
     }
@@ -1048,27 +1112,67 @@ fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream, core: &syn::Path) ->
     }
 }
 
-fn return_type(f: &Function, t: &TokenStream) -> TokenStream {
+/// `[elem; len]`
+fn array_type(elem: syn::Type, len: usize) -> syn::Type {
+    syn::Type::Array(syn::TypeArray {
+        attrs: Vec::new(),
+        bracket_token: Default::default(),
+        elem: Box::new(elem),
+        semi_token: Default::default(),
+        len: ast::lit(Literal::usize_unsuffixed(len)),
+    })
+}
+
+/// The type a function of `f`'s shape returns, over the scalar type `t`.
+fn return_type(f: &Function, t: &syn::Type) -> syn::Type {
     match &f.shape {
-        Shape::Vector(n) => {
-            let n = Literal::usize_unsuffixed(*n);
-            quote!([#t; #n])
-        }
-        Shape::Matrix(n) => {
-            let n = Literal::usize_unsuffixed(*n);
-            quote!([[#t; #n]; #n])
-        }
-        Shape::Actuation { motors, tendons } => {
-            let (m, k) = (
-                Literal::usize_unsuffixed(*motors),
-                Literal::usize_unsuffixed(*tendons),
-            );
-            quote!(([#t; #m], [#t; #k]))
-        }
-        Shape::Wrenches(n) => {
-            let n = Literal::usize_unsuffixed(*n);
-            quote!([[[#t; 3]; 2]; #n])
-        }
+        Shape::Vector(n) => array_type(t.clone(), *n),
+        Shape::Matrix(n) => array_type(array_type(t.clone(), *n), *n),
+        Shape::Actuation { motors, tendons } => syn::Type::Tuple(syn::TypeTuple {
+            attrs: Vec::new(),
+            paren_token: Default::default(),
+            elems: Punctuated::from_iter([
+                array_type(t.clone(), *motors),
+                array_type(t.clone(), *tendons),
+            ]),
+        }),
+        Shape::Wrenches(n) => array_type(array_type(array_type(t.clone(), 3), 2), *n),
+    }
+}
+
+/// The argument `name: &[t; len]`.
+fn array_argument(name: &str, t: &syn::Type, len: usize) -> syn::FnArg {
+    syn::FnArg::Typed(syn::PatType {
+        attrs: Vec::new(),
+        pat: Box::new(syn::Pat::Ident(syn::PatIdent {
+            attrs: Vec::new(),
+            by_ref: None,
+            mutability: None,
+            ident: ast::ident(name),
+            subpat: None,
+        })),
+        colon_token: Default::default(),
+        ty: Box::new(syn::Type::Reference(syn::TypeReference {
+            attrs: Vec::new(),
+            and_token: Default::default(),
+            lifetime: None,
+            mutability: None,
+            elem: Box::new(array_type(t.clone(), len)),
+        })),
+    })
+}
+
+/// `#[doc = text]`, which prettyplease prints as `///text`.
+fn doc_attribute(text: &str) -> syn::Attribute {
+    syn::Attribute {
+        pound_token: Default::default(),
+        style: syn::AttrStyle::Outer,
+        bracket_token: Default::default(),
+        meta: syn::Meta::NameValue(syn::MetaNameValue {
+            path: ast::ident("doc").into(),
+            eq_token: Default::default(),
+            value: ast::lit(Literal::string(text)),
+        }),
     }
 }
 
@@ -1190,15 +1294,37 @@ fn emit_with(
         #[allow(dead_code)]
         pub const TENDONS: usize = #nt;
     };
-    let params = |params: &[Param]| -> Vec<TokenStream> {
+    // The functions' signatures are built as trees, from a parsed template (parsing each
+    // function's signature and attributes was a sixth of emission).
+    let scalar_type: syn::Type = syn::parse2(t.clone()).expect("a type");
+    let params = |params: &[Param]| -> Punctuated<syn::FnArg, syn::Token![,]> {
         params
             .iter()
-            .map(|&p| {
-                let pn = format_ident!("{}", p.name());
-                let len = Literal::usize_unsuffixed(param_len(model, p));
-                quote!(#pn: &[#t; #len])
-            })
+            .map(|&p| array_argument(p.name(), &scalar_type, param_len(model, p)))
             .collect()
+    };
+    let template: syn::ItemFn = parse_quote! {
+        #[inline]
+        #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
+        pub fn f() {}
+    };
+    let generics = |compares: bool| -> syn::Generics {
+        let g = bound(scalar, compares);
+        parse_quote!(#g)
+    };
+    let (plain, comparing) = (generics(false), generics(true));
+    let function = |docs: Vec<syn::Attribute>,
+                    name: &str,
+                    compares: bool,
+                    inputs: Punctuated<syn::FnArg, syn::Token![,]>,
+                    ret: syn::Type| {
+        let mut item = template.clone();
+        item.attrs = docs.into_iter().chain(template.attrs.clone()).collect();
+        item.sig.ident = ast::ident(name);
+        item.sig.generics = if compares { &comparing } else { &plain }.clone();
+        item.sig.inputs = inputs;
+        item.sig.output = syn::ReturnType::Type(Default::default(), Box::new(ret));
+        item
     };
     let atoms = Atoms::new(&traced.graph, scalar);
     // The text of every marker, in file order.
@@ -1207,9 +1333,6 @@ fn emit_with(
         let mut body = Body::new(&atoms, style);
         body.bind(&f.results);
         let values = f.results.iter().map(|&r| body.expr(r)).collect();
-        let ret = return_type(f, &t);
-        let name = format_ident!("{}", f.output.name());
-        let params = params(&traced.params(f.output));
         let closed = f
             .closed_ops
             .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
@@ -1222,14 +1345,13 @@ fn emit_with(
                 "traced recursion"
             },
         );
-        let d = d.lines().map(|l| quote!(#[doc = #l]));
-        let generics = bound(scalar, f.distribution.is_some());
-        let mut item: syn::ItemFn = parse_quote! {
-            #(#d)*
-            #[inline]
-            #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
-            pub fn #name #generics (#(#params),*) -> #ret {}
-        };
+        let mut item = function(
+            d.lines().map(doc_attribute).collect(),
+            f.output.name(),
+            f.distribution.is_some(),
+            params(&traced.params(f.output)),
+            return_type(f, &scalar_type),
+        );
         body.end_run();
         runs.append(&mut body.runs);
         item.block.stmts = body.stmts;
@@ -1254,7 +1376,7 @@ fn emit_with(
     body.bind(roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
-        let ty = return_type(f, &t);
+        let ty = return_type(f, &scalar_type);
         let d = format!(" See [`{}`].", f.output.name());
         quote!(#[doc = #d] pub #name: #ty)
     });
@@ -1271,7 +1393,6 @@ fn emit_with(
             (ast::ident(f.output.name()), shaped(f, values, &t, core))
         })
         .collect();
-    let param_tokens = params(&all_params);
     let count = traced.all_ops;
     let all_doc =
         format!(" Every generated output at once, sharing their common work. Operations: {count}.");
@@ -1286,16 +1407,13 @@ fn emit_with(
             #(#fields),*
         }
     };
-    let generics = bound(
-        scalar,
+    let mut all = function(
+        vec![doc_attribute(&all_doc)],
+        "all",
         traced.functions.iter().any(|f| f.distribution.is_some()),
+        params(&all_params),
+        parse_quote!(Outputs #struct_generics),
     );
-    let mut all: syn::ItemFn = parse_quote! {
-        #[doc = #all_doc]
-        #[inline]
-        #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
-        pub fn all #generics (#(#param_tokens),*) -> Outputs #struct_generics {}
-    };
     body.end_run();
     runs.append(&mut body.runs);
     all.block.stmts = body.stmts;
