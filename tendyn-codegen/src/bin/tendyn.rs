@@ -1,4 +1,5 @@
-//! The `tendyn` command line: check a mechanism, evaluate its dynamics, run the demo.
+//! The `tendyn` command line: check a mechanism, evaluate its dynamics, run the demo,
+//! generate code, and measure error against run time (`report`, through cargo).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -79,6 +80,43 @@ enum Command {
     },
     /// Check and evaluate the paper's three built-in examples.
     Demo,
+    /// Error against run time: generated code and the runtime solver, f64 and f32.
+    ///
+    /// For each mechanism and each output its generated code provides, times four
+    /// evaluators (generated f64, generated f32, runtime solver f64, runtime solver f32) over
+    /// 1,024 seeded random states (ns per call: median and interquartile range of 31
+    /// samples, after a warm-up) and measures their error against the runtime solver in
+    /// double-double: per state ‖x − ref‖∞ / ‖ref‖∞ of the output (forward dynamics:
+    /// relative to the size of the terms it sums), max and median over the states.
+    /// Prints a table (or JSON) and writes an SVG chart of error against time.
+    ///
+    /// The generated code must be compiled to be timed: this runs
+    /// `cargo run --release -p tendyn-report` in the tendyn source tree this binary was
+    /// built from, so it needs cargo and that tree. The first run compiles for a minute or
+    /// two; the measurement takes about a minute for the paper's examples (progress on
+    /// stderr). Pin it to one core for steadier figures: `taskset -c 0 tendyn report`.
+    Report {
+        /// Mechanism files (default: the paper's three examples).
+        files: Vec<String>,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Print the table as Markdown.
+        #[arg(long, conflicts_with = "json")]
+        markdown: bool,
+        /// Where to write the SVG chart [default: target/tendyn-report.svg in the source tree].
+        #[arg(long)]
+        svg: Option<String>,
+        /// Random states per mechanism [default: 1024].
+        #[arg(long)]
+        states: Option<usize>,
+        /// Timing samples per evaluator [default: 31].
+        #[arg(long)]
+        samples: Option<usize>,
+        /// Minimum warm-up per evaluator, in ms [default: 300].
+        #[arg(long)]
+        warmup_ms: Option<u64>,
+    },
 }
 
 /// Writes to stdout; a reader that went away (`tendyn demo | head`) ends the program quietly.
@@ -265,6 +303,43 @@ fn run(cli: Cli) -> Result<(), String> {
             );
             Ok(())
         }
+        Command::Report {
+            files,
+            json,
+            markdown,
+            svg,
+            states,
+            samples,
+            warmup_ms,
+        } => {
+            let mut args: Vec<std::ffi::OsString> = Vec::new();
+            if json {
+                args.push("--json".into());
+            }
+            if markdown {
+                args.push("--markdown".into());
+            }
+            if let Some(svg) = svg {
+                // The report runs in the source tree: a relative path is made absolute here.
+                let path = std::path::absolute(&svg).map_err(|e| format!("{svg}: {e}"))?;
+                args.extend(["--svg".into(), path.into_os_string()]);
+            }
+            for (flag, value) in [
+                ("--states", states.map(|v| v as u64)),
+                ("--samples", samples.map(|v| v as u64)),
+                ("--warmup-ms", warmup_ms),
+            ] {
+                if let Some(v) = value {
+                    args.extend([flag.into(), v.to_string().into()]);
+                }
+            }
+            let code = report_command(&files, &args)?;
+            if code != 0 {
+                // tendyn-report (or cargo) has said why.
+                std::process::exit(code);
+            }
+            Ok(())
+        }
         Command::Forward {
             file,
             state: State { q, qd },
@@ -285,6 +360,59 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
     }
+}
+
+/// `tendyn report`: validates every file (so bad input fails here, located, before any
+/// build), then runs `cargo run --release -p tendyn-report -- ARGS` in the source tree this
+/// binary was built from, with the files' absolute paths in `TENDYN_REPORT_FILES`.
+/// Returns the exit status of cargo (and so of the report).
+fn report_command(files: &[String], args: &[std::ffi::OsString]) -> Result<i32, String> {
+    let mut paths = Vec::new();
+    for file in files {
+        tendyn_core::load(file).map_err(|e| format!("{file}: {e}"))?;
+        paths.push(std::fs::canonicalize(file).map_err(|e| format!("{file}: {e}"))?);
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(std::path::Path::to_path_buf)
+        .unwrap_or_default();
+    if !root.join("tendyn-report").join("Cargo.toml").is_file() {
+        return Err(format!(
+            "tendyn report compiles the generated code with cargo in the tendyn source tree, \
+             and that tree is not at {} (where this binary was built); run it from a checkout: \
+             cargo run --release --bin tendyn -- report",
+            root.display()
+        ));
+    }
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let mut command = std::process::Command::new(&cargo);
+    command
+        .args(["run", "--release", "-p", "tendyn-report", "--"])
+        .args(args)
+        .current_dir(&root);
+    if paths.is_empty() {
+        command.env_remove("TENDYN_REPORT_FILES");
+    } else {
+        let joined = std::env::join_paths(&paths).map_err(|e| {
+            format!("cannot pass the files to the report (a path contains the separator): {e}")
+        })?;
+        command.env("TENDYN_REPORT_FILES", joined);
+    }
+    let status = command.status().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            format!(
+                "cargo was not found (`{}`): tendyn report compiles the generated code with \
+                 cargo; install Rust or put cargo on PATH",
+                std::path::Path::new(&cargo).display()
+            )
+        } else {
+            format!(
+                "cannot run `{}`: {e}",
+                std::path::Path::new(&cargo).display()
+            )
+        }
+    })?;
+    Ok(status.code().unwrap_or(1))
 }
 
 /// Inverse dynamics and the joint-space terms at one state.
