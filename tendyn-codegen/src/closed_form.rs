@@ -39,9 +39,7 @@ const ONE: Mono = Mono(0);
 /// (a monomial of its own per term cost an allocation per term).
 struct Monomials {
     list: Vec<Monomial>,
-    /// The first four pairs of each monomial packed into a number that sorts as they do
-    /// (see [`Monomials::cmp`]), so that most comparisons need not read the monomials;
-    /// `None` if a variable or power is too large to pack.
+    /// The [`sort_key`] of each monomial: most comparisons need not read the monomials.
     keys: Vec<Option<u128>>,
     numbers: NodeMap<Monomial, Mono>,
     /// The product of two monomials, by their numbers (the smaller in the high half).
@@ -65,19 +63,7 @@ impl Monomials {
             Entry::Occupied(e) => *e.get(),
             Entry::Vacant(e) => {
                 let n = Mono(self.list.len() as u32);
-                // A pair packs into 32 bits as `id · 2⁸ + power`, the first pair highest (a
-                // power is at least 1, so a missing pair, 0, sorts first, as a shorter
-                // monomial does).
-                let key =
-                    e.key()
-                        .iter()
-                        .take(4)
-                        .enumerate()
-                        .try_fold(0u128, |key, (k, &(v, p))| {
-                            let packable = v.0 < 1 << 24 && (1..1 << 8).contains(&p);
-                            packable.then(|| key | u128::from(v.0 << 8 | p) << (96 - 32 * k))
-                        });
-                self.keys.push(key);
+                self.keys.push(sort_key(e.key()));
                 self.list.push(e.key().clone());
                 e.insert(n);
                 n
@@ -115,6 +101,21 @@ impl Monomials {
         self.products.insert(key, p);
         p
     }
+}
+
+/// The first four pairs of `m` packed into a number that sorts as the pairs do: each pair
+/// in 32 bits as `id · 2⁸ + power`, the first pair highest. A power is at least 1, so a
+/// missing pair, 0, sorts first, as a shorter monomial does. `None` if an id or a power is
+/// too large to pack.
+fn sort_key(m: &Monomial) -> Option<u128> {
+    let mut key = 0u128;
+    for (k, &(v, p)) in m.iter().take(4).enumerate() {
+        if v.0 >= 1 << 24 || !(1..1 << 8).contains(&p) {
+            return None;
+        }
+        key |= u128::from(v.0 << 8 | p) << (96 - 32 * k);
+    }
+    Some(key)
 }
 
 /// A polynomial: its terms sorted by monomial (see [`Monomials::cmp`]), each monomial
