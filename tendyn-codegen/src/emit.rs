@@ -597,6 +597,7 @@ struct Name {
 }
 
 impl Name {
+    /// Appends the name, digit by digit (`format!` per variable showed in profiles).
     fn push_to(self, out: &mut String) {
         out.push(char::from(self.prefix));
         let mut digits = [0u8; 10];
