@@ -200,8 +200,9 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
-            Output::SegmentTensions | Output::Bearings | Output::BaseReaction
-                if model.system.null_space.len() > 1 =>
+            // Segment tensions and bearings need the distributed tensions; the base
+            // reaction does not (it comes from the tension-free pass), so it stays available.
+            Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 =>
             {
                 Some(format!(
                     "the tension system has a {}-dimensional null space: generated code \
