@@ -82,10 +82,7 @@ fn run() -> Result<(), String> {
         write_if_changed(&dir.join("mechanism.ron"), &text)?;
         let outputs = tendyn_codegen::available_outputs(&model);
         glue.push_str(&module(k, &generated, &model, &outputs));
-        let variants: Vec<String> = outputs
-            .iter()
-            .map(|o| format!("Output::{}", variant(*o)))
-            .collect();
+        let variants: Vec<String> = outputs.iter().map(|o| format!("Output::{o:?}")).collect();
         writeln!(
             registry,
             "    Mechanism {{ name: {name:?}, file: {shown:?}, ron: m{k}::RON, outputs: &[{outs}], \
@@ -98,21 +95,6 @@ fn run() -> Result<(), String> {
     }
     registry.push_str("];\n");
     write_if_changed(&out.join("glue.rs"), &format!("{glue}\n{registry}"))
-}
-
-/// The name of the report library's `Output` variant (the same names as codegen's).
-fn variant(o: Output) -> &'static str {
-    match o {
-        Output::GeneralizedForces => "GeneralizedForces",
-        Output::Actuation => "Actuation",
-        Output::MassMatrix => "MassMatrix",
-        Output::Bias => "Bias",
-        Output::Gravity => "Gravity",
-        Output::ForwardDynamics => "ForwardDynamics",
-        Output::SegmentTensions => "SegmentTensions",
-        Output::Bearings => "Bearings",
-        Output::BaseReaction => "BaseReaction",
-    }
 }
 
 /// The call of output `o` on state `s` (fields `q`, `qd`, `qdd`, `mt`, `tt`, `p`), with
@@ -184,16 +166,14 @@ fn module(
         .unwrap();
         writeln!(
             passes,
-            "            Output::{v} => {{ pass_{name}(&self.{field}); true }}",
-            v = variant(o),
+            "            Output::{o:?} => {{ pass_{name}(&self.{field}); true }}",
             name = o.name()
         )
         .unwrap();
         let (plain, flatten) = call(o, params, "");
         writeln!(
             evals,
-            "        Output::{v} => {{ let r = {plain}; {flatten} }}",
-            v = variant(o)
+            "        Output::{o:?} => {{ let r = {plain}; {flatten} }}",
         )
         .unwrap();
     }

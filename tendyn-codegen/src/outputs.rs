@@ -202,8 +202,7 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
         let reason = match o {
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
-            Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 =>
-            {
+            Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 => {
                 Some(format!(
                     "the tension system has a {}-dimensional null space: generated code \
                      distributes the ground-level tensions (actuation) through a numeric routine, \

@@ -436,6 +436,42 @@ impl<'m, T: Numeric> Solver<'m, T> {
         Ok(g)
     }
 
+    /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext|)‖∞`: the size of the terms forward
+    /// dynamics sums (`A`, `B` the tendons' and motors' columns). Tensions that balance each
+    /// other make `q̈` a small difference of large numbers, so the error of a forward
+    /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
+    pub fn forward_dynamics_scale(
+        &mut self,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<T> {
+        let zero = T::from_f64(0.0);
+        let c = self.generalized_forces(q, qd, &self.ws.zeros.clone())?;
+        let model = self.model;
+        let rhs: Vec<T> = (0..model.dof)
+            .map(|j| {
+                let motors = model
+                    .motors
+                    .iter()
+                    .zip(motor_torques)
+                    .fold(zero, |s, (m, &t)| s + (T::from_f64(m.column[j]) * t).abs());
+                let tendons = model
+                    .tendons
+                    .iter()
+                    .zip(tendon_tensions)
+                    .fold(zero, |s, (k, &t)| {
+                        s + (T::from_f64(k.structure[j]) * t).abs()
+                    });
+                motors + tendons + c[j].abs()
+            })
+            .collect();
+        let m = self.mass_matrix(q)?;
+        let y = ldlt_solve(&m, &rhs);
+        Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
+    }
+
     /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
     /// tensions of the open-ended tendons (file order).
     pub fn forward_dynamics(

@@ -38,47 +38,18 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
 
-/// The outputs of generated code (the names are those of `tendyn generate --outputs`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Output {
-    GeneralizedForces,
-    Actuation,
-    MassMatrix,
-    Bias,
-    Gravity,
-    ForwardDynamics,
-    SegmentTensions,
-    Bearings,
-    BaseReaction,
-}
+pub use tendyn_codegen::Output;
 
-impl Output {
-    pub fn name(self) -> &'static str {
-        match self {
-            Output::GeneralizedForces => "generalized_forces",
-            Output::Actuation => "actuation",
-            Output::MassMatrix => "mass_matrix",
-            Output::Bias => "bias",
-            Output::Gravity => "gravity",
-            Output::ForwardDynamics => "forward_dynamics",
-            Output::SegmentTensions => "segment_tensions",
-            Output::Bearings => "bearings",
-            Output::BaseReaction => "base_reaction",
-        }
-    }
-
-    /// The [`Solver`] method the runtime evaluators time for this output.
-    pub fn runtime_call(self) -> &'static str {
-        match self {
-            Output::GeneralizedForces => "generalized_forces",
-            Output::MassMatrix => "mass_matrix",
-            Output::Bias => "bias",
-            Output::Gravity => "gravity",
-            Output::ForwardDynamics => "forward_dynamics",
-            Output::Actuation
-            | Output::SegmentTensions
-            | Output::Bearings
-            | Output::BaseReaction => "inverse_dynamics",
+/// The [`Solver`] method the runtime evaluators time for `output`.
+pub fn runtime_call(output: Output) -> &'static str {
+    match output {
+        Output::GeneralizedForces => "generalized_forces",
+        Output::MassMatrix => "mass_matrix",
+        Output::Bias => "bias",
+        Output::Gravity => "gravity",
+        Output::ForwardDynamics => "forward_dynamics",
+        Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
+            "inverse_dynamics"
         }
     }
 }
@@ -397,35 +368,13 @@ pub fn time(config: &Config, states: usize, pass: &mut dyn FnMut()) -> Spread {
     Spread::of(&mut ns)
 }
 
-/// `‖M⁻¹ (|A| |T| + |motor columns| |τ| + |h + g|)‖∞`: the size of the terms forward
-/// dynamics sums (in f64; it only scales the error). Balancing tensions make `q̈` a small
-/// difference of large numbers, so its error is measured against this.
+/// The size of the terms forward dynamics sums (`Solver::forward_dynamics_scale`, in
+/// f64; it only scales the error). Balancing tensions make `q̈` a small difference of large
+/// numbers, so its error is measured against this.
 pub fn forward_dynamics_term_scale(model: &Model<f64>, s: &Inputs) -> Result<f64, String> {
-    let mut solver = Solver::new(model);
-    let e = |e: tendyn_core::Error| e.to_string();
-    let c = solver
-        .generalized_forces(&s.q, &s.qd, &vec![0.0; model.dof])
-        .map_err(e)?;
-    let rhs: Vec<f64> = (0..model.dof)
-        .map(|j| {
-            let motors: f64 = model
-                .motors
-                .iter()
-                .zip(&s.motor_torques)
-                .map(|(m, t)| (m.column[j] * t).abs())
-                .sum();
-            let tendons: f64 = model
-                .tendons
-                .iter()
-                .zip(&s.tendon_tensions)
-                .map(|(k, t)| (k.structure[j] * t).abs())
-                .sum();
-            motors + tendons + c[j].abs()
-        })
-        .collect();
-    let m = solver.mass_matrix(&s.q).map_err(e)?;
-    let y = tendyn_core::dynamics::ldlt_solve(&m, &rhs);
-    Ok(y.iter().fold(0.0f64, |a, x| a.max(x.abs())))
+    Solver::new(model)
+        .forward_dynamics_scale(&s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
+        .map_err(|e| e.to_string())
 }
 
 /// Progress, for long runs: mechanism `mechanism` of `of` (from 1), and what is being
@@ -544,7 +493,7 @@ fn reference_at(
         .zip(ids)
         .enumerate()
         .map(|(i, (s, id))| {
-            match output.runtime_call() {
+            match runtime_call(output) {
                 "inverse_dynamics" => from_inverse(output, id),
                 _ => runtime(reference, output, &RuntimeState::of(s)),
             }
@@ -917,7 +866,7 @@ impl Report {
                 "output": r.output.name(),
                 "evaluator": r.evaluator.name(),
                 "runtime_call": match r.evaluator {
-                    Evaluator::RuntimeF64 | Evaluator::RuntimeF32 => Some(r.output.runtime_call()),
+                    Evaluator::RuntimeF64 | Evaluator::RuntimeF32 => Some(runtime_call(r.output)),
                     _ => None,
                 },
                 "ns_per_call": {

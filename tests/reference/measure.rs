@@ -39,9 +39,8 @@ pub fn routed_random_mechanisms(count: u64) -> Vec<Model<f64>> {
         .collect()
 }
 
-/// `‖M⁻¹ (|A| |T| + |motor columns| |τ| + |h + g|)‖∞`: the size of the terms forward
-/// dynamics sums. Tensions that balance each other make `q̈` a small difference of large
-/// numbers, so forward dynamics is measured relative to this.
+/// The size of the terms forward dynamics sums, from the solver
+/// (`Solver::forward_dynamics_scale`): forward dynamics is measured relative to this.
 pub fn forward_dynamics_term_scale(
     model: &Model<f64>,
     q: &[f64],
@@ -49,28 +48,7 @@ pub fn forward_dynamics_term_scale(
     motor_torques: &[f64],
     tendon_tensions: &[f64],
 ) -> f64 {
-    let mut s = tendyn_core::Solver::new(model);
-    let c = s
-        .generalized_forces(q, qd, &vec![0.0; model.dof])
-        .expect("a valid state");
-    let rhs: Vec<f64> = (0..model.dof)
-        .map(|j| {
-            let motors: f64 = model
-                .motors
-                .iter()
-                .zip(motor_torques)
-                .map(|(mo, t)| (mo.column[j] * t).abs())
-                .sum();
-            let tendons: f64 = model
-                .tendons
-                .iter()
-                .zip(tendon_tensions)
-                .map(|(k, t)| (k.structure[j] * t).abs())
-                .sum();
-            motors + tendons + c[j].abs()
-        })
-        .collect();
-    let m = s.mass_matrix(q).expect("a valid state");
-    let y = tendyn_core::dynamics::ldlt_solve(&m, &rhs);
-    y.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+    tendyn_core::Solver::new(model)
+        .forward_dynamics_scale(q, qd, motor_torques, tendon_tensions)
+        .expect("a valid state")
 }

@@ -899,36 +899,6 @@ fn run<T: Numeric>(s: &mut Solver<T>, state: &State, mt: &[f64], tt: &[f64]) -> 
     }
 }
 
-/// `‖M⁻¹(|A||T| + |motor columns||τ| + |h + g − Q_ext|)‖∞`.
-fn term_scale(m: &Model<f64>, s: &mut Solver<f64>, state: &State, mt: &[f64], tt: &[f64]) -> f64 {
-    let [q, qd, _] = state;
-    let Ok(c) = s.generalized_forces(q, qd, &vec![0.0; m.dof]) else {
-        return 0.0;
-    };
-    let rhs: Vec<f64> = (0..m.dof)
-        .map(|j| {
-            let motors: f64 = m
-                .motors
-                .iter()
-                .zip(mt)
-                .map(|(mo, t)| (mo.column[j] * t).abs())
-                .sum();
-            let tendons: f64 = m
-                .tendons
-                .iter()
-                .zip(tt)
-                .map(|(k, t)| (k.structure[j] * t).abs())
-                .sum();
-            motors + tendons + c[j].abs()
-        })
-        .collect();
-    let Ok(mm) = s.mass_matrix(q) else {
-        return 0.0;
-    };
-    let y = tendyn_core::dynamics::ldlt_solve(&mm, &rhs);
-    y.iter().fold(0.0f64, |a, x| a.max(x.abs()))
-}
-
 fn rel_floored(a: &[f64], b: &[f64], floor: f64) -> f64 {
     if a.len() != b.len() {
         return f64::INFINITY;
@@ -1099,7 +1069,9 @@ pub fn measure_case(
         if let Some((_, m)) = reference.outputs.iter().find(|(n, _)| *n == "mass_matrix") {
             conds.push(conditions(m, model.dof));
         }
-        let fd_floor = term_scale(&model, &mut s64, state, &mt, &tt);
+        let fd_floor = s64
+            .forward_dynamics_scale(&state[0], &state[1], &mt, &tt)
+            .unwrap_or(0.0);
         runs.push((reference, r64, r32, gen, fd_floor));
     }
     // Each output's scale: the median of its reference's max norm over the states.

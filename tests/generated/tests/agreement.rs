@@ -3,7 +3,7 @@
 //! spatial mechanisms, at 1,000 random states each, every generated output
 //! matches the runtime solver's to 1e-12 relative in f64. The norm is the max norm of each
 //! output vector, relative: `‖generated − runtime‖∞ / ‖runtime‖∞` — for forward dynamics,
-//! relative to the size of the terms it sums (see `term_scale`), since balancing tensions
+//! relative to the size of the terms it sums (`Solver::forward_dynamics_scale`), since balancing tensions
 //! make `q̈` a small difference of large numbers.
 
 use rand::{Rng, SeedableRng};
@@ -52,38 +52,6 @@ fn runtime(
     }
 }
 
-/// `‖M⁻¹ (|A| |T| + |motor columns| |τ| + |h + g|)‖∞`: the size of the terms forward
-/// dynamics sums.
-fn term_scale(
-    m: &tendyn_core::Model<f64>,
-    s: &mut Solver<f64>,
-    q: &[f64],
-    qd: &[f64],
-    mt: &[f64],
-    tt: &[f64],
-) -> f64 {
-    let c = s.generalized_forces(q, qd, &vec![0.0; m.dof]).unwrap();
-    let rhs: Vec<f64> = (0..m.dof)
-        .map(|j| {
-            let motors: f64 = m
-                .motors
-                .iter()
-                .zip(mt)
-                .map(|(mo, t)| (mo.column[j] * t).abs())
-                .sum();
-            let tendons: f64 = m
-                .tendons
-                .iter()
-                .zip(tt)
-                .map(|(k, t)| (k.structure[j] * t).abs())
-                .sum();
-            motors + tendons + c[j].abs()
-        })
-        .collect();
-    let y = tendyn_core::dynamics::ldlt_solve(&s.mass_matrix(q).unwrap(), &rhs);
-    y.iter().fold(0.0f64, |a, x| a.max(x.abs()))
-}
-
 #[test]
 fn generated_code_matches_the_runtime_solver_on_every_output() {
     let mut summary = Vec::new();
@@ -118,7 +86,7 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
                 if output == "forward_dynamics" {
                     // Tensions that balance each other make q̈ a small difference of large
                     // terms; measure against the size of those terms.
-                    scale = scale.max(term_scale(&model, &mut solver, &q, &qd, &mt, &tt));
+                    scale = scale.max(solver.forward_dynamics_scale(&q, &qd, &mt, &tt).unwrap());
                 }
                 let err = got
                     .iter()
