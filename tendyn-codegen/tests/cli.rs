@@ -2,17 +2,26 @@
 
 use std::process::Command;
 
-fn tendyn(args: &[&str]) -> (bool, String, String) {
+/// Runs `tendyn` from the workspace root: exit code, stdout, stderr. `CARGO` points
+/// nowhere: only `tendyn report` would start cargo, and it must say so rather than run.
+fn run(args: &[&str]) -> (Option<i32>, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_tendyn"))
         .args(args)
         .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .env("CARGO", "/nonexistent/cargo-must-not-run")
         .output()
         .expect("runs");
     (
-        out.status.success(),
+        out.status.code(),
         String::from_utf8_lossy(&out.stdout).into(),
         String::from_utf8_lossy(&out.stderr).into(),
     )
+}
+
+/// [`run`], with success as a flag.
+fn tendyn(args: &[&str]) -> (bool, String, String) {
+    let (code, out, err) = run(args);
+    (code == Some(0), out, err)
 }
 
 #[test]
@@ -150,5 +159,43 @@ fn equations_print_the_collected_closed_form_with_paper_style_names() {
     assert!(
         out.contains("generalized_forces link2 = ") && out.contains("th1dd") && out.contains("S2"),
         "{out}"
+    );
+}
+
+// `tendyn report` without running the report itself (that builds and times the generated
+// code for a minute; `tendyn-report`'s own tests cover it): bad input fails before any
+// build, with the usual located error.
+
+#[test]
+fn report_on_a_bad_file_fails_with_the_located_error_and_no_output() {
+    let dir = std::env::temp_dir().join(format!("tendyn_report_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.ron");
+    std::fs::write(&bad, "(name: \"bad\",\n links: [\n").unwrap();
+    let bad = bad.to_str().unwrap();
+    let (code, out, err) = run(&["report", "examples/mechanisms/example1_endless.ron", bad]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(code, Some(1), "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert!(err.starts_with(&format!("error: {bad}:")), "{err}");
+    assert!(err.contains("line 2, column"), "{err}");
+    assert!(!err.contains("cargo"), "{err}");
+}
+
+#[test]
+fn report_on_a_missing_file_names_it() {
+    let (code, _, err) = run(&["report", "no/such/mechanism.ron"]);
+    assert_eq!(code, Some(1));
+    assert!(err.starts_with("error: no/such/mechanism.ron:"), "{err}");
+}
+
+#[test]
+fn report_without_cargo_says_so() {
+    let (code, out, err) = run(&["report", "--states", "1"]);
+    assert_eq!(code, Some(1));
+    assert!(out.is_empty(), "{out}");
+    assert!(
+        err.contains("cargo was not found") && err.contains("/nonexistent/cargo-must-not-run"),
+        "{err}"
     );
 }
