@@ -118,7 +118,7 @@ fn call(o: Output, params: bool, wrap: &str) -> (String, &'static str) {
     }
     let flatten = match o {
         Output::Actuation => {
-            "{ let (m, t) = r; m.iter().chain(t.iter()).map(|x| x.to_f64()).collect() }"
+            "r.motor_torques.iter().chain(r.tendon_tensions.iter()).map(|x| x.to_f64()).collect()"
         }
         Output::MassMatrix => "r.iter().flatten().map(|x| x.to_f64()).collect()",
         Output::Bearings | Output::BaseReaction => {

@@ -285,7 +285,7 @@ fn tensions_near_and_past_the_pretension_are_flagged_and_max_tension_is_an_error
         max.outcomes
     );
     let msg = max.outcomes.first_error.as_deref().unwrap_or("");
-    assert!(msg.contains("T11") && msg.contains("max_tension"), "{msg}");
+    assert!(msg.contains("`T11` at its maximum 200 N"), "{msg}");
 }
 
 #[test]

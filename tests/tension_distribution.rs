@@ -100,7 +100,7 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
 }
 
 #[test]
-fn a_floor_that_needs_more_than_an_actuator_can_pull_is_an_error_naming_the_tendon() {
+fn a_motion_that_needs_more_than_an_actuator_can_pull_is_an_error_naming_the_tendon() {
     let text = example("example2_open_ended").replace(
         "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0)),",
         "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0), max_tension: 200.0),",
@@ -113,9 +113,11 @@ fn a_floor_that_needs_more_than_an_actuator_can_pull_is_an_error_naming_the_tend
         .is_ok());
     // A hard acceleration needs far more.
     match s.inverse_dynamics(&[0.3, 0.5], &[1.0, 0.5], &[40.0, 30.0]) {
-        Err(Error::Tension(msg)) => {
-            assert!(msg.contains("T11") && msg.contains("max_tension"), "{msg}")
-        }
+        Err(Error::Tension(msg)) => assert!(
+            msg.starts_with("`T11` at its maximum 200 N cannot produce ")
+                && msg.contains("the most they can produce with every other tendon at its floor"),
+            "{msg}"
+        ),
         other => panic!("expected a tension error, got {other:?}"),
     }
 }
@@ -148,33 +150,229 @@ fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clea
     }
 }
 
+/// One joint driven by three structure-only tendons: `T1` and `T2` pull it positively with
+/// moment arms `a₁ = 0.51/26 m` and `a₂ = a₁/2`, `T3` negatively with `a₃ = 0.01 m`; floors
+/// 1 N. The link's centre of mass is on the joint axis and gravity is off, so the joint
+/// needs `Q = I q̈ = 0.01 kg·m² · q̈`: 0.5 N·m at `q̈ = 50 rad/s²`.
+fn one_joint_three_tendons(max1: f64, max2: f64) -> String {
+    let a1 = 0.51 / 26.0;
+    format!(
+        r#"(
+    name: "one_joint", gravity: (0.0, 0.0, 0.0), tension_floor: 1.0,
+    links: [(name: "arm", dh: (a: 0.1, alpha: 0.0, d: 0.0), mass: 1.0, com: (-0.1, 0.0, 0.0),
+             inertia: (xx: 0.001, yy: 0.01, zz: 0.01))],
+    tendons: [
+        (name: "T1", structure: [{a1:e}], max_tension: {max1:?}),
+        (name: "T2", structure: [{:e}], max_tension: {max2:?}),
+        (name: "T3", structure: [-0.01]),
+    ],
+)"#,
+        a1 / 2.0
+    )
+}
+
 #[test]
-fn the_fixed_size_distribution_of_generated_code_matches_the_runtime_solver_in_a_2d_null_space() {
-    // The runtime solver's distribution (active sets over Vec) and the no_std, fixed-size
-    // routine generated code calls must choose the same tensions.
-    let m = tendyn_core::parse(THREE_ON_ONE).unwrap();
+fn a_maximum_is_a_constraint_of_the_choice_not_a_check_after_it() {
+    // Floors alone: T3 on its floor and (T1, T2) ∝ (a₁, a₂) deliver
+    // a₁T₁ + a₂T₂ = 0.5 + 0.01·1, so T₁ = a₁·0.51/(a₁² + a₂²) = 20.8 N: above a 15 N maximum.
+    // With the maximum as a constraint the optimum is T = (15, 22, 1): T₂ = (0.51 − 15a₁)/a₂
+    // = 52·(1 − 15/26) = 22 N, and its KKT multipliers are non-negative (T = Aᵀy − ν₁e₁ + μ₃e₃
+    // with y = 22/a₂, ν₁ = a₁y − 15 = 29, μ₃ = 1 + 0.01y ≈ 23.4).
+    let m = tendyn_core::parse(&one_joint_three_tendons(15.0, 30.0)).unwrap();
     assert_eq!(m.system.null_space.len(), 2);
-    let cols: Vec<usize> = m.tendons.iter().map(|t| t.unknown).collect();
-    let null: [[f64; 3]; 2] =
-        std::array::from_fn(|d| std::array::from_fn(|k| m.system.null_space[d][cols[k]]));
-    let floor: [f64; 3] = std::array::from_fn(|k| m.tendons[k].floor);
-    let mut s = Solver::new(&m);
-    let mut rng = ChaCha8Rng::seed_from_u64(9);
-    for _ in 0..500 {
-        let (q, qd, qdd) = (
-            [rng.random_range(-3.0..3.0)],
-            [rng.random_range(-3.0..3.0)],
-            [rng.random_range(-10.0..10.0)],
+    let r = Solver::new(&m)
+        .inverse_dynamics(&[0.3], &[0.0], &[50.0])
+        .unwrap();
+    let want = [15.0, 22.0, 1.0];
+    for (got, want) in r.tendon_tensions.iter().zip(want) {
+        assert!(
+            (got - want).abs() <= 1e-13 * 22.0,
+            "{:?}",
+            r.tendon_tensions
         );
-        let r = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
-        let x0: [f64; 3] = std::array::from_fn(|k| r.minimal_norm_tensions[k]);
-        let got = tendyn_core::distribution::least_norm_with_floor::<f64, 3, 2>(x0, &null, &floor);
-        for (g, w) in got.iter().zip(&r.tendon_tensions) {
+    }
+    // Without the maximum the old answer returns, T1 = 20.8 N.
+    let free = tendyn_core::parse(&one_joint_three_tendons(1e6, 1e6)).unwrap();
+    let r = Solver::new(&free)
+        .inverse_dynamics(&[0.3], &[0.0], &[50.0])
+        .unwrap();
+    assert!(
+        (r.tendon_tensions[0] - 20.8).abs() < 1e-12,
+        "{:?}",
+        r.tendon_tensions
+    );
+}
+
+#[test]
+fn a_state_the_bounds_cannot_meet_names_the_tendons_at_their_maxima_and_what_they_can_do() {
+    // With T2 ≤ 20 N the most the tendons give is 15a₁ + 20a₂ − 0.01·1 = 0.4804 N·m.
+    let m = tendyn_core::parse(&one_joint_three_tendons(15.0, 20.0)).unwrap();
+    match Solver::new(&m).inverse_dynamics(&[0.3], &[0.0], &[50.0]) {
+        Err(Error::Tension(msg)) => assert_eq!(
+            msg,
+            "`T1` at its maximum 15 N and `T2` at its maximum 20 N cannot produce 0.5000 N·m \
+             on `arm`; the most they can produce with every other tendon at its floor is \
+             0.4804 N·m"
+        ),
+        other => panic!("expected a tension error, got {other:?}"),
+    }
+    // Pulling the other way, T3 has no maximum: every negative torque is feasible.
+    assert!(Solver::new(&m)
+        .inverse_dynamics(&[0.3], &[0.0], &[-5000.0])
+        .is_ok());
+}
+
+#[test]
+fn the_centered_objective_puts_opposing_tendons_mid_way_between_their_bounds() {
+    // One joint, two tendons of arm r = 0.02 m pulling opposite ways, floors 1 N, maxima
+    // 21 N and 41 N: c = (11, 21). Q = r(T₁ − T₂), so T₁ − T₂ = Q/r and the nearest point
+    // to c on that line is c + t(1, −1) with t = (Q/r − (c₁ − c₂))/2: for Q = 0.2 N·m
+    // (I = 0.01 kg·m², q̈ = 20 rad/s²) t = 10 and T = (21, 11), flex exactly at its maximum.
+    let text = r#"(
+    name: "antagonists", gravity: (0.0, 0.0, 0.0), tension_floor: 1.0, distribution: Centered,
+    links: [(name: "arm", dh: (a: 0.1, alpha: 0.0, d: 0.0), mass: 1.0, com: (-0.1, 0.0, 0.0),
+             inertia: (xx: 0.001, yy: 0.01, zz: 0.01))],
+    tendons: [
+        (name: "flex", structure: [0.02], max_tension: 21.0),
+        (name: "ext", structure: [-0.02], max_tension: 41.0),
+    ],
+)"#;
+    let close = |got: &[f64], want: [f64; 2]| {
+        got.iter()
+            .zip(want)
+            .all(|(g, w)| (g - w).abs() <= 1e-13 * w.abs().max(1.0))
+    };
+    let m = tendyn_core::parse(text).unwrap();
+    let mut s = Solver::new(&m);
+    let r = s.inverse_dynamics(&[0.0], &[0.0], &[20.0]).unwrap();
+    assert!(
+        close(&r.tendon_tensions, [21.0, 11.0]),
+        "{:?}",
+        r.tendon_tensions
+    );
+    // Q = −0.7 N·m: T₁ − T₂ = −35, t = −12.5, c + t(1, −1) = (−1.5, 33.5) is below flex's
+    // floor, so flex rests on it and ext takes the rest: (1, 36).
+    let r = s.inverse_dynamics(&[0.0], &[0.0], &[-70.0]).unwrap();
+    assert!(
+        close(&r.tendon_tensions, [1.0, 36.0]),
+        "{:?}",
+        r.tendon_tensions
+    );
+    // In between, nothing binds: Q = −0.2 N·m, t = 0, T = c = (11, 21).
+    let r = s.inverse_dynamics(&[0.0], &[0.0], &[-20.0]).unwrap();
+    assert!(
+        close(&r.tendon_tensions, [11.0, 21.0]),
+        "{:?}",
+        r.tendon_tensions
+    );
+    // The least-norm objective keeps the antagonist on its floor instead: (11, 1).
+    let least = tendyn_core::parse(&text.replace(" distribution: Centered,", "")).unwrap();
+    let r = Solver::new(&least)
+        .inverse_dynamics(&[0.0], &[0.0], &[20.0])
+        .unwrap();
+    assert!(
+        close(&r.tendon_tensions, [11.0, 1.0]),
+        "{:?}",
+        r.tendon_tensions
+    );
+}
+
+#[test]
+fn the_centered_objective_needs_every_maximum() {
+    let text = one_joint_three_tendons(15.0, 30.0).replace(
+        "tension_floor: 1.0,",
+        "tension_floor: 1.0, distribution: Centered,",
+    );
+    match tendyn_core::parse(&text) {
+        Err(e) => {
+            let msg = e.to_string();
             assert!(
-                (g - w).abs() <= 1e-12 * w.abs().max(1.0),
-                "{got:?} vs {:?}",
-                r.tendon_tensions
+                msg.contains("T3") && msg.contains("max_tension") && msg.contains("Centered"),
+                "{msg}"
             );
         }
+        Ok(_) => panic!("accepted a centered distribution without every maximum"),
+    }
+}
+
+/// The distribution in `f32` on null spaces of two dimensions (three tendons on one joint)
+/// and three (three joints, six tendons): within the floors to `f32` round-off and at the
+/// `f64` tensions to `f32` accuracy, at every one of 2,000 states. (The fixed `1e-12`
+/// tolerance of the former routine rejected every candidate in `f32`.)
+#[test]
+fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
+    let mechanisms = [
+        THREE_ON_ONE.to_string(),
+        tendyn_spec::bounded::mechanism_ron_scaled(3, 3, 6, 0.5, 4.0),
+    ];
+    let u = f32::EPSILON as f64 / 2.0;
+    for text in mechanisms {
+        let m = tendyn_core::parse(&text).unwrap();
+        let d = m.system.null_space.len();
+        let m32 = m.cast_numeric::<f32>();
+        let (mut s64, mut s32) = (Solver::new(&m), Solver::new(&m32));
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let (mut compared, mut infeasible) = (0, 0);
+        for _ in 0..2000 {
+            // States exact in f32, so that both solve the same problem.
+            let mut v = |s: f64| {
+                (0..m.dof)
+                    .map(|_| rng.random_range(-s..s) as f32)
+                    .collect::<Vec<f32>>()
+            };
+            let (q, qd, qdd) = (v(3.0), v(2.0), v(5.0));
+            let f = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
+            let r64 = s64.inverse_dynamics(&f(&q), &f(&qd), &f(&qdd));
+            let r32 = s32.inverse_dynamics(&q, &qd, &qdd);
+            let (r64, r32) = match (r64, r32) {
+                (Ok(a), Ok(b)) => (a, b),
+                (Err(_), Err(_)) => {
+                    infeasible += 1;
+                    continue;
+                }
+                // Only a state on the boundary of feasibility, to f32 round-off, may differ.
+                (a, b) => panic!("{}: f64 {:?} but f32 {:?}", m.name, a.is_ok(), b.is_ok()),
+            };
+            let scale = r64
+                .tendon_tensions
+                .iter()
+                .fold(1.0f64, |a, x| a.max(x.abs()));
+            for ((t, want), tendon) in r32
+                .tendon_tensions
+                .iter()
+                .zip(&r64.tendon_tensions)
+                .zip(&m.tendons)
+            {
+                let t = *t as f64;
+                assert!(
+                    t >= tendon.floor - 64.0 * u * scale,
+                    "{}: {t} below the floor {} (d = {d})",
+                    m.name,
+                    tendon.floor
+                );
+                if let Some(max) = tendon.max_tension {
+                    assert!(t <= max + 64.0 * u * scale, "{}: {t} above {max}", m.name);
+                }
+                // The inputs themselves are rounded to f32, and the tensions follow the
+                // state with a condition of a few hundred at most on these mechanisms.
+                assert!(
+                    (t - want).abs() <= 1e4 * u * scale,
+                    "{}: f32 {:?} vs f64 {:?}",
+                    m.name,
+                    r32.tendon_tensions,
+                    r64.tendon_tensions
+                );
+            }
+            compared += 1;
+        }
+        println!(
+            "{} (d = {d}): {compared} states compared, {infeasible} infeasible in both",
+            m.name
+        );
+        assert!(
+            compared > 1000,
+            "{}: only {compared} feasible states",
+            m.name
+        );
     }
 }

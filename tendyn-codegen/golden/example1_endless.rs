@@ -2,7 +2,7 @@
 // Outputs: generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics, segment_tensions, bearings, base_reaction. Scalar: generic over tendyn_core::Real.
 
 #[allow(unused_imports)]
-use tendyn_core::real::Real;
+use tendyn_core::real::{Numeric, Real};
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
 #[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 0]; 2] = [[], []];
@@ -39,7 +39,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
 /// Operations (closed form): 27 arithmetic (9 add/sub, 18 mul, 0 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
-pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T; 0]) {
+pub fn actuation<T: Real>(
+    q: &[T; 2],
+    qd: &[T; 2],
+    qdd: &[T; 2],
+) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s68, c69) = q[1].sin_cos();
     let t644 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
         - (qd[0]
@@ -53,7 +57,7 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 2], [T;
         * (c69 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
             + qd[0] * (qd[0] * (s68 * T::from_f64(0.045000000000000005))));
-    ([t645, t657], [])
+    tendyn_core::distribution::Actuation::exact([t645, t657], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -297,7 +301,7 @@ pub struct Outputs<T> {
     /// See [`generalized_forces`].
     pub generalized_forces: [T; 2],
     /// See [`actuation`].
-    pub actuation: ([T; 2], [T; 0]),
+    pub actuation: tendyn_core::distribution::Actuation<[T; 2], [T; 0]>,
     /// See [`mass_matrix`].
     pub mass_matrix: [[T; 2]; 2],
     /// See [`bias`].
@@ -449,7 +453,7 @@ pub fn all<T: Real>(
     let t589 = t578 / t510 - t580 * t587;
     Outputs {
         generalized_forces: [t179, t181],
-        actuation: ([t401, t405], []),
+        actuation: tendyn_core::distribution::Actuation::exact([t401, t405], []),
         mass_matrix: [[t510, t538], [t538, T::from_f64(0.0166867)]],
         bias: [t565, t551],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],

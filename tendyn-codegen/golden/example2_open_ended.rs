@@ -2,7 +2,7 @@
 // Outputs: generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics, segment_tensions, bearings, base_reaction. Scalar: generic over tendyn_core::Real.
 
 #[allow(unused_imports)]
-use tendyn_core::real::Real;
+use tendyn_core::real::{Numeric, Real};
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
 #[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 3]; 2] = [
@@ -42,7 +42,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
 /// Operations (closed form): 90 arithmetic (39 add/sub, 48 mul, 0 div, 0 neg, 3 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
-pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 0], [T; 3]) {
+pub fn actuation<T: Real>(
+    q: &[T; 2],
+    qd: &[T; 2],
+    qdd: &[T; 2],
+) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s89, c90) = q[1].sin_cos();
     let t976 = c90 * T::from_f64(0.22058823529411686);
     let t982 = c90 * T::from_f64(0.2647058823529412);
@@ -89,7 +93,7 @@ pub fn actuation<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> ([T; 0], [T;
                 - qd[1]
                     * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    ([], [t1083, t1101, t1130])
+    tendyn_core::distribution::Actuation::exact([], [t1083, t1101, t1130])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -450,7 +454,7 @@ pub struct Outputs<T> {
     /// See [`generalized_forces`].
     pub generalized_forces: [T; 2],
     /// See [`actuation`].
-    pub actuation: ([T; 0], [T; 3]),
+    pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 3]>,
     /// See [`mass_matrix`].
     pub mass_matrix: [[T; 2]; 2],
     /// See [`bias`].
@@ -681,7 +685,7 @@ pub fn all<T: Real>(
     let t944 = t933 / t853 - t935 * t942;
     Outputs {
         generalized_forces: [t216, t218],
-        actuation: ([], [t716, t717, t719]),
+        actuation: tendyn_core::distribution::Actuation::exact([], [t716, t717, t719]),
         mass_matrix: [[t853, t883], [t883, T::from_f64(0.0166867)]],
         bias: [t909, t895],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],

@@ -2,7 +2,7 @@
 // Outputs: generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics, segment_tensions, bearings, base_reaction. Scalar: generic over tendyn_core::Real.
 
 #[allow(unused_imports)]
-use tendyn_core::real::Real;
+use tendyn_core::real::{Numeric, Real};
 /// The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).
 #[allow(dead_code)]
 pub const STRUCTURE_MATRIX: [[f64; 4]; 3] = [
@@ -98,7 +98,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
 /// Operations (traced recursion): 343 arithmetic (143 add/sub, 196 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
-pub fn actuation<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> ([T; 0], [T; 4]) {
+pub fn actuation<T: Real>(
+    q: &[T; 3],
+    qd: &[T; 3],
+    qdd: &[T; 3],
+) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
     let t106 = T::from_f64(0.012) * qdd[0];
     let t110 = qd[0] * (T::from_f64(0.012) * qd[0]);
     let t112 = T::from_f64(0.006) * qdd[0];
@@ -239,7 +243,7 @@ pub fn actuation<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> ([T; 0], [T;
     let t1450 = T::from_f64(1.0666666666666664) * t1446 - t1417;
     let t1451 = t1425 + t1446;
     let t1452 = t1432 + t1446;
-    ([], [t1448, t1450, t1451, t1452])
+    tendyn_core::distribution::Actuation::exact([], [t1448, t1450, t1451, t1452])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -1098,7 +1102,7 @@ pub struct Outputs<T> {
     /// See [`generalized_forces`].
     pub generalized_forces: [T; 3],
     /// See [`actuation`].
-    pub actuation: ([T; 0], [T; 4]),
+    pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 4]>,
     /// See [`mass_matrix`].
     pub mass_matrix: [[T; 3]; 3],
     /// See [`bias`].
@@ -1597,7 +1601,10 @@ pub fn all<T: Real>(
     let t2316 = t2284 / t1769 - t2287 * t2312 - t2288 * t2310;
     Outputs {
         generalized_forces: [t623, t626, t619],
-        actuation: ([], [t1448, t1450, t1451, t1452]),
+        actuation: tendyn_core::distribution::Actuation::exact(
+            [],
+            [t1448, t1450, t1451, t1452],
+        ),
         mass_matrix: [
             [
                 t1769,

@@ -17,7 +17,7 @@
 //! parentheses a parser would have produced from the written code.
 
 use crate::expr::{Graph, Id, Node};
-use crate::outputs::{result_labels, Function, Output, Param, Shape, Traced};
+use crate::outputs::{result_labels, Function, Output, Param, Shape, StatusFrom, Traced};
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::cell::OnceCell;
@@ -58,13 +58,24 @@ impl Scalar {
     }
 }
 
-/// The generic parameter of a function: `T: Real`, and `PartialOrd` too where it calls the
-/// tension distribution (which compares).
+/// The generic parameter of a function: `T: Real`, or `T: Numeric` where it calls the
+/// tension distribution (which compares and needs the scalar's round-off).
 fn bound(scalar: Scalar, compares: bool) -> TokenStream {
     match (scalar, compares) {
-        (Scalar::Generic, true) => quote!(<T: Real + PartialOrd>),
+        (Scalar::Generic, true) => quote!(<T: Numeric>),
         _ => scalar.generics(),
     }
+}
+
+/// Whether `f` decides a distribution's status (and so compares).
+fn compares(f: &Function) -> bool {
+    matches!(
+        f.shape,
+        Shape::Actuation {
+            status: StatusFrom::Line | StatusFrom::Solve,
+            ..
+        }
+    )
 }
 
 /// Syntax-tree constructors for the expression forms the bodies use.
@@ -171,15 +182,6 @@ mod ast {
             attrs: Vec::new(),
             bracket_token: Default::default(),
             elems: elems.into_iter().collect(),
-        })
-    }
-
-    /// `(a, b)`
-    pub fn pair(a: Expr, b: Expr) -> Expr {
-        Expr::Tuple(syn::ExprTuple {
-            attrs: Vec::new(),
-            paren_token: Default::default(),
-            elems: Punctuated::from_iter([a, b]),
         })
     }
 
@@ -1070,25 +1072,32 @@ fn marker() -> Stmt {
 }
 
 /// The flat results of `f` arranged in its shape.
-fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream, core: &syn::Path) -> Expr {
+fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
     let mut values = values.into_iter();
     let mut take = |n: usize| ast::array(values.by_ref().take(n));
     match &f.shape {
         Shape::Vector(n) => take(*n),
         Shape::Matrix(n) => ast::array((0..*n).map(|_| take(*n))),
-        Shape::Actuation { motors, tendons } => {
+        Shape::Actuation {
+            motors,
+            tendons,
+            status,
+        } => {
             let m = take(*motors);
-            let x0 = take(*tendons);
-            let tensions = match &f.distribution {
-                None => x0,
-                // The floor-respecting least-norm tensions of a many-dimensional null
-                // space, by the fixed-size routine of tendyn-core.
-                Some(dist) => {
-                    let (k, d) = (
-                        Literal::usize_unsuffixed(*tendons),
-                        Literal::usize_unsuffixed(dist.null.len()),
-                    );
+            let t_ = take(*tendons);
+            let actuation = quote!(#core::distribution::Actuation);
+            match (status, &f.distribution) {
+                (StatusFrom::Line, _) => {
+                    let (excess, scale) = (values.next(), values.next());
+                    parse_quote!(#actuation::along_line(#m, #t_, #excess, #scale))
+                }
+                // The many-dimensional distribution of the minimal-norm tensions, by the
+                // fixed-size routine of tendyn-core.
+                (StatusFrom::Solve, Some(dist)) => {
                     let lit = |x: f64| {
+                        if x == f64::INFINITY {
+                            return quote!(f64::INFINITY);
+                        }
                         let l = Literal::f64_suffixed(x.abs());
                         if x < 0.0 {
                             quote!(-#l)
@@ -1096,15 +1105,22 @@ fn shaped(f: &Function, values: Vec<Expr>, t: &TokenStream, core: &syn::Path) ->
                             quote!(#l)
                         }
                     };
-                    let rows = dist.null.iter().map(|r| {
-                        let cells = r.iter().map(|&x| lit(x));
+                    let list = |v: &[f64]| {
+                        let cells = v.iter().map(|&x| lit(x));
                         quote!([#(#cells),*])
-                    });
-                    let floor = dist.floor.iter().map(|&x| lit(x));
-                    parse_quote!(#core::distribution::least_norm_with_floor::<#t, #k, #d>(#x0, &[#(#rows),*], &[#(#floor),*]))
+                    };
+                    let rows = dist.null.iter().map(|r| list(r));
+                    let (floor, max, target) =
+                        (list(&dist.floor), list(&dist.max), list(&dist.target));
+                    parse_quote!(#actuation::bounded(#m, #t_, &#core::distribution::Fixed {
+                        null: [#(#rows),*],
+                        floor: #floor,
+                        max: #max,
+                        target: #target,
+                    }))
                 }
-            };
-            ast::pair(m, tensions)
+                _ => parse_quote!(#actuation::exact(#m, #t_)),
+            }
         }
         Shape::Wrenches(n) => ast::array((0..*n).map(|_| {
             let force = take(3);
@@ -1125,18 +1141,19 @@ fn array_type(elem: syn::Type, len: usize) -> syn::Type {
 }
 
 /// The type a function of `f`'s shape returns, over the scalar type `t`.
-fn return_type(f: &Function, t: &syn::Type) -> syn::Type {
+fn return_type(f: &Function, t: &syn::Type, core: &syn::Path) -> syn::Type {
     match &f.shape {
         Shape::Vector(n) => array_type(t.clone(), *n),
         Shape::Matrix(n) => array_type(array_type(t.clone(), *n), *n),
-        Shape::Actuation { motors, tendons } => syn::Type::Tuple(syn::TypeTuple {
-            attrs: Vec::new(),
-            paren_token: Default::default(),
-            elems: Punctuated::from_iter([
+        Shape::Actuation {
+            motors, tendons, ..
+        } => {
+            let (m, k) = (
                 array_type(t.clone(), *motors),
                 array_type(t.clone(), *tendons),
-            ]),
-        }),
+            );
+            parse_quote!(#core::distribution::Actuation<#m, #k>)
+        }
         Shape::Wrenches(n) => array_type(array_type(array_type(t.clone(), 3), 2), *n),
     }
 }
@@ -1281,7 +1298,7 @@ fn emit_with(
     let a_doc = " The structure matrix `A` (m): `Q = A T`, rows per joint, columns per open-ended tendon (Eqs. 33, 35).";
     let mut file: syn::File = parse_quote! {
         #[allow(unused_imports)]
-        use #core::real::Real;
+        use #core::real::{Numeric, Real};
         #[doc = #a_doc]
         #[allow(dead_code)]
         pub const STRUCTURE_MATRIX: [[f64; #nt]; #n] = [#(#a_rows),*];
@@ -1349,16 +1366,16 @@ fn emit_with(
         let mut item = function(
             d.lines().map(doc_attribute).collect(),
             f.output.name(),
-            f.distribution.is_some(),
+            compares(f),
             params(&traced.params(f.output)),
-            return_type(f, &scalar_type),
+            return_type(f, &scalar_type, core),
         );
         body.end_run();
         runs.append(&mut body.runs);
         item.block.stmts = body.stmts;
         item.block
             .stmts
-            .push(Stmt::Expr(shaped(f, values, &t, core), None));
+            .push(Stmt::Expr(shaped(f, values, core), None));
         file.items.push(syn::Item::Fn(item));
     }
     // `all`: every output, sharing their work.
@@ -1377,7 +1394,7 @@ fn emit_with(
     body.bind(roots);
     let fields = traced.functions.iter().map(|f| {
         let name = format_ident!("{}", f.output.name());
-        let ty = return_type(f, &scalar_type);
+        let ty = return_type(f, &scalar_type, core);
         let d = format!(" See [`{}`].", f.output.name());
         quote!(#[doc = #d] pub #name: #ty)
     });
@@ -1391,7 +1408,7 @@ fn emit_with(
                 .map(|&r| body.expr(r))
                 .collect();
             offset += f.results.len();
-            (ast::ident(f.output.name()), shaped(f, values, &t, core))
+            (ast::ident(f.output.name()), shaped(f, values, core))
         })
         .collect();
     let count = traced.all_ops;
@@ -1411,7 +1428,7 @@ fn emit_with(
     let mut all = function(
         vec![doc_attribute(&all_doc)],
         "all",
-        traced.functions.iter().any(|f| f.distribution.is_some()),
+        traced.functions.iter().any(compares),
         params(&all_params),
         parse_quote!(Outputs #struct_generics),
     );

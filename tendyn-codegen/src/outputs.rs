@@ -8,6 +8,7 @@
 
 use crate::closed_form::{Collector, StateRank};
 use crate::expr::{Graph, Id, OpCount, Sym};
+use tendyn_core::distribution::Problem;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model};
 use tendyn_core::{tension, Real};
@@ -118,10 +119,30 @@ pub enum Shape {
     Vector(usize),
     /// `[[T; n]; n]`
     Matrix(usize),
-    /// `([T; motors], [T; tendons])`
-    Actuation { motors: usize, tendons: usize },
+    /// `tendyn_core::distribution::Actuation<[T; motors], [T; tendons]>`: the flat results
+    /// are the torques and tensions, then what `status` needs.
+    Actuation {
+        motors: usize,
+        tendons: usize,
+        status: StatusFrom,
+    },
     /// `[[[T; 3]; 2]; count]`: force and moment per entry.
     Wrenches(usize),
+}
+
+/// How a generated `actuation` tells a feasible distribution from a best effort.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum StatusFrom {
+    /// A unique solution, or one null direction without maxima: always feasible.
+    Exact,
+    /// One null direction with maxima: two more results, the floors' excess over the
+    /// maxima along the positive null vector and its scale
+    /// (`tendyn_core::distribution::Status::of_line`).
+    Line,
+    /// Several null directions: the tendon results are the minimal-norm tensions, which
+    /// the emitted code distributes by `tendyn_core::distribution::solve` with the
+    /// constants of [`Function::distribution`].
+    Solve,
 }
 
 /// A traced function.
@@ -136,9 +157,9 @@ pub struct Function {
     /// Operations of the traced form and of the closed form (if it could be built).
     pub traced_ops: OpCount,
     pub closed_ops: Option<OpCount>,
-    /// For `actuation` with a null space of more than one dimension: the tendon results are
-    /// the minimal-norm tensions, which the emitted code hands to
-    /// `tendyn_core::distribution::least_norm_with_floor` with these constants.
+    /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`]):
+    /// the constants of `tendyn_core::distribution::Fixed` the emitted code distributes
+    /// the minimal-norm tensions with.
     pub distribution: Option<Distribution>,
 }
 
@@ -148,6 +169,10 @@ pub struct Distribution {
     /// Null-space basis restricted to the tendons: `null[d][k]`.
     pub null: Vec<Vec<f64>>,
     pub floor: Vec<f64>,
+    /// `f64::INFINITY` where a tendon has no maximum.
+    pub max: Vec<f64>,
+    /// The objective's optimum in null-space coordinates, `λ*_d = Σₖ null[d][k] c_k`.
+    pub target: Vec<f64>,
 }
 
 /// Why an output cannot be generated for a mechanism.
@@ -297,17 +322,8 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             traced: roots,
             traced_ops,
             closed_ops,
-            distribution: (output == Output::Actuation && model.system.null_space.len() > 1).then(
-                || Distribution {
-                    null: model
-                        .system
-                        .null_space
-                        .iter()
-                        .map(|v| model.tendons.iter().map(|t| v[t.unknown]).collect())
-                        .collect(),
-                    floor: model.tendons.iter().map(|t| t.floor).collect(),
-                },
-            ),
+            distribution: (output == Output::Actuation && model.system.null_space.len() > 1)
+                .then(|| distribution_constants(model)),
         });
     }
     let chosen: Vec<Id> = functions
@@ -334,12 +350,28 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     })
 }
 
+/// The constants of a many-dimensional distribution, from the model's bounds.
+fn distribution_constants(model: &Model<f64>) -> Distribution {
+    let problem = tension::bounds(model);
+    let (k, d) = (problem.tendons(), problem.directions());
+    Distribution {
+        null: (0..d)
+            .map(|i| (0..k).map(|j| problem.null(i, j)).collect())
+            .collect(),
+        floor: (0..k).map(|j| problem.floor(j)).collect(),
+        max: (0..k).map(|j| problem.max(j)).collect(),
+        target: (0..d).map(|i| problem.target(i)).collect(),
+    }
+}
+
 /// Recursions several outputs share, traced once: inverse dynamics (behind actuation,
 /// segment tensions, bearings and the base reaction) and the mass matrix (behind itself and
 /// forward dynamics). Hash-consing would merge the nodes anyway; this saves the tracing work.
 #[derive(Default)]
 struct Shared {
     inverse: Option<dynamics::InverseDynamics<Sym>>,
+    /// The one-direction distribution's excess and scale, where maxima make it needed.
+    line_excess: Option<(Sym, Sym)>,
     mass: Option<Vec<Vec<Sym>>>,
 }
 
@@ -350,16 +382,17 @@ impl Shared {
         i: &Inputs,
         ws: &mut Workspace<Sym>,
     ) -> &dynamics::InverseDynamics<Sym> {
+        let excess = &mut self.line_excess;
         self.inverse.get_or_insert_with(|| {
-            // One-dimensional null spaces: the closed-form floor (a `max`); larger ones are
-            // distributed by the emitted call (see `Function::distribution`).
+            // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
+            // are distributed by the emitted call (see `Function::distribution`).
             dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
-                if model.system.null_space.len() == 1 {
-                    tension::lift_to_floor(model, x);
+                if model.system.null_space.len() == 1 && !model.tendons.is_empty() {
+                    *excess = tension::along_line(model, x).excess;
                 }
                 Ok(())
             })
-            .expect("the one-dimensional distribution cannot fail")
+            .expect("tracing the distribution cannot fail")
         })
     }
 
@@ -406,16 +439,26 @@ fn trace_one(
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
             let r = shared.inverse(m, i, ws).clone();
             match o {
-                Output::Actuation => (
-                    Shape::Actuation {
-                        motors: m.motors.len(),
-                        tendons: m.tendons.len(),
-                    },
-                    r.motor_torques
-                        .into_iter()
-                        .chain(r.tendon_tensions)
-                        .collect(),
-                ),
+                Output::Actuation => {
+                    let excess = shared.line_excess;
+                    let status = match (m.system.null_space.len(), excess) {
+                        (d, _) if d > 1 && !m.tendons.is_empty() => StatusFrom::Solve,
+                        (_, Some(_)) => StatusFrom::Line,
+                        _ => StatusFrom::Exact,
+                    };
+                    (
+                        Shape::Actuation {
+                            motors: m.motors.len(),
+                            tendons: m.tendons.len(),
+                            status,
+                        },
+                        r.motor_torques
+                            .into_iter()
+                            .chain(r.tendon_tensions)
+                            .chain(excess.into_iter().flat_map(|(e, s)| [e, s]))
+                            .collect(),
+                    )
+                }
                 Output::SegmentTensions => {
                     let s: Vec<Sym> = r
                         .segment_tensions

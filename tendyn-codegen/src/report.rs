@@ -4,6 +4,7 @@
 use serde_json::{json, Value};
 use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
 use tendyn_core::spatial::Vec3;
+use tendyn_core::torque_range::static_torque_ranges;
 use tendyn_core::InverseDynamics;
 
 /// The joint-space terms evaluated beside inverse dynamics.
@@ -73,6 +74,20 @@ pub fn check_text(m: &Model<f64>) -> String {
         line(format!("  {:<12} {}", "", names.join("  ")));
         for (j, row) in m.structure_matrix().iter().enumerate() {
             line(format!("  {:<12} {}", m.bodies[j].name, fmt_row(row)));
+        }
+        line(
+            "static torque range, tendons alone without motors (tendons within floor and \
+             max_tension, every other joint at zero generalized force):"
+                .into(),
+        );
+        for (j, r) in static_torque_ranges(m).iter().enumerate() {
+            let range = match r {
+                Some(r) => format!("{} N·m", fmt_row(&[r.min, r.max])),
+                None => {
+                    "none (no tensions within the bounds hold every other joint at zero)".into()
+                }
+            };
+            line(format!("  {:<12} {range}", m.bodies[j].name));
         }
     }
     line("tension system E x = b (rows: balances; columns: unknowns):".into());

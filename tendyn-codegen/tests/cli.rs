@@ -50,6 +50,48 @@ fn check_prints_couplings_structure_matrix_and_null_vector() {
 }
 
 #[test]
+fn check_prints_the_static_torque_range_of_each_joint() {
+    // Example 2 with T11 ≤ 200 N, every floor 5 N, T32 and T42 without maximum (rows of A:
+    // link1 [-0.03, -0.03, 0.04], link2 [0.02, -0.02, 0]). link2 held: T32 = T42 = t ≥ 5,
+    // Q1 = -0.06 t + 0.04 T11 ≤ -0.3 + 8 = 7.7, no lower end. link1 held:
+    // T32 + T42 = (4/3) T11 ≤ 800/3, Q2 = ±0.02 (800/3 - 10) = ±5.133333.
+    let (ok, out, err) = tendyn(&["check", "tests/mechanisms/stress/tendon_max_tension.ron"]);
+    assert!(ok, "{err}");
+    let header = "static torque range, tendons alone without motors (tendons within floor and \
+                  max_tension, every other joint at zero generalized force):";
+    let block = format!(
+        "{header}\n  link1        [      -inf,   7.700000] N·m\n  \
+         link2        [ -5.133333,   5.133333] N·m\ntension system"
+    );
+    assert!(out.contains(&block), "{out}");
+    // Without maxima every end is open; without open-ended tendons there is no block.
+    let (_, out, _) = tendyn(&["check", "examples/mechanisms/example2_open_ended.ron"]);
+    assert!(
+        out.contains("  link2        [      -inf,        inf] N·m"),
+        "{out}"
+    );
+    let (_, out, _) = tendyn(&["check", "examples/mechanisms/example1_endless.ron"]);
+    assert!(!out.contains("static torque range"), "{out}");
+    // With T11 ≤ 7 N, holding link1 needs T32 + T42 = (4/3) T11 ≤ 28/3 < 10: no range.
+    let dir = std::env::temp_dir().join(format!("tendyn_cli_range_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("tight.ron");
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/mechanisms/stress/tendon_max_tension.ron"
+    ))
+    .unwrap()
+    .replace("max_tension: 200.0", "max_tension: 7.0");
+    std::fs::write(&file, text).unwrap();
+    let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("  link1        [      -inf,  -0.020000] N·m\n  link2        none ("),
+        "{out}"
+    );
+}
+
+#[test]
 fn eval_over_a_csv_of_states_prints_one_json_object_per_state() {
     let dir = std::env::temp_dir().join(format!("tendyn_cli_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -2,7 +2,11 @@
 //! it). Generation must reproduce it byte for byte, so any change to what is emitted shows
 //! up in review. After an intended change: `TENDYN_BLESS=1 cargo test -p tendyn-codegen --test golden`.
 
-use tendyn_codegen::{available_outputs, generate, Scalar};
+//!
+//! The benchmark of the tension distribution compiles `golden/distribution/`: `actuation`
+//! of the mechanisms in `benches/distribution/`, kept the same way.
+
+use tendyn_codegen::{available_outputs, generate, Output, Scalar};
 
 #[test]
 fn generated_paper_examples_match_the_golden_files() {
@@ -13,20 +17,36 @@ fn generated_paper_examples_match_the_golden_files() {
         "example3_stanford_jpl",
     ] {
         let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
-        let source = generate(
+        let outputs = available_outputs(&model);
+        compare(
+            name,
             &model,
-            &available_outputs(&model),
-            Scalar::Generic,
-            &format!("{name}.ron"),
-        )
-        .unwrap()
-        .source;
-        let path = format!("{root}/tendyn-codegen/golden/{name}.rs");
+            &outputs,
+            &format!("{root}/tendyn-codegen/golden/{name}.rs"),
+        );
+    }
+}
+
+#[test]
+fn generated_distribution_benchmarks_match_their_golden_files() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"));
+    for name in ["example3_bounded", "bounded_1x3", "bounded_3x6"] {
+        let model = tendyn_core::load(format!("{root}/benches/distribution/{name}.ron")).unwrap();
+        let path = format!("{root}/golden/distribution/{name}.rs");
+        compare(name, &model, &[Output::Actuation], &path);
+    }
+}
+
+fn compare(name: &str, model: &tendyn_core::Model<f64>, outputs: &[Output], path: &str) {
+    {
+        let source = generate(model, outputs, Scalar::Generic, &format!("{name}.ron"))
+            .unwrap()
+            .source;
         if std::env::var("TENDYN_BLESS").as_deref() == Ok("1") {
-            std::fs::write(&path, &source).unwrap();
-            continue;
+            std::fs::write(path, &source).unwrap();
+            return;
         }
-        let golden = std::fs::read_to_string(&path).unwrap();
+        let golden = std::fs::read_to_string(path).unwrap();
         if golden != source {
             let line = golden
                 .lines()

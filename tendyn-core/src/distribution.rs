@@ -1,142 +1,604 @@
-//! The tension distribution of generated code for null spaces of more than one dimension:
-//! fixed-size, allocation-free and `no_std`, so it runs on the controllers the generated
-//! code is for. (One-dimensional null spaces are distributed in closed form by the
-//! generated code itself.)
+//! The tension distribution (the "torque resolver" of the paper's ref. 12, with maxima):
+//! one implementation, `no_std` and allocation-free, for the runtime solver and for
+//! generated code alike.
 //!
-//! Given the minimal-norm tensions `x₀` of `K` tendons and an orthonormal basis `N` of the
-//! null space restricted to them (`D` vectors), it returns `x₀ + Nᵀλ` with the least `|λ|`
-//! such that every tension is at or above its floor. Since `x₀ ⟂ N`, that is the least-norm
-//! tension vector meeting the floors — the same choice as the runtime solver's.
+//! # The problem
 //!
-//! The optimum has an active set of at most `D` independent floors with non-negative
-//! multipliers; the routine enumerates candidate sets by size and returns the first whose
-//! point is feasible. `K` is small (a handful of tendons), so this is at most `2^K` tiny
-//! solves.
+//! Every solution of `E x = b` is `x = x₀ + N λ`, `x₀ = E⁺ b` the minimal-norm one and `N`
+//! an orthonormal basis of the null space. Validation guarantees that the null space
+//! holds open-ended tendon directions only (motor torques and loop sides are the same in
+//! every solution), so on the tendon tensions `T = T₀ + N λ`, with the columns of `N`
+//! (restricted to the tendons) still orthonormal. The distribution is the `T` with
+//!
+//! > `floor_k ≤ T_k ≤ max_k` for every open-ended tendon, minimising `‖T − c‖²`,
+//!
+//! `c = 0` for the least-norm objective, `c = (floor + max) / 2` for the centered one.
+//! Since `x₀ ⟂ N`, `Nᵀ T₀ = 0` and `‖T − c‖² = ‖T₀ − c‖² + ‖λ − λ*‖²` with
+//! `λ* = Nᵀ c` (constant): the distribution is the **projection of `λ*` onto the
+//! polytope** `{λ : floor ≤ T₀ + N λ ≤ max}` of dimension `d = dim null(E)`. It is unique
+//! (a strictly convex objective) and continuous in `T₀` wherever the polytope is not
+//! empty (a projection onto a continuously moving convex set).
+//!
+//! - `d = 1`, [`along_line`]: along the positive null vector `p` (every tendon component
+//!   `> 0`), `T = T₀ + μ p`; each floor bounds `μ` from below and each maximum from
+//!   above, so the answer is `μ* = pᵀc / pᵀp` clamped to the intersection of those
+//!   intervals. It uses only [`Real::max`], so the code generator traces it.
+//! - `d ≥ 2`, [`solve`]: the dual active-set method of Goldfarb and Idnani (1983) for a
+//!   unit Hessian. It starts at the unconstrained optimum `λ*`, adds the most violated
+//!   bound, and moves in the primal and dual spaces so that every bound in its active set
+//!   stays satisfied with a non-negative multiplier, dropping a bound whose multiplier
+//!   would turn negative. Each added bound strictly increases the objective of the
+//!   current point, which is the optimum of the problem restricted to the active set, so
+//!   no active set recurs and the method ends, exactly, after at most one step per active
+//!   set of at most `d` independent bounds (and `d` drops per step): the iteration bound
+//!   below is that count and can never stop a run that exact arithmetic would finish.
+//!   When a violated bound's normal lies in the span of the active normals with no
+//!   multiplier able to give way, the polytope is empty: the active bounds and the
+//!   violated one form a Farkas certificate, returned to the caller to explain.
+//!
+//! # When the bounds cannot be met
+//!
+//! Floors alone can always be met (the positive null vector lifts every tendon at once),
+//! so an empty polytope is always a matter of maxima. The result is then
+//! [`Status::MaxExceeded`] with a best effort that keeps every floor and delivers the
+//! motion exactly:
+//! - `d = 1`: `μ = max(μ_floor, min(μ_max, μ*)) = μ_floor`, the least lift that meets
+//!   every floor (the tensions as low as the floors allow, so the maxima are exceeded as
+//!   little as along `p` they can be; continuous across the boundary of feasibility);
+//! - `d ≥ 2`: the same problem without the maxima (the distribution tendyn chose before
+//!   maxima became constraints).
+//!
+//! # Tolerances
+//!
+//! From the scalar's own round-off ([`Numeric::unit_roundoff`]), relative to the size of
+//! the tensions and bounds involved: a bound counts as met when violated by at most
+//! `4 (K + d) u · max(|T₀|, |floor|, |max|, |T|)`.
 
 // Index loops read like the algorithm over index sets.
 #![allow(clippy::needless_range_loop)]
 
-use crate::real::Real;
+use crate::real::{Numeric, Real};
 
-/// Least-norm tensions at or above `floor`. `null[d][k]` is component `k` of null-space
-/// vector `d`. Returns `x0` unchanged when it already meets every floor. If no active set
-/// qualifies (which a controllable routing rules out) the result is `x0` lifted along the
-/// first null vector as far as the worst floor needs.
-pub fn least_norm_with_floor<T: Real + PartialOrd, const K: usize, const D: usize>(
-    x0: [T; K],
-    null: &[[f64; K]; D],
-    floor: &[f64; K],
-) -> [T; K] {
-    let n = |d: usize, k: usize| T::from_f64(null[d][k]);
-    // g_k = floor_k − x0_k: constraint k reads a_k · λ ≥ g_k with a_k = (null[·][k]).
-    let mut g = [T::zero(); K];
-    for k in 0..K {
-        g[k] = T::from_f64(floor[k]) - x0[k];
-    }
-    let tolerance = |gk: T| T::from_f64(1e-12) * (gk.max(-gk)).max(T::one());
-    let feasible = |lambda: &[T; D]| {
-        (0..K).all(|k| {
-            let mut v = T::zero();
-            for d in 0..D {
-                v = v + n(d, k) * lambda[d];
-            }
-            v - g[k] >= -tolerance(g[k])
-        })
-    };
-    let apply = |lambda: &[T; D]| {
-        let mut x = x0;
-        for k in 0..K {
-            for d in 0..D {
-                x[k] = x[k] + n(d, k) * lambda[d];
-            }
-        }
-        x
-    };
-    let zero = [T::zero(); D];
-    if feasible(&zero) {
-        return x0;
-    }
-    for size in 1..=D.min(K) {
-        for mask in 1u32..(1u32 << K) {
-            if mask.count_ones() as usize != size {
-                continue;
-            }
-            if let Some(lambda) = candidate::<T, K, D>(mask, null, &g) {
-                if feasible(&lambda) {
-                    return apply(&lambda);
-                }
-            }
-        }
-    }
-    // Unreachable for a controllable routing; stay taut rather than return nonsense.
-    let mut lambda = zero;
-    for k in 0..K {
-        let a = n(0, k);
-        if a > T::zero() {
-            lambda[0] = lambda[0].max(g[k] / a);
-        }
-    }
-    apply(&lambda)
+/// Whether a distribution meets every bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Status {
+    /// The optimum: every tendon within its floor and maximum (to the scalar's round-off).
+    Feasible,
+    /// No tensions within the floors and maxima produce the motion. The tensions returned
+    /// are a best effort: the motion exactly, every floor kept, some maximum exceeded (see
+    /// the module documentation for which tensions exactly).
+    MaxExceeded,
+    /// The method did not finish within the count of active sets that bounds it, which
+    /// only round-off could cause, or the work buffers were too small. The tensions
+    /// returned are the minimal-norm ones, untouched. Never seen in the test suite.
+    Unresolved,
 }
 
-/// The least-norm point on the floors in `mask`: `λ = A_Sᵀ μ` with `(A_S A_Sᵀ) μ = g_S`, if
-/// they are independent and `μ ≥ 0`.
-fn candidate<T: Real + PartialOrd, const K: usize, const D: usize>(
-    mask: u32,
-    null: &[[f64; K]; D],
-    g: &[T; K],
-) -> Option<[T; D]> {
-    let mut idx = [0usize; D];
-    let mut s = 0;
-    for (k, slot) in (0..K).filter(|k| mask & (1 << k) != 0).zip(0..D) {
-        idx[slot] = k;
-        s += 1;
+impl Status {
+    /// The status of a one-direction distribution from [`LineResult`]: `MaxExceeded` when
+    /// the floors' lower bound on `μ` exceeds the maxima's upper bound by more than
+    /// round-off (a NaN excess, from non-finite inputs, is not `Feasible` either).
+    pub fn of_line<T: Numeric>(excess: T, scale: T, tendons: usize) -> Status {
+        let tolerance = T::from_f64(tolerance_factor::<T>(tendons, 1)) * scale;
+        if excess <= tolerance {
+            Status::Feasible
+        } else {
+            Status::MaxExceeded
+        }
     }
-    let a = |i: usize, d: usize| T::from_f64(null[d][idx[i]]);
-    // Gram matrix and its Cholesky factor, in place (s ≤ D).
-    let mut l = [[T::zero(); D]; D];
-    for i in 0..s {
-        for j in 0..=i {
-            let mut v = T::zero();
-            for d in 0..D {
-                v = v + a(i, d) * a(j, d);
+}
+
+/// What the actuators must do: the result of a generated `actuation` function.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Actuation<M, K> {
+    /// One torque per motor, in file order (N·m).
+    pub motor_torques: M,
+    /// Ground-level tension of each open-ended tendon, in file order (N).
+    pub tendon_tensions: K,
+    /// Whether the tensions meet every floor and maximum.
+    pub status: Status,
+}
+
+impl<M, K> Actuation<M, K> {
+    /// Torques and tensions that are the unique solution, or already distributed without
+    /// maxima to meet: [`Status::Feasible`].
+    pub const fn exact(motor_torques: M, tendon_tensions: K) -> Self {
+        Actuation {
+            motor_torques,
+            tendon_tensions,
+            status: Status::Feasible,
+        }
+    }
+}
+
+impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
+    /// Tensions distributed by [`along_line`], with its excess and scale.
+    pub fn along_line(motor_torques: [T; M], tendon_tensions: [T; K], excess: T, scale: T) -> Self {
+        Actuation {
+            motor_torques,
+            tendon_tensions,
+            status: Status::of_line(excess, scale, K),
+        }
+    }
+
+    /// The minimal-norm tensions `t0` distributed by [`solve`] within `problem`'s bounds.
+    pub fn bounded<const D: usize>(
+        motor_torques: [T; M],
+        t0: [T; K],
+        problem: &Fixed<K, D>,
+    ) -> Self {
+        let mut lambda = [T::zero(); D];
+        let mut basis = [[T::zero(); D]; D];
+        let mut triangle = [[T::zero(); D]; D];
+        let mut multipliers = [T::zero(); D];
+        let mut scratch = [[T::zero(); D]; 2];
+        let mut active = [0usize; D];
+        let mut work = Work {
+            lambda: &mut lambda,
+            basis: basis.as_flattened_mut(),
+            triangle: triangle.as_flattened_mut(),
+            multipliers: &mut multipliers,
+            scratch: scratch.as_flattened_mut(),
+            active: &mut active,
+        };
+        let mut tendon_tensions = [T::zero(); K];
+        let status = solve(problem, &t0, &mut work, &mut tendon_tensions, None);
+        Actuation {
+            motor_torques,
+            tendon_tensions,
+            status,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// One null direction: closed form.
+
+/// The data of a one-direction distribution: the positive null vector's tendon components
+/// `p` (all `> 0`), the bounds, and the unconstrained optimum `μ* = pᵀc / pᵀp`.
+pub struct Line<'a, T> {
+    pub direction: &'a [T],
+    pub floor: &'a [f64],
+    /// `f64::INFINITY` where a tendon has no maximum.
+    pub max: &'a [f64],
+    pub target: T,
+}
+
+/// What [`along_line`] found besides the tensions.
+#[derive(Clone, Copy, Debug)]
+pub struct LineResult<T> {
+    /// `μ`: how far along `p` the tensions were moved.
+    pub lift: T,
+    /// `μ_floor − μ_max` (`> 0`: no `μ` meets every bound) and the size it is measured
+    /// against (`max(|T₀|, floors, maxima)`), for [`Status::of_line`]; `None` when no
+    /// tendon has a maximum (the floors can always be met).
+    pub excess: Option<(T, T)>,
+}
+
+/// `T = T₀ + μ p` with `μ = max(μ_floor, min(μ_max, μ*))`, written into `t` (which holds
+/// `T₀` on entry): `μ_floor = maxₖ (floor_k − T₀ₖ)/p_k`, `μ_max = minₖ (max_k − T₀ₖ)/p_k`.
+/// Only [`Real::max`] decides, so a symbolic scalar traces it into straight-line code.
+pub fn along_line<T: Real>(line: &Line<'_, T>, t: &mut [T]) -> LineResult<T> {
+    let bounded: usize = line.max.iter().filter(|m| m.is_finite()).count();
+    let need = |k: usize, t: &[T]| (T::from_f64(line.floor[k]) - t[k]) / line.direction[k];
+    let lift = if bounded == 0 {
+        // μ = max(μ*, μ_floor), folded from μ* so that the least-norm case (μ* = 0) is
+        // the plain chain max(0, need₀, need₁, …).
+        (0..t.len()).fold(line.target, |mu, k| mu.max(need(k, t)))
+    } else {
+        // min(μ_max, μ*) = −max(maxₖ (T₀ₖ − max_k)/p_k, −μ*).
+        let over = |k: usize| (t[k] - T::from_f64(line.max[k])) / line.direction[k];
+        let mut maxima = (0..t.len()).filter(|&k| line.max[k].is_finite());
+        let first = maxima.next().map(over).unwrap_or(line.target);
+        let minus_mu_max = maxima.fold(first, |m, k| m.max(over(k)));
+        let capped = -minus_mu_max.max(-line.target);
+        let mu_floor = (1..t.len()).fold(need(0, t), |m, k| m.max(need(k, t)));
+        let constants = line
+            .floor
+            .iter()
+            .chain(line.max.iter().filter(|m| m.is_finite()))
+            .fold(0.0f64, |m, &x| m.max(x.abs()));
+        let scale = t
+            .iter()
+            .fold(T::from_f64(constants), |m, &x| m.max(x).max(-x));
+        let excess = mu_floor + minus_mu_max;
+        let lift = capped.max(mu_floor);
+        for (tk, pk) in t.iter_mut().zip(line.direction) {
+            *tk = *tk + lift * *pk;
+        }
+        return LineResult {
+            lift,
+            excess: Some((excess, scale)),
+        };
+    };
+    for (tk, pk) in t.iter_mut().zip(line.direction) {
+        *tk = *tk + lift * *pk;
+    }
+    LineResult { lift, excess: None }
+}
+
+// ---------------------------------------------------------------------------------------
+// Several null directions: the dual active-set method.
+
+/// The constant data of a distribution over `d ≥ 1` null directions.
+pub trait Problem<T> {
+    /// `K`, the open-ended tendons.
+    fn tendons(&self) -> usize;
+    /// `d`, the null directions.
+    fn directions(&self) -> usize;
+    /// Component on tendon `k` of null direction `d` (orthonormal over the tendons).
+    fn null(&self, d: usize, k: usize) -> T;
+    fn floor(&self, k: usize) -> f64;
+    /// `f64::INFINITY` where tendon `k` has no maximum.
+    fn max(&self, k: usize) -> f64;
+    /// `λ*_d = Σₖ null(d, k) c_k`: the objective's optimum in null-space coordinates.
+    fn target(&self, d: usize) -> T;
+}
+
+/// A [`Problem`] of constants, as generated code holds it.
+#[derive(Clone, Copy, Debug)]
+pub struct Fixed<const K: usize, const D: usize> {
+    /// `null[d][k]`.
+    pub null: [[f64; K]; D],
+    pub floor: [f64; K],
+    /// `f64::INFINITY` where a tendon has no maximum.
+    pub max: [f64; K],
+    pub target: [f64; D],
+}
+
+impl<T: Real, const K: usize, const D: usize> Problem<T> for Fixed<K, D> {
+    fn tendons(&self) -> usize {
+        K
+    }
+    fn directions(&self) -> usize {
+        D
+    }
+    fn null(&self, d: usize, k: usize) -> T {
+        T::from_f64(self.null[d][k])
+    }
+    fn floor(&self, k: usize) -> f64 {
+        self.floor[k]
+    }
+    fn max(&self, k: usize) -> f64 {
+        self.max[k]
+    }
+    fn target(&self, d: usize) -> T {
+        T::from_f64(self.target[d])
+    }
+}
+
+/// Work buffers of [`solve`] for `d` directions, borrowed so that the caller decides where
+/// they live (the stack in generated code, the solver's workspace at run time).
+pub struct Work<'a, T> {
+    /// `d`: the current point.
+    pub lambda: &'a mut [T],
+    /// `d·d`: orthonormal basis of the active bounds' normals, column `j` at `j·d..`.
+    pub basis: &'a mut [T],
+    /// `d·d`: `R` of those normals (`normals = basis · R`), row-major.
+    pub triangle: &'a mut [T],
+    /// `d`: multipliers of the active bounds.
+    pub multipliers: &'a mut [T],
+    /// `2·d`.
+    pub scratch: &'a mut [T],
+    /// `d`: indices of the active bounds (`k` the floor of tendon `k`, `K + k` its maximum).
+    pub active: &'a mut [usize],
+}
+
+impl<T> Work<'_, T> {
+    fn fits(&self, d: usize) -> bool {
+        self.lambda.len() >= d
+            && self.basis.len() >= d * d
+            && self.triangle.len() >= d * d
+            && self.multipliers.len() >= d
+            && self.scratch.len() >= 2 * d
+            && self.active.len() >= d
+    }
+}
+
+/// The distribution of the minimal-norm tensions `t0` within `problem`'s bounds, written
+/// into `tensions`. On [`Status::MaxExceeded`], `certificate` (if given, `K` entries)
+/// receives a vector `w` over the tendons with `max {wᵀT : floor ≤ T ≤ max} < wᵀT₀`:
+/// along `w` the motion needs more than the bounded tendons can give. Entries `w_k > 0`
+/// belong to tendons at their maximum, `w_k < 0` to tendons at their floor.
+pub fn solve<T: Numeric, P: Problem<T>>(
+    problem: &P,
+    t0: &[T],
+    work: &mut Work<'_, T>,
+    tensions: &mut [T],
+    certificate: Option<&mut [T]>,
+) -> Status {
+    let (k, d) = (problem.tendons(), problem.directions());
+    if t0.len() != k || tensions.len() != k || !work.fits(d) {
+        // Copies what fits: a mismatch of lengths is reported, never a panic.
+        for (t, x) in tensions.iter_mut().zip(t0) {
+            *t = *x;
+        }
+        return Status::Unresolved;
+    }
+    let status = match project(problem, t0, true, work, certificate) {
+        Projection::Optimal => Status::Feasible,
+        Projection::Empty => match project(problem, t0, false, work, None) {
+            Projection::Optimal => Status::MaxExceeded,
+            _ => Status::Unresolved,
+        },
+        Projection::Unfinished => Status::Unresolved,
+    };
+    for i in 0..k {
+        tensions[i] = if status == Status::Unresolved {
+            t0[i]
+        } else {
+            tension(problem, t0, work.lambda, i)
+        };
+    }
+    status
+}
+
+enum Projection {
+    Optimal,
+    /// The bounds admit no point.
+    Empty,
+    Unfinished,
+}
+
+/// `T_k = T₀ₖ + Σ_d null(d, k) λ_d`.
+fn tension<T: Real, P: Problem<T>>(p: &P, t0: &[T], lambda: &[T], k: usize) -> T {
+    (0..p.directions()).fold(t0[k], |s, d| s + p.null(d, k) * lambda[d])
+}
+
+/// `4 (K + d) u`: the bound violation that round-off allows, per unit of size.
+fn tolerance_factor<T: Numeric>(tendons: usize, directions: usize) -> f64 {
+    4.0 * (tendons + directions) as f64 * T::unit_roundoff()
+}
+
+/// The normal of bound `i` in null-space coordinates: `+null(·, k)` for a floor, `−` for a
+/// maximum (bound `i` reads `normal · λ ≥ …`).
+fn normal<T: Real, P: Problem<T>>(p: &P, i: usize, d: usize) -> T {
+    let k = p.tendons();
+    if i < k {
+        p.null(d, i)
+    } else {
+        -p.null(d, i - k)
+    }
+}
+
+/// Goldfarb-Idnani for `min ½‖λ − λ*‖²` over the floors, and the maxima if `with_max`.
+/// Leaves the point in `work.lambda`.
+fn project<T: Numeric, P: Problem<T>>(
+    p: &P,
+    t0: &[T],
+    with_max: bool,
+    work: &mut Work<'_, T>,
+    certificate: Option<&mut [T]>,
+) -> Projection {
+    let (k, d) = (p.tendons(), p.directions());
+    let bounds = if with_max { 2 * k } else { k };
+    let exists = |i: usize| i < k || p.max(i - k).is_finite();
+    // Slack of bound i at the current point (≥ 0 when met) and the size it is measured
+    // against.
+    let slack = |i: usize, lambda: &[T]| {
+        if i < k {
+            (tension(p, t0, lambda, i) - T::from_f64(p.floor(i)), i)
+        } else {
+            let j = i - k;
+            (T::from_f64(p.max(j)) - tension(p, t0, lambda, j), j)
+        }
+    };
+    let mut size = T::zero();
+    for j in 0..k {
+        size = size.max(t0[j].abs()).max(T::from_f64(p.floor(j)));
+        if p.max(j).is_finite() {
+            size = size.max(T::from_f64(p.max(j)));
+        }
+    }
+    let factor = T::from_f64(tolerance_factor::<T>(k, d));
+    let met = |s: T, j: usize, lambda: &[T]| {
+        let here = tension(p, t0, lambda, j).abs();
+        let scale = if here > size { here } else { size };
+        s >= -(factor * scale)
+    };
+    let independent = T::from_f64(64.0 * d as f64 * T::unit_roundoff());
+
+    for i in 0..d {
+        work.lambda[i] = p.target(i);
+    }
+    let mut q = 0; // active bounds
+    let mut remaining = iteration_bound(d, (0..bounds).filter(|&i| exists(i)).count());
+    loop {
+        // The most violated bound, if any.
+        let mut worst: Option<(usize, T)> = None;
+        for i in (0..bounds).filter(|&i| exists(i)) {
+            let (s, j) = slack(i, work.lambda);
+            if !met(s, j, work.lambda) && worst.is_none_or(|(_, w)| s < w) {
+                worst = Some((i, s));
             }
-            for m in 0..j {
-                v = v - l[i][m] * l[j][m];
+        }
+        let Some((add, mut violation)) = worst else {
+            return Projection::Optimal;
+        };
+        let mut added_multiplier = T::zero();
+        loop {
+            if remaining == 0 {
+                return Projection::Unfinished;
             }
-            if i == j {
-                if v <= T::from_f64(1e-24) {
-                    return None;
+            remaining -= 1;
+            // z: the part of the new normal outside the active normals' span (the primal
+            // direction); r: its coordinates in the active normals (the dual direction).
+            let (z, r) = work.scratch.split_at_mut(d);
+            let z = &mut z[..d];
+            for i in 0..d {
+                z[i] = normal(p, add, i);
+            }
+            let a_norm = norm(z);
+            for i in 0..q {
+                r[i] = T::zero();
+            }
+            for _pass in 0..2 {
+                for j in 0..q {
+                    let column = &work.basis[j * d..(j + 1) * d];
+                    let w = dot(column, z);
+                    r[j] = r[j] + w;
+                    for i in 0..d {
+                        z[i] = z[i] - w * column[i];
+                    }
                 }
-                l[i][i] = v.sqrt();
-            } else {
-                l[i][j] = v / l[j][j];
+            }
+            // r ← R⁻¹ r by back-substitution.
+            for i in (0..q).rev() {
+                let mut v = r[i];
+                for j in i + 1..q {
+                    v = v - work.triangle[i * d + j] * r[j];
+                }
+                r[i] = v / work.triangle[i * d + i];
+            }
+            let z_norm = norm(z);
+            // Full step: to where the new bound is met (never backwards, should round-off
+            // have met it already).
+            let full = (z_norm > independent * a_norm).then(|| {
+                let need = -violation;
+                let need = if need > T::zero() { need } else { T::zero() };
+                need / (z_norm * z_norm)
+            });
+            // Partial step: to where an active bound's multiplier reaches zero.
+            let mut partial: Option<(usize, T)> = None;
+            for j in 0..q {
+                if r[j] > T::zero() {
+                    let t = work.multipliers[j] / r[j];
+                    if partial.is_none_or(|(_, best)| t < best) {
+                        partial = Some((j, t));
+                    }
+                }
+            }
+            let step = match (full, partial) {
+                (None, None) => Step::Empty,
+                (Some(t), None) => Step::Full(t),
+                (Some(t), Some((_, tp))) if t <= tp => Step::Full(t),
+                (full, Some((drop, t))) => Step::Partial {
+                    drop,
+                    t,
+                    primal: full.is_some(),
+                },
+            };
+            match step {
+                Step::Empty => {
+                    // new normal = Σ r_j (active normal j) with every r_j ≤ 0: the bounds
+                    // with multipliers μ_new = 1, μ_j = −r_j ≥ 0 cannot all hold (Farkas).
+                    if let Some(w) = certificate {
+                        for x in w.iter_mut() {
+                            *x = T::zero();
+                        }
+                        // A multiplier on a floor lowers w, on a maximum raises it.
+                        let mut add_to = |i: usize, mu: T| {
+                            if i < k {
+                                w[i] = w[i] - mu;
+                            } else {
+                                w[i - k] = w[i - k] + mu;
+                            }
+                        };
+                        add_to(add, T::one());
+                        for j in 0..q {
+                            add_to(work.active[j], -r[j]);
+                        }
+                    }
+                    return Projection::Empty;
+                }
+                Step::Full(t) => {
+                    for i in 0..d {
+                        work.lambda[i] = work.lambda[i] + t * z[i];
+                    }
+                    for j in 0..q {
+                        work.multipliers[j] = work.multipliers[j] - t * r[j];
+                    }
+                    work.active[q] = add;
+                    work.multipliers[q] = added_multiplier + t;
+                    q += 1;
+                    factorize(p, work, q, d);
+                    break;
+                }
+                Step::Partial { drop, t, primal } => {
+                    // Bound `drop` leaves the active set, its multiplier having reached 0;
+                    // then the same new bound is tried again.
+                    if primal {
+                        for i in 0..d {
+                            work.lambda[i] = work.lambda[i] + t * z[i];
+                        }
+                    }
+                    for j in 0..q {
+                        work.multipliers[j] = work.multipliers[j] - t * r[j];
+                    }
+                    added_multiplier = added_multiplier + t;
+                    for j in drop..q - 1 {
+                        work.active[j] = work.active[j + 1];
+                        work.multipliers[j] = work.multipliers[j + 1];
+                    }
+                    q -= 1;
+                    factorize(p, work, q, d);
+                    violation = slack(add, work.lambda).0;
+                }
             }
         }
     }
-    let mut mu = [T::zero(); D];
-    for i in 0..s {
-        let mut v = g[idx[i]];
-        for m in 0..i {
-            v = v - l[i][m] * mu[m];
+}
+
+/// One step of the dual active-set method.
+enum Step<T> {
+    /// The bounds admit no point.
+    Empty,
+    /// Move by `t` along the primal direction; the new bound becomes active.
+    Full(T),
+    /// Move by `t` (in the primal space too if `primal`); bound `drop` leaves.
+    Partial { drop: usize, t: T, primal: bool },
+}
+
+/// Gram-Schmidt, twice, of the first `q` active normals: `basis` and `triangle`.
+fn factorize<T: Numeric, P: Problem<T>>(p: &P, work: &mut Work<'_, T>, q: usize, d: usize) {
+    for j in 0..q {
+        for i in 0..d {
+            work.basis[j * d + i] = normal(p, work.active[j], i);
         }
-        mu[i] = v / l[i][i];
-    }
-    for i in (0..s).rev() {
-        let mut v = mu[i];
-        for m in i + 1..s {
-            v = v - l[m][i] * mu[m];
+        for i in 0..q {
+            work.triangle[i * d + j] = T::zero();
         }
-        mu[i] = v / l[i][i];
-    }
-    if mu[..s].iter().any(|&m| m < T::zero()) {
-        return None;
-    }
-    let mut lambda = [T::zero(); D];
-    for i in 0..s {
-        for d in 0..D {
-            lambda[d] = lambda[d] + mu[i] * a(i, d);
+        for _pass in 0..2 {
+            for m in 0..j {
+                let (done, rest) = work.basis.split_at_mut(j * d);
+                let column = &done[m * d..(m + 1) * d];
+                let v = &mut rest[..d];
+                let w = dot(column, v);
+                work.triangle[m * d + j] = work.triangle[m * d + j] + w;
+                for i in 0..d {
+                    v[i] = v[i] - w * column[i];
+                }
+            }
+        }
+        let v = &mut work.basis[j * d..(j + 1) * d];
+        let length = norm(v);
+        work.triangle[j * d + j] = length;
+        for x in v.iter_mut() {
+            *x = *x / length;
         }
     }
-    Some(lambda)
+}
+
+fn dot<T: Real>(a: &[T], b: &[T]) -> T {
+    a.iter().zip(b).fold(T::zero(), |s, (x, y)| s + *x * *y)
+}
+
+fn norm<T: Real>(a: &[T]) -> T {
+    dot(a, a).sqrt()
+}
+
+/// `(d + 1) Σ_{s ≤ d} C(m, s)`: a step per active set of at most `d` of the `m` bounds,
+/// each after at most `d` drops (saturating).
+fn iteration_bound(d: usize, m: usize) -> usize {
+    let mut sets: usize = 0;
+    let mut choose: usize = 1; // C(m, s)
+    for s in 0..=d.min(m) {
+        sets = sets.saturating_add(choose);
+        choose = if choose == usize::MAX {
+            choose
+        } else {
+            choose.saturating_mul(m - s) / (s + 1)
+        };
+    }
+    sets.saturating_mul(d + 1)
 }

@@ -69,6 +69,21 @@ pub struct MechanismFile {
     /// A constant wrench applied to one link by its environment.
     #[serde(default)]
     pub external_wrench: Option<WrenchSpec>,
+    /// What the tension distribution of a redundant routing minimises.
+    #[serde(default)]
+    pub distribution: Objective,
+}
+
+/// The objective of the tension distribution: among the tensions within every floor and
+/// maximum that produce the motion, the ones nearest to a target.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum Objective {
+    /// Least `Σ T_k²`: the lowest tensions (the default).
+    #[default]
+    LeastNorm,
+    /// Least `Σ (T_k − (floor_k + max_k)/2)²`: tensions mid-way between their bounds, for
+    /// antagonistic stiffness. Every tendon needs a `max_tension`.
+    Centered,
 }
 
 fn default_gravity() -> [Num; 3] {

@@ -11,9 +11,13 @@
 //! - [`kinematics`]: forward recursion over primary and intermediate links (Eqs. 2-6, 11-16);
 //! - [`newton_euler`]: backward recursion with forces affine in the unknown tensions
 //!   (Eqs. 19-24);
-//! - [`tension`]: `E x = b`, the tension distribution with a floor, segment tensions;
+//! - [`tension`]: `E x = b` and its minimal-norm solution, segment tensions, and the
+//!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics;
-//! - [`distribution`]: the fixed-size tension distribution generated code calls;
+//! - [`torque_range`]: the static torque range of each joint, what the tendons within their
+//!   floors and maxima can do on it with every other joint at rest (a linear program);
+//! - [`distribution`]: the tension distribution within floors and maxima (`no_std`,
+//!   allocation-free), one routine that the runtime solver and generated code both call;
 //! - [`mechanism`]: the [`TendonMechanism`] trait of generated dynamics and
 //!   [`include_mechanism!`] for code a build script generated.
 //!
@@ -68,6 +72,8 @@ pub mod newton_euler;
 pub mod spatial;
 #[cfg(feature = "std")]
 pub mod tension;
+#[cfg(feature = "std")]
+pub mod torque_range;
 #[cfg(feature = "std")]
 pub mod transmission;
 #[cfg(feature = "std")]

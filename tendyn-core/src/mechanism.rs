@@ -5,6 +5,7 @@
 //! Both live here, without `std`, because firmware that uses generated code depends on this
 //! crate alone.
 
+use crate::distribution::Actuation;
 use crate::real::Real;
 
 /// A mechanism whose dynamics were generated at compile time, by
@@ -66,14 +67,14 @@ pub trait TendonMechanism {
         None
     }
 
-    /// Motor torques and ground-level tendon tensions (every tension at or above its
-    /// floor, least norm).
+    /// Motor torques and ground-level tendon tensions (every tension within its floor and
+    /// maximum, the distribution's objective least) and whether the bounds could be met.
     fn actuation(
         &self,
         _q: &Self::Joints,
         _qd: &Self::Joints,
         _qdd: &Self::Joints,
-    ) -> Option<(Self::Motors, Self::Tendons)> {
+    ) -> Option<Actuation<Self::Motors, Self::Tendons>> {
         None
     }
 

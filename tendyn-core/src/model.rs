@@ -6,6 +6,7 @@
 //! (a symbolic one for code generation); [`Model::cast_numeric`] also recomputes the
 //! tension system's pseudo-inverse and null space in the new precision.
 
+pub use crate::format::Objective;
 use crate::real::{Numeric, Real};
 use crate::spatial::{Mat3, Transform, Vec3};
 use crate::transmission::linalg;
@@ -284,6 +285,8 @@ pub struct Model<T> {
     pub loops: Vec<Loop>,
     pub motors: Vec<Motor>,
     pub system: TensionSystem<T>,
+    /// What the tension distribution minimises (format.md §3).
+    pub objective: Objective,
     pub external_wrench: Option<Wrench<T>>,
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
@@ -382,6 +385,7 @@ impl<T: Real> Model<T> {
                     .map(|p| p.iter().map(|&x| f(x)).collect()),
                 condition: self.system.condition,
             },
+            objective: self.objective,
             external_wrench: self.external_wrench.as_ref().map(|w| Wrench {
                 link: w.link,
                 point: v(w.point),

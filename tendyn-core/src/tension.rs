@@ -8,13 +8,16 @@
 //!   each loop's pretension. `E` is constant (it is the transmission's virtual-work map);
 //!   `b` is what the backward recursion leaves over when every unknown is zero.
 //! - The solution with least norm is `x₀ = E⁺ b`. Redundant open-ended routings add a
-//!   null-space part `N λ` so that every tendon stays at or above its floor; among those,
-//!   the one of least norm is chosen. Since `x₀ ⟂ N`, that is the least `|λ|`.
+//!   null-space part `N λ` so that every tendon stays within its floor and maximum; among
+//!   those, the one nearest the objective's target is chosen ([`crate::distribution`],
+//!   the one implementation; here its data are gathered from the model and a state the
+//!   bounds cannot meet is explained).
 
 use crate::affine::Affine;
+use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::model::{BodyKind, Model, PulleyRole, Row, Unknown};
+use crate::model::{BodyKind, Model, Objective, PulleyRole, Row, Tendon, Unknown};
 use crate::newton_euler::Loads;
 use crate::real::{Numeric, Real};
 
@@ -120,56 +123,170 @@ pub fn minimal_norm<T: Real>(model: &Model<T>, b: &[T], out: &mut [T]) {
     }
 }
 
-/// The floor-respecting distribution for a one-dimensional null space in closed form:
-/// `x = x₀ + λ p`, `λ = max(0, max_k (floor_k − x₀_k) / p_k)` over the tendons, `p` the
-/// positive null vector. Uses only [`Real::max`], so the code generator can emit it.
-/// Returns `λ`.
-pub fn lift_to_floor<T: Real>(model: &Model<T>, x: &mut [T]) -> T {
+/// `c_k`, the tension the objective aims tendon `k` at: 0 (least norm) or the middle of
+/// its floor and maximum (centered; validation requires the maximum).
+fn aim(model_objective: Objective, t: &Tendon) -> f64 {
+    match (model_objective, t.max_tension) {
+        (Objective::Centered, Some(max)) => 0.5 * (t.floor + max),
+        _ => 0.0,
+    }
+}
+
+/// The maxima as [`distribution`] takes them: `f64::INFINITY` where there is none.
+fn max_of(t: &Tendon) -> f64 {
+    t.max_tension.unwrap_or(f64::INFINITY)
+}
+
+/// The distribution of a one-dimensional null space in closed form
+/// ([`distribution::along_line`] along the positive null vector), applied to the unknowns
+/// `x` (the minimal-norm solution on entry). Generic over [`Real`]: the code generator
+/// traces it.
+pub fn along_line<T: Real>(model: &Model<T>, x: &mut [T]) -> LineResult<T> {
     let p = model
         .system
         .positive_null
         .as_ref()
         .expect("a redundant routing has a positive null vector");
-    let mut lambda = T::zero();
-    for t in &model.tendons {
-        let k = t.unknown;
-        let need = (T::from_f64(t.floor) - x[k]) / p[k];
-        lambda = lambda.max(need);
-    }
-    for (xi, pi) in x.iter_mut().zip(p) {
-        *xi = *xi + lambda * *pi;
-    }
-    lambda
-}
-
-/// The least-norm solution with every tendon at or above its floor, for a null space of
-/// any dimension: minimises `|λ|` subject to `(x₀ + N λ)_k ≥ floor_k` by enumerating
-/// active sets (small: a handful of tendons). Writes the result into `x`.
-pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
-    let null = &model.system.null_space;
-    let d = null.len();
-    if d == 0 || model.tendons.is_empty() {
-        return Ok(());
-    }
-    if d == 1 {
-        lift_to_floor(model, x);
+    let direction: Vec<T> = model.tendons.iter().map(|t| p[t.unknown]).collect();
+    let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+    let max: Vec<f64> = model.tendons.iter().map(max_of).collect();
+    // μ* = pᵀc / pᵀp (pᵀT₀ = 0): zero, exactly, for the least-norm objective.
+    let target = if model.objective == Objective::LeastNorm {
+        T::zero()
     } else {
-        // g_k = floor_k − x₀_k; constraint rows a_k = N[·][k].
-        let cons: Vec<(Vec<T>, T)> = model
+        let (pc, pp) = model
             .tendons
             .iter()
-            .map(|t| {
-                let a: Vec<T> = null.iter().map(|v| v[t.unknown]).collect();
-                (a, T::from_f64(t.floor) - x[t.unknown])
+            .zip(&direction)
+            .fold((T::zero(), T::zero()), |(pc, pp), (t, &pk)| {
+                (pc + pk * T::from_f64(aim(model.objective, t)), pp + pk * pk)
+            });
+        pc / pp
+    };
+    let mut tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
+    let line = Line {
+        direction: &direction,
+        floor: &floor,
+        max: &max,
+        target,
+    };
+    let result = distribution::along_line(&line, &mut tensions);
+    for (t, v) in model.tendons.iter().zip(tensions) {
+        x[t.unknown] = v;
+    }
+    result
+}
+
+/// The model's bounds as a [`Problem`] of [`distribution::solve`] (the code generator
+/// reads its constants from it too).
+pub fn bounds<T: Real>(model: &Model<T>) -> impl Problem<T> + '_ {
+    Bounds::new(model)
+}
+
+struct Bounds<'m, T> {
+    model: &'m Model<T>,
+    target: Vec<T>,
+}
+
+impl<'m, T: Real> Bounds<'m, T> {
+    fn new(model: &'m Model<T>) -> Self {
+        let target = model
+            .system
+            .null_space
+            .iter()
+            .map(|v| {
+                model.tendons.iter().fold(T::zero(), |s, t| {
+                    s + v[t.unknown] * T::from_f64(aim(model.objective, t))
+                })
             })
             .collect();
-        let lambda = least_norm_in_polyhedron(&cons, d).ok_or_else(|| {
-            Error::Tension("no distribution keeps every tendon at its floor".into())
-        })?;
-        for (v, l) in null.iter().zip(&lambda) {
-            for (xi, vi) in x.iter_mut().zip(v) {
-                *xi = *xi + *l * *vi;
-            }
+        Bounds { model, target }
+    }
+}
+
+impl<T: Real> Problem<T> for Bounds<'_, T> {
+    fn tendons(&self) -> usize {
+        self.model.tendons.len()
+    }
+    fn directions(&self) -> usize {
+        self.model.system.null_space.len()
+    }
+    fn null(&self, d: usize, k: usize) -> T {
+        self.model.system.null_space[d][self.model.tendons[k].unknown]
+    }
+    fn floor(&self, k: usize) -> f64 {
+        self.model.tendons[k].floor
+    }
+    fn max(&self, k: usize) -> f64 {
+        max_of(&self.model.tendons[k])
+    }
+    fn target(&self, d: usize) -> T {
+        self.target[d]
+    }
+}
+
+/// The tension distribution for a null space of any dimension (module
+/// [`distribution`]): every open-ended tendon within its floor and `max_tension`, the
+/// objective least. `x` holds the minimal-norm solution on entry and the distributed one
+/// on return. When no tensions within the bounds produce the motion, the error names the
+/// tendons whose bounds block and what they can produce.
+pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
+    let d = model.system.null_space.len();
+    let k = model.tendons.len();
+    if d == 0 || k == 0 {
+        return Ok(());
+    }
+    let t0: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
+    let (status, certificate) = if d == 1 {
+        let r = along_line(model, x);
+        let status = r
+            .excess
+            .map_or(Status::Feasible, |(e, s)| Status::of_line(e, s, k));
+        (
+            status,
+            (status == Status::MaxExceeded).then(|| line_certificate(model, &t0)),
+        )
+    } else {
+        let problem = Bounds::new(model);
+        let mut buffers = vec![T::zero(); 5 * d + 2 * d * d];
+        let (lambda, rest) = buffers.split_at_mut(d);
+        let (basis, rest) = rest.split_at_mut(d * d);
+        let (triangle, rest) = rest.split_at_mut(d * d);
+        let (multipliers, scratch) = rest.split_at_mut(d);
+        let mut active = vec![0usize; d];
+        let mut work = Work {
+            lambda,
+            basis,
+            triangle,
+            multipliers,
+            scratch,
+            active: &mut active,
+        };
+        let mut tensions = vec![T::zero(); k];
+        let mut w = vec![T::zero(); k];
+        let status = distribution::solve(&problem, &t0, &mut work, &mut tensions, Some(&mut w));
+        for (t, v) in model.tendons.iter().zip(&tensions) {
+            x[t.unknown] = *v;
+        }
+        (status, Some(w))
+    };
+    match status {
+        Status::Feasible => {}
+        Status::MaxExceeded => {
+            let w: Vec<f64> = certificate
+                .unwrap_or_default()
+                .iter()
+                .map(|v| v.to_f64())
+                .collect();
+            let t0: Vec<f64> = t0.iter().map(|v| v.to_f64()).collect();
+            return Err(Error::Tension(blocked(model, &t0, &w)));
+        }
+        Status::Unresolved => {
+            return Err(Error::Tension(
+                "the distribution did not finish within its bound on steps (round-off at a \
+                 degenerate state); please report the mechanism and the state"
+                    .into(),
+            ))
         }
     }
     for t in &model.tendons {
@@ -181,87 +298,133 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
                 v.to_f64()
             )));
         }
-        if let Some(mx) = t.max_tension {
-            if v.to_f64() > mx {
-                return Err(Error::Tension(format!(
-                    "`{}` would need {:.6e} N, above its max_tension {mx} N, to keep every \
-                     tendon at or above its floor",
-                    t.name,
-                    v.to_f64()
-                )));
-            }
-        }
     }
     Ok(())
 }
 
-/// Least-norm `λ` with `a_k · λ ≥ g_k` for all constraints, by active-set enumeration.
-fn least_norm_in_polyhedron<T: Numeric>(cons: &[(Vec<T>, T)], d: usize) -> Option<Vec<T>> {
-    let m = cons.len();
-    let feasible = |l: &[T]| {
-        cons.iter().all(|(a, g)| {
-            let v = a.iter().zip(l).fold(T::zero(), |s, (x, y)| s + *x * *y);
-            let scale = g.abs().to_f64().max(1.0);
-            (v - *g).to_f64() >= -1e-12 * scale
-        })
+/// The certificate of an empty interval along the positive null vector `p`: the floor
+/// `i` that bounds `μ` highest from below and the maximum `j` that bounds it lowest from
+/// above give `w = e_j / p_j − e_i / p_i`, with `max wᵀT = max_j/p_j − floor_i/p_i` below
+/// `wᵀT₀` exactly when `μ_floor > μ_max`.
+fn line_certificate<T: Numeric>(model: &Model<T>, t0: &[T]) -> Vec<T> {
+    let p = model.system.positive_null.as_ref().expect("d = 1");
+    let pk = |k: usize| p[model.tendons[k].unknown];
+    let pick = |f: &dyn Fn(usize) -> Option<T>| {
+        (0..t0.len())
+            .filter_map(|k| f(k).map(|v| (k, v)))
+            .fold(None, |best: Option<(usize, T)>, (k, v)| match best {
+                Some((_, b)) if b >= v => best,
+                _ => Some((k, v)),
+            })
+            .map(|(k, _)| k)
     };
-    let zero = vec![T::zero(); d];
-    if feasible(&zero) {
-        return Some(zero);
+    let floor = pick(&|k| Some((T::from_f64(model.tendons[k].floor) - t0[k]) / pk(k)));
+    let max = pick(&|k| {
+        model.tendons[k]
+            .max_tension
+            .map(|m| -((T::from_f64(m) - t0[k]) / pk(k)))
+    });
+    let mut w = vec![T::zero(); t0.len()];
+    if let (Some(i), Some(j)) = (floor, max) {
+        w[i] = w[i] - T::one() / pk(i);
+        w[j] = w[j] + T::one() / pk(j);
     }
-    for size in 1..=d.min(m) {
-        let mut idx: Vec<usize> = (0..size).collect();
-        loop {
-            if let Some(l) = candidate(cons, &idx, d) {
-                if feasible(&l) {
-                    return Some(l);
-                }
-            }
-            if !next_combination(&mut idx, m) {
-                break;
-            }
-        }
-    }
-    None
+    w
 }
 
-/// The least-norm point on the active constraints `idx` (`λ = A_Sᵀ μ` with
-/// `(A_S A_Sᵀ) μ = g_S`), if they are independent and their multipliers `μ` are
-/// non-negative (otherwise this active set is not the optimum's).
-fn candidate<T: Numeric>(cons: &[(Vec<T>, T)], idx: &[usize], d: usize) -> Option<Vec<T>> {
-    let dot = |a: &[T], b: &[T]| a.iter().zip(b).fold(T::zero(), |s, (x, y)| s + *x * *y);
-    let gram: Vec<Vec<T>> = idx
+/// The message for a state the bounds cannot meet, from a certificate `w` (see
+/// [`distribution::solve`]): along `w` the motion needs `wᵀT₀`, more than the bounded
+/// tendons give at their extreme (`T_k` at its maximum where `w_k > 0`, at its floor
+/// where `w_k < 0`). `w` lies in the row space of the tension system, `w = E_Tᵀ y`, so
+/// `wᵀT = yᵀ(E_T T)`: a combination of the balances (generalized forces on joints) the
+/// tendons take part in, `y = (E⁺)ᵀ w`.
+fn blocked<T: Numeric>(model: &Model<T>, t0: &[f64], w: &[f64]) -> String {
+    let rows = model.system.rows.len();
+    let pinv = |u: usize, r: usize| model.system.pseudo_inverse[u][r];
+    let mut y = vec![0.0; rows];
+    for (t, wk) in model.tendons.iter().zip(w) {
+        for (r, yr) in y.iter_mut().enumerate() {
+            *yr += wk * pinv(t.unknown, r).to_f64();
+        }
+    }
+    let lead = (0..rows).fold(0, |b, r| if y[r].abs() > y[b].abs() { r } else { b });
+    let s = y[lead];
+    if s == 0.0 || !s.is_finite() {
+        return "no tensions within the floors and maxima produce this motion".into();
+    }
+    let needed: f64 = w.iter().zip(t0).map(|(a, b)| a * b).sum::<f64>() / s;
+    let extreme: f64 = model
+        .tendons
         .iter()
-        .map(|&i| idx.iter().map(|&j| dot(&cons[i].0, &cons[j].0)).collect())
+        .zip(w)
+        .map(|(t, &wk)| {
+            if wk > 0.0 {
+                wk * max_of(t)
+            } else {
+                wk * t.floor
+            }
+        })
+        .sum::<f64>()
+        / s;
+    let small = 1e-9 * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let at_max: Vec<String> = model
+        .tendons
+        .iter()
+        .zip(w)
+        .filter(|(_, &wk)| wk > small)
+        .map(|(t, _)| format!("`{}` at its maximum {} N", t.name, max_of(t)))
         .collect();
-    let rhs: Vec<T> = idx.iter().map(|&i| cons[i].1).collect();
-    let mu = crate::transmission::linalg::cholesky_solve(&gram, &rhs)?;
-    if mu.iter().any(|&u| u < T::zero()) {
-        return None;
+    let who = match at_max.len() {
+        0 => "the tendons at their floors".to_string(),
+        1 => at_max[0].clone(),
+        n => format!("{} and {}", at_max[..n - 1].join(", "), at_max[n - 1]),
+    };
+    let row_name = |r: usize| match &model.system.rows[r] {
+        Row::Joint(j) => (format!("`{}`", model.bodies[*j].name), "N·m"),
+        Row::Pulley(b) => (
+            format!("the driving pulley `{}`", model.bodies[*b].name),
+            "N·m",
+        ),
+        Row::Pretension(l) => (
+            format!("the pretension of loop `{}`", model.loops[*l].name),
+            "N",
+        ),
+    };
+    let others = (0..rows).any(|r| r != lead && y[r].abs() > 1e-9 * s.abs());
+    let (target, unit) = if others {
+        let terms: Vec<String> = (0..rows)
+            .filter(|&r| y[r].abs() > 1e-9 * s.abs())
+            .map(|r| format!("{}·{}", significant(y[r] / s), row_name(r).0))
+            .collect();
+        (format!("the combination {}", terms.join(" + ")), "N·m")
+    } else {
+        row_name(lead)
+    };
+    let (n, e) = (significant(needed), significant(extreme));
+    if s > 0.0 {
+        format!(
+            "{who} cannot produce {n} {unit} on {target}; the most they can produce with every \
+             other tendon at its floor is {e} {unit}"
+        )
+    } else {
+        format!(
+            "{who} cannot bring {target} down to {n} {unit}; the least they can produce with \
+             every other tendon at its floor is {e} {unit}"
+        )
     }
-    let mut l = vec![T::zero(); d];
-    for (k, &i) in idx.iter().enumerate() {
-        for (lv, a) in l.iter_mut().zip(&cons[i].0) {
-            *lv = *lv + mu[k] * *a;
-        }
-    }
-    Some(l)
 }
 
-/// Advances `idx` (strictly increasing indices below `m`) to the next combination in
-/// lexicographic order; `false` after the last one.
-fn next_combination(idx: &mut [usize], m: usize) -> bool {
-    let k = idx.len();
-    for i in (0..k).rev() {
-        if idx[i] < m - k + i {
-            idx[i] += 1;
-            for j in i + 1..k {
-                idx[j] = idx[j - 1] + 1;
-            }
-            return true;
-        }
+/// `x` to four significant digits, without a trailing exponent for ordinary sizes.
+fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
     }
-    false
+    let magnitude = x.abs().log10().floor() as i32;
+    if (-4..6).contains(&magnitude) {
+        format!("{x:.*}", (3 - magnitude).max(0) as usize)
+    } else {
+        format!("{x:.3e}")
+    }
 }
 
 /// Whether unknown `k` is a tension of an open-ended tendon.

@@ -3,7 +3,8 @@
 
 use crate::error::{Error, Location, Result};
 use crate::format::{
-    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Placement, PulleySpec, Turn,
+    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Objective, Placement, PulleySpec,
+    Turn,
 };
 use crate::model::{
     Body, BodyKind, Loop, Model, Motor, MotorKind, Parameter, PulleyRole, Row, Slot, Strand,
@@ -827,6 +828,15 @@ impl Validator<'_> {
                     }
                 });
             }
+            if t.max_tension.is_none() && f.distribution == Objective::Centered {
+                return Err(self.invalid(
+                    &t.name,
+                    "has no `max_tension`, but `distribution: Centered` aims every tension at \
+                     the middle of its floor and maximum: give it a `max_tension`, or use the \
+                     default `distribution: LeastNorm`"
+                        .to_string(),
+                ));
+            }
             if let Some(mx) = t.max_tension {
                 self.finite(&t.name, "max_tension", &[mx])?;
                 if mx < floor {
@@ -1080,6 +1090,7 @@ impl Validator<'_> {
                 })
                 .collect(),
             tendons,
+            objective: f.distribution,
             loops,
             motors,
             system,

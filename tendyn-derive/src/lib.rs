@@ -337,7 +337,9 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
             Output::GeneralizedForces | Output::Bias | Output::Gravity | Output::ForwardDynamics => {
                 quote!(Self::Joints)
             }
-            Output::Actuation => quote!((Self::Motors, Self::Tendons)),
+            Output::Actuation => {
+                quote!(#krate::core::distribution::Actuation<Self::Motors, Self::Tendons>)
+            }
             Output::MassMatrix => quote!(Self::MassMatrix),
             Output::SegmentTensions => quote!(Self::Segments),
             Output::Bearings => quote!(Self::Bearings),

@@ -21,9 +21,11 @@
 //! let finger = Finger;
 //! let (q, qd, qdd) = ([0.1, 0.5, 0.3], [0.0; 3], [1.0, 0.0, 0.0]);
 //! let torques = finger.generalized_forces(&q, &qd, &qdd);
-//! let (_motors, tensions) = finger.actuation(&q, &qd, &qdd);
-//! // Every tendon stays taut: at or above the file's 5 N floor.
-//! assert!(tensions.iter().all(|&t| t >= 5.0 - 1e-9));
+//! let actuation = finger.actuation(&q, &qd, &qdd);
+//! // Every tendon stays taut: at or above the file's 5 N floor (the file sets no maxima,
+//! // so every state is feasible).
+//! assert!(actuation.tendon_tensions.iter().all(|&t| t >= 5.0 - 1e-9));
+//! assert_eq!(actuation.status, tendyn::core::distribution::Status::Feasible);
 //! assert_eq!(Finger::TENDONS, 4);
 //! # let _ = torques;
 //! ```

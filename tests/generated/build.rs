@@ -82,7 +82,7 @@ fn main() {
                 Output::Gravity => format!("code::gravity(q{pa}).to_vec()"),
                 Output::Bias => format!("code::bias(q, qd{pa}).to_vec()"),
                 Output::ForwardDynamics => format!("code::forward_dynamics(q, qd, mt, tt{pa}).to_vec()"),
-                Output::Actuation => format!("{{ let (m, t) = code::actuation(q, qd, qdd{pa}); m.iter().chain(t.iter()).copied().collect() }}"),
+                Output::Actuation => format!("{{ let a = code::actuation(q, qd, qdd{pa}); a.motor_torques.iter().chain(a.tendon_tensions.iter()).copied().collect() }}"),
                 Output::Bearings | Output::BaseReaction => format!("code::{}(q, qd, qdd{pa}).iter().flatten().flatten().copied().collect()", o.name()),
                 _ => format!("code::{}(q, qd, qdd{pa}).to_vec()", o.name()),
             };
@@ -97,6 +97,46 @@ fn main() {
         writeln!(
             registry,
             "    Mechanism {{ name: \"{name}\", ron: {name}::RON, evaluate: {name}::evaluate }},"
+        )
+        .unwrap();
+    }
+    registry.push_str("];\n");
+    // Seeded random systems of the bounded tension distribution (structure-only tendons
+    // with floors and maxima, null spaces of one to four dimensions): `actuation` alone,
+    // with its status, in f64 and f32 (`tests/bounded.rs`).
+    registry.push_str("pub const BOUNDED: &[Bounded] = &[\n");
+    for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
+        let name = format!("bounded_{n}x{m}");
+        let seed = tendyn_spec::bounded::seed(n, m);
+        let text = tendyn_spec::bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
+        let model = tendyn_core::parse(&text).unwrap();
+        let generated = generate(
+            &model,
+            &[Output::Actuation],
+            Scalar::Generic,
+            &format!("{name}.ron"),
+        )
+        .unwrap();
+        std::fs::write(out.join(format!("{name}.rs")), &generated.source).unwrap();
+        std::fs::write(out.join(format!("{name}.ron")), &text).unwrap();
+        let mut adapter = String::new();
+        for t in ["f64", "f32"] {
+            writeln!(
+                adapter,
+                "pub fn actuation_{t}(q: &[{t}], qd: &[{t}], qdd: &[{t}]) -> (Vec<{t}>, tendyn_core::distribution::Status) {{ \
+                 let a = code::actuation::<{t}>(q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap()); \
+                 (a.tendon_tensions.to_vec(), a.status) }}"
+            )
+            .unwrap();
+        }
+        writeln!(
+            modules,
+            "pub mod {name} {{\n pub mod code {{ include!(concat!(env!(\"OUT_DIR\"), \"/{name}.rs\")); }}\n pub const RON: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{name}.ron\"));\n {adapter}\n}}"
+        )
+        .unwrap();
+        writeln!(
+            registry,
+            "    Bounded {{ name: \"{name}\", ron: {name}::RON, actuation_f64: {name}::actuation_f64, actuation_f32: {name}::actuation_f32 }},"
         )
         .unwrap();
     }

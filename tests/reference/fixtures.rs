@@ -90,6 +90,7 @@ pub fn model(dof: usize, gravity: [f64; 3], bodies: Vec<Body<f64>>) -> Model<f64
             positive_null: None,
             condition: 1.0,
         },
+        objective: Default::default(),
         external_wrench: None,
         routing_incomplete: false,
     }

@@ -12,6 +12,11 @@
 //!   `Q = d/dt(∂L/∂q̇) − ∂L/∂q = M q̈ + h + g` by nested dual numbers; energy rate.
 //! - [`momentum`]: accelerations, total momentum and its rate, and the base (or any
 //!   subtree's) reaction from the momentum balance of the whole mechanism.
+//! - [`bounded`]: not dynamics but the bounded tension distribution (least distance to a
+//!   target subject to `A T = b`, floors and maxima, or infeasibility) by exhaustive
+//!   enumeration of active bound sets in double-double, sharing no code with
+//!   `tendyn_core::distribution` or `tendyn_core::tension`; seeded random systems and
+//!   their mechanism files.
 //!
 //! Everything is exact to `f64` rounding: no finite differences.
 //!
@@ -20,6 +25,7 @@
 //!
 //! [`Model`]: tendyn_core::model::Model
 
+pub mod bounded;
 pub mod examples;
 pub mod fixtures;
 pub mod lagrangian;

@@ -63,7 +63,7 @@ impl<T: Real + PartialOrd> ComputedTorque<T> {
         let acceleration = core::array::from_fn(|j| {
             desired.qdd[j] + g.kd[j] * (desired.qd[j] - qd[j]) + g.kp[j] * (desired.q[j] - q[j])
         });
-        let (_, tensions) = finger::actuation(q, qd, &acceleration);
+        let tensions = finger::actuation(q, qd, &acceleration).tendon_tensions;
         Command {
             acceleration,
             tensions,

@@ -75,7 +75,8 @@ macro_rules! agree {
                 qdd.try_into().unwrap(),
             );
             let want = runtime(&model, &q, &qd, &qdd);
-            let (mt, tt) = $derived.actuation(&q, &qd, &qdd);
+            let a = $derived.actuation(&q, &qd, &qdd);
+            let (mt, tt) = (a.motor_torques, a.tendon_tensions);
             let d = $derived.all(&q, &qd, &qdd, &mt, &tt);
             let b = built::all(&q, &qd, &qdd, &mt, &tt);
             assert_eq!(
@@ -88,9 +89,9 @@ macro_rules! agree {
                 (
                     "actuation",
                     d.actuation
-                        .0
+                        .motor_torques
                         .iter()
-                        .chain(&d.actuation.1)
+                        .chain(&d.actuation.tendon_tensions)
                         .copied()
                         .collect(),
                 ),

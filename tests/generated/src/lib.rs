@@ -11,4 +11,17 @@ pub struct Mechanism {
         fn(&[f64], &[f64], &[f64], &[f64], &[f64], &[f64]) -> Vec<(&'static str, Vec<f64>)>,
 }
 
+/// Generated `actuation` of a random bounded-distribution system (`BOUNDED`): ground-level
+/// tensions and status, in each scalar.
+pub struct Bounded {
+    pub name: &'static str,
+    pub ron: &'static str,
+    #[allow(clippy::type_complexity)]
+    pub actuation_f64: fn(&[f64], &[f64], &[f64]) -> (Vec<f64>, Status),
+    #[allow(clippy::type_complexity)]
+    pub actuation_f32: fn(&[f32], &[f32], &[f32]) -> (Vec<f32>, Status),
+}
+
+use tendyn_core::distribution::Status;
+
 include!(concat!(env!("OUT_DIR"), "/mechanisms.rs"));

@@ -131,7 +131,7 @@ fn the_no_std_build_of_the_finger_links_into_a_host_program_and_agrees() {
         let mut v = |x: f64| -> [f64; 3] { std::array::from_fn(|_| rng.random_range(-x..x)) };
         let (q, qd, qdd) = (v(3.0), v(3.0), v(10.0));
         let want = s.inverse_dynamics(&q, &qd, &qdd).unwrap().tendon_tensions;
-        let (_, got) = finger::actuation::<f64>(&q, &qd, &qdd);
+        let got = finger::actuation::<f64>(&q, &qd, &qdd).tendon_tensions;
         let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (a, b) in got.iter().zip(&want) {
             assert!((a - b).abs() <= 1e-12 * scale, "{got:?} vs {want:?}");

@@ -18,7 +18,7 @@ fn main() {
         let x = k as f64 * 0.37;
         let (q, qd, qdd) = ([x.sin(), 0.5 * x], [x.cos(), -1.0], [0.3, x]);
         let runtime = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
-        let (motors, _) = Arm.actuation(&q, &qd, &qdd);
+        let motors = Arm.actuation(&q, &qd, &qdd).motor_torques;
         let generic = <Arm as TendonMechanism>::generalized_forces(&Arm, &q, &qd, &qdd).unwrap();
         for j in 0..2 {
             let scale = 1.0 + runtime.motor_torques[j].abs();

@@ -18,7 +18,7 @@ fn main() {
         let x = k as f64 * 0.41;
         let (q, qd, qdd) = ([x.cos(), x], [0.2, x.sin()], [x, -0.7]);
         let runtime = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
-        let (_, tensions) = Arm.actuation(&q, &qd, &qdd);
+        let tensions = Arm.actuation(&q, &qd, &qdd).tendon_tensions;
         for i in 0..3 {
             let scale = 1.0 + runtime.tendon_tensions[i].abs();
             assert!((tensions[i] - runtime.tendon_tensions[i]).abs() <= 1e-12 * scale);

@@ -11,7 +11,7 @@ fn taut<M: TendonMechanism<Scalar = f64, Joints = [f64; 3], Tendons = [f64; 4]>>
     m: &M,
     q: &[f64; 3],
 ) -> bool {
-    let (_, t) = m.actuation(q, &[0.0; 3], &[0.0; 3]).unwrap();
+    let t = m.actuation(q, &[0.0; 3], &[0.0; 3]).unwrap().tendon_tensions;
     t.iter().all(|&t| t >= 5.0 - 1e-9)
 }
 

@@ -1,0 +1,327 @@
+//! The tension distribution within floors and maxima, against the independent reference of
+//! `tendyn_spec::bounded` (exhaustive enumeration of active bound sets in double-double, in
+//! the full tension space: no null-space basis, no code of `tendyn_core::distribution`).
+//!
+//! On seeded random systems of (joints, tendons) = (1, 3), (2, 4), (3, 4), (3, 6), (4, 6),
+//! (6, 8), (6, 10) (structure-only tendons on planar chains, floors and maxima drawn per
+//! tendon), at random states: the runtime solver in `f64`, and the distribution in `f32`
+//! fed the exact minimal-norm tensions rounded to `f32`, say feasible exactly where the
+//! reference does, and where feasible their tensions are the reference's to 1e-12 (`f64`)
+//! and 1e-5 (`f32`), `‖T − T_ref‖∞ / ‖T_ref‖∞`, never below a floor or above a maximum by
+//! more than the scalar's round-off times the tensions' size. The whole `f32` solver, whose
+//! recursion adds its own round-off, is measured too (within 1e-4, and on the other side of
+//! the boundary at fewer than 1 % of the states). The required generalized forces come
+//! from the double-double solver (`A T = Q`, no motors).
+//!
+//! CI runs 1,500 states per system (the reference costs milliseconds a state at the
+//! largest size); `cargo test -p tendyn-spec --test bounded_distribution -- --ignored`
+//! runs the 20,000 per system of the full check.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use tendyn_core::{tension, DoubleDouble, Error, Numeric, Solver};
+use tendyn_spec::bounded::{self, Problem, Solution, SIZES};
+
+/// What one system's run found.
+#[derive(Debug, Default)]
+struct Tally {
+    feasible: usize,
+    infeasible: usize,
+    /// Worst relative error of the runtime solver in f64, and of the distribution in f32
+    /// (fed the exact minimal-norm tensions rounded to f32).
+    worst_f64: f64,
+    worst_f32: f64,
+    /// The whole f32 solver (its recursion's round-off included): worst error where it
+    /// agrees on feasibility, and the states where it does not (within its round-off of
+    /// the boundary).
+    pipeline_f32: f64,
+    pipeline_f32_disagree: usize,
+}
+
+/// The states of one system: q in (−π, π), q̇ in (−2, 2), q̈ in (−6, 6), each exact in
+/// `f32` so that every scalar solves the same problem.
+fn states(seed: u64, n: usize, count: usize) -> Vec<[Vec<f32>; 3]> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..count)
+        .map(|_| {
+            let mut v = |s: f64| {
+                (0..n)
+                    .map(|_| rng.random_range(-s..s) as f32)
+                    .collect::<Vec<f32>>()
+            };
+            [v(std::f64::consts::PI), v(2.0), v(6.0)]
+        })
+        .collect()
+}
+
+/// The system's mechanism file; `centered`: with `distribution: Centered`, and a maximum of
+/// 200 N on every tendon that has none.
+fn system(seed: u64, (n, m, gravity, max): (usize, usize, f64, f64), centered: bool) -> String {
+    let text = bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
+    if !centered {
+        return text;
+    }
+    text.lines()
+        .map(|line| {
+            if line.trim_start().starts_with("(name: \"t") && !line.contains("max_tension") {
+                line.replace("),", ", max_tension: 200.0),")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        .replace("    links: [", "    distribution: Centered,\n    links: [")
+}
+
+fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count: usize) -> Tally {
+    let (n, m, _, _) = size;
+    let text = system(seed, size, centered);
+    let model = tendyn_core::parse(&text).unwrap();
+    let dd_model = model.cast_numeric::<DoubleDouble>();
+    let m32 = model.cast_numeric::<f32>();
+    let (mut s64, mut s32, mut sdd) = (
+        Solver::new(&model),
+        Solver::new(&m32),
+        Solver::new(&dd_model),
+    );
+    let a = model.structure_matrix();
+    let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+    let max: Vec<f64> = model
+        .tendons
+        .iter()
+        .map(|t| t.max_tension.unwrap_or(f64::INFINITY))
+        .collect();
+    // The objective's target: zero, or the middle of each tendon's bounds.
+    let target: Vec<f64> = floor
+        .iter()
+        .zip(&max)
+        .map(|(f, x)| if centered { 0.5 * (f + x) } else { 0.0 })
+        .collect();
+    let mut tally = Tally::default();
+    let name = &model.name;
+    for [q, qd, qdd] in states(seed ^ 0x5eed, n, count) {
+        let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
+        let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
+        let dd = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
+        let b = sdd
+            .generalized_forces(&dd(&q64), &dd(&qd64), &dd(&qdd64))
+            .unwrap();
+        // The exact minimal-norm tensions (no motors or loops: the rows are the joints and
+        // the unknowns the tendons), rounded to f32, for the f32 distribution on its own.
+        let mut x32: Vec<f32> = dd_model
+            .system
+            .pseudo_inverse
+            .iter()
+            .map(|row| {
+                let x: DoubleDouble = row.iter().zip(&b).map(|(p, v)| *p * *v).sum();
+                x.to_f64() as f32
+            })
+            .collect();
+        let reference = bounded::solve(&Problem {
+            a: a.clone(),
+            b,
+            lower: floor.clone(),
+            upper: max.clone(),
+            target: target.clone(),
+        });
+        let r64 = s64.inverse_dynamics(&q64, &qd64, &qdd64);
+        let d32 = tension::distribute(&m32, &mut x32);
+        let pipeline = s32.inverse_dynamics(&q, &qd, &qdd);
+        let want = match reference {
+            Solution::Infeasible => {
+                tally.infeasible += 1;
+                for (scalar, e) in [("f64", r64.err()), ("f32", d32.err())] {
+                    assert!(
+                        matches!(e, Some(Error::Tension(_))),
+                        "{name}: the reference finds no tensions within the bounds at \
+                         q={q:?} qd={qd:?} qdd={qdd:?}, but {scalar} says {e:?}"
+                    );
+                }
+                tally.pipeline_f32_disagree += usize::from(pipeline.is_ok());
+                continue;
+            }
+            Solution::Optimal(want) => want.iter().map(|v| v.to_f64()).collect::<Vec<f64>>(),
+        };
+        tally.feasible += 1;
+        let scale = want.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+        let error = |got: &[f64]| {
+            got.iter()
+                .zip(&want)
+                .fold(0.0f64, |e, (g, w)| e.max((g - w).abs()))
+                / scale
+        };
+        let t64 = r64
+            .unwrap_or_else(|e| panic!("{name}: f64 says {e} where T = {want:?}"))
+            .tendon_tensions;
+        d32.unwrap_or_else(|e| panic!("{name}: f32 says {e} where T = {want:?}"));
+        let t32: Vec<f64> = x32.iter().map(|&v| v as f64).collect();
+        for (scalar, got, u, tolerance) in [
+            ("f64", &t64, f64::unit_roundoff(), 1e-12),
+            ("f32", &t32, f32::unit_roundoff(), 1e-5),
+        ] {
+            let err = error(got);
+            assert!(
+                err <= tolerance,
+                "{name}: {scalar} {got:?} is {err:.2e} from the reference {want:?}"
+            );
+            let slack = 4.0 * (m + m) as f64 * u * scale;
+            for k in 0..m {
+                assert!(
+                    got[k] >= floor[k] - slack && got[k] <= max[k] + slack,
+                    "{name}: {scalar} tendon {k} at {} outside [{}, {}]",
+                    got[k],
+                    floor[k],
+                    max[k]
+                );
+            }
+            let worst = if scalar == "f64" {
+                &mut tally.worst_f64
+            } else {
+                &mut tally.worst_f32
+            };
+            *worst = worst.max(err);
+        }
+        match pipeline {
+            Ok(r) => {
+                let t: Vec<f64> = r.tendon_tensions.iter().map(|&v| v as f64).collect();
+                tally.pipeline_f32 = tally.pipeline_f32.max(error(&t));
+            }
+            Err(_) => tally.pipeline_f32_disagree += 1,
+        }
+    }
+    tally
+}
+
+fn check_all(count: usize, centered: bool) {
+    for size in SIZES {
+        let (n, m, _, _) = size;
+        let seed = bounded::seed(n, m);
+        let tally = check_system(seed, size, centered, count);
+        println!(
+            "{}({n}, {m}), d = {}: {} feasible, {} infeasible; worst f64 {:.1e}, f32 \
+             distribution {:.1e}; whole f32 solver {:.1e}, {} states on the other side",
+            if centered { "centered " } else { "" },
+            m - n,
+            tally.feasible,
+            tally.infeasible,
+            tally.worst_f64,
+            tally.worst_f32,
+            tally.pipeline_f32,
+            tally.pipeline_f32_disagree,
+        );
+        // The whole f32 solver: its recursion's round-off moves a state across the boundary
+        // only when it lies within that round-off of it.
+        assert!(tally.pipeline_f32 <= 1e-4, "({n}, {m}): {tally:?}");
+        assert!(
+            tally.pipeline_f32_disagree <= count / 100,
+            "({n}, {m}): {tally:?}"
+        );
+        // Both kinds of state occur, or the check says little.
+        assert!(tally.feasible > count / 10, "({n}, {m}): {tally:?}");
+        assert!(tally.infeasible > count / 100, "({n}, {m}): {tally:?}");
+    }
+}
+
+#[test]
+fn the_distribution_matches_an_exhaustive_enumeration_of_active_bound_sets() {
+    check_all(1500, false);
+}
+
+#[test]
+fn the_centered_distribution_matches_the_enumeration_too() {
+    check_all(500, true);
+}
+
+#[test]
+#[ignore = "20,000 states per system against the enumeration: several minutes"]
+fn the_distribution_matches_the_enumeration_on_twenty_thousand_states_per_system() {
+    check_all(20_000, false);
+    check_all(20_000, true);
+}
+
+/// Along seeded smooth trajectories `q(t) = q₀ + a sin(ωt + φ)` (with `q̇`, `q̈` their
+/// derivatives) that stay feasible, the tensions are continuous: the largest change
+/// between neighbouring samples shrinks with the step (by 8 when the step is divided by
+/// 8, up to the change of slope at a change of active set), where a jump would stay.
+#[test]
+fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
+    for size in SIZES {
+        let (n, m, _, _) = size;
+        let model = tendyn_core::parse(&system(bounded::seed(n, m), size, false)).unwrap();
+        let mut solver = Solver::new(&model);
+        let mut rng = ChaCha8Rng::seed_from_u64(77);
+        let (mut checked, mut active_changes) = (0, 0);
+        for _ in 0..40 {
+            let draw = |rng: &mut ChaCha8Rng, s: f64| -> Vec<f64> {
+                (0..n).map(|_| rng.random_range(-s..s)).collect()
+            };
+            let (q0, a, w, phi) = (
+                draw(&mut rng, 3.0),
+                draw(&mut rng, 0.5),
+                draw(&mut rng, 3.0),
+                draw(&mut rng, 3.0),
+            );
+            let state = |t: f64| {
+                let mut s = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+                for j in 0..n {
+                    let (sn, cs) = (w[j] * t + phi[j]).sin_cos();
+                    s[0][j] = q0[j] + a[j] * sn;
+                    s[1][j] = a[j] * w[j] * cs;
+                    s[2][j] = -a[j] * w[j] * w[j] * sn;
+                }
+                s
+            };
+            let fine = 4096;
+            let mut tensions = Vec::with_capacity(fine + 1);
+            for i in 0..=fine {
+                let [q, qd, qdd] = state(i as f64 / fine as f64);
+                match solver.inverse_dynamics(&q, &qd, &qdd) {
+                    Ok(r) => tensions.push(r.tendon_tensions),
+                    Err(_) => break,
+                }
+            }
+            if tensions.len() <= fine {
+                continue; // left the feasible set: not a trajectory of this check
+            }
+            let on_bound = |t: &[f64]| -> Vec<bool> {
+                t.iter()
+                    .zip(&model.tendons)
+                    .map(|(x, k)| {
+                        (x - k.floor).abs() < 1e-9
+                            || k.max_tension.is_some_and(|mx| (x - mx).abs() < 1e-9)
+                    })
+                    .collect()
+            };
+            active_changes += tensions
+                .windows(2)
+                .filter(|p| on_bound(&p[0]) != on_bound(&p[1]))
+                .count();
+            let largest_step = |stride: usize| {
+                (0..fine / stride)
+                    .map(|i| {
+                        let (a, b) = (&tensions[i * stride], &tensions[(i + 1) * stride]);
+                        a.iter()
+                            .zip(b)
+                            .fold(0.0f64, |d, (x, y)| d.max((x - y).abs()))
+                    })
+                    .fold(0.0f64, f64::max)
+            };
+            let (coarse, finest) = (largest_step(8), largest_step(1));
+            assert!(
+                finest <= coarse / 4.0 + 1e-9,
+                "{}: a jump of {finest:.3e} N between samples 1/{fine} apart (steps 8 times \
+                 longer change by at most {coarse:.3e} N)",
+                model.name
+            );
+            checked += 1;
+        }
+        println!(
+            "({n}, {m}): {checked} feasible trajectories, {active_changes} changes of active set"
+        );
+        assert!(
+            checked >= 5,
+            "({n}, {m}): only {checked} feasible trajectories"
+        );
+    }
+}
