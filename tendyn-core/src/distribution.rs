@@ -68,9 +68,10 @@ pub enum Status {
     /// are a best effort: the motion exactly, every floor kept, some maximum exceeded (see
     /// the module documentation for which tensions exactly).
     MaxExceeded,
-    /// The method did not finish within the count of active sets that bounds it, which
-    /// only round-off could cause, or the work buffers were too small. The tensions
-    /// returned are the minimal-norm ones, untouched. Never seen in the test suite.
+    /// The minimal-norm tensions were not finite, or the work buffers too small, or the
+    /// method did not finish within the count of active sets that bounds it (which only
+    /// round-off could cause; never seen in the test suite). The tensions returned are
+    /// the minimal-norm ones, untouched.
     Unresolved,
 }
 
@@ -131,7 +132,7 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         let mut basis = [[T::zero(); D]; D];
         let mut triangle = [[T::zero(); D]; D];
         let mut multipliers = [T::zero(); D];
-        let mut scratch = [[T::zero(); D]; 2];
+        let mut scratch = [[T::zero(); D]; 3];
         let mut active = [0usize; D];
         let mut work = Work {
             lambda: &mut lambda,
@@ -274,11 +275,12 @@ pub struct Work<'a, T> {
     pub lambda: &'a mut [T],
     /// `d·d`: orthonormal basis of the active bounds' normals, column `j` at `j·d..`.
     pub basis: &'a mut [T],
-    /// `d·d`: `R` of those normals (`normals = basis · R`), row-major.
+    /// `d·d`: `R` of those normals (`normals = basis · R`), row-major, with the reciprocal
+    /// of each diagonal entry in its place.
     pub triangle: &'a mut [T],
     /// `d`: multipliers of the active bounds.
     pub multipliers: &'a mut [T],
-    /// `2·d`.
+    /// `3·d`.
     pub scratch: &'a mut [T],
     /// `d`: indices of the active bounds (`k` the floor of tendon `k`, `K + k` its maximum).
     pub active: &'a mut [usize],
@@ -290,7 +292,7 @@ impl<T> Work<'_, T> {
             && self.basis.len() >= d * d
             && self.triangle.len() >= d * d
             && self.multipliers.len() >= d
-            && self.scratch.len() >= 2 * d
+            && self.scratch.len() >= 3 * d
             && self.active.len() >= d
     }
 }
@@ -308,27 +310,26 @@ pub fn solve<T: Numeric, P: Problem<T>>(
     certificate: Option<&mut [T]>,
 ) -> Status {
     let (k, d) = (problem.tendons(), problem.directions());
-    if t0.len() != k || tensions.len() != k || !work.fits(d) {
+    // Non-finite tensions (from a non-finite state, which generated code does not check)
+    // have no distribution: say so at once rather than search.
+    let finite = t0.iter().all(|x| x.is_finite());
+    if t0.len() != k || tensions.len() != k || !work.fits(d) || !finite {
         // Copies what fits: a mismatch of lengths is reported, never a panic.
         for (t, x) in tensions.iter_mut().zip(t0) {
             *t = *x;
         }
         return Status::Unresolved;
     }
-    let status = match project(problem, t0, true, work, certificate) {
+    let status = match project(problem, t0, true, work, tensions, certificate) {
         Projection::Optimal => Status::Feasible,
-        Projection::Empty => match project(problem, t0, false, work, None) {
+        Projection::Empty => match project(problem, t0, false, work, tensions, None) {
             Projection::Optimal => Status::MaxExceeded,
             _ => Status::Unresolved,
         },
         Projection::Unfinished => Status::Unresolved,
     };
-    for i in 0..k {
-        tensions[i] = if status == Status::Unresolved {
-            t0[i]
-        } else {
-            tension(problem, t0, work.lambda, i)
-        };
+    if status == Status::Unresolved {
+        tensions.copy_from_slice(t0);
     }
     status
 }
@@ -362,25 +363,24 @@ fn normal<T: Real, P: Problem<T>>(p: &P, i: usize, d: usize) -> T {
 }
 
 /// Goldfarb-Idnani for `min ½‖λ − λ*‖²` over the floors, and the maxima if `with_max`.
-/// Leaves the point in `work.lambda`.
+/// Leaves the point in `work.lambda` and its tensions `T₀ + N λ` in `t`.
 fn project<T: Numeric, P: Problem<T>>(
     p: &P,
     t0: &[T],
     with_max: bool,
     work: &mut Work<'_, T>,
+    t: &mut [T],
     certificate: Option<&mut [T]>,
 ) -> Projection {
     let (k, d) = (p.tendons(), p.directions());
     let bounds = if with_max { 2 * k } else { k };
     let exists = |i: usize| i < k || p.max(i - k).is_finite();
-    // Slack of bound i at the current point (≥ 0 when met) and the size it is measured
-    // against.
-    let slack = |i: usize, lambda: &[T]| {
+    // Slack of bound i (≥ 0 when met).
+    let slack = |i: usize, t: &[T]| {
         if i < k {
-            (tension(p, t0, lambda, i) - T::from_f64(p.floor(i)), i)
+            t[i] - T::from_f64(p.floor(i))
         } else {
-            let j = i - k;
-            (T::from_f64(p.max(j)) - tension(p, t0, lambda, j), j)
+            T::from_f64(p.max(i - k)) - t[i - k]
         }
     };
     let mut size = T::zero();
@@ -391,90 +391,122 @@ fn project<T: Numeric, P: Problem<T>>(
         }
     }
     let factor = T::from_f64(tolerance_factor::<T>(k, d));
-    let met = |s: T, j: usize, lambda: &[T]| {
-        let here = tension(p, t0, lambda, j).abs();
-        let scale = if here > size { here } else { size };
-        s >= -(factor * scale)
+    // The most violated bound at tensions `t`, if one is violated by more than round-off
+    // of the sizes involved (the bounds, T₀ and t).
+    let most_violated = |t: &[T]| {
+        let mut largest = size;
+        for x in t.iter() {
+            let x = x.abs();
+            if x > largest {
+                largest = x;
+            }
+        }
+        let mut worst = None;
+        let mut least = -(factor * largest);
+        for j in 0..k {
+            let s = t[j] - T::from_f64(p.floor(j));
+            if s < least {
+                (least, worst) = (s, Some(j));
+            }
+        }
+        if with_max {
+            for j in 0..k {
+                let max = p.max(j);
+                if max.is_finite() {
+                    let s = T::from_f64(max) - t[j];
+                    if s < least {
+                        (least, worst) = (s, Some(k + j));
+                    }
+                }
+            }
+        }
+        worst.map(|i| (i, least))
     };
     let independent = T::from_f64(64.0 * d as f64 * T::unit_roundoff());
+    let independent = independent * independent;
 
     for i in 0..d {
         work.lambda[i] = p.target(i);
     }
+    for j in 0..k {
+        t[j] = tension(p, t0, work.lambda, j);
+    }
     let mut q = 0; // active bounds
-    let mut remaining = iteration_bound(d, (0..bounds).filter(|&i| exists(i)).count());
+                   // The guard of the module documentation, computed only once a run gets long.
+    let mut steps = 0usize;
+    let mut limit = 4 * (bounds + 1);
+    let mut limit_is_bound = false;
     loop {
-        // The most violated bound, if any.
-        let mut worst: Option<(usize, T)> = None;
-        for i in (0..bounds).filter(|&i| exists(i)) {
-            let (s, j) = slack(i, work.lambda);
-            if !met(s, j, work.lambda) && worst.is_none_or(|(_, w)| s < w) {
-                worst = Some((i, s));
-            }
-        }
-        let Some((add, mut violation)) = worst else {
+        let Some((add, mut violation)) = most_violated(t) else {
             return Projection::Optimal;
         };
         let mut added_multiplier = T::zero();
         loop {
-            if remaining == 0 {
-                return Projection::Unfinished;
+            steps += 1;
+            if steps > limit {
+                if limit_is_bound {
+                    return Projection::Unfinished;
+                }
+                limit = iteration_bound(d, (0..bounds).filter(|&i| exists(i)).count());
+                limit_is_bound = true;
             }
-            remaining -= 1;
             // z: the part of the new normal outside the active normals' span (the primal
-            // direction); r: its coordinates in the active normals (the dual direction).
-            let (z, r) = work.scratch.split_at_mut(d);
-            let z = &mut z[..d];
+            // direction); w: its coordinates in their orthonormal basis; r = R⁻¹ w, its
+            // coordinates in the active normals (the dual direction).
+            let (z, rest) = work.scratch.split_at_mut(d);
+            let (w, r) = rest.split_at_mut(d);
+            let (z, w, r) = (&mut z[..d], &mut w[..d], &mut r[..d]);
             for i in 0..d {
                 z[i] = normal(p, add, i);
             }
-            let a_norm = norm(z);
-            for i in 0..q {
-                r[i] = T::zero();
+            let a_norm2 = dot(z, z);
+            for j in 0..q {
+                w[j] = T::zero();
             }
             for _pass in 0..2 {
                 for j in 0..q {
                     let column = &work.basis[j * d..(j + 1) * d];
-                    let w = dot(column, z);
-                    r[j] = r[j] + w;
+                    let c = dot(column, z);
+                    w[j] = w[j] + c;
                     for i in 0..d {
-                        z[i] = z[i] - w * column[i];
+                        z[i] = z[i] - c * column[i];
                     }
                 }
             }
-            // r ← R⁻¹ r by back-substitution.
             for i in (0..q).rev() {
-                let mut v = r[i];
+                let mut v = w[i];
                 for j in i + 1..q {
                     v = v - work.triangle[i * d + j] * r[j];
                 }
-                r[i] = v / work.triangle[i * d + i];
+                // The diagonal holds reciprocals (see `factorize`).
+                r[i] = v * work.triangle[i * d + i];
             }
-            let z_norm = norm(z);
+            let z_norm2 = dot(z, z);
             // Full step: to where the new bound is met (never backwards, should round-off
-            // have met it already).
-            let full = (z_norm > independent * a_norm).then(|| {
+            // have met it already). With `d` bounds active the new normal lies in their span.
+            let full = (q < d && z_norm2 > independent * a_norm2).then(|| {
                 let need = -violation;
                 let need = if need > T::zero() { need } else { T::zero() };
-                need / (z_norm * z_norm)
+                need / z_norm2
             });
-            // Partial step: to where an active bound's multiplier reaches zero.
-            let mut partial: Option<(usize, T)> = None;
+            // Partial step: to where an active bound's multiplier reaches zero, the least
+            // u_j / r_j over r_j > 0 (compared as u_j r_b < u_b r_j, one division in all).
+            let mut first: Option<usize> = None;
             for j in 0..q {
-                if r[j] > T::zero() {
-                    let t = work.multipliers[j] / r[j];
-                    if partial.is_none_or(|(_, best)| t < best) {
-                        partial = Some((j, t));
-                    }
+                if r[j] > T::zero()
+                    && first.is_none_or(|b| work.multipliers[j] * r[b] < work.multipliers[b] * r[j])
+                {
+                    first = Some(j);
                 }
             }
+            let partial = first.map(|j| (j, work.multipliers[j] / r[j]));
             let step = match (full, partial) {
                 (None, None) => Step::Empty,
-                (Some(t), None) => Step::Full(t),
-                (Some(t), Some((_, tp))) if t <= tp => Step::Full(t),
-                (full, Some((drop, t))) => Step::Partial {
+                (Some(s), None) => Step::Full(s),
+                (Some(s), Some((_, sp))) if s <= sp => Step::Full(s),
+                (full, Some((drop, s))) => Step::Partial {
                     drop,
-                    t,
+                    t: s,
                     primal: full.is_some(),
                 },
             };
@@ -482,16 +514,17 @@ fn project<T: Numeric, P: Problem<T>>(
                 Step::Empty => {
                     // new normal = Σ r_j (active normal j) with every r_j ≤ 0: the bounds
                     // with multipliers μ_new = 1, μ_j = −r_j ≥ 0 cannot all hold (Farkas).
-                    if let Some(w) = certificate {
-                        for x in w.iter_mut() {
+                    if let Some(c) = certificate {
+                        for x in c.iter_mut() {
                             *x = T::zero();
                         }
-                        // A multiplier on a floor lowers w, on a maximum raises it.
+                        // A multiplier on a floor lowers the certificate, on a maximum
+                        // raises it.
                         let mut add_to = |i: usize, mu: T| {
                             if i < k {
-                                w[i] = w[i] - mu;
+                                c[i] = c[i] - mu;
                             } else {
-                                w[i - k] = w[i - k] + mu;
+                                c[i - k] = c[i - k] + mu;
                             }
                         };
                         add_to(add, T::one());
@@ -501,41 +534,60 @@ fn project<T: Numeric, P: Problem<T>>(
                     }
                     return Projection::Empty;
                 }
-                Step::Full(t) => {
-                    for i in 0..d {
-                        work.lambda[i] = work.lambda[i] + t * z[i];
-                    }
+                Step::Full(s) => {
+                    advance(p, s, z, work.lambda, t);
                     for j in 0..q {
-                        work.multipliers[j] = work.multipliers[j] - t * r[j];
+                        work.multipliers[j] = work.multipliers[j] - s * r[j];
+                    }
+                    // The new column of the factorisation is already at hand: w and |z|.
+                    let reciprocal = T::one() / z_norm2.sqrt();
+                    for j in 0..q {
+                        work.triangle[j * d + q] = w[j];
+                    }
+                    work.triangle[q * d + q] = reciprocal;
+                    for i in 0..d {
+                        work.basis[q * d + i] = z[i] * reciprocal;
                     }
                     work.active[q] = add;
-                    work.multipliers[q] = added_multiplier + t;
+                    work.multipliers[q] = added_multiplier + s;
                     q += 1;
-                    factorize(p, work, q, d);
                     break;
                 }
-                Step::Partial { drop, t, primal } => {
+                Step::Partial { drop, t: s, primal } => {
                     // Bound `drop` leaves the active set, its multiplier having reached 0;
                     // then the same new bound is tried again.
                     if primal {
-                        for i in 0..d {
-                            work.lambda[i] = work.lambda[i] + t * z[i];
-                        }
+                        advance(p, s, z, work.lambda, t);
                     }
                     for j in 0..q {
-                        work.multipliers[j] = work.multipliers[j] - t * r[j];
+                        work.multipliers[j] = work.multipliers[j] - s * r[j];
                     }
-                    added_multiplier = added_multiplier + t;
+                    added_multiplier = added_multiplier + s;
                     for j in drop..q - 1 {
                         work.active[j] = work.active[j + 1];
                         work.multipliers[j] = work.multipliers[j + 1];
                     }
                     q -= 1;
                     factorize(p, work, q, d);
-                    violation = slack(add, work.lambda).0;
+                    violation = slack(add, t);
                 }
             }
         }
+    }
+}
+
+/// Moves `λ` by `s z`, and the tensions `t` with it (by `s N z`).
+#[inline(always)]
+fn advance<T: Real, P: Problem<T>>(p: &P, s: T, z: &[T], lambda: &mut [T], t: &mut [T]) {
+    for (l, zi) in lambda.iter_mut().zip(z) {
+        *l = *l + s * *zi;
+    }
+    for (j, tj) in t.iter_mut().enumerate() {
+        let dt = z
+            .iter()
+            .enumerate()
+            .fold(T::zero(), |v, (i, zi)| v + p.null(i, j) * *zi);
+        *tj = *tj + s * dt;
     }
 }
 
@@ -549,7 +601,8 @@ enum Step<T> {
     Partial { drop: usize, t: T, primal: bool },
 }
 
-/// Gram-Schmidt, twice, of the first `q` active normals: `basis` and `triangle`.
+/// Gram-Schmidt, twice, of the first `q` active normals: `basis` and `triangle` (`R`, with
+/// the reciprocals of its diagonal on the diagonal).
 fn factorize<T: Numeric, P: Problem<T>>(p: &P, work: &mut Work<'_, T>, q: usize, d: usize) {
     for j in 0..q {
         for i in 0..d {
@@ -571,10 +624,11 @@ fn factorize<T: Numeric, P: Problem<T>>(p: &P, work: &mut Work<'_, T>, q: usize,
             }
         }
         let v = &mut work.basis[j * d..(j + 1) * d];
-        let length = norm(v);
-        work.triangle[j * d + j] = length;
+        // The reciprocal of R's diagonal entry: back-substitution multiplies by it.
+        let reciprocal = T::one() / norm(v);
+        work.triangle[j * d + j] = reciprocal;
         for x in v.iter_mut() {
-            *x = *x / length;
+            *x = *x * reciprocal;
         }
     }
 }
@@ -601,4 +655,64 @@ fn iteration_bound(d: usize, m: usize) -> usize {
         };
     }
     sets.saturating_mul(d + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One joint, three tendons: the null space of `A = [1, 1, −1]` (scaled) has the
+    /// orthonormal basis below; every tension `(T₀ + N λ)` delivers the same torque.
+    fn three_on_one(max: [f64; 3]) -> Fixed<3, 2> {
+        let s2 = core::f64::consts::FRAC_1_SQRT_2;
+        let s6 = 1.0 / 6.0f64.sqrt();
+        Fixed {
+            null: [[s2, 0.0, s2], [-s6, 2.0 * s6, s6]],
+            floor: [1.0, 1.0, 1.0],
+            max,
+            target: [0.0, 0.0],
+        }
+    }
+
+    #[test]
+    fn bad_lengths_and_non_finite_tensions_are_unresolved_never_a_panic() {
+        let p = three_on_one([f64::INFINITY; 3]);
+        let t0 = [f64::NAN, 1.0, 2.0];
+        let a = Actuation::<[f64; 0], [f64; 3]>::bounded([], t0, &p);
+        assert_eq!(a.status, Status::Unresolved);
+        let mut work = Work::<f64> {
+            lambda: &mut [],
+            basis: &mut [],
+            triangle: &mut [],
+            multipliers: &mut [],
+            scratch: &mut [],
+            active: &mut [],
+        };
+        let mut out = [0.0; 3];
+        assert_eq!(
+            solve(&p, &[1.0, 2.0, 3.0], &mut work, &mut out, None),
+            Status::Unresolved
+        );
+        assert_eq!(out, [1.0, 2.0, 3.0], "the minimal-norm tensions, untouched");
+    }
+
+    #[test]
+    fn a_tendon_whose_maximum_equals_its_floor_is_held_there() {
+        // T₀ = (1/3)(1, 1, −1)·τ with τ = 3: (1, 1, −1); T₂ fixed at 1 N.
+        let p = three_on_one([f64::INFINITY, 1.0, f64::INFINITY]);
+        let a = Actuation::<[f64; 0], [f64; 3]>::bounded([], [1.0, 1.0, -1.0], &p);
+        assert_eq!(a.status, Status::Feasible);
+        let t = a.tendon_tensions;
+        assert!((t[1] - 1.0).abs() < 1e-14, "{t:?}");
+        // The torque is kept: T₁ + T₂ − T₃ = 3.
+        assert!((t[0] + t[1] - t[2] - 3.0).abs() < 1e-13, "{t:?}");
+        assert!(t.iter().all(|&x| x >= 1.0 - 1e-14), "{t:?}");
+    }
+
+    #[test]
+    fn the_iteration_bound_counts_active_sets() {
+        // d = 2 of m = 4 bounds: 1 + 4 + 6 = 11 sets, each after at most 2 drops.
+        assert_eq!(iteration_bound(2, 4), 33);
+        assert_eq!(iteration_bound(40, 80), usize::MAX);
+    }
 }

@@ -237,6 +237,22 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
         return Ok(());
     }
     let t0: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
+    let not_finite = |x: &[T]| {
+        model
+            .tendons
+            .iter()
+            .find(|t| !x[t.unknown].is_finite())
+            .map(|t| {
+                Error::Tension(format!(
+                    "tension of `{}` is not finite ({})",
+                    t.name,
+                    x[t.unknown].to_f64()
+                ))
+            })
+    };
+    if let Some(e) = not_finite(x) {
+        return Err(e);
+    }
     let (status, certificate) = if d == 1 {
         let r = along_line(model, x);
         let status = r
@@ -289,17 +305,7 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
             ))
         }
     }
-    for t in &model.tendons {
-        let v = x[t.unknown];
-        if !v.is_finite() {
-            return Err(Error::Tension(format!(
-                "tension of `{}` is not finite ({})",
-                t.name,
-                v.to_f64()
-            )));
-        }
-    }
-    Ok(())
+    not_finite(x).map_or(Ok(()), Err)
 }
 
 /// The certificate of an empty interval along the positive null vector `p`: the floor
