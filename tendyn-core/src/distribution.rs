@@ -438,6 +438,10 @@ fn project<T: Numeric, P: Problem<T>>(
     let mut limit_is_bound = false;
     loop {
         let Some((add, mut violation)) = most_violated(t) else {
+            // The tensions afresh from λ: the steps' updates of `t` round at every step.
+            for j in 0..k {
+                t[j] = tension(p, t0, work.lambda, j);
+            }
             return Projection::Optimal;
         };
         let mut added_multiplier = T::zero();
