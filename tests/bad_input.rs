@@ -648,17 +648,18 @@ fn a_non_finite_gravity_is_rejected_at_the_gravity_line() {
 #[test]
 fn a_radius_too_small_to_turn_its_pulley_at_a_finite_rate_is_rejected_naming_the_pulley() {
     // A subnormal radius passes `radius > 0` but the routing would turn the idler at an
-    // infinite rate: the model would hold non-finite couplings.
+    // infinite rate: the model would hold non-finite couplings. It is below the smallest
+    // pitch radius (format.md §12), which is what the error says.
     let text = with(
         OPEN_ENDED,
         "height: 0.01),\n            radius: 0.03,",
         "height: 0.01),\n            radius: 1e-320,",
     );
-    assert_routing(
+    assert_invalid(
         &text,
         "idler3",
         "name: \"idler3\"",
-        "the routing turns it at a rate that is not finite",
+        "`radius` is 1e-320 m, below the smallest pitch radius of 1e-9 m",
     );
 }
 
@@ -908,4 +909,471 @@ fn names_with_a_slash_or_empty_names_are_rejected() {
     let text = with(OPEN_ENDED, "name: \"T11\"", "name: \"\"");
     let err = rejected(&text);
     assert!(err.to_string().contains("must be non-empty"), "{err}");
+}
+
+// 12. Inputs that broke tendyn (found by fuzzing parse, solve and generate; issue 14). Each
+// file in `mechanisms/reproducers/` says in its first line what it reproduced. Every one now
+// gets a named error (item, line, what would fix it) or a correct result: no panic, no
+// non-finite number inside an `Ok`.
+
+/// The path and text of a reproducer.
+fn reproducer(name: &str) -> (String, String) {
+    let path = format!(
+        "{}/mechanisms/reproducers/{name}.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    (path, text)
+}
+
+/// A reproducer is rejected by `load` as `Error::Invalid` about `item`, at the line of its
+/// definition, saying `phrase`; the message is returned.
+fn reproducer_rejected(name: &str, item: &str, phrase: &str) -> String {
+    let (path, text) = reproducer(name);
+    let err = match load(&path) {
+        Ok(_) => panic!("{name} accepted"),
+        Err(e) => e,
+    };
+    assert!(matches!(err, Error::Invalid { .. }), "{name}: {err:?}");
+    assert_names(&err, &text, item, &format!("name: \"{item}\""), phrase);
+    err.to_string()
+}
+
+/// F01's one-link, one-motor mechanism with a sensible mass.
+fn one_motor_link() -> tendyn_core::Model<f64> {
+    let (_, text) = reproducer("F01-codegen-f32-constant-overflow-panic");
+    parse(&with(&text, "mass: 1e39,", "mass: 0.5,")).unwrap()
+}
+
+fn generated(
+    model: &tendyn_core::Model<f64>,
+    scalar: tendyn_codegen::Scalar,
+) -> Result<tendyn_codegen::Generated, tendyn_codegen::Error> {
+    tendyn_codegen::generate(
+        model,
+        &tendyn_codegen::available_outputs(model),
+        scalar,
+        "bad_input",
+    )
+}
+
+#[test]
+fn f01_a_mass_f32_cannot_hold_is_rejected_naming_the_link_and_code_generation_does_not_panic() {
+    let shown = reproducer_rejected(
+        "F01-codegen-f32-constant-overflow-panic",
+        "arm",
+        "`mass` is 1e39 kg, beyond the range of a mass (at most 1e12 kg in size; format.md §12",
+    );
+    assert!(shown.contains("check its unit (kilograms)"), "{shown}");
+    // A model holding that mass all the same (built or changed in code): f32 generation
+    // names the link, f64 generation holds it.
+    let mut model = one_motor_link();
+    model.bodies[0].mass = 1e39;
+    match generated(&model, tendyn_codegen::Scalar::F32) {
+        Err(e @ tendyn_codegen::Error::Constant { .. }) => {
+            let shown = e.to_string();
+            assert!(
+                shown.starts_with("arm: its mass is 1e39 kg, which f32 cannot hold"),
+                "{shown}"
+            );
+            assert!(shown.contains("generate for f64"), "{shown}");
+        }
+        other => panic!("expected a constant error, got {:?}", other.map(|_| ())),
+    }
+    let g = generated(&model, tendyn_codegen::Scalar::F64).unwrap();
+    assert!(!g.source.contains("inf") && !g.source.contains("NaN"));
+}
+
+#[test]
+fn f01_a_folded_constant_f32_cannot_hold_is_an_error_naming_the_output() {
+    // Every number within its range, but a gear turning 1e21 times as fast as its joint:
+    // its inertia about its axis enters the mass matrix as zz · 1e42, which f32 cannot hold.
+    let text = r#"(
+    name: "geared",
+    links: [(name: "arm", dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: 0.5, com: (-0.1, 0.0, 0.0))],
+    pulleys: [(name: "gear", carrier: "base", at: Joint(joint: "arm", height: 0.0), radius: 0.01,
+        mass: 0.01, inertia: (xx: 0.001, yy: 0.001, zz: 0.002), coupling: [1e21])],
+    motors: [(name: "m", on: Joint("arm"))],
+)"#;
+    let model = parse(text).unwrap();
+    match generated(&model, tendyn_codegen::Scalar::F32) {
+        Err(e @ tendyn_codegen::Error::Constant { .. }) => {
+            let shown = e.to_string();
+            assert!(shown.starts_with("output `"), "{shown}");
+            assert!(
+                shown.contains("a constant folded from the mechanism's numbers is")
+                    && shown.contains("which f32 cannot hold"),
+                "{shown}"
+            );
+        }
+        other => panic!("expected a constant error, got {:?}", other.map(|_| ())),
+    }
+    generated(&model, tendyn_codegen::Scalar::F64).unwrap();
+}
+
+#[test]
+fn f02_a_centre_of_mass_whose_square_overflows_is_rejected_naming_the_link_and_generation_too() {
+    reproducer_rejected(
+        "F02-codegen-f64-folded-constant-overflow-panic",
+        "arm",
+        "`com` is -1e200 m, beyond the range of a length (at most 1e6 m in size",
+    );
+    let mut model = one_motor_link();
+    model.bodies[0].com.x = -1e200;
+    for scalar in [
+        tendyn_codegen::Scalar::F64,
+        tendyn_codegen::Scalar::F32,
+        tendyn_codegen::Scalar::Generic,
+    ] {
+        match generated(&model, scalar) {
+            Err(e @ tendyn_codegen::Error::Constant { .. }) => {
+                let shown = e.to_string();
+                let said = match scalar {
+                    tendyn_codegen::Scalar::F32 => {
+                        "arm: its centre of mass is -1e200 m, which f32 cannot hold"
+                    }
+                    _ => "arm: its mass times its squared centre of mass, m |c|², overflows f64",
+                };
+                assert!(shown.starts_with(said), "{shown}");
+            }
+            other => panic!("expected a constant error, got {:?}", other.map(|_| ())),
+        }
+    }
+}
+
+#[test]
+fn f03_a_drum_and_exit_whose_distance_overflows_are_rejected_naming_the_drum() {
+    reproducer_rejected(
+        "F03-validation-accepts-nan-segment-direction",
+        "drum",
+        "`height` is 1e308 m, beyond the range of a length (at most 1e6 m in size",
+    );
+}
+
+#[test]
+fn f04_an_exit_far_out_of_its_drums_plane_is_rejected_naming_the_tendon() {
+    reproducer_rejected(
+        "F04-validation-coplanarity-bypassed-by-huge-offset",
+        "flex",
+        "`exit` is 1e200 m, beyond the range of a length (at most 1e6 m in size",
+    );
+    // Within the range, the coplanarity test sees the offset.
+    let (_, text) = reproducer("F04-validation-coplanarity-bypassed-by-huge-offset");
+    let text = with(&text, "1e200)", "1e6)");
+    assert_routing(
+        &text,
+        "flex",
+        "name: \"flex\"",
+        "the two circles are not in one plane",
+    );
+}
+
+#[test]
+fn f06_a_twist_too_large_to_resolve_is_rejected_not_snapped_to_a_right_angle() {
+    let shown = reproducer_rejected(
+        "F06-huge-twist-snapped-to-right-angle",
+        "l1",
+        "`alpha` is 1e300 rad, beyond the range of an angle (at most 1e3 rad in size",
+    );
+    assert!(shown.contains("reduce it modulo 2π"), "{shown}");
+    // Within the range, a twist 100 turns away from -π/2 is that right angle exactly.
+    let (path, text) = reproducer("F06-reference-twist-minus-90deg");
+    let reference = load(&path).unwrap();
+    let turned = -std::f64::consts::FRAC_PI_2 + 200.0 * std::f64::consts::PI;
+    let model = parse(&with(
+        &text,
+        "alpha: -1.5707963267948966",
+        &format!("alpha: {turned:?}"),
+    ))
+    .unwrap();
+    let q = [0.4, -0.7];
+    let m = Solver::new(&model).mass_matrix(&q).unwrap();
+    assert_eq!(m, Solver::new(&reference).mass_matrix(&q).unwrap());
+}
+
+#[test]
+fn f07_a_radius_too_small_to_compute_with_is_rejected_naming_the_drum_not_as_uncontrollable() {
+    let shown = reproducer_rejected(
+        "F07-tiny-radius-misleading-not-controllable",
+        "drum",
+        "`radius` is 1e-163 m, below the smallest pitch radius of 1e-9 m",
+    );
+    assert!(!shown.contains("controllable"), "{shown}");
+    assert!(shown.contains("check its unit (metres)"), "{shown}");
+}
+
+#[test]
+fn c3_a_leading_byte_order_mark_is_skipped() {
+    let (path, text) = reproducer("C3-byte-order-mark");
+    assert!(text.starts_with('\u{feff}'));
+    let with_mark = load(&path).unwrap();
+    let without = parse(text.trim_start_matches('\u{feff}')).unwrap();
+    let (q, qd, qdd) = ([0.3, -0.2], [1.0, 0.5], [2.0, -1.0]);
+    let a = Solver::new(&with_mark)
+        .inverse_dynamics(&q, &qd, &qdd)
+        .unwrap();
+    let b = Solver::new(&without)
+        .inverse_dynamics(&q, &qd, &qdd)
+        .unwrap();
+    assert_eq!(a.generalized_forces, b.generalized_forces);
+    // Lines and columns are counted after the mark.
+    let one_line =
+        "(name: \"one\", links: [(name: \"arm\", dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: -1.0)])";
+    let err = assert_invalid(
+        &format!("\u{feff}{one_line}"),
+        "arm",
+        "name: \"arm\"",
+        "mass is -1 kg",
+    );
+    let Error::Invalid { at, .. } = err else {
+        unreachable!()
+    };
+    assert_eq!((at.line, at.column), (1, column_of(one_line, "\"arm\"")));
+}
+
+#[test]
+fn forward_dynamics_scale_checks_its_inputs_and_result_as_forward_dynamics_does() {
+    let model = one_motor_link();
+    let mut solver = Solver::new(&model);
+    let one = [1.0];
+    for torques in [
+        &[f64::INFINITY][..],
+        &[f64::NAN][..],
+        &[][..],
+        &[1.0, 2.0, 3.0][..],
+    ] {
+        let scale = solver.forward_dynamics_scale(&one, &one, torques, &[]);
+        let fd = solver.forward_dynamics(&one, &one, torques, &[]);
+        assert!(
+            matches!(scale, Err(Error::State(_))),
+            "{torques:?}: {scale:?}"
+        );
+        assert_eq!(scale.unwrap_err(), fd.unwrap_err(), "{torques:?}");
+    }
+    for (q, qd) in [(&[f64::NAN][..], &one[..]), (&one[..], &[1.0, 2.0][..])] {
+        let scale = solver.forward_dynamics_scale(q, qd, &one, &[]);
+        let fd = solver.forward_dynamics(q, qd, &one, &[]);
+        assert!(matches!(scale, Err(Error::State(_))), "{scale:?}");
+        assert_eq!(scale.unwrap_err(), fd.unwrap_err());
+    }
+    // Finite inputs whose terms overflow.
+    let scale = solver.forward_dynamics_scale(&one, &[1e200], &one, &[]);
+    assert!(matches!(scale, Err(Error::State(_))), "{scale:?}");
+    // A valid state: a finite scale at least as large as the acceleration it bounds.
+    let scale = solver
+        .forward_dynamics_scale(&one, &one, &[2.0], &[])
+        .unwrap();
+    let qdd = solver.forward_dynamics(&one, &one, &[2.0], &[]).unwrap();
+    assert!(
+        scale.is_finite() && scale >= qdd[0].abs(),
+        "{scale} {qdd:?}"
+    );
+    // A massless link: the mass matrix is singular for both.
+    let (_, text) = reproducer("F01-codegen-f32-constant-overflow-panic");
+    let massless = parse(&with(&text, "mass: 1e39,", "mass: 0.0,")).unwrap();
+    let mut solver = Solver::new(&massless);
+    let scale = solver.forward_dynamics_scale(&one, &one, &one, &[]);
+    assert!(matches!(scale, Err(Error::Singular(_))), "{scale:?}");
+    assert_eq!(
+        scale.unwrap_err(),
+        solver.forward_dynamics(&one, &one, &one, &[]).unwrap_err()
+    );
+}
+
+// 13. Ranges of magnitude (format.md §12): outside, a named error; at the edges, a model
+// whose every result is finite.
+
+#[test]
+fn each_number_outside_its_range_of_magnitude_is_rejected_naming_the_item() {
+    // An explicitly coupled gear placed by a pose.
+    let with_pose = |text: &str| {
+        with(
+            text,
+            "radius: 0.04, fixed: true),",
+            "radius: 0.04, fixed: true),\n        (name: \"gear\", carrier: \"link1\", at: Pose(origin: (0.0, 0.0, -0.01), rpy: (0.0, 0.0, 0.0)), radius: 0.01, coupling: [1.0, 0.0]),",
+        )
+    };
+    for (from, to, item, phrase) in [
+        (
+            "mass: 0.8,",
+            "mass: 2e12,",
+            "link2",
+            "`mass` is 2e12 kg, beyond the range of a mass",
+        ),
+        (
+            "inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)",
+            "inertia: (xx: 1e25, yy: 1e25, zz: 1e25)",
+            "link2",
+            "`inertia` is 1e25 kg·m², beyond the range of an inertia entry (at most 1e24 kg·m²",
+        ),
+        (
+            "com: (-0.125, 0.0, 0.0)",
+            "com: (-0.125, 2e6, 0.0)",
+            "link2",
+            "`com` is 2e6 m, beyond the range of a length (at most 1e6 m",
+        ),
+        (
+            "dh: (a: 0.25, alpha: 0.0, d: 0.0)",
+            "dh: (a: 1e7, alpha: 0.0, d: 0.0)",
+            "link2",
+            "`a` is 1e7 m, beyond the range of a length",
+        ),
+        (
+            "dh: (a: 0.25, alpha: 0.0, d: 0.0)",
+            "dh: (a: 0.25, alpha: 0.0, d: -1.5e6)",
+            "link2",
+            "`d` is -1.5e6 m, beyond the range of a length",
+        ),
+        (
+            "dh: (a: 0.25, alpha: 0.0, d: 0.0)",
+            "dh: (a: 0.25, alpha: 1000.5, d: 0.0)",
+            "link2",
+            "`alpha` is 1000.5 rad, beyond the range of an angle (at most 1e3 rad",
+        ),
+        (
+            "dh: (a: 0.25, alpha: 0.0, d: 0.0)",
+            "dh: (a: 0.25, alpha: 0.0, d: 0.0, offset: -2e3)",
+            "link2",
+            "`offset` is -2000 rad, beyond the range of an angle",
+        ),
+        (
+            "radius: 0.04",
+            "radius: 1e-10",
+            "drum1",
+            "`radius` is 1e-10 m, below the smallest pitch radius of 1e-9 m",
+        ),
+        (
+            "radius: 0.04",
+            "radius: 3e6",
+            "drum1",
+            "`radius` is 3e6 m, beyond the range of a length",
+        ),
+        (
+            "height: 0.0), radius: 0.04",
+            "height: 1e9), radius: 0.04",
+            "drum1",
+            "`height` is 1e9 m, beyond the range of a length",
+        ),
+        (
+            "exit: (-0.25, 0.10, 0.0)",
+            "exit: (-1e7, 0.10, 0.0)",
+            "T11",
+            "`exit` is -1e7 m, beyond the range of a length",
+        ),
+    ] {
+        let text = with(OPEN_ENDED, from, to);
+        let err = assert_invalid(&text, item, &format!("name: \"{item}\""), phrase);
+        assert!(
+            err.to_string()
+                .contains("format.md §12, ranges of magnitude"),
+            "{err}"
+        );
+    }
+    // A placement's origin and angles.
+    parse(&with_pose(OPEN_ENDED)).unwrap_or_else(|e| panic!("{e}"));
+    for (from, to, phrase) in [
+        (
+            "origin: (0.0, 0.0, -0.01)",
+            "origin: (0.0, 5e6, -0.01)",
+            "`origin` is 5e6 m, beyond the range of a length",
+        ),
+        (
+            "rpy: (0.0, 0.0, 0.0)",
+            "rpy: (0.0, 0.0, 1e4)",
+            "`rpy` is 10000 rad, beyond the range of an angle",
+        ),
+    ] {
+        let text = with(&with_pose(OPEN_ENDED), from, to);
+        assert_invalid(&text, "gear", "name: \"gear\"", phrase);
+    }
+    // The external wrench's point, at the `external_wrench:` line.
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    external_wrench: (link: \"link2\", point: (0.0, -3e6, 0.0), force: (1.0, 0.0, 0.0)),\n    tendons: [",
+    );
+    let err = rejected(&text);
+    let Error::Invalid { at, .. } = &err else {
+        panic!("{err:?}")
+    };
+    assert_eq!(at.line, line_of(&text, "external_wrench:"), "{err}");
+    assert!(
+        err.to_string().contains(
+            "the `point` of `external_wrench` on `link2` has -3e6 m, beyond the range of a length"
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_runtime_parameter_outside_its_range_is_rejected() {
+    let text = with(
+        &with(OPEN_ENDED, "mass: 0.8,", "mass: \"payload\","),
+        "tension_floor: 5.0,",
+        "tension_floor: 5.0,\n    parameters: [(name: \"payload\", value: 0.8)],",
+    );
+    let model = parse(&text).unwrap();
+    model.with_parameters(&[1e12]).unwrap();
+    let err = model.with_parameters(&[1e13]).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("`mass` is 1e13 kg, beyond the range of a mass"),
+        "{err}"
+    );
+    // Its nominal value is checked like any number.
+    let text = with(&text, "value: 0.8", "value: 1e13");
+    assert_invalid(&text, "link2", "name: \"link2\"", "`mass` is 1e13 kg");
+    // The external wrench's point.
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    parameters: [(name: \"px\", value: 0.1)],\n    external_wrench: (link: \"link2\", point: (\"px\", 0.0, 0.0), force: (1.0, 0.0, 0.0)),\n    tendons: [",
+    );
+    let model = parse(&text).unwrap();
+    model.with_parameters(&[1e6]).unwrap();
+    let err = model.with_parameters(&[-2e6]).unwrap_err();
+    assert_eq!(err.item(), Some("open_ended"));
+    assert!(
+        err.to_string()
+            .contains("the `point` of `external_wrench` has -2e6 m, beyond the range of a length"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_body_at_the_edges_of_every_range_gives_finite_results_and_f32_code() {
+    let (_, text) = reproducer("F01-codegen-f32-constant-overflow-panic");
+    let text = with(
+        &text,
+        "dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: 1e39, com: (-0.1, 0.0, 0.0)",
+        "dh: (a: 1e6, alpha: 1e3, d: -1e6, offset: -1e3), mass: 1e12, com: (-1e6, 1e6, -1e6), \
+         inertia: (xx: 1e24, yy: 1e24, zz: 1e24, xy: -1e-9)",
+    );
+    let model = parse(&text).unwrap();
+    let mut solver = Solver::new(&model);
+    let (q, qd, qdd) = ([1e4], [1e3], [1e6]);
+    let r = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    assert!(r.generalized_forces.iter().all(|x| x.is_finite()));
+    let qdd = solver.forward_dynamics(&q, &qd, &r.unknowns, &[]).unwrap();
+    assert!((qdd[0] - 1e6).abs() <= 1e-6 * 1e6, "{qdd:?}");
+    for scalar in [tendyn_codegen::Scalar::F32, tendyn_codegen::Scalar::F64] {
+        let g = generated(&model, scalar).unwrap();
+        assert!(!g.source.contains("inf") && !g.source.contains("NaN"));
+    }
+    // A pulley radius at both ends.
+    for r in ["1e-9", "1e6"] {
+        let (_, text) = reproducer("F07-tiny-radius-misleading-not-controllable");
+        let text = with(&text, "radius: 1e-163", &format!("radius: {r}"))
+            .replace("exit: (-0.1, 0.05, 0.0)", "exit: (-3e6, 0.05, 0.0)")
+            .replace("exit: (-0.1, -0.05, 0.0)", "exit: (-3e6, -0.05, 0.0)");
+        let err = parse(&text).unwrap_err();
+        // (-3e6 is itself out of range: the exits move in to the edge instead.)
+        assert!(err.to_string().contains("`exit` is -3e6 m"), "{err}");
+        let text = text.replace("-3e6", "-1e6");
+        let model = parse(&text).unwrap_or_else(|e| panic!("radius {r}: {e}"));
+        let r = Solver::new(&model)
+            .inverse_dynamics(&[0.5], &[1.0], &[2.0])
+            .unwrap();
+        assert!(r.unknowns.iter().all(|x| x.is_finite()));
+    }
 }

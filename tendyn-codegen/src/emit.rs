@@ -506,6 +506,11 @@ mod layout {
 
 /// The expressions of constants and inputs, by node index, shared by every body: the same
 /// few recur throughout, and cloning a tree is cheaper than formatting and parsing a literal.
+///
+/// `proc_macro2::Literal` asserts that a float is finite: every constant written here (and
+/// the structure matrix and distribution constants of [`emit`]) has been checked to fit
+/// the scalar before emission (`check_constants` in `lib.rs`), which returns an error
+/// instead.
 struct Atoms<'g> {
     g: &'g Graph,
     scalar: Scalar,

@@ -45,6 +45,10 @@ pub enum Error {
     /// The build environment is not what [`Builder`] needs (no `OUT_DIR`, an unwritable
     /// file).
     Build(String),
+    /// A number the emitted code would hold that its scalar cannot: one of the mechanism's,
+    /// or one folded from them (a product of a mass and a squared length, say). `item` names
+    /// the body it belongs to, or the output whose function holds it.
+    Constant { item: String, problem: String },
 }
 
 impl std::fmt::Display for Error {
@@ -65,6 +69,7 @@ impl std::fmt::Display for Error {
                 Output::ALL.map(|o| o.name()).join(", ")
             ),
             Error::Build(problem) => write!(f, "{problem}"),
+            Error::Constant { item, problem } => write!(f, "{item}: {problem}"),
             Error::CorePath { path } => write!(
                 f,
                 "`{path}` is not a Rust path to tendyn-core (write `tendyn_core` or `::tendyn::core`)"
@@ -143,7 +148,9 @@ pub fn generate_with(
     let core: syn::Path = syn::parse_str(&options.core_path).map_err(|_| Error::CorePath {
         path: options.core_path.clone(),
     })?;
+    check_bodies(model, options.scalar)?;
     let traced = outputs::trace(model, outputs)?;
+    check_constants(model, &traced, options.scalar)?;
     let functions = traced
         .functions
         .iter()
@@ -167,4 +174,200 @@ pub fn available_outputs(model: &tendyn_core::Model<f64>) -> Vec<Output> {
         .into_iter()
         .filter(|o| outputs::check(model, &[*o]).is_ok())
         .collect()
+}
+
+/// The largest number `scalar` holds, and its name.
+fn largest(scalar: Scalar) -> (f64, &'static str) {
+    match scalar {
+        Scalar::F32 => (f64::from(f32::MAX), "f32"),
+        // Generic code writes its constants as f64 literals.
+        Scalar::F64 | Scalar::Generic => (f64::MAX, "f64"),
+    }
+}
+
+/// Whether `x` can be written as a literal of `scalar`.
+fn fits(x: f64, scalar: Scalar) -> bool {
+    x.abs() <= largest(scalar).0
+}
+
+/// Every body's numbers, and the products of its mass properties that the recursion folds
+/// (`m c`, `m |c|²`, `I + m |c|²`), fit the scalar: an error names the body. Validation
+/// keeps every number of a file within ranges (format.md §12) that f64 and f32 hold; this
+/// is for models built or changed otherwise.
+fn check_bodies(model: &tendyn_core::Model<f64>, scalar: Scalar) -> Result<(), Error> {
+    let (max, name) = largest(scalar);
+    for b in &model.bodies {
+        let c = b.com.to_array();
+        // |c| without overflow of its squares.
+        let c_max = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let c_norm = if c_max > 0.0 {
+            c_max * c.iter().map(|x| (x / c_max).powi(2)).sum::<f64>().sqrt()
+        } else {
+            0.0
+        };
+        let inertia = b
+            .inertia
+            .rows
+            .iter()
+            .flatten()
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        let radius = match b.kind {
+            tendyn_core::model::BodyKind::Pulley { radius, .. } => radius,
+            tendyn_core::model::BodyKind::Link { .. } => 0.0,
+        };
+        let lengths = [b.pre.translation, b.post.translation]
+            .into_iter()
+            .flat_map(|v| v.to_array())
+            .chain([radius]);
+        let numbers = [
+            ("its mass", " kg", b.mass),
+            ("an inertia entry", " kg·m²", inertia),
+        ]
+        .into_iter()
+        .chain(c.map(|x| ("its centre of mass", " m", x)))
+        .chain(lengths.map(|x| ("its placement", " m", x)))
+        .chain(b.coupling.iter().map(|&x| ("its coupling", "", x)));
+        let products = [
+            (
+                "its mass times its centre of mass, m |c|,",
+                " kg·m",
+                b.mass * c_norm,
+            ),
+            (
+                "its mass times its squared centre of mass, m |c|²,",
+                " kg·m²",
+                b.mass * c_norm * c_norm,
+            ),
+            (
+                "its inertia about its frame's origin",
+                " kg·m²",
+                inertia + b.mass * c_norm * c_norm,
+            ),
+        ];
+        for (what, unit, x) in numbers.chain(products) {
+            if !fits(x, scalar) {
+                let is = if x.is_finite() {
+                    format!("is {x:e}{unit}, which {name} cannot hold")
+                } else {
+                    format!("overflows {name}")
+                };
+                return Err(Error::Constant {
+                    item: b.name.clone(),
+                    problem: format!(
+                        "{what} {is} (its largest number is {max:.1e}): the generated code would \
+                         compute with an infinity; {}",
+                        fix(scalar)
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What to do about a number the scalar cannot hold.
+fn fix(scalar: Scalar) -> &'static str {
+    match scalar {
+        Scalar::F32 => {
+            "generate for f64, or write the mechanism in units that keep its numbers smaller"
+        }
+        Scalar::F64 | Scalar::Generic => {
+            "check the sizes and units of the mechanism's numbers (format.md §12 gives the \
+             ranges validation keeps them in)"
+        }
+    }
+}
+
+/// Every constant the emitted code writes fits the scalar: those of the traced functions
+/// (folded from the mechanism's numbers as the graph is built: an error names the output
+/// whose function holds one), the structure matrix and the distribution's constants.
+fn check_constants(
+    model: &tendyn_core::Model<f64>,
+    traced: &outputs::Traced,
+    scalar: Scalar,
+) -> Result<(), Error> {
+    let (max, name) = largest(scalar);
+    let g = &traced.graph;
+    let bad = |x: f64| !fits(x, scalar);
+    let roots: Vec<expr::Id> = traced
+        .functions
+        .iter()
+        .flat_map(|f| f.results.iter().chain(&f.traced))
+        .chain(&traced.all)
+        .copied()
+        .collect();
+    let live = g.live_mask(&roots);
+    let overflows =
+        |id: usize| matches!(g.nodes[id], expr::Node::Const(bits) if bad(f64::from_bits(bits)));
+    if (0..g.nodes.len()).any(|id| live[id] && overflows(id)) {
+        // Rare: find the function that holds it.
+        for f in &traced.functions {
+            let live = g.live_mask(
+                &f.results
+                    .iter()
+                    .chain(&f.traced)
+                    .copied()
+                    .collect::<Vec<_>>(),
+            );
+            if let Some(id) = (0..g.nodes.len()).find(|&id| live[id] && overflows(id)) {
+                let x = g.constant_value(expr::Id(id as u32)).expect("a constant");
+                return Err(Error::Constant {
+                    item: format!("output `{}`", f.output.name()),
+                    problem: format!(
+                        "a constant folded from the mechanism's numbers is {x:e}, which {name} \
+                         cannot hold (its largest number is {max:.1e}); {}",
+                        fix(scalar)
+                    ),
+                });
+            }
+        }
+        // (`all` holds only the functions' results, so this is not reached.)
+        return Err(Error::Constant {
+            item: "output `all`".to_string(),
+            problem: format!(
+                "a constant folded from the mechanism's numbers is beyond what {name} can hold \
+                 (its largest number is {max:.1e}); {}",
+                fix(scalar)
+            ),
+        });
+    }
+    // Written as f64 literals whatever the scalar.
+    let a = model.structure_matrix();
+    for (k, t) in model.tendons.iter().enumerate() {
+        if let Some(x) = a.iter().map(|row| row[k]).find(|x| !x.is_finite()) {
+            return Err(Error::Constant {
+                item: t.name.clone(),
+                problem: format!(
+                    "its structure-matrix column holds {x}; {}",
+                    fix(Scalar::F64)
+                ),
+            });
+        }
+    }
+    for f in &traced.functions {
+        let Some(d) = &f.distribution else { continue };
+        // A maximum (and so a target) may be infinite: no maximum.
+        let finite = d
+            .null
+            .iter()
+            .flatten()
+            .chain(&d.floor)
+            .all(|x| x.is_finite());
+        let bounded = d
+            .max
+            .iter()
+            .chain(&d.target)
+            .all(|&x| x.is_finite() || x == f64::INFINITY);
+        if !finite || !bounded {
+            return Err(Error::Constant {
+                item: format!("output `{}`", f.output.name()),
+                problem: format!(
+                    "a constant of its tension distribution (null space, floors, maxima) is not \
+                     finite; {}",
+                    fix(Scalar::F64)
+                ),
+            });
+        }
+    }
+    Ok(())
 }

@@ -440,6 +440,10 @@ impl<'m, T: Numeric> Solver<'m, T> {
     /// dynamics sums (`A`, `B` the tendons' and motors' columns). Tensions that balance each
     /// other make `q̈` a small difference of large numbers, so the error of a forward
     /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
+    ///
+    /// Checked as [`Solver::forward_dynamics`] is, with the same errors: the inputs (their
+    /// lengths and finiteness), every intermediate result, and the mass matrix (which must
+    /// be positive definite); a finite scale or an error, never a non-finite number.
     pub fn forward_dynamics_scale(
         &mut self,
         q: &[T],
@@ -447,6 +451,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<T> {
+        self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
         let zero = T::from_f64(0.0);
         let c = self.generalized_forces(q, qd, &self.ws.zeros.clone())?;
         let model = self.model;
@@ -467,8 +472,10 @@ impl<'m, T: Numeric> Solver<'m, T> {
                 motors + tendons + c[j].abs()
             })
             .collect();
-        let m = self.mass_matrix(q)?;
-        let y = ldlt_solve(&m, &rhs);
+        finite("right-hand side of forward dynamics", &rhs)?;
+        let y = self.solve_mass_matrix(q, &rhs)?;
+        // (`max` would pass over a NaN.)
+        finite("forward-dynamics term scale", &y)?;
         Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
     }
 
@@ -481,6 +488,24 @@ impl<'m, T: Numeric> Solver<'m, T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<Vec<T>> {
+        self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
+        let model = self.model;
+        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        finite("right-hand side of forward dynamics", &rhs)?;
+        let qdd = self.solve_mass_matrix(q, &rhs)?;
+        finite("joint acceleration", &qdd)?;
+        Ok(qdd)
+    }
+
+    /// The input checks of forward dynamics: the state, and as many finite motor torques
+    /// and tendon tensions as the mechanism has motors and open-ended tendons.
+    fn check_forward_inputs(
+        &self,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<()> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         let model = self.model;
@@ -505,19 +530,20 @@ impl<'m, T: Numeric> Solver<'m, T> {
                 )));
             }
         }
-        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
-        finite("right-hand side of forward dynamics", &rhs)?;
-        let m = mass_matrix(model, q, &mut self.ws);
+        Ok(())
+    }
+
+    /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
+    fn solve_mass_matrix(&mut self, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
+        let m = mass_matrix(self.model, q, &mut self.ws);
         finite("mass matrix", m.iter().flatten())?;
-        let qdd = linalg::cholesky_solve(&m, &rhs).ok_or_else(|| {
+        linalg::cholesky_solve(&m, rhs).ok_or_else(|| {
             Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
                  link whose motion nothing resists)"
                     .into(),
             )
-        })?;
-        finite("joint acceleration", &qdd)?;
-        Ok(qdd)
+        })
     }
 
     /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the

@@ -537,7 +537,10 @@ impl Model<f64> {
         let mut m = self.clone();
         m.set_parameters(values);
         for b in &m.bodies {
-            crate::validate::check_mass_properties(&b.name, b.mass, &b.inertia)?;
+            crate::validate::check_mass_properties(&b.name, b.mass, b.com, &b.inertia)?;
+        }
+        if let Some(w) = &m.external_wrench {
+            crate::validate::check_wrench_point(&m.name, w.point)?;
         }
         Ok(m)
     }

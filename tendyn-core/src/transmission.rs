@@ -276,6 +276,18 @@ impl Routing<'_> {
             ),
         };
         let scale = 1.0 + norm(cq - cp) + rp + rq;
+        // Validation keeps every length within its range (format.md §12), so this only
+        // guards the tests below, which an infinite tolerance would pass.
+        let too_large = || {
+            fail(
+                "its geometry is too large to compute with (a distance or direction is not \
+                 finite); check the sizes and units of the lengths along it"
+                    .to_string(),
+            )
+        };
+        if !scale.is_finite() {
+            return Err(too_large());
+        }
         let tol = 1e-9 * scale;
         let cross = np.cross(nq);
         let dir = if norm(cross) < 1e-12 {
@@ -336,6 +348,10 @@ impl Routing<'_> {
         let from_rel = dir.cross(np).scale(tp * rp);
         let to_rel = dir.cross(nq).scale(tq * rq);
         let length = (cq + to_rel - cp - from_rel).dot(dir);
+        let numbers = [dir, from_rel, to_rel].map(Vec3::to_array);
+        if !length.is_finite() || numbers.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(too_large());
+        }
         let from = Contact {
             body: Some(self.pulleys[p].body),
             rel: from_rel,

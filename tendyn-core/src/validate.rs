@@ -26,8 +26,10 @@ pub fn load(path: impl AsRef<std::path::Path>) -> Result<Model<f64>> {
     parse(&text)
 }
 
-/// Validates a mechanism given as RON text.
+/// Validates a mechanism given as RON text. A leading UTF-8 byte-order mark (which some
+/// editors write) is skipped; lines and columns are counted after it.
 pub fn parse(text: &str) -> Result<Model<f64>> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let file: MechanismFile = options.from_str(text).map_err(|e| syntax_error(text, &e))?;
@@ -131,6 +133,89 @@ struct MassProperties {
 /// twist written `1.5707963267948966` gives exact zeros and ones (which the code generator
 /// then removes).
 const RIGHT_ANGLE_SNAP: f64 = 1e-12;
+
+// Ranges of magnitude (format.md §12, "Ranges of magnitude"). Within them every quantity
+// derived from a file stays finite in f64: a length is at most 1e6 m and a radius at least
+// 1e-9 m, so couplings (ratios of radii) stay below 1e15, squares of positions (sums of at
+// most 12 links) below 1e15 and the structure matrix's pseudo-inverse near 1e9; a mass is at
+// most 1e12 kg and an inertia entry at most 1e24 kg·m² (the heaviest body at the largest
+// length), so the mass matrix's entries stay near 1e24 · (coupling)², far below f64's
+// 1.8e308, and every number of a file fits f32 (3.4e38; products generated code folds may
+// not, which code generation reports). An angle is at most 1e3 rad: f64
+// computes its distance to the nearest multiple of π/2 to within 1e-13 rad there (the
+// rounding of k·π/2 and of π/2 itself), a tenth of the right-angle snapping's 1e-12 rad, so
+// snapping decides correctly; at 1e4 rad that error exceeds the tolerance.
+
+/// A kind of number with a range of magnitude.
+#[derive(Clone, Copy)]
+enum Range {
+    Length,
+    Mass,
+    Inertia,
+    Angle,
+}
+
+impl Range {
+    fn max(self) -> f64 {
+        match self {
+            Range::Length => MAX_LENGTH,
+            Range::Mass => MAX_MASS,
+            Range::Inertia => MAX_INERTIA,
+            Range::Angle => MAX_ANGLE,
+        }
+    }
+
+    /// What the number is, its unit, and what would fix it.
+    fn described(self) -> (&'static str, &'static str, &'static str) {
+        match self {
+            Range::Length => (
+                "a length",
+                "m",
+                "check its unit (metres) and its exponent; larger numbers overflow the squares \
+                 and products derived from them",
+            ),
+            Range::Mass => (
+                "a mass",
+                "kg",
+                "check its unit (kilograms) and its exponent; larger numbers overflow the \
+                 products derived from them",
+            ),
+            Range::Inertia => (
+                "an inertia entry",
+                "kg·m²",
+                "check its unit (kg·m²) and its exponent; larger numbers overflow the products \
+                 derived from them",
+            ),
+            Range::Angle => (
+                "an angle",
+                "rad",
+                "reduce it modulo 2π (f64 cannot resolve a larger angle to the 1e-12 rad that \
+                 right angles are recognised within), or check its unit (radians)",
+            ),
+        }
+    }
+}
+
+/// A number as a message shows it: plainly, or with an exponent when very large or small.
+fn shown(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The largest size of a length (DH `a` and `d`, centres of mass, pulley heights and
+/// origins, tendon exits, the external wrench's point), m.
+pub const MAX_LENGTH: f64 = 1e6;
+/// The smallest pitch radius, m (the largest is [`MAX_LENGTH`]).
+pub const MIN_RADIUS: f64 = 1e-9;
+/// The largest mass, kg.
+pub const MAX_MASS: f64 = 1e12;
+/// The largest size of an inertia tensor entry, kg·m².
+pub const MAX_INERTIA: f64 = 1e24;
+/// The largest size of an angle (DH `alpha` and `offset`, a placement's `rpy`), rad.
+pub const MAX_ANGLE: f64 = 1e3;
 
 fn snapped_sin_cos(angle: f64) -> (f64, f64) {
     let quarter = (angle / std::f64::consts::FRAC_PI_2).round();
@@ -303,6 +388,24 @@ impl Validator<'_> {
         }
     }
 
+    /// Every number of `field` (finite already) is at most `max` in size; the error names
+    /// the item, the number and the range, and says what would fix it.
+    fn within(&self, item: &str, field: &str, values: &[f64], range: Range) -> Result<()> {
+        let Some(&v) = values.iter().find(|v| v.abs() > range.max()) else {
+            return Ok(());
+        };
+        let (what, unit, fix) = range.described();
+        Err(self.invalid(
+            item,
+            format!(
+                "`{field}` is {} {unit}, beyond the range of {what} (at most {:e} {unit} in \
+                 size; format.md §12, ranges of magnitude): {fix}",
+                shown(v),
+                range.max()
+            ),
+        ))
+    }
+
     /// A number's nominal value (a parameter's declared value).
     fn num(&self, n: &Num) -> f64 {
         match n {
@@ -350,6 +453,9 @@ impl Validator<'_> {
                 format!("mass is {mass} kg; a mass must be positive (or zero for a massless body)"),
             ));
         }
+        self.within(item, "mass", &[mass], Range::Mass)?;
+        self.within(item, "com", &com, Range::Length)?;
+        self.within(item, "inertia", &mp.inertia, Range::Inertia)?;
         if mass == 0.0 && nonzero_inertia {
             return Err(self.invalid(
                 item,
@@ -568,6 +674,7 @@ impl Validator<'_> {
                 )
             })?;
             self.finite(&t.name, "exit", &exit)?;
+            self.within(&t.name, "exit", &exit, Range::Length)?;
             routes.push((
                 Route {
                     name: t.name.clone(),
@@ -1044,6 +1151,20 @@ impl Validator<'_> {
                         ),
                     });
                 }
+                if let Some(&v) = point.iter().find(|v| v.abs() > MAX_LENGTH) {
+                    let (_, _, fix) = Range::Length.described();
+                    return Err(Error::Invalid {
+                        item: f.name.clone(),
+                        at,
+                        problem: format!(
+                            "the `point` of `external_wrench` on `{}` has {} m, beyond the range \
+                             of a length (at most {MAX_LENGTH:e} m in size; format.md §12, ranges \
+                             of magnitude): {fix}",
+                            w.link,
+                            shown(v)
+                        ),
+                    });
+                }
                 Some(Wrench {
                     link,
                     point: Vec3::from_array(point),
@@ -1102,6 +1223,10 @@ impl Validator<'_> {
     fn link_body(&self, j: usize, l: &LinkSpec, n: usize) -> Result<Body<f64>> {
         let d = &l.dh;
         self.finite(&l.name, "dh", &[d.a, d.alpha, d.d, d.offset])?;
+        self.within(&l.name, "a", &[d.a], Range::Length)?;
+        self.within(&l.name, "d", &[d.d], Range::Length)?;
+        self.within(&l.name, "alpha", &[d.alpha], Range::Angle)?;
+        self.within(&l.name, "offset", &[d.offset], Range::Angle)?;
         let mp = self.mass_of(&l.mass, &l.com, &l.inertia);
         self.mass_properties(&l.name, &mp)?;
         let post = dh_post(d);
@@ -1140,6 +1265,19 @@ impl Validator<'_> {
                 format!("radius is {} m; a pitch radius must be positive", p.radius),
             ));
         }
+        if p.radius < MIN_RADIUS {
+            return Err(self.invalid(
+                &p.name,
+                format!(
+                    "`radius` is {} m, below the smallest pitch radius of {MIN_RADIUS:e} m \
+                     (format.md §12, ranges of magnitude): couplings are ratios of radii and the \
+                     tension system is inverted, which smaller radii overflow or leave without \
+                     precision; check its unit (metres) and its exponent",
+                    shown(p.radius)
+                ),
+            ));
+        }
+        self.within(&p.name, "radius", &[p.radius], Range::Length)?;
         let carrier = if p.carrier == "base" {
             None
         } else {
@@ -1163,6 +1301,7 @@ impl Validator<'_> {
         let (pre, coaxial) = match &p.at {
             Placement::Joint { joint, height } => {
                 self.finite(&p.name, "height", &[*height])?;
+                self.within(&p.name, "height", &[*height], Range::Length)?;
                 let j = f
                     .links
                     .iter()
@@ -1204,6 +1343,8 @@ impl Validator<'_> {
             Placement::Pose { origin, rpy } => {
                 self.finite(&p.name, "origin", origin)?;
                 self.finite(&p.name, "rpy", rpy)?;
+                self.within(&p.name, "origin", origin, Range::Length)?;
+                self.within(&p.name, "rpy", rpy, Range::Angle)?;
                 let r = snapped_rot(2, rpy[2]) * snapped_rot(1, rpy[1]) * snapped_rot(0, rpy[0]);
                 let _ = (rot_x, rot_y, rot_z);
                 (
@@ -1699,12 +1840,18 @@ fn parameter_slots(f: &MechanismFile) -> Vec<(Slot, usize)> {
     slots
 }
 
-/// The mass and inertia checks of validation, for parameter values set at run time.
-pub fn check_mass_properties(item: &str, mass: f64, inertia: &Mat3<f64>) -> Result<()> {
+/// The mass, centre-of-mass and inertia checks of validation (ranges of magnitude
+/// included), for parameter values set at run time.
+pub fn check_mass_properties(
+    item: &str,
+    mass: f64,
+    com: Vec3<f64>,
+    inertia: &Mat3<f64>,
+) -> Result<()> {
     let r = &inertia.rows;
     let mp = MassProperties {
         mass,
-        com: [0.0; 3],
+        com: com.to_array(),
         inertia: [r[0][0], r[1][1], r[2][2], r[0][1], r[0][2], r[1][2]],
     };
     Validator {
@@ -1712,4 +1859,21 @@ pub fn check_mass_properties(item: &str, mass: f64, inertia: &Mat3<f64>) -> Resu
         params: Vec::new(),
     }
     .mass_properties(item, &mp)
+}
+
+/// The range check of validation for the external wrench's point, for parameter values set
+/// at run time (`mechanism` names the item, as in a file).
+pub fn check_wrench_point(mechanism: &str, point: Vec3<f64>) -> Result<()> {
+    match point.to_array().into_iter().find(|v| v.abs() > MAX_LENGTH) {
+        None => Ok(()),
+        Some(v) => Err(Error::Invalid {
+            item: mechanism.to_string(),
+            at: Location::default(),
+            problem: format!(
+                "the `point` of `external_wrench` has {} m, beyond the range of a length (at \
+                 most {MAX_LENGTH:e} m in size; format.md §12, ranges of magnitude)",
+                shown(v)
+            ),
+        }),
+    }
 }
