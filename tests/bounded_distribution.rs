@@ -21,6 +21,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use tendyn_core::distribution::{self, Status, Work};
+use tendyn_core::model::Model;
 use tendyn_core::{tension, DoubleDouble, Error, Numeric, Solver};
 use tendyn_spec::bounded::{self, Problem, Solution, SIZES};
 
@@ -111,22 +113,24 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
             .unwrap();
         // The exact minimal-norm tensions (no motors or loops: the rows are the joints and
         // the unknowns the tendons), rounded to f32, for the f32 distribution on its own.
-        let mut x32: Vec<f32> = dd_model
+        let x64: Vec<f64> = dd_model
             .system
             .pseudo_inverse
             .iter()
             .map(|row| {
                 let x: DoubleDouble = row.iter().zip(&b).map(|(p, v)| *p * *v).sum();
-                x.to_f64() as f32
+                x.to_f64()
             })
             .collect();
-        let reference = bounded::solve(&Problem {
+        let mut x32: Vec<f32> = x64.iter().map(|&x| x as f32).collect();
+        let problem = |upper: &[f64]| Problem {
             a: a.clone(),
-            b,
+            b: b.clone(),
             lower: floor.clone(),
-            upper: max.clone(),
+            upper: upper.to_vec(),
             target: target.clone(),
-        });
+        };
+        let reference = bounded::solve(&problem(&max));
         let r64 = s64.inverse_dynamics(&q64, &qd64, &qdd64);
         let t0_32: Vec<f64> = x32.iter().map(|&v| v as f64).collect();
         let d32 = tension::distribute(&m32, &mut x32);
@@ -142,6 +146,8 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
                     );
                 }
                 tally.pipeline_f32_disagree += usize::from(pipeline.is_ok());
+                let without_max = bounded::solve(&problem(&vec![f64::INFINITY; m]));
+                check_best_effort(&model, &x64, without_max);
                 continue;
             }
             Solution::Optimal(want) => want.iter().map(|v| v.to_f64()).collect::<Vec<f64>>(),
@@ -211,6 +217,87 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
         }
     }
     tally
+}
+
+/// Where the bounds cannot be met: the distribution's certificate proves it, and its best
+/// effort is what the module documentation says (d ≥ 2: the reference solved without
+/// maxima; d = 1: the least lift along the positive null vector that meets every floor).
+fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
+    let (k, d) = (model.tendons.len(), model.system.null_space.len());
+    let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+    let size = t0.iter().chain(&floor).fold(1.0f64, |s, x| s.max(x.abs()));
+    let name = &model.name;
+    if d == 1 {
+        let mut x = t0.to_vec();
+        tension::along_line(model, &mut x);
+        let p = model.system.positive_null.as_ref().unwrap();
+        let lift = (x[0] - t0[0]) / p[0];
+        let slack: Vec<f64> = x.iter().zip(&floor).map(|(x, f)| x - f).collect();
+        assert!(
+            slack.iter().all(|&s| s >= -1e-12 * size),
+            "{name}: {x:?} below a floor"
+        );
+        assert!(
+            slack.iter().any(|&s| s.abs() <= 1e-12 * size),
+            "{name}: not the least lift"
+        );
+        for j in 0..k {
+            assert!(
+                (x[j] - t0[j] - lift * p[j]).abs() <= 1e-12 * size,
+                "{name}: not along p"
+            );
+        }
+        return;
+    }
+    let problem = tension::bounds(model);
+    let mut reals = vec![0.0; Work::<f64>::reals(d)];
+    let mut active = vec![0; d];
+    let mut work = Work::split(&mut reals, &mut active, d).unwrap();
+    let (mut t, mut w) = (vec![0.0; k], vec![0.0; k]);
+    let status = distribution::solve(&problem, t0, &mut work, &mut t, Some(&mut w));
+    assert_eq!(status, Status::MaxExceeded, "{name}");
+    // The certificate: orthogonal to the null space, and along it the motion needs more
+    // than the bounded tendons can give.
+    let w_size = w.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    for v in &model.system.null_space {
+        let along: f64 = model
+            .tendons
+            .iter()
+            .zip(&w)
+            .map(|(t, wk)| v[t.unknown] * wk)
+            .sum();
+        assert!(
+            along.abs() <= 1e-12 * w_size,
+            "{name}: certificate not ⟂ N ({along:e})"
+        );
+    }
+    let needed: f64 = w.iter().zip(t0).map(|(a, b)| a * b).sum();
+    let most: f64 = model
+        .tendons
+        .iter()
+        .zip(&w)
+        .map(|(t, &wk)| {
+            wk * if wk > 0.0 {
+                t.max_tension.unwrap()
+            } else {
+                t.floor
+            }
+        })
+        .sum();
+    assert!(
+        needed > most,
+        "{name}: the certificate proves nothing ({needed} ≤ {most})"
+    );
+    let Solution::Optimal(want) = without_max else {
+        panic!("{name}: the floors alone can always be met");
+    };
+    let scale = want.iter().fold(0.0f64, |s, x| s.max(x.to_f64().abs()));
+    for (g, w) in t.iter().zip(&want) {
+        assert!(
+            (g - w.to_f64()).abs() <= 1e-12 * scale,
+            "{name}: best effort {t:?} is not the distribution without maxima {want:?}"
+        );
+    }
 }
 
 fn check_all(count: usize, centered: bool) {
@@ -347,5 +434,8 @@ fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
             checked >= 5,
             "({n}, {m}): only {checked} feasible trajectories"
         );
+        // Continuity matters where the active set changes: the trajectories must cross such
+        // changes for the check to say anything.
+        assert!(active_changes > 0, "({n}, {m}): no change of active set");
     }
 }

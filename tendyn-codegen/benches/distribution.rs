@@ -13,8 +13,6 @@
 //! files are `golden/distribution/`, kept by `tests/golden.rs`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -34,21 +32,13 @@ mod bounded_3x6 {
     include!("../golden/distribution/bounded_3x6.rs");
 }
 
-const STATES: usize = 1024;
-
-fn states<const N: usize>(seed: u64) -> Vec<([f64; N], [f64; N], [f64; N])> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..STATES)
-        .map(|_| {
-            let mut v = |s: f64| std::array::from_fn(|_| rng.random_range(-s..s));
-            (v(std::f64::consts::PI), v(2.0), v(6.0))
-        })
-        .collect()
-}
+#[path = "common/states.rs"]
+mod states;
+use states::{states, STATES};
 
 macro_rules! bench_actuation {
     ($group:expr, $label:literal, $module:ident, $n:literal) => {{
-        let data = states::<$n>(7);
+        let data = states::<$n>(7, 2.0, 6.0);
         let feasible: Vec<_> = data
             .iter()
             .filter(|(q, qd, qdd)| {

@@ -7,8 +7,6 @@
 //! `RUSTFLAGS="-C target-cpu=native"` for the protocol's conditions).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 
 #[allow(dead_code)]
@@ -24,17 +22,9 @@ mod ex3 {
     include!("../golden/example3_stanford_jpl.rs");
 }
 
-const STATES: usize = 1024;
-
-fn states<const N: usize>(seed: u64) -> Vec<([f64; N], [f64; N], [f64; N])> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..STATES)
-        .map(|_| {
-            let mut v = |s: f64| std::array::from_fn(|_| rng.random_range(-s..s));
-            (v(std::f64::consts::PI), v(3.0), v(10.0))
-        })
-        .collect()
-}
+#[path = "common/states.rs"]
+mod states;
+use states::{states, STATES};
 
 macro_rules! bench_example {
     ($c:expr, $name:literal, $module:ident, $n:literal) => {{
@@ -45,7 +35,7 @@ macro_rules! bench_example {
             ".ron"
         ))
         .unwrap();
-        let data = states::<$n>(7);
+        let data = states::<$n>(7, 3.0, 10.0);
         let mut group = $c.benchmark_group($name);
         group.throughput(Throughput::Elements(STATES as u64));
         group.bench_function("generated Q (f64)", |b| {

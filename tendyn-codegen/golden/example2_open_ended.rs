@@ -35,7 +35,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
         + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t958));
     [t967, t973]
 }
-/// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
+/// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon T32, tendon T42, tendon T11.
 ///

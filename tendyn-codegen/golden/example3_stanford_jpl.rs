@@ -91,7 +91,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
             + (qdd[2] * T::from_f64(0.000011256) + t2484));
     [t2401, t2463, t2487]
 }
-/// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
+/// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///

@@ -1212,7 +1212,7 @@ fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
     let labels = result_labels(model, f.output);
     let what = match f.output {
         Output::GeneralizedForces => "Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext` (N·m, per joint)".to_string(),
-        Output::Actuation => "Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm)".to_string(),
+        Output::Actuation => "Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`)".to_string(),
         Output::MassMatrix => "Joint-space mass matrix `M(q)` (kg·m², pulley inertias included)".to_string(),
         Output::Bias => "Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m)".to_string(),
         Output::Gravity => "Gravity generalized forces `g(q)` (N·m)".to_string(),

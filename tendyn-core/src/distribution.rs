@@ -51,8 +51,10 @@
 //! # Tolerances
 //!
 //! From the scalar's own round-off ([`Numeric::unit_roundoff`]), relative to the size of
-//! the tensions and bounds involved: a bound counts as met when violated by at most
-//! `4 (K + d) u · max(|T₀|, |floor|, |max|, |T|)`.
+//! the tensions and bounds involved: for `d ≥ 2` a bound counts as met when violated by
+//! at most `4 (K + d) u · max(|T₀|, |floor|, |max|, |T|)`, and a new bound's normal as
+//! independent of the active ones when its part outside their span exceeds `√u` of it;
+//! for `d = 1`, see [`Status::of_line`].
 
 // Index loops read like the algorithm over index sets.
 #![allow(clippy::needless_range_loop)]
@@ -78,8 +80,13 @@ pub enum Status {
 impl Status {
     /// The status of a one-direction distribution from [`LineResult`]: `MaxExceeded` when
     /// the floors' lower bound on `μ` exceeds the maxima's upper bound by more than
-    /// round-off (a NaN excess, from non-finite inputs, is not `Feasible` either).
+    /// `4 (K + 1) u · scale` (in units of `μ`, the positive null vector scaled to a
+    /// smallest component of 1: so a maximum may be exceeded by up to that times `p_k`);
+    /// `Unresolved` for a non-finite excess or scale (non-finite inputs).
     pub fn of_line<T: Numeric>(excess: T, scale: T, tendons: usize) -> Status {
+        if !(excess.is_finite() && scale.is_finite()) {
+            return Status::Unresolved;
+        }
         let tolerance = T::from_f64(tolerance_factor::<T>(tendons, 1)) * scale;
         if excess <= tolerance {
             Status::Feasible
@@ -180,7 +187,18 @@ pub struct LineResult<T> {
 /// `T₀` on entry): `μ_floor = maxₖ (floor_k − T₀ₖ)/p_k`, `μ_max = minₖ (max_k − T₀ₖ)/p_k`.
 /// Only [`Real::max`] decides, so a symbolic scalar traces it into straight-line code.
 pub fn along_line<T: Real>(line: &Line<'_, T>, t: &mut [T]) -> LineResult<T> {
-    let bounded: usize = line.max.iter().filter(|m| m.is_finite()).count();
+    // Slices of unequal lengths are cut to the shortest (never a panic).
+    let k = [line.direction.len(), line.floor.len(), line.max.len()]
+        .into_iter()
+        .fold(t.len(), usize::min);
+    let t = &mut t[..k];
+    if k == 0 {
+        return LineResult {
+            lift: line.target,
+            excess: None,
+        };
+    }
+    let bounded: usize = line.max[..k].iter().filter(|m| m.is_finite()).count();
     let need = |k: usize, t: &[T]| (T::from_f64(line.floor[k]) - t[k]) / line.direction[k];
     let lift = if bounded == 0 {
         // μ = max(μ*, μ_floor), folded from μ* so that the least-norm case (μ* = 0) is
@@ -194,10 +212,9 @@ pub fn along_line<T: Real>(line: &Line<'_, T>, t: &mut [T]) -> LineResult<T> {
         let minus_mu_max = maxima.fold(first, |m, k| m.max(over(k)));
         let capped = -minus_mu_max.max(-line.target);
         let mu_floor = (1..t.len()).fold(need(0, t), |m, k| m.max(need(k, t)));
-        let constants = line
-            .floor
+        let constants = line.floor[..k]
             .iter()
-            .chain(line.max.iter().filter(|m| m.is_finite()))
+            .chain(line.max[..k].iter().filter(|m| m.is_finite()))
             .fold(0.0f64, |m, &x| m.max(x.abs()));
         let scale = t
             .iter()
@@ -286,7 +303,32 @@ pub struct Work<'a, T> {
     pub active: &'a mut [usize],
 }
 
-impl<T> Work<'_, T> {
+impl<'a, T> Work<'a, T> {
+    /// How many reals [`Work::split`] needs for `d` directions.
+    pub const fn reals(d: usize) -> usize {
+        5 * d + 2 * d * d
+    }
+
+    /// Work buffers for `d` directions carved from one buffer of reals (at least
+    /// [`Work::reals`]`(d)`) and one of `d` indices; `None` if either is too short.
+    pub fn split(reals: &'a mut [T], active: &'a mut [usize], d: usize) -> Option<Self> {
+        if reals.len() < Self::reals(d) || active.len() < d {
+            return None;
+        }
+        let (lambda, rest) = reals.split_at_mut(d);
+        let (basis, rest) = rest.split_at_mut(d * d);
+        let (triangle, rest) = rest.split_at_mut(d * d);
+        let (multipliers, scratch) = rest.split_at_mut(d);
+        Some(Work {
+            lambda,
+            basis,
+            triangle,
+            multipliers,
+            scratch,
+            active,
+        })
+    }
+
     fn fits(&self, d: usize) -> bool {
         self.lambda.len() >= d
             && self.basis.len() >= d * d
@@ -313,7 +355,8 @@ pub fn solve<T: Numeric, P: Problem<T>>(
     // Non-finite tensions (from a non-finite state, which generated code does not check)
     // have no distribution: say so at once rather than search.
     let finite = t0.iter().all(|x| x.is_finite());
-    if t0.len() != k || tensions.len() != k || !work.fits(d) || !finite {
+    let short = certificate.as_ref().is_some_and(|c| c.len() < k);
+    if t0.len() != k || tensions.len() != k || !work.fits(d) || !finite || short {
         // Copies what fits: a mismatch of lengths is reported, never a panic.
         for (t, x) in tensions.iter_mut().zip(t0) {
             *t = *x;
@@ -422,8 +465,11 @@ fn project<T: Numeric, P: Problem<T>>(
         }
         worst.map(|i| (i, least))
     };
-    let independent = T::from_f64(64.0 * d as f64 * T::unit_roundoff());
-    let independent = independent * independent;
+    // A new normal counts as independent of the active ones when its part outside their
+    // span is more than √u of it: nearer to parallel, a full step would be longer than
+    // 1/√u times the violation and its round-off would no longer be small against the
+    // tensions (the normals themselves carry errors of u·cond(E)). Squared: u.
+    let independent = T::from_f64(T::unit_roundoff());
 
     for i in 0..d {
         work.lambda[i] = p.target(i);

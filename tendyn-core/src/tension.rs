@@ -264,19 +264,11 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
         )
     } else {
         let problem = Bounds::new(model);
-        let mut buffers = vec![T::zero(); 5 * d + 2 * d * d];
-        let (lambda, rest) = buffers.split_at_mut(d);
-        let (basis, rest) = rest.split_at_mut(d * d);
-        let (triangle, rest) = rest.split_at_mut(d * d);
-        let (multipliers, scratch) = rest.split_at_mut(d);
+        let mut reals = vec![T::zero(); Work::<T>::reals(d)];
         let mut active = vec![0usize; d];
-        let mut work = Work {
-            lambda,
-            basis,
-            triangle,
-            multipliers,
-            scratch,
-            active: &mut active,
+        // Buffers of the size `Work::reals` asks for always split.
+        let Some(mut work) = Work::split(&mut reals, &mut active, d) else {
+            return Err(Error::Tension("work buffers of the wrong size".into()));
         };
         let mut tensions = vec![T::zero(); k];
         let mut w = vec![T::zero(); k];
@@ -372,7 +364,10 @@ fn blocked<T: Numeric>(model: &Model<T>, t0: &[f64], w: &[f64]) -> String {
         })
         .sum::<f64>()
         / s;
-    let small = 1e-9 * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    // Components below √u of the largest are round-off of the certificate (its own
+    // scalar's: f32 leaves far larger ones than f64).
+    let noise = T::unit_roundoff().sqrt();
+    let small = noise * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let at_max: Vec<String> = model
         .tendons
         .iter()
@@ -396,13 +391,23 @@ fn blocked<T: Numeric>(model: &Model<T>, t0: &[f64], w: &[f64]) -> String {
             "N",
         ),
     };
-    let others = (0..rows).any(|r| r != lead && y[r].abs() > 1e-9 * s.abs());
+    let others = (0..rows).any(|r| r != lead && y[r].abs() > noise * s.abs());
     let (target, unit) = if others {
         let terms: Vec<String> = (0..rows)
-            .filter(|&r| y[r].abs() > 1e-9 * s.abs())
-            .map(|r| format!("{}·{}", significant(y[r] / s), row_name(r).0))
+            .filter(|&r| y[r].abs() > noise * s.abs())
+            .enumerate()
+            .map(|(i, r)| {
+                let c = y[r] / s;
+                let sign = match (i, c < 0.0) {
+                    (0, true) => "−",
+                    (0, false) => "",
+                    (_, true) => " − ",
+                    (_, false) => " + ",
+                };
+                format!("{sign}{}·{}", significant(c.abs()), row_name(r).0)
+            })
             .collect();
-        (format!("the combination {}", terms.join(" + ")), "N·m")
+        (format!("the combination {}", terms.concat()), "N·m")
     } else {
         row_name(lead)
     };

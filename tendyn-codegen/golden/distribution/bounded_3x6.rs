@@ -40,7 +40,7 @@ pub const MOTORS: usize = 0;
 /// Open-ended tendons, in file order.
 #[allow(dead_code)]
 pub const TENDONS: usize = 6;
-/// Motor torques (N·m, file order) and ground-level tendon tensions (N, file order, every one at or above its floor, least norm).
+/// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon t1, tendon t2, tendon t3, tendon t4, tendon t5, tendon t6.
 ///
