@@ -1,5 +1,5 @@
 //! Generated code against the runtime solver on the paper's three examples, with the
-//! protocol of `../shared/benchmarks/peers.md`: 1,024 seeded random states (q in [-π, π],
+//! protocol of `docs/references.md`: 1,024 seeded random states (q in [-π, π],
 //! q̇ in [-3, 3], q̈ in [-10, 10]); one sample is a pass over all states, and the figure is
 //! time per call (criterion's time per iteration divided by 1,024).
 //!

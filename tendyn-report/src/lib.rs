@@ -7,7 +7,7 @@
 //! | generated f64, generated f32 | the generated function of that output, generic code at that scalar |
 //! | runtime f64, runtime f32 | the [`Solver`] method that gives the output (`inverse_dynamics` for actuation, segment tensions, bearings and the base reaction, which only it gives); f32 on `model.cast_numeric::<f32>()` |
 //!
-//! **States** (the peers' protocol, `shared/benchmarks/peers.md`): `q ∈ [−π, π]`,
+//! **States** (the benchmark protocol of `docs/references.md`): `q ∈ [−π, π]`,
 //! `q̇ ∈ [−3, 3]`, `q̈ ∈ [−10, 10]`, uniform, seeded; forward dynamics takes the reference
 //! inverse dynamics' motor torques and tendon tensions (rounded to f64) at the same state.
 //! f32 evaluators get the states (and those torques and tensions) rounded to f32.
