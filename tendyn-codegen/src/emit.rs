@@ -1099,24 +1099,12 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
                 // The many-dimensional distribution of the minimal-norm tensions, by the
                 // fixed-size routine of tendyn-core.
                 (StatusFrom::Solve, Some(dist)) => {
-                    let lit = |x: f64| {
-                        if x == f64::INFINITY {
-                            return quote!(f64::INFINITY);
-                        }
-                        let l = Literal::f64_suffixed(x.abs());
-                        if x < 0.0 {
-                            quote!(-#l)
-                        } else {
-                            quote!(#l)
-                        }
-                    };
-                    let list = |v: &[f64]| {
-                        let cells = v.iter().map(|&x| lit(x));
-                        quote!([#(#cells),*])
-                    };
-                    let rows = dist.null.iter().map(|r| list(r));
-                    let (floor, max, target) =
-                        (list(&dist.floor), list(&dist.max), list(&dist.target));
+                    let rows = dist.null.iter().map(|r| f64_array(r));
+                    let (floor, max, target) = (
+                        f64_array(&dist.floor),
+                        f64_array(&dist.max),
+                        f64_array(&dist.target),
+                    );
                     parse_quote!(#actuation::bounded(#m, #t_, &#core::distribution::Fixed {
                         null: [#(#rows),*],
                         floor: #floor,
@@ -1132,6 +1120,23 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             ast::array([force, take(3)])
         })),
     }
+}
+
+/// `[x₀, x₁, …]` of `f64` constants written exactly (`f64::INFINITY` for an absent maximum),
+/// as the emitted constants outside the expression graph take them.
+fn f64_array(values: &[f64]) -> TokenStream {
+    let cells = values.iter().map(|&x| {
+        if x == f64::INFINITY {
+            return quote!(f64::INFINITY);
+        }
+        let l = Literal::f64_suffixed(x.abs());
+        if x < 0.0 {
+            quote!(-#l)
+        } else {
+            quote!(#l)
+        }
+    });
+    quote!([#(#cells),*])
 }
 
 /// `[elem; len]`
@@ -1284,17 +1289,7 @@ fn emit_with(
     let n = model.dof;
     let (nm, nt) = (model.motors.len(), model.tendons.len());
     let a = model.structure_matrix();
-    let a_rows = a.iter().map(|row| {
-        let cells = row.iter().map(|&x| {
-            let lit = Literal::f64_suffixed(x.abs());
-            if x < 0.0 {
-                quote!(-#lit)
-            } else {
-                quote!(#lit)
-            }
-        });
-        quote!([#(#cells),*])
-    });
+    let a_rows = a.iter().map(|row| f64_array(row));
     let (n, nm, nt) = (
         Literal::usize_unsuffixed(n),
         Literal::usize_unsuffixed(nm),

@@ -89,11 +89,7 @@ fn main() {
             writeln!(adapter, "v.push((\"{}\", {call}));", o.name()).unwrap();
         }
         writeln!(adapter, "v }}").unwrap();
-        writeln!(
-            modules,
-            "pub mod {name} {{\n pub mod code {{ include!(concat!(env!(\"OUT_DIR\"), \"/{name}.rs\")); }}\n pub const RON: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{name}.ron\"));\n {adapter}\n}}"
-        )
-        .unwrap();
+        module(&mut modules, name, &adapter);
         writeln!(
             registry,
             "    Mechanism {{ name: \"{name}\", ron: {name}::RON, evaluate: {name}::evaluate }},"
@@ -129,11 +125,7 @@ fn main() {
             )
             .unwrap();
         }
-        writeln!(
-            modules,
-            "pub mod {name} {{\n pub mod code {{ include!(concat!(env!(\"OUT_DIR\"), \"/{name}.rs\")); }}\n pub const RON: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{name}.ron\"));\n {adapter}\n}}"
-        )
-        .unwrap();
+        module(&mut modules, &name, &adapter);
         writeln!(
             registry,
             "    Bounded {{ name: \"{name}\", ron: {name}::RON, actuation_f64: {name}::actuation_f64, actuation_f32: {name}::actuation_f32 }},"
@@ -142,4 +134,13 @@ fn main() {
     }
     registry.push_str("];\n");
     std::fs::write(out.join("mechanisms.rs"), format!("{modules}\n{registry}")).unwrap();
+}
+
+/// The module of one generated mechanism: its code, its RON text and the adapter.
+fn module(modules: &mut String, name: &str, adapter: &str) {
+    writeln!(
+        modules,
+        "pub mod {name} {{\n pub mod code {{ include!(concat!(env!(\"OUT_DIR\"), \"/{name}.rs\")); }}\n pub const RON: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{name}.ron\"));\n {adapter}\n}}"
+    )
+    .unwrap();
 }
