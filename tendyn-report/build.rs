@@ -2,8 +2,8 @@
 //! provide, generic over the scalar, and a glue module per mechanism (`OUT_DIR/glue.rs`).
 //!
 //! The mechanisms: the files named by `TENDYN_REPORT_FILES` (absolute paths separated by
-//! the platform's path-list separator, `:` on Unix), or the paper's three examples when it
-//! is unset or empty. Mechanism `k` is generated into `OUT_DIR/m{k}/STEM.rs` and wrapped in
+//! the platform's path-list separator, `:` on Unix), or the paper's three examples and
+//! Example 2 with bearing friction when it is unset or empty. Mechanism `k` is generated into `OUT_DIR/m{k}/STEM.rs` and wrapped in
 //! module `m{k}`, so two files with the same stem do not clash.
 //!
 //! Per mechanism the glue has, for a scalar `T`: a fixed-size `State<T>`; `pack_*`, which
@@ -49,6 +49,7 @@ fn files() -> Result<Vec<PathBuf>, String> {
                 "example1_endless",
                 "example2_open_ended",
                 "example3_stanford_jpl",
+                "example2_friction",
             ]
             .iter()
             .map(|n| root.join(format!("{n}.ron")))

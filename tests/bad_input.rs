@@ -1377,3 +1377,80 @@ fn a_body_at_the_edges_of_every_range_gives_finite_results_and_f32_code() {
         assert!(r.unknowns.iter().all(|x| x.is_finite()));
     }
 }
+
+#[test]
+fn negative_bearing_friction_is_rejected_at_the_body_that_has_it() {
+    for (friction, phrase) in [
+        (
+            "(coulomb: -0.1)",
+            "`friction.coulomb` is -0.1 N·m; friction opposes motion, so give its size",
+        ),
+        (
+            "(coulomb: 0.1, viscous: -0.02)",
+            "`friction.viscous` is -0.02 N·m·s/rad; friction opposes motion",
+        ),
+        (
+            "(viscous: inf)",
+            "`friction.viscous` is inf; every number must be finite",
+        ),
+        (
+            "(coulomb: 1e30)",
+            "beyond the range of a friction torque (at most 1e18 N·m",
+        ),
+    ] {
+        let text = with(
+            OPEN_ENDED,
+            "            mass: 1.2,",
+            &format!("            mass: 1.2,\n            friction: {friction},"),
+        );
+        assert_invalid(&text, "link1", "name: \"link1\"", phrase);
+    }
+    let text = with(
+        OPEN_ENDED,
+        "            radius: 0.03,\n            mass: 0.05,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+        "            radius: 0.03,\n            friction: (viscous: -1.0),\n            mass: 0.05,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+    );
+    assert_invalid(
+        &text,
+        "idler3",
+        "name: \"idler3\"",
+        "`friction.viscous` is -1 N·m·s/rad",
+    );
+}
+
+#[test]
+fn friction_on_a_fixed_drum_is_rejected_since_it_has_no_bearing() {
+    let text = with(
+        OPEN_ENDED,
+        "radius: 0.04, fixed: true)",
+        "radius: 0.04, fixed: true, friction: (coulomb: 0.01))",
+    );
+    assert_invalid(
+        &text,
+        "drum1",
+        "name: \"drum1\"",
+        "a `fixed` drum does not turn on its carrier, so its bearing has no friction",
+    );
+}
+
+#[test]
+fn a_friction_smoothing_speed_outside_its_range_is_rejected_at_its_line() {
+    for v in ["0.0", "-0.01", "1e-12", "1e9"] {
+        let text = with(
+            OPEN_ENDED,
+            "tension_floor: 5.0,",
+            &format!("tension_floor: 5.0,\n    friction_smoothing: {v},"),
+        );
+        let err = rejected(&text);
+        assert_eq!(err.item(), Some("open_ended"));
+        let Error::Invalid { at, .. } = &err else {
+            panic!("{err:?}")
+        };
+        assert_eq!(at.line, line_of(&text, "friction_smoothing:"), "{err}");
+        assert!(
+            err.to_string().contains("`friction_smoothing` is")
+                && err.to_string().contains("a number from 1e-9 to 1e6 rad/s"),
+            "{err}"
+        );
+    }
+}

@@ -422,9 +422,19 @@ impl Expander<'_, '_> {
                 let v = self.g.sqrt(a);
                 self.variable(v, out);
             }
+            Node::Tanh(a) => {
+                let a = self.collected(a)?;
+                let v = self.g.tanh(a);
+                self.variable(v, out);
+            }
             Node::Max(a, b) => {
                 let (a, b) = (self.collected(a)?, self.collected(b)?);
                 let v = self.g.max(a, b);
+                self.variable(v, out);
+            }
+            Node::SignOutside(a, b) => {
+                let (a, b) = (self.collected(a)?, self.collected(b)?);
+                let v = self.g.sign_outside(a, b);
                 self.variable(v, out);
             }
         }

@@ -698,7 +698,12 @@ impl<'g> Body<'g> {
             Node::Add(..) | Node::Sub(..) => 1,
             Node::Mul(..) | Node::Div(..) => 2,
             Node::Neg(_) => 3,
-            Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..) => 4,
+            Node::Sin(_)
+            | Node::Cos(_)
+            | Node::Sqrt(_)
+            | Node::Tanh(_)
+            | Node::Max(..)
+            | Node::SignOutside(..) => 4,
         }
     }
 
@@ -730,8 +735,14 @@ impl<'g> Body<'g> {
             Node::Sin(a) => method(a, ".sin()", out),
             Node::Cos(a) => method(a, ".cos()", out),
             Node::Sqrt(a) => method(a, ".sqrt()", out),
+            Node::Tanh(a) => method(a, ".tanh()", out),
             Node::Max(a, b) => {
                 method(a, ".max(", out);
+                self.write(b, out);
+                out.push(')');
+            }
+            Node::SignOutside(a, b) => {
+                method(a, ".sign_outside(", out);
                 self.write(b, out);
                 out.push(')');
             }
@@ -832,7 +843,12 @@ impl<'g> Body<'g> {
                 t.word("-");
                 self.lay_out_operand(a, 3, t);
             }
-            Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..) => {
+            Node::Sin(_)
+            | Node::Cos(_)
+            | Node::Sqrt(_)
+            | Node::Tanh(_)
+            | Node::Max(..)
+            | Node::SignOutside(..) => {
                 t.cbox(4);
                 self.lay_out_method(id, t);
                 t.end();
@@ -896,14 +912,21 @@ impl<'g> Body<'g> {
             Node::Sin(a) => (a, "sin", None),
             Node::Cos(a) => (a, "cos", None),
             Node::Sqrt(a) => (a, "sqrt", None),
+            Node::Tanh(a) => (a, "tanh", None),
             Node::Max(a, b) => (a, "max", Some(b)),
+            Node::SignOutside(a, b) => (a, "sign_outside", Some(b)),
             _ => unreachable!("a method call"),
         };
         // The receiver, as `prefix_subexpr` prints it.
         let chained = self.name(receiver).is_none()
             && matches!(
                 self.g.node(receiver),
-                Node::Sin(_) | Node::Cos(_) | Node::Sqrt(_) | Node::Max(..)
+                Node::Sin(_)
+                    | Node::Cos(_)
+                    | Node::Sqrt(_)
+                    | Node::Tanh(_)
+                    | Node::Max(..)
+                    | Node::SignOutside(..)
             );
         let input =
             matches!(self.g.node(receiver), Node::Input(_)) && self.name(receiver).is_none();
@@ -976,7 +999,12 @@ impl<'g> Body<'g> {
             Node::Sin(a) => (ast::method(operand(a, 4), "sin", None), 4),
             Node::Cos(a) => (ast::method(operand(a, 4), "cos", None), 4),
             Node::Sqrt(a) => (ast::method(operand(a, 4), "sqrt", None), 4),
+            Node::Tanh(a) => (ast::method(operand(a, 4), "tanh", None), 4),
             Node::Max(a, b) => (ast::method(operand(a, 4), "max", Some(self.expr(b))), 4),
+            Node::SignOutside(a, b) => (
+                ast::method(operand(a, 4), "sign_outside", Some(self.expr(b))),
+                4,
+            ),
         }
     }
 
@@ -1216,12 +1244,22 @@ fn param_len(model: &Model<f64>, p: Param) -> usize {
 fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
     let labels = result_labels(model, f.output);
     let what = match f.output {
-        Output::GeneralizedForces => "Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext` (N·m, per joint)".to_string(),
+        Output::GeneralizedForces => {
+            let (term, note) = if model.has_friction() {
+                (" − Σ_b c_bᵀ τ_f,b", "; the last term the bearings' friction")
+            } else {
+                ("", "")
+            };
+            format!("Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext{term}` (N·m, per joint{note})")
+        }
         Output::Actuation => "Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`)".to_string(),
         Output::MassMatrix => "Joint-space mass matrix `M(q)` (kg·m², pulley inertias included)".to_string(),
         Output::Bias => "Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m)".to_string(),
         Output::Gravity => "Gravity generalized forces `g(q)` (N·m)".to_string(),
-        Output::ForwardDynamics => "Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks".to_string(),
+        Output::ForwardDynamics => format!(
+            "Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order){}; `M` is factorized by an unrolled `L D Lᵀ` without checks",
+            if model.has_friction() { ", the bearings' friction directed by `q̇` alone (none at rest)" } else { "" }
+        ),
         Output::SegmentTensions => "Tension of every tendon segment (N), strands in order, each from its anchored end".to_string(),
         Output::Bearings => "Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame".to_string(),
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),

@@ -75,7 +75,10 @@ pub enum Node {
     Sin(Id),
     Cos(Id),
     Sqrt(Id),
+    Tanh(Id),
     Max(Id, Id),
+    /// `a.sign_outside(band)`: ±1 beyond the band, 0 within it ([`Real::sign_outside`]).
+    SignOutside(Id, Id),
 }
 
 impl Node {
@@ -83,26 +86,21 @@ impl Node {
     pub fn operands(self) -> impl Iterator<Item = Id> {
         let (ids, n) = match self {
             Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => ([a, a], 1),
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) | Node::Tanh(a) => {
+                ([a, a], 1)
+            }
             Node::Add(a, b)
             | Node::Sub(a, b)
             | Node::Mul(a, b)
             | Node::Div(a, b)
-            | Node::Max(a, b) => ([a, b], 2),
+            | Node::Max(a, b)
+            | Node::SignOutside(a, b) => ([a, b], 2),
         };
         ids.into_iter().take(n)
     }
 
     pub fn children(&self) -> Vec<Id> {
-        match *self {
-            Node::Const(_) | Node::Input(_) => vec![],
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => vec![a],
-            Node::Add(a, b)
-            | Node::Sub(a, b)
-            | Node::Mul(a, b)
-            | Node::Div(a, b)
-            | Node::Max(a, b) => vec![a, b],
-        }
+        self.operands().collect()
     }
 }
 
@@ -344,6 +342,26 @@ impl Graph {
         self.intern(Node::Max(a.min(b), a.max(b)))
     }
 
+    pub fn tanh(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(x.tanh());
+        }
+        match self.node(a) {
+            Node::Neg(x) => {
+                let t = self.tanh(x);
+                self.neg(t)
+            }
+            _ => self.intern(Node::Tanh(a)),
+        }
+    }
+
+    pub fn sign_outside(&mut self, a: Id, band: Id) -> Id {
+        if let (Some(x), Some(b)) = (self.constant_value(a), self.constant_value(band)) {
+            return self.constant(x.sign_outside(b));
+        }
+        self.intern(Node::SignOutside(a, band))
+    }
+
     /// Values of `roots` at the given inputs (by input index), in f64, node by node as the
     /// emitted code computes them.
     pub fn eval(&self, roots: &[Id], inputs: &[f64]) -> Vec<f64> {
@@ -362,7 +380,9 @@ impl Graph {
                 Node::Sin(a) => v(a).sin(),
                 Node::Cos(a) => v(a).cos(),
                 Node::Sqrt(a) => v(a).sqrt(),
+                Node::Tanh(a) => v(a).tanh(),
                 Node::Max(a, b) => v(a).max(v(b)),
+                Node::SignOutside(a, b) => v(a).sign_outside(v(b)),
             };
         }
         roots.iter().map(|r| value[r.0 as usize]).collect()
@@ -417,7 +437,9 @@ impl Graph {
                     }
                 }
                 Node::Sqrt(_) => c.sqrt += 1,
+                Node::Tanh(_) => c.tanh += 1,
                 Node::Max(..) => c.max += 1,
+                Node::SignOutside(..) => c.sign += 1,
                 Node::Const(_) | Node::Input(_) => {}
             }
         }
@@ -437,12 +459,22 @@ pub struct OpCount {
     pub sin_cos: usize,
     pub sqrt: usize,
     pub max: usize,
+    /// Selects of a friction direction ([`Node::SignOutside`]).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub sign: usize,
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tanh: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl OpCount {
-    /// Arithmetic operations (add, sub, mul, div, neg, max): what `peers.md` counts.
+    /// Arithmetic operations (add, sub, mul, div, neg, max, friction-direction selects):
+    /// what the peers' op counts count.
     pub fn arithmetic(&self) -> usize {
-        self.add + self.mul + self.div + self.neg + self.max
+        self.add + self.mul + self.div + self.neg + self.max + self.sign
     }
 }
 
@@ -461,7 +493,15 @@ impl std::fmt::Display for OpCount {
             self.sin,
             self.cos,
             self.sqrt
-        )
+        )?;
+        // Friction terms only where the file has them: a frictionless count reads as before.
+        if self.sign > 0 {
+            write!(f, ", {} friction-direction selects", self.sign)?;
+        }
+        if self.tanh > 0 {
+            write!(f, ", {} tanh", self.tanh)?;
+        }
+        Ok(())
     }
 }
 
@@ -513,5 +553,11 @@ impl Real for Sym {
     }
     fn max(self, other: Self) -> Self {
         Sym(with(|g| g.max(self.0, other.0)))
+    }
+    fn tanh(self) -> Self {
+        Sym(with(|g| g.tanh(self.0)))
+    }
+    fn sign_outside(self, band: Self) -> Self {
+        Sym(with(|g| g.sign_outside(self.0, band.0)))
     }
 }

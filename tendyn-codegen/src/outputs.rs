@@ -16,7 +16,8 @@ use tendyn_core::{tension, Real};
 /// One generated function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Output {
-    /// `Q = M q̈ + h + g − Q_ext` (what the actuators deliver).
+    /// `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` (what the actuators deliver, bearing
+    /// friction included).
     GeneralizedForces,
     /// Motor torques and ground-level tendon tensions (the tension distribution included).
     Actuation,
@@ -415,7 +416,7 @@ fn trace_one(
     match o {
         Output::GeneralizedForces => {
             let mut out = zeros.clone();
-            dynamics::expanded_generalized_forces(m, &i.q, &i.qd, &i.qdd, true, true, ws, &mut out);
+            dynamics::generalized_forces(m, &i.q, &i.qd, &i.qdd, ws, &mut out);
             (Shape::Vector(n), out)
         }
         Output::MassMatrix => {

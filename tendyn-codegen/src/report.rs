@@ -68,6 +68,26 @@ pub fn check_text(m: &Model<f64>) -> String {
             ));
         }
     }
+    if m.bodies.iter().any(|b| b.friction.is_some()) {
+        let law = match m.friction_smoothing {
+            Some(v) => format!("tanh(ω / {v} rad/s)"),
+            None => format!(
+                "sign(ω) (within {:e} rad/s of rest: sign(α))",
+                tendyn_core::friction::REST
+            ),
+        };
+        line(format!(
+            "bearing friction, τ_f = −(coulomb · s + viscous · ω) with s = {law} (format.md §4a):"
+        ));
+        for b in m.bodies.iter() {
+            if let Some(f) = b.friction {
+                line(format!(
+                    "  {:<12} coulomb {} N·m, viscous {} N·m·s/rad",
+                    b.name, f.coulomb, f.viscous
+                ));
+            }
+        }
+    }
     if !m.tendons.is_empty() {
         line("structure matrix A (rows: joints; columns: tendons), Q = A T:".into());
         let names: Vec<&str> = m.tendons.iter().map(|t| t.name.as_str()).collect();
@@ -166,6 +186,8 @@ pub fn inverse_json(
         "null_space_tensions": m.tendons.iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "loops": m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "sticking": r.sticking.iter().map(|b| m.bodies[*b].name.clone()).collect::<Vec<_>>(),
         "mass_matrix": mass,
         "bias": bias,
         "gravity": gravity,
@@ -284,6 +306,18 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
         line(format!(
             "  pulley {:<11} needs {:>12.6e} N·m about its axis",
             m.bodies[*b].name, v
+        ));
+    }
+    for (b, v) in &r.bearing_friction {
+        line(format!(
+            "  bearing of {:<9} friction {:>12.6e} N·m{}",
+            m.bodies[*b].name,
+            v,
+            if r.sticking.contains(b) {
+                "  (at rest: against the impending motion)"
+            } else {
+                ""
+            }
         ));
     }
     if let Some((f, n)) = &r.base_reaction {

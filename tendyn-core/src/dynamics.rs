@@ -14,6 +14,7 @@
 
 use crate::affine::Affine;
 use crate::error::{Error, Result};
+use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
 use crate::model::{BodyKind, Model, MotorKind};
 use crate::newton_euler::{backward, Loads};
@@ -27,8 +28,9 @@ use crate::transmission::linalg;
 #[derive(Clone, Debug)]
 pub struct InverseDynamics<T> {
     /// Generalized forces the actuators deliver, `Q = Σ motor columns · τ + A T` (N·m),
-    /// evaluated as the `M q̈ + h + g − Q_ext` it equals (the tension-free pass), so that
-    /// tensions far above what the motion needs cost it no accuracy.
+    /// evaluated as the `M q̈ + h + g − Q_ext − Q_friction` it equals (the tension-free
+    /// pass and the bearings' friction, [`generalized_forces`]), so that tensions far above
+    /// what the motion needs cost it no accuracy.
     pub generalized_forces: Vec<T>,
     /// One torque per motor, in file order (N·m).
     pub motor_torques: Vec<T>,
@@ -51,6 +53,13 @@ pub struct InverseDynamics<T> {
     pub bearings: Option<Vec<(Vec3<T>, Vec3<T>)>>,
     /// Total force and moment (about the base origin) of the base on the mechanism.
     pub base_reaction: Option<(Vec3<T>, Vec3<T>)>,
+    /// Friction torque `τ_f` of each bearing that has friction, on the body about its axis
+    /// (body index, N·m; [`crate::friction`]).
+    pub bearing_friction: Vec<(usize, T)>,
+    /// The bodies of `bearing_friction` whose bearing is within [`friction::REST`] of rest
+    /// (exact law only): their friction is the direction of impending motion, or zero if
+    /// `q̈` does not turn them either ([`friction::at_rest`]; filled in by [`Solver`]).
+    pub sticking: Vec<usize>,
     /// The solved unknowns of the tension system.
     pub unknowns: Vec<T>,
 }
@@ -75,6 +84,9 @@ pub struct Workspace<T: Real> {
     /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
     pub known: Loads<T, Vec3<T>>,
     pub tensions: Vec<Vec<Affine<T>>>,
+    /// Bearing friction torque of every body at the last inverse-dynamics call
+    /// ([`friction::bearing_torques`]), which its balance rows carry.
+    pub friction: Vec<T>,
     zeros: Vec<T>,
 }
 
@@ -86,6 +98,7 @@ impl<T: Real> Workspace<T> {
             loads: Loads::new(model.bodies.len(), nu),
             known: Loads::new(model.bodies.len(), 0),
             zeros: vec![T::zero(); model.dof],
+            friction: vec![T::zero(); model.bodies.len()],
             tensions: model
                 .strands
                 .iter()
@@ -123,6 +136,25 @@ fn expanded_sum<T: Real>(model: &Model<T>, known: &Loads<T, Vec3<T>>, out: &mut 
         for (o, c) in out.iter_mut().zip(&b.coupling) {
             *o = *o + *c * *t;
         }
+    }
+}
+
+/// The generalized forces the actuators must deliver at a state: the expanded tree's
+/// `M q̈ + h + g − Q_ext` less what the bearings' friction does, `Σ_b c_bᵀ τ_f,b`
+/// ([`crate::friction`]; the direction at rest from `q̈`).
+pub fn generalized_forces<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    ws: &mut Workspace<T>,
+    out: &mut [T],
+) {
+    expanded_generalized_forces(model, q, qd, qdd, true, true, ws, out);
+    if model.has_friction() {
+        let mut torques = vec![T::zero(); model.bodies.len()];
+        friction::bearing_torques(model, qd, Some(qdd), &mut torques);
+        friction::apply(model, &torques, Side::Delivered, out);
     }
 }
 
@@ -183,7 +215,8 @@ pub fn actuator_forces<T: Real>(
         .collect()
 }
 
-/// `M q̈ = Σ actuator forces − (h + g − Q_ext)`: the right-hand side of forward dynamics.
+/// `M q̈ = Σ actuator forces − (h + g − Q_ext) + Q_friction`: the right-hand side of
+/// forward dynamics, the bearings' friction directed by `q̇` alone (none at rest).
 pub fn forward_dynamics_rhs<T: Real>(
     model: &Model<T>,
     q: &[T],
@@ -195,11 +228,17 @@ pub fn forward_dynamics_rhs<T: Real>(
     let zeros = vec![T::zero(); model.dof];
     let mut c = zeros.clone();
     expanded_generalized_forces(model, q, qd, &zeros, true, true, ws, &mut c);
-    actuator_forces(model, motor_torques, tendon_tensions)
+    let mut rhs: Vec<T> = actuator_forces(model, motor_torques, tendon_tensions)
         .into_iter()
         .zip(c)
         .map(|(u, c)| u - c)
-        .collect()
+        .collect();
+    if model.has_friction() {
+        let mut torques = vec![T::zero(); model.bodies.len()];
+        friction::bearing_torques(model, qd, None, &mut torques);
+        friction::apply(model, &torques, Side::Acting, &mut rhs);
+    }
+    rhs
 }
 
 /// Solves `M x = rhs` by `L D Lᵀ` without pivoting or checks: what generated code does
@@ -252,7 +291,8 @@ pub fn inverse_dynamics<T: Real>(
 ) -> Result<InverseDynamics<T>> {
     let nu = model.system.unknowns.len();
     forward(model, q, qd, qdd, true, &mut ws.motion);
-    tension::segment_tensions(model, &ws.motion, nu, &mut ws.tensions);
+    friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
+    tension::segment_tensions(model, &ws.motion, &ws.friction, nu, &mut ws.tensions);
     backward(
         model,
         &ws.motion,
@@ -262,7 +302,7 @@ pub fn inverse_dynamics<T: Real>(
         &mut ws.loads,
     );
     let mut b = vec![T::zero(); model.system.rows.len()];
-    tension::demand(model, &ws.loads, &mut b);
+    tension::demand(model, &ws.loads, &ws.friction, &mut b);
     let mut x = vec![T::zero(); nu];
     tension::minimal_norm(model, &b, &mut x);
     let x0 = x.clone();
@@ -285,6 +325,20 @@ pub fn inverse_dynamics<T: Real>(
     backward(model, &ws.motion, None, 0, true, &mut ws.known);
     let mut generalized_forces = vec![T::zero(); model.dof];
     expanded_sum(model, &ws.known, &mut generalized_forces);
+    friction::apply(
+        model,
+        &ws.friction,
+        Side::Delivered,
+        &mut generalized_forces,
+    );
+    let bearing_friction = model
+        .bodies
+        .iter()
+        .zip(&ws.friction)
+        .enumerate()
+        .filter(|(_, (b, _))| b.friction.is_some())
+        .map(|(i, (_, t))| (i, *t))
+        .collect();
     let loop_sides = model
         .loops
         .iter()
@@ -322,6 +376,8 @@ pub fn inverse_dynamics<T: Real>(
         pulley_demands,
         bearings,
         base_reaction,
+        bearing_friction,
+        sticking: Vec::new(),
         unknowns: x,
     })
 }
@@ -400,13 +456,14 @@ impl<'m, T: Numeric> Solver<'m, T> {
         Ok(())
     }
 
-    /// Generalized forces `Q = M q̈ + h + g − Jᵀ w_ext` from the expanded tree.
+    /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
+    /// ([`generalized_forces`]).
     pub fn generalized_forces(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
         let mut out = self.ws.zeros.clone();
-        expanded_generalized_forces(self.model, q, qd, qdd, true, true, &mut self.ws, &mut out);
+        generalized_forces(self.model, q, qd, qdd, &mut self.ws, &mut out);
         finite("generalized forces", &out)?;
         Ok(out)
     }
@@ -436,8 +493,9 @@ impl<'m, T: Numeric> Solver<'m, T> {
         Ok(g)
     }
 
-    /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext|)‖∞`: the size of the terms forward
-    /// dynamics sums (`A`, `B` the tendons' and motors' columns). Tensions that balance each
+    /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext| + Σ_b |c_b τ_f,b|)‖∞`: the size of the
+    /// terms forward dynamics sums (`A`, `B` the tendons' and motors' columns, `τ_f,b` the
+    /// bearings' friction). Tensions that balance each
     /// other make `q̈` a small difference of large numbers, so the error of a forward
     /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
     ///
@@ -453,8 +511,14 @@ impl<'m, T: Numeric> Solver<'m, T> {
     ) -> Result<T> {
         self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
         let zero = T::from_f64(0.0);
-        let c = self.generalized_forces(q, qd, &self.ws.zeros.clone())?;
         let model = self.model;
+        let zeros = self.ws.zeros.clone();
+        let mut c = zeros.clone();
+        expanded_generalized_forces(model, q, qd, &zeros, true, true, &mut self.ws, &mut c);
+        finite("generalized forces", &c)?;
+        // The bearings' friction, each body's part on its own: it may cancel gravity.
+        let mut torques = vec![zero; model.bodies.len()];
+        friction::bearing_torques(model, qd, None, &mut torques);
         let rhs: Vec<T> = (0..model.dof)
             .map(|j| {
                 let motors = model
@@ -469,7 +533,12 @@ impl<'m, T: Numeric> Solver<'m, T> {
                     .fold(zero, |s, (k, &t)| {
                         s + (T::from_f64(k.structure[j]) * t).abs()
                     });
-                motors + tendons + c[j].abs()
+                let friction = model
+                    .bodies
+                    .iter()
+                    .zip(&torques)
+                    .fold(zero, |s, (b, &t)| s + (b.coupling[j] * t).abs());
+                motors + tendons + c[j].abs() + friction
             })
             .collect();
         finite("right-hand side of forward dynamics", &rhs)?;
@@ -552,10 +621,15 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
-        let r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)?;
+        let mut r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)?;
+        r.sticking = friction::at_rest(self.model, qd);
         finite("generalized forces", &r.generalized_forces)?;
         finite("tension or motor torque", &r.unknowns)?;
         finite("pulley moment", r.pulley_demands.iter().map(|(_, v)| v))?;
+        finite(
+            "bearing friction",
+            r.bearing_friction.iter().map(|(_, v)| v),
+        )?;
         if let Some(s) = &r.segment_tensions {
             finite("segment tension", s.iter().flatten())?;
         }
@@ -575,6 +649,6 @@ impl<'m, T: Numeric> Solver<'m, T> {
     /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
     /// the recursion against the transmission's `E`).
     pub fn last_balance_rows(&self) -> Vec<Affine<T>> {
-        tension::balance_rows(self.model, &self.ws.loads)
+        tension::balance_rows(self.model, &self.ws.loads, &self.ws.friction)
     }
 }

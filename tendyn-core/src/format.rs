@@ -72,6 +72,22 @@ pub struct MechanismFile {
     /// What the tension distribution of a redundant routing minimises.
     #[serde(default)]
     pub distribution: Objective,
+    /// `v` (rad/s): replace `sign(ω)` of every Coulomb friction by `tanh(ω / v)`.
+    #[serde(default)]
+    pub friction_smoothing: Option<f64>,
+}
+
+/// Friction in a bearing, opposing the body's angular velocity relative to its carrier:
+/// `τ_f = −(coulomb · sign(ω) + viscous · ω)`.
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// N·m.
+    #[serde(default)]
+    pub coulomb: f64,
+    /// N·m·s/rad.
+    #[serde(default)]
+    pub viscous: f64,
 }
 
 /// The objective of the tension distribution: among the tensions within every floor and
@@ -129,6 +145,9 @@ pub struct LinkSpec {
     pub com: [Num; 3],
     #[serde(default)]
     pub inertia: InertiaSpec,
+    /// Friction in the joint's bearing.
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// Where a pulley sits on its carrier.
@@ -168,6 +187,9 @@ pub struct PulleySpec {
     /// against the routing when both are given.
     #[serde(default)]
     pub coupling: Option<Vec<f64>>,
+    /// Friction in the pulley's bearing (not on a `fixed` drum, which has none).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// The direction in which a tendon goes round a pulley's z axis (right-hand rule) when

@@ -11,6 +11,8 @@
 //! - [`kinematics`]: forward recursion over primary and intermediate links (Eqs. 2-6, 11-16);
 //! - [`newton_euler`]: backward recursion with forces affine in the unknown tensions
 //!   (Eqs. 19-24);
+//! - [`friction`]: Coulomb and viscous friction of the bearings, the torques the backward
+//!   recursion's balances and the generalized forces take in (not in the paper, §2 ii);
 //! - [`tension`]: `E x = b` and its minimal-norm solution, segment tensions, and the
 //!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics;
@@ -62,6 +64,8 @@ pub mod dynamics;
 pub mod error;
 #[cfg(feature = "std")]
 pub mod format;
+#[cfg(feature = "std")]
+pub mod friction;
 #[cfg(feature = "std")]
 pub mod kinematics;
 #[cfg(feature = "std")]

@@ -57,7 +57,8 @@ pub trait TendonMechanism {
     /// (paper Eqs. 33, 35).
     const STRUCTURE_MATRIX: &'static [&'static [f64]];
 
-    /// `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext`: what the actuators deliver.
+    /// `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext − Σ_b c_bᵀ τ_f,b`: what the actuators deliver
+    /// (the last term the bearings' friction, `crate::friction`).
     fn generalized_forces(
         &self,
         _q: &Self::Joints,

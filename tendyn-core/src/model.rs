@@ -63,6 +63,18 @@ pub struct Body<T> {
     /// Vector from the joint point (on the axis) to the body-frame origin, in the body
     /// frame (paper Eq. 7 for links, zero for pulleys).
     pub joint_to_origin: Vec3<T>,
+    /// Friction in the bearing between the body and its parent (`crate::friction`).
+    pub friction: Option<BearingFriction>,
+}
+
+/// Coulomb and viscous friction of a bearing: on the body, `τ_f = −(coulomb · sign(ω) +
+/// viscous · ω)` about its axis, `ω = coupling · q̇` its rate relative to its parent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BearingFriction {
+    /// N·m, `≥ 0`.
+    pub coulomb: f64,
+    /// N·m·s/rad, `≥ 0`.
+    pub viscous: f64,
 }
 
 /// How to rotate a vector given in a segment's frame into a contact body's frame.
@@ -287,6 +299,8 @@ pub struct Model<T> {
     pub system: TensionSystem<T>,
     /// What the tension distribution minimises (format.md §3).
     pub objective: Objective,
+    /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
+    pub friction_smoothing: Option<f64>,
     pub external_wrench: Option<Wrench<T>>,
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
@@ -296,6 +310,11 @@ pub struct Model<T> {
 impl<T: Real> Model<T> {
     pub fn joint_names(&self) -> impl Iterator<Item = &str> {
         self.bodies[..self.dof].iter().map(|b| b.name.as_str())
+    }
+
+    /// Whether any bearing has friction (`crate::friction`).
+    pub fn has_friction(&self) -> bool {
+        self.bodies.iter().any(|b| b.friction.is_some())
     }
 
     /// Open-ended tendons whose tensions are unknowns (routed or explicit).
@@ -338,6 +357,7 @@ impl<T: Real> Model<T> {
                     inertia: b.inertia.map(f),
                     axis: v(b.axis),
                     joint_to_origin: v(b.joint_to_origin),
+                    friction: b.friction,
                 })
                 .collect(),
             strands: self
@@ -386,6 +406,7 @@ impl<T: Real> Model<T> {
                 condition: self.system.condition,
             },
             objective: self.objective,
+            friction_smoothing: self.friction_smoothing,
             external_wrench: self.external_wrench.as_ref().map(|w| Wrench {
                 link: w.link,
                 point: v(w.point),

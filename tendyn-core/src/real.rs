@@ -1,9 +1,10 @@
 //! The scalar the recursion is written in.
 //!
 //! [`Real`] asks only for what a symbolic expression can honestly provide as well: field
-//! arithmetic, `sin`/`cos`, `sqrt`, constants and one value-dependent hook, [`Real::max`]
-//! (the tension floor of a redundant routing). The code generator runs the very same
-//! recursion on its expression type, so nothing here may compare or branch on values.
+//! arithmetic, `sin`/`cos`, `sqrt`, `tanh`, constants and two value-dependent hooks,
+//! [`Real::max`] (the tension floor of a redundant routing) and [`Real::sign_outside`]
+//! (the direction friction opposes). The code generator runs the very same recursion on
+//! its expression type, so nothing here may compare or branch on values.
 //!
 //! [`Numeric`] adds what only numbers have (ordering, finiteness, conversion back to `f64`);
 //! the validation-time linear algebra and the multi-dimensional tension distribution need it.
@@ -31,6 +32,12 @@ pub trait Real:
     /// The larger of the two. The only value-dependent operation the recursion uses;
     /// a symbolic scalar maps it to a select node.
     fn max(self, other: Self) -> Self;
+    /// `+1` where `self > band`, `−1` where `self < −band`, `0` in between (a rate within
+    /// `band` of rest): the direction of friction (`crate::friction`). A symbolic scalar
+    /// maps it to a select node.
+    fn sign_outside(self, band: Self) -> Self;
+    /// The hyperbolic tangent: the smoothed friction law.
+    fn tanh(self) -> Self;
 
     fn zero() -> Self {
         Self::from_f64(0.0)
@@ -54,7 +61,7 @@ pub trait Numeric: Real + PartialOrd {
 }
 
 macro_rules! primitive_real {
-    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident) => {
+    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident, $tanh:ident) => {
         impl Real for $t {
             fn from_f64(x: f64) -> Self {
                 x as $t
@@ -87,8 +94,25 @@ macro_rules! primitive_real {
             fn sqrt(self) -> Self {
                 libm::$sqrt(self)
             }
+            #[cfg(feature = "std")]
+            fn tanh(self) -> Self {
+                <$t>::tanh(self)
+            }
+            #[cfg(not(feature = "std"))]
+            fn tanh(self) -> Self {
+                libm::$tanh(self)
+            }
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
+            }
+            fn sign_outside(self, band: Self) -> Self {
+                if self > band {
+                    1.0
+                } else if self < -band {
+                    -1.0
+                } else {
+                    0.0
+                }
             }
         }
         impl Numeric for $t {
@@ -107,5 +131,5 @@ macro_rules! primitive_real {
         }
     };
 }
-primitive_real!(f32, sinf, cosf, sqrtf);
-primitive_real!(f64, sin, cos, sqrt);
+primitive_real!(f32, sinf, cosf, sqrtf, tanhf);
+primitive_real!(f64, sin, cos, sqrt, tanh);

@@ -3,10 +3,12 @@
 //!
 //! - Every segment tension is the strand's last (ground-level) tension plus what the
 //!   idlers between them need to turn (Eq. 24b): across an idler of radius `r` and turn
-//!   `s`, `T_in = T_out − s N_axial / r`.
+//!   `s`, `T_in = T_out − s (N_axial − τ_f) / r`, `τ_f` its bearing's friction
+//!   ([`crate::friction`], zero without).
 //! - The rows of `E x = b` are the axial balances of each joint, each driving pulley, and
 //!   each loop's pretension. `E` is constant (it is the transmission's virtual-work map);
-//!   `b` is what the backward recursion leaves over when every unknown is zero.
+//!   `b` is what the backward recursion leaves over when every unknown is zero, less what
+//!   the bearings' friction supplies.
 //! - The solution with least norm is `x₀ = E⁺ b`. Redundant open-ended routings add a
 //!   null-space part `N λ` so that every tendon stays within its floor and maximum; among
 //!   those, the one nearest the objective's target is chosen ([`crate::distribution`],
@@ -33,10 +35,12 @@ pub fn axial_demand<T: Real>(model: &Model<T>, motion: &[Motion<T>], body: usize
 }
 
 /// Tension of every segment of every strand, affine in the unknowns (Eq. 24b), written
-/// into `out[s][k]`.
+/// into `out[s][k]`. An idler's tensions balance what its bearing's friction `τ_f`
+/// (`friction[body]`, [`crate::friction`]) does not: `T_in = T_out − s (N_axial − τ_f) / r`.
 pub fn segment_tensions<T: Real>(
     model: &Model<T>,
     motion: &[Motion<T>],
+    friction: &[T],
     unknowns: usize,
     out: &mut [Vec<Affine<T>>],
 ) {
@@ -47,15 +51,19 @@ pub fn segment_tensions<T: Real>(
         for k in (0..last).rev() {
             let idler = &strand.idlers[k];
             let step = T::from_f64(idler.turn / idler.radius);
-            t = t.add_constant(-(step * axial_demand(model, motion, idler.body)));
+            let mut moment = axial_demand(model, motion, idler.body);
+            if model.bodies[idler.body].friction.is_some() {
+                moment = moment - friction[idler.body];
+            }
+            t = t.add_constant(-(step * moment));
             out[s][k] = t;
         }
     }
 }
 
 /// `b` of `E x = b`: the constant parts of the balance rows.
-pub fn demand<T: Real>(model: &Model<T>, loads: &Loads<T>, out: &mut [T]) {
-    let balance = balance_rows(model, loads);
+pub fn demand<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T], out: &mut [T]) {
+    let balance = balance_rows(model, loads, friction);
     for (o, r) in out.iter_mut().zip(balance) {
         *o = r.constant;
     }
@@ -63,18 +71,27 @@ pub fn demand<T: Real>(model: &Model<T>, loads: &Loads<T>, out: &mut [T]) {
 
 /// The balance rows as affine forms, before motors and explicit tendons are added: for a
 /// joint, `τ_j + Σ_coupled c_Pj τ_P`; for a driving pulley, its `τ`; for a loop, its
-/// pretension (a constant: the loop's row of `E` carries the strand tensions).
+/// pretension (a constant: the loop's row of `E` carries the strand tensions). Each `τ` is
+/// the body's axial moment less what its bearing's friction provides (`friction[body]`):
+/// what the tendons and motors must.
 /// Their coefficients are `−E` on the strand columns, which tests check against the
 /// transmission's derivation.
-pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>) -> Vec<Affine<T>> {
+pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T]) -> Vec<Affine<T>> {
     let n_unknowns = model.system.unknowns.len();
+    let axial = |b: usize| {
+        if model.bodies[b].friction.is_some() {
+            loads.axial[b].add_constant(-friction[b])
+        } else {
+            loads.axial[b]
+        }
+    };
     model
         .system
         .rows
         .iter()
         .map(|row| match row {
             Row::Joint(j) => {
-                let mut r = loads.axial[*j];
+                let mut r = axial(*j);
                 for (i, b) in model.bodies.iter().enumerate() {
                     if matches!(
                         b.kind,
@@ -83,12 +100,12 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>) -> Vec<Affine<T
                             ..
                         }
                     ) {
-                        r = r.add(&loads.axial[i].scale(b.coupling[*j]));
+                        r = r.add(&axial(i).scale(b.coupling[*j]));
                     }
                 }
                 r
             }
-            Row::Pulley(b) => loads.axial[*b],
+            Row::Pulley(b) => axial(*b),
             Row::Pretension(l) => {
                 Affine::constant(T::from_f64(model.loops[*l].pretension), n_unknowns)
             }

@@ -3,12 +3,12 @@
 
 use crate::error::{Error, Location, Result};
 use crate::format::{
-    Dh, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Objective, Placement, PulleySpec,
-    Turn,
+    Dh, FrictionSpec, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Objective, Placement,
+    PulleySpec, Turn,
 };
 use crate::model::{
-    Body, BodyKind, Loop, Model, Motor, MotorKind, Parameter, PulleyRole, Row, Slot, Strand,
-    Tendon, TensionSystem, Unknown, Wrench,
+    BearingFriction, Body, BodyKind, Loop, Model, Motor, MotorKind, Parameter, PulleyRole, Row,
+    Slot, Strand, Tendon, TensionSystem, Unknown, Wrench,
 };
 use crate::spatial::{rot_x, rot_y, rot_z, Mat3, Transform, Vec3};
 use crate::transmission::{
@@ -153,6 +153,8 @@ enum Range {
     Mass,
     Inertia,
     Angle,
+    Torque,
+    Damping,
 }
 
 impl Range {
@@ -162,6 +164,8 @@ impl Range {
             Range::Mass => MAX_MASS,
             Range::Inertia => MAX_INERTIA,
             Range::Angle => MAX_ANGLE,
+            Range::Torque => MAX_FRICTION_TORQUE,
+            Range::Damping => MAX_VISCOUS,
         }
     }
 
@@ -192,6 +196,16 @@ impl Range {
                 "reduce it modulo 2π (f64 cannot resolve a larger angle to the 1e-12 rad that \
                  right angles are recognised within), or check its unit (radians)",
             ),
+            Range::Torque => (
+                "a friction torque",
+                "N·m",
+                "check its unit (N·m) and its exponent",
+            ),
+            Range::Damping => (
+                "a viscous friction coefficient",
+                "N·m·s/rad",
+                "check its unit (N·m·s/rad) and its exponent",
+            ),
         }
     }
 }
@@ -216,6 +230,16 @@ pub const MAX_MASS: f64 = 1e12;
 pub const MAX_INERTIA: f64 = 1e24;
 /// The largest size of an angle (DH `alpha` and `offset`, a placement's `rpy`), rad.
 pub const MAX_ANGLE: f64 = 1e3;
+/// The largest Coulomb friction torque of a bearing, N·m: a tenth of the heaviest body's
+/// weight at the largest length (`1e12 kg · 9.81 m/s² · 1e6 m ≈ 1e19 N·m`); anything beyond
+/// is a mistake of unit or exponent.
+pub const MAX_FRICTION_TORQUE: f64 = 1e18;
+/// The largest viscous friction coefficient of a bearing, N·m·s/rad: the same torque at
+/// 1 rad/s.
+pub const MAX_VISCOUS: f64 = 1e18;
+/// The range of `friction_smoothing`, rad/s.
+pub const MIN_SMOOTHING: f64 = 1e-9;
+pub const MAX_SMOOTHING: f64 = 1e6;
 
 fn snapped_sin_cos(angle: f64) -> (f64, f64) {
     let quarter = (angle / std::f64::consts::FRAC_PI_2).round();
@@ -369,22 +393,25 @@ impl Validator<'_> {
     fn finite_in(&self, item: &str, field: &str, values: &[f64], top_level: bool) -> Result<()> {
         match values.iter().find(|v| !v.is_finite()) {
             Some(v) => {
-                let key = if top_level {
-                    self.locate_key(field)
+                let problem = format!("`{field}` is {v}; every number must be finite");
+                Err(if top_level {
+                    self.invalid_at_key(item, field, problem)
                 } else {
-                    Location::default()
-                };
-                Err(Error::Invalid {
-                    item: item.to_string(),
-                    at: if key.line == 0 {
-                        self.locate(item)
-                    } else {
-                        key
-                    },
-                    problem: format!("`{field}` is {v}; every number must be finite"),
+                    self.invalid(item, problem)
                 })
             }
             None => Ok(()),
+        }
+    }
+
+    /// An error about the mechanism's top-level field `key`, at its line (at the
+    /// mechanism's, should the key not be found).
+    fn invalid_at_key(&self, item: &str, key: &str, problem: String) -> Error {
+        let at = self.locate_key(key);
+        Error::Invalid {
+            item: item.to_string(),
+            at: if at.line == 0 { self.locate(item) } else { at },
+            problem,
         }
     }
 
@@ -404,6 +431,36 @@ impl Validator<'_> {
                 range.max()
             ),
         ))
+    }
+
+    /// A bearing's friction: finite, non-negative coefficients within their ranges
+    /// (format.md §4a); `None` when absent or all zero.
+    fn friction(&self, item: &str, spec: Option<&FrictionSpec>) -> Result<Option<BearingFriction>> {
+        let Some(f) = spec else { return Ok(None) };
+        for (field, v, range) in [
+            ("friction.coulomb", f.coulomb, Range::Torque),
+            ("friction.viscous", f.viscous, Range::Damping),
+        ] {
+            self.finite(item, field, &[v])?;
+            if v < 0.0 {
+                let (_, unit, _) = range.described();
+                return Err(self.invalid(
+                    item,
+                    format!(
+                        "`{field}` is {} {unit}; friction opposes motion, so give its size, a \
+                         number >= 0",
+                        shown(v)
+                    ),
+                ));
+            }
+            self.within(item, field, &[v], range)?;
+        }
+        Ok(
+            (f.coulomb > 0.0 || f.viscous > 0.0).then_some(BearingFriction {
+                coulomb: f.coulomb,
+                viscous: f.viscous,
+            }),
+        )
     }
 
     /// A number's nominal value (a parameter's declared value).
@@ -902,6 +959,25 @@ impl Validator<'_> {
         }
         let floor_default = f.tension_floor;
         self.finite_in(&f.name, "tension_floor", &[floor_default], true)?;
+        if let Some(v) = f.friction_smoothing {
+            self.finite_in(&f.name, "friction_smoothing", &[v], true)?;
+            // Below 1e-9 rad/s `ω / v` overflows f32 for ordinary rates (and `0 / 0` at rest
+            // is NaN once `v` rounds to zero); above 1e6 rad/s friction would never reach
+            // its Coulomb value at any speed a mechanism turns.
+            if !(MIN_SMOOTHING..=MAX_SMOOTHING).contains(&v) {
+                return Err(self.invalid_at_key(
+                    &f.name,
+                    "friction_smoothing",
+                    format!(
+                        "`friction_smoothing` is {} rad/s; it is the speed over which friction \
+                         turns smoothly from one direction to the other, a number from \
+                         {MIN_SMOOTHING:e} to {MAX_SMOOTHING:e} rad/s (leave it out for the \
+                         exact law)",
+                        shown(v)
+                    ),
+                ));
+            }
+        }
         for (k, t) in f.tendons.iter().enumerate() {
             // A negative default is an error even when every tendon overrides it.
             let floor = if floor_default < 0.0 {
@@ -918,21 +994,14 @@ impl Validator<'_> {
                              tendon cannot push)"
                         ),
                     ),
-                    None => {
-                        let key = self.locate_key("tension_floor");
-                        Error::Invalid {
-                            item: f.name.clone(),
-                            at: if key.line == 0 {
-                                self.locate(&f.name)
-                            } else {
-                                key
-                            },
-                            problem: format!(
-                                "`tension_floor` is {floor} N; the tension floor must not be \
-                                 negative (a tendon cannot push)"
-                            ),
-                        }
-                    }
+                    None => self.invalid_at_key(
+                        &f.name,
+                        "tension_floor",
+                        format!(
+                            "`tension_floor` is {floor} N; the tension floor must not be \
+                             negative (a tendon cannot push)"
+                        ),
+                    ),
                 });
             }
             if t.max_tension.is_none() && f.distribution == Objective::Centered {
@@ -1212,6 +1281,7 @@ impl Validator<'_> {
                 .collect(),
             tendons,
             objective: f.distribution,
+            friction_smoothing: f.friction_smoothing,
             loops,
             motors,
             system,
@@ -1229,6 +1299,7 @@ impl Validator<'_> {
         self.within(&l.name, "offset", &[d.offset], Range::Angle)?;
         let mp = self.mass_of(&l.mass, &l.com, &l.inertia);
         self.mass_properties(&l.name, &mp)?;
+        let friction = self.friction(&l.name, l.friction.as_ref())?;
         let post = dh_post(d);
         let mut coupling = vec![0.0; n];
         coupling[j] = 1.0;
@@ -1246,6 +1317,7 @@ impl Validator<'_> {
             inertia: inertia_matrix(mp.inertia),
             axis: post.rotation.tr_mul_vec(Vec3::unit_z()),
             joint_to_origin: post.rotation.tr_mul_vec(post.translation),
+            friction,
         })
     }
 
@@ -1258,6 +1330,15 @@ impl Validator<'_> {
     ) -> Result<(Body<f64>, PulleyInfo)> {
         let mp = self.mass_of(&p.mass, &p.com, &p.inertia);
         self.mass_properties(&p.name, &mp)?;
+        let friction = self.friction(&p.name, p.friction.as_ref())?;
+        if p.fixed && friction.is_some() {
+            return Err(self.invalid(
+                &p.name,
+                "a `fixed` drum does not turn on its carrier, so its bearing has no friction: \
+                 remove `friction`, or drop `fixed: true` if the pulley turns"
+                    .to_string(),
+            ));
+        }
         self.finite(&p.name, "radius", &[p.radius])?;
         if p.radius <= 0.0 {
             return Err(self.invalid(
@@ -1396,6 +1477,7 @@ impl Validator<'_> {
                 inertia: inertia_matrix(mp.inertia),
                 axis: Vec3::unit_z(),
                 joint_to_origin: Vec3::zero(),
+                friction,
             },
             PulleyInfo {
                 name: p.name.clone(),

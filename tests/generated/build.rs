@@ -1,5 +1,6 @@
-//! Generates code for the paper's three examples, twelve seeded random mechanisms and a few
-//! mechanisms of the stress suite into
+//! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
+//! bearing friction (Example 2 and four random ones) and a few mechanisms of the stress
+//! suite into
 //! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
 //! mechanism that the agreement test calls with slices.
 
@@ -36,6 +37,23 @@ fn main() {
         let (text, _) = valid_random_mechanism(seed, features);
         mechanisms.push((format!("random_{seed}"), text));
     }
+    // Bearing friction on every link and turning pulley: the exact law and the smoothed one.
+    let friction = root.join("example2_friction.ron");
+    println!("cargo:rerun-if-changed={}", friction.display());
+    mechanisms.push((
+        "example2_friction".to_string(),
+        std::fs::read_to_string(friction).unwrap(),
+    ));
+    for seed in 0..4u64 {
+        let features = Features {
+            coupled_pulleys: seed == 3,
+            endless: seed == 1,
+        };
+        let (text, _) = valid_random_mechanism(seed, features);
+        let smoothing = (seed % 2 == 0).then_some(0.2);
+        let text = tendyn_spec::friction::with_bearing_friction(&text, seed, smoothing);
+        mechanisms.push((format!("friction_{seed}"), text));
+    }
     // Representative stress mechanisms, in a registry of their own (`STRESS`):
     // `tests/stress.rs` checks them against the double-double reference under the stress
     // suite's condition rule.
@@ -61,19 +79,19 @@ fn main() {
         let (n, nm, nt) = (model.dof, model.motors.len(), model.tendons.len());
         let mut adapter = String::new();
         let np = model.parameters.len();
-        writeln!(adapter, "pub fn evaluate(q: &[f64], qd: &[f64], qdd: &[f64], mt: &[f64], tt: &[f64], p: &[f64]) -> Vec<(&'static str, Vec<f64>)> {{").unwrap();
+        writeln!(adapter, "pub fn evaluate<T: tendyn_core::Numeric>(q: &[T], qd: &[T], qdd: &[T], mt: &[T], tt: &[T], p: &[T]) -> Vec<(&'static str, Vec<T>)> {{").unwrap();
         writeln!(
             adapter,
-            "let p: &[f64; {np}] = p.try_into().unwrap(); let _ = p;"
+            "let p: &[T; {np}] = p.try_into().unwrap(); let _ = p;"
         )
         .unwrap();
         // Generated functions take the parameters last, when the mechanism has any.
         let pa = if np > 0 { ", p" } else { "" };
-        writeln!(adapter, "let q: &[f64; {n}] = q.try_into().unwrap(); let qd: &[f64; {n}] = qd.try_into().unwrap(); let qdd: &[f64; {n}] = qdd.try_into().unwrap();").unwrap();
-        writeln!(adapter, "let mt: &[f64; {nm}] = mt.try_into().unwrap(); let tt: &[f64; {nt}] = tt.try_into().unwrap(); let _ = (mt, tt, qdd);").unwrap();
+        writeln!(adapter, "let q: &[T; {n}] = q.try_into().unwrap(); let qd: &[T; {n}] = qd.try_into().unwrap(); let qdd: &[T; {n}] = qdd.try_into().unwrap();").unwrap();
+        writeln!(adapter, "let mt: &[T; {nm}] = mt.try_into().unwrap(); let tt: &[T; {nt}] = tt.try_into().unwrap(); let _ = (mt, tt, qdd);").unwrap();
         writeln!(
             adapter,
-            "let mut v: Vec<(&'static str, Vec<f64>)> = Vec::new();"
+            "let mut v: Vec<(&'static str, Vec<T>)> = Vec::new();"
         )
         .unwrap();
         for o in &outputs {
@@ -92,7 +110,7 @@ fn main() {
         module(&mut modules, name, &adapter);
         writeln!(
             registry,
-            "    Mechanism {{ name: \"{name}\", ron: {name}::RON, evaluate: {name}::evaluate }},"
+            "    Mechanism {{ name: \"{name}\", ron: {name}::RON, evaluate: {name}::evaluate::<f64>, evaluate_f32: {name}::evaluate::<f32> }},"
         )
         .unwrap();
     }

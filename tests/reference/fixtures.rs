@@ -91,6 +91,7 @@ pub fn model(dof: usize, gravity: [f64; 3], bodies: Vec<Body<f64>>) -> Model<f64
             condition: 1.0,
         },
         objective: Default::default(),
+        friction_smoothing: None,
         external_wrench: None,
         routing_incomplete: false,
     }
@@ -121,5 +122,6 @@ fn body(
         inertia: Mat3::from_rows([[0.0; 3]; 3]),
         axis: post.rotation.tr_mul_vec(Vec3::unit_z()),
         joint_to_origin: post.rotation.tr_mul_vec(post.translation),
+        friction: None,
     }
 }

@@ -18,6 +18,9 @@
 //!   `tendyn_core::distribution` or `tendyn_core::tension`; seeded random systems and
 //!   their mechanism files.
 //!
+//! - [`friction`]: bearing friction added to random mechanisms' files, and the power it
+//!   dissipates, from the law and the bodies' rates alone.
+//!
 //! Everything is exact to `f64` rounding: no finite differences.
 //!
 //! [`stress`] is of another kind: the stress suite's cases and [`stress::measure_case`],
@@ -28,6 +31,7 @@
 pub mod bounded;
 pub mod examples;
 pub mod fixtures;
+pub mod friction;
 pub mod lagrangian;
 pub mod measure;
 pub mod momentum;

@@ -108,6 +108,7 @@ pub enum Group {
     TendonChain,
     LightDistal,
     TensionBound,
+    BearingFriction,
 }
 
 /// One case of the stress suite.
@@ -582,6 +583,35 @@ pub fn tension_bounds() -> Vec<StressCase> {
     ]
 }
 
+/// Example 2 with friction in every bearing (`example2_friction.ron`), its coefficients
+/// scaled by `scale`: from a trace of friction to friction that dominates the dynamics.
+pub fn bearing_friction(scale: f64) -> StressCase {
+    let name = format!("bearing_friction_{scale:.0e}");
+    let mut text = example("example2_friction");
+    for (c, v) in [("0.05", "0.01"), ("0.03", "0.005"), ("0.002", "0.0002")] {
+        let written = format!("friction: (coulomb: {c}, viscous: {v})");
+        assert!(
+            text.contains(&written),
+            "example2_friction.ron has {written}"
+        );
+        text = text.replace(
+            &written,
+            &format!(
+                "friction: (coulomb: {:e}, viscous: {:e})",
+                c.parse::<f64>().unwrap() * scale,
+                v.parse::<f64>().unwrap() * scale
+            ),
+        );
+    }
+    StressCase::new(
+        &name,
+        Group::BearingFriction,
+        format!("Example 2 with Coulomb and viscous friction in both joints and idlers, {scale:.0e} times the file's"),
+        text,
+        Range::PROTOCOL,
+    )
+}
+
 /// Every case of the suite.
 pub fn cases() -> Vec<StressCase> {
     let mut all = paper_cases();
@@ -608,6 +638,9 @@ pub fn cases() -> Vec<StressCase> {
         all.push(light_distal(s));
     }
     all.extend(tension_bounds());
+    for s in [1e-3, 1.0, 1e3] {
+        all.push(bearing_friction(s));
+    }
     all
 }
 
@@ -623,6 +656,7 @@ pub fn generated_cases() -> Vec<StressCase> {
         motor_chain(2),
         tendon_chain(6),
         light_distal(1e-9),
+        bearing_friction(1e3),
     ];
     v.extend(
         tension_bounds()

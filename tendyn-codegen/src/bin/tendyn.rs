@@ -96,7 +96,8 @@ enum Command {
     /// two; the measurement takes about a minute for the paper's examples (progress on
     /// stderr). Pin it to one core for steadier figures: `taskset -c 0 tendyn report`.
     Report {
-        /// Mechanism files (default: the paper's three examples).
+        /// Mechanism files (default: the paper's three examples and Example 2 with bearing
+        /// friction).
         files: Vec<String>,
         /// Print JSON instead of the table.
         #[arg(long)]

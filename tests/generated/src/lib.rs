@@ -9,6 +9,10 @@ pub struct Mechanism {
     #[allow(clippy::type_complexity)]
     pub evaluate:
         fn(&[f64], &[f64], &[f64], &[f64], &[f64], &[f64]) -> Vec<(&'static str, Vec<f64>)>,
+    /// The same code run in `f32`.
+    #[allow(clippy::type_complexity)]
+    pub evaluate_f32:
+        fn(&[f32], &[f32], &[f32], &[f32], &[f32], &[f32]) -> Vec<(&'static str, Vec<f32>)>,
 }
 
 /// Generated `actuation` of a random bounded-distribution system (`BOUNDED`): ground-level

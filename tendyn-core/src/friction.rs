@@ -1,0 +1,125 @@
+//! Friction in the transmission's bearings: Coulomb and viscous friction between a body
+//! (a link at its joint, or a pulley on its carrier) and its parent. The paper's §2
+//! leaves friction out ("may be added in the modeling where the force control is
+//! important"); this is where it is added, once, for every scalar.
+//!
+//! # The law
+//!
+//! Body `b` turns relative to its parent at `ω_b = c_b · q̇` (its coupling: a unit row for
+//! a link, the routing's ratios for a pulley, Eqs. 9-10, 26, 31, 34), with `α_b = c_b · q̈`.
+//! Its bearing exerts on it, about its axis,
+//!
+//! > `τ_f = −(coulomb · s + viscous · ω_b)`
+//!
+//! and `−τ_f` on the parent. The direction `s`:
+//!
+//! - exact law: `sign(ω_b)` beyond [`REST`] of rest; within it (the bearing sticks, or is
+//!   about to slip) the direction of impending motion, `sign(α_b)`, beyond [`REST`] too;
+//!   else 0 (friction taken as zero). Written without branches as
+//!   `s = s_ω + (1 − s_ω²) s_α` over [`Real::sign_outside`], so that generated code
+//!   computes it with two selects;
+//! - smoothed (`friction_smoothing: v` in the file): `s = tanh(ω_b / v)` everywhere, for
+//!   optimisation and derivatives.
+//!
+//! Forward dynamics does not know `α_b` before it solves for it: there the direction is
+//! `sign(ω_b)` alone, so a bearing at rest contributes no friction (the result is then
+//! exact only where no bearing is at rest; [`at_rest`] says which are).
+//!
+//! # Where it enters (virtual work)
+//!
+//! A friction torque is a pair of equal and opposite moments on a body and its parent
+//! about their common axis; its virtual work is `τ_f δθ_b = τ_f c_b · δq`. So the
+//! actuators must deliver `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` ([`apply`]),
+//! and the balance rows of the tension system `E x = b` carry it where the body's axial
+//! moment is balanced: a joint's row and a driving pulley's row (`tension::demand`), an
+//! idler's tension step (Eq. 24b with the bearing's moment, `tension::segment_tensions`).
+
+use crate::kinematics::coupled;
+use crate::model::Model;
+use crate::real::{Numeric, Real};
+
+/// The band of rest (rad/s, and rad/s² for the direction of impending motion): a bearing
+/// turning slower than this is sticking. Far below any motion a controller commands and
+/// far above the round-off of a rate computed from `q̇` of order one in `f32`.
+///
+/// The band is absolute: where couplings are large (a pulley turning 1e3 times faster than
+/// its joint) or the scalar is `f32`, a rate that is zero in exact arithmetic can come out
+/// of `c · q̇` as round-off of `u · Σ|c_j q̇_j|`; it stays inside the band while that is
+/// below 1e-6 rad/s (in `f32`, for `Σ|c_j q̇_j|` up to about 16 rad/s).
+pub const REST: f64 = 1e-6;
+
+/// The direction friction opposes, `s` of the module documentation: from the rate and,
+/// when `accel` is given, the acceleration (the direction of impending motion at rest).
+pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> T {
+    if let Some(v) = smoothing {
+        return (rate / T::from_f64(v)).tanh();
+    }
+    let band = T::from_f64(REST);
+    let moving = rate.sign_outside(band);
+    match accel {
+        Some(a) => moving + (T::one() - moving * moving) * a.sign_outside(band),
+        None => moving,
+    }
+}
+
+/// `τ_f` of every body (0 where its bearing has no friction), written into `out` (one entry
+/// per body). `qdd`: the accelerations of inverse dynamics, or `None` in forward dynamics.
+pub fn bearing_torques<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, out: &mut [T]) {
+    for (o, b) in out.iter_mut().zip(&model.bodies) {
+        *o = match b.friction {
+            None => T::zero(),
+            Some(f) => {
+                let rate = coupled(&b.coupling, qd);
+                let s = direction(
+                    rate,
+                    qdd.map(|a| coupled(&b.coupling, a)),
+                    model.friction_smoothing,
+                );
+                -(T::from_f64(f.coulomb) * s + T::from_f64(f.viscous) * rate)
+            }
+        };
+    }
+}
+
+/// How [`apply`] combines the generalized force of friction with what it is given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// What the actuators must deliver: friction taken away, `Q − Σ_b c_bᵀ τ_f,b`.
+    Delivered,
+    /// What moves the mechanism: friction added, `rhs + Σ_b c_bᵀ τ_f,b`.
+    Acting,
+}
+
+/// The generalized force of the bearings' friction, `Σ_b c_bᵀ τ_f,b` (virtual work: what
+/// friction does to the joints), applied to `out` from `side`. Without friction `out` is
+/// untouched, so a frictionless mechanism's traced code is what it was.
+pub fn apply<T: Real>(model: &Model<T>, torques: &[T], side: Side, out: &mut [T]) {
+    for (b, t) in model.bodies.iter().zip(torques) {
+        if b.friction.is_some() {
+            for (o, c) in out.iter_mut().zip(&b.coupling) {
+                *o = match side {
+                    Side::Delivered => *o - *c * *t,
+                    Side::Acting => *o + *c * *t,
+                };
+            }
+        }
+    }
+}
+
+/// The bodies whose bearing has friction and turns within [`REST`] of rest: with the exact
+/// law, friction there is the direction of impending motion (or zero), not a sliding one.
+/// Empty with the smoothed law, which has no such band.
+pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
+    if model.friction_smoothing.is_some() {
+        return Vec::new();
+    }
+    model
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| {
+            b.friction.is_some() && coupled(&b.coupling, qd).abs() <= T::from_f64(REST)
+        })
+        .map(|(i, _)| i)
+        .collect()
+}
