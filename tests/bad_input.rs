@@ -1454,3 +1454,16 @@ fn a_friction_smoothing_speed_outside_its_range_is_rejected_at_its_line() {
         );
     }
 }
+
+#[test]
+fn a_name_holding_a_comment_marker_is_still_located_at_its_definition() {
+    // `//` inside a string is not a comment: the locator reads string literals first.
+    let text = with(OPEN_ENDED, "name: \"idler4\"", "name: \"idler//4\"");
+    let text = text.replace("(\"idler4\", Cw)", "(\"idler//4\", Cw)");
+    assert_invalid(
+        &text,
+        "idler//4",
+        "name: \"idler//4\"",
+        "the name `idler//4` cannot be used",
+    );
+}

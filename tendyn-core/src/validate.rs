@@ -33,12 +33,9 @@ pub fn parse(text: &str) -> Result<Model<f64>> {
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let file: MechanismFile = options.from_str(text).map_err(|e| syntax_error(text, &e))?;
-    let params = Validator {
-        text,
-        params: Vec::new(),
-    }
-    .parameters(&file)?;
-    Validator { text, params }.model(&file)
+    let mut v = Validator::new(text);
+    v.params = v.parameters(&file)?;
+    v.model(&file)
 }
 
 /// A RON error at the token it is about (ron's span may start on the whitespace before
@@ -107,18 +104,79 @@ fn syntax_error(text: &str, e: &ron::error::SpannedError) -> Error {
 
 /// Validates an already parsed file (no source text: errors carry no line numbers).
 pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
-    let params = Validator {
-        text: "",
-        params: Vec::new(),
-    }
-    .parameters(file)?;
-    Validator { text: "", params }.model(file)
+    let mut v = Validator::new("");
+    v.params = v.parameters(file)?;
+    v.model(file)
 }
 
 struct Validator<'a> {
     text: &'a str,
+    /// Where each name is defined and first mentioned, found in one pass over the text.
+    names: NameIndex,
     /// Runtime parameters and their nominal values, which validation checks.
     params: Vec<(String, f64)>,
+}
+
+/// The places of the names in a file's text: every `name: "X"` definition of each name,
+/// in order, and the first other quoted occurrence of it. Built once, so that locating
+/// every item costs one pass over the text, not one per item (which made loading a file
+/// of many pulleys quadratic).
+#[derive(Default)]
+struct NameIndex {
+    definitions: std::collections::HashMap<String, Vec<Location>>,
+    references: std::collections::HashMap<String, Location>,
+}
+
+impl NameIndex {
+    fn of(text: &str) -> Self {
+        let mut index = NameIndex::default();
+        for (i, line) in text.lines().enumerate() {
+            for (col, name) in string_literals(line) {
+                let at = Location {
+                    line: i + 1,
+                    column: line[..col].chars().count() + 1,
+                };
+                if is_name_field(&line[..col]) {
+                    index
+                        .definitions
+                        .entry(name.to_string())
+                        .or_default()
+                        .push(at);
+                } else {
+                    index.references.entry(name.to_string()).or_insert(at);
+                }
+            }
+        }
+        index
+    }
+}
+
+/// The string literals of one line of RON, as (byte offset of the opening quote, content
+/// between the quotes), up to a `//` comment outside them (so a name may hold `//`).
+fn string_literals(line: &str) -> Vec<(usize, &str)> {
+    let mut found = Vec::new();
+    let mut open: Option<usize> = None;
+    let mut escaped = false;
+    let mut previous = '\0';
+    for (at, c) in line.char_indices() {
+        match open {
+            Some(start) => {
+                if escaped {
+                    escaped = false;
+                } else if c == '\\' {
+                    escaped = true;
+                } else if c == '"' {
+                    found.push((start, &line[start + 1..at]));
+                    open = None;
+                }
+            }
+            None if c == '"' => open = Some(at),
+            None if c == '/' && previous == '/' => break,
+            None => {}
+        }
+        previous = c;
+    }
+    found
 }
 
 /// The nominal values of a body's mass properties.
@@ -315,7 +373,15 @@ fn inertia_matrix(i: [f64; 6]) -> Mat3<f64> {
     Mat3::from_rows([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
 }
 
-impl Validator<'_> {
+impl<'a> Validator<'a> {
+    fn new(text: &'a str) -> Self {
+        Validator {
+            text,
+            names: NameIndex::of(text),
+            params: Vec::new(),
+        }
+    }
+
     /// Line and column of the item named `name`: its `name: "…"` field, or failing that
     /// the first quoted occurrence. Text in `//` comments is not looked at.
     fn locate(&self, name: &str) -> Location {
@@ -325,27 +391,14 @@ impl Validator<'_> {
     /// Line and column of the `nth` (0-based) `name: "…"` definition of `name`, or
     /// failing that the first quoted occurrence of it.
     fn locate_nth(&self, name: &str, nth: usize) -> Location {
-        let quoted = format!("\"{name}\"");
-        let mut fallback = Location::default();
-        let mut found = 0;
-        for (i, line) in self.text.lines().enumerate() {
-            let code = line.find("//").map_or(line, |c| &line[..c]);
-            for (col, _) in code.match_indices(&quoted) {
-                let at = Location {
-                    line: i + 1,
-                    column: code[..col].chars().count() + 1,
-                };
-                if is_name_field(&code[..col]) {
-                    if found == nth {
-                        return at;
-                    }
-                    found += 1;
-                } else if fallback.line == 0 {
-                    fallback = at;
-                }
-            }
-        }
-        fallback
+        let names = &self.names;
+        names
+            .definitions
+            .get(name)
+            .and_then(|d| d.get(nth))
+            .or_else(|| names.references.get(name))
+            .copied()
+            .unwrap_or_default()
     }
 
     /// Line and column of a top-level field `key:` (`gravity`, `external_wrench`, …).
@@ -601,7 +654,7 @@ impl Validator<'_> {
             return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
         }
         // Names are unique across every kind of item, and `base` is the ground.
-        let mut seen: Vec<&str> = vec!["base"];
+        let mut seen: std::collections::HashSet<&str> = std::collections::HashSet::from(["base"]);
         let names = f
             .links
             .iter()
@@ -643,7 +696,7 @@ impl Validator<'_> {
                     ),
                 });
             }
-            seen.push(name);
+            seen.insert(name);
         }
         let n = f.links.len();
         let link_index = |name: &str| f.links.iter().position(|l| l.name == name);
@@ -1936,11 +1989,7 @@ pub fn check_mass_properties(
         com: com.to_array(),
         inertia: [r[0][0], r[1][1], r[2][2], r[0][1], r[0][2], r[1][2]],
     };
-    Validator {
-        text: "",
-        params: Vec::new(),
-    }
-    .mass_properties(item, &mp)
+    Validator::new("").mass_properties(item, &mp)
 }
 
 /// The range check of validation for the external wrench's point, for parameter values set
