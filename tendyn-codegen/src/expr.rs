@@ -132,14 +132,25 @@ impl Graph {
     /// Runs `build` with `self` as the graph that [`Sym`] values on this thread refer to,
     /// and gives the graph back afterwards.
     pub fn scope<R>(self, build: impl FnOnce() -> R) -> (Graph, R) {
+        /// Clears the thread's graph when the scope ends, by return or by panic: a panic
+        /// inside `build` (caught by a caller) must not leave the next scope on this
+        /// thread refused as nested.
+        struct Clear;
+        impl Drop for Clear {
+            fn drop(&mut self) {
+                CURRENT.with(|c| c.borrow_mut().take());
+            }
+        }
         CURRENT.with(|c| {
             let previous = c.borrow_mut().replace(self);
             assert!(previous.is_none(), "Graph::scope does not nest");
         });
+        let clear = Clear;
         let r = build();
         let g = CURRENT
             .with(|c| c.borrow_mut().take())
             .expect("graph present");
+        drop(clear);
         (g, r)
     }
 
@@ -559,5 +570,21 @@ impl Real for Sym {
     }
     fn sign_outside(self, band: Self) -> Self {
         Sym(with(|g| g.sign_outside(self.0, band.0)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_inside_a_scope_leaves_the_thread_free_for_the_next_scope() {
+        let caught = std::panic::catch_unwind(|| {
+            Graph::default().scope(|| panic!("a trace that fails"));
+        });
+        assert!(caught.is_err());
+        // Without the guard this second scope panicked with "does not nest".
+        let (g, _) = Graph::default().scope(|| Sym::input("x"));
+        assert_eq!(g.input_names, ["x"]);
     }
 }
