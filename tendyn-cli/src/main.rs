@@ -20,22 +20,44 @@ struct Cli {
 /// Joint positions and velocities, comma-separated, in joint order.
 #[derive(clap::Args)]
 struct State {
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    /// Joint angles q1,...,qn (rad), comma-separated, link 1 first.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_name = "Q1,..."
+    )]
     q: Vec<f64>,
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    /// Joint velocities (rad/s), comma-separated, link 1 first.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_name = "QD1,..."
+    )]
     qd: Vec<f64>,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// Validate a mechanism file and print what the routing implies.
-    Check { file: String },
+    Check {
+        /// The mechanism's RON file (docs/format.md).
+        file: String,
+    },
     /// Evaluate inverse dynamics, M, h and g at a state.
     Eval {
+        /// The mechanism's RON file (docs/format.md).
         file: String,
         #[command(flatten)]
         state: State,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        /// Joint accelerations (rad/s²), comma-separated, link 1 first.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_name = "QDD1,..."
+        )]
         qdd: Vec<f64>,
         /// A CSV file with one state per line: q..., qd..., qdd... (3n numbers).
         #[arg(long)]
@@ -46,18 +68,34 @@ enum Command {
     },
     /// Forward dynamics: joint accelerations from motor torques and tendon tensions.
     Forward {
+        /// The mechanism's RON file (docs/format.md).
         file: String,
         #[command(flatten)]
         state: State,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        /// One torque per motor (N·m), comma-separated, in the file's order of `motors`.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_name = "T1,..."
+        )]
         torques: Vec<f64>,
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        /// One ground-level tension per open-ended tendon (N), comma-separated, in the
+        /// file's order of `tendons`.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_name = "T1,..."
+        )]
         tensions: Vec<f64>,
+        /// Print `{"mechanism": NAME, "qdd": [...]}` instead of text.
         #[arg(long)]
         json: bool,
     },
     /// Generate straight-line Rust for a mechanism's dynamics.
     Generate {
+        /// The mechanism's RON file (docs/format.md).
         file: String,
         /// Comma-separated outputs (default: every output the mechanism can provide):
         /// generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics,
@@ -73,6 +111,7 @@ enum Command {
     },
     /// Print the closed-form equations in readable notation (beside the paper's Eqs. 28-35).
     Equations {
+        /// The mechanism's RON file (docs/format.md).
         file: String,
         /// Comma-separated outputs (default: generalized_forces and actuation).
         #[arg(long, value_delimiter = ',')]
@@ -120,16 +159,18 @@ enum Command {
     },
 }
 
-/// Writes to stdout; a reader that went away (`tendyn demo | head`) ends the program quietly.
+/// Writes to stdout. A reader that went away (`tendyn demo | head`) ends the program
+/// quietly, with success; any other failure (a full disk behind `> out.rs`) is an error,
+/// exit status 1, so that a script does not take a partial output for a whole one.
 fn emit(text: &str) {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
-    if out
-        .write_all(text.as_bytes())
-        .and_then(|_| out.flush())
-        .is_err()
-    {
-        std::process::exit(0);
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("error: cannot write to standard output: {e}");
+        std::process::exit(1);
     }
 }
 
@@ -253,9 +294,8 @@ fn run(cli: Cli) -> Result<(), String> {
                 .map_err(|e| format!("{file}: {e}"))?;
             let elapsed = start.elapsed();
             match out {
-                Some(path) => {
-                    std::fs::write(&path, &g.source).map_err(|e| format!("{path}: {e}"))?
-                }
+                Some(path) => tendyn_codegen::builder::write_atomically(path.as_ref(), &g.source)
+                    .map_err(|e| format!("{path}: {e}"))?,
                 None => emit(&g.source),
             }
             eprintln!(
@@ -349,6 +389,29 @@ fn run(cli: Cli) -> Result<(), String> {
             json,
         } => {
             let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            for (flag, given, items, what) in [
+                (
+                    "--torques",
+                    torques.len(),
+                    m.motors.iter().map(|x| x.name.as_str()).collect::<Vec<_>>(),
+                    "motor torque (N·m)",
+                ),
+                (
+                    "--tensions",
+                    tensions.len(),
+                    m.tendons.iter().map(|x| x.name.as_str()).collect(),
+                    "ground-level tendon tension (N)",
+                ),
+            ] {
+                if given != items.len() {
+                    return Err(format!(
+                        "{flag} has {given} numbers but `{}` needs {}: one {what} for each of {}, in file order",
+                        m.name,
+                        items.len(),
+                        if items.is_empty() { "none (leave the flag out)".to_string() } else { items.join(", ") }
+                    ));
+                }
+            }
             let mut s = Solver::new(&m);
             let qdd = s
                 .forward_dynamics(&q, &qd, &torques, &tensions)

@@ -241,3 +241,57 @@ fn report_without_cargo_says_so() {
         "{err}"
     );
 }
+
+#[test]
+fn forward_without_the_tensions_of_a_tendon_mechanism_names_the_flag_and_the_tendons() {
+    let (code, _, err) = run(&[
+        "forward",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--q",
+        "0.1,0.2",
+        "--qd",
+        "0,0",
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("--tensions has 0 numbers but `example2_open_ended` needs 3")
+            && err.contains("T32, T42, T11, in file order"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_standard_output_that_cannot_be_written_is_an_error_not_a_silent_success() {
+    // /dev/full fails every write with "no space left on device".
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return; // not a Linux-like system: nothing to check
+    };
+    let out = Command::new(env!("CARGO_BIN_EXE_tendyn"))
+        .args(["generate", "examples/mechanisms/example1_endless.ron"])
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .stdout(full)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot write to standard output"), "{err}");
+}
+
+#[test]
+fn generate_to_a_file_writes_it_whole_and_leaves_no_temporary_file() {
+    let dir = std::env::temp_dir().join(format!("tendyn_cli_out_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("example1.rs");
+    let (ok, _, err) = tendyn(&[
+        "generate",
+        "examples/mechanisms/example1_endless.ron",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains("pub fn generalized_forces"));
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert_eq!(left.len(), 1, "only the output remains: {left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -161,8 +161,21 @@ fn write_if_changed(path: &Path, text: &str) -> Result<(), Error> {
     if std::fs::read_to_string(path).is_ok_and(|old| old == text) {
         return Ok(());
     }
-    std::fs::write(path, text)
+    write_atomically(path, text)
         .map_err(|e| Error::Build(format!("cannot write {}: {e}", path.display())))
+}
+
+/// Writes `text` to `path` whole or not at all: into a temporary file beside it, renamed
+/// over `path` once complete, so that a failure part-way (a full disk) never leaves a
+/// truncated file for a later build to pick up. The temporary file is removed on failure.
+pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let temporary = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let written = std::fs::write(&temporary, text).and_then(|()| std::fs::rename(&temporary, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    written
 }
 
 #[cfg(test)]
