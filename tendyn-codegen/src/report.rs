@@ -138,13 +138,21 @@ pub fn check_text(m: &Model<f64>) -> String {
             let frame = g
                 .frame
                 .map_or("base".to_string(), |f| m.bodies[f].name.clone());
+            // The ground exit is a point, not a pulley: it has no acting angle.
+            let angle = |a: f64| {
+                if a.is_nan() {
+                    "exit".to_string()
+                } else {
+                    format!("{:.3}", a.to_degrees())
+                }
+            };
             line(format!(
-                "  {}#{k}: in {frame}, dir {}, {:.6} m, angles {:.3} / {:.3}",
+                "  {}#{k}: in {frame}, dir {}, {} m, angles {} / {}",
                 st.name,
                 fmt_row(&g.dir.to_array()),
-                g.length,
-                g.acting_angles[0].to_degrees(),
-                g.acting_angles[1].to_degrees()
+                number(g.length),
+                angle(g.acting_angles[0]),
+                angle(g.acting_angles[1])
             ));
         }
     }
@@ -152,15 +160,26 @@ pub fn check_text(m: &Model<f64>) -> String {
 }
 
 fn fmt_row(r: &[f64]) -> String {
-    let cells: Vec<String> = r.iter().map(|x| format!("{:>10.6}", clean(*x))).collect();
+    let cells: Vec<String> = r.iter().map(|&x| format!("{:>11}", number(x))).collect();
     format!("[{}]", cells.join(", "))
 }
 
-fn clean(x: f64) -> f64 {
+/// A number as a person reads it: six significant digits, plainly from 1e-4 to 1e6 and
+/// with an exponent beyond, never `-0` (round-off below 1e-15 in size prints as `0`), so
+/// that a finger's 1e-5 kg·m² mass matrix does not print as `0.000000`.
+pub fn number(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
     if x.abs() < 1e-15 {
-        0.0
+        return "0".to_string();
+    }
+    let exponent = x.abs().log10().floor() as i32;
+    if (-4..6).contains(&exponent) {
+        let decimals = (5 - exponent).max(0) as usize;
+        format!("{x:.decimals$}")
     } else {
-        x
+        format!("{x:.5e}")
     }
 }
 
@@ -266,24 +285,24 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
         fmt_row(&r.generalized_forces)
     ));
     for (mo, t) in m.motors.iter().zip(&r.motor_torques) {
-        line(format!("  motor {:<12} {:>12.6} N·m", mo.name, t));
+        line(format!("  motor {:<12} {:>12} N·m", mo.name, number(*t)));
     }
     for (k, t) in m.tendons.iter().enumerate() {
         line(format!(
-            "  tendon {:<11} {:>12.6} N  (minimal-norm {:.6} + null-space {:.6}, floor {})",
+            "  tendon {:<11} {:>12} N  (minimal-norm {} + null-space {}, floor {} N)",
             t.name,
-            r.tendon_tensions[k],
-            r.minimal_norm_tensions[k],
-            r.null_space_tensions[k],
-            t.floor
+            number(r.tendon_tensions[k]),
+            number(r.minimal_norm_tensions[k]),
+            number(r.null_space_tensions[k]),
+            number(t.floor)
         ));
     }
     for ((l, sides), slack) in m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()) {
         line(format!(
-            "  loop {:<13} ccw side {:.6} N, cw side {:.6} N{}",
+            "  loop {:<13} ccw side {} N, cw side {} N{}",
             l.name,
-            sides[0],
-            sides[1],
+            number(sides[0]),
+            number(sides[1]),
             if slack {
                 "  SLACK: raise the pretension"
             } else {
@@ -304,15 +323,16 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
     }
     for (b, v) in &r.pulley_demands {
         line(format!(
-            "  pulley {:<11} needs {:>12.6e} N·m about its axis",
-            m.bodies[*b].name, v
+            "  pulley {:<11} needs {:>12} N·m about its axis",
+            m.bodies[*b].name,
+            number(*v)
         ));
     }
     for (b, v) in &r.bearing_friction {
         line(format!(
-            "  bearing of {:<9} friction {:>12.6e} N·m{}",
+            "  bearing of {:<9} friction {:>12} N·m{}",
             m.bodies[*b].name,
-            v,
+            number(*v),
             if r.sticking.contains(b) {
                 "  (at rest: against the impending motion)"
             } else {
@@ -327,11 +347,11 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
             fmt_row(&n.to_array())
         ));
     }
-    line("  mass matrix M:".into());
+    line("  mass matrix M (kg·m²):".into());
     for row in mass {
         line(format!("    {}", fmt_row(row)));
     }
-    line(format!("  bias h: {}", fmt_row(bias)));
-    line(format!("  gravity g: {}", fmt_row(gravity)));
+    line(format!("  bias h: {} N·m", fmt_row(bias)));
+    line(format!("  gravity g: {} N·m", fmt_row(gravity)));
     s
 }
