@@ -44,6 +44,9 @@ enum Command {
     Check {
         /// The mechanism's RON file (docs/format.md).
         file: String,
+        /// Print one JSON object (docs/outputs.md §1) instead of text.
+        #[arg(long)]
+        json: bool,
     },
     /// Evaluate inverse dynamics, M, h and g at a state.
     Eval {
@@ -190,9 +193,13 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Check { file } => {
+        Command::Check { file, json } => {
             let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
-            emit(&report::check_text(&m));
+            if json {
+                say!("{}", report::check_json(&m));
+            } else {
+                emit(&report::check_text(&m));
+            }
             Ok(())
         }
         Command::Demo => {

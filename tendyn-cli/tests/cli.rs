@@ -302,3 +302,46 @@ fn generate_to_a_file_writes_it_whole_and_leaves_no_temporary_file() {
     assert_eq!(left.len(), 1, "only the output remains: {left:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
+    let (ok, out, err) = tendyn(&[
+        "check",
+        "examples/mechanisms/example2_friction.ron",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+    let m = tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_friction.ron"
+    ))
+    .unwrap();
+    let a: Vec<Vec<f64>> = serde_json::from_value(v["structure_matrix"].clone()).unwrap();
+    assert_eq!(a, m.structure_matrix(), "A to the bit");
+    assert_eq!(v["joints"], serde_json::json!(["link1", "link2"]));
+    assert_eq!(v["couplings"]["idler3"]["role"], "idler of T32");
+    assert_eq!(
+        v["tension_system"]["null_space"].as_array().map(Vec::len),
+        Some(1)
+    );
+    // Unbounded ends of a static torque range are null (JSON has no infinity).
+    assert_eq!(
+        v["static_torque_range"]["link2"],
+        serde_json::json!({"min": null, "max": null})
+    );
+    // The ground exit has no acting angle.
+    assert_eq!(
+        v["segments"]["T11"][0]["acting_angles"][1],
+        serde_json::Value::Null
+    );
+    assert_eq!(v["bearing_friction"]["link1"]["coulomb"], 0.05);
+    // Without open-ended tendons there is no structure matrix and no range.
+    let (_, out, _) = tendyn(&[
+        "check",
+        "examples/mechanisms/example1_endless.ron",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["structure_matrix"].is_null() && v["static_torque_range"].is_null());
+}

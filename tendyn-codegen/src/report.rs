@@ -34,6 +34,105 @@ fn row_name(m: &Model<f64>, r: &Row) -> String {
     }
 }
 
+/// A pulley's role as `check` names it.
+fn role_name(m: &Model<f64>, role: &PulleyRole) -> String {
+    match role {
+        PulleyRole::Fixed => "fixed drum".to_string(),
+        PulleyRole::Idler { strand } => format!("idler of {}", m.strands[*strand].name),
+        PulleyRole::Driving => "driving pulley".to_string(),
+        PulleyRole::Coupled => "explicit coupling".to_string(),
+    }
+}
+
+/// A JSON number, or `null` where it is not finite (JSON has no infinity).
+fn finite_or_null(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+/// What `tendyn check --json` prints: the same as [`check_text`], one JSON object.
+pub fn check_json(m: &Model<f64>) -> Value {
+    let names = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>();
+    let pulleys: serde_json::Map<String, Value> = m.bodies[m.dof..]
+        .iter()
+        .filter_map(|b| match &b.kind {
+            BodyKind::Pulley { radius, role } => Some((
+                b.name.clone(),
+                json!({"radius": radius, "role": role_name(m, role), "coupling": b.coupling}),
+            )),
+            BodyKind::Link { .. } => None,
+        })
+        .collect();
+    let ranges: Value = if m.tendons.is_empty() {
+        Value::Null
+    } else {
+        m.bodies[..m.dof]
+            .iter()
+            .zip(static_torque_ranges(m))
+            .map(|(b, r)| {
+                let range = r.map_or(
+                    Value::Null,
+                    |r| json!({"min": finite_or_null(r.min), "max": finite_or_null(r.max)}),
+                );
+                (b.name.clone(), range)
+            })
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let segments: serde_json::Map<String, Value> = m
+        .strands
+        .iter()
+        .map(|st| {
+            let list: Vec<Value> = st
+                .segments
+                .iter()
+                .map(|g| {
+                    json!({
+                        "frame": g.frame.map_or("base".to_string(), |f| m.bodies[f].name.clone()),
+                        "dir": v3(g.dir),
+                        "length": g.length,
+                        "acting_angles": g.acting_angles.map(|a| finite_or_null(a.to_degrees())),
+                    })
+                })
+                .collect();
+            (st.name.clone(), json!(list))
+        })
+        .collect();
+    let friction: serde_json::Map<String, Value> = m
+        .bodies
+        .iter()
+        .filter_map(|b| {
+            let f = b.friction?;
+            Some((
+                b.name.clone(),
+                json!({"coulomb": f.coulomb, "viscous": f.viscous}),
+            ))
+        })
+        .collect();
+    json!({
+        "mechanism": m.name,
+        "joints": names(&mut m.bodies[..m.dof].iter().map(|b| b.name.clone())),
+        "couplings": pulleys,
+        "tendons": names(&mut m.tendons.iter().map(|t| t.name.clone())),
+        "structure_matrix": if m.tendons.is_empty() { Value::Null } else { json!(m.structure_matrix()) },
+        "static_torque_range": ranges,
+        "tension_system": {
+            "rows": names(&mut m.system.rows.iter().map(|r| row_name(m, r))),
+            "unknowns": names(&mut m.system.unknowns.iter().map(|u| unknown_name(m, u))),
+            "matrix": m.system.matrix,
+            "condition": finite_or_null(m.system.condition),
+            "null_space": m.system.null_space,
+            "positive_null_vector": m.system.positive_null,
+        },
+        "segments": segments,
+        "bearing_friction": friction,
+        "friction_smoothing": m.friction_smoothing,
+    })
+}
+
 /// What `tendyn check` prints: the validated structure and everything derived from the routing.
 pub fn check_text(m: &Model<f64>) -> String {
     let mut s = String::new();
@@ -53,12 +152,7 @@ pub fn check_text(m: &Model<f64>) -> String {
     line("couplings (intermediate-link angle relative to its carrier = Σ ratio · q):".into());
     for b in &m.bodies[m.dof..] {
         if let BodyKind::Pulley { radius, role } = &b.kind {
-            let role = match role {
-                PulleyRole::Fixed => "fixed drum".to_string(),
-                PulleyRole::Idler { strand } => format!("idler of {}", m.strands[*strand].name),
-                PulleyRole::Driving => "driving pulley".to_string(),
-                PulleyRole::Coupled => "explicit coupling".to_string(),
-            };
+            let role = role_name(m, role);
             line(format!(
                 "  {:<12} r = {:<8} {:<22} {}",
                 b.name,
