@@ -68,6 +68,10 @@ enum Command {
         /// Print one JSON object per state.
         #[arg(long)]
         json: bool,
+        /// With --states: print a CSV table instead of JSON lines (a header, then per
+        /// state q, qd, qdd, generalized forces, motor torques and tendon tensions).
+        #[arg(long, requires = "states", conflicts_with = "json")]
+        csv: bool,
     },
     /// Forward dynamics: joint accelerations from motor torques and tendon tensions.
     Forward {
@@ -222,9 +226,14 @@ fn run(cli: Cli) -> Result<(), String> {
             qdd,
             states,
             json,
+            csv,
         } => {
             let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
             let n = m.dof;
+            let mut solver = Solver::new(&m);
+            if csv {
+                say!("{}", report::inverse_csv_header(&m));
+            }
             match states {
                 None => {
                     if json {
@@ -260,9 +269,16 @@ fn run(cli: Cli) -> Result<(), String> {
                                 vals.len()
                             ));
                         }
-                        let v = eval_json(&m, &vals[..n], &vals[n..2 * n], &vals[2 * n..])
-                            .map_err(|e| format!("{path}:{}: {e}", i + 1))?;
-                        say!("{v}");
+                        let (q, qd, qdd) = (&vals[..n], &vals[n..2 * n], &vals[2 * n..]);
+                        let at = |e: String| format!("{path}:{}: {e}", i + 1);
+                        if csv {
+                            let r = solver
+                                .inverse_dynamics(q, qd, qdd)
+                                .map_err(|e| at(e.to_string()))?;
+                            say!("{}", report::inverse_csv_row(q, qd, qdd, &r));
+                        } else {
+                            say!("{}", eval_json(&m, q, qd, qdd).map_err(at)?);
+                        }
                     }
                 }
             }

@@ -345,3 +345,48 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!(v["structure_matrix"].is_null() && v["static_torque_range"].is_null());
 }
+
+#[test]
+fn eval_states_as_csv_prints_a_header_and_one_full_precision_row_per_state() {
+    let dir = std::env::temp_dir().join(format!("tendyn_cli_csv_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let states = dir.join("states.csv");
+    std::fs::write(
+        &states,
+        "0.3,0.5, 1,-0.5, 2,3\n# a comment\n0.1,0.2,0,0,0,0\n",
+    )
+    .unwrap();
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--states",
+        states.to_str().unwrap(),
+        "--csv",
+    ]);
+    assert!(ok, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(
+        lines[0],
+        "q_link1,q_link2,qd_link1,qd_link2,qdd_link1,qdd_link2,Q_link1,Q_link2,T_T32,T_T42,T_T11"
+    );
+    assert_eq!(lines.len(), 3, "{out}");
+    // The tensions read back to the runtime solver's, bit for bit.
+    let m = tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_open_ended.ron"
+    ))
+    .unwrap();
+    let r = tendyn_core::Solver::new(&m)
+        .inverse_dynamics(&[0.3, 0.5], &[1.0, -0.5], &[2.0, 3.0])
+        .unwrap();
+    let row: Vec<f64> = lines[1].split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!(&row[8..], r.tendon_tensions.as_slice());
+    // --csv needs --states.
+    let (code, _, _) = run(&[
+        "eval",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--csv",
+    ]);
+    assert_eq!(code, Some(2));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -347,6 +347,33 @@ pub fn inverse_json(
     out
 }
 
+/// The header of `tendyn eval --states FILE --csv`: `q_J`, `qd_J`, `qdd_J` and `Q_J` per
+/// joint `J`, `tau_M` per motor, `T_K` per open-ended tendon, in joint and file order.
+pub fn inverse_csv_header(m: &Model<f64>) -> String {
+    let joints: Vec<&str> = m.joint_names().collect();
+    let mut columns: Vec<String> = Vec::new();
+    for prefix in ["q", "qd", "qdd", "Q"] {
+        columns.extend(joints.iter().map(|j| format!("{prefix}_{j}")));
+    }
+    columns.extend(m.motors.iter().map(|mo| format!("tau_{}", mo.name)));
+    columns.extend(m.tendons.iter().map(|t| format!("T_{}", t.name)));
+    columns.join(",")
+}
+
+/// One row of [`inverse_csv_header`]'s table, every number at full precision (Rust's
+/// shortest representation that reads back to the same `f64`).
+pub fn inverse_csv_row(q: &[f64], qd: &[f64], qdd: &[f64], r: &InverseDynamics<f64>) -> String {
+    q.iter()
+        .chain(qd)
+        .chain(qdd)
+        .chain(&r.generalized_forces)
+        .chain(&r.motor_torques)
+        .chain(&r.tendon_tensions)
+        .map(|x| x.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 /// The paper's three mechanisms, built into the binary for `tendyn demo`.
 pub const BUILT_IN: [(&str, &str); 3] = [
     (
