@@ -390,3 +390,53 @@ fn eval_states_as_csv_prints_a_header_and_one_full_precision_row_per_state() {
     assert_eq!(code, Some(2));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_open_ended.ron"
+    ))
+    .unwrap();
+    // Nine pins of 10 mm radius on link1, 5 mm apart in the plane of drum1 (40 mm).
+    let pins: String = (0..9)
+        .map(|i| {
+            format!(
+                "        (name: \"pin{i}\", carrier: \"link1\", at: Pose(origin: ({}, 0.0, 0.0), rpy: (0.0, 0.0, 0.0)), radius: 0.01, fixed: true),\n",
+                -0.1 - 0.005 * i as f64
+            )
+        })
+        .collect();
+    let text = text.replacen("    pulleys: [\n", &format!("    pulleys: [\n{pins}"), 1);
+    let model = tendyn_core::parse(&text).unwrap();
+    // Pins k and l (5 mm · |k − l| apart) overlap when closer than 20 mm: |k − l| ≤ 3.
+    let overlaps = tendyn_core::transmission::overlapping_pulleys(&model.bodies);
+    assert_eq!(overlaps.len(), 8 + 7 + 6, "{overlaps:?}");
+    let dir = std::env::temp_dir().join(format!("tendyn_cli_overlap_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("pins.ron");
+    std::fs::write(&file, &text).unwrap();
+    let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
+    assert!(ok, "a warning, not an error: {err}");
+    assert!(
+        out.contains("warning: pulleys `pin0` and `pin1` on `link1` overlap: their centres are 0.00500000 m apart in one plane"),
+        "{out}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    // The paper's examples have none: their idlers sit at other heights than the drums.
+    for name in [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ] {
+        let m = tendyn_core::load(format!(
+            "{}/../examples/mechanisms/{name}.ron",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
+        assert!(
+            tendyn_core::transmission::overlapping_pulleys(&m.bodies).is_empty(),
+            "{name}"
+        );
+    }
+}

@@ -141,6 +141,24 @@ pub fn check_text(m: &Model<f64>) -> String {
         s.push('\n');
     };
     line(format!("mechanism `{}`: valid", m.name));
+    for o in tendyn_core::transmission::overlapping_pulleys(&m.bodies) {
+        let (a, b) = (&m.bodies[o.first], &m.bodies[o.second]);
+        let carrier = b.parent.map_or("base", |c| m.bodies[c].name.as_str());
+        let radius = |body: &tendyn_core::model::Body<f64>| match body.kind {
+            BodyKind::Pulley { radius, .. } => radius,
+            BodyKind::Link { .. } => 0.0,
+        };
+        line(format!(
+            "  warning: pulleys `{}` and `{}` on `{carrier}` overlap: their centres are {} m \
+             apart in one plane, closer than their radii {} + {} m; move one along its axis or \
+             apart",
+            a.name,
+            b.name,
+            number(o.distance),
+            number(radius(a)),
+            number(radius(b))
+        ));
+    }
     line(format!(
         "  {} degrees of freedom, {} intermediate links, {} open-ended tendons, {} loops, {} motors",
         m.dof,

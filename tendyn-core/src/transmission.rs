@@ -530,6 +530,86 @@ fn plane_basis(n: Vec3<f64>) -> (Vec3<f64>, Vec3<f64>) {
     (ex, n.cross(ex))
 }
 
+/// Two pulleys on one carrier whose pitch circles lie in one plane and overlap: their
+/// centres are closer than the sum of their radii. The model accepts it (every result is
+/// still the dynamics of the file as written), but no real mechanism can hold both.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlap {
+    /// Body indices, the first defined first.
+    pub first: usize,
+    pub second: usize,
+    /// Distance of their centres, m.
+    pub distance: f64,
+}
+
+/// Every pair of overlapping pulleys ([`Overlap`]): same carrier, parallel axes, centres in
+/// one plane to 1e-9 of their size, `distance < (r₁ + r₂)(1 − 1e-9)`.
+pub fn overlapping_pulleys(bodies: &[Body<f64>]) -> Vec<Overlap> {
+    let pulleys: Vec<(usize, f64)> = bodies
+        .iter()
+        .enumerate()
+        .filter_map(|(i, b)| match b.kind {
+            crate::model::BodyKind::Pulley { radius, .. } => Some((i, radius)),
+            crate::model::BodyKind::Link { .. } => None,
+        })
+        .collect();
+    // Pulleys on one carrier, by carrier, so that only those are paired.
+    let mut by_carrier: std::collections::BTreeMap<Option<usize>, Vec<(usize, f64)>> =
+        std::collections::BTreeMap::new();
+    for &(i, r) in &pulleys {
+        by_carrier.entry(bodies[i].parent).or_default().push((i, r));
+    }
+    let mut found = Vec::new();
+    for group in by_carrier.values() {
+        // Sorted by axis (signed so that it points one way) and then by the plane's offset
+        // along it, pulleys that can share a plane are neighbours: each is paired only with
+        // the run after it that lies in its plane (a file of many pulleys stays linear).
+        let mut planes: Vec<(Vec3<f64>, f64, usize, f64)> = group
+            .iter()
+            .map(|&(i, r)| {
+                let n = bodies[i].pre.rotation.column(2);
+                let n = if [n.x, n.y, n.z]
+                    .into_iter()
+                    .find(|v| *v != 0.0)
+                    .unwrap_or(1.0)
+                    < 0.0
+                {
+                    -n
+                } else {
+                    n
+                };
+                (n, n.dot(bodies[i].pre.translation), i, r)
+            })
+            .collect();
+        planes.sort_by(|a, b| {
+            (a.0.x, a.0.y, a.0.z, a.1)
+                .partial_cmp(&(b.0.x, b.0.y, b.0.z, b.1))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        for (a, &(ni, di, i, ri)) in planes.iter().enumerate() {
+            let ci = bodies[i].pre.translation;
+            for &(nj, dj, j, rj) in &planes[a + 1..] {
+                let cj = bodies[j].pre.translation;
+                let scale = ri + rj + norm(ci) + norm(cj);
+                if norm(ni.cross(nj)) >= 1e-9 || (dj - di).abs() > 1e-9 * scale {
+                    break; // past this plane
+                }
+                let distance = norm(cj - ci);
+                if distance < (ri + rj) * (1.0 - 1e-9) {
+                    let (first, second) = (i.min(j), i.max(j));
+                    found.push(Overlap {
+                        first,
+                        second,
+                        distance,
+                    });
+                }
+            }
+        }
+    }
+    found.sort_by_key(|o| (o.first, o.second));
+    found
+}
+
 /// Transform of a body frame from its parent with the joint angle at `angle`.
 pub fn body_transform(b: &Body<f64>, angle: f64) -> Transform<f64> {
     let rz = Transform {
