@@ -520,9 +520,9 @@ fn a_joint_acted_on_numerically_nothing_beside_the_others_is_rejected_naming_the
             inertia: (xx: 0.0001, yy: 0.0041667, zz: 0.0041667)),
     ],
     tendons: [
-        (name: "Ta", structure: [1e200, 0.02]),
-        (name: "Tb", structure: [-0.01, -0.01]),
-        (name: "Tc", structure: [0.03, -0.03]),
+        (name: "Ta", structure: [0.02, 2e-12]),
+        (name: "Tb", structure: [-0.01, -1e-12]),
+        (name: "Tc", structure: [0.03, -3e-12]),
     ],
 )
 "#;
@@ -986,13 +986,14 @@ fn f01_a_mass_f32_cannot_hold_is_rejected_naming_the_link_and_code_generation_do
 
 #[test]
 fn f01_a_folded_constant_f32_cannot_hold_is_an_error_naming_the_output() {
-    // Every number within its range, but a gear turning 1e21 times as fast as its joint:
-    // its inertia about its axis enters the mass matrix as zz · 1e42, which f32 cannot hold.
+    // Every number within its range, but a heavy gear turning 1e15 times as fast as its
+    // joint: its inertia about its axis enters the mass matrix as zz · 1e30 = 2e50, which f32
+    // cannot hold.
     let text = r#"(
     name: "geared",
     links: [(name: "arm", dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: 0.5, com: (-0.1, 0.0, 0.0))],
     pulleys: [(name: "gear", carrier: "base", at: Joint(joint: "arm", height: 0.0), radius: 0.01,
-        mass: 0.01, inertia: (xx: 0.001, yy: 0.001, zz: 0.002), coupling: [1e21])],
+        mass: 0.01, inertia: (xx: 1e20, yy: 1e20, zz: 2e20), coupling: [1e15])],
     motors: [(name: "m", on: Joint("arm"))],
 )"#;
     let model = parse(text).unwrap();
@@ -1465,5 +1466,60 @@ fn a_name_holding_a_comment_marker_is_still_located_at_its_definition() {
         "idler//4",
         "name: \"idler//4\"",
         "the name `idler//4` cannot be used",
+    );
+}
+
+#[test]
+fn forces_ratios_and_gravity_beyond_their_ranges_are_rejected_where_they_are_written() {
+    // (from, to, item, the line it is reported at, what is said)
+    for (from, to, item, at, phrase) in [
+        (
+            "tension_floor: 5.0,",
+            "tension_floor: 1e308,",
+            "open_ended",
+            "tension_floor:",
+            "`tension_floor` is 1e308 N, beyond the range of a force (at most 1e15 N",
+        ),
+        (
+            "gravity: (0.0, -9.81, 0.0),",
+            "gravity: (0.0, -1e7, 0.0),",
+            "open_ended",
+            "gravity:",
+            "`gravity` is -1e7 m/s², beyond the range of an acceleration (at most 1e6 m/s²",
+        ),
+        (
+            "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0)),",
+            "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0), max_tension: 2e15),",
+            "T11",
+            "name: \"T11\"",
+            "`max_tension` is 2e15 N, beyond the range of a force",
+        ),
+        (
+            "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0)),",
+            "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0), floor: 1e16),",
+            "T11",
+            "name: \"T11\"",
+            "`floor` is 1e16 N, beyond the range of a force",
+        ),
+    ] {
+        let text = with(OPEN_ENDED, from, to);
+        let err = rejected(&text);
+        assert_eq!(err.item(), Some(item), "{err}");
+        let Error::Invalid { at: location, .. } = &err else {
+            panic!("{err:?}")
+        };
+        assert_eq!(location.line, line_of(&text, at), "{err}");
+        assert!(err.to_string().contains(phrase), "{err}");
+    }
+    let text = with(
+        OPEN_ENDED,
+        "    tendons: [",
+        "    external_wrench: (link: \"link2\", force: (0.0, 2e15, 0.0)),\n    tendons: [",
+    );
+    let err = rejected(&text);
+    assert!(
+        err.to_string()
+            .contains("`external_wrench.force` is 2e15 N, beyond the range of a force"),
+        "{err}"
     );
 }

@@ -213,6 +213,10 @@ enum Range {
     Angle,
     Torque,
     Damping,
+    Force,
+    Moment,
+    Acceleration,
+    Ratio,
 }
 
 impl Range {
@@ -224,6 +228,10 @@ impl Range {
             Range::Angle => MAX_ANGLE,
             Range::Torque => MAX_FRICTION_TORQUE,
             Range::Damping => MAX_VISCOUS,
+            Range::Force => MAX_FORCE,
+            Range::Moment => MAX_MOMENT,
+            Range::Acceleration => MAX_ACCELERATION,
+            Range::Ratio => MAX_RATIO,
         }
     }
 
@@ -264,8 +272,42 @@ impl Range {
                 "N·m·s/rad",
                 "check its unit (N·m·s/rad) and its exponent",
             ),
+            Range::Force => (
+                "a force",
+                "N",
+                "check its unit (newtons) and its exponent; larger tensions overflow the moments \
+                 and the tension distribution derived from them",
+            ),
+            Range::Moment => (
+                "a moment",
+                "N·m",
+                "check its unit (N·m) and its exponent",
+            ),
+            Range::Acceleration => (
+                "an acceleration",
+                "m/s²",
+                "check its unit (m/s²) and its exponent",
+            ),
+            Range::Ratio => (
+                "a coupling ratio",
+                "rad/rad",
+                "check the ratio; a pulley turning 1e15 times faster than its joint is beyond what \
+                 f64 resolves",
+            ),
         }
     }
+}
+
+/// What is wrong with the first number of `field` beyond `range`, if one is.
+fn beyond(field: &str, values: &[f64], range: Range) -> Option<String> {
+    let &v = values.iter().find(|v| v.abs() > range.max())?;
+    let (what, unit, fix) = range.described();
+    Some(format!(
+        "`{field}` is {} {unit}, beyond the range of {what} (at most {:e} {unit} in size; \
+         format.md §12, ranges of magnitude): {fix}",
+        shown(v),
+        range.max()
+    ))
 }
 
 /// A number as a message shows it: plainly, or with an exponent when very large or small.
@@ -295,6 +337,19 @@ pub const MAX_FRICTION_TORQUE: f64 = 1e18;
 /// The largest viscous friction coefficient of a bearing, N·m·s/rad: the same torque at
 /// 1 rad/s.
 pub const MAX_VISCOUS: f64 = 1e18;
+/// The largest size of a force: a tendon's `floor`, `max_tension`, the `tension_floor`, a
+/// loop's `pretension`, the external wrench's `force`, N. Times the largest length it is a
+/// moment of 1e21 N·m, and the distribution's sums of tensions stay far from overflow.
+pub const MAX_FORCE: f64 = 1e15;
+/// The largest size of the external wrench's `moment`, N·m: the largest force at the
+/// largest length.
+pub const MAX_MOMENT: f64 = 1e21;
+/// The largest size of a `gravity` component, m/s² (10⁵ g; with the largest mass and length
+/// its generalized forces stay near 1e24).
+pub const MAX_ACCELERATION: f64 = 1e6;
+/// The largest size of an explicit `coupling` ratio, the bound derived couplings keep
+/// (ratios of radii within their range).
+pub const MAX_RATIO: f64 = 1e15;
 /// The range of `friction_smoothing`, rad/s.
 pub const MIN_SMOOTHING: f64 = 1e-9;
 pub const MAX_SMOOTHING: f64 = 1e6;
@@ -471,19 +526,26 @@ impl<'a> Validator<'a> {
     /// Every number of `field` (finite already) is at most `max` in size; the error names
     /// the item, the number and the range, and says what would fix it.
     fn within(&self, item: &str, field: &str, values: &[f64], range: Range) -> Result<()> {
-        let Some(&v) = values.iter().find(|v| v.abs() > range.max()) else {
-            return Ok(());
-        };
-        let (what, unit, fix) = range.described();
-        Err(self.invalid(
-            item,
-            format!(
-                "`{field}` is {} {unit}, beyond the range of {what} (at most {:e} {unit} in \
-                 size; format.md §12, ranges of magnitude): {fix}",
-                shown(v),
-                range.max()
-            ),
-        ))
+        match beyond(field, values, range) {
+            None => Ok(()),
+            Some(problem) => Err(self.invalid(item, problem)),
+        }
+    }
+
+    /// [`Validator::within`] for a number of the top-level field `key` (`gravity`, …): the
+    /// error is at that field's line.
+    fn within_key(
+        &self,
+        item: &str,
+        key: &str,
+        field: &str,
+        values: &[f64],
+        range: Range,
+    ) -> Result<()> {
+        match beyond(field, values, range) {
+            None => Ok(()),
+            Some(problem) => Err(self.invalid_at_key(item, key, problem)),
+        }
     }
 
     /// A bearing's friction: finite, non-negative coefficients within their ranges
@@ -650,6 +712,7 @@ impl<'a> Validator<'a> {
     fn model(&self, f: &MechanismFile) -> Result<Model<f64>> {
         let gravity = self.nums(&f.gravity);
         self.finite_in(&f.name, "gravity", &gravity, true)?;
+        self.within_key(&f.name, "gravity", "gravity", &gravity, Range::Acceleration)?;
         if f.links.is_empty() {
             return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
         }
@@ -723,6 +786,7 @@ impl<'a> Validator<'a> {
         let mut routes: Vec<(Route, Origin)> = Vec::new();
         for (k, t) in f.tendons.iter().enumerate() {
             self.finite(&t.name, "floor", &[t.floor.unwrap_or(0.0)])?;
+            self.within(&t.name, "floor", &[t.floor.unwrap_or(0.0)], Range::Force)?;
             if t.route.is_empty() {
                 if t.structure.is_none() {
                     return Err(self.routing(
@@ -797,6 +861,7 @@ impl<'a> Validator<'a> {
         }
         for (k, l) in f.loops.iter().enumerate() {
             self.finite(&l.name, "pretension", &[l.pretension])?;
+            self.within(&l.name, "pretension", &[l.pretension], Range::Force)?;
             if l.pretension < 0.0 {
                 return Err(self.invalid(
                     &l.name,
@@ -882,6 +947,7 @@ impl<'a> Validator<'a> {
                     ));
                 }
                 self.finite(&p.name, "coupling", c)?;
+                self.within(&p.name, "coupling", c, Range::Ratio)?;
                 if p.fixed && c.iter().any(|&x| x != 0.0) {
                     return Err(self.invalid(
                         &p.name,
@@ -1012,6 +1078,13 @@ impl<'a> Validator<'a> {
         }
         let floor_default = f.tension_floor;
         self.finite_in(&f.name, "tension_floor", &[floor_default], true)?;
+        self.within_key(
+            &f.name,
+            "tension_floor",
+            "tension_floor",
+            &[floor_default],
+            Range::Force,
+        )?;
         if let Some(v) = f.friction_smoothing {
             self.finite_in(&f.name, "friction_smoothing", &[v], true)?;
             // Below 1e-9 rad/s `ω / v` overflows f32 for ordinary rates (and `0 / 0` at rest
@@ -1068,6 +1141,7 @@ impl<'a> Validator<'a> {
             }
             if let Some(mx) = t.max_tension {
                 self.finite(&t.name, "max_tension", &[mx])?;
+                self.within(&t.name, "max_tension", &[mx], Range::Force)?;
                 if mx < floor {
                     return Err(self.invalid(
                         &t.name,
@@ -1099,6 +1173,8 @@ impl<'a> Validator<'a> {
                     ));
                 }
                 self.finite(&t.name, "structure", col)?;
+                // A column entry is a moment arm: a length.
+                self.within(&t.name, "structure", col, Range::Length)?;
                 if strand.is_some() {
                     let agree = col
                         .iter()
@@ -1286,6 +1362,12 @@ impl<'a> Validator<'a> {
                             shown(v)
                         ),
                     });
+                }
+                for (field, values, range) in [
+                    ("external_wrench.force", &force, Range::Force),
+                    ("external_wrench.moment", &moment, Range::Moment),
+                ] {
+                    self.within_key(&f.name, "external_wrench", field, values, range)?;
                 }
                 Some(Wrench {
                     link,
