@@ -18,6 +18,14 @@ fn run(args: &[&str]) -> (Option<i32>, String, String) {
     )
 }
 
+/// A fresh directory of this test process for a test's files (tests run in parallel, so
+/// each names its own).
+fn scratch_dir(test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("{test}_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// [`run`], with success as a flag.
 fn tendyn(args: &[&str]) -> (bool, String, String) {
     let (code, out, err) = run(args);
@@ -77,8 +85,7 @@ fn check_prints_the_static_torque_range_of_each_joint() {
     let (_, out, _) = tendyn(&["check", "examples/mechanisms/example1_endless.ron"]);
     assert!(!out.contains("static torque range"), "{out}");
     // With T11 ≤ 7 N, holding link1 needs T32 + T42 = (4/3) T11 ≤ 28/3 < 10: no range.
-    let dir = std::env::temp_dir().join(format!("tendyn_cli_range_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_cli_range");
     let file = dir.join("tight.ron");
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -100,8 +107,7 @@ fn check_prints_the_static_torque_range_of_each_joint() {
 
 #[test]
 fn eval_over_a_csv_of_states_prints_one_json_object_per_state() {
-    let dir = std::env::temp_dir().join(format!("tendyn_cli_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_cli");
     let csv = dir.join("states.csv");
     std::fs::write(
         &csv,
@@ -167,8 +173,7 @@ fn forward_gives_joint_accelerations_and_bad_input_fails_with_the_reason() {
 
 #[test]
 fn generate_writes_straight_line_rust_and_reports_operation_counts() {
-    let dir = std::env::temp_dir().join(format!("tendyn_gen_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_gen");
     let out = dir.join("finger.rs");
     let (ok, _, err) = tendyn(&[
         "generate",
@@ -217,8 +222,7 @@ fn equations_print_the_collected_closed_form_with_paper_style_names() {
 
 #[test]
 fn report_on_a_bad_file_fails_with_the_located_error_and_no_output() {
-    let dir = std::env::temp_dir().join(format!("tendyn_report_cli_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_report_cli");
     let bad = dir.join("bad.ron");
     std::fs::write(&bad, "(name: \"bad\",\n links: [\n").unwrap();
     let bad = bad.to_str().unwrap();
@@ -286,8 +290,7 @@ fn a_standard_output_that_cannot_be_written_is_an_error_not_a_silent_success() {
 
 #[test]
 fn generate_to_a_file_writes_it_whole_and_leaves_no_temporary_file() {
-    let dir = std::env::temp_dir().join(format!("tendyn_cli_out_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_cli_out");
     let file = dir.join("example1.rs");
     let (ok, _, err) = tendyn(&[
         "generate",
@@ -348,8 +351,7 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
 
 #[test]
 fn eval_states_as_csv_prints_a_header_and_one_full_precision_row_per_state() {
-    let dir = std::env::temp_dir().join(format!("tendyn_cli_csv_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_cli_csv");
     let states = dir.join("states.csv");
     std::fs::write(
         &states,
@@ -412,8 +414,7 @@ fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
     // Pins k and l (5 mm · |k − l| apart) overlap when closer than 20 mm: |k − l| ≤ 3.
     let overlaps = tendyn_core::transmission::overlapping_pulleys(&model.bodies);
     assert_eq!(overlaps.len(), 8 + 7 + 6, "{overlaps:?}");
-    let dir = std::env::temp_dir().join(format!("tendyn_cli_overlap_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("tendyn_cli_overlap");
     let file = dir.join("pins.ron");
     std::fs::write(&file, &text).unwrap();
     let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
