@@ -48,24 +48,17 @@ macro_rules! bench_actuation {
             .copied()
             .collect();
         println!("{}: {} of {STATES} states feasible", $label, feasible.len());
-        $group.bench_function($label, |b| {
-            b.iter(|| {
-                for (q, qd, qdd) in &data {
-                    black_box($module::actuation::<f64>(
-                        black_box(q),
-                        black_box(qd),
-                        black_box(qdd),
-                    ));
-                }
-            })
-        });
+        let mut sets = vec![($label.to_string(), data)];
         // The same on the feasible states alone (a state the bounds cannot meet costs a
         // second projection, for the best effort), repeated to 1,024 calls.
         if feasible.len() < STATES {
-            let feasible: Vec<_> = feasible.iter().cycle().take(STATES).copied().collect();
-            $group.bench_function(concat!($label, ", feasible states"), |b| {
+            let repeated = feasible.iter().cycle().take(STATES).copied().collect();
+            sets.push((format!("{}, feasible states", $label), repeated));
+        }
+        for (name, set) in &sets {
+            $group.bench_function(name.as_str(), |b| {
                 b.iter(|| {
-                    for (q, qd, qdd) in &feasible {
+                    for (q, qd, qdd) in set {
                         black_box($module::actuation::<f64>(
                             black_box(q),
                             black_box(qd),

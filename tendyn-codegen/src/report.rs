@@ -144,10 +144,6 @@ pub fn check_text(m: &Model<f64>) -> String {
     for o in tendyn_core::transmission::overlapping_pulleys(&m.bodies) {
         let (a, b) = (&m.bodies[o.first], &m.bodies[o.second]);
         let carrier = b.parent.map_or("base", |c| m.bodies[c].name.as_str());
-        let radius = |body: &tendyn_core::model::Body<f64>| match body.kind {
-            BodyKind::Pulley { radius, .. } => radius,
-            BodyKind::Link { .. } => 0.0,
-        };
         line(format!(
             "  warning: pulleys `{}` and `{}` on `{carrier}` overlap: their centres are {} m \
              apart in one plane, closer than their radii {} + {} m; move one along its axis or \
@@ -155,8 +151,8 @@ pub fn check_text(m: &Model<f64>) -> String {
             a.name,
             b.name,
             number(o.distance),
-            number(radius(a)),
-            number(radius(b))
+            number(o.radii[0]),
+            number(o.radii[1])
         ));
     }
     line(format!(

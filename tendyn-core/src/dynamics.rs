@@ -151,11 +151,7 @@ pub fn generalized_forces<T: Real>(
     out: &mut [T],
 ) {
     expanded_generalized_forces(model, q, qd, qdd, true, true, ws, out);
-    if model.has_friction() {
-        let mut torques = vec![T::zero(); model.bodies.len()];
-        friction::bearing_torques(model, qd, Some(qdd), &mut torques);
-        friction::apply(model, &torques, Side::Delivered, out);
-    }
+    friction::apply_at(model, qd, Some(qdd), Side::Delivered, out);
 }
 
 /// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings: column
@@ -233,11 +229,7 @@ pub fn forward_dynamics_rhs<T: Real>(
         .zip(c)
         .map(|(u, c)| u - c)
         .collect();
-    if model.has_friction() {
-        let mut torques = vec![T::zero(); model.bodies.len()];
-        friction::bearing_torques(model, qd, None, &mut torques);
-        friction::apply(model, &torques, Side::Acting, &mut rhs);
-    }
+    friction::apply_at(model, qd, None, Side::Acting, &mut rhs);
     rhs
 }
 

@@ -81,6 +81,16 @@ pub fn bearing_torques<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, o
     }
 }
 
+/// The bearings' friction at `(q̇, q̈)` ([`bearing_torques`]) applied to `out` from `side`
+/// ([`apply`]); nothing is computed without friction.
+pub fn apply_at<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, side: Side, out: &mut [T]) {
+    if model.has_friction() {
+        let mut torques = vec![T::zero(); model.bodies.len()];
+        bearing_torques(model, qd, qdd, &mut torques);
+        apply(model, &torques, side, out);
+    }
+}
+
 /// How [`apply`] combines the generalized force of friction with what it is given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Side {

@@ -540,6 +540,8 @@ pub struct Overlap {
     pub second: usize,
     /// Distance of their centres, m.
     pub distance: f64,
+    /// Their pitch radii, m, in the order of `first`, `second`.
+    pub radii: [f64; 2],
 }
 
 /// Every pair of overlapping pulleys ([`Overlap`]): same carrier, parallel axes, centres in
@@ -596,11 +598,16 @@ pub fn overlapping_pulleys(bodies: &[Body<f64>]) -> Vec<Overlap> {
                 }
                 let distance = norm(cj - ci);
                 if distance < (ri + rj) * (1.0 - 1e-9) {
-                    let (first, second) = (i.min(j), i.max(j));
+                    let ((first, r1), (second, r2)) = if i < j {
+                        ((i, ri), (j, rj))
+                    } else {
+                        ((j, rj), (i, ri))
+                    };
                     found.push(Overlap {
                         first,
                         second,
                         distance,
+                        radii: [r1, r2],
                     });
                 }
             }
