@@ -25,6 +25,7 @@ struct State {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
+        value_parser = number,
         value_name = "Q1,..."
     )]
     q: Vec<f64>,
@@ -33,6 +34,7 @@ struct State {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
+        value_parser = number,
         value_name = "QD1,..."
     )]
     qd: Vec<f64>,
@@ -59,7 +61,8 @@ enum Command {
             long,
             value_delimiter = ',',
             allow_hyphen_values = true,
-            value_name = "QDD1,..."
+            value_parser = number,
+                value_name = "QDD1,..."
         )]
         qdd: Vec<f64>,
         /// A CSV file with one state per line: q..., qd..., qdd... (3n numbers).
@@ -84,7 +87,8 @@ enum Command {
             long,
             value_delimiter = ',',
             allow_hyphen_values = true,
-            value_name = "T1,..."
+            value_parser = number,
+                value_name = "T1,..."
         )]
         torques: Vec<f64>,
         /// One ground-level tension per open-ended tendon (N), comma-separated, in the
@@ -93,7 +97,8 @@ enum Command {
             long,
             value_delimiter = ',',
             allow_hyphen_values = true,
-            value_name = "T1,..."
+            value_parser = number,
+                value_name = "T1,..."
         )]
         tensions: Vec<f64>,
         /// Print `{"mechanism": NAME, "qdd": [...]}` instead of text.
@@ -166,6 +171,43 @@ enum Command {
     },
 }
 
+/// Loads and validates a mechanism file. The error starts with the file's path once: a
+/// file that cannot be read names it already.
+fn load(file: &str) -> Result<Model<f64>, String> {
+    tendyn_core::load(file).map_err(|e| load_error(file, e))
+}
+
+fn load_error(file: &str, e: tendyn_core::Error) -> String {
+    match e {
+        tendyn_core::Error::Io { .. } => e.to_string(),
+        _ => format!("{file}: {e}"),
+    }
+}
+
+/// One number of a comma-separated list such as `--q`. Spaces around it are allowed, as
+/// in `--states` files (`--q "0.1, 0.2"`).
+fn number(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    t.parse()
+        .map_err(|_| format!("`{t}` is not a number (expected e.g. 0.25, -1e-3)"))
+}
+
+/// The arguments with every one that ends in a comma joined to the next: unquoted, the
+/// shell makes `--q 0.1, 0.2` two arguments, `0.1,` and `0.2`, which are one list.
+fn join_continued(args: impl Iterator<Item = std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    let mut continued = false;
+    for a in args {
+        let ends_in_comma = a.to_str().is_some_and(|s| s.ends_with(','));
+        match out.last_mut() {
+            Some(last) if continued => last.push(&a),
+            _ => out.push(a),
+        }
+        continued = ends_in_comma;
+    }
+    out
+}
+
 /// Writes to stdout. A reader that went away (`tendyn demo | head`) ends the program
 /// quietly, with success; any other failure (a full disk behind `> out.rs`) is an error,
 /// exit status 1, so that a script does not take a partial output for a whole one.
@@ -186,7 +228,7 @@ macro_rules! say {
 }
 
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
+    match run(Cli::parse_from(join_continued(std::env::args_os()))) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
@@ -198,7 +240,13 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Check { file, json } => {
-            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            // A routing that fails its checks is shown as far as it was derived.
+            let m = tendyn_core::load(&file).map_err(|e| {
+                if let (Some(system), false) = (e.implied(), json) {
+                    emit(&report::implied_text(system));
+                }
+                load_error(&file, e)
+            })?;
             if json {
                 say!("{}", report::check_json(&m));
             } else {
@@ -228,7 +276,7 @@ fn run(cli: Cli) -> Result<(), String> {
             json,
             csv,
         } => {
-            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let m = load(&file)?;
             let n = m.dof;
             let mut solver = Solver::new(&m);
             if csv {
@@ -290,7 +338,7 @@ fn run(cli: Cli) -> Result<(), String> {
             scalar,
             out,
         } => {
-            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let m = load(&file)?;
             let outputs: Vec<tendyn_codegen::Output> = if outputs.is_empty() {
                 tendyn_codegen::available_outputs(&m)
             } else {
@@ -343,7 +391,7 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Equations { file, outputs } => {
-            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let m = load(&file)?;
             let outputs: Vec<tendyn_codegen::Output> = if outputs.is_empty() {
                 [
                     tendyn_codegen::Output::GeneralizedForces,
@@ -411,7 +459,7 @@ fn run(cli: Cli) -> Result<(), String> {
             tensions,
             json,
         } => {
-            let m = tendyn_core::load(&file).map_err(|e| format!("{file}: {e}"))?;
+            let m = load(&file)?;
             for (flag, given, items, what) in [
                 (
                     "--torques",
@@ -456,7 +504,7 @@ fn run(cli: Cli) -> Result<(), String> {
 fn report_command(files: &[String], args: &[std::ffi::OsString]) -> Result<i32, String> {
     let mut paths = Vec::new();
     for file in files {
-        tendyn_core::load(file).map_err(|e| format!("{file}: {e}"))?;
+        load(file)?;
         paths.push(std::fs::canonicalize(file).map_err(|e| format!("{file}: {e}"))?);
     }
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

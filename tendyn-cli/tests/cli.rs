@@ -239,7 +239,11 @@ fn report_on_a_bad_file_fails_with_the_located_error_and_no_output() {
 fn report_on_a_missing_file_names_it() {
     let (code, _, err) = run(&["report", "no/such/mechanism.ron"]);
     assert_eq!(code, Some(1));
-    assert!(err.starts_with("error: no/such/mechanism.ron:"), "{err}");
+    assert!(
+        err.starts_with("error: cannot read no/such/mechanism.ron:"),
+        "{err}"
+    );
+    assert_eq!(err.matches("no/such/mechanism.ron").count(), 1, "{err}");
 }
 
 #[test]
@@ -440,4 +444,112 @@ fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
             "{name}"
         );
     }
+}
+
+#[test]
+fn a_state_list_may_have_spaces_after_its_commas_as_in_a_states_file() {
+    let file = "examples/mechanisms/example2_open_ended.ron";
+    let (ok, spaced, err) = tendyn(&[
+        "eval", file, "--q", "0.1, 0.2", "--qd", " 1, -2", "--qdd", "3 ,4", "--json",
+    ]);
+    assert!(ok, "{err}");
+    let (ok, tight, err) = tendyn(&[
+        "eval", file, "--q", "0.1,0.2", "--qd", "1,-2", "--qdd", "3,4", "--json",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(spaced, tight);
+    // Unquoted, the shell splits `--q 0.1, 0.2` into `0.1,` and `0.2`: the same list.
+    let (ok, unquoted, err) = tendyn(&[
+        "eval", file, "--q", "0.1,", "0.2", "--qd", "1,", "-2", "--qdd", "3,", "4", "--json",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(unquoted, tight);
+    let (_, _, err) = run(&["eval", file, "--q", "0.1,x", "--qd", "0,0", "--qdd", "0,0"]);
+    assert!(err.contains("`x` is not a number"), "{err}");
+}
+
+#[test]
+fn a_missing_file_is_named_once() {
+    let (code, out, err) = run(&["check", "no/such/file.ron"]);
+    assert_eq!(code, Some(1));
+    assert!(out.is_empty());
+    assert_eq!(err.matches("no/such/file.ron").count(), 1, "{err}");
+}
+
+#[test]
+fn check_of_an_uncontrollable_routing_prints_what_it_implies_beside_the_error() {
+    let (code, out, err) = run(&["check", "tendyn/tests/ui/mechanisms/uncontrollable.ron"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("not controllable by tendons"), "{err}");
+    assert!(out.contains("what the routing implies"), "{out}");
+    assert!(
+        out.contains("structure matrix A") && out.contains("tension system E"),
+        "{out}"
+    );
+    // `T11` is reversed on `link1`: every tendon pulls it the negative way.
+    let link1 = out
+        .lines()
+        .find(|l| l.trim_start().starts_with("joint link1"))
+        .unwrap();
+    assert_eq!(link1.matches('-').count(), 3, "{link1}");
+}
+
+#[test]
+fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_open_ended.ron"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let model = tendyn_core::parse(&text).unwrap();
+    assert!(tendyn_core::transmission::segments_through_pulleys(&model).is_empty());
+    // T11's one segment runs in the base frame, in the plane z = 0, from drum1 to its exit.
+    let s = model.strands.iter().position(|s| s.name == "T11").unwrap();
+    let g = &model.strands[s].segments[0];
+    let (exit, d) = (g.to.rel, g.dir);
+    let on_line = |along: f64, aside: f64, z: f64| {
+        [
+            exit.x - d.x * along - d.y * aside,
+            exit.y - d.y * along + d.x * aside,
+            z,
+        ]
+    };
+    // Pins of 5 mm radius beside the segment's middle: 2 mm aside (cut), 8 mm aside (clear),
+    // and 2 mm aside but 10 mm out of its plane (clear).
+    let pins = [
+        ("cut", on_line(0.5 * g.length, 0.002, 0.0)),
+        ("clear", on_line(0.3 * g.length, 0.008, 0.0)),
+        ("above", on_line(0.7 * g.length, 0.002, 0.01)),
+    ];
+    let lines: String = pins
+        .iter()
+        .map(|(name, [x, y, z])| {
+            format!(
+                "        (name: \"{name}\", carrier: \"base\", at: Pose(origin: ({x:?}, {y:?}, {z:?}), rpy: (0.0, 0.0, 0.0)), radius: 0.005, fixed: true),\n"
+            )
+        })
+        .collect();
+    let text = text.replacen("    pulleys: [\n", &format!("    pulleys: [\n{lines}"), 1);
+    let model = tendyn_core::parse(&text).unwrap();
+    let crossings = tendyn_core::transmission::segments_through_pulleys(&model);
+    assert_eq!(crossings.len(), 1, "{crossings:?}");
+    let c = crossings[0];
+    assert_eq!(model.bodies[c.pulley].name, "cut");
+    assert_eq!(
+        (model.strands[c.strand].name.as_str(), c.segment),
+        ("T11", 0)
+    );
+    assert!((c.distance - 0.002).abs() < 1e-12, "{}", c.distance);
+    let dir = scratch_dir("tendyn_cli_crossing");
+    let file = dir.join("cut.ron");
+    std::fs::write(&file, &text).unwrap();
+    let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
+    assert!(ok, "a warning, not an error: {err}");
+    assert!(
+        out.contains(
+            "warning: segment T11#0 passes through pulley `cut`, 0.00200000 m from its centre"
+        ),
+        "{out}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -2,6 +2,7 @@
 //! Every JSON key is documented in `docs/outputs.md`.
 
 use serde_json::{json, Value};
+use tendyn_core::error::ImpliedSystem;
 use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
 use tendyn_core::spatial::Vec3;
 use tendyn_core::torque_range::static_torque_ranges;
@@ -19,19 +20,12 @@ fn v3(v: Vec3<f64>) -> Value {
 }
 
 fn unknown_name(m: &Model<f64>, u: &Unknown) -> String {
-    match u {
-        Unknown::Strand(s) => format!("tension {}", m.strands[*s].name),
-        Unknown::Explicit(k) => format!("tension {}", m.tendons[*k].name),
-        Unknown::Motor(k) => format!("torque {}", m.motors[*k].name),
-    }
+    let strands: Vec<&str> = m.strands.iter().map(|s| s.name.as_str()).collect();
+    u.label(&strands, &m.tendons, &m.motors)
 }
 
 fn row_name(m: &Model<f64>, r: &Row) -> String {
-    match r {
-        Row::Joint(j) => format!("joint {}", m.bodies[*j].name),
-        Row::Pulley(b) => format!("pulley {}", m.bodies[*b].name),
-        Row::Pretension(l) => format!("pretension {}", m.loops[*l].name),
-    }
+    r.label(&m.bodies, &m.loops)
 }
 
 /// A pulley's role as `check` names it.
@@ -155,6 +149,21 @@ pub fn check_text(m: &Model<f64>) -> String {
             number(o.radii[1])
         ));
     }
+    for c in tendyn_core::transmission::segments_through_pulleys(m) {
+        let radius = match m.bodies[c.pulley].kind {
+            BodyKind::Pulley { radius, .. } => radius,
+            BodyKind::Link { .. } => f64::NAN,
+        };
+        line(format!(
+            "  warning: segment {}#{} passes through pulley `{}`, {} m from its centre (radius \
+             {} m); route the tendon round it or move one of them",
+            m.strands[c.strand].name,
+            c.segment,
+            m.bodies[c.pulley].name,
+            number(c.distance),
+            number(radius)
+        ));
+    }
     line(format!(
         "  {} degrees of freedom, {} intermediate links, {} open-ended tendons, {} loops, {} motors",
         m.dof,
@@ -196,13 +205,9 @@ pub fn check_text(m: &Model<f64>) -> String {
             }
         }
     }
+    let system = implied_system(m);
     if !m.tendons.is_empty() {
-        line("structure matrix A (rows: joints; columns: tendons), Q = A T:".into());
-        let names: Vec<&str> = m.tendons.iter().map(|t| t.name.as_str()).collect();
-        line(format!("  {:<12} {}", "", names.join("  ")));
-        for (j, row) in m.structure_matrix().iter().enumerate() {
-            line(format!("  {:<12} {}", m.bodies[j].name, fmt_row(row)));
-        }
+        structure_lines(&mut line, &system);
         line(
             "static torque range, tendons alone without motors (tendons within floor and \
              max_tension, every other joint at zero generalized force):"
@@ -218,17 +223,7 @@ pub fn check_text(m: &Model<f64>) -> String {
             line(format!("  {:<12} {range}", m.bodies[j].name));
         }
     }
-    line("tension system E x = b (rows: balances; columns: unknowns):".into());
-    for (r, row) in m.system.rows.iter().zip(&m.system.matrix) {
-        line(format!("  {:<22} {}", row_name(m, r), fmt_row(row)));
-    }
-    let names: Vec<String> = m
-        .system
-        .unknowns
-        .iter()
-        .map(|u| unknown_name(m, u))
-        .collect();
-    line(format!("  unknowns: {}", names.join(", ")));
+    tension_system_lines(&mut line, &system);
     line(format!(
         "  condition number of E: {:.4}",
         m.system.condition
@@ -265,6 +260,67 @@ pub fn check_text(m: &Model<f64>) -> String {
         }
     }
     s
+}
+
+/// The model's tension system with its rows and columns named: what [`structure_lines`]
+/// and [`tension_system_lines`] print, as for a rejected routing.
+fn implied_system(m: &Model<f64>) -> ImpliedSystem {
+    ImpliedSystem {
+        rows: m.system.rows.iter().map(|r| row_name(m, r)).collect(),
+        unknowns: m
+            .system
+            .unknowns
+            .iter()
+            .map(|u| unknown_name(m, u))
+            .collect(),
+        matrix: m.system.matrix.clone(),
+        joints: m.dof,
+        tendons: m
+            .tendons
+            .iter()
+            .map(|t| (t.name.clone(), t.unknown))
+            .collect(),
+    }
+}
+
+/// The structure matrix `A`: `E`'s joint rows on the open-ended tendons' columns.
+fn structure_lines(line: &mut impl FnMut(String), s: &ImpliedSystem) {
+    line("structure matrix A (rows: joints; columns: tendons), Q = A T:".into());
+    // Each name over its column of `fmt_row`'s cells.
+    let names: Vec<String> = s
+        .tendons
+        .iter()
+        .map(|(name, _)| format!("{name:>11}"))
+        .collect();
+    line(format!("  {:<18}  {}", "", names.join("  ")));
+    for (label, row) in s.rows.iter().zip(&s.matrix).take(s.joints) {
+        let a: Vec<f64> = s.tendons.iter().map(|&(_, c)| row[c]).collect();
+        line(format!("  {label:<18} {}", fmt_row(&a)));
+    }
+}
+
+fn tension_system_lines(line: &mut impl FnMut(String), s: &ImpliedSystem) {
+    line("tension system E x = b (rows: balances; columns: unknowns):".into());
+    for (label, row) in s.rows.iter().zip(&s.matrix) {
+        line(format!("  {label:<22} {}", fmt_row(row)));
+    }
+    line(format!("  unknowns: {}", s.unknowns.join(", ")));
+}
+
+/// What `tendyn check` prints after the error of a rejected routing: the structure matrix
+/// and the tension system the routing implies, for finding what is wrong with it.
+pub fn implied_text(s: &ImpliedSystem) -> String {
+    let mut out = String::new();
+    let mut line = |t: String| {
+        out.push_str(&t);
+        out.push('\n');
+    };
+    line("what the routing implies (the mechanism is not valid):".into());
+    if !s.tendons.is_empty() {
+        structure_lines(&mut line, s);
+    }
+    tension_system_lines(&mut line, s);
+    out
 }
 
 fn fmt_row(r: &[f64]) -> String {

@@ -405,16 +405,40 @@ fn bearing<T: Real>(
 
 /// `Err` when a result is not finite although the inputs were: some intermediate value
 /// overflowed the scalar (a speed of 1e200 rad/s squares to infinity). The solver returns
-/// this error rather than a non-finite number.
-fn finite<'a, T: Numeric>(what: &str, values: impl IntoIterator<Item = &'a T>) -> Result<()> {
-    match values.into_iter().find(|x| !x.is_finite()) {
-        None => Ok(()),
-        Some(x) => Err(Error::State(format!(
-            "the {what} is {} at this state although every input is finite: an intermediate \
-             value overflowed (speeds, accelerations or sizes too large for the scalar)",
-            x.to_f64()
-        ))),
-    }
+/// this error rather than a non-finite number, and names the largest of the `inputs`
+/// (each a name and its values), which is almost always the one to blame.
+fn finite<'a, T: Numeric>(
+    what: &str,
+    values: impl IntoIterator<Item = &'a T>,
+    inputs: &[(&str, &[T])],
+) -> Result<()> {
+    let Some(x) = values.into_iter().find(|x| !x.is_finite()) else {
+        return Ok(());
+    };
+    let largest = inputs
+        .iter()
+        .flat_map(|(name, v)| {
+            v.iter()
+                .enumerate()
+                .map(move |(i, x)| (*name, i, x.to_f64()))
+        })
+        .fold(None, |best: Option<(&str, usize, f64)>, c| match best {
+            Some(b) if b.2.abs() >= c.2.abs() => Some(b),
+            _ => Some(c),
+        });
+    let blame = match largest {
+        Some((name, i, v)) => format!(
+            "; the largest input is {name}[{i}] = {v:e}: make it smaller (a real mechanism's \
+             speeds, accelerations and forces are many orders of magnitude below the scalar's \
+             range)"
+        ),
+        None => String::new(),
+    };
+    Err(Error::State(format!(
+        "the {what} came out {} at this state although every input is finite: an intermediate \
+         value overflowed the scalar{blame}",
+        x.to_f64()
+    )))
 }
 
 /// The runtime solver: the generic functions above with input checks, on numbers.
@@ -456,7 +480,11 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("qdd", qdd)?;
         let mut out = self.ws.zeros.clone();
         generalized_forces(self.model, q, qd, qdd, &mut self.ws, &mut out);
-        finite("generalized forces", &out)?;
+        finite(
+            "generalized forces",
+            &out,
+            &[("q", q), ("qd", qd), ("qdd", qdd)],
+        )?;
         Ok(out)
     }
 
@@ -464,7 +492,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
     pub fn mass_matrix(&mut self, q: &[T]) -> Result<Vec<Vec<T>>> {
         self.check_state("q", q)?;
         let m = mass_matrix(self.model, q, &mut self.ws);
-        finite("mass matrix", m.iter().flatten())?;
+        finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
         Ok(m)
     }
 
@@ -473,7 +501,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         let h = bias(self.model, q, qd, &mut self.ws);
-        finite("bias", &h)?;
+        finite("bias", &h, &[("q", q), ("qd", qd)])?;
         Ok(h)
     }
 
@@ -481,7 +509,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
     pub fn gravity(&mut self, q: &[T]) -> Result<Vec<T>> {
         self.check_state("q", q)?;
         let g = gravity(self.model, q, &mut self.ws);
-        finite("gravity", &g)?;
+        finite("gravity", &g, &[("q", q)])?;
         Ok(g)
     }
 
@@ -502,12 +530,18 @@ impl<'m, T: Numeric> Solver<'m, T> {
         tendon_tensions: &[T],
     ) -> Result<T> {
         self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
+        let inputs = [
+            ("q", q),
+            ("qd", qd),
+            ("motor_torques", motor_torques),
+            ("tendon_tensions", tendon_tensions),
+        ];
         let zero = T::from_f64(0.0);
         let model = self.model;
         let zeros = self.ws.zeros.clone();
         let mut c = zeros.clone();
         expanded_generalized_forces(model, q, qd, &zeros, true, true, &mut self.ws, &mut c);
-        finite("generalized forces", &c)?;
+        finite("generalized forces", &c, &inputs)?;
         // The bearings' friction, each body's part on its own: it may cancel gravity.
         let mut torques = vec![zero; model.bodies.len()];
         friction::bearing_torques(model, qd, None, &mut torques);
@@ -533,10 +567,10 @@ impl<'m, T: Numeric> Solver<'m, T> {
                 motors + tendons + c[j].abs() + friction
             })
             .collect();
-        finite("right-hand side of forward dynamics", &rhs)?;
+        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
         let y = self.solve_mass_matrix(q, &rhs)?;
         // (`max` would pass over a NaN.)
-        finite("forward-dynamics term scale", &y)?;
+        finite("forward-dynamics term scale", &y, &inputs)?;
         Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
     }
 
@@ -550,11 +584,17 @@ impl<'m, T: Numeric> Solver<'m, T> {
         tendon_tensions: &[T],
     ) -> Result<Vec<T>> {
         self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
+        let inputs = [
+            ("q", q),
+            ("qd", qd),
+            ("motor_torques", motor_torques),
+            ("tendon_tensions", tendon_tensions),
+        ];
         let model = self.model;
         let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
-        finite("right-hand side of forward dynamics", &rhs)?;
+        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
         let qdd = self.solve_mass_matrix(q, &rhs)?;
-        finite("joint acceleration", &qdd)?;
+        finite("joint acceleration", &qdd, &inputs)?;
         Ok(qdd)
     }
 
@@ -597,7 +637,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
     /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
     fn solve_mass_matrix(&mut self, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
         let m = mass_matrix(self.model, q, &mut self.ws);
-        finite("mass matrix", m.iter().flatten())?;
+        finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
         linalg::cholesky_solve(&m, rhs).ok_or_else(|| {
             Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
@@ -613,27 +653,40 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         self.check_state("qdd", qdd)?;
-        let mut r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, tension::distribute)?;
+        let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        // Tensions that overflowed are reported before the distribution sees them, with the
+        // input to blame.
+        let distribute = |model: &Model<T>, x: &mut [T]| {
+            finite("tension or motor torque", &*x, &inputs)?;
+            tension::distribute(model, x)
+        };
+        let mut r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, distribute)?;
         r.sticking = friction::at_rest(self.model, qd);
-        finite("generalized forces", &r.generalized_forces)?;
-        finite("tension or motor torque", &r.unknowns)?;
-        finite("pulley moment", r.pulley_demands.iter().map(|(_, v)| v))?;
+        finite("generalized forces", &r.generalized_forces, &inputs)?;
+        finite("tension or motor torque", &r.unknowns, &inputs)?;
+        finite(
+            "pulley moment",
+            r.pulley_demands.iter().map(|(_, v)| v),
+            &inputs,
+        )?;
         finite(
             "bearing friction",
             r.bearing_friction.iter().map(|(_, v)| v),
+            &inputs,
         )?;
         if let Some(s) = &r.segment_tensions {
-            finite("segment tension", s.iter().flatten())?;
+            finite("segment tension", s.iter().flatten(), &inputs)?;
         }
         let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| f.to_array().into_iter().chain(n.to_array());
         if let Some(b) = &r.bearings {
             finite(
                 "bearing force",
                 &b.iter().flat_map(wrench).collect::<Vec<T>>(),
+                &inputs,
             )?;
         }
         if let Some(b) = &r.base_reaction {
-            finite("base reaction", &wrench(b).collect::<Vec<T>>())?;
+            finite("base reaction", &wrench(b).collect::<Vec<T>>(), &inputs)?;
         }
         Ok(r)
     }

@@ -46,6 +46,9 @@ pub enum Error {
         item: String,
         at: Location,
         problem: String,
+        /// The tension system the routing implies, where it was derived before the routing
+        /// failed its checks (rank, controllability): `check` prints it beside the error.
+        implied: Option<Box<ImpliedSystem>>,
     },
 
     /// A state handed to the solver is unusable.
@@ -61,11 +64,36 @@ pub enum Error {
     Singular(String),
 }
 
+/// The tension system `E x = b` of a rejected routing, named for a person to read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImpliedSystem {
+    /// What each row balances (`joint link1`, `pulley p3`, `pretension belt`); the joints
+    /// come first.
+    pub rows: Vec<String>,
+    /// Each column's unknown (`tension T1`, `tension belt/ccw`, `torque motor1`).
+    pub unknowns: Vec<String>,
+    /// `E`, row-major.
+    pub matrix: Vec<Vec<f64>>,
+    /// The mechanism's joints: the structure matrix `A` is `E`'s first `joints` rows on the
+    /// columns of the `tendons`.
+    pub joints: usize,
+    /// Each open-ended tendon's name and column, in the file's order.
+    pub tendons: Vec<(String, usize)>,
+}
+
 impl Error {
     /// The name of the offending item, when the error is about one.
     pub fn item(&self) -> Option<&str> {
         match self {
             Error::Invalid { item, .. } | Error::Routing { item, .. } => Some(item),
+            _ => None,
+        }
+    }
+
+    /// The tension system a rejected routing implies, when it was derived.
+    pub fn implied(&self) -> Option<&ImpliedSystem> {
+        match self {
+            Error::Routing { implied, .. } => implied.as_deref(),
             _ => None,
         }
     }

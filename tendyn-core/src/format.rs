@@ -8,11 +8,40 @@ use serde::Deserialize;
 
 /// A number, or the name of a runtime parameter (declared in `parameters`) where the
 /// field allows one: masses, centres of mass, inertias, gravity, the external wrench.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(untagged)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Num {
+    /// A number, in the field's unit.
     Value(f64),
+    /// The name of a declared parameter.
     Param(String),
+}
+
+/// Read by hand rather than as an untagged enum: serde's untagged error names the enum
+/// ("did not match any variant of untagged enum Num") and points past the value, where a
+/// visitor's error says what the field takes, at the value.
+impl<'de> Deserialize<'de> for Num {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = Num;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number or the name of a declared parameter (in quotes)")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<Num, E> {
+                Ok(Num::Value(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<Num, E> {
+                Ok(Num::Value(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<Num, E> {
+                Ok(Num::Value(v as f64))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<Num, E> {
+                Ok(Num::Param(v.to_string()))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 impl Default for Num {

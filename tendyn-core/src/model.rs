@@ -197,6 +197,28 @@ pub enum Row {
     Pretension(usize),
 }
 
+impl Unknown {
+    /// How reports name the unknown: `tension T1`, `tension belt/ccw`, `torque motor1`.
+    pub fn label(&self, strand_names: &[&str], tendons: &[Tendon], motors: &[Motor]) -> String {
+        match *self {
+            Unknown::Strand(s) => format!("tension {}", strand_names[s]),
+            Unknown::Explicit(k) => format!("tension {}", tendons[k].name),
+            Unknown::Motor(k) => format!("torque {}", motors[k].name),
+        }
+    }
+}
+
+impl Row {
+    /// How reports name the balance: `joint link1`, `pulley p3`, `pretension belt`.
+    pub fn label<T>(&self, bodies: &[Body<T>], loops: &[Loop]) -> String {
+        match *self {
+            Row::Joint(j) => format!("joint {}", bodies[j].name),
+            Row::Pulley(b) => format!("pulley {}", bodies[b].name),
+            Row::Pretension(l) => format!("pretension {}", loops[l].name),
+        }
+    }
+}
+
 /// The linear system `E x = b` the unknown tensions and torques satisfy (the paper's
 /// `A T = B`, Eqs. 33 and 35, extended by motors and loops), with what its solution needs.
 #[derive(Clone, Debug)]

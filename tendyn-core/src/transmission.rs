@@ -202,6 +202,7 @@ impl Routing<'_> {
                      body or add an idler on the joint axis between them",
                     self.pulleys[p].name, qname
                 ),
+                implied: None,
             }),
             _ => Err(Error::Routing {
                 item: route.name.clone(),
@@ -210,6 +211,7 @@ impl Routing<'_> {
                     "pulley `{}` and {} sit on the same joint axis: a segment cannot run along it",
                     self.pulleys[p].name, qname
                 ),
+                implied: None,
             }),
         }
     }
@@ -274,6 +276,7 @@ impl Routing<'_> {
                 "segment from pulley `{}` to {}: {problem}",
                 self.pulleys[p].name, qname
             ),
+            implied: None,
         };
         let scale = 1.0 + norm(cq - cp) + rp + rq;
         // Validation keeps every length within its range (format.md §12), so this only
@@ -505,6 +508,7 @@ fn store_coupling(
                      (check `crossed` and the radii)",
                     routing.pulleys[p].name, c.joints, old.joints
                 ),
+                implied: None,
             });
         }
     }
@@ -614,6 +618,112 @@ pub fn overlapping_pulleys(bodies: &[Body<f64>]) -> Vec<Overlap> {
         }
     }
     found.sort_by_key(|o| (o.first, o.second));
+    found
+}
+
+/// A straight segment of tendon that passes through a pulley it does not wrap: a routing
+/// no real mechanism can have (the tendon would cut the pulley), which the model accepts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// The strand and the segment's index in it.
+    pub strand: usize,
+    pub segment: usize,
+    /// The pulley (body index) it passes through.
+    pub pulley: usize,
+    /// Where it passes the pulley's centre, m: the distance within its plane.
+    pub distance: f64,
+}
+
+/// Where a pulley's centre and axis are in `frame` when both are fixed there: the pulley is
+/// carried by `frame`, or by a link whose joint is in `frame` and on whose axis the pulley
+/// sits (the same `q_j = 0` convention as the acting angles).
+fn pulley_in(
+    bodies: &[Body<f64>],
+    b: usize,
+    frame: Option<usize>,
+) -> Option<(Vec3<f64>, Vec3<f64>)> {
+    let pre = &bodies[b].pre;
+    let (centre, axis) = (pre.translation, pre.rotation.column(2));
+    if bodies[b].parent == frame {
+        return Some((centre, axis));
+    }
+    let link = bodies[b].parent?;
+    if bodies[link].parent != frame
+        || !matches!(bodies[link].kind, crate::model::BodyKind::Link { .. })
+    {
+        return None;
+    }
+    // The pulley in `frame` at the joint's offset, and whether it lies on the joint axis
+    // (the `z` axis of the link's `pre`), where the joint angle does not move it.
+    let joint = &bodies[link].pre;
+    let t = body_transform(&bodies[link], bodies[link].offset);
+    let c = t.apply(centre);
+    let from_axis = (c - joint.translation).cross(joint.rotation.column(2));
+    let on_axis = norm(from_axis) <= 1e-9 * (1.0 + norm(c));
+    on_axis.then(|| (c, t.rotation.mul_vec(axis)))
+}
+
+/// Every segment that passes through the disc of a pulley fixed in the segment's frame
+/// ([`Crossing`]): it crosses the pulley's plane, or runs in it, closer to the centre than
+/// `r (1 − 1e-9)`. The pulleys a segment leaves and reaches touch it at their rims and are
+/// not counted.
+pub fn segments_through_pulleys(model: &crate::Model<f64>) -> Vec<Crossing> {
+    let bodies = &model.bodies;
+    let mut found = Vec::new();
+    for (s, strand) in model.strands.iter().enumerate() {
+        for (k, g) in strand.segments.iter().enumerate() {
+            // The segment's end points in its frame.
+            let point = |c: &crate::model::Contact<f64>| match c.body {
+                None => Some(c.rel),
+                Some(b) => pulley_in(bodies, b, g.frame).map(|(centre, _)| centre + c.rel),
+            };
+            let (Some(from), Some(to)) = (point(&g.from), point(&g.to)) else {
+                continue;
+            };
+            let d = to - from;
+            let length = norm(d);
+            for (b, body) in bodies.iter().enumerate() {
+                let crate::model::BodyKind::Pulley { radius, .. } = body.kind else {
+                    continue;
+                };
+                if g.from.body == Some(b) || g.to.body == Some(b) {
+                    continue;
+                }
+                let Some((c, n)) = pulley_in(bodies, b, g.frame) else {
+                    continue;
+                };
+                let scale = 1.0 + length + norm(c - from);
+                let (h0, h1) = (n.dot(from - c), n.dot(to - c));
+                // The point of the segment nearest the centre within the plane: where it
+                // crosses the plane, or (lying in the plane) its nearest point.
+                let nearest = if (h0 - h1).abs() > 1e-12 * scale {
+                    let t = h0 / (h0 - h1);
+                    if !(0.0..=1.0).contains(&t) {
+                        continue;
+                    }
+                    from + d.scale(t)
+                } else if h0.abs() <= 1e-9 * scale {
+                    let t = if length > 0.0 {
+                        ((c - from).dot(d) / (length * length)).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    from + d.scale(t)
+                } else {
+                    continue;
+                };
+                let distance = norm(nearest - c);
+                if distance < radius * (1.0 - 1e-9) {
+                    found.push(Crossing {
+                        strand: s,
+                        segment: k,
+                        pulley: b,
+                        distance,
+                    });
+                }
+            }
+        }
+    }
     found
 }
 

@@ -1,7 +1,7 @@
 //! RON file → validated [`Model`], or an error that names the item, its line and what
 //! would fix it. Nothing is returned unless every check passes.
 
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, ImpliedSystem, Location, Result};
 use crate::format::{
     Dh, FrictionSpec, InertiaSpec, LinkSpec, MechanismFile, MotorSite, Num, Objective, Placement,
     PulleySpec, Turn,
@@ -30,12 +30,19 @@ pub fn load(path: impl AsRef<std::path::Path>) -> Result<Model<f64>> {
 /// editors write) is skipped; lines and columns are counted after it.
 pub fn parse(text: &str) -> Result<Model<f64>> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let options =
-        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let file: MechanismFile = options.from_str(text).map_err(|e| syntax_error(text, &e))?;
+    let file = read(text)?;
     let mut v = Validator::new(text);
     v.params = v.parameters(&file)?;
     v.model(&file)
+}
+
+/// The file as written, read but not validated (RON syntax errors only). A leading
+/// byte-order mark is skipped, as [`parse`] does.
+pub fn read(text: &str) -> Result<MechanismFile> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    options.from_str(text).map_err(|e| syntax_error(text, &e))
 }
 
 /// A RON error at the token it is about (ron's span may start on the whitespace before
@@ -489,6 +496,7 @@ impl<'a> Validator<'a> {
             item: item.to_string(),
             at: self.locate(item),
             problem: problem.into(),
+            implied: None,
         }
     }
 
@@ -668,7 +676,18 @@ impl<'a> Validator<'a> {
 
     /// Declared parameters: unique, finite, and every reference to one names a declared
     /// one; a declared parameter nothing uses is an error too.
+    /// The parameters, checked first (every later check reads their values). The
+    /// mechanism's name is checked before them: errors about the whole file name it.
     fn parameters(&self, f: &MechanismFile) -> Result<Vec<(String, f64)>> {
+        if f.name.trim().is_empty() {
+            return Err(Error::Invalid {
+                item: "the mechanism".into(),
+                at: self.locate(&f.name),
+                problem: "its `name` is empty; give it one (it names the generated code and \
+                          every report)"
+                    .into(),
+            });
+        }
         let mut params: Vec<(String, f64)> = Vec::new();
         for p in &f.parameters {
             if params.iter().any(|(n, _)| *n == p.name) {
@@ -727,12 +746,21 @@ impl<'a> Validator<'a> {
             .chain(f.loops.iter().map(|l| &l.name))
             .chain(f.motors.iter().map(|m| &m.name));
         for name in names {
-            if name.is_empty() || name.contains('/') {
+            if name.is_empty() {
+                return Err(Error::Invalid {
+                    item: "an item".into(),
+                    at: self.locate(name),
+                    problem: "its `name` is empty; every link, pulley, tendon, loop and motor \
+                              needs a name of its own"
+                        .into(),
+                });
+            }
+            if name.contains('/') {
                 return Err(self.invalid(
                     name,
                     format!(
-                        "the name `{name}` cannot be used: names must be non-empty and must not \
-                         contain `/` (it separates a loop's name from its sides, `loop/ccw`)"
+                        "the name `{name}` cannot be used: names must not contain `/` (it \
+                         separates a loop's name from its sides, `loop/ccw`)"
                     ),
                 ));
             }
@@ -1700,219 +1728,305 @@ impl<'a> Validator<'a> {
                 e[row][col] = 0.5;
             }
         }
-        let what = |u: &Unknown| match u {
-            Unknown::Strand(s) => format!("tension `{}`", strands[*s].0),
-            Unknown::Explicit(k) => format!("tension `{}`", tendons[*k].name),
-            Unknown::Motor(k) => format!("motor `{}`", motors[*k].name),
+        // A routing that fails the checks below is reported with the system it implies, so
+        // that `check` can show what the routing does (the closure holds the checks).
+        let strand_names: Vec<&str> = strands.iter().map(|(name, _)| name.as_str()).collect();
+        let implied = ImpliedSystem {
+            rows: rows.iter().map(|r| r.label(bodies, loops)).collect(),
+            unknowns: unknowns
+                .iter()
+                .map(|u| u.label(&strand_names, tendons, motors))
+                .collect(),
+            matrix: e.clone(),
+            joints: n,
+            tendons: tendons
+                .iter()
+                .map(|t| (t.name.clone(), t.unknown))
+                .collect(),
         };
-        let rows_len = rows.len();
-        if m < rows_len {
-            return Err(self.routing(
-                &f.name,
-                format!(
-                    "under-actuated: {rows_len} balances (one per joint, driving pulley and loop) \
-                     but only {m} tensions and motor torques to satisfy them; add motors or tendons"
-                ),
-            ));
-        }
-        // The item an unknown belongs to: its tendon, loop or motor.
-        let item_of = |u: &Unknown| -> String {
-            match u {
-                Unknown::Strand(s) => strands[*s].0.split('/').next().unwrap_or("").to_string(),
-                Unknown::Explicit(k) => tendons[*k].name.clone(),
-                Unknown::Motor(k) => motors[*k].name.clone(),
-            }
-        };
-        // Numbers too large for the geometry overflow here; the SVD must not see them.
-        if let Some(col) = (0..m).find(|&c| e.iter().any(|row| !row[c].is_finite())) {
-            return Err(self.routing(
-                &item_of(&unknowns[col]),
-                format!(
-                    "the structure matrix column of {} is not finite ({:?}): its geometry \
-                     overflows; check the sizes and units of the numbers along it",
-                    what(&unknowns[col]),
-                    e.iter().map(|row| row[col]).collect::<Vec<_>>()
-                ),
-            ));
-        }
-        let dm = DMatrix::from_fn(rows_len, m, |i, j| e[i][j]);
-        let svd = dm.clone().svd(false, false);
-        let sv = &svd.singular_values;
-        let smax = sv.iter().cloned().fold(0.0, f64::max);
-        let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
-        // What a row balances, and the item that names it.
-        let row_item = |r: &Row| -> (String, &str) {
-            match *r {
-                Row::Joint(j) => (format!("joint `{}`", f.links[j].name), &f.links[j].name),
-                Row::Pulley(b) => (
-                    format!("driving pulley `{}`", bodies[b].name),
-                    &bodies[b].name,
-                ),
-                Row::Pretension(k) => (
-                    format!("the pretension of loop `{}`", loops[k].name),
-                    &loops[k].name,
-                ),
-            }
-        };
-        if !above(smin, 1e-10 * smax) {
-            let values = sv.as_slice();
-            let row_norm = |i: usize| e[i].iter().map(|x| x * x).sum::<f64>().sqrt();
-            // A row nothing acts on (structure entries are radii in metres, motor and
-            // pretension entries are of order one: 1e-12 is nothing).
-            if let Some(i) = (0..rows_len).find(|&i| !above(row_norm(i), 1e-12)) {
-                let (what, item) = row_item(&rows[i]);
+        let checked = || -> Result<TensionSystem<f64>> {
+            let what = |u: &Unknown| match u {
+                Unknown::Strand(s) => format!("tension `{}`", strands[*s].0),
+                Unknown::Explicit(k) => format!("tension `{}`", tendons[*k].name),
+                Unknown::Motor(k) => format!("motor `{}`", motors[*k].name),
+            };
+            let rows_len = rows.len();
+            if m < rows_len {
                 return Err(self.routing(
-                    item,
+                    &f.name,
                     format!(
-                        "the structure matrix does not have full row rank: {what} is acted on by \
-                         no tendon or motor (its row is zero), so nothing can balance it; route a \
-                         tendon across it or add a motor on it"
+                        "under-actuated: {rows_len} balances (one per joint, driving pulley and loop) \
+                         but only {m} tensions and motor torques to satisfy them; add motors or tendons"
                     ),
                 ));
             }
-            // Rows that combine to (numerically) zero: the left singular vectors of the
-            // vanishing singular values.
-            let full = dm.clone().svd(true, false);
-            let fsv = &full.singular_values;
-            let involved: Vec<usize> = match &full.u {
-                Some(u) => (0..rows_len)
-                    .filter(|&i| {
-                        (0..fsv.len())
-                            .any(|k| !above(fsv[k], 1e-10 * smax) && u[(i, k)].abs() > 1e-6)
-                    })
-                    .collect(),
-                None => Vec::new(),
+            // The item an unknown belongs to: its tendon, loop or motor.
+            let item_of = |u: &Unknown| -> String {
+                match u {
+                    Unknown::Strand(s) => strands[*s].0.split('/').next().unwrap_or("").to_string(),
+                    Unknown::Explicit(k) => tendons[*k].name.clone(),
+                    Unknown::Motor(k) => motors[*k].name.clone(),
+                }
             };
-            match involved.as_slice() {
-                [i] => {
-                    let (what, item) = row_item(&rows[*i]);
-                    return Err(self.routing(
-                        item,
-                        format!(
-                            "the structure matrix does not have full row rank (singular values \
-                             {values:?}): {what} is acted on so much more weakly than the others \
-                             (its row has norm {:.3e}, the matrix {smax:.3e}) that it is \
-                             numerically not acted on; check the sizes and units of the radii and \
-                             structure entries",
-                            row_norm(*i)
-                        ),
-                    ));
-                }
-                [first, ..] => {
-                    let names: Vec<String> =
-                        involved.iter().map(|&i| row_item(&rows[i]).0).collect();
-                    return Err(self.routing(
-                        row_item(&rows[*first]).1,
-                        format!(
-                            "the structure matrix does not have full row rank (singular values \
-                             {values:?}): the balances of {} are not independent (every tendon \
-                             and motor acts on them in the same proportions), so they cannot be \
-                             driven separately; route a tendon over one of them with a different \
-                             radius or turn, or add a motor",
-                            names.join(" and ")
-                        ),
-                    ));
-                }
-                [] => {}
+            // Numbers too large for the geometry overflow here; the SVD must not see them.
+            if let Some(col) = (0..m).find(|&c| e.iter().any(|row| !row[c].is_finite())) {
+                return Err(self.routing(
+                    &item_of(&unknowns[col]),
+                    format!(
+                        "the structure matrix column of {} is not finite ({:?}): its geometry \
+                         overflows; check the sizes and units of the numbers along it",
+                        what(&unknowns[col]),
+                        e.iter().map(|row| row[col]).collect::<Vec<_>>()
+                    ),
+                ));
             }
-            return Err(self.routing(
-                &f.name,
-                format!(
-                    "the structure matrix does not have full row rank (singular values {values:?}): \
-                     some joint or driving pulley cannot be balanced independently of the others; \
-                     route a tendon over it with a different radius or turn, or add a motor"
-                ),
-            ));
-        }
-        let (pseudo_inverse, null_space) = linalg::pseudo_inverse_and_null_space(&e);
-        // Only open-ended tendons may be redundant: motors and loop sides are determined.
-        let is_tendon = |u: &Unknown| {
-            matches!(u, Unknown::Explicit(_))
-                || matches!(u, Unknown::Strand(s) if tendons.iter().any(|t| t.strand == Some(*s)))
-        };
-        for v in &null_space {
-            let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-            for (u, x) in unknowns.iter().zip(v) {
-                if !is_tendon(u) && x.abs() > 1e-9 * scale {
-                    return Err(self.routing(
-                        &item_of(u),
-                        format!(
-                            "{} is not determined by the dynamics (it can trade against the \
-                             tendons' tensions); a motor or loop must not share its joint with \
-                             redundant tendons this way",
-                            what(u)
-                        ),
-                    ));
+            let dm = DMatrix::from_fn(rows_len, m, |i, j| e[i][j]);
+            let svd = dm.clone().svd(false, false);
+            let sv = &svd.singular_values;
+            let smax = sv.iter().cloned().fold(0.0, f64::max);
+            let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
+            // What a row balances, and the item that names it.
+            let row_item = |r: &Row| -> (String, &str) {
+                match *r {
+                    Row::Joint(j) => (format!("joint `{}`", f.links[j].name), &f.links[j].name),
+                    Row::Pulley(b) => (
+                        format!("driving pulley `{}`", bodies[b].name),
+                        &bodies[b].name,
+                    ),
+                    Row::Pretension(k) => (
+                        format!("the pretension of loop `{}`", loops[k].name),
+                        &loops[k].name,
+                    ),
                 }
-            }
-        }
-        let tendon_cols: Vec<usize> = (0..m).filter(|&c| is_tendon(&unknowns[c])).collect();
-        let positive_null = if tendon_cols.is_empty() {
-            None
-        } else if null_space.is_empty() {
-            return Err(self.routing(
-                &f.name,
-                "not controllable by tendons: as many tendon tensions as balances, so the \
-                 dynamics fixes every tension and some must push; an open-ended routing needs at \
-                 least one tendon more than it has joints to drive",
-            ));
-        } else if let Some(v) = positive_null_vector(&null_space, &tendon_cols) {
-            Some(v)
-        } else {
-            // A balance that every tendon acting on it pulls the same way: the other unknowns
-            // are fixed by the dynamics (checked above), so no taut tensions can meet it.
-            let one_sided = (0..rows_len).find_map(|i| {
-                let scale = tendon_cols
-                    .iter()
-                    .fold(0.0f64, |a, &c| a.max(e[i][c].abs()));
-                let acting: Vec<usize> = tendon_cols
-                    .iter()
-                    .copied()
-                    .filter(|&c| e[i][c].abs() > 1e-9 * scale)
-                    .collect();
-                let sign = acting.first().map(|&c| e[i][c].signum())?;
-                acting
-                    .iter()
-                    .all(|&c| e[i][c].signum() == sign)
-                    .then_some((i, sign, acting))
-            });
-            return Err(match one_sided {
-                Some((i, sign, acting)) => {
+            };
+            if !above(smin, 1e-10 * smax) {
+                let values = sv.as_slice();
+                let row_norm = |i: usize| e[i].iter().map(|x| x * x).sum::<f64>().sqrt();
+                // A row nothing acts on (structure entries are radii in metres, motor and
+                // pretension entries are of order one: 1e-12 is nothing).
+                if let Some(i) = (0..rows_len).find(|&i| !above(row_norm(i), 1e-12)) {
                     let (what, item) = row_item(&rows[i]);
-                    let names: Vec<String> = acting
-                        .iter()
-                        .map(|&c| format!("`{}`", item_of(&unknowns[c])))
-                        .collect();
-                    self.routing(
+                    return Err(self.routing(
                         item,
                         format!(
-                            "not controllable by tendons: every tendon acting on {what} ({}) \
-                             pulls it the same way ({} generalized force per newton), so \
-                             balancing it needs one of them to push (the structure matrix has no \
-                             strictly positive null vector); reverse the turn of one of them \
-                             round it, or route another tendon round it the other way",
-                            names.join(", "),
-                            if sign > 0.0 { "positive" } else { "negative" }
+                            "the structure matrix does not have full row rank: {what} is acted on by \
+                             no tendon or motor (its row is zero), so nothing can balance it; route a \
+                             tendon across it or add a motor on it"
                         ),
-                    )
+                    ));
                 }
-                None => self.routing(
+                // Rows that combine to (numerically) zero: the left singular vectors of the
+                // vanishing singular values.
+                let full = dm.clone().svd(true, false);
+                let fsv = &full.singular_values;
+                let involved: Vec<usize> = match &full.u {
+                    Some(u) => (0..rows_len)
+                        .filter(|&i| {
+                            (0..fsv.len())
+                                .any(|k| !above(fsv[k], 1e-10 * smax) && u[(i, k)].abs() > 1e-6)
+                        })
+                        .collect(),
+                    None => Vec::new(),
+                };
+                match involved.as_slice() {
+                    [i] => {
+                        let (what, item) = row_item(&rows[*i]);
+                        return Err(self.routing(
+                            item,
+                            format!(
+                                "the structure matrix does not have full row rank (singular values \
+                                 {values:?}): {what} is acted on so much more weakly than the others \
+                                 (its row has norm {:.3e}, the matrix {smax:.3e}) that it is \
+                                 numerically not acted on; check the sizes and units of the radii and \
+                                 structure entries",
+                                row_norm(*i)
+                            ),
+                        ));
+                    }
+                    [first, ..] => {
+                        let names: Vec<String> =
+                            involved.iter().map(|&i| row_item(&rows[i]).0).collect();
+                        return Err(self.routing(
+                            row_item(&rows[*first]).1,
+                            format!(
+                                "the structure matrix does not have full row rank (singular values \
+                                 {values:?}): the balances of {} are not independent (every tendon \
+                                 and motor acts on them in the same proportions), so they cannot be \
+                                 driven separately; route a tendon over one of them with a different \
+                                 radius or turn, or add a motor",
+                                names.join(" and ")
+                            ),
+                        ));
+                    }
+                    [] => {}
+                }
+                return Err(self.routing(
                     &f.name,
-                    "not controllable by tendons: no combination of tensions that leaves every \
-                     joint balanced keeps all tendons taut (the structure matrix has no strictly \
-                     positive null vector); reverse the turn of a tendon on a joint where all \
-                     tendons pull the same way",
-                ),
-            });
+                    format!(
+                        "the structure matrix does not have full row rank (singular values {values:?}): \
+                         some joint or driving pulley cannot be balanced independently of the others; \
+                         route a tendon over it with a different radius or turn, or add a motor"
+                    ),
+                ));
+            }
+            let (pseudo_inverse, null_space) = linalg::pseudo_inverse_and_null_space(&e);
+            // Only open-ended tendons may be redundant: motors and loop sides are determined.
+            let is_tendon = |u: &Unknown| {
+                matches!(u, Unknown::Explicit(_))
+                    || matches!(u, Unknown::Strand(s) if tendons.iter().any(|t| t.strand == Some(*s)))
+            };
+            for v in &null_space {
+                let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                for (u, x) in unknowns.iter().zip(v) {
+                    if !is_tendon(u) && x.abs() > 1e-9 * scale {
+                        return Err(self.routing(
+                            &item_of(u),
+                            format!(
+                                "{} is not determined by the dynamics (it can trade against the \
+                                 tendons' tensions); a motor or loop must not share its joint with \
+                                 redundant tendons this way",
+                                what(u)
+                            ),
+                        ));
+                    }
+                }
+            }
+            let tendon_cols: Vec<usize> = (0..m).filter(|&c| is_tendon(&unknowns[c])).collect();
+            let positive_null = if tendon_cols.is_empty() {
+                None
+            } else if null_space.is_empty() {
+                return Err(self.routing(
+                    &f.name,
+                    "not controllable by tendons: as many tendon tensions as balances, so the \
+                     dynamics fixes every tension and some must push; an open-ended routing needs at \
+                     least one tendon more than it has joints to drive",
+                ));
+            } else if let Some(v) = positive_null_vector(&null_space, &tendon_cols) {
+                Some(v)
+            } else {
+                // A balance that every tendon acting on it pulls the same way: the other unknowns
+                // are fixed by the dynamics (checked above), so no taut tensions can meet it.
+                let one_sided = (0..rows_len).find_map(|i| {
+                    let scale = tendon_cols
+                        .iter()
+                        .fold(0.0f64, |a, &c| a.max(e[i][c].abs()));
+                    let acting: Vec<usize> = tendon_cols
+                        .iter()
+                        .copied()
+                        .filter(|&c| e[i][c].abs() > 1e-9 * scale)
+                        .collect();
+                    let sign = acting.first().map(|&c| e[i][c].signum())?;
+                    acting
+                        .iter()
+                        .all(|&c| e[i][c].signum() == sign)
+                        .then_some((i, sign, acting))
+                });
+                return Err(match one_sided {
+                    Some((i, sign, acting)) => {
+                        let (what, item) = row_item(&rows[i]);
+                        let names: Vec<String> = acting
+                            .iter()
+                            .map(|&c| format!("`{}`", item_of(&unknowns[c])))
+                            .collect();
+                        self.routing(
+                            item,
+                            format!(
+                                "not controllable by tendons: every tendon acting on {what} ({}) \
+                                 pulls it the same way ({} generalized force per newton), so \
+                                 balancing it needs one of them to push (the structure matrix has no \
+                                 strictly positive null vector); reverse the turn of one of them \
+                                 round it, or route another tendon round it the other way",
+                                names.join(", "),
+                                if sign > 0.0 { "positive" } else { "negative" }
+                            ),
+                        )
+                    }
+                    None => {
+                        let other_cols: Vec<usize> =
+                            (0..m).filter(|c| !tendon_cols.contains(c)).collect();
+                        match one_sided_combination(&e, &tendon_cols, &other_cols) {
+                            Some(y) => {
+                                // Named at the balance that weighs most in the combination.
+                                let lead = (0..rows_len).fold(0, |b, r| {
+                                    if y[r].abs() > y[b].abs() {
+                                        r
+                                    } else {
+                                        b
+                                    }
+                                });
+                                let scale = y[lead].abs();
+                                let combination: Vec<String> = (0..rows_len)
+                                    .filter(|&r| y[r].abs() > 1e-9 * scale)
+                                    .map(|r| {
+                                        format!("{:+.3}·{}", y[r] / scale, row_item(&rows[r]).0)
+                                    })
+                                    .collect();
+                                let force =
+                                    |c: usize| (0..rows_len).map(|r| y[r] * e[r][c]).sum::<f64>();
+                                let largest = tendon_cols
+                                    .iter()
+                                    .fold(0.0f64, |a, &c| a.max(force(c).abs()));
+                                let (pulling, idle): (Vec<usize>, Vec<usize>) = tendon_cols
+                                    .iter()
+                                    .partition(|&&c| force(c) > 1e-9 * largest);
+                                let names = |cols: &[usize]| {
+                                    cols.iter()
+                                        .map(|&c| format!("`{}`", item_of(&unknowns[c])))
+                                        .collect::<Vec<_>>()
+                                        .join(", ")
+                                };
+                                let idle = match idle.len() {
+                                    0 => String::new(),
+                                    1 => format!("; {} does not act on it", names(&idle)),
+                                    _ => format!("; {} do not act on it", names(&idle)),
+                                };
+                                self.routing(
+                                    row_item(&rows[lead]).1,
+                                    format!(
+                                        "not controllable by tendons: on the combination {} of \
+                                         balances every tendon pulls the same way ({}{idle}), so \
+                                         no taut tensions balance it in the other direction (the \
+                                         structure matrix has no strictly positive null vector); \
+                                         route a tendon that pulls the other way on it, e.g. \
+                                         reverse the turn of one of them round {}",
+                                        combination.join(" "),
+                                        names(&pulling),
+                                        row_item(&rows[lead]).0
+                                    ),
+                                )
+                            }
+                            None => self.routing(
+                                &f.name,
+                                "not controllable by tendons: no combination of tensions that \
+                                 leaves every joint balanced keeps all tendons taut (the \
+                                 structure matrix has no strictly positive null vector); reverse \
+                                 the turn of a tendon on a joint where all tendons pull the same \
+                                 way",
+                            ),
+                        }
+                    }
+                });
+            };
+            Ok(TensionSystem {
+                unknowns,
+                rows,
+                matrix: e,
+                pseudo_inverse,
+                null_space,
+                positive_null,
+                condition: smax / smin,
+            })
         };
-        Ok(TensionSystem {
-            unknowns,
-            rows,
-            matrix: e,
-            pseudo_inverse,
-            null_space,
-            positive_null,
-            condition: smax / smin,
+        checked().map_err(|err| match err {
+            Error::Routing {
+                item, at, problem, ..
+            } => Error::Routing {
+                item,
+                at,
+                problem,
+                implied: Some(Box::new(implied)),
+            },
+            other => other,
         })
     }
 }
@@ -1921,6 +2035,38 @@ impl<'a> Validator<'a> {
 enum Origin {
     Tendon(usize),
     Loop(usize),
+}
+
+/// Why no null vector of `E` is positive on the tendon columns, by Gordan's alternative: a
+/// combination `y` of the balances with `yᵀE = 0` on the `other` columns (motors and loop
+/// sides, which the dynamics fixes), `yᵀE ≥ 0` on the `tendons` and `Σ_tendons yᵀE = 1`.
+/// Exactly one of the two exists; on `y`, every tendon pulls one way or not at all. Solved
+/// as a linear program (simplex, `microlp`); `None` if it finds none (round-off at the edge
+/// of controllability).
+fn one_sided_combination(e: &[Vec<f64>], tendons: &[usize], other: &[usize]) -> Option<Vec<f64>> {
+    use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
+    let rows = e.len();
+    let mut lp = Problem::new(OptimizationDirection::Minimize);
+    let y: Vec<_> = (0..rows)
+        .map(|_| lp.add_var(0.0, (f64::NEG_INFINITY, f64::INFINITY)))
+        .collect();
+    let column = |c: usize| -> Vec<_> { y.iter().zip(e).map(|(&v, row)| (v, row[c])).collect() };
+    for &c in other {
+        lp.add_constraint(column(c).as_slice(), ComparisonOp::Eq, 0.0);
+    }
+    for &c in tendons {
+        lp.add_constraint(column(c).as_slice(), ComparisonOp::Ge, 0.0);
+    }
+    let total: Vec<_> = y
+        .iter()
+        .enumerate()
+        .map(|(r, &v)| (v, tendons.iter().map(|&c| e[r][c]).sum::<f64>()))
+        .collect();
+    lp.add_constraint(total.as_slice(), ComparisonOp::Eq, 1.0);
+    match lp.solve() {
+        Ok(SolveOutcome::Solution(s)) => Some(y.iter().map(|&v| s.var_value(v)).collect()),
+        _ => None,
+    }
 }
 
 /// A null vector whose components on `cols` are all strictly positive, found by the

@@ -24,7 +24,10 @@
 //! Every problem becomes a compile error at the attribute: an unreadable file, a RON
 //! syntax error or an invalid mechanism (quoting the file, line and column of the item),
 //! an output the mechanism cannot provide, an unknown output or scalar, or fields that do
-//! not match the declared parameters (naming both sides).
+//! not match the declared parameters (naming both sides). Beside the error the expansion
+//! still declares the methods and the trait with the shapes the file gives (bodies that
+//! never run), so that the located error is the only one: no "no method named …" at every
+//! call site.
 //!
 //! For tests run through `trybuild`, whose crates live in a scratch directory, the
 //! environment variable `TENDYN_MANIFEST_DIR` replaces `CARGO_MANIFEST_DIR` as the base of
@@ -39,9 +42,14 @@ use tendyn_codegen::{Options, Output, Scalar};
 #[proc_macro_derive(TendonMechanism, attributes(tendyn))]
 pub fn derive_tendon_mechanism(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
     let input = parse_macro_input!(input as DeriveInput);
-    expand(&input)
-        .unwrap_or_else(syn::Error::into_compile_error)
-        .into()
+    match expand(&input) {
+        Ok(tokens) => tokens.into(),
+        Err(e) => {
+            let mut tokens = e.into_compile_error();
+            tokens.extend(stand_in(&input));
+            tokens.into()
+        }
+    }
 }
 
 /// Where the mechanism comes from.
@@ -145,11 +153,7 @@ fn load(source: &Source) -> syn::Result<(tendyn_core::Model<f64>, Option<String>
         }
         Source::File(lit) => {
             let written = lit.value();
-            let base = std::env::var_os("TENDYN_MANIFEST_DIR")
-                .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
-                .map(std::path::PathBuf::from)
-                .unwrap_or_default();
-            let path = base.join(&written);
+            let path = path_of(lit);
             let text = std::fs::read_to_string(&path).map_err(|e| {
                 syn::Error::new(
                     lit.span(),
@@ -164,6 +168,15 @@ fn load(source: &Source) -> syn::Result<(tendyn_core::Model<f64>, Option<String>
             Ok((model, Some(path.to_string_lossy().into_owned())))
         }
     }
+}
+
+/// A `file = "..."` path, relative to the crate's manifest directory.
+fn path_of(lit: &LitStr) -> std::path::PathBuf {
+    let base = std::env::var_os("TENDYN_MANIFEST_DIR")
+        .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
+        .map(std::path::PathBuf::from)
+        .unwrap_or_default();
+    base.join(lit.value())
 }
 
 fn io_reason(e: &std::io::Error) -> String {
@@ -182,7 +195,10 @@ fn located(path: &str, e: &tendyn_core::Error) -> String {
             column,
             message,
         } => format!("{path}:{line}:{column}: RON syntax error: {message}"),
-        E::Invalid { item, at, problem } | E::Routing { item, at, problem } if at.line > 0 => {
+        E::Invalid { item, at, problem }
+        | E::Routing {
+            item, at, problem, ..
+        } if at.line > 0 => {
             format!("{path}:{}:{}: {item}: {problem}", at.line, at.column)
         }
         other => format!("{path}: {other}"),
@@ -321,30 +337,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     let trait_methods = outputs.iter().map(|o| {
         let name = format_ident!("{}", o.name());
         let params = params_value.iter();
-        let (signature, args) = match o {
-            Output::MassMatrix | Output::Gravity => (quote!(q: &Self::Joints), quote!(q)),
-            Output::Bias => (quote!(q: &Self::Joints, qd: &Self::Joints), quote!(q, qd)),
-            Output::ForwardDynamics => (
-                quote!(q: &Self::Joints, qd: &Self::Joints, motor_torques: &Self::Motors, tendon_tensions: &Self::Tendons),
-                quote!(q, qd, motor_torques, tendon_tensions),
-            ),
-            _ => (
-                quote!(q: &Self::Joints, qd: &Self::Joints, qdd: &Self::Joints),
-                quote!(q, qd, qdd),
-            ),
-        };
-        let ret = match o {
-            Output::GeneralizedForces | Output::Bias | Output::Gravity | Output::ForwardDynamics => {
-                quote!(Self::Joints)
-            }
-            Output::Actuation => {
-                quote!(#krate::core::distribution::Actuation<Self::Motors, Self::Tendons>)
-            }
-            Output::MassMatrix => quote!(Self::MassMatrix),
-            Output::SegmentTensions => quote!(Self::Segments),
-            Output::Bearings => quote!(Self::Bearings),
-            Output::BaseReaction => quote!(Self::BaseReaction),
-        };
+        let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t));
         quote! {
             #[inline]
             fn #name(&self, #signature) -> ::core::option::Option<#ret> {
@@ -415,6 +408,116 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
             const OUTPUTS: &'static [&'static str] = &[#(#output_names),*];
             const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[#(#structure_rows),*];
             #(#trait_methods)*
+        }
+    })
+}
+
+/// An output's parameters as the trait declares them, the arguments that pass them on, and
+/// its return type (inside the trait's `Option`). `ty` writes one of the trait's associated
+/// types (`Joints`, `Motors`, …) as a path: `Self::Joints` in the trait's impl.
+fn signature(
+    o: Output,
+    krate: &syn::Path,
+    ty: &dyn Fn(Ident) -> TokenStream,
+) -> (TokenStream, TokenStream, TokenStream) {
+    let t = |name: &str| ty(format_ident!("{name}"));
+    let (joints, motors, tendons) = (t("Joints"), t("Motors"), t("Tendons"));
+    let (signature, args) = match o {
+        Output::MassMatrix | Output::Gravity => (quote!(q: &#joints), quote!(q)),
+        Output::Bias => (quote!(q: &#joints, qd: &#joints), quote!(q, qd)),
+        Output::ForwardDynamics => (
+            quote!(q: &#joints, qd: &#joints, motor_torques: &#motors, tendon_tensions: &#tendons),
+            quote!(q, qd, motor_torques, tendon_tensions),
+        ),
+        _ => (
+            quote!(q: &#joints, qd: &#joints, qdd: &#joints),
+            quote!(q, qd, qdd),
+        ),
+    };
+    let ret = match o {
+        Output::GeneralizedForces | Output::Bias | Output::Gravity | Output::ForwardDynamics => {
+            joints
+        }
+        Output::Actuation => quote!(#krate::core::distribution::Actuation<#motors, #tendons>),
+        Output::MassMatrix => t("MassMatrix"),
+        Output::SegmentTensions => t("Segments"),
+        Output::Bearings => t("Bearings"),
+        Output::BaseReaction => t("BaseReaction"),
+    };
+    (signature, args, ret)
+}
+
+/// What the expansion holds beside a compile error: the inherent methods and the trait with
+/// the shapes the file gives, with bodies that never run. Without them every call of a
+/// method would add a second, misleading error ("no method named …", E0599, "perhaps you
+/// need to implement `TendonMechanism`") to the one that says what is wrong. The shapes
+/// come from the file as written, so they are there even when validation fails; without a
+/// readable file or a usable attribute (or for a generic struct) there is nothing to give.
+fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
+    let attr = parse_attribute(input).ok()?;
+    if !input.generics.params.is_empty() {
+        return None;
+    }
+    let text = match &attr.source {
+        Source::Inline(lit) => lit.value(),
+        Source::File(lit) => std::fs::read_to_string(path_of(lit)).ok()?,
+    };
+    let f = tendyn_core::validate::read(&text).ok()?;
+    let (n, m, t) = (f.links.len(), f.motors.len(), f.tendons.len());
+    let bodies = f.links.len() + f.pulleys.len();
+    // A tendon has a segment after each of its wraps; a loop one on each side.
+    let segments = f.tendons.iter().map(|t| t.route.len()).sum::<usize>() + 2 * f.loops.len();
+    let outputs: Vec<Output> = match &attr.outputs {
+        None => Output::ALL.to_vec(),
+        Some(list) => list
+            .iter()
+            .filter_map(|i| Output::parse(&i.to_string()))
+            .collect(),
+    };
+    let (ident, krate) = (&input.ident, &attr.krate);
+    let scalar = match attr.scalar.0 {
+        Scalar::F32 => quote!(f32),
+        _ => quote!(f64),
+    };
+    let methods = outputs.iter().map(|o| {
+        let name = format_ident!("{}", o.name());
+        let (signature, _, ret) = signature(
+            *o,
+            krate,
+            &|t| quote!(<Self as #krate::TendonMechanism>::#t),
+        );
+        quote! {
+            #[allow(unused_variables)]
+            pub fn #name(&self, #signature) -> #ret {
+                ::core::unimplemented!("`#[derive(TendonMechanism)]` failed; see its error")
+            }
+        }
+    });
+    let name = &f.name;
+    Some(quote! {
+        impl #ident {
+            #(#methods)*
+        }
+
+        impl #krate::TendonMechanism for #ident {
+            type Scalar = #scalar;
+            type Joints = [#scalar; #n];
+            type Motors = [#scalar; #m];
+            type Tendons = [#scalar; #t];
+            type MassMatrix = [[#scalar; #n]; #n];
+            type Segments = [#scalar; #segments];
+            type Bearings = [[[#scalar; 3]; 2]; #bodies];
+            type BaseReaction = [[[#scalar; 3]; 2]; 1];
+            const NAME: &'static str = #name;
+            const DOF: usize = #n;
+            const MOTORS: usize = #m;
+            const TENDONS: usize = #t;
+            const JOINT_NAMES: &'static [&'static str] = &[];
+            const MOTOR_NAMES: &'static [&'static str] = &[];
+            const TENDON_NAMES: &'static [&'static str] = &[];
+            const PARAMETER_NAMES: &'static [&'static str] = &[];
+            const OUTPUTS: &'static [&'static str] = &[];
+            const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[];
         }
     })
 }
