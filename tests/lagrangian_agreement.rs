@@ -239,3 +239,41 @@ fn bearing_forces_balance_the_momentum_of_each_subtree() {
         println!("{}: worst {worst:.2e}", m.name);
     }
 }
+
+#[test]
+fn frictionless_guides_agree_with_lagrange_power_and_momentum() {
+    // Example 2 with its two idlers fixed, and twelve random routed mechanisms likewise: a
+    // guide has no dynamics of its own, and the recursion's forces at its tangent points
+    // must give the structure matrix the sliding kinematics give.
+    let example =
+        std::fs::read_to_string("../examples/mechanisms/example2_open_ended.ron").unwrap();
+    let mut texts = vec![tendyn_spec::guides::idlers_as_guides(&example)];
+    for seed in 0..12u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: false,
+        };
+        let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        texts.push(tendyn_spec::guides::idlers_as_guides(&text));
+    }
+    let mut guides = 0;
+    for (i, text) in texts.iter().enumerate() {
+        let model = tendyn_core::parse(text).unwrap();
+        let here = model
+            .strands
+            .iter()
+            .flat_map(|s| &s.idlers)
+            .filter(|i| i.guide.is_some())
+            .count();
+        let idlers = model.strands.iter().flat_map(|s| &s.idlers).count();
+        assert_eq!(here, idlers, "{}: every idler is a guide", model.name);
+        guides += here;
+        let worst = check_mechanism(&model, 100, 40 + i as u64);
+        println!(
+            "{} with guides: worst relative error {worst:.2e}",
+            model.name
+        );
+    }
+    // (Two in Example 2, six in the random mechanisms.)
+    assert!(guides >= 8, "only {guides} guides");
+}

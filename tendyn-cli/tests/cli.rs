@@ -553,3 +553,44 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn check_and_eval_report_the_guides_tendons_slide_over() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_open_ended.ron"
+    ))
+    .unwrap();
+    // Example 2 with its idlers held fixed: pins the tendons slide over.
+    let text = text
+        .replacen("name: \"idler3\",", "name: \"idler3\", fixed: true,", 1)
+        .replacen("name: \"idler4\",", "name: \"idler4\", fixed: true,", 1);
+    let dir = scratch_dir("tendyn_cli_guides");
+    let file = dir.join("guides.ron");
+    std::fs::write(&file, &text).unwrap();
+    let file = file.to_str().unwrap();
+    let (ok, out, err) = tendyn(&["check", file]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("idler3       r = 0.03     fixed guide"),
+        "{out}"
+    );
+    assert!(
+        out.contains("  idler3       T32      β = 27.662° (at q = 0), μ = 0, μβ = 0"),
+        "{out}"
+    );
+    let (ok, out, err) = tendyn(&[
+        "eval", file, "--q", "0.3,0.5", "--qd", "1,-0.5", "--qdd", "2,3", "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let guides = v["guides"].as_array().unwrap();
+    assert_eq!(guides.len(), 2);
+    // T32 leaves idler3 for its exit in the base: it slides over the guide at the speed it
+    // is paid out, A_T32 · q̇ = −0.03 · 1 + 0.02 · (−0.5) = −0.04 m/s.
+    assert_eq!(guides[0]["pulley"], "idler3");
+    assert!((guides[0]["sliding_speed"].as_f64().unwrap() + 0.04).abs() < 1e-15);
+    assert_eq!(guides[0]["direction"], -1.0);
+    assert_eq!(guides[0]["dissipated_power"], 0.0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -3,15 +3,18 @@
 
 use serde_json::{json, Value};
 use tendyn_core::error::ImpliedSystem;
-use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
+use tendyn_core::model::{BodyKind, Guide, Model, PulleyRole, Row, Unknown};
 use tendyn_core::spatial::Vec3;
 use tendyn_core::torque_range::static_torque_ranges;
 use tendyn_core::InverseDynamics;
 
-/// The joint-space terms evaluated beside inverse dynamics.
+/// The joint-space terms evaluated beside inverse dynamics, at the same state.
 pub struct JointSpace {
+    /// `M(q)` (kg·m²), `mass[i][j] = M_ij`.
     pub mass: Vec<Vec<f64>>,
+    /// `h(q, q̇)` (N·m), per joint.
     pub bias: Vec<f64>,
+    /// `g(q)` (N·m), per joint.
     pub gravity: Vec<f64>,
 }
 
@@ -28,9 +31,27 @@ fn row_name(m: &Model<f64>, r: &Row) -> String {
     r.label(&m.bodies, &m.loops)
 }
 
+/// Every guide of the model: strand, its step (between segments `k` and `k + 1`), the
+/// pulley (body index) and the guide.
+fn guides(m: &Model<f64>) -> Vec<(usize, usize, usize, &Guide)> {
+    m.strands
+        .iter()
+        .enumerate()
+        .flat_map(|(s, st)| {
+            st.idlers
+                .iter()
+                .enumerate()
+                .filter_map(move |(k, i)| i.guide.as_ref().map(|g| (s, k, i.body, g)))
+        })
+        .collect()
+}
+
 /// A pulley's role as `check` names it.
-fn role_name(m: &Model<f64>, role: &PulleyRole) -> String {
+fn role_name(m: &Model<f64>, name: &str, role: &PulleyRole) -> String {
     match role {
+        PulleyRole::Fixed if guides(m).iter().any(|g| m.bodies[g.2].name == name) => {
+            "fixed guide".to_string()
+        }
         PulleyRole::Fixed => "fixed drum".to_string(),
         PulleyRole::Idler { strand } => format!("idler of {}", m.strands[*strand].name),
         PulleyRole::Driving => "driving pulley".to_string(),
@@ -55,7 +76,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
         .filter_map(|b| match &b.kind {
             BodyKind::Pulley { radius, role } => Some((
                 b.name.clone(),
-                json!({"radius": radius, "role": role_name(m, role), "coupling": b.coupling}),
+                json!({"radius": radius, "role": role_name(m, &b.name, role), "coupling": b.coupling}),
             )),
             BodyKind::Link { .. } => None,
         })
@@ -124,6 +145,14 @@ pub fn check_json(m: &Model<f64>) -> Value {
         "segments": segments,
         "bearing_friction": friction,
         "friction_smoothing": m.friction_smoothing,
+        "guides": guides(m).into_iter().map(|(s, _, b, g)| json!({
+            "pulley": m.bodies[b].name,
+            "tendon": m.strands[s].name,
+            "wrap_angle": g.wrap,
+            "wrap_angle_rate": g.wrap_rate,
+            "mu": g.mu,
+            "sliding_rate": g.slide,
+        })).collect::<Vec<_>>(),
     })
 }
 
@@ -175,7 +204,7 @@ pub fn check_text(m: &Model<f64>) -> String {
     line("couplings (intermediate-link angle relative to its carrier = Σ ratio · q):".into());
     for b in &m.bodies[m.dof..] {
         if let BodyKind::Pulley { radius, role } = &b.kind {
-            let role = role_name(m, role);
+            let role = role_name(m, &b.name, role);
             line(format!(
                 "  {:<12} r = {:<8} {:<22} {}",
                 b.name,
@@ -203,6 +232,25 @@ pub fn check_text(m: &Model<f64>) -> String {
                     b.name, f.coulomb, f.viscous
                 ));
             }
+        }
+    }
+    let slides = guides(m);
+    if !slides.is_empty() {
+        line("guides (fixed pulleys the tendons slide over; wrap angle β, capstan μ):".into());
+        for (s, _, b, g) in slides {
+            line(format!(
+                "  {:<12} {:<8} β = {:.3}°{}, μ = {}, μβ = {}",
+                m.bodies[b].name,
+                m.strands[s].name,
+                g.wrap.to_degrees(),
+                if g.wrap_is_constant() {
+                    ""
+                } else {
+                    " (at q = 0)"
+                },
+                number(g.mu),
+                number(g.mu * g.wrap)
+            ));
         }
     }
     let system = implied_system(m);
@@ -299,6 +347,7 @@ fn structure_lines(line: &mut impl FnMut(String), s: &ImpliedSystem) {
     }
 }
 
+/// The tension system `E x = b`: one line per balance row, then the unknowns' names.
 fn tension_system_lines(line: &mut impl FnMut(String), s: &ImpliedSystem) {
     line("tension system E x = b (rows: balances; columns: unknowns):".into());
     for (label, row) in s.rows.iter().zip(&s.matrix) {
@@ -307,8 +356,9 @@ fn tension_system_lines(line: &mut impl FnMut(String), s: &ImpliedSystem) {
     line(format!("  unknowns: {}", s.unknowns.join(", ")));
 }
 
-/// What `tendyn check` prints after the error of a rejected routing: the structure matrix
-/// and the tension system the routing implies, for finding what is wrong with it.
+/// What `tendyn check` prints on stdout for a rejected routing, beside the error on stderr:
+/// the structure matrix and the tension system the routing implies, for finding what is
+/// wrong with it.
 pub fn implied_text(s: &ImpliedSystem) -> String {
     let mut out = String::new();
     let mut line = |t: String| {
@@ -371,6 +421,21 @@ pub fn inverse_json(
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "sticking": r.sticking.iter().map(|b| m.bodies[*b].name.clone()).collect::<Vec<_>>(),
+        "guides": guides(m).into_iter().map(|(s, k, b, g)| {
+            let v = g.speed(qd);
+            // The tension gained across the guide towards the ground end, times the sliding
+            // speed: the power friction takes from the tendon there (0 when frictionless).
+            let gain = r.segment_tensions.as_ref().map(|t| t[s][k + 1] - t[s][k]);
+            let direction = if v.abs() <= tendyn_core::friction::REST { 0.0 } else { v.signum() };
+            json!({
+                "pulley": m.bodies[b].name,
+                "tendon": m.strands[s].name,
+                "wrap_angle": g.wrap_at(q),
+                "sliding_speed": v,
+                "direction": direction,
+                "dissipated_power": gain.map(|d| d * v + 0.0),
+            })
+        }).collect::<Vec<_>>(),
         "mass_matrix": mass,
         "bias": bias,
         "gravity": gravity,

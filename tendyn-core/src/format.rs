@@ -62,7 +62,12 @@ impl From<f64> for Num {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterSpec {
+    /// The parameter's name, unique, written as a string in place of a number where it is
+    /// used (`mass: "payload"`).
     pub name: String,
+    /// Its nominal value, in the unit of the fields that name it: validation checks it like
+    /// any number, and the runtime solver uses it unless [`crate::Model::with_parameters`]
+    /// sets another.
     pub value: f64,
 }
 
@@ -140,9 +145,14 @@ fn default_gravity() -> [Num; 3] {
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Dh {
+    /// Length along `x_i` (TransX), m.
     pub a: f64,
+    /// Twist about `x_i` (RotX), rad; snapped to a right angle within `1e-12` rad of one
+    /// (format.md §2).
     pub alpha: f64,
+    /// Offset along `z_{i-1}` (TransZ), m.
     pub d: f64,
+    /// Constant added to the joint angle (rad, default 0): the DH angle is `θ_i = q_i + offset`.
     #[serde(default)]
     pub offset: f64,
 }
@@ -152,26 +162,39 @@ pub struct Dh {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InertiaSpec {
+    /// `I_xx` (kg·m²); required once `inertia:` is written.
     pub xx: Num,
+    /// `I_yy` (kg·m²); required once `inertia:` is written.
     pub yy: Num,
+    /// `I_zz` (kg·m²); required once `inertia:` is written.
     pub zz: Num,
+    /// Tensor entry `I_xy = −∫ x y dm` (kg·m²), default 0.
     #[serde(default)]
     pub xy: Num,
+    /// Tensor entry `I_xz = −∫ x z dm` (kg·m²), default 0.
     #[serde(default)]
     pub xz: Num,
+    /// Tensor entry `I_yz = −∫ y z dm` (kg·m²), default 0.
     #[serde(default)]
     pub yz: Num,
 }
 
+/// Primary link `i` of the serial chain and the revolute joint `i` that moves it
+/// (format.md §4).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LinkSpec {
+    /// The link's name, unique across the file; it also names its joint in the outputs.
     pub name: String,
+    /// DH parameters of joint `i`.
     pub dh: Dh,
+    /// Mass of the link (kg, `≥ 0`), without the pulleys and drums listed in `pulleys`,
+    /// which are separate bodies.
     pub mass: Num,
     /// Centre of mass in the link frame (the DH frame at the link's distal joint).
     #[serde(default)]
     pub com: [Num; 3],
+    /// Inertia tensor about the centre of mass, axes parallel to frame `i`; default all zero.
     #[serde(default)]
     pub inertia: InertiaSpec,
     /// Friction in the joint's bearing.
@@ -186,29 +209,48 @@ pub enum Placement {
     /// Coaxial with the axis of the joint that moves link `joint`, `height` metres along
     /// that axis from the joint's DH origin; spins about the joint axis. The carrier must
     /// be one of the two bodies the joint connects.
-    Joint { joint: String, height: f64 },
+    Joint {
+        /// The link whose joint it sits on (the joint that moves that link).
+        joint: String,
+        /// Distance along `z_{j-1}` from `O_{j-1}` (m); may be negative.
+        height: f64,
+    },
     /// Anywhere on the carrier: origin and roll-pitch-yaw (`RotZ(yaw)·RotY(pitch)·RotX(roll)`)
     /// of the pulley frame in the carrier frame; spins about its own z axis.
-    Pose { origin: [f64; 3], rpy: [f64; 3] },
+    Pose {
+        /// Origin of the pulley frame in the carrier frame (m).
+        origin: [f64; 3],
+        /// Roll, pitch, yaw (rad), snapped to right angles as in format.md §2.
+        rpy: [f64; 3],
+    },
 }
 
+/// A pulley, idler or drum: an intermediate link carried by the base or by a link
+/// (format.md §5).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PulleySpec {
+    /// The pulley's name, unique across the file.
     pub name: String,
     /// `"base"` or the name of a primary link.
     pub carrier: String,
+    /// Where it sits on its carrier.
     pub at: Placement,
     /// Pitch radius (m), where the tendon's centre line runs.
     pub radius: f64,
     /// `true` for a drum that is part of its carrier (it does not turn relative to it).
     #[serde(default)]
     pub fixed: bool,
+    /// Capstan coefficient of a fixed pulley that tendons slide over (a guide), `>= 0`.
+    #[serde(default)]
+    pub mu: Option<f64>,
+    /// Mass (kg, `≥ 0`), default 0.
     #[serde(default)]
     pub mass: Num,
     /// Centre of mass in the pulley frame.
     #[serde(default)]
     pub com: [Num; 3],
+    /// Inertia tensor about the centre of mass, pulley-frame axes; default all zero.
     #[serde(default)]
     pub inertia: InertiaSpec,
     /// Explicit coupling: angle relative to the carrier = Σ ratio_j · q_j (one ratio per
@@ -225,7 +267,10 @@ pub struct PulleySpec {
 /// followed from its anchored (driven) end towards its ground (driving) end.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
 pub enum Turn {
+    /// Counter-clockwise seen from the pulley's `+z`. At an anchor the tendon leaves along
+    /// the counter-clockwise tangent: pulling it turns the drum by `+r T`.
     Ccw,
+    /// Clockwise seen from the pulley's `+z`; at an anchor, `−r T`.
     Cw,
 }
 
@@ -233,9 +278,13 @@ pub enum Turn {
 #[derive(Clone, Debug, Deserialize)]
 pub struct Wrap(pub String, pub Turn);
 
+/// An open-ended tendon: fixed on a drum (its anchor), over idlers, and out of the
+/// mechanism at a point of the base towards its actuator, which pulls it with the
+/// ground-level tension (format.md §6).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TendonSpec {
+    /// The tendon's name, unique across the file.
     pub name: String,
     /// From the anchor drum (first, a `fixed` pulley) over idlers towards the actuator.
     #[serde(default)]
@@ -255,9 +304,12 @@ pub struct TendonSpec {
     pub structure: Option<Vec<f64>>,
 }
 
+/// An endless tendon between a driven and a driving pulley: two straight strands, no
+/// idlers (format.md §7).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoopSpec {
+    /// The loop's name, unique across the file; its strands are `name/ccw` and `name/cw`.
     pub name: String,
     /// The pulley the loop drives (usually a drum fixed to a link).
     pub driven: String,
@@ -270,6 +322,7 @@ pub struct LoopSpec {
     pub pretension: f64,
 }
 
+/// What a motor acts on.
 #[derive(Clone, Debug, Deserialize)]
 pub enum MotorSite {
     /// Between a primary link and the previous one, about the joint axis.
@@ -278,10 +331,14 @@ pub enum MotorSite {
     Pulley(String),
 }
 
+/// A torque source (format.md §8); at most one per joint or pulley.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotorSpec {
+    /// The motor's name, unique across the file.
     pub name: String,
+    /// Where it acts, which sets the sign of its torque: on link `i` about `+z_{i-1}`, or on
+    /// the pulley about its `+z`; the reaction acts on the parent or carrier.
     pub on: MotorSite,
 }
 
@@ -290,11 +347,17 @@ pub struct MotorSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WrenchSpec {
+    /// The link it acts on (links only, not pulleys).
     pub link: String,
+    /// Point of application of `force` in frame `i` of that link, relative to `O_i` (m);
+    /// default zero.
     #[serde(default)]
     pub point: [Num; 3],
+    /// Force on the link (N) in its frame: it turns with the link (a follower force);
+    /// default zero.
     #[serde(default)]
     pub force: [Num; 3],
+    /// Pure moment on the link (N·m) in its frame, turning with it; default zero.
     #[serde(default)]
     pub moment: [Num; 3],
 }

@@ -15,9 +15,17 @@ use crate::transmission::linalg;
 #[derive(Clone, Debug, PartialEq)]
 pub enum BodyKind {
     /// Primary link moved by joint `joint` (0-based: joint 0 is the paper's joint 1).
-    Link { joint: usize },
+    Link {
+        /// The joint that moves it, 0-based; also the link's body index.
+        joint: usize,
+    },
     /// Intermediate link (pulley, idler, drum) of pitch radius `radius`.
-    Pulley { radius: f64, role: PulleyRole },
+    Pulley {
+        /// Pitch radius (m): where the tendon's centre line runs.
+        radius: f64,
+        /// How its angle is determined and balanced.
+        role: PulleyRole,
+    },
 }
 
 /// How a pulley's rotation is determined and balanced.
@@ -27,7 +35,10 @@ pub enum PulleyRole {
     Fixed,
     /// Turned by the one tendon strand that runs over it; its axial balance fixes the
     /// tension difference across it (paper Eq. 24b).
-    Idler { strand: usize },
+    Idler {
+        /// The strand that runs over it (index into [`Model::strands`]).
+        strand: usize,
+    },
     /// End of the strands of endless loops: its axial balance is a row of the tension system.
     Driving,
     /// Turned through an explicit coupling (gear, calibrated ratio); the transmission's
@@ -41,18 +52,27 @@ pub enum PulleyRole {
 /// `angle = coupling · q + offset`.
 #[derive(Clone, Debug)]
 pub struct Body<T> {
+    /// The link's or pulley's name, unique across the file.
     pub name: String,
+    /// Primary link or pulley.
     pub kind: BodyKind,
     /// Parent (carrier) body index; `None` is the base.
     pub parent: Option<usize>,
+    /// The part of the frame before the joint rotation, in the parent frame; its origin is
+    /// the joint point. Identity for a link; for a pulley its housing frame `Pre` in the
+    /// carrier frame (format.md §5, Eq. 8).
     pub pre: Transform<T>,
+    /// The part after the joint rotation: `TransZ(d) · TransX(a) · RotX(α)` for a link
+    /// (Eq. 1, [`crate::validate::dh_post`]), identity for a pulley.
     pub post: Transform<T>,
+    /// Constant part of the angle (rad): the DH `offset` of a link, 0 for a pulley.
     pub offset: T,
     /// Joint angle as a linear function of the joint coordinates (Eqs. 9-10, 26, 31, 34).
     pub coupling: Vec<T>,
     /// Whether the angle enters the body's orientation. `false` for fixed drums and for
     /// axisymmetric pulleys, whose frame then stays the non-spinning housing frame.
     pub spins: bool,
+    /// Mass (kg).
     pub mass: T,
     /// Centre of mass in the body frame.
     pub com: Vec3<T>,
@@ -98,31 +118,83 @@ pub struct Contact<T> {
     /// Contact point minus pulley centre, in the segment frame (the exit point itself for
     /// the ground end).
     pub rel: Vec3<T>,
+    /// How segment-frame vectors reach the pulley's frame.
     pub via: Via,
 }
 
 /// A straight piece of tendon between two contacts, fixed in one link's frame.
 #[derive(Clone, Debug)]
 pub struct Segment<T> {
+    /// The contact at the anchor (or driven-pulley) end.
     pub from: Contact<T>,
+    /// The contact at the ground end: the next pulley, the exit point or the driving pulley.
     pub to: Contact<T>,
     /// The link (body index) in whose frame the segment is fixed; `None` is the base.
     pub frame: Option<usize>,
     /// Unit direction from `from` towards `to` in the segment frame: the tension pulls the
     /// `from` body along `+dir` and the `to` body along `-dir` (paper Eq. 17).
     pub dir: Vec3<T>,
+    /// Distance between the two contacts, tangent point to tangent point (or exit point), m.
     pub length: f64,
-    /// Acting angles (Eq. 17) at both ends, about each pulley's axis from its frame's x axis.
+    /// Acting angles (Eq. 17, rad) at both ends, about each pulley's axis from the x axis of
+    /// its frame at `θ_p = 0`, evaluated with the joint between segment frame and carrier at
+    /// `q_j = 0`; `NaN` at a ground exit, which has none.
     pub acting_angles: [f64; 2],
 }
 
-/// An idler between segments `k` and `k + 1` of a strand.
+/// An idler, or a fixed guide, between segments `k` and `k + 1` of a strand.
 #[derive(Clone, Debug)]
 pub struct IdlerStep {
+    /// The idler or guide (body index).
     pub body: usize,
     /// `+1` when the tendon turns counter-clockwise about the idler's axis.
     pub turn: f64,
+    /// Its pitch radius (m).
     pub radius: f64,
+    /// `Some` for a fixed guide, which the tendon slides over instead of turning it.
+    pub guide: Option<Guide>,
+}
+
+/// A fixed pulley after a route's anchor: the tendon slides over it (format.md §6a).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Guide {
+    /// The tendon's speed over the guide, `v = Σ_j slide_j q̇_j` (m/s per rad/s), positive
+    /// when it moves towards the strand's ground end (in the direction of its turn).
+    pub slide: Vec<f64>,
+    /// Wrap angle `β` (rad): from the arrival to the departure tangent point in the turn's
+    /// direction, in `[−π/2, 3π/2)` (negative: the tendon only grazes the guide); where the
+    /// two segments are fixed in different frames, at the joints between them at `q = 0`
+    /// (DH angle = `offset`).
+    pub wrap: f64,
+    /// `∂β/∂q`: how the wrap angle changes with the joints between the two segments' frames
+    /// (all zero when both are fixed in one frame), `β(q) = wrap + Σ_j wrap_rate_j q_j`.
+    pub wrap_rate: Vec<f64>,
+    /// Capstan coefficient `μ` (0: frictionless).
+    pub mu: f64,
+}
+
+impl Guide {
+    /// The tendon's speed over the guide at joint velocities `qd` (m/s), positive towards
+    /// the strand's ground end.
+    pub fn speed(&self, qd: &[f64]) -> f64 {
+        self.slide.iter().zip(qd).map(|(s, v)| s * v).sum()
+    }
+
+    /// The wrap angle at joint angles `q` (rad).
+    pub fn wrap_at(&self, q: &[f64]) -> f64 {
+        self.wrap
+            + self
+                .wrap_rate
+                .iter()
+                .zip(q)
+                .map(|(k, x)| k * x)
+                .sum::<f64>()
+    }
+
+    /// Whether the wrap angle is the same at every state.
+    pub fn wrap_is_constant(&self) -> bool {
+        self.wrap_rate.iter().all(|&k| k == 0.0)
+    }
 }
 
 /// One continuous run of tendon from a body it is fixed to (anchor drum, driven pulley) to
@@ -130,8 +202,11 @@ pub struct IdlerStep {
 /// tension system; the others follow from the idlers' balances.
 #[derive(Clone, Debug)]
 pub struct Strand<T> {
+    /// The tendon's name, or `LOOP/ccw` and `LOOP/cw` for the two sides of a loop.
     pub name: String,
+    /// From the anchored (or driven-pulley) end towards the ground exit (or driving pulley).
     pub segments: Vec<Segment<T>>,
+    /// `idlers[k]` is the idler (or guide) between segments `k` and `k + 1`.
     pub idlers: Vec<IdlerStep>,
     /// Index of the unknown (tension of the last segment).
     pub unknown: usize,
@@ -140,60 +215,83 @@ pub struct Strand<T> {
 /// An open-ended tendon.
 #[derive(Clone, Debug)]
 pub struct Tendon {
+    /// The tendon's name, unique across the file.
     pub name: String,
     /// The strand it runs as, `None` for a tendon given only by an explicit structure column.
     pub strand: Option<usize>,
+    /// Index of its ground-level tension among the tension system's unknowns.
     pub unknown: usize,
+    /// Lowest ground-level tension it must keep (N): its own `floor`, else the file's
+    /// `tension_floor`.
     pub floor: f64,
+    /// Highest ground-level tension its actuator can apply (N); `None`: unbounded.
     pub max_tension: Option<f64>,
     /// Its column of the structure matrix `A` (Eqs. 33, 35): generalized force per newton.
     pub structure: Vec<f64>,
 }
 
+/// An endless loop between a driven and a driving pulley (format.md §7).
 #[derive(Clone, Debug)]
 pub struct Loop {
+    /// The loop's name; its strands are `name/ccw` and `name/cw`.
     pub name: String,
+    /// The pulley the loop drives (body index).
     pub driven: usize,
+    /// The pulley that drives the loop (body index).
     pub driving: usize,
+    /// `true` for a crossed belt (opposite turns at the two pulleys), `false` for an open one.
     pub crossed: bool,
+    /// Mean of the two sides' tensions, `(T_ccw + T_cw)/2` (N), imposed exactly.
     pub pretension: f64,
-    /// The two strands: leaving the driven pulley counter-clockwise, then clockwise.
+    /// The two strands (indices into [`Model::strands`]): leaving the driven pulley
+    /// counter-clockwise (`LOOP/ccw`), then clockwise (`LOOP/cw`).
     pub strands: [usize; 2],
 }
 
+/// Where a motor acts (format.md §8).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MotorKind {
+    /// Between link `j` (0-based joint index, also its body index) and its parent, about the
+    /// joint axis.
     Joint(usize),
+    /// Between pulley body `b` and its carrier, about the pulley's axis.
     Pulley(usize),
 }
 
+/// A torque source (format.md §8); its torque is an unknown of the tension system.
 #[derive(Clone, Debug)]
 pub struct Motor {
+    /// The motor's name, unique across the file.
     pub name: String,
+    /// What it acts on.
     pub kind: MotorKind,
+    /// Index of its torque among the tension system's unknowns.
     pub unknown: usize,
-    /// Generalized force per newton-metre of motor torque.
+    /// Generalized force per newton-metre of motor torque: `e_j` for a joint motor, the
+    /// pulley's coupling for a pulley motor.
     pub column: Vec<f64>,
 }
 
 /// What an unknown of the tension system is.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Unknown {
-    /// Tension of the last segment of a strand.
+    /// Tension of the last segment of strand `s` (index into [`Model::strands`]).
     Strand(usize),
-    /// Tension of an open-ended tendon known only by its structure column.
+    /// Tension of open-ended tendon `k` (index into [`Model::tendons`]), known only by its
+    /// structure column.
     Explicit(usize),
+    /// Torque of motor `k` (index into [`Model::motors`]).
     Motor(usize),
 }
 
 /// What a row of the tension system balances.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Row {
-    /// Moment about joint `j`'s axis.
+    /// Moment about joint `j`'s axis (0-based).
     Joint(usize),
-    /// Moment about a driving pulley's axis.
+    /// Moment about the axis of driving pulley `b` (body index).
     Pulley(usize),
-    /// Mean tension of a loop at its driving pulley.
+    /// Mean tension of loop `l` (index into [`Model::loops`]) at its driving pulley.
     Pretension(usize),
 }
 
@@ -223,7 +321,11 @@ impl Row {
 /// `A T = B`, Eqs. 33 and 35, extended by motors and loops), with what its solution needs.
 #[derive(Clone, Debug)]
 pub struct TensionSystem<T> {
+    /// What each column of `E` is: the strands of routed open-ended tendons (file order), then
+    /// both sides of each loop, then structure-only tendons, then motors (outputs.md §2).
     pub unknowns: Vec<Unknown>,
+    /// What each row of `E` balances: the joints in order, then the driving pulleys, then
+    /// the loops' pretensions.
     pub rows: Vec<Row>,
     /// `E`, row-major, `rows.len() × unknowns.len()`.
     pub matrix: Vec<Vec<T>>,
@@ -238,18 +340,23 @@ pub struct TensionSystem<T> {
     pub condition: f64,
 }
 
-/// A constant wrench on one link by its environment (link frame).
+/// A constant wrench on one link by its environment (link frame; format.md §9).
 #[derive(Clone, Debug)]
 pub struct Wrench<T> {
+    /// The link it acts on (joint index, also its body index).
     pub link: usize,
+    /// Point of application of `force` in the link's frame `i`, relative to `O_i` (m).
     pub point: Vec3<T>,
+    /// Force on the link (N), in its frame: it turns with the link.
     pub force: Vec3<T>,
+    /// Pure moment on the link (N·m), in its frame.
     pub moment: Vec3<T>,
 }
 
 /// A runtime parameter of the mechanism file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parameter {
+    /// The parameter's name, as the file's numbers refer to it.
     pub name: String,
     /// Nominal value (what the model holds until [`Model::with_parameters`]).
     pub value: f64,
@@ -266,13 +373,19 @@ pub struct Parameter {
 /// changed at run time would leave all of that stale.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Slot {
+    /// The mass of a body (body index).
     Mass(usize),
+    /// Component `(body, axis)` of a body's centre of mass (axis 0: x, 1: y, 2: z).
     Com(usize, usize),
-    /// Inertia entry `(row, column)` of a body (and its mirror).
+    /// Inertia entry `(body, row, column)` of a body (and its mirror).
     Inertia(usize, usize, usize),
+    /// Component `c` of gravity (0: x, 1: y, 2: z).
     Gravity(usize),
+    /// Component `c` of the external wrench's point.
     WrenchPoint(usize),
+    /// Component `c` of the external wrench's force.
     WrenchForce(usize),
+    /// Component `c` of the external wrench's moment.
     WrenchMoment(usize),
     /// The number(s) at a [`Place`] are proportional to the parameter's quantity raised to
     /// the given power (a DH length in a translation, a radius in a contact point, a ratio
@@ -304,7 +417,9 @@ pub enum Place {
 /// A validated mechanism in scalar `T`.
 #[derive(Clone, Debug)]
 pub struct Model<T> {
+    /// The mechanism's name (the file's `name`).
     pub name: String,
+    /// Gravitational acceleration in the base frame (m/s²).
     pub gravity: Vec3<T>,
     /// Runtime parameters, in file order.
     pub parameters: Vec<Parameter>,
@@ -312,17 +427,25 @@ pub struct Model<T> {
     pub parameter_slots: Vec<(Slot, usize)>,
     /// Number of joint coordinates `n`.
     pub dof: usize,
-    /// Links first (body `j` is moved by joint `j`), then pulleys; parents come first.
+    /// Links first (body `j` is moved by joint `j`), then pulleys in file order; parents
+    /// come first.
     pub bodies: Vec<Body<T>>,
+    /// Every strand: the routed open-ended tendons in file order, then both sides of each
+    /// loop (`LOOP/ccw`, `LOOP/cw`); strand `s` is unknown `s` of the tension system.
     pub strands: Vec<Strand<T>>,
+    /// Open-ended tendons, routed or structure-only, in file order.
     pub tendons: Vec<Tendon>,
+    /// Endless loops, in file order.
     pub loops: Vec<Loop>,
+    /// Motors, in file order.
     pub motors: Vec<Motor>,
+    /// The tension system `E x = b`.
     pub system: TensionSystem<T>,
     /// What the tension distribution minimises (format.md §3).
     pub objective: Objective,
     /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
     pub friction_smoothing: Option<f64>,
+    /// The file's `external_wrench`, if any.
     pub external_wrench: Option<Wrench<T>>,
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
@@ -330,6 +453,7 @@ pub struct Model<T> {
 }
 
 impl<T: Real> Model<T> {
+    /// The links' names in joint order (each names its joint too).
     pub fn joint_names(&self) -> impl Iterator<Item = &str> {
         self.bodies[..self.dof].iter().map(|b| b.name.as_str())
     }

@@ -50,6 +50,12 @@ pub fn segment_tensions<T: Real>(
         out[s][last] = t;
         for k in (0..last).rev() {
             let idler = &strand.idlers[k];
+            // A frictionless guide passes the tension on unchanged (it takes the tendon's
+            // pull on its carrier).
+            if idler.guide.is_some() {
+                out[s][k] = t;
+                continue;
+            }
             let step = T::from_f64(idler.turn / idler.radius);
             let mut moment = axial_demand(model, motion, idler.body);
             if model.bodies[idler.body].friction.is_some() {

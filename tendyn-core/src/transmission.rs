@@ -24,7 +24,7 @@
 
 use crate::error::{Error, Location, Result};
 use crate::format::Turn;
-use crate::model::{Body, Contact, IdlerStep, Segment, Via};
+use crate::model::{Body, Contact, Guide, IdlerStep, Segment, Via};
 use crate::spatial::{Mat3, Transform, Vec3};
 
 /// A frame a segment can be fixed in: `None` is the base, `Some(i)` link body `i`.
@@ -33,26 +33,40 @@ pub type Frame = Option<usize>;
 /// What validation knows about a pulley before its coupling is derived.
 #[derive(Clone, Debug)]
 pub struct PulleyInfo {
+    /// The pulley's name.
     pub name: String,
+    /// Where it is defined in the file.
     pub at: Location,
+    /// Its body index in the model.
     pub body: usize,
+    /// The body that carries its bearing (or, for a fixed drum, that it is part of).
     pub carrier: Frame,
     /// Joint (0-based) it is coaxial with, and its height along that joint's axis.
     pub coaxial: Option<(usize, f64)>,
+    /// Pitch radius (m).
     pub radius: f64,
+    /// A drum that is part of its carrier (`fixed: true`).
     pub fixed: bool,
+    /// The capstan coefficient of a fixed pulley a tendon slides over (0 without).
+    pub mu: f64,
 }
 
 /// A route as validation resolved it: pulley indices (into the `PulleyInfo` list) with
 /// turns, and where it ends.
 #[derive(Clone, Debug)]
 pub struct Route {
+    /// The tendon's name, or `LOOP/ccw`, `LOOP/cw` for a side of a loop.
     pub name: String,
+    /// Where its tendon or loop is defined in the file.
     pub at: Location,
+    /// The pulleys from the anchor (or driven pulley) on, each with the tendon's turn round
+    /// it; a loop's side has its driven pulley only.
     pub wraps: Vec<(usize, Turn)>,
+    /// Where it leaves the last pulley of `wraps` for.
     pub end: RouteEnd,
 }
 
+/// Where a route ends.
 #[derive(Clone, Debug)]
 pub enum RouteEnd {
     /// Leaves towards an actuator through this point of the base frame.
@@ -65,7 +79,11 @@ pub enum RouteEnd {
 /// coordinates of their own in the tension system (driving pulleys).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rate {
+    /// Coefficient of each `q̇_j`, in joint order (rad/rad for an angle, m/rad for a pull
+    /// rate).
     pub joints: Vec<f64>,
+    /// Coefficients of the angles of driving pulleys relative to their carriers, each with
+    /// its pulley index (into the `PulleyInfo` list).
     pub pulleys: Vec<(usize, f64)>,
 }
 
@@ -95,7 +113,9 @@ impl Rate {
 /// One strand with its geometry and the rates the tension system needs.
 #[derive(Clone, Debug)]
 pub struct StrandGeometry {
+    /// Its straight segments, from the anchored (or driven-pulley) end on.
     pub segments: Vec<Segment<f64>>,
+    /// `idlers[k]`: the idler (or guide) between segments `k` and `k + 1`.
     pub idlers: Vec<IdlerStep>,
     /// `ẋ` of the strand: joints, plus the driving-pulley angles at its two ends.
     pub pull_rate: Rate,
@@ -118,9 +138,14 @@ pub fn joint_parent(j: usize) -> Frame {
     }
 }
 
+/// What [`Routing::trace`] derives a route's geometry and rates from: the bodies and
+/// pulleys as validation built them.
 pub struct Routing<'a> {
+    /// Every body of the model, couplings not yet derived.
     pub bodies: &'a [Body<f64>],
+    /// Every pulley, in file order.
     pub pulleys: &'a [PulleyInfo],
+    /// Number of joints `n`.
     pub dof: usize,
 }
 
@@ -442,12 +467,39 @@ impl Routing<'_> {
                 &self.relative_rate(incoming, self.pulleys[p].carrier, p),
                 1.0,
             );
-            store_coupling(self, route, couplings, p, c)?;
+            // A fixed pulley here is a guide: it does not turn, so the rim rate the tendon
+            // would give it is the tendon's sliding over it, `v = s r c q̇`.
+            let guide = self.pulleys[p].fixed.then(|| {
+                let outgoing = segments.get(i).expect("a guide is before the route's end");
+                let arrive = segments[i - 1].acting_angles[1];
+                let depart = outgoing.acting_angles[0];
+                // In [−π/2, 3π/2): a slightly negative wrap is a tendon that only grazes the
+                // guide at this pose (the routing still holds it on), not a wrap of almost 2π.
+                let quarter = std::f64::consts::FRAC_PI_2;
+                Guide {
+                    slide: c.joints.iter().map(|x| s * r * x).collect(),
+                    wrap: (s * (depart - arrive) + quarter).rem_euclid(std::f64::consts::TAU)
+                        - quarter,
+                    // The departure point turns with the outgoing frame, the arrival point
+                    // with the incoming one.
+                    wrap_rate: self
+                        .relative_rate(outgoing.frame, incoming, p)
+                        .joints
+                        .iter()
+                        .map(|x| s * x)
+                        .collect(),
+                    mu: self.pulleys[p].mu,
+                }
+            });
+            if guide.is_none() {
+                store_coupling(self, route, couplings, p, c)?;
+            }
             if let Some(out) = segments.get(i) {
                 idlers.push(IdlerStep {
                     body: self.pulleys[p].body,
                     turn: s,
                     radius: r,
+                    guide,
                 });
                 pull.add_scaled(&self.relative_rate(incoming, out.frame, p), s * r);
             }
@@ -516,6 +568,7 @@ fn store_coupling(
     Ok(())
 }
 
+/// `+1` for [`Turn::Ccw`], `−1` for [`Turn::Cw`].
 pub fn turn_sign(t: Turn) -> f64 {
     match t {
         Turn::Ccw => 1.0,
@@ -539,8 +592,9 @@ fn plane_basis(n: Vec3<f64>) -> (Vec3<f64>, Vec3<f64>) {
 /// still the dynamics of the file as written), but no real mechanism can hold both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Overlap {
-    /// Body indices, the first defined first.
+    /// The pulley defined first (body index).
     pub first: usize,
+    /// The pulley defined later (body index).
     pub second: usize,
     /// Distance of their centres, m.
     pub distance: f64,
@@ -625,8 +679,9 @@ pub fn overlapping_pulleys(bodies: &[Body<f64>]) -> Vec<Overlap> {
 /// no real mechanism can have (the tendon would cut the pulley), which the model accepts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crossing {
-    /// The strand and the segment's index in it.
+    /// The strand (index into [`Model::strands`](crate::model::Model::strands)).
     pub strand: usize,
+    /// The segment's index in the strand.
     pub segment: usize,
     /// The pulley (body index) it passes through.
     pub pulley: usize,

@@ -10,7 +10,7 @@ use crate::model::{
     BearingFriction, Body, BodyKind, Loop, Model, Motor, MotorKind, Parameter, PulleyRole, Row,
     Slot, Strand, Tendon, TensionSystem, Unknown, Wrench,
 };
-use crate::spatial::{rot_x, rot_y, rot_z, Mat3, Transform, Vec3};
+use crate::spatial::{Mat3, Transform, Vec3};
 use crate::transmission::{
     joint_parent, linalg, PulleyInfo, Rate, Route, RouteEnd, Routing, StrandGeometry,
 };
@@ -357,8 +357,15 @@ pub const MAX_ACCELERATION: f64 = 1e6;
 /// The largest size of an explicit `coupling` ratio, the bound derived couplings keep
 /// (ratios of radii within their range).
 pub const MAX_RATIO: f64 = 1e15;
-/// The range of `friction_smoothing`, rad/s.
+/// The largest capstan coefficient `mu` of a guide (dry steel on steel is about 0.5, a
+/// tendon in a sheath rarely above 1).
+const MAX_MU: f64 = 10.0;
+
+/// The smallest `friction_smoothing`, rad/s: below it `ω / v` overflows `f32` at ordinary
+/// rates.
 pub const MIN_SMOOTHING: f64 = 1e-9;
+/// The largest `friction_smoothing`, rad/s: above it friction would reach its Coulomb
+/// value at no speed a mechanism turns.
 pub const MAX_SMOOTHING: f64 = 1e6;
 
 fn snapped_sin_cos(angle: f64) -> (f64, f64) {
@@ -857,18 +864,6 @@ impl<'a> Validator<'a> {
                     ),
                 ));
             }
-            for &(p, _) in &wraps[1..] {
-                if f.pulleys[p].fixed {
-                    return Err(self.routing(
-                        &t.name,
-                        format!(
-                            "passes over `{}`, a fixed drum: a tendon would have to slide over \
-                             it; only its first pulley (the anchor) may be fixed",
-                            f.pulleys[p].name
-                        ),
-                    ));
-                }
-            }
             let exit = t.exit.ok_or_else(|| {
                 self.routing(
                     &t.name,
@@ -1038,6 +1033,19 @@ impl<'a> Validator<'a> {
             ));
         }
         for (i, p) in f.pulleys.iter().enumerate() {
+            // A fixed pulley after an anchor is a guide: any number of tendons may slide
+            // over it, and `mu` means something only there.
+            if p.fixed {
+                if p.mu.is_some() && routed_through[i] == 0 {
+                    return Err(self.invalid(
+                        &p.name,
+                        "has `mu`, but no tendon slides over it (it is no route's guide: a \
+                         guide is a fixed pulley after a route's anchor); remove `mu` or route \
+                         a tendon over it",
+                    ));
+                }
+                continue;
+            }
             if routed_through[i] > 1 {
                 return Err(self.routing(
                     &p.name,
@@ -1498,8 +1506,38 @@ impl<'a> Validator<'a> {
             return Err(self.invalid(
                 &p.name,
                 "a `fixed` drum does not turn on its carrier, so its bearing has no friction: \
-                 remove `friction`, or drop `fixed: true` if the pulley turns"
+                 remove `friction`, or drop `fixed: true` if the pulley turns (a tendon sliding \
+                 over a fixed guide loses tension by its `mu`)"
                     .to_string(),
+            ));
+        }
+        let mu = p.mu.unwrap_or(0.0);
+        self.finite(&p.name, "mu", &[mu])?;
+        if !p.fixed && p.mu.is_some() {
+            return Err(self.invalid(
+                &p.name,
+                "`mu` is the capstan coefficient of a fixed guide a tendon slides over; this \
+                 pulley turns with the tendon, so nothing slides: remove `mu` (its bearing's \
+                 losses are `friction`), or add `fixed: true` if it is a pin",
+            ));
+        }
+        if !(0.0..=MAX_MU).contains(&mu) {
+            return Err(self.invalid(
+                &p.name,
+                format!(
+                    "`mu` is {mu}; a capstan coefficient is between 0 (frictionless) and \
+                     {MAX_MU} (format.md §6a)"
+                ),
+            ));
+        }
+        if mu > 0.0 {
+            return Err(self.invalid(
+                &p.name,
+                format!(
+                    "`mu: {mu}`: capstan friction on guides is not implemented yet (the tension \
+                     system then depends on the sliding directions); a guide is frictionless \
+                     for now: remove `mu` or set it to 0"
+                ),
             ));
         }
         self.finite(&p.name, "radius", &[p.radius])?;
@@ -1590,7 +1628,6 @@ impl<'a> Validator<'a> {
                 self.within(&p.name, "origin", origin, Range::Length)?;
                 self.within(&p.name, "rpy", rpy, Range::Angle)?;
                 let r = snapped_rot(2, rpy[2]) * snapped_rot(1, rpy[1]) * snapped_rot(0, rpy[0]);
-                let _ = (rot_x, rot_y, rot_z);
                 (
                     Transform {
                         rotation: r,
@@ -1650,6 +1687,7 @@ impl<'a> Validator<'a> {
                 coaxial,
                 radius: p.radius,
                 fixed: p.fixed,
+                mu,
             },
         ))
     }

@@ -1,5 +1,6 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
-//! bearing friction (Example 2 and four random ones) and a few mechanisms of the stress
+//! bearing friction (Example 2 and four random ones), three with fixed guides and a few
+//! mechanisms of the stress
 //! suite into
 //! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
 //! mechanism that the agreement test calls with slices.
@@ -53,6 +54,28 @@ fn main() {
         let smoothing = (seed % 2 == 0).then_some(0.2);
         let text = tendyn_spec::friction::with_bearing_friction(&text, seed, smoothing);
         mechanisms.push((format!("friction_{seed}"), text));
+    }
+    // Fixed frictionless guides in place of the idlers: Example 2 and two random ones.
+    let example2 = std::fs::read_to_string(root.join("example2_open_ended.ron")).unwrap();
+    mechanisms.push((
+        "example2_guides".to_string(),
+        tendyn_spec::guides::idlers_as_guides(&example2),
+    ));
+    // (The first two seeds whose random mechanisms have idlers.)
+    let with_idlers = (0..64u64).filter_map(|seed| {
+        let features = Features {
+            coupled_pulleys: false,
+            endless: false,
+        };
+        let (text, model) = valid_random_mechanism(seed, features);
+        let idlers = model.strands.iter().map(|s| s.idlers.len()).sum::<usize>();
+        (idlers > 0).then_some((seed, text))
+    });
+    for (seed, text) in with_idlers.take(2) {
+        mechanisms.push((
+            format!("guides_{seed}"),
+            tendyn_spec::guides::idlers_as_guides(&text),
+        ));
     }
     // Representative stress mechanisms, in a registry of their own (`STRESS`):
     // `tests/stress.rs` checks them against the double-double reference under the stress

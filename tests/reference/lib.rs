@@ -32,6 +32,7 @@ pub mod bounded;
 pub mod examples;
 pub mod fixtures;
 pub mod friction;
+pub mod guides;
 pub mod lagrangian;
 pub mod measure;
 pub mod momentum;
