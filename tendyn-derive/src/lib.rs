@@ -4,7 +4,7 @@
 //! ```ignore
 //! #[derive(tendyn::TendonMechanism)]
 //! #[tendyn(file = "mechanisms/finger.ron", outputs(generalized_forces, actuation), scalar = f64)]
-//! struct Finger { payload: f64 }
+//! struct Finger { m3: f64, g: f64 } // the runtime parameters of finger.ron
 //! ```
 //!
 //! The attribute:
@@ -32,6 +32,10 @@
 //! For tests run through `trybuild`, whose crates live in a scratch directory, the
 //! environment variable `TENDYN_MANIFEST_DIR` replaces `CARGO_MANIFEST_DIR` as the base of
 //! relative paths.
+//!
+//! The full reference (every key, the fields, the expansion, the errors) is the derive's
+//! own documentation, `TendonMechanism`.
+#![warn(missing_docs)]
 
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote, quote_spanned};
@@ -39,6 +43,94 @@ use syn::spanned::Spanned;
 use syn::{parse_macro_input, DeriveInput, Ident, LitStr};
 use tendyn_codegen::{Options, Output, Scalar};
 
+/// `#[derive(TendonMechanism)]`: the dynamics of a tendon-driven mechanism, generated from
+/// its RON file at compile time as straight-line, allocation-free methods of the struct. Use it through the front crate `tendyn` (it re-exports `tendyn-core` as
+/// `tendyn::core` and this derive as `tendyn::TendonMechanism`).
+///
+/// ```ignore
+/// use tendyn::TendonMechanism;
+///
+/// #[derive(TendonMechanism)]
+/// #[tendyn(file = "mechanisms/finger.ron", outputs(generalized_forces, actuation), scalar = f64)]
+/// struct Finger { m3: f64, g: f64 } // one field per runtime parameter, by name, any order
+///
+/// let finger = Finger { m3: 0.02, g: -9.81 };
+/// let (q, qd, qdd) = ([0.1, 0.5, 0.3], [0.0; 3], [1.0, 0.0, 0.0]); // rad, rad/s, rad/s²
+/// let forces = finger.generalized_forces(&q, &qd, &qdd); // [f64; 3], N·m
+/// let actuation = finger.actuation(&q, &qd, &qdd); // motor torques, tendon tensions, status
+/// ```
+///
+/// # The attribute `#[tendyn(...)]`
+///
+/// Required. Keys, comma-separated:
+///
+/// | Key | Meaning |
+/// |---|---|
+/// | `file = "path"` | The mechanism file, relative to the crate's manifest directory. The expansion embeds it with `include_bytes!`, so editing it rebuilds the crate. |
+/// | `ron = "..."` | The mechanism inline (a raw string `r#"..."#` is convenient). Exactly one of `file` and `ron`. |
+/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`. Default: every output the mechanism can provide. |
+/// | `scalar = f64` or `scalar = f32` | The type of every input, output and field. Default `f64`. (The derive always generates concrete code; there is no generic scalar.) |
+/// | `crate = "path"` | Where the front crate is, default `::tendyn`: the expansion implements `<path>::TendonMechanism`, and the generated code reaches `<path>::core`. |
+///
+/// # The struct
+///
+/// A struct without generic parameters whose fields are the mechanism's runtime
+/// parameters (the file's `parameters`): named fields, exactly one per declared
+/// parameter, matched by name in any order, each of the scalar type, and no other
+/// fields. A mechanism without parameters takes a unit struct (`struct Finger;`). The
+/// methods pass the fields to the generated code as its `params`, in the order the file
+/// declares them.
+///
+/// # What the expansion contains
+///
+/// For `struct Finger`:
+/// - a hidden module `__tendyn_finger` with the code `tendyn-codegen` emits for the
+///   requested outputs at the chosen scalar (`docs/generated-code.md` §3): its constants,
+///   functions, `Outputs` and `all`;
+/// - inherent methods, one per requested output plus `all`, e.g.
+///   `Finger::generalized_forces(&self, q, qd, qdd) -> [f64; 3]`: the generated
+///   functions' signatures and doc comments, without `params` (the fields are passed);
+/// - `impl tendyn::TendonMechanism for Finger`: the constants `NAME`, `DOF`, `MOTORS`,
+///   `TENDONS`, `JOINT_NAMES`, `MOTOR_NAMES`, `TENDON_NAMES`, `PARAMETER_NAMES`,
+///   `OUTPUTS`, `STRUCTURE_MATRIX`; the associated types `Scalar`, `Joints = [S; n]`,
+///   `Motors = [S; M]`, `Tendons = [S; K]`, `MassMatrix = [[S; n]; n]`, `Segments`,
+///   `Bearings`, `BaseReaction` (`()` when not generated); and the nine output methods,
+///   which return `Some` for the requested outputs and `None` for the others.
+///
+/// The inherent methods take precedence in method-call syntax, so `finger.actuation(..)`
+/// needs no `unwrap`; generic code uses the trait.
+///
+/// # Errors
+///
+/// Every problem is a compile error spanned at the part of the attribute (or of the
+/// struct) at fault:
+///
+/// | Problem | Message (span) |
+/// |---|---|
+/// | no `#[tendyn(...)]` | ``missing `#[tendyn(file = "mechanism.ron")]`: ...`` (the struct's name) |
+/// | neither `file` nor `ron` | `missing the mechanism: add ...` (the struct's name) |
+/// | both, or one twice | `` give the mechanism once: `file = "..."` or `ron = "..."` `` (the second) |
+/// | an unknown key | `` unknown key: the keys are `file`, `ron`, `outputs(...)`, `scalar` and `crate` `` (the key) |
+/// | an unknown scalar | ``unknown scalar `f16`: write `scalar = f64` or `scalar = f32` `` (the name) |
+/// | an unknown output | ``unknown output `x`: the outputs are ...`` (the name) |
+/// | an unreadable file | ``cannot read `mechanisms/x.ron` (relative to the crate's manifest directory): no such file`` (the path) |
+/// | a RON syntax error | `mechanisms/x.ron:17:13: RON syntax error: ...` (the path) |
+/// | an invalid mechanism (unknown name, invalid inertia, uncontrollable routing, ...) | `mechanisms/x.ron:LINE:COLUMN: ITEM: PROBLEM`, as `tendyn check` reports it (the path; `inline RON:LINE:COLUMN` for `ron = ...`) |
+/// | an output the mechanism cannot provide | ``mechanism `motor_only` cannot provide `segment_tensions`: ...`` (that output) |
+/// | a number the scalar cannot hold | ``BODY: its mass is 1e39 kg, which f32 cannot hold ...``, ``output `NAME`: a constant folded from the mechanism's numbers is ...`` (the `file` or `ron` value) |
+/// | a field that is not a parameter | ``field `payload` is not a runtime parameter of mechanism `finger`: it declares `m3`, `g` `` (the field) |
+/// | a parameter without a field | ``mechanism `finger` declares the runtime parameter `g`, missing from the fields of `Finger` (fields: `m3`); ...`` (the struct's name) |
+/// | a field of another type | rustc's `mismatched types` (the field) |
+/// | a tuple struct | ``the fields of a `TendonMechanism` are its runtime parameters by name: use named fields (...)`` (the fields) |
+/// | an enum or a union | `` `TendonMechanism` is derived for a struct whose fields are the runtime parameters`` (its name) |
+/// | generic parameters | `` `TendonMechanism` is derived for a concrete type: ... `` (the parameters) |
+///
+/// Beside the error the expansion still declares the inherent methods and the trait with
+/// the shapes the file gives (with bodies that never run), so that the located error is
+/// the only one: no "no method named ..." at every call site.
+///
+/// Relative paths are relative to `CARGO_MANIFEST_DIR`, or to `TENDYN_MANIFEST_DIR` when
+/// it is set (for tests run through `trybuild`, which builds in a scratch directory).
 #[proc_macro_derive(TendonMechanism, attributes(tendyn))]
 pub fn derive_tendon_mechanism(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
     let input = parse_macro_input!(input as DeriveInput);
@@ -237,7 +329,15 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
                     )
                 })
             })
-            .collect::<syn::Result<_>>()?,
+            .collect::<syn::Result<Vec<_>>>()?
+            .into_iter()
+            .fold(Vec::new(), |mut seen, o| {
+                // A repeated name is generated once (docs/generated-code.md §1).
+                if !seen.contains(&o) {
+                    seen.push(o);
+                }
+                seen
+            }),
     };
     if let Err(u) = tendyn_codegen::outputs::check(&model, &outputs) {
         let span = attr
@@ -351,6 +451,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     let tendon_names = names(model.tendons.iter().map(|x| &x.name).collect());
     let parameter_names = names(model.parameters.iter().map(|x| &x.name).collect());
     let output_names = outputs.iter().map(|o| o.name());
+    let name = &model.name;
     let structure_rows = model.structure_matrix().into_iter().map(|row| {
         let cells = row.into_iter().map(|x| {
             let lit = proc_macro2::Literal::f64_suffixed(x.abs());
@@ -362,7 +463,29 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
         });
         quote!(&[#(#cells),*])
     });
-    let name = &model.name;
+    let trait_impl = trait_impl(
+        ident,
+        krate,
+        &scalar,
+        Shapes {
+            joints: n,
+            motors: m,
+            tendons: t,
+            segments,
+            bearings,
+            base_reaction,
+        },
+        quote! {
+            const NAME: &'static str = #name;
+            const JOINT_NAMES: &'static [&'static str] = #joint_names;
+            const MOTOR_NAMES: &'static [&'static str] = #motor_names;
+            const TENDON_NAMES: &'static [&'static str] = #tendon_names;
+            const PARAMETER_NAMES: &'static [&'static str] = #parameter_names;
+            const OUTPUTS: &'static [&'static str] = &[#(#output_names),*];
+            const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[#(#structure_rows),*];
+            #(#trait_methods)*
+        },
+    );
     let track = tracked.map(|path| {
         quote!(
             const _: &[u8] = include_bytes!(#path);
@@ -388,27 +511,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
             #(#inherent)*
         }
 
-        impl #krate::TendonMechanism for #ident {
-            type Scalar = #scalar;
-            type Joints = [#scalar; #n];
-            type Motors = [#scalar; #m];
-            type Tendons = [#scalar; #t];
-            type MassMatrix = [[#scalar; #n]; #n];
-            type Segments = #segments;
-            type Bearings = #bearings;
-            type BaseReaction = #base_reaction;
-            const NAME: &'static str = #name;
-            const DOF: usize = #n;
-            const MOTORS: usize = #m;
-            const TENDONS: usize = #t;
-            const JOINT_NAMES: &'static [&'static str] = #joint_names;
-            const MOTOR_NAMES: &'static [&'static str] = #motor_names;
-            const TENDON_NAMES: &'static [&'static str] = #tendon_names;
-            const PARAMETER_NAMES: &'static [&'static str] = #parameter_names;
-            const OUTPUTS: &'static [&'static str] = &[#(#output_names),*];
-            const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[#(#structure_rows),*];
-            #(#trait_methods)*
-        }
+        #trait_impl
     })
 }
 
@@ -472,7 +575,12 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         Some(list) => list
             .iter()
             .filter_map(|i| Output::parse(&i.to_string()))
-            .collect(),
+            .fold(Vec::new(), |mut seen, o| {
+                if !seen.contains(&o) {
+                    seen.push(o);
+                }
+                seen
+            }),
     };
     let (ident, krate) = (&input.ident, &attr.krate);
     let scalar = match attr.scalar.0 {
@@ -494,32 +602,80 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         }
     });
     let name = &f.name;
-    Some(quote! {
-        impl #ident {
-            #(#methods)*
-        }
-
-        impl #krate::TendonMechanism for #ident {
-            type Scalar = #scalar;
-            type Joints = [#scalar; #n];
-            type Motors = [#scalar; #m];
-            type Tendons = [#scalar; #t];
-            type MassMatrix = [[#scalar; #n]; #n];
-            type Segments = [#scalar; #segments];
-            type Bearings = [[[#scalar; 3]; 2]; #bodies];
-            type BaseReaction = [[[#scalar; 3]; 2]; 1];
+    let trait_impl = trait_impl(
+        ident,
+        krate,
+        &scalar,
+        Shapes {
+            joints: n,
+            motors: m,
+            tendons: t,
+            segments: quote!([#scalar; #segments]),
+            bearings: quote!([[[#scalar; 3]; 2]; #bodies]),
+            base_reaction: quote!([[[#scalar; 3]; 2]; 1]),
+        },
+        quote! {
             const NAME: &'static str = #name;
-            const DOF: usize = #n;
-            const MOTORS: usize = #m;
-            const TENDONS: usize = #t;
             const JOINT_NAMES: &'static [&'static str] = &[];
             const MOTOR_NAMES: &'static [&'static str] = &[];
             const TENDON_NAMES: &'static [&'static str] = &[];
             const PARAMETER_NAMES: &'static [&'static str] = &[];
             const OUTPUTS: &'static [&'static str] = &[];
             const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[];
+        },
+    );
+    Some(quote! {
+        impl #ident {
+            #(#methods)*
         }
+
+        #trait_impl
     })
+}
+
+/// The sizes and result types of the trait's associated types.
+struct Shapes {
+    joints: usize,
+    motors: usize,
+    tendons: usize,
+    segments: TokenStream,
+    bearings: TokenStream,
+    base_reaction: TokenStream,
+}
+
+/// `impl TendonMechanism for ident`: the associated types from `shapes`, the counts, and
+/// `rest` (the names, the structure matrix and the methods).
+fn trait_impl(
+    ident: &Ident,
+    krate: &syn::Path,
+    scalar: &TokenStream,
+    shapes: Shapes,
+    rest: TokenStream,
+) -> TokenStream {
+    let Shapes {
+        joints: n,
+        motors: m,
+        tendons: t,
+        segments,
+        bearings,
+        base_reaction,
+    } = shapes;
+    quote! {
+        impl #krate::TendonMechanism for #ident {
+            type Scalar = #scalar;
+            type Joints = [#scalar; #n];
+            type Motors = [#scalar; #m];
+            type Tendons = [#scalar; #t];
+            type MassMatrix = [[#scalar; #n]; #n];
+            type Segments = #segments;
+            type Bearings = #bearings;
+            type BaseReaction = #base_reaction;
+            const DOF: usize = #n;
+            const MOTORS: usize = #m;
+            const TENDONS: usize = #t;
+            #rest
+        }
+    }
 }
 
 fn is_params(t: &syn::PatType) -> bool {

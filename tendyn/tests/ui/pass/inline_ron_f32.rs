@@ -12,7 +12,8 @@ use tendyn::TendonMechanism;
         ],
         motors: [(name: "motor1", on: Joint("link1"))],
     )"#,
-    outputs(gravity, mass_matrix),
+    // A repeated output is generated once.
+    outputs(gravity, mass_matrix, gravity),
     scalar = f32
 )]
 struct Pendulum;
@@ -24,4 +25,5 @@ fn main() {
     let g = Pendulum.gravity(&[0.4f32]);
     assert!((g[0] - 2.0 * 9.81 * 0.5 * 0.4f32.cos()).abs() < 1e-4, "{g:?}");
     let _: <Pendulum as TendonMechanism>::Scalar = 0.0f32;
+    assert_eq!(Pendulum::OUTPUTS, ["gravity", "mass_matrix"]);
 }
