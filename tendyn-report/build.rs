@@ -62,7 +62,9 @@ fn run() -> Result<(), String> {
     let out = PathBuf::from(std::env::var_os("OUT_DIR").ok_or("OUT_DIR is not set")?);
     let files = files()?;
     let mut glue = String::new();
-    let mut registry = String::from("pub const MECHANISMS: &[Mechanism] = &[\n");
+    let mut registry = String::from(
+        "/// Every mechanism compiled into this crate (see `build.rs`), in order.\npub const MECHANISMS: &[Mechanism] = &[\n",
+    );
     for (k, path) in files.iter().enumerate() {
         let shown = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| format!("{shown}: {e}"))?;
@@ -183,6 +185,7 @@ fn module(
 /// `{name}`: generated code and glue.
 #[allow(clippy::all, unreachable_patterns)]
 pub mod m{k} {{
+    /// The code `tendyn-codegen` generated for it: every output it can provide, generic.
     #[allow(dead_code, unused_imports, clippy::all)]
     pub mod code {{
         include!(concat!(env!("OUT_DIR"), "/m{k}/{generated}"));
@@ -191,6 +194,7 @@ pub mod m{k} {{
     use std::hint::black_box;
     use tendyn_core::Numeric;
 
+    /// The mechanism file's text, as generated.
     pub const RON: &str = include_str!(concat!(env!("OUT_DIR"), "/m{k}/mechanism.ron"));
 
     /// One state in fixed-size arrays, as the generated functions take it.

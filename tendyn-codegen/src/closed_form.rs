@@ -146,6 +146,8 @@ impl Span {
 
 /// How variables rank when factoring (higher first).
 pub trait Rank {
+    /// The rank of variable `v` of `g`: among the variables of a polynomial, those of
+    /// highest rank are pulled out first.
     fn rank(&self, g: &Graph, v: Id) -> u8;
 }
 

@@ -30,11 +30,15 @@ use tendyn_core::Model;
 pub enum Scalar {
     /// Generic over `T: tendyn_core::Real`.
     Generic,
+    /// Concrete `f64`.
     F64,
+    /// Concrete `f32`.
     F32,
 }
 
 impl Scalar {
+    /// `generic`, `f64` or `f32`, as `tendyn generate --scalar` takes them; `None`
+    /// otherwise.
     pub fn parse(s: &str) -> Option<Scalar> {
         match s {
             "generic" => Some(Scalar::Generic),

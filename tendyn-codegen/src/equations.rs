@@ -770,6 +770,7 @@ pub struct Named {
     /// as parameters (`parameters[k].value` is each one's file value) and, when `E` is square,
     /// the exact `E⁻¹` in place of the QR-computed one.
     pub model: Model<f64>,
+    /// The requested outputs, traced from [`Named::model`]: what is printed.
     pub traced: Traced,
     transmission: Option<Transmission>,
     /// Per body: the name of its radius (pulleys).
@@ -781,9 +782,11 @@ pub struct Named {
 /// A length or radius that prints by name.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NamedLength {
+    /// Its name in the equations (`a1`, `d2`, `r3`, `r_NAME`).
     pub name: String,
     /// Its value in the file.
     pub value: f64,
+    /// Which length or radius it is.
     pub quantity: Quantity,
 }
 
@@ -1020,8 +1023,8 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     })
 }
 
-/// The equations of `outputs` (default: generalized forces, and the tension system's
-/// actuation when there are tendons or motors) as text.
+/// The equations of `outputs`, as text. (Without `--outputs`, `tendyn equations` asks for
+/// the generalized forces and, where the mechanism can provide it, the actuation.)
 pub fn equations(model: &Model<f64>, outputs: &[Output]) -> Result<String, crate::Error> {
     let named = named(model, outputs)?;
     Ok(render(&named))

@@ -61,21 +61,37 @@ pub type NodeMap<K, V> = HashMap<K, V, BuildHasherDefault<NodeHasher>>;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Id(pub u32);
 
+/// One operation of a [`Graph`]; its operands are earlier nodes of the same graph.
+///
+/// The operands of `Add`, `Mul` and `Max` are stored in id order, so `a + b` and `b + a`
+/// are one node.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Node {
     /// A number, by its bits (`-0.0` is stored as `0.0`).
     Const(u64),
     /// Input `index` of the generated function (see [`Graph::input_names`]).
     Input(u32),
+    /// `a + b`.
     Add(Id, Id),
+    /// `a − b`.
     Sub(Id, Id),
+    /// `a · b`.
     Mul(Id, Id),
+    /// `a / b`, `b` not a constant (a division by a number is a multiplication by its
+    /// reciprocal).
     Div(Id, Id),
+    /// `−a`.
     Neg(Id),
+    /// `sin a`.
     Sin(Id),
+    /// `cos a`.
     Cos(Id),
+    /// `√a`.
     Sqrt(Id),
+    /// `tanh a` (the smoothed friction law).
     Tanh(Id),
+    /// The larger of `a` and `b` ([`Real::max`]; the tension distribution along one null
+    /// direction).
     Max(Id, Id),
     /// `a.sign_outside(band)`: ±1 beyond the band, 0 within it ([`Real::sign_outside`]).
     SignOutside(Id, Id),
@@ -99,13 +115,16 @@ impl Node {
         ids.into_iter().take(n)
     }
 
+    /// The operands of the node, collected.
     pub fn children(&self) -> Vec<Id> {
         self.operands().collect()
     }
 }
 
+/// A hash-consed expression graph: every node once, children before parents.
 #[derive(Default, Debug, Clone)]
 pub struct Graph {
+    /// The nodes; a node's [`Id`] is its index here.
     pub nodes: Vec<Node>,
     memo: NodeMap<Node, Id>,
     /// The constants, by their bits: kept apart from `memo` because tracing makes most of
@@ -154,10 +173,12 @@ impl Graph {
         (g, r)
     }
 
+    /// The node `id`.
     pub fn node(&self, id: Id) -> Node {
         self.nodes[id.0 as usize]
     }
 
+    /// The number node `id` holds, if it is a constant.
     pub fn constant_value(&self, id: Id) -> Option<f64> {
         match self.node(id) {
             Node::Const(bits) => Some(f64::from_bits(bits)),
@@ -182,6 +203,7 @@ impl Graph {
         })
     }
 
+    /// The node of the number `x` (`-0.0` and `0.0` are one node).
     pub fn constant(&mut self, x: f64) -> Id {
         let bits = if x == 0.0 { 0.0f64 } else { x }.to_bits();
         let next = Id(self.nodes.len() as u32);
@@ -192,12 +214,14 @@ impl Graph {
         })
     }
 
+    /// A new input named `name` (`q[0]`, ...); every call makes a distinct input.
     pub fn input(&mut self, name: impl Into<String>) -> Id {
         let index = self.input_names.len() as u32;
         self.input_names.push(name.into());
         self.intern(Node::Input(index))
     }
 
+    /// `a + b`, folded: constants summed, `x + 0 = x`, `a + (−c) = a − c`.
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => return self.constant(x + y),
@@ -212,6 +236,7 @@ impl Graph {
         }
     }
 
+    /// `a − b`, folded: `x − x = 0`, constants, `x − 0`, `0 − x = −x`, signs moved out.
     pub fn sub(&mut self, a: Id, b: Id) -> Id {
         if a == b {
             return self.constant(0.0);
@@ -235,6 +260,9 @@ impl Graph {
         }
     }
 
+    /// `a · b`, folded: constants multiplied, `x · 0 = 0`, `x · (±1) = ±x` (also for a
+    /// factor within 4 ulp of ±1), and signs pulled out of the product (`(−a) · b =
+    /// −(a · b)`), so that `k x` and `−k x` share one product.
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
         // A factor within 4 ulp of ±1 is a one that rounding bent (the model's constants
         // are products of f64 numbers, e.g. (s/r)·r): it multiplies by exactly ±1.
@@ -284,6 +312,8 @@ impl Graph {
         }
     }
 
+    /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `x / x = 1`, and a
+    /// division by a number as a multiplication by its reciprocal.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => return self.constant(x / y),
@@ -302,6 +332,7 @@ impl Graph {
         self.intern(Node::Div(a, b))
     }
 
+    /// `−a`, folded: `−c` of a constant, `−(−x) = x`, `−(x − y) = y − x`.
     pub fn neg(&mut self, a: Id) -> Id {
         if let Some(x) = self.constant_value(a) {
             return self.constant(-x);
@@ -313,6 +344,7 @@ impl Graph {
         }
     }
 
+    /// `sin a`, folded: of a constant, and `sin(−x) = −sin x`.
     pub fn sin(&mut self, a: Id) -> Id {
         if let Some(x) = self.constant_value(a) {
             return self.constant(x.sin());
@@ -326,6 +358,7 @@ impl Graph {
         }
     }
 
+    /// `cos a`, folded: of a constant, and `cos(−x) = cos x`.
     pub fn cos(&mut self, a: Id) -> Id {
         if let Some(x) = self.constant_value(a) {
             return self.constant(x.cos());
@@ -336,6 +369,7 @@ impl Graph {
         }
     }
 
+    /// `√a`, folded for a constant.
     pub fn sqrt(&mut self, a: Id) -> Id {
         if let Some(x) = self.constant_value(a) {
             return self.constant(x.sqrt());
@@ -343,6 +377,7 @@ impl Graph {
         self.intern(Node::Sqrt(a))
     }
 
+    /// The larger of `a` and `b`, folded: `max(x, x) = x`, and of two constants.
     pub fn max(&mut self, a: Id, b: Id) -> Id {
         if a == b {
             return a;
@@ -353,6 +388,7 @@ impl Graph {
         self.intern(Node::Max(a.min(b), a.max(b)))
     }
 
+    /// `tanh a`, folded: of a constant, and `tanh(−x) = −tanh x`.
     pub fn tanh(&mut self, a: Id) -> Id {
         if let Some(x) = self.constant_value(a) {
             return self.constant(x.tanh());
@@ -366,6 +402,7 @@ impl Graph {
         }
     }
 
+    /// `a.sign_outside(band)` ([`Real::sign_outside`]), folded when both are constants.
     pub fn sign_outside(&mut self, a: Id, band: Id) -> Id {
         if let (Some(x), Some(b)) = (self.constant_value(a), self.constant_value(band)) {
             return self.constant(x.sign_outside(b));
@@ -461,18 +498,28 @@ impl Graph {
 /// Operations of a straight-line function.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct OpCount {
+    /// Additions and subtractions.
     pub add: usize,
+    /// Multiplications.
     pub mul: usize,
+    /// Divisions (by a variable: division by a number is a multiplication).
     pub div: usize,
+    /// Negations.
     pub neg: usize,
+    /// Sines of angles whose cosine is not needed.
     pub sin: usize,
+    /// Cosines of angles whose sine is not needed.
     pub cos: usize,
+    /// Angles whose sine and cosine are both needed (one `sin_cos` call each).
     pub sin_cos: usize,
+    /// Square roots.
     pub sqrt: usize,
+    /// `max`es (the tension distribution along one null direction).
     pub max: usize,
     /// Selects of a friction direction ([`Node::SignOutside`]).
     #[serde(skip_serializing_if = "is_zero")]
     pub sign: usize,
+    /// Hyperbolic tangents (the smoothed friction law).
     #[serde(skip_serializing_if = "is_zero")]
     pub tanh: usize,
 }
@@ -521,6 +568,11 @@ impl std::fmt::Display for OpCount {
 pub struct Sym(pub Id);
 
 impl Sym {
+    /// A new input of the current graph, named `name` (see [`Graph::input`]).
+    ///
+    /// # Panics
+    ///
+    /// Outside [`Graph::scope`].
     pub fn input(name: impl Into<String>) -> Sym {
         let name = name.into();
         Sym(with(|g| g.input(name)))

@@ -10,9 +10,11 @@
 //!   accelerations, kept per function when it has fewer operations;
 //! - [`emit`]: graph → Rust source (quote, prettyplease), with operation counts;
 //! - [`report`]: the CLI's text and JSON renderings of runtime results;
+//! - [`equations`]: the traced functions in mathematical notation (`tendyn equations`);
 //! - [`builder`]: [`Builder`], generation from a build script into `OUT_DIR`.
 //!
 //! [`generate`] runs the whole pipeline.
+#![warn(missing_docs)]
 
 pub mod builder;
 pub mod closed_form;
@@ -32,12 +34,22 @@ pub enum Error {
     /// The mechanism file is invalid.
     Model(tendyn_core::Error),
     /// A requested output cannot be generated for this mechanism.
-    Unavailable { output: Output, reason: String },
+    Unavailable {
+        /// The output refused.
+        output: Output,
+        /// Why, in words (see [`outputs::check`]).
+        reason: String,
+    },
     /// The path given for `tendyn-core` is not a Rust path.
-    CorePath { path: String },
+    CorePath {
+        /// [`Options::core_path`] as given.
+        path: String,
+    },
     /// A mechanism file of a [`Builder`] is unreadable or invalid.
     File {
+        /// The file's path as given to [`Builder::mechanism`].
         path: String,
+        /// What reading or validating it reported.
         error: tendyn_core::Error,
     },
     /// An output name that is not one of [`Output::ALL`].
@@ -48,7 +60,12 @@ pub enum Error {
     /// A number the emitted code would hold that its scalar cannot: one of the mechanism's,
     /// or one folded from them (a product of a mass and a squared length, say). `item` names
     /// the body it belongs to, or the output whose function holds it.
-    Constant { item: String, problem: String },
+    Constant {
+        /// The body (or tendon) it belongs to, or `` output `NAME` ``.
+        item: String,
+        /// The number, the scalar's limit and what to do about it.
+        problem: String,
+    },
 }
 
 impl std::fmt::Display for Error {
@@ -98,6 +115,7 @@ impl From<outputs::Unavailable> for Error {
 /// Generated source and what it costs.
 #[derive(Debug, Clone)]
 pub struct Generated {
+    /// The Rust source of the whole file, formatted, header comments included.
     pub source: String,
     /// Per function: name, operations of the emitted form, whether it is the closed form.
     pub functions: Vec<(Output, expr::OpCount, bool)>,
@@ -109,6 +127,7 @@ pub struct Generated {
 /// which the emitted code reaches `tendyn-core`.
 #[derive(Debug, Clone)]
 pub struct Options {
+    /// The scalar type of the emitted functions.
     pub scalar: Scalar,
     /// Names the input in the generated file's header (a file name, say).
     pub source: String,

@@ -21,17 +21,24 @@ pub enum Output {
     GeneralizedForces,
     /// Motor torques and ground-level tendon tensions (the tension distribution included).
     Actuation,
+    /// `M(q)` (kg·m², pulley inertias included).
     MassMatrix,
+    /// `h(q, q̇)`: Coriolis and centrifugal generalized forces (N·m).
     Bias,
+    /// `g(q)`: gravity generalized forces (N·m).
     Gravity,
     /// `q̈` from motor torques and tendon tensions.
     ForwardDynamics,
+    /// Every tendon segment's tension (N), strand by strand, each from its anchored end.
     SegmentTensions,
+    /// Force (N) and moment (N·m) on every body from its parent, motor torque excluded.
     Bearings,
+    /// The base's force (N) and moment about `O_0` (N·m) on the mechanism, base frame.
     BaseReaction,
 }
 
 impl Output {
+    /// Every output, in the default order (that of `tendyn generate` and of the file).
     pub const ALL: [Output; 9] = [
         Output::GeneralizedForces,
         Output::Actuation,
@@ -59,6 +66,7 @@ impl Output {
         }
     }
 
+    /// The output whose [`name`](Output::name) is `name`; `None` for any other name.
     pub fn parse(name: &str) -> Option<Output> {
         Output::ALL.into_iter().find(|o| o.name() == name)
     }
@@ -82,16 +90,23 @@ impl Output {
 /// An array input of a generated function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Param {
+    /// `q`: joint angles (rad), in joint order.
     Q,
+    /// `qd`: joint rates (rad/s).
     Qd,
+    /// `qdd`: joint accelerations (rad/s²).
     Qdd,
+    /// `motor_torques` (N·m), in file order of the motors.
     MotorTorques,
+    /// `tendon_tensions`: ground-level tensions (N), in file order of the open-ended
+    /// tendons.
     TendonTensions,
     /// The mechanism's runtime parameters, in declaration order.
     Parameters,
 }
 
 impl Param {
+    /// Every input, in the order `all` takes those it needs.
     pub const ALL: [Param; 6] = [
         Param::Q,
         Param::Qd,
@@ -101,6 +116,7 @@ impl Param {
         Param::Parameters,
     ];
 
+    /// The argument's name in the generated signature.
     pub fn name(self) -> &'static str {
         match self {
             Param::Q => "q",
@@ -123,8 +139,11 @@ pub enum Shape {
     /// `tendyn_core::distribution::Actuation<[T; motors], [T; tendons]>`: the flat results
     /// are the torques and tensions, then what `status` needs.
     Actuation {
+        /// Number of motors.
         motors: usize,
+        /// Number of open-ended tendons.
         tendons: usize,
+        /// How the generated code decides `status`.
         status: StatusFrom,
     },
     /// `[[[T; 3]; 2]; count]`: force and moment per entry.
@@ -149,14 +168,18 @@ pub enum StatusFrom {
 /// A traced function.
 #[derive(Clone, Debug)]
 pub struct Function {
+    /// The output this function computes.
     pub output: Output,
+    /// How its flat results are arranged in its return type.
     pub shape: Shape,
     /// Results, flattened in row-major order, in the form chosen for this function.
     pub results: Vec<Id>,
     /// The same results as traced (before any closed form).
     pub traced: Vec<Id>,
-    /// Operations of the traced form and of the closed form (if it could be built).
+    /// Operations of the traced form.
     pub traced_ops: OpCount,
+    /// Operations of the closed form; `None` if it could not be built (the expansion
+    /// gave up). The closed form is chosen when it has fewer arithmetic operations.
     pub closed_ops: Option<OpCount>,
     /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`]):
     /// the constants of `tendyn_core::distribution::Fixed` the emitted code distributes
@@ -169,8 +192,9 @@ pub struct Function {
 pub struct Distribution {
     /// Null-space basis restricted to the tendons: `null[d][k]`.
     pub null: Vec<Vec<f64>>,
+    /// Each tendon's floor (N), in file order.
     pub floor: Vec<f64>,
-    /// `f64::INFINITY` where a tendon has no maximum.
+    /// Each tendon's maximum (N); `f64::INFINITY` where a tendon has none.
     pub max: Vec<f64>,
     /// The objective's optimum in null-space coordinates, `λ*_d = Σₖ null[d][k] c_k`.
     pub target: Vec<f64>,
@@ -179,14 +203,19 @@ pub struct Distribution {
 /// Why an output cannot be generated for a mechanism.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Unavailable {
+    /// The output refused.
     pub output: Output,
+    /// Why, in words: it completes ``output `NAME` cannot be generated: ...``.
     pub reason: String,
 }
 
 /// Every requested function, traced into one graph.
 pub struct Traced {
+    /// The one graph every function's results are nodes of.
     pub graph: Graph,
+    /// The requested functions, each once, in the order first asked for.
     pub functions: Vec<Function>,
+    /// Degrees of freedom `n` (the length of `q`).
     pub dof: usize,
     /// Number of runtime parameters (inputs of every function).
     pub parameters: usize,

@@ -15,12 +15,16 @@ pub const MAX_UNKNOWNS: usize = 12;
 /// A scalar `c + Σ_k a_k x_k` over `n` unknowns.
 #[derive(Clone, Copy, Debug)]
 pub struct Affine<T> {
+    /// `c`: the value when every unknown is zero.
     pub constant: T,
+    /// `a_k`, the coefficient of unknown `x_k`; only the first `n` are used.
     pub coefficients: [T; MAX_UNKNOWNS],
+    /// The number of unknowns (the tension system's columns).
     pub n: usize,
 }
 
 impl<T: Real> Affine<T> {
+    /// The known value `c` over `n` unknowns (every coefficient zero).
     pub fn constant(c: T, n: usize) -> Self {
         Affine {
             constant: c,
@@ -34,6 +38,7 @@ impl<T: Real> Affine<T> {
         a.coefficients[k] = T::one();
         a
     }
+    /// `self + o`.
     pub fn add(&self, o: &Self) -> Self {
         let mut r = *self;
         r.constant = self.constant + o.constant;
@@ -42,6 +47,7 @@ impl<T: Real> Affine<T> {
         }
         r
     }
+    /// `self − o`.
     pub fn sub(&self, o: &Self) -> Self {
         let mut r = *self;
         r.constant = self.constant - o.constant;
@@ -50,6 +56,7 @@ impl<T: Real> Affine<T> {
         }
         r
     }
+    /// `s · self`.
     pub fn scale(&self, s: T) -> Self {
         let mut r = *self;
         r.constant = self.constant * s;
@@ -58,6 +65,7 @@ impl<T: Real> Affine<T> {
         }
         r
     }
+    /// `self + c` for a known `c`.
     pub fn add_constant(&self, c: T) -> Self {
         let mut r = *self;
         r.constant = self.constant + c;
@@ -76,12 +84,16 @@ impl<T: Real> Affine<T> {
 /// A three-vector whose components are affine in the unknowns.
 #[derive(Clone, Copy, Debug)]
 pub struct Aff3<T> {
+    /// The value when every unknown is zero.
     pub constant: Vec3<T>,
+    /// The vector multiplying unknown `x_k`; only the first `n` are used.
     pub coefficients: [Vec3<T>; MAX_UNKNOWNS],
+    /// The number of unknowns (the tension system's columns).
     pub n: usize,
 }
 
 impl<T: Real> Aff3<T> {
+    /// The known vector `v` over `n` unknowns (every coefficient zero).
     pub fn known(v: Vec3<T>, n: usize) -> Self {
         Aff3 {
             constant: v,
@@ -113,15 +125,19 @@ impl<T: Real> Aff3<T> {
         }
         r
     }
+    /// `self + o`.
     pub fn add(&self, o: &Self) -> Self {
         self.zip(o, |a, b| a + b)
     }
+    /// `self − o`.
     pub fn sub(&self, o: &Self) -> Self {
         self.zip(o, |a, b| a - b)
     }
+    /// `−self`.
     pub fn neg(&self) -> Self {
         self.each(|a| -a)
     }
+    /// `self + v` for a known vector `v`.
     pub fn add_known(&self, v: Vec3<T>) -> Self {
         let mut r = *self;
         r.constant = self.constant + v;
@@ -147,6 +163,7 @@ impl<T: Real> Aff3<T> {
         }
         r
     }
+    /// Value at the given unknowns.
     pub fn eval(&self, x: &[T]) -> Vec3<T> {
         let mut v = self.constant;
         for (a, xk) in self.coefficients[..self.n].iter().zip(x) {

@@ -165,10 +165,13 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
 /// The data of a one-direction distribution: the positive null vector's tendon components
 /// `p` (all `> 0`), the bounds, and the unconstrained optimum `μ* = pᵀc / pᵀp`.
 pub struct Line<'a, T> {
+    /// `p_k`: the positive null vector's component on each tendon (all `> 0`).
     pub direction: &'a [T],
+    /// Each tendon's floor (N).
     pub floor: &'a [f64],
-    /// `f64::INFINITY` where a tendon has no maximum.
+    /// Each tendon's maximum (N); `f64::INFINITY` where it has none.
     pub max: &'a [f64],
+    /// `μ* = pᵀc / pᵀp`: the lift the objective alone would choose (0 for least norm).
     pub target: T,
 }
 
@@ -246,8 +249,9 @@ pub trait Problem<T> {
     fn directions(&self) -> usize;
     /// Component on tendon `k` of null direction `d` (orthonormal over the tendons).
     fn null(&self, d: usize, k: usize) -> T;
+    /// The floor of tendon `k` (N).
     fn floor(&self, k: usize) -> f64;
-    /// `f64::INFINITY` where tendon `k` has no maximum.
+    /// The maximum of tendon `k` (N); `f64::INFINITY` where it has none.
     fn max(&self, k: usize) -> f64;
     /// `λ*_d = Σₖ null(d, k) c_k`: the objective's optimum in null-space coordinates.
     fn target(&self, d: usize) -> T;
@@ -258,9 +262,11 @@ pub trait Problem<T> {
 pub struct Fixed<const K: usize, const D: usize> {
     /// `null[d][k]`.
     pub null: [[f64; K]; D],
+    /// `floor[k]`, each tendon's floor (N).
     pub floor: [f64; K],
-    /// `f64::INFINITY` where a tendon has no maximum.
+    /// Each tendon's maximum (N); `f64::INFINITY` where it has none.
     pub max: [f64; K],
+    /// `λ*`: the objective's optimum in null-space coordinates (0 for least norm).
     pub target: [f64; D],
 }
 

@@ -38,7 +38,9 @@ pub struct InverseDynamics<T> {
     pub tendon_tensions: Vec<T>,
     /// The minimal-norm part of the tendon tensions (may be negative).
     pub minimal_norm_tensions: Vec<T>,
-    /// The null-space part added to keep every tendon at its floor.
+    /// The null-space part the distribution added (`tendon_tensions −
+    /// minimal_norm_tensions`): what keeps every tendon within its floor and maximum, the
+    /// objective least.
     pub null_space_tensions: Vec<T>,
     /// Tension of both sides of each loop at its driving pulley (leaving the driven pulley
     /// counter-clockwise, then clockwise).
@@ -51,7 +53,8 @@ pub struct InverseDynamics<T> {
     /// point, the motor's torque excluded; links in their DH frame, pulleys in their housing
     /// frame (the pulley frame at zero spin). `None` if the routing is incomplete.
     pub bearings: Option<Vec<(Vec3<T>, Vec3<T>)>>,
-    /// Total force and moment (about the base origin) of the base on the mechanism.
+    /// Total force and moment (about the base origin) of the base on the mechanism, base
+    /// frame (N, N·m). `None` if the routing is incomplete.
     pub base_reaction: Option<(Vec3<T>, Vec3<T>)>,
     /// Friction torque `τ_f` of each bearing that has friction, on the body about its axis
     /// (body index, N·m; [`crate::friction`]).
@@ -60,7 +63,8 @@ pub struct InverseDynamics<T> {
     /// (exact law only): their friction is the direction of impending motion, or zero if
     /// `q̈` does not turn them either ([`friction::at_rest`]; filled in by [`Solver`]).
     pub sticking: Vec<usize>,
-    /// The solved unknowns of the tension system.
+    /// The solved unknowns of the tension system, in the order of
+    /// [`TensionSystem::unknowns`](crate::model::TensionSystem::unknowns).
     pub unknowns: Vec<T>,
 }
 
@@ -78,11 +82,14 @@ impl<T: Numeric> InverseDynamics<T> {
 /// Work buffers of the recursion for one model; the model itself stays immutable.
 #[derive(Clone, Debug)]
 pub struct Workspace<T: Real> {
+    /// Motion of every body from the last forward recursion.
     pub motion: Vec<Motion<T>>,
     /// Loads affine in the unknowns (inverse dynamics with tensions).
     pub loads: Loads<T>,
     /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
     pub known: Loads<T, Vec3<T>>,
+    /// Tension of every segment of every strand, affine in the unknowns
+    /// ([`tension::segment_tensions`]).
     pub tensions: Vec<Vec<Affine<T>>>,
     /// Bearing friction torque of every body at the last inverse-dynamics call
     /// ([`friction::bearing_torques`]), which its balance rows carry.
@@ -91,6 +98,7 @@ pub struct Workspace<T: Real> {
 }
 
 impl<T: Real> Workspace<T> {
+    /// Buffers sized for `model`.
     pub fn new(model: &Model<T>) -> Self {
         let nu = model.system.unknowns.len();
         Workspace {
@@ -443,11 +451,13 @@ fn finite<'a, T: Numeric>(
 
 /// The runtime solver: the generic functions above with input checks, on numbers.
 pub struct Solver<'m, T: Real> {
+    /// The model it evaluates.
     pub model: &'m Model<T>,
     ws: Workspace<T>,
 }
 
 impl<'m, T: Numeric> Solver<'m, T> {
+    /// A solver of `model`, with work buffers sized for it.
     pub fn new(model: &'m Model<T>) -> Self {
         Solver {
             model,
@@ -648,7 +658,8 @@ impl<'m, T: Numeric> Solver<'m, T> {
     }
 
     /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
-    /// least-norm floor-respecting tension distribution for null spaces of any dimension.
+    /// tension distribution for null spaces of any dimension ([`tension::distribute`]:
+    /// every tendon within its floor and maximum, the model's objective least).
     pub fn inverse_dynamics(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<InverseDynamics<T>> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;

@@ -18,22 +18,27 @@ use crate::spatial::{Mat3, Vec3};
 pub struct Motion<T> {
     /// `ᵇR_parent`: rotates parent-frame vectors into this body's frame.
     pub rotation: Mat3<T>,
+    /// Angular velocity of the body (rad/s): its parent's plus its own rate about its axis
+    /// (Eqs. 2, 11). For a pulley whose frame does not spin it is still the turning pulley's.
     pub omega: Vec3<T>,
+    /// Angular acceleration of the body (rad/s², Eqs. 3, 12).
     pub omega_dot: Vec3<T>,
-    /// Acceleration of the body-frame origin, gravity included as `−g`.
+    /// Acceleration of the body-frame origin (m/s², Eqs. 5, 14), gravity included as `−g`.
     pub accel: Vec3<T>,
-    /// Acceleration of the centre of mass, gravity included.
+    /// Acceleration of the centre of mass (m/s², Eqs. 6, 15), gravity included.
     pub com_accel: Vec3<T>,
-    /// Acceleration of the joint point (the parent's `pre` origin), gravity included, in
-    /// the **parent's** frame: what the backward recursion hands a pulley's inertial force
-    /// back to its carrier in (see `newton_euler::backward`).
+    /// Acceleration of the joint point (the origin of the body's `pre`, a point of the
+    /// parent), gravity included, in the **parent's** frame: what the backward recursion
+    /// hands a pulley's inertial force back to its carrier in (see `newton_euler::backward`).
     pub joint_accel: Vec3<T>,
-    /// Joint rate and acceleration `anglė`, `anglë`.
+    /// Rate of the body's angle relative to its parent, `coupling · q̇` (rad/s).
     pub rate: T,
+    /// Acceleration of the body's angle relative to its parent, `coupling · q̈` (rad/s²).
     pub rate_dot: T,
 }
 
 impl<T: Real> Motion<T> {
+    /// At rest, frame aligned with its parent's, no gravity: what work buffers start as.
     pub fn rest() -> Self {
         Motion {
             rotation: Mat3::identity(),

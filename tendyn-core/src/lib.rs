@@ -47,6 +47,7 @@
 //! ```
 
 #![cfg_attr(not(feature = "std"), no_std)]
+#![warn(missing_docs)]
 
 pub mod distribution;
 pub mod mechanism;

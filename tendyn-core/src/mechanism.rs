@@ -1,6 +1,7 @@
 //! What generated dynamics look like from the outside: the [`TendonMechanism`] trait that
-//! `#[derive(TendonMechanism)]` implements, and [`include_mechanism!`] for code that a build
-//! script generated into `OUT_DIR`.
+//! `#[derive(TendonMechanism)]` implements, and
+//! [`include_mechanism!`](crate::include_mechanism!) for code that a build script generated
+//! into `OUT_DIR`.
 //!
 //! Both live here, without `std`, because firmware that uses generated code depends on this
 //! crate alone.
@@ -29,12 +30,23 @@ use crate::real::Real;
 pub trait TendonMechanism {
     /// The scalar of the generated functions (`f64` or `f32`).
     type Scalar: Real;
+    /// Per joint, in joint order: `[Scalar; DOF]` (coordinates, rates, accelerations,
+    /// generalized forces).
     type Joints;
+    /// Per motor, in file order: `[Scalar; MOTORS]` (N·m).
     type Motors;
+    /// Per open-ended tendon, in file order: `[Scalar; TENDONS]` (N).
     type Tendons;
+    /// The mass matrix, `[[Scalar; DOF]; DOF]` (kg·m²).
     type MassMatrix;
+    /// What [`segment_tensions`](Self::segment_tensions) returns: `[Scalar; S]`, every
+    /// segment of every strand, or `()` when not generated.
     type Segments;
+    /// What [`bearings`](Self::bearings) returns: `[[[Scalar; 3]; 2]; B]`, `[force,
+    /// moment]` per body, or `()` when not generated.
     type Bearings;
+    /// What [`base_reaction`](Self::base_reaction) returns: `[[[Scalar; 3]; 2]; 1]`, or
+    /// `()` when not generated.
     type BaseReaction;
 
     /// The `name` of the RON file.
@@ -47,7 +59,9 @@ pub trait TendonMechanism {
     const TENDONS: usize;
     /// The links (one per joint), in file order.
     const JOINT_NAMES: &'static [&'static str];
+    /// The motors' names, in file order.
     const MOTOR_NAMES: &'static [&'static str];
+    /// The open-ended tendons' names, in file order.
     const TENDON_NAMES: &'static [&'static str];
     /// Runtime parameters, in declaration order: the fields of the implementing type.
     const PARAMETER_NAMES: &'static [&'static str];

@@ -33,12 +33,17 @@ use crate::spatial::{Mat3, Vec3};
 pub trait Load<T: Real>: Copy + core::fmt::Debug {
     /// Its components' type (`T`, or [`Affine`]).
     type Scalar: Copy + core::fmt::Debug;
+    /// The known vector `v`, over `unknowns` unknowns (ignored by a plain vector).
     fn known(v: Vec3<T>, unknowns: usize) -> Self;
     /// `dir · s`: a force of known direction and (possibly unknown) magnitude.
     fn along(dir: Vec3<T>, s: &Self::Scalar) -> Self;
+    /// `self + o`.
     fn add(&self, o: &Self) -> Self;
+    /// `self − o`.
     fn sub(&self, o: &Self) -> Self;
+    /// `−self`.
     fn neg(&self) -> Self;
+    /// `self + v` for a known vector `v`.
     fn add_known(&self, v: Vec3<T>) -> Self;
     /// `r × self`.
     fn moment_of(&self, r: Vec3<T>) -> Self;
@@ -136,6 +141,7 @@ pub struct Loads<T: Real, L: Load<T> = Aff3<T>> {
 }
 
 impl<T: Real, L: Load<T>> Loads<T, L> {
+    /// Zero loads on `bodies` bodies and the base, over `unknowns` unknowns.
     pub fn new(bodies: usize, unknowns: usize) -> Self {
         let zero = L::known(Vec3::zero(), unknowns);
         Loads {

@@ -26,8 +26,11 @@ pub trait Real:
 {
     /// The nearest value of this scalar to `x` (exact for the types that hold an `f64`).
     fn from_f64(x: f64) -> Self;
+    /// The sine of an angle in radians.
     fn sin(self) -> Self;
+    /// The cosine of an angle in radians.
     fn cos(self) -> Self;
+    /// The non-negative square root.
     fn sqrt(self) -> Self;
     /// The larger of the two. The only value-dependent operation the recursion uses;
     /// a symbolic scalar maps it to a select node.
@@ -39,9 +42,11 @@ pub trait Real:
     /// The hyperbolic tangent: the smoothed friction law.
     fn tanh(self) -> Self;
 
+    /// `0`.
     fn zero() -> Self {
         Self::from_f64(0.0)
     }
+    /// `1`.
     fn one() -> Self {
         Self::from_f64(1.0)
     }
@@ -53,8 +58,11 @@ pub trait Real:
 
 /// A [`Real`] that is a number: it can be ordered, tested and converted back to `f64`.
 pub trait Numeric: Real + PartialOrd {
+    /// The value as an `f64`, rounded to it (for a double-double, its high word).
     fn to_f64(self) -> f64;
+    /// The absolute value.
     fn abs(self) -> Self;
+    /// Neither infinite nor NaN.
     fn is_finite(self) -> bool;
     /// Unit round-off of the type (half the distance from 1 to the next number).
     fn unit_roundoff() -> f64;

@@ -7,29 +7,40 @@
 use crate::real::Real;
 use core::ops::{Add, Mul, Neg, Sub};
 
+/// A three-vector (a point, a direction, a velocity, a force, ...), components in a frame
+/// the context names.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Vec3<T> {
+    /// The x component.
     pub x: T,
+    /// The y component.
     pub y: T,
+    /// The z component.
     pub z: T,
 }
 
 impl<T: Real> Vec3<T> {
+    /// The vector `(x, y, z)`.
     pub fn new(x: T, y: T, z: T) -> Self {
         Vec3 { x, y, z }
     }
+    /// `(0, 0, 0)`.
     pub fn zero() -> Self {
         Vec3::new(T::zero(), T::zero(), T::zero())
     }
+    /// `(0, 0, 1)`: the joint or pulley axis in its own frame.
     pub fn unit_z() -> Self {
         Vec3::new(T::zero(), T::zero(), T::one())
     }
+    /// `(a[0], a[1], a[2])`, each converted by [`Real::from_f64`].
     pub fn from_array(a: [f64; 3]) -> Self {
         Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
     }
+    /// The scalar product `self · o`.
     pub fn dot(self, o: Self) -> T {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
+    /// The vector product `self × o` (right-handed).
     pub fn cross(self, o: Self) -> Self {
         Vec3::new(
             self.y * o.z - self.z * o.y,
@@ -37,12 +48,15 @@ impl<T: Real> Vec3<T> {
             self.x * o.y - self.y * o.x,
         )
     }
+    /// `s · self`.
     pub fn scale(self, s: T) -> Self {
         Vec3::new(self.x * s, self.y * s, self.z * s)
     }
+    /// `[x, y, z]`.
     pub fn to_array(self) -> [T; 3] {
         [self.x, self.y, self.z]
     }
+    /// `f` applied to each component (a change of scalar).
     pub fn map<U: Real>(self, f: impl Fn(T) -> U) -> Vec3<U> {
         Vec3::new(f(self.x), f(self.y), f(self.z))
     }
@@ -70,16 +84,19 @@ impl<T: Real> Neg for Vec3<T> {
 /// A 3x3 matrix stored by rows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mat3<T> {
+    /// `rows[i][j]`: the entry in row `i`, column `j`.
     pub rows: [[T; 3]; 3],
 }
 
 impl<T: Real> Mat3<T> {
+    /// The identity matrix.
     pub fn identity() -> Self {
         let (o, z) = (T::one(), T::zero());
         Mat3 {
             rows: [[o, z, z], [z, o, z], [z, z, o]],
         }
     }
+    /// The matrix of these rows, each entry converted by [`Real::from_f64`].
     pub fn from_rows(rows: [[f64; 3]; 3]) -> Self {
         Mat3 {
             rows: rows.map(|r| r.map(T::from_f64)),
@@ -92,6 +109,7 @@ impl<T: Real> Mat3<T> {
             rows: [[c, -s, z], [s, c, z], [z, z, o]],
         }
     }
+    /// `selfᵀ` (for a rotation, its inverse).
     pub fn transpose(&self) -> Self {
         let r = &self.rows;
         Mat3 {
@@ -102,6 +120,7 @@ impl<T: Real> Mat3<T> {
             ],
         }
     }
+    /// `self · v`.
     pub fn mul_vec(&self, v: Vec3<T>) -> Vec3<T> {
         let r = &self.rows;
         Vec3::new(
@@ -119,9 +138,11 @@ impl<T: Real> Mat3<T> {
             r[0][2] * v.x + r[1][2] * v.y + r[2][2] * v.z,
         )
     }
+    /// Column `j` (`0..3`); of a rotation, the image of axis `j` (column 2: the z axis).
     pub fn column(&self, j: usize) -> Vec3<T> {
         Vec3::new(self.rows[0][j], self.rows[1][j], self.rows[2][j])
     }
+    /// `f` applied to each entry (a change of scalar).
     pub fn map<U: Real>(&self, f: impl Fn(T) -> U) -> Mat3<U> {
         Mat3 {
             rows: self.rows.map(|r| r.map(&f)),
@@ -148,23 +169,30 @@ impl<T: Real> Mul for Mat3<T> {
 /// its parent's frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform<T> {
+    /// The child frame's axes as columns, in the parent frame.
     pub rotation: Mat3<T>,
+    /// The child frame's origin in the parent frame (m).
     pub translation: Vec3<T>,
 }
 
 impl<T: Real> Transform<T> {
+    /// The transform that changes nothing (coincident frames).
     pub fn identity() -> Self {
         Transform {
             rotation: Mat3::identity(),
             translation: Vec3::zero(),
         }
     }
+    /// `self · o`: `o` applied first. If `o` places frame C in frame B and `self` places B
+    /// in A, the result places C in A.
     pub fn compose(&self, o: &Self) -> Self {
         Transform {
             rotation: self.rotation * o.rotation,
             translation: self.rotation.mul_vec(o.translation) + self.translation,
         }
     }
+    /// The inverse transform (the parent frame in the child's); `rotation` must be a
+    /// rotation, whose inverse is its transpose.
     pub fn inverse(&self) -> Self {
         let rt = self.rotation.transpose();
         Transform {
@@ -172,9 +200,11 @@ impl<T: Real> Transform<T> {
             translation: -rt.mul_vec(self.translation),
         }
     }
+    /// The point `p` of the child frame, in the parent frame.
     pub fn apply(&self, p: Vec3<T>) -> Vec3<T> {
         self.rotation.mul_vec(p) + self.translation
     }
+    /// `f` applied to every number (a change of scalar).
     pub fn map<U: Real>(&self, f: impl Fn(T) -> U + Copy) -> Transform<U> {
         Transform {
             rotation: self.rotation.map(f),

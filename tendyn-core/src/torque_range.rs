@@ -42,7 +42,9 @@ use microlp::{ComparisonOp, Error as LpError, OptimizationDirection, Problem, So
 /// the LP solver failed numerically.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TorqueRange {
+    /// The least generalized force the tendons can put on the joint (N·m).
     pub min: f64,
+    /// The greatest generalized force the tendons can put on the joint (N·m).
     pub max: f64,
 }
 

@@ -30,6 +30,8 @@
 //! the problem's condition number times 6e-8 whatever the evaluator (near `sin q = 0`,
 //! where `h` is small, that alone reaches 1e-4 relative).
 
+#![warn(missing_docs)]
+
 pub mod chart;
 
 use rand::{Rng, SeedableRng};
@@ -57,10 +59,16 @@ pub fn runtime_call(output: Output) -> &'static str {
 /// One state, in f64, with everything any output takes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Inputs {
+    /// Joint angles (rad).
     pub q: Vec<f64>,
+    /// Joint rates (rad/s).
     pub qd: Vec<f64>,
+    /// Joint accelerations (rad/s²).
     pub qdd: Vec<f64>,
+    /// Motor torques (N·m) for forward dynamics: the reference inverse dynamics' at this
+    /// state.
     pub motor_torques: Vec<f64>,
+    /// Ground-level tendon tensions (N) for forward dynamics, likewise.
     pub tendon_tensions: Vec<f64>,
     /// The runtime parameters' nominal values (generated code takes them as an input).
     pub parameters: Vec<f64>,
@@ -83,9 +91,15 @@ pub struct Mechanism {
     pub ron: &'static str,
     /// Every output its generated code provides.
     pub outputs: &'static [Output],
+    /// The states converted once to fixed-size `f64` arrays, ready to be timed by the
+    /// generated code at `f64`; `None` if a state has the wrong sizes.
     pub pack_f64: fn(&[Inputs]) -> Option<Box<dyn Pass>>,
+    /// The same at `f32` (give it states already rounded to f32).
     pub pack_f32: fn(&[Inputs]) -> Option<Box<dyn Pass>>,
+    /// One output of the generated code at `f64` at one state, flattened; `None` if it is
+    /// not generated here or the state has the wrong sizes.
     pub eval_f64: fn(Output, &Inputs) -> Option<Vec<f64>>,
+    /// The same at `f32`, the results widened to `f64`.
     pub eval_f32: fn(Output, &Inputs) -> Option<Vec<f64>>,
 }
 
@@ -94,13 +108,18 @@ include!(concat!(env!("OUT_DIR"), "/glue.rs"));
 /// Who computes the output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Evaluator {
+    /// The generated function, generic code at `f64`.
     GeneratedF64,
+    /// The generated function, generic code at `f32`.
     GeneratedF32,
+    /// The runtime solver on the model (`Solver<f64>`).
     RuntimeF64,
+    /// The runtime solver on `model.cast_numeric::<f32>()`.
     RuntimeF32,
 }
 
 impl Evaluator {
+    /// The four, in the order of the table's rows.
     pub const ALL: [Evaluator; 4] = [
         Evaluator::GeneratedF64,
         Evaluator::GeneratedF32,
@@ -108,6 +127,7 @@ impl Evaluator {
         Evaluator::RuntimeF32,
     ];
 
+    /// The evaluator as the table, the chart and the JSON name it (`generated f64`, ...).
     pub fn name(self) -> &'static str {
         match self {
             Evaluator::GeneratedF64 => "generated f64",
@@ -148,10 +168,15 @@ impl Default for Config {
 /// Order statistics of the timing samples, ns per call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spread {
+    /// The fastest sample.
     pub min: f64,
+    /// The 25th percentile.
     pub p25: f64,
+    /// The median, what the table reports.
     pub median: f64,
+    /// The 75th percentile.
     pub p75: f64,
+    /// The slowest sample.
     pub max: f64,
 }
 
@@ -187,8 +212,11 @@ fn quantile(v: &[f64], p: f64) -> f64 {
 pub struct Row {
     /// The `name` in its file (`name#k` when files share it, `k` its position from 1).
     pub mechanism: String,
+    /// The file it was generated from ([`Mechanism::file`]).
     pub file: String,
+    /// The output measured.
     pub output: Output,
+    /// Who computed it.
     pub evaluator: Evaluator,
     /// ns per call.
     pub time: Spread,
@@ -206,7 +234,9 @@ pub struct Row {
 /// Everything measured.
 #[derive(Clone, Debug)]
 pub struct Report {
+    /// What was measured with.
     pub config: Config,
+    /// One row per mechanism, output and evaluator, in that order.
     pub rows: Vec<Row>,
     /// What could not be measured, and states redrawn.
     pub notes: Vec<String>,
@@ -382,10 +412,15 @@ pub fn forward_dynamics_term_scale(model: &Model<f64>, s: &Inputs) -> Result<f64
 /// `evaluator` is `None`, then each evaluator's time).
 #[derive(Clone, Copy, Debug)]
 pub struct Progress<'a> {
+    /// Which mechanism, from 1.
     pub mechanism: usize,
+    /// How many mechanisms there are.
     pub of: usize,
+    /// The mechanism's name, as in [`Row::mechanism`].
     pub name: &'a str,
+    /// The output measured; `None` while the reference states are drawn.
     pub output: Option<Output>,
+    /// The evaluator timed; `None` while the errors of `output` are computed.
     pub evaluator: Option<Evaluator>,
 }
 

@@ -40,8 +40,6 @@ extern crate std;
 /// `tendyn-core`: the model, validation, the runtime solver and the [`Real`] trait.
 pub use tendyn_core as core;
 pub use tendyn_core::{Real, TendonMechanism};
-/// `#[derive(TendonMechanism)]`: see the crate documentation of `tendyn-derive` and the
-/// README for every attribute.
 pub use tendyn_derive::TendonMechanism;
 
 #[cfg(feature = "std")]
