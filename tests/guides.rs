@@ -127,11 +127,23 @@ fn a_guide_on_a_joint_axis_wraps_more_as_the_link_its_tendon_arrives_from_turns(
     // base. The arrival point turns with link 1 by q1; both turns are clockwise (s = −1), so
     // β = s (departure − arrival) grows by exactly q1.
     let text = std::fs::read_to_string("../examples/mechanisms/example2_open_ended.ron").unwrap();
-    let model = parse(&tendyn_spec::guides::idlers_as_guides(&text)).unwrap();
-    for strand in &model.strands[..2] {
+    let text = tendyn_spec::guides::idlers_as_guides(&text);
+    let model = parse(&text).unwrap();
+    // The geometry itself at q1 = 0.25: the same file with link 1's DH offset raised by
+    // 0.25 rad, whose reference pose (where wrap angles are taken) is that pose.
+    let link1 = "dh: (a: 0.30, alpha: 0.0, d: 0.0)";
+    assert_eq!(text.matches(link1).count(), 1);
+    let turned =
+        parse(&text.replacen(link1, "dh: (a: 0.30, alpha: 0.0, d: 0.0, offset: 0.25)", 1)).unwrap();
+    for (strand, there) in model.strands[..2].iter().zip(&turned.strands) {
         let g = strand.idlers[0].guide.as_ref().unwrap();
         assert!(!g.wrap_is_constant());
         assert_eq!(g.wrap_rate, vec![1.0, 0.0], "{}", strand.name);
-        assert_eq!(g.wrap_at(&[0.25, -1.0]), g.wrap + 0.25);
+        let at = there.idlers[0].guide.as_ref().unwrap().wrap;
+        assert!(
+            (g.wrap_at(&[0.25, -1.0]) - at).abs() < 1e-12,
+            "{}: {at}",
+            strand.name
+        );
     }
 }

@@ -192,18 +192,21 @@ fn number(text: &str) -> Result<f64, String> {
         .map_err(|_| format!("`{t}` is not a number (expected e.g. 0.25, -1e-3)"))
 }
 
-/// The arguments with every one that ends in a comma joined to the next: unquoted, the
-/// shell makes `--q 0.1, 0.2` two arguments, `0.1,` and `0.2`, which are one list.
+/// The arguments with every one that ends in a comma joined to the next, unless that is a
+/// flag: unquoted, the shell makes `--q 0.1, 0.2` two arguments, `0.1,` and `0.2`, which
+/// are one list. Nothing after a `--` is touched.
 fn join_continued(args: impl Iterator<Item = std::ffi::OsString>) -> Vec<std::ffi::OsString> {
     let mut out: Vec<std::ffi::OsString> = Vec::new();
-    let mut continued = false;
+    let (mut continued, mut verbatim) = (false, false);
     for a in args {
-        let ends_in_comma = a.to_str().is_some_and(|s| s.ends_with(','));
+        let text = a.to_str().unwrap_or("");
+        let flag = text.starts_with("--");
         match out.last_mut() {
-            Some(last) if continued => last.push(&a),
-            _ => out.push(a),
+            Some(last) if continued && !flag => last.push(&a),
+            _ => out.push(a.clone()),
         }
-        continued = ends_in_comma;
+        verbatim |= text == "--";
+        continued = !verbatim && text.ends_with(',');
     }
     out
 }

@@ -540,6 +540,31 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
         ("T11", 0)
     );
     assert!((c.distance - 0.002).abs() < 1e-12, "{}", c.distance);
+    // A pulley carried by the base on joint 1's axis, coaxial with idler3 and larger: T32's
+    // first segment, fixed in link 1, ends tangent to idler3, 0.03 m from that axis.
+    let hub = text.replacen(
+        "    pulleys: [\n",
+        "    pulleys: [\n        (name: \"hub\", carrier: \"base\", at: Joint(joint: \"link1\", height: 0.01), radius: 0.05, fixed: true),\n",
+        1,
+    );
+    let hub_model = tendyn_core::parse(&hub).unwrap();
+    let through_hub: Vec<_> = tendyn_core::transmission::segments_through_pulleys(&hub_model)
+        .into_iter()
+        .filter(|c| hub_model.bodies[c.pulley].name == "hub")
+        .map(|c| {
+            (
+                hub_model.strands[c.strand].name.clone(),
+                c.segment,
+                c.distance,
+            )
+        })
+        .collect();
+    assert!(
+        through_hub
+            .iter()
+            .any(|(s, k, d)| s == "T32" && *k == 0 && (d - 0.03).abs() < 1e-12),
+        "{through_hub:?}"
+    );
     let dir = scratch_dir("tendyn_cli_crossing");
     let file = dir.join("cut.ron");
     std::fs::write(&file, &text).unwrap();

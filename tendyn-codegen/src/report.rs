@@ -214,6 +214,30 @@ pub fn check_text(m: &Model<f64>) -> String {
             ));
         }
     }
+    let slides = guides(m);
+    if !slides.is_empty() {
+        line("guides (fixed pulleys the tendons slide over; wrap angle β, capstan μ):".into());
+        for (s, _, b, g) in slides {
+            let at = if g.wrap_is_constant() {
+                ""
+            } else {
+                " (at q = 0)"
+            };
+            let away = if g.wrap < 0.0 {
+                " (negative: the tendon bends away from it here; a real one would lift off)"
+            } else {
+                ""
+            };
+            line(format!(
+                "  {:<12} {:<8} β = {:.3}°{at}, μ = {}, μβ = {}{away}",
+                m.bodies[b].name,
+                m.strands[s].name,
+                g.wrap.to_degrees(),
+                number(g.mu),
+                number(g.mu * g.wrap)
+            ));
+        }
+    }
     if m.bodies.iter().any(|b| b.friction.is_some()) {
         let law = match m.friction_smoothing {
             Some(v) => format!("tanh(ω / {v} rad/s)"),
@@ -232,25 +256,6 @@ pub fn check_text(m: &Model<f64>) -> String {
                     b.name, f.coulomb, f.viscous
                 ));
             }
-        }
-    }
-    let slides = guides(m);
-    if !slides.is_empty() {
-        line("guides (fixed pulleys the tendons slide over; wrap angle β, capstan μ):".into());
-        for (s, _, b, g) in slides {
-            line(format!(
-                "  {:<12} {:<8} β = {:.3}°{}, μ = {}, μβ = {}",
-                m.bodies[b].name,
-                m.strands[s].name,
-                g.wrap.to_degrees(),
-                if g.wrap_is_constant() {
-                    ""
-                } else {
-                    " (at q = 0)"
-                },
-                number(g.mu),
-                number(g.mu * g.wrap)
-            ));
         }
     }
     let system = implied_system(m);

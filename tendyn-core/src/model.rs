@@ -162,7 +162,7 @@ pub struct Guide {
     /// when it moves towards the strand's ground end (in the direction of its turn).
     pub slide: Vec<f64>,
     /// Wrap angle `β` (rad): from the arrival to the departure tangent point in the turn's
-    /// direction, in `[−π/2, 3π/2)` (negative: the tendon only grazes the guide); where the
+    /// direction, in `[−π/2, 3π/2)` (negative: the tendon bends away from it); where the
     /// two segments are fixed in different frames, at the joints between them at `q = 0`
     /// (DH angle = `offset`).
     pub wrap: f64,

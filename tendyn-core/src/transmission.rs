@@ -469,12 +469,14 @@ impl Routing<'_> {
             );
             // A fixed pulley here is a guide: it does not turn, so the rim rate the tendon
             // would give it is the tendon's sliding over it, `v = s r c q̇`.
-            let guide = self.pulleys[p].fixed.then(|| {
-                let outgoing = segments.get(i).expect("a guide is before the route's end");
+            let outgoing = segments.get(i);
+            let guide = outgoing.filter(|_| self.pulleys[p].fixed).map(|outgoing| {
                 let arrive = segments[i - 1].acting_angles[1];
                 let depart = outgoing.acting_angles[0];
-                // In [−π/2, 3π/2): a slightly negative wrap is a tendon that only grazes the
-                // guide at this pose (the routing still holds it on), not a wrap of almost 2π.
+                // In [−π/2, 3π/2): a negative wrap is a tendon that bends away from the guide
+                // at this pose (a real one would lift off; `check` warns), not a wrap of
+                // almost 2π. Wraps of 3π/2 or more cannot be told from those and are not
+                // represented.
                 let quarter = std::f64::consts::FRAC_PI_2;
                 Guide {
                     slide: c.joints.iter().map(|x| s * r * x).collect(),
@@ -494,7 +496,7 @@ impl Routing<'_> {
             if guide.is_none() {
                 store_coupling(self, route, couplings, p, c)?;
             }
-            if let Some(out) = segments.get(i) {
+            if let Some(out) = outgoing {
                 idlers.push(IdlerStep {
                     body: self.pulleys[p].body,
                     turn: s,
@@ -690,8 +692,9 @@ pub struct Crossing {
 }
 
 /// Where a pulley's centre and axis are in `frame` when both are fixed there: the pulley is
-/// carried by `frame`, or by a link whose joint is in `frame` and on whose axis the pulley
-/// sits (the same `q_j = 0` convention as the acting angles).
+/// carried by `frame`; or it sits on the axis of a joint between its carrier and `frame`
+/// (carried by a link whose joint is in `frame`, or by the parent of `frame`'s own joint),
+/// where the joint angle does not move it (the `q_j = 0` convention of the acting angles).
 fn pulley_in(
     bodies: &[Body<f64>],
     b: usize,
@@ -699,23 +702,35 @@ fn pulley_in(
 ) -> Option<(Vec3<f64>, Vec3<f64>)> {
     let pre = &bodies[b].pre;
     let (centre, axis) = (pre.translation, pre.rotation.column(2));
-    if bodies[b].parent == frame {
+    let carrier = bodies[b].parent;
+    if carrier == frame {
         return Some((centre, axis));
     }
-    let link = bodies[b].parent?;
-    if bodies[link].parent != frame
-        || !matches!(bodies[link].kind, crate::model::BodyKind::Link { .. })
-    {
-        return None;
-    }
-    // The pulley in `frame` at the joint's offset, and whether it lies on the joint axis
-    // (the `z` axis of the link's `pre`), where the joint angle does not move it.
+    let is_link = |l: usize| matches!(bodies[l].kind, crate::model::BodyKind::Link { .. });
+    // The joint between the carrier and `frame`: its link, and whether `frame` is the link.
+    let (link, into_link) = match (carrier, frame) {
+        (Some(l), _) if is_link(l) && bodies[l].parent == frame => (l, false),
+        (_, Some(l)) if is_link(l) && bodies[l].parent == carrier => (l, true),
+        _ => return None,
+    };
+    // In the joint's parent frame the joint axis is the `z` axis of the link's `pre`.
     let joint = &bodies[link].pre;
     let t = body_transform(&bodies[link], bodies[link].offset);
-    let c = t.apply(centre);
-    let from_axis = (c - joint.translation).cross(joint.rotation.column(2));
-    let on_axis = norm(from_axis) <= 1e-9 * (1.0 + norm(c));
-    on_axis.then(|| (c, t.rotation.mul_vec(axis)))
+    let (in_parent, axis_in_parent) = if into_link {
+        (centre, axis)
+    } else {
+        (t.apply(centre), t.rotation.mul_vec(axis))
+    };
+    let from_axis = (in_parent - joint.translation).cross(joint.rotation.column(2));
+    if norm(from_axis) > 1e-9 * (1.0 + norm(in_parent)) {
+        return None;
+    }
+    Some(if into_link {
+        let back = t.inverse();
+        (back.apply(centre), back.rotation.mul_vec(axis))
+    } else {
+        (in_parent, axis_in_parent)
+    })
 }
 
 /// Every segment that passes through the disc of a pulley fixed in the segment's frame

@@ -682,9 +682,9 @@ impl<'a> Validator<'a> {
     }
 
     /// Declared parameters: unique, finite, and every reference to one names a declared
-    /// one; a declared parameter nothing uses is an error too.
-    /// The parameters, checked first (every later check reads their values). The
-    /// mechanism's name is checked before them: errors about the whole file name it.
+    /// one; a declared parameter nothing uses is an error too. Checked first (every later
+    /// check reads their values), after the mechanism's name: errors about the whole file
+    /// name it.
     fn parameters(&self, f: &MechanismFile) -> Result<Vec<(String, f64)>> {
         if f.name.trim().is_empty() {
             return Err(Error::Invalid {
@@ -1042,6 +1042,16 @@ impl<'a> Validator<'a> {
                         "has `mu`, but no tendon slides over it (it is no route's guide: a \
                          guide is a fixed pulley after a route's anchor); remove `mu` or route \
                          a tendon over it",
+                    ));
+                }
+                if let Some(mu) = p.mu.filter(|&mu| mu > 0.0) {
+                    return Err(self.invalid(
+                        &p.name,
+                        format!(
+                            "`mu: {mu}`: capstan friction on guides is not implemented yet \
+                             (the tension system then depends on the sliding directions); a \
+                             guide is frictionless for now: remove `mu` or set it to 0"
+                        ),
                     ));
                 }
                 continue;
@@ -1527,16 +1537,6 @@ impl<'a> Validator<'a> {
                 format!(
                     "`mu` is {mu}; a capstan coefficient is between 0 (frictionless) and \
                      {MAX_MU} (format.md §6a)"
-                ),
-            ));
-        }
-        if mu > 0.0 {
-            return Err(self.invalid(
-                &p.name,
-                format!(
-                    "`mu: {mu}`: capstan friction on guides is not implemented yet (the tension \
-                     system then depends on the sliding directions); a guide is frictionless \
-                     for now: remove `mu` or set it to 0"
                 ),
             ));
         }

@@ -329,15 +329,8 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
                     )
                 })
             })
-            .collect::<syn::Result<Vec<_>>>()?
-            .into_iter()
-            .fold(Vec::new(), |mut seen, o| {
-                // A repeated name is generated once (docs/generated-code.md §1).
-                if !seen.contains(&o) {
-                    seen.push(o);
-                }
-                seen
-            }),
+            .collect::<syn::Result<Vec<_>>>()
+            .map(once_each)?,
     };
     if let Err(u) = tendyn_codegen::outputs::check(&model, &outputs) {
         let span = attr
@@ -575,13 +568,9 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         Some(list) => list
             .iter()
             .filter_map(|i| Output::parse(&i.to_string()))
-            .fold(Vec::new(), |mut seen, o| {
-                if !seen.contains(&o) {
-                    seen.push(o);
-                }
-                seen
-            }),
+            .collect(),
     };
+    let outputs = once_each(outputs);
     let (ident, krate) = (&input.ident, &attr.krate);
     let scalar = match attr.scalar.0 {
         Scalar::F32 => quote!(f32),
@@ -630,6 +619,17 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         }
 
         #trait_impl
+    })
+}
+
+/// `outputs` with each repeated one dropped: a repeated name is generated once
+/// (docs/generated-code.md §1).
+fn once_each(outputs: Vec<Output>) -> Vec<Output> {
+    outputs.into_iter().fold(Vec::new(), |mut seen, o| {
+        if !seen.contains(&o) {
+            seen.push(o);
+        }
+        seen
     })
 }
 
