@@ -41,6 +41,7 @@ use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote, quote_spanned};
 use syn::spanned::Spanned;
 use syn::{parse_macro_input, DeriveInput, Ident, LitStr};
+use tendyn_codegen::outputs::Param;
 use tendyn_codegen::{Options, Output, Scalar};
 
 /// `#[derive(TendonMechanism)]`: the dynamics of a tendon-driven mechanism, generated from
@@ -613,9 +614,51 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
             const STRUCTURE_MATRIX: &'static [&'static [f64]] = &[];
         },
     );
+    // `all` and its `Outputs`, one field per output, typed through the trait.
+    let module = format_ident!("__tendyn_{}", snake(&ident.to_string()));
+    let fields = outputs.iter().map(|o| {
+        let name = format_ident!("{}", o.name());
+        let (_, _, ret) = signature(
+            *o,
+            krate,
+            &|t| quote!(<super::#ident as #krate::TendonMechanism>::#t),
+        );
+        quote!(pub #name: #ret,)
+    });
+    let of = |t: &str| {
+        let t = format_ident!("{t}");
+        quote!(<Self as #krate::TendonMechanism>::#t)
+    };
+    // The inputs its outputs take, in `all`'s order (the parameters come from the fields).
+    let inputs = Param::ALL
+        .into_iter()
+        .filter(|p| outputs.iter().any(|o| o.params().contains(p)))
+        .filter_map(|p| {
+            let ty = match p {
+                Param::Q | Param::Qd | Param::Qdd => of("Joints"),
+                Param::MotorTorques => of("Motors"),
+                Param::TendonTensions => of("Tendons"),
+                Param::Parameters => return None,
+            };
+            let name = format_ident!("{}", p.name());
+            Some(quote!(#name: &#ty))
+        });
     Some(quote! {
+        #[doc(hidden)]
+        #[allow(dead_code, non_snake_case)]
+        pub mod #module {
+            pub struct Outputs {
+                #(#fields)*
+            }
+        }
+
         impl #ident {
             #(#methods)*
+
+            #[allow(unused_variables)]
+            pub fn all(&self, #(#inputs),*) -> #module::Outputs {
+                ::core::unimplemented!("`#[derive(TendonMechanism)]` failed; see its error")
+            }
         }
 
         #trait_impl

@@ -18,5 +18,7 @@ fn main() {
     let m = arm.mass_matrix(&q);
     let qdd = arm.forward_dynamics(&q, &qd, &[0.0; 0], &[0.0; 3]);
     let a = arm.actuation(&q, &qd, &qdd);
+    let all = arm.all(&q, &qd, &qdd, &[0.0; 0], &[0.0; 3]);
     println!("{} {} {} {:?}", tau[0], m[1][1], through_the_trait(&arm), a.tendon_tensions);
+    println!("{:?} {}", all.segment_tensions, all.gravity[1]);
 }
