@@ -168,7 +168,18 @@ fn write_if_changed(path: &Path, text: &str) -> Result<(), Error> {
 /// Writes `text` to `path` whole or not at all: into a temporary file beside it, renamed
 /// over `path` once complete, so that a failure part-way (a full disk) never leaves a
 /// truncated file for a later build to pick up. The temporary file is removed on failure.
+/// A `path` that exists and is not a regular file (a device such as `/dev/null`, a FIFO, a
+/// symlink) is written in place instead, so that it stays what it is.
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
+    // Only a regular file (or none yet) is replaced by a rename. Anything else is written
+    // to where it is: a rename over `/dev/null` would make it a regular file that every
+    // program then reads its discarded output back from, a rename over a symlink would
+    // cut the link, and a FIFO has no contents to protect.
+    if let Ok(meta) = std::fs::symlink_metadata(path) {
+        if !meta.file_type().is_file() {
+            return std::fs::write(path, text);
+        }
+    }
     let name = path.file_name().unwrap_or_default().to_string_lossy();
     let temporary = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     let written = std::fs::write(&temporary, text).and_then(|()| std::fs::rename(&temporary, path));
@@ -181,6 +192,27 @@ pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(unix)]
+    #[test]
+    fn writing_to_a_device_or_through_a_symlink_keeps_it_what_it_is() {
+        use std::os::unix::fs::FileTypeExt;
+        write_atomically(Path::new("/dev/null"), "discarded").unwrap();
+        let null = std::fs::metadata("/dev/null").unwrap().file_type();
+        assert!(null.is_char_device(), "/dev/null is no longer a device");
+        let dir = std::env::temp_dir().join(format!("tendyn-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (file, link) = (dir.join("code.rs"), dir.join("link.rs"));
+        std::fs::write(&file, "old").unwrap();
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        write_atomically(&link, "new").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "new");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     fn example(name: &str) -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR"))
