@@ -577,6 +577,11 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         Scalar::F32 => quote!(f32),
         _ => quote!(f64),
     };
+    // Every body of the stand-in: it is only ever emitted beside the `compile_error!` of
+    // the real error, so the crate never builds and no body can run.
+    let never = quote!(::core::unreachable!(
+        "emitted only beside the compile error of `#[derive(TendonMechanism)]`"
+    ));
     let methods = outputs.iter().map(|o| {
         let name = format_ident!("{}", o.name());
         let (signature, _, ret) = signature(
@@ -587,7 +592,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
         quote! {
             #[allow(unused_variables)]
             pub fn #name(&self, #signature) -> #ret {
-                ::core::unimplemented!("`#[derive(TendonMechanism)]` failed; see its error")
+                #never
             }
         }
     });
@@ -657,7 +662,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
 
             #[allow(unused_variables)]
             pub fn all(&self, #(#inputs),*) -> #module::Outputs {
-                ::core::unimplemented!("`#[derive(TendonMechanism)]` failed; see its error")
+                #never
             }
         }
 
