@@ -35,6 +35,11 @@
 //!   When a violated bound's normal lies in the span of the active normals with no
 //!   multiplier able to give way, the polytope is empty: the active bounds and the
 //!   violated one form a Farkas certificate, returned to the caller to explain.
+//!   It runs in two phases: the floors alone first, then, from their optimum, every
+//!   bound (the method only ever adds violated bounds to an optimal point, so widening
+//!   the set of candidates is sound, and the objective still increases at every added
+//!   bound, so the count above bounds both phases together). The floors' optimum is the
+//!   best effort below, so an infeasible state costs no second run.
 //!
 //! # When the bounds cannot be met
 //!
@@ -46,7 +51,7 @@
 //!   every floor (the tensions as low as the floors allow, so the maxima are exceeded as
 //!   little as along `p` they can be; continuous across the boundary of feasibility);
 //! - `d ≥ 2`: the same problem without the maxima (the distribution tendyn chose before
-//!   maxima became constraints).
+//!   maxima became constraints): the first phase's optimum.
 //!
 //! # Tolerances
 //!
@@ -130,6 +135,7 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
     }
 
     /// The minimal-norm tensions `t0` distributed by [`solve`] within `problem`'s bounds.
+    #[inline(always)]
     pub fn bounded<const D: usize>(
         motor_torques: [T; M],
         t0: [T; K],
@@ -139,7 +145,7 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         let mut basis = [[T::zero(); D]; D];
         let mut triangle = [[T::zero(); D]; D];
         let mut multipliers = [T::zero(); D];
-        let mut scratch = [[T::zero(); D]; 3];
+        let mut scratch = [[T::zero(); D]; 4];
         let mut active = [0usize; D];
         let mut work = Work {
             lambda: &mut lambda,
@@ -303,7 +309,7 @@ pub struct Work<'a, T> {
     pub triangle: &'a mut [T],
     /// `d`: multipliers of the active bounds.
     pub multipliers: &'a mut [T],
-    /// `3·d`.
+    /// `4·d`.
     pub scratch: &'a mut [T],
     /// `d`: indices of the active bounds (`k` the floor of tendon `k`, `K + k` its maximum).
     pub active: &'a mut [usize],
@@ -312,7 +318,7 @@ pub struct Work<'a, T> {
 impl<'a, T> Work<'a, T> {
     /// How many reals [`Work::split`] needs for `d` directions.
     pub const fn reals(d: usize) -> usize {
-        5 * d + 2 * d * d
+        6 * d + 2 * d * d
     }
 
     /// Work buffers for `d` directions carved from one buffer of reals (at least
@@ -340,7 +346,7 @@ impl<'a, T> Work<'a, T> {
             && self.basis.len() >= d * d
             && self.triangle.len() >= d * d
             && self.multipliers.len() >= d
-            && self.scratch.len() >= 3 * d
+            && self.scratch.len() >= 4 * d
             && self.active.len() >= d
     }
 }
@@ -350,6 +356,7 @@ impl<'a, T> Work<'a, T> {
 /// receives a vector `w` over the tendons with `max {wᵀT : floor ≤ T ≤ max} < wᵀT₀`:
 /// along `w` the motion needs more than the bounded tendons can give. Entries `w_k > 0`
 /// belong to tendons at their maximum, `w_k < 0` to tendons at their floor.
+#[inline(always)]
 pub fn solve<T: Numeric, P: Problem<T>>(
     problem: &P,
     t0: &[T],
@@ -369,30 +376,11 @@ pub fn solve<T: Numeric, P: Problem<T>>(
         }
         return Status::Unresolved;
     }
-    let status = match project(problem, t0, true, work, tensions, certificate) {
-        Projection::Optimal => Status::Feasible,
-        Projection::Empty => match project(problem, t0, false, work, tensions, None) {
-            Projection::Optimal => Status::MaxExceeded,
-            _ => Status::Unresolved,
-        },
-        Projection::Unfinished => Status::Unresolved,
-    };
+    let status = project(problem, t0, work, tensions, certificate);
     if status == Status::Unresolved {
         tensions.copy_from_slice(t0);
     }
     status
-}
-
-enum Projection {
-    Optimal,
-    /// The bounds admit no point.
-    Empty,
-    Unfinished,
-}
-
-/// `T_k = T₀ₖ + Σ_d null(d, k) λ_d`.
-fn tension<T: Real, P: Problem<T>>(p: &P, t0: &[T], lambda: &[T], k: usize) -> T {
-    (0..p.directions()).fold(t0[k], |s, d| s + p.null(d, k) * lambda[d])
 }
 
 /// `4 (K + d) u`: the bound violation that round-off allows, per unit of size.
@@ -411,27 +399,36 @@ fn normal<T: Real, P: Problem<T>>(p: &P, i: usize, d: usize) -> T {
     }
 }
 
-/// Goldfarb-Idnani for `min ½‖λ − λ*‖²` over the floors, and the maxima if `with_max`.
-/// Leaves the point in `work.lambda` and its tensions `T₀ + N λ` in `t`.
+/// Goldfarb-Idnani for `min ½‖λ − λ*‖²`, in two phases: over the floors alone, then over
+/// the floors and the maxima, continuing from the first phase's optimum (the method only
+/// ever adds violated bounds to an optimal pair, so a widened set of bounds is just more
+/// candidates). The first phase's optimum is the best effort of [`Status::MaxExceeded`],
+/// so an infeasible state costs no second run. Leaves the tensions in `t`; the caller has
+/// checked every length ([`solve`]).
+///
+/// Every buffer is cut to its exact length on entry, so that where the sizes are constants
+/// (generated code's [`Fixed`]) the compiler sees them: the loops over `d` and `K` unroll
+/// and need no bounds checks.
+#[inline(always)]
 fn project<T: Numeric, P: Problem<T>>(
     p: &P,
     t0: &[T],
-    with_max: bool,
     work: &mut Work<'_, T>,
     t: &mut [T],
     certificate: Option<&mut [T]>,
-) -> Projection {
+) -> Status {
     let (k, d) = (p.tendons(), p.directions());
-    let bounds = if with_max { 2 * k } else { k };
-    let exists = |i: usize| i < k || p.max(i - k).is_finite();
-    // Slack of bound i (≥ 0 when met).
-    let slack = |i: usize, t: &[T]| {
-        if i < k {
-            t[i] - T::from_f64(p.floor(i))
-        } else {
-            T::from_f64(p.max(i - k)) - t[i - k]
-        }
-    };
+    let (t0, t) = (&t0[..k], &mut t[..k]);
+    let lambda = &mut work.lambda[..d];
+    let basis = &mut work.basis[..d * d];
+    let triangle = &mut work.triangle[..d * d];
+    let multipliers = &mut work.multipliers[..d];
+    let active = &mut work.active[..d];
+    let (z, rest) = work.scratch[..4 * d].split_at_mut(d);
+    let (w, rest) = rest.split_at_mut(d);
+    let (r, floors_only) = rest.split_at_mut(d);
+
+    let mut with_max = false;
     let mut size = T::zero();
     for j in 0..k {
         size = size.max(t0[j].abs()).max(T::from_f64(p.floor(j)));
@@ -440,37 +437,6 @@ fn project<T: Numeric, P: Problem<T>>(
         }
     }
     let factor = T::from_f64(tolerance_factor::<T>(k, d));
-    // The most violated bound at tensions `t`, if one is violated by more than round-off
-    // of the sizes involved (the bounds, T₀ and t).
-    let most_violated = |t: &[T]| {
-        let mut largest = size;
-        for x in t.iter() {
-            let x = x.abs();
-            if x > largest {
-                largest = x;
-            }
-        }
-        let mut worst = None;
-        let mut least = -(factor * largest);
-        for j in 0..k {
-            let s = t[j] - T::from_f64(p.floor(j));
-            if s < least {
-                (least, worst) = (s, Some(j));
-            }
-        }
-        if with_max {
-            for j in 0..k {
-                let max = p.max(j);
-                if max.is_finite() {
-                    let s = T::from_f64(max) - t[j];
-                    if s < least {
-                        (least, worst) = (s, Some(k + j));
-                    }
-                }
-            }
-        }
-        worst.map(|i| (i, least))
-    };
     // A new normal counts as independent of the active ones when its part outside their
     // span is more than √u of it: nearer to parallel, a full step would be longer than
     // 1/√u times the violation and its round-off would no longer be small against the
@@ -478,40 +444,46 @@ fn project<T: Numeric, P: Problem<T>>(
     let independent = T::from_f64(T::unit_roundoff());
 
     for i in 0..d {
-        work.lambda[i] = p.target(i);
+        lambda[i] = p.target(i);
     }
-    for j in 0..k {
-        t[j] = tension(p, t0, work.lambda, j);
-    }
+    tensions_at(p, t0, lambda, t);
     let mut q = 0; // active bounds
                    // The guard of the module documentation, computed only once a run gets long.
     let mut steps = 0usize;
-    let mut limit = 4 * (bounds + 1);
+    let mut limit = 4 * (2 * k + 1);
     let mut limit_is_bound = false;
     loop {
-        let Some((add, mut violation)) = most_violated(t) else {
+        let [floor, max] = most_violated(p, t, size, factor);
+        if !with_max && floor.is_none() && max.is_some() {
+            // The floors are met: keep this point, the best effort should the maxima turn
+            // out not to be, and go on with every bound.
+            floors_only.copy_from_slice(lambda);
+            with_max = true;
+        }
+        let next = match (floor, max) {
+            (Some(f), Some(m)) if with_max && m.1 < f.1 => Some(m),
+            (None, m) if with_max => m,
+            (f, _) => f,
+        };
+        let Some((add, mut violation)) = next else {
             // The tensions afresh from λ: the steps' updates of `t` round at every step.
-            for j in 0..k {
-                t[j] = tension(p, t0, work.lambda, j);
-            }
-            return Projection::Optimal;
+            tensions_at(p, t0, lambda, t);
+            return Status::Feasible;
         };
         let mut added_multiplier = T::zero();
         loop {
             steps += 1;
             if steps > limit {
                 if limit_is_bound {
-                    return Projection::Unfinished;
+                    return Status::Unresolved;
                 }
-                limit = iteration_bound(d, (0..bounds).filter(|&i| exists(i)).count());
+                let bounds = k + (0..k).filter(|&j| p.max(j).is_finite()).count();
+                limit = iteration_bound(d, bounds);
                 limit_is_bound = true;
             }
             // z: the part of the new normal outside the active normals' span (the primal
             // direction); w: its coordinates in their orthonormal basis; r = R⁻¹ w, its
             // coordinates in the active normals (the dual direction).
-            let (z, rest) = work.scratch.split_at_mut(d);
-            let (w, r) = rest.split_at_mut(d);
-            let (z, w, r) = (&mut z[..d], &mut w[..d], &mut r[..d]);
             for i in 0..d {
                 z[i] = normal(p, add, i);
             }
@@ -519,23 +491,32 @@ fn project<T: Numeric, P: Problem<T>>(
             for j in 0..q {
                 w[j] = T::zero();
             }
+            // Gram-Schmidt against the active basis, repeated only when the first pass
+            // cancelled more than half of the normal's square (the criterion of Daniel,
+            // Gragg, Kaufman and Stewart, 1976): "twice is enough".
+            let mut before = a_norm2;
             for _pass in 0..2 {
-                for j in 0..q {
-                    let column = &work.basis[j * d..(j + 1) * d];
+                for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
                     let c = dot(column, z);
                     w[j] = w[j] + c;
                     for i in 0..d {
                         z[i] = z[i] - c * column[i];
                     }
                 }
+                let after = dot(z, z);
+                if q == 0 || after + after > before {
+                    break;
+                }
+                before = after;
             }
             for i in (0..q).rev() {
+                let row = &triangle[i * d..(i + 1) * d];
                 let mut v = w[i];
                 for j in i + 1..q {
-                    v = v - work.triangle[i * d + j] * r[j];
+                    v = v - row[j] * r[j];
                 }
                 // The diagonal holds reciprocals (see `factorize`).
-                r[i] = v * work.triangle[i * d + i];
+                r[i] = v * row[i];
             }
             let z_norm2 = dot(z, z);
             // Full step: to where the new bound is met (never backwards, should round-off
@@ -550,12 +531,12 @@ fn project<T: Numeric, P: Problem<T>>(
             let mut first: Option<usize> = None;
             for j in 0..q {
                 if r[j] > T::zero()
-                    && first.is_none_or(|b| work.multipliers[j] * r[b] < work.multipliers[b] * r[j])
+                    && first.is_none_or(|b| multipliers[j] * r[b] < multipliers[b] * r[j])
                 {
                     first = Some(j);
                 }
             }
-            let partial = first.map(|j| (j, work.multipliers[j] / r[j]));
+            let partial = first.map(|j| (j, multipliers[j] / r[j]));
             let step = match (full, partial) {
                 (None, None) => Step::Empty,
                 (Some(s), None) => Step::Full(s),
@@ -585,27 +566,35 @@ fn project<T: Numeric, P: Problem<T>>(
                         };
                         add_to(add, T::one());
                         for j in 0..q {
-                            add_to(work.active[j], -r[j]);
+                            add_to(active[j], -r[j]);
                         }
                     }
-                    return Projection::Empty;
+                    // Floors alone can always be met (the positive null vector lifts
+                    // every tendon), so only the maxima can empty the set: the best
+                    // effort is the floors' optimum.
+                    if !with_max {
+                        return Status::Unresolved;
+                    }
+                    tensions_at(p, t0, floors_only, t);
+                    return Status::MaxExceeded;
                 }
                 Step::Full(s) => {
-                    advance(p, s, z, work.lambda, t);
+                    advance(p, s, z, lambda, t);
                     for j in 0..q {
-                        work.multipliers[j] = work.multipliers[j] - s * r[j];
+                        multipliers[j] = multipliers[j] - s * r[j];
                     }
                     // The new column of the factorisation is already at hand: w and |z|.
                     let reciprocal = T::one() / z_norm2.sqrt();
                     for j in 0..q {
-                        work.triangle[j * d + q] = w[j];
+                        triangle[j * d + q] = w[j];
                     }
-                    work.triangle[q * d + q] = reciprocal;
+                    triangle[q * d + q] = reciprocal;
+                    let column = &mut basis[q * d..(q + 1) * d];
                     for i in 0..d {
-                        work.basis[q * d + i] = z[i] * reciprocal;
+                        column[i] = z[i] * reciprocal;
                     }
-                    work.active[q] = add;
-                    work.multipliers[q] = added_multiplier + s;
+                    active[q] = add;
+                    multipliers[q] = added_multiplier + s;
                     q += 1;
                     break;
                 }
@@ -613,37 +602,94 @@ fn project<T: Numeric, P: Problem<T>>(
                     // Bound `drop` leaves the active set, its multiplier having reached 0;
                     // then the same new bound is tried again.
                     if primal {
-                        advance(p, s, z, work.lambda, t);
+                        advance(p, s, z, lambda, t);
                     }
                     for j in 0..q {
-                        work.multipliers[j] = work.multipliers[j] - s * r[j];
+                        multipliers[j] = multipliers[j] - s * r[j];
                     }
                     added_multiplier = added_multiplier + s;
                     for j in drop..q - 1 {
-                        work.active[j] = work.active[j + 1];
-                        work.multipliers[j] = work.multipliers[j + 1];
+                        active[j] = active[j + 1];
+                        multipliers[j] = multipliers[j + 1];
                     }
                     q -= 1;
-                    factorize(p, work, q, d);
-                    violation = slack(add, t);
+                    factorize(p, basis, triangle, &active[..q], d);
+                    violation = slack(p, add, t);
                 }
             }
         }
     }
 }
 
-/// Moves `λ` by `s z`, and the tensions `t` with it (by `s N z`).
+/// The slack of bound `i` at tensions `t` (`≥ 0` when met).
+fn slack<T: Real, P: Problem<T>>(p: &P, i: usize, t: &[T]) -> T {
+    let k = t.len();
+    if i < k {
+        t[i] - T::from_f64(p.floor(i))
+    } else {
+        T::from_f64(p.max(i - k)) - t[i - k]
+    }
+}
+
+/// The most violated floor and the most violated maximum at tensions `t` (bound index and
+/// slack), each if violated by more than round-off (`factor` times the largest of `size`
+/// and every `|t_j|`); of equally violated bounds the first in tendon order.
+///
+/// One pass finds the least slack and the largest tension together: the least slack is
+/// violated beyond round-off exactly when some slack is, so the threshold can wait.
+#[inline(always)]
+fn most_violated<T: Numeric, P: Problem<T>>(
+    p: &P,
+    t: &[T],
+    size: T,
+    factor: T,
+) -> [Option<(usize, T)>; 2] {
+    let k = t.len();
+    let mut largest = size;
+    let (mut floor, mut max) = ((usize::MAX, T::zero()), (usize::MAX, T::zero()));
+    for j in 0..k {
+        let x = t[j].abs();
+        if x > largest {
+            largest = x;
+        }
+        let s = t[j] - T::from_f64(p.floor(j));
+        if s < floor.1 {
+            floor = (j, s);
+        }
+    }
+    for j in 0..k {
+        let bound = p.max(j);
+        if bound.is_finite() {
+            let s = T::from_f64(bound) - t[j];
+            if s < max.1 {
+                max = (k + j, s);
+            }
+        }
+    }
+    let threshold = -(factor * largest);
+    [floor, max].map(|(i, s)| (s < threshold).then_some((i, s)))
+}
+
+/// `T = T₀ + N λ`, a row of `N` at a time (the inner loop runs over contiguous entries).
+#[inline(always)]
+fn tensions_at<T: Real, P: Problem<T>>(p: &P, t0: &[T], lambda: &[T], t: &mut [T]) {
+    t.copy_from_slice(t0);
+    for (i, l) in lambda.iter().enumerate() {
+        for (j, tj) in t.iter_mut().enumerate() {
+            *tj = *tj + p.null(i, j) * *l;
+        }
+    }
+}
+
+/// Moves `λ` by `s z`, and the tensions `t` with it (by `N (s z)`, a row at a time).
 #[inline(always)]
 fn advance<T: Real, P: Problem<T>>(p: &P, s: T, z: &[T], lambda: &mut [T], t: &mut [T]) {
-    for (l, zi) in lambda.iter_mut().zip(z) {
-        *l = *l + s * *zi;
-    }
-    for (j, tj) in t.iter_mut().enumerate() {
-        let dt = z
-            .iter()
-            .enumerate()
-            .fold(T::zero(), |v, (i, zi)| v + p.null(i, j) * *zi);
-        *tj = *tj + s * dt;
+    for (i, (l, zi)) in lambda.iter_mut().zip(z).enumerate() {
+        let step = s * *zi;
+        *l = *l + step;
+        for (j, tj) in t.iter_mut().enumerate() {
+            *tj = *tj + p.null(i, j) * step;
+        }
     }
 }
 
@@ -657,32 +703,38 @@ enum Step<T> {
     Partial { drop: usize, t: T, primal: bool },
 }
 
-/// Gram-Schmidt, twice, of the first `q` active normals: `basis` and `triangle` (`R`, with
-/// the reciprocals of its diagonal on the diagonal).
-fn factorize<T: Numeric, P: Problem<T>>(p: &P, work: &mut Work<'_, T>, q: usize, d: usize) {
+/// Gram-Schmidt, twice, of the `active` bounds' normals: `basis` (`d × d`, a column of `d`
+/// at a time) and `triangle` (`R`, row-major, with the reciprocals of its diagonal on the
+/// diagonal).
+fn factorize<T: Numeric, P: Problem<T>>(
+    p: &P,
+    basis: &mut [T],
+    triangle: &mut [T],
+    active: &[usize],
+    d: usize,
+) {
+    let q = active.len();
     for j in 0..q {
+        let (done, rest) = basis.split_at_mut(j * d);
+        let v = &mut rest[..d];
         for i in 0..d {
-            work.basis[j * d + i] = normal(p, work.active[j], i);
+            v[i] = normal(p, active[j], i);
         }
         for i in 0..q {
-            work.triangle[i * d + j] = T::zero();
+            triangle[i * d + j] = T::zero();
         }
         for _pass in 0..2 {
-            for m in 0..j {
-                let (done, rest) = work.basis.split_at_mut(j * d);
-                let column = &done[m * d..(m + 1) * d];
-                let v = &mut rest[..d];
+            for (m, column) in done.chunks_exact(d).enumerate() {
                 let w = dot(column, v);
-                work.triangle[m * d + j] = work.triangle[m * d + j] + w;
+                triangle[m * d + j] = triangle[m * d + j] + w;
                 for i in 0..d {
                     v[i] = v[i] - w * column[i];
                 }
             }
         }
-        let v = &mut work.basis[j * d..(j + 1) * d];
         // The reciprocal of R's diagonal entry: back-substitution multiplies by it.
         let reciprocal = T::one() / norm(v);
-        work.triangle[j * d + j] = reciprocal;
+        triangle[j * d + j] = reciprocal;
         for x in v.iter_mut() {
             *x = *x * reciprocal;
         }
