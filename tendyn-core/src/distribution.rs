@@ -309,7 +309,8 @@ pub struct Work<'a, T> {
     pub triangle: &'a mut [T],
     /// `d`: multipliers of the active bounds.
     pub multipliers: &'a mut [T],
-    /// `4·d`.
+    /// `4·d`: the primal direction, its coordinates in the basis and in the active normals,
+    /// and the floors' optimum (the best effort, should the maxima not be met).
     pub scratch: &'a mut [T],
     /// `d`: indices of the active bounds (`k` the floor of tendon `k`, `K + k` its maximum).
     pub active: &'a mut [usize],
@@ -429,11 +430,17 @@ fn project<T: Numeric, P: Problem<T>>(
     let (r, floors_only) = rest.split_at_mut(d);
 
     let mut with_max = false;
-    let mut size = T::zero();
-    for j in 0..k {
-        size = size.max(t0[j].abs()).max(T::from_f64(p.floor(j)));
-        if p.max(j).is_finite() {
-            size = size.max(T::from_f64(p.max(j)));
+    // The bounds' part of the size is a constant of the problem (folded where it is one).
+    let bounds = (0..k).fold(0.0f64, |m, j| {
+        let max = p.max(j);
+        m.max(p.floor(j))
+            .max(if max.is_finite() { max } else { 0.0 })
+    });
+    let mut size = T::from_f64(bounds);
+    for x in t0.iter() {
+        let x = x.abs();
+        if x > size {
+            size = x;
         }
     }
     let factor = T::from_f64(tolerance_factor::<T>(k, d));
@@ -494,20 +501,22 @@ fn project<T: Numeric, P: Problem<T>>(
             // Gram-Schmidt against the active basis, repeated only when the first pass
             // cancelled more than half of the normal's square (the criterion of Daniel,
             // Gragg, Kaufman and Stewart, 1976): "twice is enough".
-            let mut before = a_norm2;
-            for _pass in 0..2 {
-                for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
-                    let c = dot(column, z);
-                    w[j] = w[j] + c;
-                    for i in 0..d {
-                        z[i] = z[i] - c * column[i];
+            let mut z_norm2 = a_norm2;
+            if q > 0 {
+                for _pass in 0..2 {
+                    for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
+                        let c = dot(column, z);
+                        w[j] = w[j] + c;
+                        for i in 0..d {
+                            z[i] = z[i] - c * column[i];
+                        }
+                    }
+                    let before = z_norm2;
+                    z_norm2 = dot(z, z);
+                    if z_norm2 + z_norm2 > before {
+                        break;
                     }
                 }
-                let after = dot(z, z);
-                if q == 0 || after + after > before {
-                    break;
-                }
-                before = after;
             }
             for i in (0..q).rev() {
                 let row = &triangle[i * d..(i + 1) * d];
@@ -518,7 +527,6 @@ fn project<T: Numeric, P: Problem<T>>(
                 // The diagonal holds reciprocals (see `factorize`).
                 r[i] = v * row[i];
             }
-            let z_norm2 = dot(z, z);
             // Full step: to where the new bound is met (never backwards, should round-off
             // have met it already). With `d` bounds active the new normal lies in their span.
             let full = (q < d && z_norm2 > independent * a_norm2).then(|| {
