@@ -376,3 +376,48 @@ fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
         );
     }
 }
+
+/// Two joints, four tendons whose strictly positive null vectors fill a cone only 9e-7 rad
+/// wide (in null-space coordinates): controllable, with a small margin. The perceptron
+/// search that validation used before gave up after 100,000 iterations and called this
+/// routing uncontrollable; the linear program finds the cone. Checked against the file's
+/// own structure numbers: `A p = 0` to round-off and every component of `p` positive.
+#[test]
+fn a_controllable_routing_with_a_thin_cone_of_positive_null_vectors_is_accepted() {
+    let structure = [
+        [0.015671206043274277, 0.0],
+        [-0.003612010557858738, 0.007565598891127229],
+        [0.006654243242714545, -0.013937813961390164],
+        [0.00985331049677968, 0.01218601884933106],
+    ];
+    let tendons: String = structure
+        .iter()
+        .enumerate()
+        .map(|(k, [a, b])| format!("(name: \"t{}\", structure: [{a:e}, {b:e}]),\n", k + 1))
+        .collect();
+    let text = format!(
+        "(name: \"thin_cone\", gravity: (0.0, -9.81, 0.0), links: [
+            (name: \"l1\", dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: 0.5, com: (-0.1, 0.0, 0.0),
+             inertia: (xx: 2.5e-5, yy: 2.2e-3, zz: 2.2e-3)),
+            (name: \"l2\", dh: (a: 0.15, alpha: 0.0, d: 0.0), mass: 0.3, com: (-0.07, 0.0, 0.0),
+             inertia: (xx: 1.5e-5, yy: 1.2e-3, zz: 1.2e-3)),
+        ], tendons: [{tendons}])"
+    );
+    let m = tendyn_core::parse(&text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(m.system.null_space.len(), 2);
+    let p = m
+        .system
+        .positive_null
+        .as_ref()
+        .expect("a positive null vector");
+    assert!(p.iter().all(|&x| x >= 1.0 - 1e-12), "{p:?}");
+    for joint in 0..2 {
+        let moments = structure.iter().zip(p).map(|(row, pk)| row[joint] * pk);
+        let moment: f64 = moments.clone().sum();
+        let size: f64 = moments.map(f64::abs).sum();
+        assert!(
+            moment.abs() <= 1e-12 * size,
+            "joint {joint}: A p = {moment:e}, {p:?}"
+        );
+    }
+}

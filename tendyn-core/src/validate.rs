@@ -2107,18 +2107,24 @@ fn one_sided_combination(e: &[Vec<f64>], tendons: &[usize], other: &[usize]) -> 
     }
 }
 
-/// A null vector whose components on `cols` are all strictly positive, found by the
-/// perceptron iteration on the null-space coordinates (it terminates when such a vector
-/// exists with a margin; the margin needed here is generous), scaled so that its smallest
-/// tendon component is 1.
+/// A null vector whose components on `cols` (the open-ended tendons) are all strictly
+/// positive, scaled so that its smallest tendon component is 1; `None` if there is none.
+///
+/// Each tendon's row of the orthonormal null basis, normalised, is the direction in which
+/// null-space coordinates `λ` lift that tendon. With one null direction the rows are `±1`
+/// and their sum orients the line. With more, the linear program
+/// `max s` over `λ ∈ [−1, 1]^d` with `r_k · λ ≥ s` for every tendon's row `r_k` (simplex,
+/// `microlp`) finds the `λ` whose least lift, relative to each tendon's freedom, is
+/// largest: exact and finite, so a thin cone of positive vectors (a controllable routing
+/// with a small margin) is found as surely as a wide one. Either way the vector counts as
+/// positive only when its least lift exceeds `1e-9 ‖λ‖`.
 fn positive_null_vector(null: &[Vec<f64>], cols: &[usize]) -> Option<Vec<f64>> {
     let d = null.len();
     if d == 0 {
         return None;
     }
-    // A tendon's row of the (orthonormal) null basis holds its freedom. A row that is zero
-    // up to rounding means the dynamics fixes that tension: no null vector can lift it, and
-    // normalising the rounding noise would only fake one.
+    // A row that is zero up to rounding means the dynamics fixes that tension: no null
+    // vector can lift it, and normalising the rounding noise would only fake one.
     let mut rows: Vec<Vec<f64>> = Vec::with_capacity(cols.len());
     for &c in cols {
         let r: Vec<f64> = null.iter().map(|v| v[c]).collect();
@@ -2128,32 +2134,44 @@ fn positive_null_vector(null: &[Vec<f64>], cols: &[usize]) -> Option<Vec<f64>> {
         }
         rows.push(r.iter().map(|x| x / nr).collect());
     }
-    let mut lambda: Vec<f64> = vec![0.0; d];
-    for r in &rows {
-        for (l, x) in lambda.iter_mut().zip(r) {
-            *l += x;
-        }
+    let lambda = if d == 1 {
+        vec![rows.iter().map(|r| r[0]).sum::<f64>()]
+    } else {
+        largest_least_lift(&rows)?
+    };
+    let lift = |r: &Vec<f64>| r.iter().zip(&lambda).map(|(a, b)| a * b).sum::<f64>();
+    let least = rows.iter().map(lift).fold(f64::INFINITY, f64::min);
+    let lnorm = lambda.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let positive = least.is_finite() && least > 1e-9 * lnorm;
+    if !positive {
+        return None;
     }
-    for _ in 0..100_000 {
-        let worst = rows
-            .iter()
-            .map(|r| r.iter().zip(&lambda).map(|(a, b)| a * b).sum::<f64>())
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .expect("at least one tendon");
-        let lnorm = lambda.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if worst.1 > 1e-9 * lnorm {
-            let v: Vec<f64> = (0..null[0].len())
-                .map(|i| null.iter().zip(&lambda).map(|(b, l)| b[i] * l).sum())
-                .collect();
-            let min = cols.iter().map(|&c| v[c]).fold(f64::INFINITY, f64::min);
-            return Some(v.iter().map(|x| x / min).collect());
-        }
-        for (l, x) in lambda.iter_mut().zip(&rows[worst.0]) {
-            *l += x;
-        }
+    let v: Vec<f64> = (0..null[0].len())
+        .map(|i| null.iter().zip(&lambda).map(|(b, l)| b[i] * l).sum())
+        .collect();
+    let min = cols.iter().map(|&c| v[c]).fold(f64::INFINITY, f64::min);
+    Some(v.iter().map(|x| x / min).collect())
+}
+
+/// `argmax_λ min_k r_k · λ` over `λ ∈ [−1, 1]^d` (the box keeps the program bounded), as a
+/// linear program in `(λ, s)`; `None` if the solver finds no optimum.
+fn largest_least_lift(rows: &[Vec<f64>]) -> Option<Vec<f64>> {
+    use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
+    let d = rows.first()?.len();
+    let mut lp = Problem::new(OptimizationDirection::Maximize);
+    let lambda: Vec<_> = (0..d).map(|_| lp.add_var(0.0, (-1.0, 1.0))).collect();
+    let s = lp.add_var(1.0, (f64::NEG_INFINITY, f64::INFINITY));
+    for r in rows {
+        let mut terms: Vec<_> = lambda.iter().zip(r).map(|(&v, &x)| (v, x)).collect();
+        terms.push((s, -1.0));
+        lp.add_constraint(terms.as_slice(), ComparisonOp::Ge, 0.0);
     }
-    None
+    match lp.solve() {
+        Ok(SolveOutcome::Solution(solution)) => {
+            Some(lambda.iter().map(|&v| solution.var_value(v)).collect())
+        }
+        _ => None,
+    }
 }
 
 /// Every number of the file that may name a parameter: (item, field, number).
