@@ -12,50 +12,13 @@
 //! graph when it runs on `Sym`.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use tendyn_core::Real;
 
-/// The memo's hasher. Interning hashes every node the recursion builds, so the hash is
-/// most of the cost of tracing; std's SipHash resists flooding by crafted keys, which
-/// nodes numbered by this graph cannot be. This is the multiply-rotate hash of rustc
-/// (`FxHasher`): one multiplication per word of the key.
-#[derive(Default, Clone, Copy)]
-pub struct NodeHasher(u64);
-
-impl Hasher for NodeHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut word = [0u8; 8];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u64(u64::from_le_bytes(word));
-        }
-    }
-    fn write_u8(&mut self, x: u8) {
-        self.write_u64(x.into());
-    }
-    fn write_u32(&mut self, x: u32) {
-        self.write_u64(x.into());
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-    fn write_isize(&mut self, x: isize) {
-        self.write_u64(x as u64);
-    }
-    fn finish(&self) -> u64 {
-        // hashbrown takes its 7-bit tag from the top bits and the bucket from the low
-        // ones; the multiplication leaves the low bits depending on the key's low bits
-        // only, so the top is folded into them.
-        self.0 ^ (self.0 >> 32)
-    }
-}
-
-/// A map keyed by nodes or ids of one graph.
-pub type NodeMap<K, V> = HashMap<K, V, BuildHasherDefault<NodeHasher>>;
+/// A map keyed by nodes or ids of one graph. Interning hashes every node the recursion
+/// builds, so the hash is most of the cost of tracing: rustc's Fx hash (one multiplication
+/// per word) rather than std's SipHash, whose resistance to crafted keys nodes numbered by
+/// this graph do not need.
+pub type NodeMap<K, V> = rustc_hash::FxHashMap<K, V>;
 
 /// Index of a node in its graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
