@@ -444,12 +444,6 @@ fn project<T: Numeric, P: Problem<T>>(
         }
     }
     let factor = T::from_f64(tolerance_factor::<T>(k, d));
-    // A new normal counts as independent of the active ones when its part outside their
-    // span is more than √u of it: nearer to parallel, a full step would be longer than
-    // 1/√u times the violation and its round-off would no longer be small against the
-    // tensions (the normals themselves carry errors of u·cond(E)). Squared: u.
-    let independent = T::from_f64(T::unit_roundoff());
-
     for i in 0..d {
         lambda[i] = p.target(i);
     }
@@ -488,72 +482,15 @@ fn project<T: Numeric, P: Problem<T>>(
                 limit = iteration_bound(d, bounds);
                 limit_is_bound = true;
             }
-            // z: the part of the new normal outside the active normals' span (the primal
-            // direction); w: its coordinates in their orthonormal basis; r = R⁻¹ w, its
-            // coordinates in the active normals (the dual direction).
-            for i in 0..d {
-                z[i] = normal(p, add, i);
-            }
-            let a_norm2 = dot(z, z);
-            for j in 0..q {
-                w[j] = T::zero();
-            }
-            // Gram-Schmidt against the active basis, repeated only when the first pass
-            // cancelled more than half of the normal's square (the criterion of Daniel,
-            // Gragg, Kaufman and Stewart, 1976): "twice is enough".
-            let mut z_norm2 = a_norm2;
-            if q > 0 {
-                for _pass in 0..2 {
-                    for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
-                        let c = dot(column, z);
-                        w[j] = w[j] + c;
-                        for i in 0..d {
-                            z[i] = z[i] - c * column[i];
-                        }
-                    }
-                    let before = z_norm2;
-                    z_norm2 = dot(z, z);
-                    if z_norm2 + z_norm2 > before {
-                        break;
-                    }
-                }
-            }
-            for i in (0..q).rev() {
-                let row = &triangle[i * d..(i + 1) * d];
-                let mut v = w[i];
-                for j in i + 1..q {
-                    v = v - row[j] * r[j];
-                }
-                // The diagonal holds reciprocals (see `factorize`).
-                r[i] = v * row[i];
-            }
-            // Full step: to where the new bound is met (never backwards, should round-off
-            // have met it already). With `d` bounds active the new normal lies in their span.
-            let full = (q < d && z_norm2 > independent * a_norm2).then(|| {
-                let need = -violation;
-                let need = if need > T::zero() { need } else { T::zero() };
-                need / z_norm2
-            });
-            // Partial step: to where an active bound's multiplier reaches zero, the least
-            // u_j / r_j over r_j > 0 (compared as u_j r_b < u_b r_j, one division in all).
-            let mut first: Option<usize> = None;
-            for j in 0..q {
-                if r[j] > T::zero()
-                    && first.is_none_or(|b| multipliers[j] * r[b] < multipliers[b] * r[j])
-                {
-                    first = Some(j);
-                }
-            }
-            let partial = first.map(|j| (j, multipliers[j] / r[j]));
-            let step = match (full, partial) {
-                (None, None) => Step::Empty,
-                (Some(s), None) => Step::Full(s),
-                (Some(s), Some((_, sp))) if s <= sp => Step::Full(s),
-                (full, Some((drop, s))) => Step::Partial {
-                    drop,
-                    t: s,
-                    primal: full.is_some(),
-                },
+            // Dispatched on the count of active bounds, so that each copy of the step
+            // knows it: its loops over the active set unroll and keep their values in
+            // registers (up to three; beyond, one copy serves every count).
+            let (step, z_norm2) = match q {
+                0 => direction(p, add, violation, 0, basis, triangle, multipliers, z, w, r),
+                1 => direction(p, add, violation, 1, basis, triangle, multipliers, z, w, r),
+                2 => direction(p, add, violation, 2, basis, triangle, multipliers, z, w, r),
+                3 => direction(p, add, violation, 3, basis, triangle, multipliers, z, w, r),
+                _ => direction(p, add, violation, q, basis, triangle, multipliers, z, w, r),
             };
             match step {
                 Step::Empty => {
@@ -627,6 +564,98 @@ fn project<T: Numeric, P: Problem<T>>(
             }
         }
     }
+}
+
+/// The next step of the method for the violated bound `add` with `q` bounds active: the
+/// primal direction `z` (the new normal's part outside the active normals' span), its
+/// coordinates `w` in their orthonormal basis, `r = R⁻¹ w` (the dual direction), and which
+/// step to take; with `|z|²`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn direction<T: Numeric, P: Problem<T>>(
+    p: &P,
+    add: usize,
+    violation: T,
+    q: usize,
+    basis: &[T],
+    triangle: &[T],
+    multipliers: &[T],
+    z: &mut [T],
+    w: &mut [T],
+    r: &mut [T],
+) -> (Step<T>, T) {
+    let d = z.len();
+    // A new normal counts as independent of the active ones when its part outside their
+    // span is more than √u of it: nearer to parallel, a full step would be longer than
+    // 1/√u times the violation and its round-off would no longer be small against the
+    // tensions (the normals themselves carry errors of u·cond(E)). Squared: u.
+    let independent = T::from_f64(T::unit_roundoff());
+    // z: the part of the new normal outside the active normals' span (the primal
+    // direction); w: its coordinates in their orthonormal basis; r = R⁻¹ w, its
+    // coordinates in the active normals (the dual direction).
+    for i in 0..d {
+        z[i] = normal(p, add, i);
+    }
+    let a_norm2 = dot(z, z);
+    for j in 0..q {
+        w[j] = T::zero();
+    }
+    // Gram-Schmidt against the active basis, repeated only when the first pass
+    // cancelled more than half of the normal's square (the criterion of Daniel,
+    // Gragg, Kaufman and Stewart, 1976): "twice is enough".
+    let mut z_norm2 = a_norm2;
+    if q > 0 {
+        for _pass in 0..2 {
+            for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
+                let c = dot(column, z);
+                w[j] = w[j] + c;
+                for i in 0..d {
+                    z[i] = z[i] - c * column[i];
+                }
+            }
+            let before = z_norm2;
+            z_norm2 = dot(z, z);
+            if z_norm2 + z_norm2 > before {
+                break;
+            }
+        }
+    }
+    for i in (0..q).rev() {
+        let row = &triangle[i * d..(i + 1) * d];
+        let mut v = w[i];
+        for j in i + 1..q {
+            v = v - row[j] * r[j];
+        }
+        // The diagonal holds reciprocals (see `factorize`).
+        r[i] = v * row[i];
+    }
+    // Full step: to where the new bound is met (never backwards, should round-off
+    // have met it already). With `d` bounds active the new normal lies in their span.
+    let full = (q < d && z_norm2 > independent * a_norm2).then(|| {
+        let need = -violation;
+        let need = if need > T::zero() { need } else { T::zero() };
+        need / z_norm2
+    });
+    // Partial step: to where an active bound's multiplier reaches zero, the least
+    // u_j / r_j over r_j > 0 (compared as u_j r_b < u_b r_j, one division in all).
+    let mut first: Option<usize> = None;
+    for j in 0..q {
+        if r[j] > T::zero() && first.is_none_or(|b| multipliers[j] * r[b] < multipliers[b] * r[j]) {
+            first = Some(j);
+        }
+    }
+    let partial = first.map(|j| (j, multipliers[j] / r[j]));
+    let step = match (full, partial) {
+        (None, None) => Step::Empty,
+        (Some(s), None) => Step::Full(s),
+        (Some(s), Some((_, sp))) if s <= sp => Step::Full(s),
+        (full, Some((drop, s))) => Step::Partial {
+            drop,
+            t: s,
+            primal: full.is_some(),
+        },
+    };
+    (step, z_norm2)
 }
 
 /// The slack of bound `i` at tensions `t` (`≥ 0` when met).
