@@ -454,7 +454,14 @@ fn project<T: Numeric, P: Problem<T>>(
     let mut limit = 4 * (2 * k + 1);
     let mut limit_is_bound = false;
     loop {
-        let [floor, max] = most_violated(p, t, size, factor);
+        let (floor, threshold) = most_violated_floor(p, t, size, factor);
+        // Before every floor is met only the floors compete; the maxima are looked at once
+        // they are (to switch phases) and from then on.
+        let max = if with_max || floor.is_none() {
+            most_violated_max(p, t, threshold)
+        } else {
+            None
+        };
         if !with_max && floor.is_none() && max.is_some() {
             // The floors are met: keep this point, the best effort should the maxima turn
             // out not to be, and go on with every bound.
@@ -668,43 +675,55 @@ fn slack<T: Real, P: Problem<T>>(p: &P, i: usize, t: &[T]) -> T {
     }
 }
 
-/// The most violated floor and the most violated maximum at tensions `t` (bound index and
-/// slack), each if violated by more than round-off (`factor` times the largest of `size`
-/// and every `|t_j|`); of equally violated bounds the first in tendon order.
+/// The most violated floor at tensions `t` (bound index and slack), if violated by more
+/// than round-off, with that round-off threshold (`−factor` times the largest of `size` and
+/// every `|t_j|`, for [`most_violated_max`]); of equally violated floors the first.
 ///
 /// One pass finds the least slack and the largest tension together: the least slack is
-/// violated beyond round-off exactly when some slack is, so the threshold can wait.
+/// past the threshold exactly when some slack is, so the threshold can wait.
 #[inline(always)]
-fn most_violated<T: Numeric, P: Problem<T>>(
+fn most_violated_floor<T: Numeric, P: Problem<T>>(
     p: &P,
     t: &[T],
     size: T,
     factor: T,
-) -> [Option<(usize, T)>; 2] {
-    let k = t.len();
+) -> (Option<(usize, T)>, T) {
     let mut largest = size;
-    let (mut floor, mut max) = ((usize::MAX, T::zero()), (usize::MAX, T::zero()));
-    for j in 0..k {
-        let x = t[j].abs();
+    let mut floor = (usize::MAX, T::zero());
+    for (j, &tj) in t.iter().enumerate() {
+        let x = tj.abs();
         if x > largest {
             largest = x;
         }
-        let s = t[j] - T::from_f64(p.floor(j));
+        let s = tj - T::from_f64(p.floor(j));
         if s < floor.1 {
             floor = (j, s);
         }
     }
-    for j in 0..k {
+    let threshold = -(factor * largest);
+    ((floor.1 < threshold).then_some(floor), threshold)
+}
+
+/// The most violated maximum at tensions `t` (bound index `K + k` and slack), if violated
+/// beyond `threshold`; of equally violated maxima the first.
+#[inline(always)]
+fn most_violated_max<T: Numeric, P: Problem<T>>(
+    p: &P,
+    t: &[T],
+    threshold: T,
+) -> Option<(usize, T)> {
+    let k = t.len();
+    let mut max = (usize::MAX, T::zero());
+    for (j, &tj) in t.iter().enumerate() {
         let bound = p.max(j);
         if bound.is_finite() {
-            let s = T::from_f64(bound) - t[j];
+            let s = T::from_f64(bound) - tj;
             if s < max.1 {
                 max = (k + j, s);
             }
         }
     }
-    let threshold = -(factor * largest);
-    [floor, max].map(|(i, s)| (s < threshold).then_some((i, s)))
+    (max.1 < threshold).then_some(max)
 }
 
 /// `T = T₀ + N λ`, a row of `N` at a time (the inner loop runs over contiguous entries).
