@@ -688,18 +688,32 @@ fn most_violated_floor<T: Numeric, P: Problem<T>>(
     size: T,
     factor: T,
 ) -> (Option<(usize, T)>, T) {
-    let mut largest = size;
-    let mut floor = (usize::MAX, T::zero());
+    // Two lanes (even and odd tendons), merged at the end: two independent chains of
+    // compare-and-select halve the scan's latency, which every step of the method waits for.
+    let mut largest = [size; 2];
+    let mut floors = [(usize::MAX, T::zero()); 2];
     for (j, &tj) in t.iter().enumerate() {
         let x = tj.abs();
-        if x > largest {
-            largest = x;
+        if x > largest[j % 2] {
+            largest[j % 2] = x;
         }
         let s = tj - T::from_f64(p.floor(j));
-        if s < floor.1 {
-            floor = (j, s);
+        if s < floors[j % 2].1 {
+            floors[j % 2] = (j, s);
         }
     }
+    let largest = if largest[1] > largest[0] {
+        largest[1]
+    } else {
+        largest[0]
+    };
+    // Of equal slacks the earlier tendon, as one chain in tendon order would pick.
+    let [even, odd] = floors;
+    let floor = if odd.1 < even.1 || (odd.1 == even.1 && odd.0 < even.0) {
+        odd
+    } else {
+        even
+    };
     let threshold = -(factor * largest);
     ((floor.1 < threshold).then_some(floor), threshold)
 }
