@@ -60,6 +60,12 @@
 //! at most `4 (K + d) u · max(|T₀|, |floor|, |max|, |T|)`, and a new bound's normal as
 //! independent of the active ones when its part outside their span exceeds `√u` of it;
 //! for `d = 1`, see [`Status::of_line`].
+//!
+//! In a scalar of short precision (`f32`) the optimum found for `d ≥ 2` gets one step of
+//! iterative refinement on its active set (`refine`): at vertices where bounds meet at
+//! small angles the steps' round-off otherwise reaches a few hundred `u` of the tensions
+//! (1.04e-5 measured, against 3.5e-6 with the step). `f64` keeps well within its promise
+//! without it, and the test that chooses folds away.
 
 // Index loops read like the algorithm over index sets.
 #![allow(clippy::needless_range_loop)]
@@ -474,6 +480,9 @@ fn project<T: Numeric, P: Problem<T>>(
             (f, _) => f,
         };
         let Some((add, mut violation)) = next else {
+            if refines::<T>() {
+                refine(p, t0, lambda, basis, triangle, &active[..q], z, w);
+            }
             // The tensions afresh from λ: the steps' updates of `t` round at every step.
             tensions_at(p, t0, lambda, t);
             return Status::Feasible;
@@ -663,6 +672,65 @@ fn direction<T: Numeric, P: Problem<T>>(
         },
     };
     (step, z_norm2)
+}
+
+/// Whether the optimum gets a step of [`refine`]: in a scalar of short precision
+/// (`u > 2⁻³⁰`, that is `f32`), where the steps' round-off at a vertex of nearly parallel
+/// bounds reaches a few hundred `u` of the tensions. In `f64` that error is far below
+/// what the distribution promises, and the test folds away.
+#[inline(always)]
+fn refines<T: Numeric>() -> bool {
+    T::unit_roundoff() > 1.0 / (1u64 << 30) as f64
+}
+
+/// One step of iterative refinement of the optimum on its active set: `λ` moves by `δ` so
+/// that every active bound holds with zero slack (`Rᵀ y = −slack` in the active normals'
+/// basis, `normals = basis · R`) and the part of `λ − λ*` outside their span vanishes
+/// (stationarity: `λ − λ*` is a combination of the active normals). Slacks are computed
+/// afresh from `λ`, not from the tensions the steps updated, so the step removes the
+/// round-off the steps accumulated.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn refine<T: Numeric, P: Problem<T>>(
+    p: &P,
+    t0: &[T],
+    lambda: &mut [T],
+    basis: &[T],
+    triangle: &[T],
+    active: &[usize],
+    y: &mut [T],
+    delta: &mut [T],
+) {
+    let (k, d, q) = (t0.len(), lambda.len(), active.len());
+    for j in 0..q {
+        let bound = active[j];
+        let tendon = if bound < k { bound } else { bound - k };
+        let t = (0..d).fold(t0[tendon], |s, i| s + p.null(i, tendon) * lambda[i]);
+        // −slack: `floor − T` for a floor, `T − max` for a maximum.
+        let mut v = if bound < k {
+            T::from_f64(p.floor(tendon)) - t
+        } else {
+            t - T::from_f64(p.max(tendon))
+        };
+        for i in 0..j {
+            v = v - triangle[i * d + j] * y[i];
+        }
+        // The diagonal holds reciprocals (see `factorize`).
+        y[j] = v * triangle[j * d + j];
+    }
+    for i in 0..d {
+        delta[i] = p.target(i) - lambda[i];
+    }
+    // λ* − λ with its part along each active basis column replaced by y_j.
+    for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
+        let c = dot(column, delta);
+        for i in 0..d {
+            delta[i] = delta[i] + (y[j] - c) * column[i];
+        }
+    }
+    for i in 0..d {
+        lambda[i] = lambda[i] + delta[i];
+    }
 }
 
 /// The slack of bound `i` at tensions `t` (`≥ 0` when met).
