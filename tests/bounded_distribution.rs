@@ -419,9 +419,9 @@ fn the_centered_distribution_matches_the_enumeration_too() {
 
 /// Measured (2026-12-02), 20,000 states per system and objective (280,000 in all): 0 states
 /// where the f64 solver or the f32 distribution and the reference disagree on feasibility
-/// (nor the whole f32 solver); worst f64 error 4.0e-14; worst f32 distribution error
+/// (nor the whole f32 solver); worst f64 error 2.4e-14; worst f32 distribution error
 /// against the problem it receives 8.5e-6 with least norm (at (3, 6), where `T₀` is many
-/// times the tensions), 3.5e-6 centered, and 1.2e-5 against the exact problem (centered,
+/// times the tensions), 4.0e-6 centered, and 1.1e-5 against the exact problem (centered,
 /// (6, 10): its inputs' rounding). Without the final refinement step of `f32` the centered
 /// (2, 4) system reaches 1.04e-5 against the problem it receives.
 #[test]

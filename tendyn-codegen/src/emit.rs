@@ -1132,16 +1132,18 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
                 // fixed-size routine of tendyn-core.
                 (StatusFrom::Solve, Some(dist)) => {
                     let rows = dist.null.iter().map(|r| f64_array(r));
-                    let (floor, max, target) = (
+                    let (floor, max, target, inverse_length) = (
                         f64_array(&dist.floor),
                         f64_array(&dist.max),
                         f64_array(&dist.target),
+                        f64_array(&dist.inverse_length),
                     );
                     parse_quote!(#actuation::bounded(#m, #t_, &#core::distribution::Fixed {
                         null: [#(#rows),*],
                         floor: #floor,
                         max: #max,
                         target: #target,
+                        inverse_length: #inverse_length,
                     }))
                 }
                 _ => parse_quote!(#actuation::exact(#m, #t_)),

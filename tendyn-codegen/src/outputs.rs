@@ -198,6 +198,8 @@ pub struct Distribution {
     pub max: Vec<f64>,
     /// The objective's optimum in null-space coordinates, `λ*_d = Σₖ null[d][k] c_k`.
     pub target: Vec<f64>,
+    /// `1 / |n_k|` of each tendon's row of the basis (`Problem::inverse_length`).
+    pub inverse_length: Vec<f64>,
 }
 
 /// Why an output cannot be generated for a mechanism.
@@ -391,6 +393,7 @@ fn distribution_constants(model: &Model<f64>) -> Distribution {
         floor: (0..k).map(|j| problem.floor(j)).collect(),
         max: (0..k).map(|j| problem.max(j)).collect(),
         target: (0..d).map(|i| problem.target(i)).collect(),
+        inverse_length: (0..k).map(|j| problem.inverse_length(j)).collect(),
     }
 }
 

@@ -267,6 +267,17 @@ pub trait Problem<T> {
     fn max(&self, k: usize) -> f64;
     /// `λ*_d = Σₖ null(d, k) c_k`: the objective's optimum in null-space coordinates.
     fn target(&self, d: usize) -> T;
+    /// `1 / |n_k|`, `n_k = (null(0, k), …, null(d − 1, k))` the normal of tendon `k`'s
+    /// bounds ([`inverse_length`]): the first step of a run needs it, and it is a constant
+    /// of the problem.
+    fn inverse_length(&self, k: usize) -> T;
+}
+
+/// `1 / |n|` for the components of `n`: [`Problem::inverse_length`], computed the same way
+/// wherever a problem is built (at run time or for generated code's constants).
+pub fn inverse_length<T: Real>(components: impl IntoIterator<Item = T>) -> T {
+    let square = components.into_iter().fold(T::zero(), |s, x| s + x * x);
+    T::one() / square.sqrt()
 }
 
 /// A [`Problem`] of constants, as generated code holds it.
@@ -280,6 +291,8 @@ pub struct Fixed<const K: usize, const D: usize> {
     pub max: [f64; K],
     /// `λ*`: the objective's optimum in null-space coordinates (0 for least norm).
     pub target: [f64; D],
+    /// `1 / |n_k|` of each tendon's normal ([`inverse_length`] of `null[·][k]`).
+    pub inverse_length: [f64; K],
 }
 
 impl<T: Real, const K: usize, const D: usize> Problem<T> for Fixed<K, D> {
@@ -300,6 +313,9 @@ impl<T: Real, const K: usize, const D: usize> Problem<T> for Fixed<K, D> {
     }
     fn target(&self, d: usize) -> T {
         T::from_f64(self.target[d])
+    }
+    fn inverse_length(&self, k: usize) -> T {
+        T::from_f64(self.inverse_length[k])
     }
 }
 
@@ -544,8 +560,13 @@ fn project<T: Numeric, P: Problem<T>>(
                     for j in 0..q {
                         multipliers[j] = multipliers[j] - s * r[j];
                     }
-                    // The new column of the factorisation is already at hand: w and |z|.
-                    let reciprocal = T::one() / z_norm2.sqrt();
+                    // The new column of the factorisation is already at hand: w and |z|
+                    // (with no bound active, z is the new bound's normal, of known length).
+                    let reciprocal = if q == 0 {
+                        p.inverse_length(tendon_of(add, k))
+                    } else {
+                        T::one() / z_norm2.sqrt()
+                    };
                     for j in 0..q {
                         triangle[j * d + q] = w[j];
                     }
@@ -612,28 +633,47 @@ fn direction<T: Numeric, P: Problem<T>>(
     for i in 0..d {
         z[i] = normal(p, add, i);
     }
+    let need = -violation;
+    let need = if need > T::zero() { need } else { T::zero() };
+    if q == 0 {
+        // No bound active: z is the normal itself, whose length the problem holds, so the
+        // step needs no dot product and no division. A zero normal (a tendon the null
+        // space cannot move, which validation excludes) has no step.
+        let inverse = p.inverse_length(tendon_of(add, p.tendons()));
+        let step = if inverse.is_finite() {
+            Step::Full(need * (inverse * inverse))
+        } else {
+            Step::Empty
+        };
+        return (step, T::zero());
+    }
     let a_norm2 = dot(z, z);
     for j in 0..q {
         w[j] = T::zero();
     }
     // Gram-Schmidt against the active basis, repeated only when the first pass
     // cancelled more than half of the normal's square (the criterion of Daniel,
-    // Gragg, Kaufman and Stewart, 1976): "twice is enough".
+    // Gragg, Kaufman and Stewart, 1976): "twice is enough". After the first pass
+    // `|z|² = |a|² − Σ c_j²` (the columns are orthonormal), which does not wait for `z`
+    // and, short of that cancellation, loses nothing; after a second, it is taken afresh.
     let mut z_norm2 = a_norm2;
-    if q > 0 {
-        for _pass in 0..2 {
-            for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
-                let c = dot(column, z);
-                w[j] = w[j] + c;
-                for i in 0..d {
-                    z[i] = z[i] - c * column[i];
-                }
+    for pass in 0..2 {
+        let mut removed = T::zero();
+        for (j, column) in basis.chunks_exact(d).take(q).enumerate() {
+            let c = dot(column, z);
+            w[j] = w[j] + c;
+            removed = removed + c * c;
+            for i in 0..d {
+                z[i] = z[i] - c * column[i];
             }
-            let before = z_norm2;
-            z_norm2 = dot(z, z);
-            if z_norm2 + z_norm2 > before {
+        }
+        if pass == 0 {
+            z_norm2 = a_norm2 - removed;
+            if z_norm2 + z_norm2 > a_norm2 {
                 break;
             }
+        } else {
+            z_norm2 = dot(z, z);
         }
     }
     for i in (0..q).rev() {
@@ -647,11 +687,7 @@ fn direction<T: Numeric, P: Problem<T>>(
     }
     // Full step: to where the new bound is met (never backwards, should round-off
     // have met it already). With `d` bounds active the new normal lies in their span.
-    let full = (q < d && z_norm2 > independent * a_norm2).then(|| {
-        let need = -violation;
-        let need = if need > T::zero() { need } else { T::zero() };
-        need / z_norm2
-    });
+    let full = (q < d && z_norm2 > independent * a_norm2).then(|| need / z_norm2);
     // Partial step: to where an active bound's multiplier reaches zero, the least
     // u_j / r_j over r_j > 0 (compared as u_j r_b < u_b r_j, one division in all).
     let mut first: Option<usize> = None;
@@ -704,7 +740,7 @@ fn refine<T: Numeric, P: Problem<T>>(
     let (k, d, q) = (t0.len(), lambda.len(), active.len());
     for j in 0..q {
         let bound = active[j];
-        let tendon = if bound < k { bound } else { bound - k };
+        let tendon = tendon_of(bound, k);
         let t = (0..d).fold(t0[tendon], |s, i| s + p.null(i, tendon) * lambda[i]);
         // −slack: `floor − T` for a floor, `T − max` for a maximum.
         let mut v = if bound < k {
@@ -730,6 +766,15 @@ fn refine<T: Numeric, P: Problem<T>>(
     }
     for i in 0..d {
         lambda[i] = lambda[i] + delta[i];
+    }
+}
+
+/// The tendon of bound `i` (`k` tendons): `i` for a floor, `i − k` for a maximum.
+fn tendon_of(i: usize, k: usize) -> usize {
+    if i < k {
+        i
+    } else {
+        i - k
     }
 }
 
@@ -819,15 +864,22 @@ fn tensions_at<T: Real, P: Problem<T>>(p: &P, t0: &[T], lambda: &[T], t: &mut [T
     }
 }
 
-/// Moves `λ` by `s z`, and the tensions `t` with it (by `N (s z)`, a row at a time).
+/// Moves `λ` by `s z`, and the tensions `t` with it, by `s (N z)`: `N z` does not wait for
+/// the step's length `s` (a division), so only one product per tendon does.
 #[inline(always)]
 fn advance<T: Real, P: Problem<T>>(p: &P, s: T, z: &[T], lambda: &mut [T], t: &mut [T]) {
-    for (i, (l, zi)) in lambda.iter_mut().zip(z).enumerate() {
-        let step = s * *zi;
-        *l = *l + step;
-        for (j, tj) in t.iter_mut().enumerate() {
-            *tj = *tj + p.null(i, j) * step;
+    for (l, zi) in lambda.iter_mut().zip(z) {
+        *l = *l + s * *zi;
+    }
+    let Some((z0, rest)) = z.split_first() else {
+        return;
+    };
+    for (j, tj) in t.iter_mut().enumerate() {
+        let mut nz = p.null(0, j) * *z0;
+        for (i, zi) in rest.iter().enumerate() {
+            nz = nz + p.null(i + 1, j) * *zi;
         }
+        *tj = *tj + s * nz;
     }
 }
 
@@ -844,6 +896,7 @@ enum Step<T> {
 /// Gram-Schmidt, twice, of the `active` bounds' normals: `basis` (`d × d`, a column of `d`
 /// at a time) and `triangle` (`R`, row-major, with the reciprocals of its diagonal on the
 /// diagonal).
+#[inline(always)]
 fn factorize<T: Numeric, P: Problem<T>>(
     p: &P,
     basis: &mut [T],
@@ -917,6 +970,11 @@ mod tests {
             floor: [1.0, 1.0, 1.0],
             max,
             target: [0.0, 0.0],
+            inverse_length: [
+                1.0 / (0.5 + 1.0 / 6.0f64).sqrt(),
+                1.0 / (4.0 / 6.0f64).sqrt(),
+                1.0 / (0.5 + 1.0 / 6.0f64).sqrt(),
+            ],
         }
     }
 

@@ -209,6 +209,7 @@ pub fn bounds<T: Real>(model: &Model<T>) -> impl Problem<T> + '_ {
 struct Bounds<'m, T> {
     model: &'m Model<T>,
     target: Vec<T>,
+    inverse_length: Vec<T>,
 }
 
 impl<'m, T: Real> Bounds<'m, T> {
@@ -223,7 +224,17 @@ impl<'m, T: Real> Bounds<'m, T> {
                 })
             })
             .collect();
-        Bounds { model, target }
+        let null = &model.system.null_space;
+        let inverse_length = model
+            .tendons
+            .iter()
+            .map(|t| distribution::inverse_length(null.iter().map(|v| v[t.unknown])))
+            .collect();
+        Bounds {
+            model,
+            target,
+            inverse_length,
+        }
     }
 }
 
@@ -245,6 +256,9 @@ impl<T: Real> Problem<T> for Bounds<'_, T> {
     }
     fn target(&self, d: usize) -> T {
         self.target[d]
+    }
+    fn inverse_length(&self, k: usize) -> T {
+        self.inverse_length[k]
     }
 }
 
