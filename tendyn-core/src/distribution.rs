@@ -595,7 +595,9 @@ fn project<T: Numeric, P: Problem<T>>(
                         multipliers[j] = multipliers[j + 1];
                     }
                     q -= 1;
-                    factorize(p, basis, triangle, &active[..q], d);
+                    // The columns before the dropped bound's are those of the bounds
+                    // before it, unchanged: only the later ones are built anew.
+                    factorize(p, basis, triangle, &active[..q], d, drop);
                     violation = slack(p, add, t);
                 }
             }
@@ -895,7 +897,8 @@ enum Step<T> {
 
 /// Gram-Schmidt, twice, of the `active` bounds' normals: `basis` (`d × d`, a column of `d`
 /// at a time) and `triangle` (`R`, row-major, with the reciprocals of its diagonal on the
-/// diagonal).
+/// diagonal), from column `from` on (the columns before it already span the normals
+/// before it: Gram-Schmidt builds each column from the earlier ones only).
 #[inline(always)]
 fn factorize<T: Numeric, P: Problem<T>>(
     p: &P,
@@ -903,9 +906,10 @@ fn factorize<T: Numeric, P: Problem<T>>(
     triangle: &mut [T],
     active: &[usize],
     d: usize,
+    from: usize,
 ) {
     let q = active.len();
-    for j in 0..q {
+    for j in from..q {
         let (done, rest) = basis.split_at_mut(j * d);
         let v = &mut rest[..d];
         for i in 0..d {
