@@ -11,7 +11,7 @@ use crate::expr::{Graph, Id, OpCount, Sym};
 use tendyn_core::distribution::Problem;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model};
-use tendyn_core::{tension, Real};
+use tendyn_core::{linalg, tension, Real};
 
 /// One generated function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -466,8 +466,10 @@ fn trace_one(
                 &i.tendon_tensions,
                 ws,
             );
-            let mm = shared.mass(m, i, ws);
-            (Shape::Vector(n), dynamics::ldlt_solve(&mm, &rhs))
+            let mut mm: Vec<Sym> = shared.mass(m, i, ws).into_iter().flatten().collect();
+            let mut x = rhs;
+            linalg::ldlt_solve(&mut mm, &mut x);
+            (Shape::Vector(n), x)
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
             let r = shared.inverse(m, i, ws).clone();

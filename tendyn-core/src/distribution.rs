@@ -70,6 +70,7 @@
 // Index loops read like the algorithm over index sets.
 #![allow(clippy::needless_range_loop)]
 
+use crate::linalg::dot;
 use crate::real::{Numeric, Real};
 
 /// Whether a distribution meets every bound.
@@ -928,20 +929,12 @@ fn factorize<T: Numeric, P: Problem<T>>(
             }
         }
         // The reciprocal of R's diagonal entry: back-substitution multiplies by it.
-        let reciprocal = T::one() / norm(v);
+        let reciprocal = T::one() / dot(v, v).sqrt();
         triangle[j * d + j] = reciprocal;
         for x in v.iter_mut() {
             *x = *x * reciprocal;
         }
     }
-}
-
-fn dot<T: Real>(a: &[T], b: &[T]) -> T {
-    a.iter().zip(b).fold(T::zero(), |s, (x, y)| s + *x * *y)
-}
-
-fn norm<T: Real>(a: &[T]) -> T {
-    dot(a, a).sqrt()
 }
 
 /// `(d + 1) Σ_{s ≤ d} C(m, s)`: a step per active set of at most `d` of the `m` bounds,

@@ -16,12 +16,12 @@ use crate::affine::Affine;
 use crate::error::{Error, Result};
 use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
+use crate::linalg;
 use crate::model::{BodyKind, Model, MotorKind};
 use crate::newton_euler::{backward, Loads};
 use crate::real::{Numeric, Real};
 use crate::spatial::{Mat3, Vec3};
 use crate::tension;
-use crate::transmission::linalg;
 
 /// Everything inverse dynamics reports at one state. See `docs/outputs.md` for units,
 /// frames and signs.
@@ -239,43 +239,6 @@ pub fn forward_dynamics_rhs<T: Real>(
         .collect();
     friction::apply_at(model, qd, None, Side::Acting, &mut rhs);
     rhs
-}
-
-/// Solves `M x = rhs` by `L D Lᵀ` without pivoting or checks: what generated code does
-/// (the runtime [`Solver`] uses a checked Cholesky instead).
-pub fn ldlt_solve<T: Real>(m: &[Vec<T>], rhs: &[T]) -> Vec<T> {
-    let n = rhs.len();
-    let mut l = vec![vec![T::zero(); n]; n];
-    let mut d = vec![T::zero(); n];
-    for j in 0..n {
-        let mut dj = m[j][j];
-        for k in 0..j {
-            dj = dj - l[j][k] * l[j][k] * d[k];
-        }
-        d[j] = dj;
-        for i in j + 1..n {
-            let mut s = m[i][j];
-            for k in 0..j {
-                s = s - l[i][k] * l[j][k] * d[k];
-            }
-            l[i][j] = s / dj;
-        }
-    }
-    let mut y = rhs.to_vec();
-    for i in 0..n {
-        for k in 0..i {
-            y[i] = y[i] - l[i][k] * y[k];
-        }
-    }
-    for (yi, di) in y.iter_mut().zip(&d) {
-        *yi = *yi / *di;
-    }
-    for i in (0..n).rev() {
-        for k in i + 1..n {
-            y[i] = y[i] - l[k][i] * y[k];
-        }
-    }
-    y
 }
 
 /// Inverse dynamics by the paper's recursion: tensions carried to the base as unknowns,
@@ -648,13 +611,16 @@ impl<'m, T: Numeric> Solver<'m, T> {
     fn solve_mass_matrix(&mut self, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
         let m = mass_matrix(self.model, q, &mut self.ws);
         finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
-        linalg::cholesky_solve(&m, rhs).ok_or_else(|| {
-            Error::Singular(
+        let mut factor: Vec<T> = m.into_iter().flatten().collect();
+        let mut x = rhs.to_vec();
+        if !linalg::cholesky_solve(&mut factor, &mut x) {
+            return Err(Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
                  link whose motion nothing resists)"
                     .into(),
-            )
-        })
+            ));
+        }
+        Ok(x)
     }
 
     /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the

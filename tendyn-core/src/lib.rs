@@ -20,13 +20,15 @@
 //!   floors and maxima can do on it with every other joint at rest (a linear program);
 //! - [`distribution`]: the tension distribution within floors and maxima (`no_std`,
 //!   allocation-free), one routine that the runtime solver and generated code both call;
+//! - [`linalg`]: the small factorisations (Householder QR for `E⁺` and `null(E)`, Cholesky,
+//!   `L D Lᵀ`), written once, generic and allocation-free;
 //! - [`mechanism`]: the [`TendonMechanism`] trait of generated dynamics and
 //!   [`include_mechanism!`] for code a build script generated.
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
-//! feature only [`Real`], `distribution` and `mechanism` remain (`no_std`, no `alloc`, math from `libm`): what generated
-//! code needs.
+//! feature only [`Real`], `distribution`, `linalg` and `mechanism` remain (`no_std`, no
+//! `alloc`, math from `libm`): what generated code needs.
 //!
 //! ```
 //! # fn main() -> Result<(), tendyn_core::Error> {
@@ -50,6 +52,7 @@
 #![warn(missing_docs)]
 
 pub mod distribution;
+pub mod linalg;
 pub mod mechanism;
 pub mod real;
 pub use mechanism::TendonMechanism;

@@ -7,9 +7,9 @@
 //! tension system's pseudo-inverse and null space in the new precision.
 
 pub use crate::format::Objective;
+use crate::linalg;
 use crate::real::{Numeric, Real};
 use crate::spatial::{Mat3, Transform, Vec3};
-use crate::transmission::linalg;
 
 /// What a body is in the paper's terms.
 #[derive(Clone, Debug, PartialEq)]
@@ -722,14 +722,17 @@ impl Model<f64> {
     /// null space recomputed in that precision (the accuracy reference needs this).
     pub fn cast_numeric<U: Numeric>(&self) -> Model<U> {
         let mut m = self.cast::<U>();
-        let (pinv, null) = linalg::pseudo_inverse_and_null_space(&m.system.matrix);
+        let (pinv, null) = linalg::pseudo_inverse_and_null_space_of_rows(&m.system.matrix);
         m.system.pseudo_inverse = pinv;
         m.system.null_space = null;
         if let Some(p) = &self.system.positive_null {
             // Re-project the positive null vector onto the recomputed null space so that it
             // is a null vector to the new precision.
             let p: Vec<U> = p.iter().map(|&x| U::from_f64(x)).collect();
-            m.system.positive_null = Some(linalg::project_onto(&p, &m.system.null_space));
+            let basis: Vec<U> = m.system.null_space.iter().flatten().copied().collect();
+            let mut projected = vec![U::zero(); p.len()];
+            linalg::project_onto(&p, &basis, &mut projected);
+            m.system.positive_null = Some(projected);
         }
         m
     }

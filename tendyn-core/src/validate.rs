@@ -12,7 +12,7 @@ use crate::model::{
 };
 use crate::spatial::{Mat3, Transform, Vec3};
 use crate::transmission::{
-    joint_parent, linalg, PulleyInfo, Rate, Route, RouteEnd, Routing, StrandGeometry,
+    joint_parent, PulleyInfo, Rate, Route, RouteEnd, Routing, StrandGeometry,
 };
 use nalgebra::{DMatrix, Matrix3};
 
@@ -1907,7 +1907,8 @@ impl<'a> Validator<'a> {
                     ),
                 ));
             }
-            let (pseudo_inverse, null_space) = linalg::pseudo_inverse_and_null_space(&e);
+            let (pseudo_inverse, null_space) =
+                crate::linalg::pseudo_inverse_and_null_space_of_rows(&e);
             // Only open-ended tendons may be redundant: motors and loop sides are determined.
             let is_tendon = |u: &Unknown| {
                 matches!(u, Unknown::Explicit(_))
