@@ -146,7 +146,7 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
         let reference = bounded::solve(&problem(&max));
         let r64 = s64.inverse_dynamics(&q64, &qd64, &qdd64);
         let t0_32: Vec<f64> = x32.iter().map(|&v| v as f64).collect();
-        let d32 = tension::distribute(&m32, &mut x32);
+        let d32 = tension::distribute(&m32, &m32.system, &mut x32);
         let pipeline = s32.inverse_dynamics(&q, &qd, &qdd);
         let want = match reference {
             Solution::Infeasible => {
@@ -303,7 +303,7 @@ fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
     let name = &model.name;
     if d == 1 {
         let mut x = t0.to_vec();
-        tension::along_line(model, &mut x);
+        tension::along_line(model, &model.system, &mut x);
         let p = model.system.positive_null.as_ref().unwrap();
         let lift = (x[0] - t0[0]) / p[0];
         let slack: Vec<f64> = x.iter().zip(&floor).map(|(x, f)| x - f).collect();
@@ -323,7 +323,7 @@ fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
         }
         return;
     }
-    let problem = tension::bounds(model);
+    let problem = tension::bounds(model, &model.system);
     let mut reals = vec![0.0; Work::<f64>::reals(d)];
     let mut active = vec![0; d];
     let mut work = Work::split(&mut reals, &mut active, d).unwrap();

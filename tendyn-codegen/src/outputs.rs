@@ -384,7 +384,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
 
 /// The constants of a many-dimensional distribution, from the model's bounds.
 fn distribution_constants(model: &Model<f64>) -> Distribution {
-    let problem = tension::bounds(model);
+    let problem = tension::bounds(model, &model.system);
     let (k, d) = (problem.tendons(), problem.directions());
     Distribution {
         null: (0..d)
@@ -419,9 +419,9 @@ impl Shared {
         self.inverse.get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`).
-            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, x| {
-                if model.system.null_space.len() == 1 && !model.tendons.is_empty() {
-                    *excess = tension::along_line(model, x).excess;
+            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, system, x| {
+                if system.null_space.len() == 1 && !model.tendons.is_empty() {
+                    *excess = tension::along_line(model, system, x).excess;
                 }
                 Ok(())
             })

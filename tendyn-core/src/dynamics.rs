@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
 use crate::linalg;
-use crate::model::{BodyKind, Model, MotorKind};
+use crate::model::{BodyKind, Model, MotorKind, TensionSystem};
 use crate::newton_euler::{backward, Loads};
 use crate::real::{Numeric, Real};
 use crate::spatial::{Mat3, Vec3};
@@ -250,7 +250,7 @@ pub fn inverse_dynamics<T: Real>(
     qd: &[T],
     qdd: &[T],
     ws: &mut Workspace<T>,
-    distribute: impl FnOnce(&Model<T>, &mut [T]) -> Result<()>,
+    distribute: impl FnOnce(&Model<T>, &TensionSystem<T>, &mut [T]) -> Result<()>,
 ) -> Result<InverseDynamics<T>> {
     let nu = model.system.unknowns.len();
     forward(model, q, qd, qdd, true, &mut ws.motion);
@@ -267,9 +267,10 @@ pub fn inverse_dynamics<T: Real>(
     let mut b = vec![T::zero(); model.system.rows.len()];
     tension::demand(model, &ws.loads, &ws.friction, &mut b);
     let mut x = vec![T::zero(); nu];
-    tension::minimal_norm(model, &b, &mut x);
+    let system = &model.system;
+    tension::minimal_norm(model, system, &b, &mut x);
     let x0 = x.clone();
-    distribute(model, &mut x)?;
+    distribute(model, system, &mut x)?;
 
     let motor_torques: Vec<T> = model.motors.iter().map(|m| x[m.unknown]).collect();
     let tendon_tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
@@ -633,9 +634,9 @@ impl<'m, T: Numeric> Solver<'m, T> {
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
         // Tensions that overflowed are reported before the distribution sees them, with the
         // input to blame.
-        let distribute = |model: &Model<T>, x: &mut [T]| {
+        let distribute = |model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]| {
             finite("tension or motor torque", &*x, &inputs)?;
-            tension::distribute(model, x)
+            tension::distribute(model, system, x)
         };
         let mut r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, distribute)?;
         r.sticking = friction::at_rest(self.model, qd);

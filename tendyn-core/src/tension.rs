@@ -19,7 +19,7 @@ use crate::affine::Affine;
 use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::model::{BodyKind, Model, Objective, PulleyRole, Row, Tendon, Unknown};
+use crate::model::{BodyKind, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown};
 use crate::newton_euler::Loads;
 use crate::real::{Numeric, Real};
 
@@ -119,7 +119,7 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T])
         .collect()
 }
 
-/// Minimal-norm solution `x₀ = E⁺ b`.
+/// Minimal-norm solution `x₀ = E⁺ b` of `system` (the model's, or a state's).
 ///
 /// A loop's pretension is added exactly rather than through `E⁺`: the two strand columns
 /// of a loop are negatives of each other in every row but its pretension row (every term
@@ -127,9 +127,9 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T])
 /// so both sides at the pretension solve that part of `b` exactly, and that solution is
 /// orthogonal to the null space. Passing the pretension through the rounded `E⁺` instead
 /// leaves an error of about `u · pretension` in every motor torque.
-pub fn minimal_norm<T: Real>(model: &Model<T>, b: &[T], out: &mut [T]) {
-    let dynamic = |r: usize| !matches!(model.system.rows[r], Row::Pretension(_));
-    for (o, row) in out.iter_mut().zip(&model.system.pseudo_inverse) {
+pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], out: &mut [T]) {
+    let dynamic = |r: usize| !matches!(system.rows[r], Row::Pretension(_));
+    for (o, row) in out.iter_mut().zip(&system.pseudo_inverse) {
         let mut s = T::zero();
         for (r, (p, v)) in row.iter().zip(b).enumerate() {
             if dynamic(r) {
@@ -164,9 +164,12 @@ fn max_of(t: &Tendon) -> f64 {
 /// ([`distribution::along_line`] along the positive null vector), applied to the unknowns
 /// `x` (the minimal-norm solution on entry). Generic over [`Real`]: the code generator
 /// traces it.
-pub fn along_line<T: Real>(model: &Model<T>, x: &mut [T]) -> LineResult<T> {
-    let p = model
-        .system
+pub fn along_line<T: Real>(
+    model: &Model<T>,
+    system: &TensionSystem<T>,
+    x: &mut [T],
+) -> LineResult<T> {
+    let p = system
         .positive_null
         .as_ref()
         .expect("a redundant routing has a positive null vector");
@@ -200,22 +203,25 @@ pub fn along_line<T: Real>(model: &Model<T>, x: &mut [T]) -> LineResult<T> {
     result
 }
 
-/// The model's bounds as a [`Problem`] of [`distribution::solve`] (the code generator
-/// reads its constants from it too).
-pub fn bounds<T: Real>(model: &Model<T>) -> impl Problem<T> + '_ {
-    Bounds::new(model)
+/// The model's bounds over `system`'s null space as a [`Problem`] of
+/// [`distribution::solve`] (the code generator reads its constants from it too).
+pub fn bounds<'m, T: Real>(
+    model: &'m Model<T>,
+    system: &'m TensionSystem<T>,
+) -> impl Problem<T> + 'm {
+    Bounds::new(model, system)
 }
 
 struct Bounds<'m, T> {
     model: &'m Model<T>,
+    system: &'m TensionSystem<T>,
     target: Vec<T>,
     inverse_length: Vec<T>,
 }
 
 impl<'m, T: Real> Bounds<'m, T> {
-    fn new(model: &'m Model<T>) -> Self {
-        let target = model
-            .system
+    fn new(model: &'m Model<T>, system: &'m TensionSystem<T>) -> Self {
+        let target = system
             .null_space
             .iter()
             .map(|v| {
@@ -224,7 +230,7 @@ impl<'m, T: Real> Bounds<'m, T> {
                 })
             })
             .collect();
-        let null = &model.system.null_space;
+        let null = &system.null_space;
         let inverse_length = model
             .tendons
             .iter()
@@ -232,6 +238,7 @@ impl<'m, T: Real> Bounds<'m, T> {
             .collect();
         Bounds {
             model,
+            system,
             target,
             inverse_length,
         }
@@ -243,10 +250,10 @@ impl<T: Real> Problem<T> for Bounds<'_, T> {
         self.model.tendons.len()
     }
     fn directions(&self) -> usize {
-        self.model.system.null_space.len()
+        self.system.null_space.len()
     }
     fn null(&self, d: usize, k: usize) -> T {
-        self.model.system.null_space[d][self.model.tendons[k].unknown]
+        self.system.null_space[d][self.model.tendons[k].unknown]
     }
     fn floor(&self, k: usize) -> f64 {
         self.model.tendons[k].floor
@@ -267,8 +274,12 @@ impl<T: Real> Problem<T> for Bounds<'_, T> {
 /// objective least. `x` holds the minimal-norm solution on entry and the distributed one
 /// on return. When no tensions within the bounds produce the motion, the error names the
 /// tendons whose bounds block and what they can produce.
-pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
-    let d = model.system.null_space.len();
+pub fn distribute<T: Numeric>(
+    model: &Model<T>,
+    system: &TensionSystem<T>,
+    x: &mut [T],
+) -> Result<()> {
+    let d = system.null_space.len();
     let k = model.tendons.len();
     if d == 0 || k == 0 {
         return Ok(());
@@ -291,16 +302,16 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
         return Err(e);
     }
     let (status, certificate) = if d == 1 {
-        let r = along_line(model, x);
+        let r = along_line(model, system, x);
         let status = r
             .excess
             .map_or(Status::Feasible, |(e, s)| Status::of_line(e, s, k));
         (
             status,
-            (status == Status::MaxExceeded).then(|| line_certificate(model, &t0)),
+            (status == Status::MaxExceeded).then(|| line_certificate(model, system, &t0)),
         )
     } else {
-        let problem = Bounds::new(model);
+        let problem = Bounds::new(model, system);
         let mut reals = vec![T::zero(); Work::<T>::reals(d)];
         let mut active = vec![0usize; d];
         // Buffers of the size `Work::reals` asks for always split.
@@ -324,7 +335,7 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
                 .map(|v| v.to_f64())
                 .collect();
             let t0: Vec<f64> = t0.iter().map(|v| v.to_f64()).collect();
-            return Err(Error::Tension(blocked(model, &t0, &w)));
+            return Err(Error::Tension(blocked(model, system, &t0, &w)));
         }
         Status::Unresolved => {
             return Err(Error::Tension(
@@ -341,8 +352,8 @@ pub fn distribute<T: Numeric>(model: &Model<T>, x: &mut [T]) -> Result<()> {
 /// `i` that bounds `μ` highest from below and the maximum `j` that bounds it lowest from
 /// above give `w = e_j / p_j − e_i / p_i`, with `max wᵀT = max_j/p_j − floor_i/p_i` below
 /// `wᵀT₀` exactly when `μ_floor > μ_max`.
-fn line_certificate<T: Numeric>(model: &Model<T>, t0: &[T]) -> Vec<T> {
-    let p = model.system.positive_null.as_ref().expect("d = 1");
+fn line_certificate<T: Numeric>(model: &Model<T>, system: &TensionSystem<T>, t0: &[T]) -> Vec<T> {
+    let p = system.positive_null.as_ref().expect("d = 1");
     let pk = |k: usize| p[model.tendons[k].unknown];
     let pick = |f: &dyn Fn(usize) -> Option<T>| {
         (0..t0.len())
@@ -373,9 +384,14 @@ fn line_certificate<T: Numeric>(model: &Model<T>, t0: &[T]) -> Vec<T> {
 /// where `w_k < 0`). `w` lies in the row space of the tension system, `w = E_Tᵀ y`, so
 /// `wᵀT = yᵀ(E_T T)`: a combination of the balances (generalized forces on joints) the
 /// tendons take part in, `y = (E⁺)ᵀ w`.
-fn blocked<T: Numeric>(model: &Model<T>, t0: &[f64], w: &[f64]) -> String {
-    let rows = model.system.rows.len();
-    let pinv = |u: usize, r: usize| model.system.pseudo_inverse[u][r];
+fn blocked<T: Numeric>(
+    model: &Model<T>,
+    system: &TensionSystem<T>,
+    t0: &[f64],
+    w: &[f64],
+) -> String {
+    let rows = system.rows.len();
+    let pinv = |u: usize, r: usize| system.pseudo_inverse[u][r];
     let mut y = vec![0.0; rows];
     for (t, wk) in model.tendons.iter().zip(w) {
         for (r, yr) in y.iter_mut().enumerate() {
@@ -417,7 +433,7 @@ fn blocked<T: Numeric>(model: &Model<T>, t0: &[f64], w: &[f64]) -> String {
         1 => at_max[0].clone(),
         n => format!("{} and {}", at_max[..n - 1].join(", "), at_max[n - 1]),
     };
-    let row_name = |r: usize| match &model.system.rows[r] {
+    let row_name = |r: usize| match &system.rows[r] {
         Row::Joint(j) => (format!("`{}`", model.bodies[*j].name), "N·m"),
         Row::Pulley(b) => (
             format!("the driving pulley `{}`", model.bodies[*b].name),
