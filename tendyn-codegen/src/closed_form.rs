@@ -429,6 +429,11 @@ impl Expander<'_, '_> {
                 let v = self.g.tanh(a);
                 self.variable(v, out);
             }
+            Node::Exp(a) => {
+                let a = self.collected(a)?;
+                let v = self.g.exp(a);
+                self.variable(v, out);
+            }
             Node::Max(a, b) => {
                 let (a, b) = (self.collected(a)?, self.collected(b)?);
                 let v = self.g.max(a, b);

@@ -706,6 +706,7 @@ impl<'g> Body<'g> {
             | Node::Cos(_)
             | Node::Sqrt(_)
             | Node::Tanh(_)
+            | Node::Exp(_)
             | Node::Max(..)
             | Node::SignOutside(..) => 4,
         }
@@ -740,6 +741,7 @@ impl<'g> Body<'g> {
             Node::Cos(a) => method(a, ".cos()", out),
             Node::Sqrt(a) => method(a, ".sqrt()", out),
             Node::Tanh(a) => method(a, ".tanh()", out),
+            Node::Exp(a) => method(a, ".exp()", out),
             Node::Max(a, b) => {
                 method(a, ".max(", out);
                 self.write(b, out);
@@ -851,6 +853,7 @@ impl<'g> Body<'g> {
             | Node::Cos(_)
             | Node::Sqrt(_)
             | Node::Tanh(_)
+            | Node::Exp(_)
             | Node::Max(..)
             | Node::SignOutside(..) => {
                 t.cbox(4);
@@ -917,6 +920,7 @@ impl<'g> Body<'g> {
             Node::Cos(a) => (a, "cos", None),
             Node::Sqrt(a) => (a, "sqrt", None),
             Node::Tanh(a) => (a, "tanh", None),
+            Node::Exp(a) => (a, "exp", None),
             Node::Max(a, b) => (a, "max", Some(b)),
             Node::SignOutside(a, b) => (a, "sign_outside", Some(b)),
             _ => unreachable!("a method call"),
@@ -929,6 +933,7 @@ impl<'g> Body<'g> {
                     | Node::Cos(_)
                     | Node::Sqrt(_)
                     | Node::Tanh(_)
+                    | Node::Exp(_)
                     | Node::Max(..)
                     | Node::SignOutside(..)
             );
@@ -1004,6 +1009,7 @@ impl<'g> Body<'g> {
             Node::Cos(a) => (ast::method(operand(a, 4), "cos", None), 4),
             Node::Sqrt(a) => (ast::method(operand(a, 4), "sqrt", None), 4),
             Node::Tanh(a) => (ast::method(operand(a, 4), "tanh", None), 4),
+            Node::Exp(a) => (ast::method(operand(a, 4), "exp", None), 4),
             Node::Max(a, b) => (ast::method(operand(a, 4), "max", Some(self.expr(b))), 4),
             Node::SignOutside(a, b) => (
                 ast::method(operand(a, 4), "sign_outside", Some(self.expr(b))),

@@ -127,6 +127,7 @@ fn show(g: &Graph, id: Id, names: &dyn Fn(Id) -> Option<String>) -> (String, u8)
         Node::Cos(a) => (trig(g, "C", a, names), 4),
         Node::Sqrt(a) => (format!("sqrt({})", show(g, a, names).0), 4),
         Node::Tanh(a) => (format!("tanh({})", show(g, a, names).0), 4),
+        Node::Exp(a) => (format!("exp({})", show(g, a, names).0), 4),
         Node::Max(a, b) => (
             format!("max({}, {})", show(g, a, names).0, show(g, b, names).0),
             4,

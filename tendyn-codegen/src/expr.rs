@@ -53,6 +53,8 @@ pub enum Node {
     Sqrt(Id),
     /// `tanh a` (the smoothed friction law).
     Tanh(Id),
+    /// `e^a` (the capstan law of a guide).
+    Exp(Id),
     /// The larger of `a` and `b` ([`Real::max`]; the tension distribution along one null
     /// direction).
     Max(Id, Id),
@@ -65,9 +67,12 @@ impl Node {
     pub fn operands(self) -> impl Iterator<Item = Id> {
         let (ids, n) = match self {
             Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) | Node::Tanh(a) => {
-                ([a, a], 1)
-            }
+            Node::Neg(a)
+            | Node::Sin(a)
+            | Node::Cos(a)
+            | Node::Sqrt(a)
+            | Node::Tanh(a)
+            | Node::Exp(a) => ([a, a], 1),
             Node::Add(a, b)
             | Node::Sub(a, b)
             | Node::Mul(a, b)
@@ -365,6 +370,14 @@ impl Graph {
         }
     }
 
+    /// `e^a`, folded of a constant.
+    pub fn exp(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant_value(a) {
+            return self.constant(x.exp());
+        }
+        self.intern(Node::Exp(a))
+    }
+
     /// `a.sign_outside(band)` ([`Real::sign_outside`]), folded when both are constants.
     pub fn sign_outside(&mut self, a: Id, band: Id) -> Id {
         if let (Some(x), Some(b)) = (self.constant_value(a), self.constant_value(band)) {
@@ -392,6 +405,7 @@ impl Graph {
                 Node::Cos(a) => v(a).cos(),
                 Node::Sqrt(a) => v(a).sqrt(),
                 Node::Tanh(a) => v(a).tanh(),
+                Node::Exp(a) => v(a).exp(),
                 Node::Max(a, b) => v(a).max(v(b)),
                 Node::SignOutside(a, b) => v(a).sign_outside(v(b)),
             };
@@ -449,6 +463,7 @@ impl Graph {
                 }
                 Node::Sqrt(_) => c.sqrt += 1,
                 Node::Tanh(_) => c.tanh += 1,
+                Node::Exp(_) => c.exp += 1,
                 Node::Max(..) => c.max += 1,
                 Node::SignOutside(..) => c.sign += 1,
                 Node::Const(_) | Node::Input(_) => {}
@@ -485,6 +500,9 @@ pub struct OpCount {
     /// Hyperbolic tangents (the smoothed friction law).
     #[serde(skip_serializing_if = "is_zero")]
     pub tanh: usize,
+    /// Exponentials (the capstan law of guides with friction).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub exp: usize,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -521,6 +539,9 @@ impl std::fmt::Display for OpCount {
         }
         if self.tanh > 0 {
             write!(f, ", {} tanh", self.tanh)?;
+        }
+        if self.exp > 0 {
+            write!(f, ", {} exp", self.exp)?;
         }
         Ok(())
     }
@@ -582,6 +603,9 @@ impl Real for Sym {
     }
     fn tanh(self) -> Self {
         Sym(with(|g| g.tanh(self.0)))
+    }
+    fn exp(self) -> Self {
+        Sym(with(|g| g.exp(self.0)))
     }
     fn sign_outside(self, band: Self) -> Self {
         Sym(with(|g| g.sign_outside(self.0, band.0)))

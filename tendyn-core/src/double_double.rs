@@ -468,6 +468,28 @@ fn dd_expm1(y: TwoFloat) -> TwoFloat {
     e
 }
 
+/// `e^x` from [`dd_expm1`] for `|x| ≤ 80` (a capstan's `μβ` is at most `10 · 3π/2`): for
+/// `x ≥ 0` directly, for `x < 0` as `1 / e^{−x}`, so that the series always runs on a
+/// positive number. Beyond, `f64::exp` (to `f64` precision, overflowing to infinity as it
+/// does).
+fn dd_exp(x: TwoFloat) -> TwoFloat {
+    let (hi, lo) = (x.hi(), x.lo());
+    if hi.is_nan() || lo.is_nan() {
+        return TwoFloat::NAN;
+    }
+    if hi.abs() > 80.0 {
+        return TwoFloat::from(hi.exp());
+    }
+    let negative = hi < 0.0 || (hi == 0.0 && lo < 0.0);
+    let a = if negative { -x } else { x };
+    let e = dd_expm1(a) + 1.0;
+    if negative {
+        dd_div(TwoFloat::from(1.0), e)
+    } else {
+        e
+    }
+}
+
 /// `tanh x = expm1(2|x|) / (expm1(2|x|) + 2)` with the sign of `x`; `±1` beyond `|x| = 40`,
 /// where `1 − tanh` is below 1e-34.
 fn dd_tanh(x: TwoFloat) -> TwoFloat {
@@ -512,6 +534,9 @@ impl Real for DoubleDouble {
     }
     fn tanh(self) -> Self {
         Self(dd_tanh(self.0))
+    }
+    fn exp(self) -> Self {
+        Self(dd_exp(self.0))
     }
     fn sign_outside(self, band: Self) -> Self {
         if self > band {

@@ -1,7 +1,7 @@
 //! The scalar the recursion is written in.
 //!
 //! [`Real`] asks only for what a symbolic expression can honestly provide as well: field
-//! arithmetic, `sin`/`cos`, `sqrt`, `tanh`, constants and two value-dependent hooks,
+//! arithmetic, `sin`/`cos`, `sqrt`, `tanh`, `exp`, constants and two value-dependent hooks,
 //! [`Real::max`] (the tension floor of a redundant routing) and [`Real::sign_outside`]
 //! (the direction friction opposes). The code generator runs the very same recursion on
 //! its expression type, so nothing here may compare or branch on values.
@@ -41,6 +41,8 @@ pub trait Real:
     fn sign_outside(self, band: Self) -> Self;
     /// The hyperbolic tangent: the smoothed friction law.
     fn tanh(self) -> Self;
+    /// `e^self`: the capstan law of a guide, `T_high = T_low e^{μβ}`.
+    fn exp(self) -> Self;
 
     /// `0`.
     fn zero() -> Self {
@@ -69,7 +71,7 @@ pub trait Numeric: Real + PartialOrd {
 }
 
 macro_rules! primitive_real {
-    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident, $tanh:ident) => {
+    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident, $tanh:ident, $exp:ident) => {
         impl Real for $t {
             fn from_f64(x: f64) -> Self {
                 x as $t
@@ -110,6 +112,14 @@ macro_rules! primitive_real {
             fn tanh(self) -> Self {
                 libm::$tanh(self)
             }
+            #[cfg(feature = "std")]
+            fn exp(self) -> Self {
+                <$t>::exp(self)
+            }
+            #[cfg(not(feature = "std"))]
+            fn exp(self) -> Self {
+                libm::$exp(self)
+            }
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
             }
@@ -139,5 +149,5 @@ macro_rules! primitive_real {
         }
     };
 }
-primitive_real!(f32, sinf, cosf, sqrtf, tanhf);
-primitive_real!(f64, sin, cos, sqrt, tanh);
+primitive_real!(f32, sinf, cosf, sqrtf, tanhf, expf);
+primitive_real!(f64, sin, cos, sqrt, tanh, exp);

@@ -89,6 +89,30 @@ fn tanh_agrees_with_a_60_digit_reference_to_1e30() {
     assert!(DoubleDouble::from(f64::NAN).tanh().is_nan());
 }
 
+/// `e^x` of the `f64` arguments below, to 60 digits (Python's `decimal`, which evaluates
+/// `exp` of the exact binary value), split into a double-double `(hi, lo)`. The capstan law
+/// takes `e^{±μβ}` with `μβ` up to `10 · 3π/2 ≈ 47`.
+const EXP_REFERENCE: [(f64, f64, f64); 8] = [
+    (0.25, 1.2840254166877414, 8.968972781793724e-17),
+    (1.0, std::f64::consts::E, 1.4456468917292502e-16),
+    (2.5, 12.182493960703473, 2.0334002173348147e-16),
+    (7.0, 1096.6331584284585, 9.869752640434095e-14),
+    (31.4, 43335791368684.4, -0.003388689368486366),
+    (-0.75, 0.4723665527410147, 1.7984004434373214e-17),
+    (-12.5, 3.726653172078671e-06, 5.469656173191849e-23),
+    (47.0, 2.5813128861900675e+20, -15192.714199784727),
+];
+
+#[test]
+fn exp_agrees_with_a_60_digit_reference_to_1e30() {
+    for (x, hi, lo) in EXP_REFERENCE {
+        let x = DoubleDouble::from(x);
+        assert_close(&format!("exp {x:?}"), x.exp(), dd(hi, lo), 1e-30);
+    }
+    assert_eq!(DoubleDouble::from(0.0).exp(), DoubleDouble::ONE);
+    assert!(DoubleDouble::from(f64::NAN).exp().is_nan());
+}
+
 #[test]
 fn sin_and_cos_agree_with_50_digit_reference_to_1e30() {
     let table = rows(SIN_COS_REFERENCE);
