@@ -3,7 +3,9 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use tendyn_core::model::Model;
 use tendyn_core::{parse, Error, Solver};
+use tendyn_spec::lagrangian;
 use tendyn_spec::measure::random_state;
 
 /// One joint. A drum of radius 0.02 m on the joint axis; `over_pin` leaves its top
@@ -114,10 +116,84 @@ fn bad_capstan_coefficients_are_rejected_naming_the_pulley() {
     assert!(shown.contains("loses tension by its `mu`"), "{shown}");
 }
 
+/// `PIN` with capstan friction `μ = 0.2` on the pin (wrap π/2). By hand: the tendon slides
+/// over the pin towards its exit at `0.02 q̇`; the side it slides towards pulls, so with
+/// `σ = sign(q̇)` (the sign of `q̈` at rest, 0 if that is zero too) the drum side carries
+/// `T_drum = T_exit e^{−σμπ/2}`, the joint needs `Q = 0.02 (T_drum − T_direct)`, and the
+/// least-norm distribution above the 2 N floors puts one tendon on its floor.
 #[test]
-fn capstan_friction_is_not_implemented_yet_and_says_so() {
-    let shown = invalid(&pin_with("mu: 0.0", "mu: 0.2"));
-    assert!(shown.contains("not implemented yet"), "{shown}");
+fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_where_it_slides() {
+    let model = parse(&pin_with("mu: 0.0", "mu: 0.2")).unwrap();
+    assert!(model.has_capstan());
+    let mut solver = Solver::new(&model);
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    let mut states: Vec<[Vec<f64>; 3]> = (0..200).map(|_| random_state(&mut rng, 1)).collect();
+    // At rest: impending motion either way, and none.
+    states.push([vec![0.3], vec![0.0], vec![2.0]]);
+    states.push([vec![0.3], vec![0.0], vec![-2.0]]);
+    states.push([vec![0.3], vec![0.0], vec![0.0]]);
+    for [q, qd, qdd] in states {
+        let r = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let sigma = if qd[0].abs() > 1e-6 {
+            qd[0].signum()
+        } else if qdd[0].abs() > 1e-6 {
+            qdd[0].signum()
+        } else {
+            0.0
+        };
+        let f = (-sigma * 0.2 * std::f64::consts::FRAC_PI_2).exp();
+        let segments = &r.segment_tensions.as_ref().unwrap()[0];
+        let (over, direct) = (r.tendon_tensions[0], r.tendon_tensions[1]);
+        assert_eq!(
+            segments[1], over,
+            "the exit segment carries the tendon's tension"
+        );
+        assert!(
+            (segments[0] - f * over).abs() <= 1e-14 * over,
+            "q̇ = {qd:?}: drum side {} is not e^(-σμβ) = {f} times {over}",
+            segments[0]
+        );
+        // The distribution by hand: one tendon on its floor, the other what Q needs.
+        let need = r.generalized_forces[0] / 0.02;
+        let (want_over, want_direct) = if (need + 2.0) / f >= 2.0 {
+            ((need + 2.0) / f, 2.0)
+        } else {
+            (2.0, 2.0 * f - need)
+        };
+        let size = want_over.max(want_direct);
+        assert!(
+            (over - want_over).abs() <= 1e-12 * size
+                && (direct - want_direct).abs() <= 1e-12 * size,
+            "q̇ = {qd:?}: ({over}, {direct}) where by hand ({want_over}, {want_direct})"
+        );
+    }
+}
+
+/// The tension system's columns scale with the state, so forward dynamics (whose actuation
+/// is given) and generated code say that this is not there yet, rather than compute the
+/// frictionless answer.
+#[test]
+fn with_capstan_friction_forward_dynamics_and_generated_tensions_are_named_limitations() {
+    let model = parse(&pin_with("mu: 0.0", "mu: 0.2")).unwrap();
+    let mut solver = Solver::new(&model);
+    let e = solver
+        .forward_dynamics(&[0.1], &[0.2], &[], &[5.0, 5.0])
+        .unwrap_err();
+    assert!(matches!(e, Error::NotYet(_)), "{e}");
+    assert!(e.to_string().contains("capstan friction"), "{e}");
+    use tendyn_codegen::outputs::{check, Output};
+    for output in [
+        Output::Actuation,
+        Output::SegmentTensions,
+        Output::Bearings,
+        Output::BaseReaction,
+        Output::ForwardDynamics,
+    ] {
+        let refused = check(&model, &[output]).unwrap_err();
+        assert!(refused.reason.contains("capstan friction"), "{refused:?}");
+    }
+    // What needs no tensions is generated as for any mechanism.
+    check(&model, &[Output::MassMatrix, Output::GeneralizedForces]).unwrap();
 }
 
 #[test]
@@ -146,4 +222,154 @@ fn a_guide_on_a_joint_axis_wraps_more_as_the_link_its_tendon_arrives_from_turns(
             strand.name
         );
     }
+}
+
+/// Power balance with dissipation at `states` random states of a mechanism whose guides
+/// have capstan friction: the actuators' and the environment's power, `Σ_k T_k (A_k · q̇) +
+/// Σ_m τ_m (c_m · q̇) + Q_ext · q̇`, is the rate of the mechanism's energy (Lagrange,
+/// `tests/reference`) plus what the guides dissipate, `Σ (T_high − T_low) |v|` from the
+/// tensions on their two sides and their sliding speeds (`A`, `c` and `v` are kinematics:
+/// friction changes none of them); that loss is never negative. Returns the worst
+/// relative error.
+fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut solver = Solver::new(model);
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let mut worst = 0.0f64;
+    let (mut lossy, mut uncontrollable) = (0, 0);
+    for _ in 0..states {
+        let [q, qd, qdd] = random_state(&mut rng, model.dof);
+        let r = match solver.inverse_dynamics(&q, &qd, &qdd) {
+            Ok(r) => r,
+            // Wrap angles change with q, so a routing controllable at q = 0 whichever way
+            // its tendons slide may not be everywhere: such a state is an error that says so.
+            Err(Error::Tension(e)) if e.contains("not controllable in this direction") => {
+                uncontrollable += 1;
+                continue;
+            }
+            Err(e) => panic!("{}: {e} at {q:?} {qd:?} {qdd:?}", model.name),
+        };
+        let mut terms: Vec<f64> = Vec::new();
+        for (t, tension) in model.tendons.iter().zip(&r.tendon_tensions) {
+            terms.push(tension * dot(&t.structure, &qd));
+        }
+        for (m, tau) in model.motors.iter().zip(&r.motor_torques) {
+            terms.push(tau * dot(&m.column, &qd));
+        }
+        let q_ext = lagrangian::external_generalized_forces(model, &q);
+        terms.push(dot(q_ext.as_slice(), &qd));
+        let power: f64 = terms.iter().sum();
+        let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
+        let segments = r.segment_tensions.as_ref().unwrap();
+        let mut loss = 0.0;
+        for (strand, tensions) in model.strands.iter().zip(segments) {
+            for (k, idler) in strand.idlers.iter().enumerate() {
+                if let Some(g) = &idler.guide {
+                    let step = (tensions[k + 1] - tensions[k]) * g.speed(&qd);
+                    assert!(step >= 0.0, "{}: a guide gives {step} W", model.name);
+                    loss += step;
+                }
+            }
+        }
+        lossy += usize::from(loss > 0.0);
+        let scale = terms.iter().map(|x| x.abs()).sum::<f64>() + de.abs() + loss;
+        let e = (power - de - loss).abs() / scale;
+        assert!(
+            e <= 1e-11,
+            "{}: power balance off by {e:.3e} (loss {loss})",
+            model.name
+        );
+        worst = worst.max(e);
+    }
+    assert!(
+        lossy > states / 2,
+        "{}: the guides hardly dissipate",
+        model.name
+    );
+    assert!(
+        uncontrollable <= states / 4,
+        "{}: uncontrollable at {uncontrollable} states",
+        model.name
+    );
+    if uncontrollable > 0 {
+        println!(
+            "{}: uncontrollable at {uncontrollable} of {states} states",
+            model.name
+        );
+    }
+    worst
+}
+
+#[test]
+fn example_2_with_capstan_friction_on_both_guides_balances_power_with_dissipation() {
+    let text = std::fs::read_to_string("../examples/mechanisms/example2_open_ended.ron").unwrap();
+    let model = parse(&tendyn_spec::guides::idlers_as_capstans(&text, 0.3)).unwrap();
+    assert!(model.has_capstan());
+    let worst = check_capstan_power(&model, 300, 21);
+    println!("example 2 with capstan friction: worst relative error {worst:.2e}");
+}
+
+#[test]
+fn random_mechanisms_with_capstan_friction_on_every_guide_balance_power_with_dissipation() {
+    let (mut checked, mut guides, mut refused) = (0, 0, Vec::new());
+    for seed in 0..24u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: seed % 3 == 1,
+        };
+        let (text, model) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        let idlers = model
+            .bodies
+            .iter()
+            .filter(|b| {
+                matches!(
+                    b.kind,
+                    tendyn_core::model::BodyKind::Pulley {
+                        role: tendyn_core::model::PulleyRole::Idler { .. },
+                        ..
+                    }
+                )
+            })
+            .count();
+        if idlers == 0 {
+            continue;
+        }
+        match parse(&tendyn_spec::guides::idlers_as_capstans(&text, 0.05)) {
+            Ok(model) => {
+                let worst = check_capstan_power(&model, 100, seed);
+                println!("random_{seed}: {idlers} guides, worst relative error {worst:.2e}");
+                checked += 1;
+                guides += idlers;
+            }
+            // Validation checks every direction of sliding: a refusal must say which.
+            Err(e @ Error::Routing { .. }) if e.to_string().contains("whichever way") => {
+                refused.push(seed)
+            }
+            Err(e) => panic!("random_{seed}: {e}"),
+        }
+    }
+    println!("{checked} mechanisms with {guides} guides checked; refused: {refused:?}");
+    assert!(checked >= 4, "{checked} checked, {refused:?} refused");
+}
+
+/// A routing controllable without friction but not whichever way its tendons slide (seeded
+/// random mechanism 0, its idlers made guides with `μ = 0.5`): a routing error at the first
+/// guide's line that names each tendon, guide and direction of the failing pattern.
+#[test]
+fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_refused() {
+    let features = tendyn_spec::random_mechanism::Features {
+        coupled_pulleys: false,
+        endless: false,
+    };
+    let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(0, features);
+    let e = parse(&tendyn_spec::guides::idlers_as_capstans(&text, 0.5)).unwrap_err();
+    let shown = e.to_string();
+    assert!(matches!(e, Error::Routing { .. }), "{shown}");
+    assert!(
+        shown.starts_with("idler1_1 (line ")
+            && shown.contains("whichever way the tendons slide")
+            && shown.contains("`t1` over `idler1_1` towards its exit")
+            && shown.contains("`t2` over `idler2_1` towards its anchor"),
+        "{shown}"
+    );
 }

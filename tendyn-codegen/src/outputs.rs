@@ -8,6 +8,7 @@
 
 use crate::closed_form::{Collector, StateRank};
 use crate::expr::{Graph, Id, OpCount, Sym};
+use tendyn_core::affine::Affine;
 use tendyn_core::distribution::Problem;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model};
@@ -253,10 +254,25 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
     (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
 }
 
+/// Why a mechanism with capstan friction on guides cannot have its tension outputs
+/// generated yet.
+const CAPSTAN_NOT_GENERATED: &str = "a guide has capstan friction (`mu > 0`), which makes the \
+     tension system depend on the state; generated code does not solve it per state yet — use \
+     the runtime solver (`tendyn eval`)";
+
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
+            Output::Actuation
+            | Output::SegmentTensions
+            | Output::Bearings
+            | Output::BaseReaction
+            | Output::ForwardDynamics
+                if model.has_capstan() =>
+            {
+                Some(CAPSTAN_NOT_GENERATED.to_string())
+            }
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
             Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 => {
@@ -419,7 +435,11 @@ impl Shared {
         self.inverse.get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`).
-            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, |model, system, x| {
+            // Guides with friction (a state-dependent `E`) are refused before tracing.
+            let at_state = |_: &Model<Sym>, _: &[Affine<Sym>]| {
+                Err(tendyn_core::Error::Tension(CAPSTAN_NOT_GENERATED.into()))
+            };
+            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, |model, system, x| {
                 if system.null_space.len() == 1 && !model.tendons.is_empty() {
                     *excess = tension::along_line(model, system, x).excess;
                 }

@@ -431,13 +431,20 @@ pub fn inverse_json(
             // The tension gained across the guide towards the ground end, times the sliding
             // speed: the power friction takes from the tendon there (0 when frictionless).
             let gain = r.segment_tensions.as_ref().map(|t| t[s][k + 1] - t[s][k]);
-            let direction = if v.abs() <= tendyn_core::friction::REST { 0.0 } else { v.signum() };
+            // The direction the capstan law took (friction.rs): of sliding, or at rest of
+            // the impending motion; where friction acts and the exact law finds the tendon
+            // at rest, it sticks.
+            let accel = g.slide.iter().zip(qdd).map(|(c, a)| c * a).sum::<f64>();
+            let direction = tendyn_core::friction::direction(v, Some(accel), m.friction_smoothing);
+            let rest = v.abs() <= tendyn_core::friction::REST;
+            let sticking = g.mu > 0.0 && m.friction_smoothing.is_none() && rest;
             json!({
                 "pulley": m.bodies[b].name,
                 "tendon": m.strands[s].name,
                 "wrap_angle": g.wrap_at(q),
                 "sliding_speed": v,
-                "direction": direction,
+                "direction": direction + 0.0,
+                "sticking": sticking,
                 "dissipated_power": gain.map(|d| d * v + 0.0),
             })
         }).collect::<Vec<_>>(),

@@ -94,6 +94,9 @@ pub struct Workspace<T: Real> {
     /// Bearing friction torque of every body at the last inverse-dynamics call
     /// ([`friction::bearing_torques`]), which its balance rows carry.
     pub friction: Vec<T>,
+    /// Capstan factor of every idler step, `[strand][idler]` (1 but on guides with
+    /// friction; [`friction::capstan_factors`]).
+    pub capstan: Vec<Vec<T>>,
     zeros: Vec<T>,
 }
 
@@ -107,6 +110,11 @@ impl<T: Real> Workspace<T> {
             known: Loads::new(model.bodies.len(), 0),
             zeros: vec![T::zero(); model.dof],
             friction: vec![T::zero(); model.bodies.len()],
+            capstan: model
+                .strands
+                .iter()
+                .map(|s| vec![T::one(); s.idlers.len()])
+                .collect(),
             tensions: model
                 .strands
                 .iter()
@@ -241,6 +249,46 @@ pub fn forward_dynamics_rhs<T: Real>(
     rhs
 }
 
+/// The tension system at joint angles `q` with the guides with friction sliding in the
+/// directions `sigma` (`±1` each, `[strand][idler]` as [`Workspace::capstan`], ignored
+/// elsewhere): `E(σ, q)` by the recursion's statics ([`tension::system_at`]). What
+/// validation checks for each direction of sliding the routing can take.
+pub fn system_sliding<T: Numeric>(
+    model: &Model<T>,
+    q: &[T],
+    sigma: &[Vec<f64>],
+) -> Result<TensionSystem<T>> {
+    let mut ws = Workspace::new(model);
+    let zeros = vec![T::zero(); model.dof];
+    forward(model, q, &zeros, &zeros, true, &mut ws.motion);
+    for ((strand, factors), signs) in model.strands.iter().zip(&mut ws.capstan).zip(sigma) {
+        for ((idler, factor), s) in strand.idlers.iter().zip(factors).zip(signs) {
+            if let Some(g) = idler.guide.as_ref().filter(|g| g.mu > 0.0) {
+                *factor = friction::capstan_factor(g, T::from_f64(*s), q);
+            }
+        }
+    }
+    let nu = model.system.unknowns.len();
+    tension::segment_tensions(
+        model,
+        &ws.motion,
+        &ws.friction,
+        &ws.capstan,
+        nu,
+        &mut ws.tensions,
+    );
+    backward(
+        model,
+        &ws.motion,
+        Some(&ws.tensions),
+        nu,
+        true,
+        &mut ws.loads,
+    );
+    let rows = tension::balance_rows(model, &ws.loads, &ws.friction);
+    tension::system_at(model, &rows)
+}
+
 /// Inverse dynamics by the paper's recursion: tensions carried to the base as unknowns,
 /// `E x = b` solved there (`distribute` chooses among the solutions of a redundant
 /// routing), every segment tension and bearing force by back-substitution.
@@ -250,12 +298,21 @@ pub fn inverse_dynamics<T: Real>(
     qd: &[T],
     qdd: &[T],
     ws: &mut Workspace<T>,
+    at_state: impl FnOnce(&Model<T>, &[Affine<T>]) -> Result<TensionSystem<T>>,
     distribute: impl FnOnce(&Model<T>, &TensionSystem<T>, &mut [T]) -> Result<()>,
 ) -> Result<InverseDynamics<T>> {
     let nu = model.system.unknowns.len();
     forward(model, q, qd, qdd, true, &mut ws.motion);
     friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
-    tension::segment_tensions(model, &ws.motion, &ws.friction, nu, &mut ws.tensions);
+    friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
+    tension::segment_tensions(
+        model,
+        &ws.motion,
+        &ws.friction,
+        &ws.capstan,
+        nu,
+        &mut ws.tensions,
+    );
     backward(
         model,
         &ws.motion,
@@ -264,10 +321,18 @@ pub fn inverse_dynamics<T: Real>(
         true,
         &mut ws.loads,
     );
-    let mut b = vec![T::zero(); model.system.rows.len()];
-    tension::demand(model, &ws.loads, &ws.friction, &mut b);
+    let rows = tension::balance_rows(model, &ws.loads, &ws.friction);
+    let b: Vec<T> = rows.iter().map(|r| r.constant).collect();
+    // With friction on guides `E` depends on the state (`at_state`, tension::system_at);
+    // otherwise it is the model's own.
+    let state_system;
+    let system = if model.has_capstan() {
+        state_system = at_state(model, &rows)?;
+        &state_system
+    } else {
+        &model.system
+    };
     let mut x = vec![T::zero(); nu];
-    let system = &model.system;
     tension::minimal_norm(model, system, &b, &mut x);
     let x0 = x.clone();
     distribute(model, system, &mut x)?;
@@ -584,6 +649,14 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         let model = self.model;
+        if model.has_capstan() {
+            return Err(Error::NotYet(
+                "forward dynamics with capstan friction on guides (`mu > 0`): the tensions' \
+                 generalized force then depends on the direction of sliding; inverse dynamics \
+                 handles it"
+                    .into(),
+            ));
+        }
         if motor_torques.len() != model.motors.len() || tendon_tensions.len() != model.tendons.len()
         {
             return Err(Error::State(format!(
@@ -638,7 +711,15 @@ impl<'m, T: Numeric> Solver<'m, T> {
             finite("tension or motor torque", &*x, &inputs)?;
             tension::distribute(model, system, x)
         };
-        let mut r = inverse_dynamics(self.model, q, qd, qdd, &mut self.ws, distribute)?;
+        let mut r = inverse_dynamics(
+            self.model,
+            q,
+            qd,
+            qdd,
+            &mut self.ws,
+            tension::system_at,
+            distribute,
+        )?;
         r.sticking = friction::at_rest(self.model, qd);
         finite("generalized forces", &r.generalized_forces, &inputs)?;
         finite("tension or motor torque", &r.unknowns, &inputs)?;

@@ -1,5 +1,6 @@
-//! Friction in the transmission's bearings: Coulomb and viscous friction between a body
-//! (a link at its joint, or a pulley on its carrier) and its parent. The paper's §2
+//! Friction in the transmission: Coulomb and viscous friction in the bearings between a
+//! body (a link at its joint, or a pulley on its carrier) and its parent, and capstan
+//! friction where a tendon slides over a fixed guide ([`capstan_factors`]). The paper's §2
 //! leaves friction out ("may be added in the modeling where the force control is
 //! important"); this is where it is added, once, for every scalar.
 //!
@@ -31,11 +32,11 @@
 //! about their common axis; its virtual work is `τ_f δθ_b = τ_f c_b · δq`. So the
 //! actuators must deliver `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` ([`apply`]),
 //! and the balance rows of the tension system `E x = b` carry it where the body's axial
-//! moment is balanced: a joint's row and a driving pulley's row (`tension::demand`), an
+//! moment is balanced: a joint's row and a driving pulley's row (`tension::balance_rows`), an
 //! idler's tension step (Eq. 24b with the bearing's moment, `tension::segment_tensions`).
 
 use crate::kinematics::coupled;
-use crate::model::Model;
+use crate::model::{Guide, Model};
 use crate::real::{Numeric, Real};
 
 /// The band of rest (rad/s, and rad/s² for the direction of impending motion): a bearing
@@ -114,6 +115,52 @@ pub fn apply<T: Real>(model: &Model<T>, torques: &[T], side: Side, out: &mut [T]
             }
         }
     }
+}
+
+/// The capstan law of every guide with friction, into `out[s][k]` (strand `s`, idler `k`;
+/// left as is where there is none): the ratio `T_k / T_{k+1}` of the tensions on the
+/// guide's anchor and ground sides, `e^{−σ μ β(q)}`.
+///
+/// The tendon slides over the guide at `v = Σ_j slide_j q̇_j`, positive towards the
+/// strand's ground end; the side it slides towards pulls, so there the tension is higher
+/// by `e^{μβ}` (Euler-Eytelwein). `σ` is [`direction`] of `v` (with `Σ_j slide_j q̈_j`,
+/// the direction of impending motion, at rest; `tanh` when the file smooths friction), so
+/// `σ = 0` (no friction) where both are within [`REST`]. `β(q) = wrap + Σ_j wrap_rate_j
+/// q_j`, taken as 0 where it turns negative: a tendon bending away from a guide does not
+/// touch it.
+pub fn capstan_factors<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: Option<&[T]>,
+    out: &mut [Vec<T>],
+) {
+    for (strand, factors) in model.strands.iter().zip(out.iter_mut()) {
+        for (idler, factor) in strand.idlers.iter().zip(factors.iter_mut()) {
+            let Some(guide) = idler.guide.as_ref().filter(|g| g.mu > 0.0) else {
+                continue;
+            };
+            let sigma = direction(
+                linear(&guide.slide, qd),
+                qdd.map(|a| linear(&guide.slide, a)),
+                model.friction_smoothing,
+            );
+            *factor = capstan_factor(guide, sigma, q);
+        }
+    }
+}
+
+/// `e^{−σ μ β(q)}` of one guide sliding in direction `sigma` ([`capstan_factors`]).
+pub fn capstan_factor<T: Real>(guide: &Guide, sigma: T, q: &[T]) -> T {
+    let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());
+    (-(sigma * T::from_f64(guide.mu) * wrap)).exp()
+}
+
+/// `Σ_j c_j x_j` of constant coefficients.
+fn linear<T: Real>(c: &[f64], x: &[T]) -> T {
+    c.iter()
+        .zip(x)
+        .fold(T::zero(), |s, (c, x)| s + T::from_f64(*c) * *x)
 }
 
 /// The bodies whose bearing has friction and turns within [`REST`] of rest: with the exact

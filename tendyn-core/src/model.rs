@@ -463,6 +463,15 @@ impl<T: Real> Model<T> {
         self.bodies.iter().any(|b| b.friction.is_some())
     }
 
+    /// Whether some guide has capstan friction (`mu > 0`): then the tension system's `E`
+    /// depends on the state (`tension::system_at`).
+    pub fn has_capstan(&self) -> bool {
+        self.strands
+            .iter()
+            .flat_map(|s| &s.idlers)
+            .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
+    }
+
     /// Open-ended tendons whose tensions are unknowns (routed or explicit).
     pub fn tendon_count(&self) -> usize {
         self.tendons.len()

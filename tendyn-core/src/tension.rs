@@ -37,10 +37,13 @@ pub fn axial_demand<T: Real>(model: &Model<T>, motion: &[Motion<T>], body: usize
 /// Tension of every segment of every strand, affine in the unknowns (Eq. 24b), written
 /// into `out[s][k]`. An idler's tensions balance what its bearing's friction `τ_f`
 /// (`friction[body]`, [`crate::friction`]) does not: `T_in = T_out − s (N_axial − τ_f) / r`.
+/// A guide with friction scales them by its capstan factor (`capstan[s][k]`,
+/// [`crate::friction::capstan_factors`]): `T_in = T_out e^{−σμβ}`.
 pub fn segment_tensions<T: Real>(
     model: &Model<T>,
     motion: &[Motion<T>],
     friction: &[T],
+    capstan: &[Vec<T>],
     unknowns: usize,
     out: &mut [Vec<Affine<T>>],
 ) {
@@ -51,8 +54,11 @@ pub fn segment_tensions<T: Real>(
         for k in (0..last).rev() {
             let idler = &strand.idlers[k];
             // A frictionless guide passes the tension on unchanged (it takes the tendon's
-            // pull on its carrier).
-            if idler.guide.is_some() {
+            // pull on its carrier); one with friction by the capstan law.
+            if let Some(guide) = &idler.guide {
+                if guide.mu > 0.0 {
+                    t = t.scale(capstan[s][k]);
+                }
                 out[s][k] = t;
                 continue;
             }
@@ -67,15 +73,8 @@ pub fn segment_tensions<T: Real>(
     }
 }
 
-/// `b` of `E x = b`: the constant parts of the balance rows.
-pub fn demand<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T], out: &mut [T]) {
-    let balance = balance_rows(model, loads, friction);
-    for (o, r) in out.iter_mut().zip(balance) {
-        *o = r.constant;
-    }
-}
-
-/// The balance rows as affine forms, before motors and explicit tendons are added: for a
+/// The balance rows as affine forms, before motors and explicit tendons are added (their
+/// constants are `b` of `E x = b`): for a
 /// joint, `τ_j + Σ_coupled c_Pj τ_P`; for a driving pulley, its `τ`; for a loop, its
 /// pretension (a constant: the loop's row of `E` carries the strand tensions). Each `τ` is
 /// the body's axial moment less what its bearing's friction provides (`friction[body]`):
@@ -117,6 +116,84 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T])
             }
         })
         .collect()
+}
+
+/// The tension system at a state where guides with friction make `E` depend on it
+/// (`E(σ, q)`: the capstan factors scale each strand's column). `E` is the model's but on
+/// the strand columns of the joint and driving-pulley rows, which are minus the
+/// coefficients of the state's balance rows (`rows`, [`balance_rows`]: the recursion's own
+/// statics, as for the constant `E`); its pseudo-inverse and null space follow by
+/// Householder QR ([`crate::linalg`]). An error where the state leaves `E` without full
+/// row rank or, with one null direction, without a null vector that lifts every tendon.
+pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<TensionSystem<T>> {
+    let constant = &model.system;
+    let mut matrix = constant.matrix.clone();
+    for (r, (row, balance)) in matrix.iter_mut().zip(rows).enumerate() {
+        if matches!(constant.rows[r], Row::Pretension(_)) {
+            continue;
+        }
+        for (u, unknown) in constant.unknowns.iter().enumerate() {
+            if matches!(unknown, Unknown::Strand(_)) {
+                row[u] = -balance.coefficients[u];
+            }
+        }
+    }
+    let (pseudo_inverse, null_space) =
+        crate::linalg::pseudo_inverse_and_null_space_of_rows(&matrix);
+    // Full row rank, checked where it matters: `E E⁺ = I` to round-off of its size.
+    let size = matrix
+        .iter()
+        .flatten()
+        .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
+    let tolerance = T::from_f64(T::unit_roundoff().sqrt());
+    for (i, row) in matrix.iter().enumerate() {
+        for j in 0..matrix.len() {
+            let e: T = row
+                .iter()
+                .zip(&pseudo_inverse)
+                .fold(T::zero(), |s, (a, p)| s + *a * p[j]);
+            let want = if i == j { T::one() } else { T::zero() };
+            let off = (e - want).abs();
+            if !off.is_finite() || off > tolerance * (T::one() + size) {
+                return Err(Error::Tension(
+                    "the guides' friction leaves the tension system without full rank at this \
+                     state: some joint or driving pulley cannot be balanced"
+                        .into(),
+                ));
+            }
+        }
+    }
+    let positive_null = match null_space.as_slice() {
+        [v] => {
+            let along = |t: &Tendon| v[t.unknown];
+            let sign = if model.tendons.first().is_some_and(|t| along(t) < T::zero()) {
+                -T::one()
+            } else {
+                T::one()
+            };
+            // Not strictly positive, NaN included.
+            let taut = |t: &Tendon| sign * along(t) > T::zero();
+            if !model.tendons.iter().all(taut) {
+                return Err(Error::Tension(
+                    "at this state the guides' friction leaves no way to raise every tendon \
+                     together (the null vector of the tension system has components of both \
+                     signs): the routing is not controllable in this direction of sliding"
+                        .into(),
+                ));
+            }
+            Some(v.iter().map(|x| sign * *x).collect())
+        }
+        _ => None,
+    };
+    Ok(TensionSystem {
+        unknowns: constant.unknowns.clone(),
+        rows: constant.rows.clone(),
+        matrix,
+        pseudo_inverse,
+        null_space,
+        positive_null,
+        condition: f64::NAN,
+    })
 }
 
 /// Minimal-norm solution `x₀ = E⁺ b` of `system` (the model's, or a state's).

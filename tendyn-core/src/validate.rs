@@ -33,7 +33,9 @@ pub fn parse(text: &str) -> Result<Model<f64>> {
     let file = read(text)?;
     let mut v = Validator::new(text);
     v.params = v.parameters(&file)?;
-    v.model(&file)
+    let model = v.model(&file)?;
+    sliding_directions(&v, &model)?;
+    Ok(model)
 }
 
 /// The file as written, read but not validated (RON syntax errors only). A leading
@@ -113,7 +115,115 @@ fn syntax_error(text: &str, e: &ron::error::SpannedError) -> Error {
 pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
     let mut v = Validator::new("");
     v.params = v.parameters(file)?;
-    v.model(file)
+    let model = v.model(file)?;
+    sliding_directions(&v, &model)?;
+    Ok(model)
+}
+
+/// With capstan friction on guides `E` depends on the direction each tendon slides over
+/// its guides: the routing must be controllable (full row rank, a null vector that lifts
+/// every tendon) for every direction it can take. Guides whose sliding speeds are equal or
+/// opposite (`slide` vectors parallel) slide together, so each such group is one sign;
+/// every pattern of up to 12 groups is checked, at `q = 0` (the wrap angles at the
+/// joints' offsets). Beyond 12 groups the patterns checked are the two where every group
+/// slides one way and those with one group flipped (a sufficient condition only at run
+/// time, where every state's system is checked again).
+fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
+    // The guides with friction, by strand and idler, and the group each belongs to with
+    // the sign relating its speed to the group's.
+    let mut groups: Vec<Vec<f64>> = Vec::new();
+    let mut members: Vec<(usize, usize, usize, f64)> = Vec::new();
+    for (s, strand) in model.strands.iter().enumerate() {
+        for (k, idler) in strand.idlers.iter().enumerate() {
+            let Some(g) = idler.guide.as_ref().filter(|g| g.mu > 0.0) else {
+                continue;
+            };
+            let size = g.slide.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if size == 0.0 {
+                continue; // nothing slides over it: no friction, whatever the motion
+            }
+            let unit: Vec<f64> = g.slide.iter().map(|x| x / size).collect();
+            let same = |a: &[f64], sign: f64| {
+                a.iter()
+                    .zip(&unit)
+                    .all(|(x, y)| (x - sign * y).abs() <= 1e-12)
+            };
+            let found = groups.iter().enumerate().find_map(|(i, u)| {
+                [1.0, -1.0]
+                    .into_iter()
+                    .find(|&sign| same(u, sign))
+                    .map(|sign| (i, sign))
+            });
+            let (group, sign) = found.unwrap_or_else(|| {
+                groups.push(unit.clone());
+                (groups.len() - 1, 1.0)
+            });
+            members.push((s, k, group, sign));
+        }
+    }
+    let n = groups.len();
+    if n == 0 {
+        return Ok(());
+    }
+    let patterns: Vec<Vec<f64>> = if n <= 12 {
+        (0..1usize << n)
+            .map(|bits| {
+                (0..n)
+                    .map(|i| if bits >> i & 1 == 1 { -1.0 } else { 1.0 })
+                    .collect()
+            })
+            .collect()
+    } else {
+        let mut p = vec![vec![1.0; n], vec![-1.0; n]];
+        for i in 0..n {
+            for base in [1.0, -1.0] {
+                let mut one = vec![base; n];
+                one[i] = -base;
+                p.push(one);
+            }
+        }
+        p
+    };
+    let q = vec![0.0; model.dof];
+    for pattern in patterns {
+        let mut sigma: Vec<Vec<f64>> = model
+            .strands
+            .iter()
+            .map(|s| vec![0.0; s.idlers.len()])
+            .collect();
+        for &(s, k, group, sign) in &members {
+            sigma[s][k] = sign * pattern[group];
+        }
+        if let Err(e) = crate::dynamics::system_sliding(model, &q, &sigma) {
+            let why = match e {
+                Error::Tension(why) => why,
+                other => other.to_string(),
+            };
+            let described: Vec<String> = members
+                .iter()
+                .map(|&(s, k, _, _)| {
+                    let body = model.strands[s].idlers[k].body;
+                    format!(
+                        "`{}` over `{}` towards its {}",
+                        model.strands[s].name,
+                        model.bodies[body].name,
+                        if sigma[s][k] > 0.0 { "exit" } else { "anchor" }
+                    )
+                })
+                .collect();
+            let first = model.strands[members[0].0].idlers[members[0].1].body;
+            return Err(v.routing(
+                &model.bodies[first].name,
+                format!(
+                    "with capstan friction the routing must be controllable whichever way the \
+                     tendons slide, but sliding {} (at q = 0) it is not: {why}; lower `mu` or \
+                     route the tendon differently",
+                    described.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 struct Validator<'a> {
@@ -1042,16 +1152,6 @@ impl<'a> Validator<'a> {
                         "has `mu`, but no tendon slides over it (it is no route's guide: a \
                          guide is a fixed pulley after a route's anchor); remove `mu` or route \
                          a tendon over it",
-                    ));
-                }
-                if let Some(mu) = p.mu.filter(|&mu| mu > 0.0) {
-                    return Err(self.invalid(
-                        &p.name,
-                        format!(
-                            "`mu: {mu}`: capstan friction on guides is not implemented yet \
-                             (the tension system then depends on the sliding directions); a \
-                             guide is frictionless for now: remove `mu` or set it to 0"
-                        ),
                     ));
                 }
                 continue;
