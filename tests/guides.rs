@@ -302,9 +302,16 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
 
 #[test]
 fn example_2_with_capstan_friction_on_both_guides_balances_power_with_dissipation() {
-    let text = std::fs::read_to_string("../examples/mechanisms/example2_open_ended.ron").unwrap();
-    let model = parse(&tendyn_spec::guides::idlers_as_capstans(&text, 0.3)).unwrap();
-    assert!(model.has_capstan());
+    // The example file (README) is Example 2 with both idlers made guides at μ = 0.3.
+    let text = std::fs::read_to_string("../examples/mechanisms/example2_capstan.ron").unwrap();
+    let model = parse(&text).unwrap();
+    let guides: Vec<f64> = model
+        .strands
+        .iter()
+        .flat_map(|s| &s.idlers)
+        .filter_map(|i| i.guide.as_ref().map(|g| g.mu))
+        .collect();
+    assert_eq!(guides, vec![0.3, 0.3]);
     let worst = check_capstan_power(&model, 300, 21);
     println!("example 2 with capstan friction: worst relative error {worst:.2e}");
 }
