@@ -414,6 +414,16 @@ pub fn distribute<T: Numeric>(
             let t0: Vec<f64> = t0.iter().map(|v| v.to_f64()).collect();
             return Err(Error::Tension(blocked(model, system, &t0, &w)));
         }
+        // With capstan friction the state's null space need not hold a vector that raises
+        // every tendon (validation checks q = 0 only): then the floors cannot all be met,
+        // which the routine reports as unresolved.
+        Status::Unresolved if model.has_capstan() => {
+            return Err(Error::Tension(
+                "at this state the guides' friction leaves no tensions that keep every tendon \
+                 at its floor: the routing is not controllable in this direction of sliding"
+                    .into(),
+            ))
+        }
         Status::Unresolved => {
             return Err(Error::Tension(
                 "the distribution did not finish within its bound on steps (round-off at a \
