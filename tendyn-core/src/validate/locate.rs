@@ -1,0 +1,229 @@
+//! Places in the RON text: a syntax error's span, an item's name or a top-level key, turned
+//! into the line and column an error shows, and the errors that carry them. Invariant: a
+//! place is 1-based (lines, and columns in characters) in the text as written after a
+//! byte-order mark, found from the text alone; `0:0` when it is not found (no text).
+
+use super::Validator;
+use crate::error::{Error, Location};
+
+/// A RON error at the token it is about (ron's span may start on the whitespace before
+/// it), with a hint where ron's message alone does not say what would fix it.
+pub(super) fn syntax_error(text: &str, e: &ron::error::SpannedError) -> Error {
+    let lines: Vec<&str> = text.lines().collect();
+    let (mut line, mut column) = (e.span.start.line, e.span.start.col);
+    // Skip forward over whitespace and `//` comments to the offending token (stay put at
+    // the end of the text).
+    let (mut l, mut c) = (line, column.max(1));
+    while l >= 1 && l <= lines.len() {
+        let rest: String = lines[l - 1].chars().skip(c - 1).collect();
+        match rest.find(|ch: char| !ch.is_whitespace()) {
+            Some(k) if !rest[k..].starts_with("//") => {
+                (line, column) = (l, c + rest[..k].chars().count());
+                break;
+            }
+            _ => (l, c) = (l + 1, 1),
+        }
+    }
+    let mut message = e.code.to_string();
+    match &e.code {
+        ron::Error::ExpectedComma => {
+            // The previous token (comments and blank lines skipped) on an earlier line: the
+            // comma is missing at the end of that line.
+            let code = |s: &str| s.split("//").next().unwrap_or("").trim_end().to_string();
+            let current = lines.get(line.saturating_sub(1)).copied().unwrap_or("");
+            let first_on_line = current
+                .chars()
+                .take(column.saturating_sub(1))
+                .all(char::is_whitespace);
+            if first_on_line {
+                let before = line.min(lines.len() + 1);
+                let prev = (1..before)
+                    .rev()
+                    .find(|&k| !code(lines[k - 1]).is_empty())
+                    .filter(|&k| !code(lines[k - 1]).ends_with([',', '(', '[', '{']));
+                if let Some(prev) = prev {
+                    message = format!(
+                        "{message}: a comma is missing at the end of line {prev}, after the value \
+                         there"
+                    );
+                }
+            } else {
+                let found: String = current
+                    .chars()
+                    .skip(column.saturating_sub(1))
+                    .take_while(|c| !c.is_whitespace())
+                    .take(20)
+                    .collect();
+                message = format!("{message}, found `{found}`");
+            }
+        }
+        ron::Error::MissingStructField { field, .. } => {
+            message =
+                format!("{message}: the item that ends here needs a `{field}: ...` entry; add it");
+        }
+        _ => {}
+    }
+    Error::Syntax {
+        line,
+        column,
+        message,
+    }
+}
+
+/// The places of the names in a file's text: every `name: "X"` definition of each name,
+/// in order, and the first other quoted occurrence of it. Built once, so that locating
+/// every item costs one pass over the text, not one per item (which made loading a file
+/// of many pulleys quadratic).
+#[derive(Default)]
+pub(super) struct NameIndex {
+    definitions: std::collections::HashMap<String, Vec<Location>>,
+    references: std::collections::HashMap<String, Location>,
+}
+
+impl NameIndex {
+    pub(super) fn of(text: &str) -> Self {
+        let mut index = NameIndex::default();
+        for (i, line) in text.lines().enumerate() {
+            for (col, name) in string_literals(line) {
+                let at = Location {
+                    line: i + 1,
+                    column: line[..col].chars().count() + 1,
+                };
+                if is_name_field(&line[..col]) {
+                    index
+                        .definitions
+                        .entry(name.to_string())
+                        .or_default()
+                        .push(at);
+                } else {
+                    index.references.entry(name.to_string()).or_insert(at);
+                }
+            }
+        }
+        index
+    }
+}
+
+/// The string literals of one line of RON, as (byte offset of the opening quote, content
+/// between the quotes), up to a `//` comment outside them (so a name may hold `//`).
+fn string_literals(line: &str) -> Vec<(usize, &str)> {
+    let mut found = Vec::new();
+    let mut open: Option<usize> = None;
+    let mut escaped = false;
+    let mut previous = '\0';
+    for (at, c) in line.char_indices() {
+        match open {
+            Some(start) => {
+                if escaped {
+                    escaped = false;
+                } else if c == '\\' {
+                    escaped = true;
+                } else if c == '"' {
+                    found.push((start, &line[start + 1..at]));
+                    open = None;
+                }
+            }
+            None if c == '"' => open = Some(at),
+            None if c == '/' && previous == '/' => break,
+            None => {}
+        }
+        previous = c;
+    }
+    found
+}
+
+/// Whether the text before a quoted string ends in `name:` (the string is an item's name).
+fn is_name_field(before: &str) -> bool {
+    let Some(rest) = before.trim_end().strip_suffix(':') else {
+        return false;
+    };
+    let Some(rest) = rest.trim_end().strip_suffix("name") else {
+        return false;
+    };
+    !rest
+        .chars()
+        .next_back()
+        .is_some_and(|c| c.is_alphanumeric() || c == '_')
+}
+
+/// `"the links are `a`, `b`"`: what a misspelt reference could have meant.
+pub(super) fn candidates<'n>(kind: &str, names: impl Iterator<Item = &'n str>) -> String {
+    let names: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    if names.is_empty() {
+        format!("the file has no {kind}")
+    } else {
+        format!("the {kind} are {}", names.join(", "))
+    }
+}
+
+impl Validator<'_> {
+    /// Line and column of the item named `name`: its `name: "…"` field, or failing that
+    /// the first quoted occurrence. Text in `//` comments is not looked at.
+    pub(super) fn locate(&self, name: &str) -> Location {
+        self.locate_nth(name, 0)
+    }
+
+    /// Line and column of the `nth` (0-based) `name: "…"` definition of `name`, or
+    /// failing that the first quoted occurrence of it.
+    pub(super) fn locate_nth(&self, name: &str, nth: usize) -> Location {
+        let names = &self.names;
+        names
+            .definitions
+            .get(name)
+            .and_then(|d| d.get(nth))
+            .or_else(|| names.references.get(name))
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// Line and column of a top-level field `key:` (`gravity`, `external_wrench`, …).
+    pub(super) fn locate_key(&self, key: &str) -> Location {
+        for (i, line) in self.text.lines().enumerate() {
+            let code = line.find("//").map_or(line, |c| &line[..c]);
+            for (col, _) in code.match_indices(key) {
+                let before_ok = !code[..col]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_');
+                if before_ok && code[col + key.len()..].trim_start().starts_with(':') {
+                    return Location {
+                        line: i + 1,
+                        column: code[..col].chars().count() + 1,
+                    };
+                }
+            }
+        }
+        Location::default()
+    }
+
+    /// A file's error about `item`, at the place of its name.
+    pub(super) fn invalid(&self, item: &str, problem: impl Into<String>) -> Error {
+        Error::Invalid {
+            item: item.to_string(),
+            at: self.locate(item),
+            problem: problem.into(),
+        }
+    }
+
+    /// A routing's error about `item`, at the place of its name (the system it implies is
+    /// added where one has been built).
+    pub(super) fn routing(&self, item: &str, problem: impl Into<String>) -> Error {
+        Error::Routing {
+            item: item.to_string(),
+            at: self.locate(item),
+            problem: problem.into(),
+            implied: None,
+        }
+    }
+
+    /// An error about the mechanism's top-level field `key`, at its line (at the
+    /// mechanism's, should the key not be found).
+    pub(super) fn invalid_at_key(&self, item: &str, key: &str, problem: String) -> Error {
+        let at = self.locate_key(key);
+        Error::Invalid {
+            item: item.to_string(),
+            at: if at.line == 0 { self.locate(item) } else { at },
+            problem,
+        }
+    }
+}
