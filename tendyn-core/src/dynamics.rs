@@ -268,6 +268,14 @@ pub fn system_sliding<T: Numeric>(
             }
         }
     }
+    let rows = balance(model, &mut ws);
+    tension::system_at(model, &rows)
+}
+
+/// The balance rows of `E x = b` at the motion, bearing friction and capstan factors in
+/// `ws`: the segment tensions (Eq. 24b), the backward recursion with them as unknowns
+/// (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).
+fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
     let nu = model.system.unknowns.len();
     tension::segment_tensions(
         model,
@@ -285,8 +293,7 @@ pub fn system_sliding<T: Numeric>(
         true,
         &mut ws.loads,
     );
-    let rows = tension::balance_rows(model, &ws.loads, &ws.friction);
-    tension::system_at(model, &rows)
+    tension::balance_rows(model, &ws.loads, &ws.friction)
 }
 
 /// Inverse dynamics by the paper's recursion: tensions carried to the base as unknowns,
@@ -305,23 +312,7 @@ pub fn inverse_dynamics<T: Real>(
     forward(model, q, qd, qdd, true, &mut ws.motion);
     friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
     friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
-    tension::segment_tensions(
-        model,
-        &ws.motion,
-        &ws.friction,
-        &ws.capstan,
-        nu,
-        &mut ws.tensions,
-    );
-    backward(
-        model,
-        &ws.motion,
-        Some(&ws.tensions),
-        nu,
-        true,
-        &mut ws.loads,
-    );
-    let rows = tension::balance_rows(model, &ws.loads, &ws.friction);
+    let rows = balance(model, ws);
     let b: Vec<T> = rows.iter().map(|r| r.constant).collect();
     // With friction on guides `E` depends on the state (`at_state`, tension::system_at);
     // otherwise it is the model's own.
