@@ -380,3 +380,66 @@ fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_
         "{shown}"
     );
 }
+
+/// The per-state system in every precision: on the capstan example, inverse dynamics in
+/// `f64` and `f32` against the double-double solver (a reference of precision: it solves
+/// the state's system by the same QR in its own arithmetic; the physics is checked above,
+/// by hand and by power balance): tendon and segment tensions within 1e-12 (`f64`) and
+/// `2¹⁰ u` of `f32`, `‖T − T_ref‖∞ / ‖T_ref‖∞`, at random states (their sliding speeds far
+/// from rest, so every precision slides the same way).
+#[test]
+fn capstan_tensions_agree_with_double_double_in_f64_and_f32() {
+    use tendyn_core::{DoubleDouble, Numeric};
+    let text = std::fs::read_to_string("../examples/mechanisms/example2_capstan.ron").unwrap();
+    let model = parse(&text).unwrap();
+    let (m32, mdd) = (
+        model.cast_numeric::<f32>(),
+        model.cast_numeric::<DoubleDouble>(),
+    );
+    let (mut s64, mut s32, mut sdd) = (Solver::new(&model), Solver::new(&m32), Solver::new(&mdd));
+    let mut rng = ChaCha8Rng::seed_from_u64(31);
+    let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
+    for _ in 0..300 {
+        let [q, qd, qdd] = random_state(&mut rng, model.dof);
+        // Exact in f32, so that every precision solves the same state.
+        let narrow = |x: &[f64]| x.iter().map(|&v| v as f32).collect::<Vec<f32>>();
+        let (q32, qd32, qdd32) = (narrow(&q), narrow(&qd), narrow(&qdd));
+        let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
+        let (q, qd, qdd) = (wide(&q32), wide(&qd32), wide(&qdd32));
+        let dd = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
+        let reference = sdd.inverse_dynamics(&dd(&q), &dd(&qd), &dd(&qdd)).unwrap();
+        let all = |t: &[DoubleDouble], s: &[Vec<DoubleDouble>]| -> Vec<f64> {
+            t.iter()
+                .chain(s.iter().flatten())
+                .map(|v| v.to_f64())
+                .collect()
+        };
+        let want = all(
+            &reference.tendon_tensions,
+            reference.segment_tensions.as_ref().unwrap(),
+        );
+        let r64 = s64.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let got64: Vec<f64> = r64
+            .tendon_tensions
+            .iter()
+            .chain(r64.segment_tensions.as_ref().unwrap().iter().flatten())
+            .copied()
+            .collect();
+        worst64 = worst64.max(tendyn_spec::measure::max_rel(&got64, &want));
+        let r32 = s32.inverse_dynamics(&q32, &qd32, &qdd32).unwrap();
+        let got32: Vec<f64> = r32
+            .tendon_tensions
+            .iter()
+            .chain(r32.segment_tensions.as_ref().unwrap().iter().flatten())
+            .map(|&v| v as f64)
+            .collect();
+        worst32 = worst32.max(tendyn_spec::measure::max_rel(&got32, &want));
+    }
+    let u32 = f32::unit_roundoff();
+    println!(
+        "capstan example: worst f64 {worst64:.2e}, f32 {worst32:.2e} ({:.0} u)",
+        worst32 / u32
+    );
+    assert!(worst64 <= 1e-12, "f64 {worst64:e}");
+    assert!(worst32 <= 1024.0 * u32, "f32 {worst32:e}");
+}
