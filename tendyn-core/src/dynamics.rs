@@ -207,9 +207,45 @@ pub fn gravity<T: Real>(model: &Model<T>, q: &[T], ws: &mut Workspace<T>) -> Vec
     out
 }
 
-/// The generalized forces the actuators deliver: `Σ motor columns · τ + A T`.
+/// Each open-ended tendon's column of the structure matrix `A` at `(q, q̇)`, `[tendon][joint]`
+/// (generalized force per newton of its ground-level tension): the model's constant column,
+/// but where a tendon slides over guides with friction, the column of the state's
+/// `E(σ, q)` (its joint rows), `σ` from `q̇` alone (at rest no friction: forward dynamics
+/// does not know `q̈`, as for bearings).
+pub fn structure<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    ws: &mut Workspace<T>,
+) -> Vec<Vec<T>> {
+    let mut columns: Vec<Vec<T>> = model
+        .tendons
+        .iter()
+        .map(|k| k.structure.iter().map(|&a| T::from_f64(a)).collect())
+        .collect();
+    if !model.has_capstan() {
+        return columns;
+    }
+    let zeros = vec![T::zero(); model.dof];
+    forward(model, q, qd, &zeros, true, &mut ws.motion);
+    friction::capstan_factors(model, q, qd, None, &mut ws.capstan);
+    let rows = balance(model, ws);
+    for (k, column) in model.tendons.iter().zip(&mut columns) {
+        if k.strand.is_some() {
+            // The joints' rows come first; E is minus the balance rows' coefficients.
+            for (j, a) in column.iter_mut().enumerate() {
+                *a = -rows[j].coefficients[k.unknown];
+            }
+        }
+    }
+    columns
+}
+
+/// The generalized forces the actuators deliver: `Σ motor columns · τ + A T`, `A` the
+/// tendons' columns ([`structure`]).
 pub fn actuator_forces<T: Real>(
     model: &Model<T>,
+    structure: &[Vec<T>],
     motor_torques: &[T],
     tendon_tensions: &[T],
 ) -> Vec<T> {
@@ -219,8 +255,8 @@ pub fn actuator_forces<T: Real>(
             for (m, t) in model.motors.iter().zip(motor_torques) {
                 u = u + T::from_f64(m.column[j]) * *t;
             }
-            for (k, t) in model.tendons.iter().zip(tendon_tensions) {
-                u = u + T::from_f64(k.structure[j]) * *t;
+            for (a, t) in structure.iter().zip(tendon_tensions) {
+                u = u + a[j] * *t;
             }
             u
         })
@@ -237,10 +273,11 @@ pub fn forward_dynamics_rhs<T: Real>(
     tendon_tensions: &[T],
     ws: &mut Workspace<T>,
 ) -> Vec<T> {
+    let a = structure(model, q, qd, ws);
     let zeros = vec![T::zero(); model.dof];
     let mut c = zeros.clone();
     expanded_generalized_forces(model, q, qd, &zeros, true, true, ws, &mut c);
-    let mut rhs: Vec<T> = actuator_forces(model, motor_torques, tendon_tensions)
+    let mut rhs: Vec<T> = actuator_forces(model, &a, motor_torques, tendon_tensions)
         .into_iter()
         .zip(c)
         .map(|(u, c)| u - c)
@@ -568,6 +605,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
         ];
         let zero = T::from_f64(0.0);
         let model = self.model;
+        let a = structure(model, q, qd, &mut self.ws);
         let zeros = self.ws.zeros.clone();
         let mut c = zeros.clone();
         expanded_generalized_forces(model, q, qd, &zeros, true, true, &mut self.ws, &mut c);
@@ -582,13 +620,10 @@ impl<'m, T: Numeric> Solver<'m, T> {
                     .iter()
                     .zip(motor_torques)
                     .fold(zero, |s, (m, &t)| s + (T::from_f64(m.column[j]) * t).abs());
-                let tendons = model
-                    .tendons
+                let tendons = a
                     .iter()
                     .zip(tendon_tensions)
-                    .fold(zero, |s, (k, &t)| {
-                        s + (T::from_f64(k.structure[j]) * t).abs()
-                    });
+                    .fold(zero, |s, (a, &t)| s + (a[j] * t).abs());
                 let friction = model
                     .bodies
                     .iter()
@@ -640,11 +675,20 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         let model = self.model;
-        if model.has_capstan() {
+        // A loop's sides are not inputs: with friction on its guides they would have to be
+        // solved per state with the pulleys' dynamics.
+        let on_loop = model.strands.iter().enumerate().any(|(s, strand)| {
+            model.tendons.iter().all(|t| t.strand != Some(s))
+                && strand
+                    .idlers
+                    .iter()
+                    .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
+        });
+        if on_loop {
             return Err(Error::NotYet(
-                "forward dynamics with capstan friction on guides (`mu > 0`): the tensions' \
-                 generalized force then depends on the direction of sliding; inverse dynamics \
-                 handles it"
+                "forward dynamics with capstan friction (`mu > 0`) on a guide of an endless \
+                 loop: its sides' tensions would have to be solved with the pulleys' dynamics; \
+                 inverse dynamics handles it"
                     .into(),
             ));
         }
