@@ -109,6 +109,7 @@ pub enum Group {
     LightDistal,
     TensionBound,
     BearingFriction,
+    CapstanFriction,
 }
 
 /// One case of the stress suite.
@@ -612,6 +613,21 @@ pub fn bearing_friction(scale: f64) -> StressCase {
     )
 }
 
+/// Example 2 with capstan friction on both guides (`example2_capstan.ron`) at `mu`: the
+/// tension system solved per state.
+pub fn capstan_friction(mu: f64) -> StressCase {
+    let name = format!("capstan_friction_{mu}");
+    let text = example("example2_capstan");
+    assert_eq!(text.matches("mu: 0.3,").count(), 2, "example2_capstan.ron");
+    StressCase::new(
+        &name,
+        Group::CapstanFriction,
+        format!("Example 2 with both idlers made guides with capstan friction mu = {mu}"),
+        text.replace("mu: 0.3,", &format!("mu: {mu:?},")),
+        Range::PROTOCOL,
+    )
+}
+
 /// Every case of the suite.
 pub fn cases() -> Vec<StressCase> {
     let mut all = paper_cases();
@@ -640,6 +656,9 @@ pub fn cases() -> Vec<StressCase> {
     all.extend(tension_bounds());
     for s in [1e-3, 1.0, 1e3] {
         all.push(bearing_friction(s));
+    }
+    for mu in [0.01, 0.3, 1.0] {
+        all.push(capstan_friction(mu));
     }
     all
 }
