@@ -254,11 +254,24 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
     (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
 }
 
-/// Why a mechanism with capstan friction on guides cannot have its tension outputs
-/// generated yet.
+/// Why a mechanism with capstan friction on guides and a null space of several dimensions
+/// cannot have its tension outputs generated yet.
 const CAPSTAN_NOT_GENERATED: &str = "a guide has capstan friction (`mu > 0`), which makes the \
-     tension system depend on the state; generated code does not solve it per state yet — use \
-     the runtime solver (`tendyn eval`)";
+     tension system depend on the state, and its null space has several dimensions: generated \
+     code solves the state's system for at most one null direction so far — use the runtime \
+     solver (`tendyn eval`)";
+
+/// Whether a guide with friction carries a side of an endless loop (forward dynamics then
+/// needs the sides' tensions, which are not its inputs).
+fn capstan_on_a_loop(model: &Model<f64>) -> bool {
+    model.strands.iter().enumerate().any(|(s, strand)| {
+        model.tendons.iter().all(|t| t.strand != Some(s))
+            && strand
+                .idlers
+                .iter()
+                .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
+    })
+}
 
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
@@ -268,11 +281,16 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
-            | Output::ForwardDynamics
-                if model.has_capstan() =>
+                if model.has_capstan() && model.system.null_space.len() > 1 =>
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
+            Output::ForwardDynamics if capstan_on_a_loop(model) => Some(
+                "a guide with capstan friction carries a side of an endless loop: forward \
+                 dynamics would need the sides' tensions — use the runtime solver's inverse \
+                 dynamics"
+                    .to_string(),
+            ),
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
             Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 => {
@@ -335,7 +353,10 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             tendon_tensions: array("tendon_tensions", m.tendons.len()),
         };
         let mut ws = Workspace::new(&m);
-        let mut shared = Shared::default();
+        let mut shared = Shared {
+            lead: tension::lead_tendon(model),
+            ..Shared::default()
+        };
         outputs
             .iter()
             .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws, &mut shared)))
@@ -418,6 +439,9 @@ fn distribution_constants(model: &Model<f64>) -> Distribution {
 /// forward dynamics). Hash-consing would merge the nodes anyway; this saves the tracing work.
 #[derive(Default)]
 struct Shared {
+    /// The unknown whose direction a state's null vector is projected from where guides
+    /// have friction (`tension::lead_tendon` of the numeric model).
+    lead: usize,
     inverse: Option<dynamics::InverseDynamics<Sym>>,
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
@@ -432,12 +456,14 @@ impl Shared {
         ws: &mut Workspace<Sym>,
     ) -> &dynamics::InverseDynamics<Sym> {
         let excess = &mut self.line_excess;
+        let lead = self.lead;
         self.inverse.get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
-            // are distributed by the emitted call (see `Function::distribution`).
-            // Guides with friction (a state-dependent `E`) are refused before tracing.
-            let at_state = |_: &Model<Sym>, _: &[Affine<Sym>]| {
-                Err(tendyn_core::Error::Tension(CAPSTAN_NOT_GENERATED.into()))
+            // are distributed by the emitted call (see `Function::distribution`). With
+            // guides with friction `E` depends on the state: its solution is traced too
+            // (several null directions are refused before tracing).
+            let at_state = |model: &Model<Sym>, rows: &[Affine<Sym>]| {
+                Ok(tension::system_traced(model, rows, lead))
             };
             dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, |model, system, x| {
                 if system.null_space.len() == 1 && !model.tendons.is_empty() {

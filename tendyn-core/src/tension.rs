@@ -127,17 +127,7 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T])
 /// row rank or, with one null direction, without a null vector that lifts every tendon.
 pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<TensionSystem<T>> {
     let constant = &model.system;
-    let mut matrix = constant.matrix.clone();
-    for (r, (row, balance)) in matrix.iter_mut().zip(rows).enumerate() {
-        if matches!(constant.rows[r], Row::Pretension(_)) {
-            continue;
-        }
-        for (u, unknown) in constant.unknowns.iter().enumerate() {
-            if matches!(unknown, Unknown::Strand(_)) {
-                row[u] = -balance.coefficients[u];
-            }
-        }
-    }
+    let matrix = state_matrix(model, rows);
     let (pseudo_inverse, null_space) =
         crate::linalg::pseudo_inverse_and_null_space_of_rows(&matrix);
     // Full row rank, checked where it matters: `E E⁺ = I` to round-off of its size.
@@ -194,6 +184,117 @@ pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<Ten
         positive_null,
         condition: f64::NAN,
     })
+}
+
+/// `E` at a state: the model's, but on the strand columns of the joint and driving-pulley
+/// rows, which are minus the coefficients of the state's balance rows.
+fn state_matrix<T: Real>(model: &Model<T>, rows: &[Affine<T>]) -> Vec<Vec<T>> {
+    let constant = &model.system;
+    let mut matrix = constant.matrix.clone();
+    for (r, (row, balance)) in matrix.iter_mut().zip(rows).enumerate() {
+        if matches!(constant.rows[r], Row::Pretension(_)) {
+            continue;
+        }
+        for (u, unknown) in constant.unknowns.iter().enumerate() {
+            if matches!(unknown, Unknown::Strand(_)) {
+                row[u] = -balance.coefficients[u];
+            }
+        }
+    }
+    matrix
+}
+
+/// [`system_at`] in straight-line arithmetic, for the code generator to trace (`Real`
+/// only: no pivoting, no comparison), for null spaces of at most one dimension:
+/// - `E⁺ = Eᵀ (E Eᵀ)⁻¹` by `L D Lᵀ` of `E Eᵀ` ([`crate::linalg::ldlt_solve`]; this squares
+///   the condition number of `E`, which is that of the transmission and small where the
+///   routing is sound: `tendyn check` prints it);
+/// - one null direction: `p = (I − E⁺E) e_k`, the projection of the unit vector of the
+///   unknown `k = lead` ([`lead_tendon`]: the tendon with the largest component in the
+///   model's positive null vector, so `p_k = n_k² / |n|²` is far from cancelling and
+///   positive, and `p` points the way that raises every tendon wherever the routing stays
+///   controllable), scaled to a smallest tendon component of 1 as the distribution's
+///   tolerance expects. `null_space` holds `p` itself (not normalised).
+///
+/// Checks nothing: generated code does not report a state where friction leaves the
+/// routing uncontrollable (the runtime solver does).
+pub fn system_traced<T: Real>(
+    model: &Model<T>,
+    rows: &[Affine<T>],
+    lead: usize,
+) -> TensionSystem<T> {
+    let constant = &model.system;
+    let matrix = state_matrix(model, rows);
+    let (r, m) = (matrix.len(), constant.unknowns.len());
+    // G = E Eᵀ, and E⁺ column by column: E⁺ e_j = Eᵀ G⁻¹ e_j.
+    let mut gram = vec![T::zero(); r * r];
+    for i in 0..r {
+        for j in 0..r {
+            gram[i * r + j] = crate::linalg::dot(&matrix[i], &matrix[j]);
+        }
+    }
+    let mut pseudo_inverse = vec![vec![T::zero(); r]; m];
+    for j in 0..r {
+        let mut y: Vec<T> = (0..r)
+            .map(|i| if i == j { T::one() } else { T::zero() })
+            .collect();
+        crate::linalg::ldlt_solve(&mut gram.clone(), &mut y);
+        for (u, row) in pseudo_inverse.iter_mut().enumerate() {
+            row[j] = (0..r).fold(T::zero(), |s, i| s + matrix[i][u] * y[i]);
+        }
+    }
+    let (null_space, positive_null) = match &constant.positive_null {
+        Some(_) if constant.null_space.len() == 1 => {
+            let k = lead;
+            let mut p: Vec<T> = (0..m)
+                .map(|u| {
+                    let projected =
+                        (0..r).fold(T::zero(), |s, i| s + pseudo_inverse[u][i] * matrix[i][k]);
+                    if u == k {
+                        T::one() - projected
+                    } else {
+                        -projected
+                    }
+                })
+                .collect();
+            // The smallest tendon component, as `−max(−p)`.
+            let least = model
+                .tendons
+                .iter()
+                .map(|t| p[t.unknown])
+                .reduce(|a, b| -((-a).max(-b)))
+                .unwrap_or(T::one());
+            let scale = T::one() / least;
+            for x in &mut p {
+                *x = *x * scale;
+            }
+            (vec![p.clone()], Some(p))
+        }
+        _ => (Vec::new(), None),
+    };
+    TensionSystem {
+        unknowns: constant.unknowns.clone(),
+        rows: constant.rows.clone(),
+        matrix,
+        pseudo_inverse,
+        null_space,
+        positive_null,
+        condition: f64::NAN,
+    }
+}
+
+/// The unknown of the tendon with the largest component of the positive null vector (the
+/// first tendon's without one): the direction [`system_traced`] projects.
+pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
+    let Some(n) = &model.system.positive_null else {
+        return model.tendons.first().map_or(0, |t| t.unknown);
+    };
+    model
+        .tendons
+        .iter()
+        .map(|t| t.unknown)
+        .reduce(|a, b| if n[b] > n[a] { b } else { a })
+        .unwrap_or(0)
 }
 
 /// Minimal-norm solution `x₀ = E⁺ b` of `system` (the model's, or a state's).

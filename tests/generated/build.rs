@@ -1,5 +1,6 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
-//! bearing friction (Example 2 and four random ones), three with fixed guides and a few
+//! bearing friction (Example 2 and four random ones), three with fixed guides, Example 2
+//! with capstan friction on its guides, and a few
 //! mechanisms of the stress
 //! suite into
 //! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
@@ -77,6 +78,13 @@ fn main() {
             tendyn_spec::guides::idlers_as_guides(&text),
         ));
     }
+    // Capstan friction on both guides of Example 2 (the state's system, traced).
+    let capstan = root.join("example2_capstan.ron");
+    println!("cargo:rerun-if-changed={}", capstan.display());
+    mechanisms.push((
+        "example2_capstan_friction".to_string(),
+        std::fs::read_to_string(capstan).unwrap(),
+    ));
     // Representative stress mechanisms, in a registry of their own (`STRESS`):
     // `tests/stress.rs` checks them against the double-double reference under the stress
     // suite's condition rule.
