@@ -3,8 +3,9 @@
 //!
 //! The mechanisms: the files named by `TENDYN_REPORT_FILES` (absolute paths separated by
 //! the platform's path-list separator, `:` on Unix), or the paper's three examples and
-//! Example 2 with bearing friction when it is unset or empty. Mechanism `k` is generated into `OUT_DIR/m{k}/STEM.rs` and wrapped in
-//! module `m{k}`, so two files with the same stem do not clash.
+//! Example 2 with bearing friction and with capstan friction when it is unset or empty.
+//! Mechanism `k` is generated into `OUT_DIR/m{k}/STEM.rs` and wrapped in module `m{k}`, so
+//! two files with the same stem do not clash.
 //!
 //! Per mechanism the glue has, for a scalar `T`: a fixed-size `State<T>`; `pack_*`, which
 //! converts the states once and returns a [`Pass`](crate::Pass) that runs one generated
@@ -50,6 +51,7 @@ fn files() -> Result<Vec<PathBuf>, String> {
                 "example2_open_ended",
                 "example3_stanford_jpl",
                 "example2_friction",
+                "example2_capstan",
             ]
             .iter()
             .map(|n| root.join(format!("{n}.ron")))
