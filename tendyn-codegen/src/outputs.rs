@@ -261,18 +261,6 @@ const CAPSTAN_NOT_GENERATED: &str = "a guide has capstan friction (`mu > 0`), wh
      code solves the state's system for at most one null direction so far — use the runtime \
      solver (`tendyn eval`)";
 
-/// Whether a guide with friction carries a side of an endless loop (forward dynamics then
-/// needs the sides' tensions, which are not its inputs).
-fn capstan_on_a_loop(model: &Model<f64>) -> bool {
-    model.strands.iter().enumerate().any(|(s, strand)| {
-        model.tendons.iter().all(|t| t.strand != Some(s))
-            && strand
-                .idlers
-                .iter()
-                .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
-    })
-}
-
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
@@ -285,7 +273,7 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
-            Output::ForwardDynamics if capstan_on_a_loop(model) => Some(
+            Output::ForwardDynamics if model.capstan_on_a_loop() => Some(
                 "a guide with capstan friction carries a side of an endless loop: forward \
                  dynamics would need the sides' tensions — use the runtime solver's inverse \
                  dynamics"

@@ -677,14 +677,7 @@ impl<'m, T: Numeric> Solver<'m, T> {
         let model = self.model;
         // A loop's sides are not inputs: with friction on its guides they would have to be
         // solved per state with the pulleys' dynamics.
-        let on_loop = model.strands.iter().enumerate().any(|(s, strand)| {
-            model.tendons.iter().all(|t| t.strand != Some(s))
-                && strand
-                    .idlers
-                    .iter()
-                    .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
-        });
-        if on_loop {
+        if model.capstan_on_a_loop() {
             return Err(Error::NotYet(
                 "forward dynamics with capstan friction (`mu > 0`) on a guide of an endless \
                  loop: its sides' tensions would have to be solved with the pulleys' dynamics; \

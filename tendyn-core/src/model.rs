@@ -466,10 +466,15 @@ impl<T: Real> Model<T> {
     /// Whether some guide has capstan friction (`mu > 0`): then the tension system's `E`
     /// depends on the state (`tension::system_at`).
     pub fn has_capstan(&self) -> bool {
-        self.strands
-            .iter()
-            .flat_map(|s| &s.idlers)
-            .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
+        self.strands.iter().any(has_capstan)
+    }
+
+    /// Whether a guide with capstan friction carries a side of an endless loop: forward
+    /// dynamics would then need the sides' tensions, which are not its inputs.
+    pub fn capstan_on_a_loop(&self) -> bool {
+        self.strands.iter().enumerate().any(|(s, strand)| {
+            self.tendons.iter().all(|t| t.strand != Some(s)) && has_capstan(strand)
+        })
     }
 
     /// Open-ended tendons whose tensions are unknowns (routed or explicit).
@@ -745,4 +750,12 @@ impl Model<f64> {
         }
         m
     }
+}
+
+/// Whether one of the strand's guides has capstan friction.
+fn has_capstan<T>(strand: &Strand<T>) -> bool {
+    strand
+        .idlers
+        .iter()
+        .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
 }

@@ -175,7 +175,25 @@ pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<Ten
         }
         _ => None,
     };
-    Ok(TensionSystem {
+    Ok(solved(
+        constant,
+        matrix,
+        pseudo_inverse,
+        null_space,
+        positive_null,
+    ))
+}
+
+/// A state's system: the model's unknowns and rows with the state's `E` and its solution
+/// (no condition number: `NaN`).
+fn solved<T>(
+    constant: &TensionSystem<T>,
+    matrix: Vec<Vec<T>>,
+    pseudo_inverse: Vec<Vec<T>>,
+    null_space: Vec<Vec<T>>,
+    positive_null: Option<Vec<T>>,
+) -> TensionSystem<T> {
+    TensionSystem {
         unknowns: constant.unknowns.clone(),
         rows: constant.rows.clone(),
         matrix,
@@ -183,7 +201,7 @@ pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<Ten
         null_space,
         positive_null,
         condition: f64::NAN,
-    })
+    }
 }
 
 /// `E` at a state: the model's, but on the strand columns of the joint and driving-pulley
@@ -272,15 +290,7 @@ pub fn system_traced<T: Real>(
         }
         _ => (Vec::new(), None),
     };
-    TensionSystem {
-        unknowns: constant.unknowns.clone(),
-        rows: constant.rows.clone(),
-        matrix,
-        pseudo_inverse,
-        null_space,
-        positive_null,
-        condition: f64::NAN,
-    }
+    solved(constant, matrix, pseudo_inverse, null_space, positive_null)
 }
 
 /// The unknown of the tendon with the largest component of the positive null vector (the
