@@ -156,7 +156,15 @@ pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<Ten
     let positive_null = match null_space.as_slice() {
         [v] => {
             let along = |t: &Tendon| v[t.unknown];
-            let sign = if model.tendons.first().is_some_and(|t| along(t) < T::zero()) {
+            // Oriented by the tendon component largest in size (one near zero could have
+            // either sign by round-off).
+            let largest =
+                model
+                    .tendons
+                    .iter()
+                    .map(along)
+                    .reduce(|a, b| if b.abs() > a.abs() { b } else { a });
+            let sign = if largest.is_some_and(|x| x < T::zero()) {
                 -T::one()
             } else {
                 T::one()
