@@ -273,10 +273,10 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
-            Output::ForwardDynamics if model.capstan_on_a_loop() => Some(
-                "a guide with capstan friction carries a side of an endless loop: forward \
-                 dynamics would need the sides' tensions — use the runtime solver's inverse \
-                 dynamics"
+            Output::ForwardDynamics if model.capstan_before_an_idler() => Some(
+                "a turning idler follows a guide with capstan friction towards the tendon's \
+                 exit: its inertia reaches the joints scaled by the guide's friction, which \
+                 the mass matrix of forward dynamics does not carry — use inverse dynamics"
                     .to_string(),
             ),
             // Segment tensions and bearings need the distributed tensions; the base

@@ -675,12 +675,11 @@ impl<'m, T: Numeric> Solver<'m, T> {
         self.check_state("q", q)?;
         self.check_state("qd", qd)?;
         let model = self.model;
-        // A loop's sides are not inputs: with friction on its guides they would have to be
-        // solved per state with the pulleys' dynamics.
-        if model.capstan_on_a_loop() {
+        if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
-                "forward dynamics with capstan friction (`mu > 0`) on a guide of an endless \
-                 loop: its sides' tensions would have to be solved with the pulleys' dynamics; \
+                "forward dynamics where a turning idler follows a guide with capstan friction \
+                 (`mu > 0`) towards the tendon's exit: the idler's inertia then reaches the \
+                 joints scaled by the guide's friction, which the mass matrix does not carry; \
                  inverse dynamics handles it"
                     .into(),
             ));

@@ -469,11 +469,17 @@ impl<T: Real> Model<T> {
         self.strands.iter().any(has_capstan)
     }
 
-    /// Whether a guide with capstan friction carries a side of an endless loop: forward
-    /// dynamics would then need the sides' tensions, which are not its inputs.
-    pub fn capstan_on_a_loop(&self) -> bool {
-        self.strands.iter().enumerate().any(|(s, strand)| {
-            self.tendons.iter().all(|t| t.strand != Some(s)) && has_capstan(strand)
+    /// Whether a turning idler lies between a guide with capstan friction and its tendon's
+    /// ground end: the idler's inertia, gravity and bearing friction then reach the joints
+    /// scaled by the guide's factor, which the symmetric mass matrix of forward dynamics
+    /// cannot carry (inverse dynamics handles it).
+    pub fn capstan_before_an_idler(&self) -> bool {
+        self.strands.iter().any(|strand| {
+            let first = strand
+                .idlers
+                .iter()
+                .position(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0));
+            first.is_some_and(|k| strand.idlers[k..].iter().any(|i| i.guide.is_none()))
         })
     }
 

@@ -179,7 +179,18 @@ pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<Ten
                         .into(),
                 ));
             }
-            Some(v.iter().map(|x| sign * *x).collect())
+            // Scaled to a smallest tendon component of 1, as the model's positive null
+            // vector is and the distribution's tolerance expects (Status::of_line).
+            let least = model
+                .tendons
+                .iter()
+                .map(|t| sign * along(t))
+                .fold(None, |m: Option<T>, x| {
+                    Some(m.map_or(x, |m| if x < m { x } else { m }))
+                })
+                .unwrap_or(T::one());
+            let scale = sign / least;
+            Some(v.iter().map(|x| scale * *x).collect())
         }
         _ => None,
     };
