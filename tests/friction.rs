@@ -127,21 +127,13 @@ fn check_dissipation(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut solver = Solver::new(model);
     let mut worst = 0.0f64;
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     for _ in 0..states {
         let [q, qd, qdd] = random_state(&mut rng, model.dof);
         let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
         // Actuator and environment power, from the solved tensions and torques and the
         // transmission's rates.
-        let mut terms: Vec<f64> = Vec::new();
-        for (t, tension) in model.tendons.iter().zip(&id.tendon_tensions) {
-            terms.push(tension * dot(&t.structure, &qd));
-        }
-        for (mo, tau) in model.motors.iter().zip(&id.motor_torques) {
-            terms.push(tau * dot(&mo.column, &qd));
-        }
+        let terms = lagrangian::power_in(model, &q, &qd, &id.tendon_tensions, &id.motor_torques);
         let q_ext = lagrangian::external_generalized_forces(model, &q);
-        terms.push(dot(q_ext.as_slice(), &qd));
         let power: f64 = terms.iter().sum();
         let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
         let loss = dissipated_power(model, &qd);

@@ -305,7 +305,6 @@ fn a_guide_on_a_joint_axis_wraps_more_as_the_link_its_tendon_arrives_from_turns(
 fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut solver = Solver::new(model);
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let mut worst = 0.0f64;
     let (mut lossy, mut uncontrollable) = (0, 0);
     for _ in 0..states {
@@ -320,15 +319,7 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             }
             Err(e) => panic!("{}: {e} at {q:?} {qd:?} {qdd:?}", model.name),
         };
-        let mut terms: Vec<f64> = Vec::new();
-        for (t, tension) in model.tendons.iter().zip(&r.tendon_tensions) {
-            terms.push(tension * dot(&t.structure, &qd));
-        }
-        for (m, tau) in model.motors.iter().zip(&r.motor_torques) {
-            terms.push(tau * dot(&m.column, &qd));
-        }
-        let q_ext = lagrangian::external_generalized_forces(model, &q);
-        terms.push(dot(q_ext.as_slice(), &qd));
+        let terms = lagrangian::power_in(model, &q, &qd, &r.tendon_tensions, &r.motor_torques);
         let power: f64 = terms.iter().sum();
         let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
         let segments = r.segment_tensions.as_ref().unwrap();

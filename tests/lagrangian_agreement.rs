@@ -70,15 +70,10 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         // Power balance: what the actuators and the environment put in is what the
         // mechanism's energy gains. Actuator power comes from the solved tensions and
         // torques and the transmission's rates, not from Q.
-        let mut power = 0.0;
-        for (t, tension) in model.tendons.iter().zip(&id.tendon_tensions) {
-            power += tension * t.structure.iter().zip(&qd).map(|(a, v)| a * v).sum::<f64>();
-        }
-        for (mo, tau) in model.motors.iter().zip(&id.motor_torques) {
-            power += tau * mo.column.iter().zip(&qd).map(|(a, v)| a * v).sum::<f64>();
-        }
-        let q_ext = lagrangian::external_generalized_forces(model, &q);
-        power += q_ext.iter().zip(&qd).map(|(a, v)| a * v).sum::<f64>();
+        let power: f64 =
+            lagrangian::power_in(model, &q, &qd, &id.tendon_tensions, &id.motor_torques)
+                .iter()
+                .sum();
         let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
         let scale = de.abs().max(
             q_total

@@ -107,6 +107,31 @@ pub fn energy_rate(model: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> f6
     (kinetic_energy_ad(model, &path, &rates) + potential_energy_ad(model, &path)).eps
 }
 
+/// The power put into the mechanism, term by term: each open-ended tendon's tension times
+/// the rate its exit pulls in, `T_k (A_k · q̇)`; each motor's `τ_m (c_m · q̇)`; and the
+/// external wrench's `Q_ext · q̇` (last). The rates are kinematics: friction changes none.
+pub fn power_in(
+    model: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    tendon_tensions: &[f64],
+    motor_torques: &[f64],
+) -> Vec<f64> {
+    let rate = |c: &[f64]| c.iter().zip(qd).map(|(a, v)| a * v).sum::<f64>();
+    let tendons = model
+        .tendons
+        .iter()
+        .zip(tendon_tensions)
+        .map(|(t, tension)| tension * rate(&t.structure));
+    let motors = model
+        .motors
+        .iter()
+        .zip(motor_torques)
+        .map(|(m, tau)| tau * rate(&m.column));
+    let external = rate(external_generalized_forces(model, q).as_slice());
+    tendons.chain(motors).chain([external]).collect()
+}
+
 /// Generalized force `Q_ext = J_pᵀ f + J_ωᵀ m` of the model's external wrench (zero when it
 /// has none), read as a follower wrench: `point`, `force` and `moment` fixed in the frame of
 /// body `link`. The actuation then supplies `lagrange_generalized_forces − Q_ext`.
