@@ -298,13 +298,9 @@ pub fn system_sliding<T: Numeric>(
     let mut ws = Workspace::new(model);
     let zeros = vec![T::zero(); model.dof];
     forward(model, q, &zeros, &zeros, true, &mut ws.motion);
-    for ((strand, factors), signs) in model.strands.iter().zip(&mut ws.capstan).zip(sigma) {
-        for ((idler, factor), s) in strand.idlers.iter().zip(factors).zip(signs) {
-            if let Some(g) = idler.guide.as_ref().filter(|g| g.mu > 0.0) {
-                *factor = friction::capstan_factor(g, T::from_f64(*s), q);
-            }
-        }
-    }
+    friction::capstan_factors_sliding(model, q, &mut ws.capstan, |s, k, _| {
+        T::from_f64(sigma[s][k])
+    });
     let rows = balance(model, &mut ws);
     tension::system_at(model, &rows)
 }

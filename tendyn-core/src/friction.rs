@@ -135,25 +135,32 @@ pub fn capstan_factors<T: Real>(
     qdd: Option<&[T]>,
     out: &mut [Vec<T>],
 ) {
-    for (strand, factors) in model.strands.iter().zip(out.iter_mut()) {
-        for (idler, factor) in strand.idlers.iter().zip(factors.iter_mut()) {
+    capstan_factors_sliding(model, q, out, |_, _, guide| {
+        direction(
+            linear(&guide.slide, qd),
+            qdd.map(|a| linear(&guide.slide, a)),
+            model.friction_smoothing,
+        )
+    });
+}
+
+/// [`capstan_factors`] with the directions given: `sigma(strand, idler, guide)` for each
+/// guide with friction (validation checks every pattern of them this way).
+pub fn capstan_factors_sliding<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    out: &mut [Vec<T>],
+    sigma: impl Fn(usize, usize, &Guide) -> T,
+) {
+    for (s, (strand, factors)) in model.strands.iter().zip(out.iter_mut()).enumerate() {
+        for (k, (idler, factor)) in strand.idlers.iter().zip(factors.iter_mut()).enumerate() {
             let Some(guide) = idler.guide.as_ref().filter(|g| g.mu > 0.0) else {
                 continue;
             };
-            let sigma = direction(
-                linear(&guide.slide, qd),
-                qdd.map(|a| linear(&guide.slide, a)),
-                model.friction_smoothing,
-            );
-            *factor = capstan_factor(guide, sigma, q);
+            let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());
+            *factor = (-(sigma(s, k, guide) * T::from_f64(guide.mu) * wrap)).exp();
         }
     }
-}
-
-/// `e^{−σ μ β(q)}` of one guide sliding in direction `sigma` ([`capstan_factors`]).
-pub fn capstan_factor<T: Real>(guide: &Guide, sigma: T, q: &[T]) -> T {
-    let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());
-    (-(sigma * T::from_f64(guide.mu) * wrap)).exp()
 }
 
 /// `Σ_j c_j x_j` of constant coefficients.
