@@ -93,7 +93,7 @@ fn run() -> Result<(), String> {
             "    Mechanism {{ name: {name:?}, file: {shown:?}, ron: m{k}::RON, outputs: &[{outs}], \
              pack_f64: m{k}::pack::<f64>, pack_f32: m{k}::pack::<f32>, \
              eval_f64: m{k}::eval::<f64>, eval_f32: m{k}::eval::<f32> }},",
-            name = model.name,
+            name = model.name(),
             outs = variants.join(", "),
         )
         .unwrap();
@@ -144,10 +144,10 @@ fn module(
     outputs: &[Output],
 ) -> String {
     let (n, nm, nt, np) = (
-        model.dof,
-        model.motors.len(),
-        model.tendons.len(),
-        model.parameters.len(),
+        model.dof(),
+        model.motors().len(),
+        model.tendons().len(),
+        model.parameters().len(),
     );
     let params = np > 0;
     let mut passes = String::new();
@@ -287,7 +287,7 @@ pub mod m{k} {{
     }}
 }}
 "#,
-        name = model.name,
+        name = model.name(),
     )
 }
 

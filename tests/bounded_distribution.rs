@@ -30,7 +30,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::distribution::{self, Status, Work};
 use tendyn_core::model::Model;
-use tendyn_core::{tension, DoubleDouble, Error, Numeric, Solver};
+use tendyn_core::{tension, Data, DoubleDouble, Error, Numeric};
 use tendyn_spec::bounded::{self, Problem, Solution, SIZES};
 
 /// What one system's run found.
@@ -97,15 +97,11 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
     let model = tendyn_core::parse(&text).unwrap();
     let dd_model = model.cast_numeric::<DoubleDouble>();
     let m32 = model.cast_numeric::<f32>();
-    let (mut s64, mut s32, mut sdd) = (
-        Solver::new(&model),
-        Solver::new(&m32),
-        Solver::new(&dd_model),
-    );
+    let (mut s64, mut s32, mut sdd) = (Data::new(&model), Data::new(&m32), Data::new(&dd_model));
     let a = model.structure_matrix();
-    let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+    let floor: Vec<f64> = model.tendons().iter().map(|t| t.floor).collect();
     let max: Vec<f64> = model
-        .tendons
+        .tendons()
         .iter()
         .map(|t| t.max_tension.unwrap_or(f64::INFINITY))
         .collect();
@@ -116,18 +112,19 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
         .map(|(f, x)| if centered { 0.5 * (f + x) } else { 0.0 })
         .collect();
     let mut tally = Tally::default();
-    let name = &model.name;
+    let name = &model.name();
     for [q, qd, qdd] in states(seed ^ 0x5eed, n, count) {
         let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
         let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
         let dd = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
         let b = sdd
-            .generalized_forces(&dd(&q64), &dd(&qd64), &dd(&qdd64))
-            .unwrap();
+            .generalized_forces(&dd_model, &dd(&q64), &dd(&qd64), &dd(&qdd64))
+            .unwrap()
+            .to_vec();
         // The exact minimal-norm tensions (no motors or loops: the rows are the joints and
         // the unknowns the tendons), rounded to f32, for the f32 distribution on its own.
         let x64: Vec<f64> = dd_model
-            .system
+            .system()
             .pseudo_inverse
             .iter()
             .map(|row| {
@@ -144,10 +141,10 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
             target: target.clone(),
         };
         let reference = bounded::solve(&problem(&max));
-        let r64 = s64.inverse_dynamics(&q64, &qd64, &qdd64);
+        let r64 = s64.inverse_dynamics(&model, &q64, &qd64, &qdd64).cloned();
         let t0_32: Vec<f64> = x32.iter().map(|&v| v as f64).collect();
-        let d32 = tension::distribute(&m32, &m32.system, &mut x32);
-        let pipeline = s32.inverse_dynamics(&q, &qd, &qdd);
+        let d32 = tension::distribute(&m32, m32.system(), &mut x32);
+        let pipeline = s32.inverse_dynamics(&m32, &q, &qd, &qdd).cloned();
         let want = match reference {
             Solution::Infeasible => {
                 tally.infeasible += 1;
@@ -256,9 +253,9 @@ fn check_system(seed: u64, size: (usize, usize, f64, f64), centered: bool, count
 /// that span to f64 round-off, far below f32's), and `b = A T₀`.
 fn as_received(m32: &Model<f32>, t0: &[f64], floor: &[f64], max: &[f64], c: &[f64]) -> Problem {
     let m = t0.len();
-    let basis = &m32.system.null_space;
+    let basis = &m32.system().null_space;
     let n = nalgebra::DMatrix::from_fn(m, basis.len(), |k, i| {
-        basis[i][m32.tendons[k].unknown] as f64
+        basis[i][m32.tendons()[k].unknown] as f64
     });
     let gram = (n.transpose() * &n)
         .try_inverse()
@@ -297,14 +294,14 @@ fn as_received(m32: &Model<f32>, t0: &[f64], floor: &[f64], max: &[f64], c: &[f6
 /// effort is what the module documentation says (d ≥ 2: the reference solved without
 /// maxima; d = 1: the least lift along the positive null vector that meets every floor).
 fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
-    let (k, d) = (model.tendons.len(), model.system.null_space.len());
-    let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+    let (k, d) = (model.tendons().len(), model.system().null_space.len());
+    let floor: Vec<f64> = model.tendons().iter().map(|t| t.floor).collect();
     let size = t0.iter().chain(&floor).fold(1.0f64, |s, x| s.max(x.abs()));
-    let name = &model.name;
+    let name = &model.name();
     if d == 1 {
         let mut x = t0.to_vec();
-        tension::along_line(model, &model.system, &mut x);
-        let p = model.system.positive_null.as_ref().unwrap();
+        tension::along_line(model, model.system(), &mut x);
+        let p = model.system().positive_null.as_ref().unwrap();
         let lift = (x[0] - t0[0]) / p[0];
         let slack: Vec<f64> = x.iter().zip(&floor).map(|(x, f)| x - f).collect();
         assert!(
@@ -323,7 +320,7 @@ fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
         }
         return;
     }
-    let problem = tension::bounds(model, &model.system);
+    let problem = tension::bounds(model, model.system());
     let mut reals = vec![0.0; Work::<f64>::reals(d)];
     let mut active = vec![0; d];
     let mut work = Work::split(&mut reals, &mut active, d).unwrap();
@@ -333,9 +330,9 @@ fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
     // The certificate: orthogonal to the null space, and along it the motion needs more
     // than the bounded tendons can give.
     let w_size = w.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    for v in &model.system.null_space {
+    for v in &model.system().null_space {
         let along: f64 = model
-            .tendons
+            .tendons()
             .iter()
             .zip(&w)
             .map(|(t, wk)| v[t.unknown] * wk)
@@ -347,7 +344,7 @@ fn check_best_effort(model: &Model<f64>, t0: &[f64], without_max: Solution) {
     }
     let needed: f64 = w.iter().zip(t0).map(|(a, b)| a * b).sum();
     let most: f64 = model
-        .tendons
+        .tendons()
         .iter()
         .zip(&w)
         .map(|(t, &wk)| {
@@ -440,7 +437,7 @@ fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
     for size in SIZES {
         let (n, m, _, _) = size;
         let model = tendyn_core::parse(&system(bounded::seed(n, m), size, false)).unwrap();
-        let mut solver = Solver::new(&model);
+        let mut solver = Data::new(&model);
         let mut rng = ChaCha8Rng::seed_from_u64(77);
         let (mut checked, mut active_changes) = (0, 0);
         for _ in 0..40 {
@@ -467,8 +464,8 @@ fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
             let mut tensions = Vec::with_capacity(fine + 1);
             for i in 0..=fine {
                 let [q, qd, qdd] = state(i as f64 / fine as f64);
-                match solver.inverse_dynamics(&q, &qd, &qdd) {
-                    Ok(r) => tensions.push(r.tendon_tensions),
+                match solver.inverse_dynamics(&model, &q, &qd, &qdd) {
+                    Ok(r) => tensions.push(r.tendon_tensions.clone()),
                     Err(_) => break,
                 }
             }
@@ -477,7 +474,7 @@ fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
             }
             let on_bound = |t: &[f64]| -> Vec<bool> {
                 t.iter()
-                    .zip(&model.tendons)
+                    .zip(model.tendons())
                     .map(|(x, k)| {
                         (x - k.floor).abs() < 1e-9
                             || k.max_tension.is_some_and(|mx| (x - mx).abs() < 1e-9)
@@ -503,7 +500,7 @@ fn along_a_smooth_feasible_trajectory_the_tensions_never_jump() {
                 finest <= coarse / 4.0 + 1e-9,
                 "{}: a jump of {finest:.3e} N between samples 1/{fine} apart (steps 8 times \
                  longer change by at most {coarse:.3e} N)",
-                model.name
+                model.name()
             );
             checked += 1;
         }

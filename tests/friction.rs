@@ -12,7 +12,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::Model;
-use tendyn_core::{parse, Solver};
+use tendyn_core::{parse, Data};
 use tendyn_spec::friction::{dissipated_power, generalized_force, rate, with_bearing_friction};
 use tendyn_spec::lagrangian;
 use tendyn_spec::measure::random_state;
@@ -34,9 +34,10 @@ fn one_joint(friction: &str, smoothing: &str) -> Model<f64> {
 }
 
 fn motor_torque(model: &Model<f64>, q: f64, qd: f64, qdd: f64) -> (f64, Vec<usize>) {
-    let r = Solver::new(model)
-        .inverse_dynamics(&[q], &[qd], &[qdd])
-        .unwrap();
+    let r = Data::new(model)
+        .inverse_dynamics(model, &[q], &[qd], &[qdd])
+        .unwrap()
+        .clone();
     (r.motor_torques[0], r.sticking)
 }
 
@@ -91,7 +92,7 @@ fn an_idler_bearing_changes_the_tension_step_across_it_by_its_torque_over_the_ra
     );
     let (ideal, rough) = (parse(&text).unwrap(), parse(&rough).unwrap());
     let idler = rough
-        .bodies
+        .bodies()
         .iter()
         .position(|b| b.name == "idler3")
         .unwrap();
@@ -99,7 +100,10 @@ fn an_idler_bearing_changes_the_tension_step_across_it_by_its_torque_over_the_ra
     for _ in 0..200 {
         let [q, qd, qdd] = random_state(&mut rng, 2);
         let step = |m: &Model<f64>| {
-            let r = Solver::new(m).inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let r = Data::new(m)
+                .inverse_dynamics(m, &q, &qd, &qdd)
+                .unwrap()
+                .clone();
             let s = &r.segment_tensions.as_ref().unwrap()[0]; // T32: drum2a, idler3, exit
             (s[0] - s[1], r)
         };
@@ -125,11 +129,14 @@ fn an_idler_bearing_changes_the_tension_step_across_it_by_its_torque_over_the_ra
 /// friction, at `states` random states (where no bearing is at rest).
 fn check_dissipation(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut solver = Solver::new(model);
+    let mut solver = Data::new(model);
     let mut worst = 0.0f64;
     for _ in 0..states {
-        let [q, qd, qdd] = random_state(&mut rng, model.dof);
-        let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let [q, qd, qdd] = random_state(&mut rng, model.dof());
+        let id = solver
+            .inverse_dynamics(model, &q, &qd, &qdd)
+            .unwrap()
+            .clone();
         // Actuator and environment power, from the solved tensions and torques and the
         // transmission's rates.
         let terms = lagrangian::power_in(model, &q, &qd, &id.tendon_tensions, &id.motor_torques);
@@ -146,7 +153,7 @@ fn check_dissipation(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         assert!(
             reported >= 0.0,
             "{}: the bearings give {reported} W",
-            model.name
+            model.name()
         );
         let scale = terms.iter().map(|x| x.abs()).sum::<f64>() + de.abs() + loss;
         let e_p = (power - de - loss).abs() / scale;
@@ -154,29 +161,30 @@ fn check_dissipation(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         assert!(
             e_p <= TOL && e_r <= TOL,
             "{}: power balance off by {e_p:.3e}, reported dissipation by {e_r:.3e}",
-            model.name
+            model.name()
         );
         // Q = Lagrange − Q_ext − Σ c_bᵀ τ_f,b, the torques by hand; and the same with every
         // joint at rest, where the direction of impending motion decides.
-        let rest = vec![0.0; model.dof];
+        let rest = vec![0.0; model.dof()];
         let mut e_q = 0.0f64;
         for v in [&qd, &rest] {
             let want = lagrangian::lagrange_generalized_forces(model, &q, v, &qdd)
                 - &q_ext
                 - nalgebra::DVector::from_vec(generalized_force(model, v, &qdd));
-            let got = solver
-                .inverse_dynamics(&q, v, &qdd)
+            let got = &solver
+                .inverse_dynamics(model, &q, v, &qdd)
                 .unwrap()
                 .generalized_forces;
-            e_q = e_q.max(tendyn_spec::measure::max_rel(&got, want.as_slice()));
+            e_q = e_q.max(tendyn_spec::measure::max_rel(got, want.as_slice()));
         }
-        assert!(e_q <= TOL, "{}: Q off by {e_q:.3e}", model.name);
+        assert!(e_q <= TOL, "{}: Q off by {e_q:.3e}", model.name());
         // Forward dynamics of the solved actuation gives the motion back.
         let back = solver
-            .forward_dynamics(&q, &qd, &id.motor_torques, &id.tendon_tensions)
-            .unwrap();
+            .forward_dynamics(model, &q, &qd, &id.motor_torques, &id.tendon_tensions)
+            .unwrap()
+            .to_vec();
         let size = solver
-            .forward_dynamics_scale(&q, &qd, &id.motor_torques, &id.tendon_tensions)
+            .forward_dynamics_scale(model, &q, &qd, &id.motor_torques, &id.tendon_tensions)
             .unwrap();
         let e_f = back
             .iter()
@@ -186,7 +194,7 @@ fn check_dissipation(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         assert!(
             e_f <= TOL,
             "{}: forward dynamics off by {e_f:.3e}",
-            model.name
+            model.name()
         );
         worst = worst.max(e_p).max(e_q).max(e_f);
     }
@@ -198,7 +206,11 @@ fn example_2_with_friction_on_every_bearing_balances_power_with_dissipation() {
     let text = std::fs::read_to_string("../examples/mechanisms/example2_friction.ron").unwrap();
     let model = parse(&text).unwrap();
     assert_eq!(
-        model.bodies.iter().filter(|b| b.friction.is_some()).count(),
+        model
+            .bodies()
+            .iter()
+            .filter(|b| b.friction.is_some())
+            .count(),
         4,
         "both joints and both idlers"
     );
@@ -216,7 +228,7 @@ fn random_mechanisms_with_friction_on_every_bearing_balance_power_with_dissipati
         let (text, _) = valid_random_mechanism(seed, features);
         let smoothing = (seed % 2 == 1).then_some(0.2);
         let model = parse(&with_bearing_friction(&text, seed, smoothing)).unwrap();
-        assert!(model.bodies.iter().any(|b| b.friction.is_some()));
+        assert!(model.bodies().iter().any(|b| b.friction.is_some()));
         let worst = check_dissipation(&model, 100, seed);
         println!(
             "random_{seed}{}: worst relative error {worst:.2e}",

@@ -4,7 +4,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::Model;
-use tendyn_core::{parse, Error, Solver};
+use tendyn_core::{parse, Data, Error};
 use tendyn_spec::lagrangian;
 use tendyn_spec::measure::random_state;
 
@@ -37,7 +37,7 @@ const PIN: &str = r#"(
 #[test]
 fn a_tendon_over_a_frictionless_pin_keeps_its_tension_and_slides_at_its_exit_speed() {
     let model = parse(PIN).unwrap();
-    let strand = &model.strands[0];
+    let strand = &model.strands()[0];
     assert_eq!(strand.name, "over_pin");
     let guide = strand.idlers[0].guide.as_ref().expect("the pin is a guide");
     assert!(
@@ -50,11 +50,11 @@ fn a_tendon_over_a_frictionless_pin_keeps_its_tension_and_slides_at_its_exit_spe
         "both segments are fixed in the base"
     );
     assert_eq!(model.structure_matrix(), vec![vec![0.02, -0.02]]);
-    let mut solver = Solver::new(&model);
+    let mut solver = Data::new(&model);
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     for _ in 0..100 {
         let [q, qd, qdd] = random_state(&mut rng, 1);
-        let r = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let segments = &r.segment_tensions.as_ref().unwrap()[0];
         assert_eq!(segments[0], segments[1], "the pin passes the tension on");
         let (over, direct) = (r.tendon_tensions[0], r.tendon_tensions[1]);
@@ -125,7 +125,7 @@ fn bad_capstan_coefficients_are_rejected_naming_the_pulley() {
 fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_where_it_slides() {
     let model = parse(&pin_with("mu: 0.0", "mu: 0.2")).unwrap();
     assert!(model.has_capstan());
-    let mut solver = Solver::new(&model);
+    let mut solver = Data::new(&model);
     let mut rng = ChaCha8Rng::seed_from_u64(8);
     let mut states: Vec<[Vec<f64>; 3]> = (0..200).map(|_| random_state(&mut rng, 1)).collect();
     // At rest: impending motion either way, and none.
@@ -133,7 +133,7 @@ fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_wh
     states.push([vec![0.3], vec![0.0], vec![-2.0]]);
     states.push([vec![0.3], vec![0.0], vec![0.0]]);
     for [q, qd, qdd] in states {
-        let r = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let sigma = if qd[0].abs() > 1e-6 {
             qd[0].signum()
         } else if qdd[0].abs() > 1e-6 {
@@ -193,7 +193,7 @@ fn generated_capstan_friction_is_traced_for_one_null_direction_and_refused_for_m
         1,
     );
     let model = parse(&two).unwrap();
-    assert_eq!(model.system.null_space.len(), 2);
+    assert_eq!(model.system().null_space.len(), 2);
     for output in &all[..4] {
         let refused = check(&model, &[*output]).unwrap_err();
         assert!(refused.reason.contains("capstan friction"), "{refused:?}");
@@ -227,8 +227,8 @@ fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynami
     assert!(model.capstan_before_an_idler());
     let worst = check_capstan_power(&model, 200, 17);
     println!("pin then idler: power balance worst {worst:.2e}");
-    let e = Solver::new(&model)
-        .forward_dynamics(&[0.1], &[1.0], &[], &[5.0, 5.0])
+    let e = Data::new(&model)
+        .forward_dynamics(&model, &[0.1], &[1.0], &[], &[5.0, 5.0])
         .unwrap_err();
     assert!(matches!(e, Error::NotYet(_)), "{e}");
     let refused =
@@ -246,15 +246,23 @@ fn forward_dynamics_with_capstan_friction_gives_back_the_motion_inverse_dynamics
     let example = std::fs::read_to_string("../examples/mechanisms/example2_capstan.ron").unwrap();
     for text in [pin_with("mu: 0.0", "mu: 0.2"), example] {
         let model = parse(&text).unwrap();
-        let mut solver = Solver::new(&model);
+        let mut solver = Data::new(&model);
         let mut rng = ChaCha8Rng::seed_from_u64(13);
         let mut worst = 0.0f64;
         for _ in 0..200 {
-            let [q, qd, qdd] = random_state(&mut rng, model.dof);
-            let r = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let [q, qd, qdd] = random_state(&mut rng, model.dof());
+            let r = solver
+                .inverse_dynamics(&model, &q, &qd, &qdd)
+                .unwrap()
+                .clone();
             let (tau, t) = (&r.motor_torques, &r.tendon_tensions);
-            let back = solver.forward_dynamics(&q, &qd, tau, t).unwrap();
-            let size = solver.forward_dynamics_scale(&q, &qd, tau, t).unwrap();
+            let back = solver
+                .forward_dynamics(&model, &q, &qd, tau, t)
+                .unwrap()
+                .to_vec();
+            let size = solver
+                .forward_dynamics_scale(&model, &q, &qd, tau, t)
+                .unwrap();
             let e = back
                 .iter()
                 .zip(&qdd)
@@ -262,8 +270,8 @@ fn forward_dynamics_with_capstan_friction_gives_back_the_motion_inverse_dynamics
                 / size;
             worst = worst.max(e);
         }
-        println!("{}: forward after inverse, worst {worst:.2e}", model.name);
-        assert!(worst <= 1e-12, "{}: {worst:e}", model.name);
+        println!("{}: forward after inverse, worst {worst:.2e}", model.name());
+        assert!(worst <= 1e-12, "{}: {worst:e}", model.name());
     }
 }
 
@@ -282,7 +290,7 @@ fn a_guide_on_a_joint_axis_wraps_more_as_the_link_its_tendon_arrives_from_turns(
     assert_eq!(text.matches(link1).count(), 1);
     let turned =
         parse(&text.replacen(link1, "dh: (a: 0.30, alpha: 0.0, d: 0.0, offset: 0.25)", 1)).unwrap();
-    for (strand, there) in model.strands[..2].iter().zip(&turned.strands) {
+    for (strand, there) in model.strands()[..2].iter().zip(turned.strands()) {
         let g = strand.idlers[0].guide.as_ref().unwrap();
         assert!(!g.wrap_is_constant());
         assert_eq!(g.wrap_rate, vec![1.0, 0.0], "{}", strand.name);
@@ -304,12 +312,12 @@ fn a_guide_on_a_joint_axis_wraps_more_as_the_link_its_tendon_arrives_from_turns(
 /// relative error.
 fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut solver = Solver::new(model);
+    let mut solver = Data::new(model);
     let mut worst = 0.0f64;
     let (mut lossy, mut uncontrollable) = (0, 0);
     for _ in 0..states {
-        let [q, qd, qdd] = random_state(&mut rng, model.dof);
-        let r = match solver.inverse_dynamics(&q, &qd, &qdd) {
+        let [q, qd, qdd] = random_state(&mut rng, model.dof());
+        let r = match solver.inverse_dynamics(model, &q, &qd, &qdd) {
             Ok(r) => r,
             // Wrap angles change with q, so a routing controllable at q = 0 whichever way
             // its tendons slide may not be everywhere: such a state is an error that says so.
@@ -317,19 +325,19 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
                 uncontrollable += 1;
                 continue;
             }
-            Err(e) => panic!("{}: {e} at {q:?} {qd:?} {qdd:?}", model.name),
+            Err(e) => panic!("{}: {e} at {q:?} {qd:?} {qdd:?}", model.name()),
         };
         let terms = lagrangian::power_in(model, &q, &qd, &r.tendon_tensions, &r.motor_torques);
         let power: f64 = terms.iter().sum();
         let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
         let segments = r.segment_tensions.as_ref().unwrap();
         let mut loss = 0.0;
-        for (strand, tensions) in model.strands.iter().zip(segments) {
+        for (strand, tensions) in model.strands().iter().zip(segments) {
             for (k, idler) in strand.idlers.iter().enumerate() {
                 if let Some(g) = &idler.guide {
                     let v = g.speed(&qd);
                     let step = (tensions[k + 1] - tensions[k]) * v;
-                    assert!(step >= 0.0, "{}: a guide gives {step} W", model.name);
+                    assert!(step >= 0.0, "{}: a guide gives {step} W", model.name());
                     loss += step;
                     // The capstan law itself, its wrap angle from the guide's geometry at q
                     // and its direction from the sliding speed (not the solver's factors).
@@ -339,7 +347,7 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
                         assert!(
                             ratio.abs() <= 1e-12 * tensions[k + 1].abs().max(1.0),
                             "{}: {} is not e^(-σμβ) = {f} times {}",
-                            model.name,
+                            model.name(),
                             tensions[k],
                             tensions[k + 1]
                         );
@@ -353,24 +361,24 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         assert!(
             e <= 1e-11,
             "{}: power balance off by {e:.3e} (loss {loss})",
-            model.name
+            model.name()
         );
         worst = worst.max(e);
     }
     assert!(
         lossy > states / 2,
         "{}: the guides hardly dissipate",
-        model.name
+        model.name()
     );
     assert!(
         uncontrollable <= states / 4,
         "{}: uncontrollable at {uncontrollable} states",
-        model.name
+        model.name()
     );
     if uncontrollable > 0 {
         println!(
             "{}: uncontrollable at {uncontrollable} of {states} states",
-            model.name
+            model.name()
         );
     }
     worst
@@ -382,7 +390,7 @@ fn example_2_with_capstan_friction_on_both_guides_balances_power_with_dissipatio
     let text = std::fs::read_to_string("../examples/mechanisms/example2_capstan.ron").unwrap();
     let model = parse(&text).unwrap();
     let guides: Vec<f64> = model
-        .strands
+        .strands()
         .iter()
         .flat_map(|s| &s.idlers)
         .filter_map(|i| i.guide.as_ref().map(|g| g.mu))
@@ -402,7 +410,7 @@ fn random_mechanisms_with_capstan_friction_on_every_guide_balance_power_with_dis
         };
         let (text, model) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
         let idlers = model
-            .bodies
+            .bodies()
             .iter()
             .filter(|b| {
                 matches!(
@@ -472,18 +480,20 @@ fn capstan_tensions_agree_with_double_double_in_f64_and_f32() {
         model.cast_numeric::<f32>(),
         model.cast_numeric::<DoubleDouble>(),
     );
-    let (mut s64, mut s32, mut sdd) = (Solver::new(&model), Solver::new(&m32), Solver::new(&mdd));
+    let (mut s64, mut s32, mut sdd) = (Data::new(&model), Data::new(&m32), Data::new(&mdd));
     let mut rng = ChaCha8Rng::seed_from_u64(31);
     let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
     for _ in 0..300 {
-        let [q, qd, qdd] = random_state(&mut rng, model.dof);
+        let [q, qd, qdd] = random_state(&mut rng, model.dof());
         // Exact in f32, so that every precision solves the same state.
         let narrow = |x: &[f64]| x.iter().map(|&v| v as f32).collect::<Vec<f32>>();
         let (q32, qd32, qdd32) = (narrow(&q), narrow(&qd), narrow(&qdd));
         let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
         let (q, qd, qdd) = (wide(&q32), wide(&qd32), wide(&qdd32));
         let dd = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
-        let reference = sdd.inverse_dynamics(&dd(&q), &dd(&qd), &dd(&qdd)).unwrap();
+        let reference = sdd
+            .inverse_dynamics(&mdd, &dd(&q), &dd(&qd), &dd(&qdd))
+            .unwrap();
         let all = |t: &[DoubleDouble], s: &[Vec<DoubleDouble>]| -> Vec<f64> {
             t.iter()
                 .chain(s.iter().flatten())
@@ -494,7 +504,7 @@ fn capstan_tensions_agree_with_double_double_in_f64_and_f32() {
             &reference.tendon_tensions,
             reference.segment_tensions.as_ref().unwrap(),
         );
-        let r64 = s64.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let r64 = s64.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let got64: Vec<f64> = r64
             .tendon_tensions
             .iter()
@@ -502,7 +512,7 @@ fn capstan_tensions_agree_with_double_double_in_f64_and_f32() {
             .copied()
             .collect();
         worst64 = worst64.max(tendyn_spec::measure::max_rel(&got64, &want));
-        let r32 = s32.inverse_dynamics(&q32, &qd32, &qdd32).unwrap();
+        let r32 = s32.inverse_dynamics(&m32, &q32, &qd32, &qdd32).unwrap();
         let got32: Vec<f64> = r32
             .tendon_tensions
             .iter()

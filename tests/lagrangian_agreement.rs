@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, DVector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::{Model, Row};
-use tendyn_core::Solver;
+use tendyn_core::Data;
 use tendyn_spec::measure::{max_rel as rel, random_state, routed_random_mechanisms};
 use tendyn_spec::{lagrangian, momentum};
 
@@ -25,32 +25,35 @@ fn flat(m: &DMatrix<f64>) -> Vec<f64> {
 /// Checks every quantity of one mechanism at `states` random states; returns the worst error.
 fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut solver = Solver::new(model);
+    let mut solver = Data::new(model);
     let mut worst = 0.0f64;
-    let n = model.dof;
+    let n = model.dof();
     for _ in 0..states {
         let [q, qd, qdd] = random_state(&mut rng, n);
-        let m = solver.mass_matrix(&q).unwrap();
+        let m = solver.mass_matrix(model, &q).unwrap();
         let m_flat: Vec<f64> = (0..n)
             .flat_map(|j| (0..n).map(move |i| (i, j)))
             .map(|(i, j)| m[i][j])
             .collect();
         let e_m = rel(&m_flat, &flat(&lagrangian::mass_matrix(model, &q)));
         let e_h = rel(
-            &solver.bias(&q, &qd).unwrap(),
+            solver.bias(model, &q, &qd).unwrap(),
             lagrangian::bias(model, &q, &qd).as_slice(),
         );
         let e_g = rel(
-            &solver.gravity(&q).unwrap(),
+            solver.gravity(model, &q).unwrap(),
             lagrangian::gravity_forces(model, &q).as_slice(),
         );
         let q_total = lagrangian::lagrange_generalized_forces(model, &q, &qd, &qdd);
         let q_act: DVector<f64> = &q_total - lagrangian::external_generalized_forces(model, &q);
-        let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
-        let rows = solver.last_balance_rows();
+        let id = solver
+            .inverse_dynamics(model, &q, &qd, &qdd)
+            .unwrap()
+            .clone();
+        let rows = solver.last_balance_rows(model).unwrap();
         let e_q = rel(&id.generalized_forces, q_act.as_slice());
         let e_q2 = rel(
-            &solver.generalized_forces(&q, &qd, &qdd).unwrap(),
+            solver.generalized_forces(model, &q, &qd, &qdd).unwrap(),
             q_act.as_slice(),
         );
         for (what, e) in [
@@ -63,7 +66,7 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             assert!(
                 e <= TOL,
                 "{}: {what} differs from the Lagrangian by {e:.3e} at q={q:?}",
-                model.name
+                model.name()
             );
             worst = worst.max(e);
         }
@@ -83,7 +86,11 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
                 .sum::<f64>(),
         );
         let e_p = (power - de).abs() / scale;
-        assert!(e_p <= TOL, "{}: power balance off by {e_p:.3e}", model.name);
+        assert!(
+            e_p <= TOL,
+            "{}: power balance off by {e_p:.3e}",
+            model.name()
+        );
         worst = worst.max(e_p);
         // Base reaction against the momentum balance.
         if let Some((f, mo)) = id.base_reaction {
@@ -93,24 +100,24 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             assert!(
                 e_f <= TOL && e_mo <= TOL,
                 "{}: base reaction off by {e_f:.3e} / {e_mo:.3e}",
-                model.name
+                model.name()
             );
             worst = worst.max(e_f).max(e_mo);
         }
         // The recursion's balance rows carry −E on the strand tensions: the transmission's
         // virtual-work derivation and the recursion's force moments agree.
         for (r, row) in rows.iter().enumerate() {
-            if matches!(model.system.rows[r], Row::Pretension(_)) {
+            if matches!(model.system().rows[r], Row::Pretension(_)) {
                 continue;
             }
-            for s in 0..model.strands.len() {
-                let k = model.strands[s].unknown;
+            for s in 0..model.strands().len() {
+                let k = model.strands()[s].unknown;
                 let got = -row.coefficients[k];
-                let want = model.system.matrix[r][k];
+                let want = model.system().matrix[r][k];
                 assert!(
                     (got - want).abs() <= 1e-13,
                     "{}: E[{r}][{k}] is {want} but the recursion gives {got}",
-                    model.name
+                    model.name()
                 );
             }
         }
@@ -122,7 +129,7 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
 fn paper_examples_agree_with_lagrange_power_and_momentum() {
     for (i, m) in examples().iter().enumerate() {
         let worst = check_mechanism(m, 200, 7 + i as u64);
-        println!("{}: worst relative error {worst:.2e}", m.name);
+        println!("{}: worst relative error {worst:.2e}", m.name());
     }
 }
 
@@ -140,10 +147,10 @@ fn random_spatial_mechanisms_agree_with_lagrange_power_and_momentum() {
         if shown < 16 {
             println!(
                 "{} ({} links, {} pulleys, {} tendons): worst relative error {worst:.2e}",
-                m.name,
-                m.dof,
-                m.bodies.len() - m.dof,
-                m.tendons.len()
+                m.name(),
+                m.dof(),
+                m.bodies().len() - m.dof(),
+                m.tendons().len()
             );
             shown += 1;
         }
@@ -158,24 +165,27 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     use tendyn_core::model::MotorKind;
     use tendyn_spec::poses::world_poses;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut solver = Solver::new(model);
+    let mut solver = Data::new(model);
     let v = |x: tendyn_core::spatial::Vec3<f64>| Vector3::new(x.x, x.y, x.z);
     let mut worst = 0.0f64;
     for _ in 0..states {
-        let [q, qd, qdd] = random_state(&mut rng, model.dof);
-        let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let [q, qd, qdd] = random_state(&mut rng, model.dof());
+        let id = solver
+            .inverse_dynamics(model, &q, &qd, &qdd)
+            .unwrap()
+            .clone();
         let (Some(bearings), Some(segments)) = (&id.bearings, &id.segment_tensions) else {
             return worst;
         };
         let poses = world_poses::<f64>(model, &q);
         let frame_rot = |f: Option<usize>| f.map_or(Matrix3::identity(), |l| poses[l].0);
-        for root in 0..model.bodies.len() {
-            let mut inside = vec![false; model.bodies.len()];
-            for (b, body) in model.bodies.iter().enumerate() {
+        for root in 0..model.bodies().len() {
+            let mut inside = vec![false; model.bodies().len()];
+            for (b, body) in model.bodies().iter().enumerate() {
                 inside[b] = b == root || body.parent.is_some_and(|p| inside[p]);
             }
             let (mut f_need, mut m_need) = momentum::subtree_reaction(model, &q, &qd, &qdd, root);
-            for (strand, tensions) in model.strands.iter().zip(segments) {
+            for (strand, tensions) in model.strands().iter().zip(segments) {
                 for (seg, t) in strand.segments.iter().zip(tensions) {
                     let rl = frame_rot(seg.frame);
                     let dir = rl * v(seg.dir) * *t;
@@ -195,11 +205,11 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
                     }
                 }
             }
-            let body = &model.bodies[root];
+            let body = &model.bodies()[root];
             let (r, origin) = poses[root];
             let (f, mut n) = bearings[root];
             if let Some(mo) = model
-                .motors
+                .motors()
                 .iter()
                 .find(|mo| mo.kind == MotorKind::Joint(root) || mo.kind == MotorKind::Pulley(root))
             {
@@ -214,7 +224,7 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             assert!(
                 e <= TOL && e_m <= TOL,
                 "{}: bearing of {} off by {e:.3e} (force) / {e_m:.3e} (moment)",
-                model.name,
+                model.name(),
                 body.name
             );
             worst = worst.max(e).max(e_m);
@@ -227,11 +237,11 @@ fn check_bearings(model: &Model<f64>, states: usize, seed: u64) -> f64 {
 fn bearing_forces_balance_the_momentum_of_each_subtree() {
     for (i, m) in examples().iter().enumerate() {
         let worst = check_bearings(m, 100, 40 + i as u64);
-        println!("{}: worst {worst:.2e}", m.name);
+        println!("{}: worst {worst:.2e}", m.name());
     }
     for (seed, m) in routed_random_mechanisms(8).iter().enumerate() {
         let worst = check_bearings(m, 20, seed as u64);
-        println!("{}: worst {worst:.2e}", m.name);
+        println!("{}: worst {worst:.2e}", m.name());
     }
 }
 
@@ -255,18 +265,18 @@ fn frictionless_guides_agree_with_lagrange_power_and_momentum() {
     for (i, text) in texts.iter().enumerate() {
         let model = tendyn_core::parse(text).unwrap();
         let here = model
-            .strands
+            .strands()
             .iter()
             .flat_map(|s| &s.idlers)
             .filter(|i| i.guide.is_some())
             .count();
-        let idlers = model.strands.iter().flat_map(|s| &s.idlers).count();
-        assert_eq!(here, idlers, "{}: every idler is a guide", model.name);
+        let idlers = model.strands().iter().flat_map(|s| &s.idlers).count();
+        assert_eq!(here, idlers, "{}: every idler is a guide", model.name());
         guides += here;
         let worst = check_mechanism(&model, 100, 40 + i as u64);
         println!(
             "{} with guides: worst relative error {worst:.2e}",
-            model.name
+            model.name()
         );
     }
     // (Two in Example 2, six in the random mechanisms.)

@@ -7,7 +7,7 @@
 
 use tendyn_core::spatial::Vec3;
 use tendyn_core::transmission::body_transform;
-use tendyn_core::Solver;
+use tendyn_core::Data;
 
 type M4 = [[f64; 4]; 4];
 
@@ -59,7 +59,7 @@ fn dh_parameters_compose_as_rotz_transz_transx_rotx_from_the_proximal_frame() {
     let mut got = tendyn_core::spatial::Transform::<f64>::identity();
     for (j, &(a, alpha, d, offset)) in params.iter().enumerate() {
         want = mul(&want, &dh(q[j] + offset, d, a, alpha));
-        got = got.compose(&body_transform(&m.bodies[j], q[j] + offset));
+        got = got.compose(&body_transform(&m.bodies()[j], q[j] + offset));
         for r in 0..3 {
             for c in 0..3 {
                 assert!((got.rotation.rows[r][c] - want[r][c]).abs() < 1e-15);
@@ -108,10 +108,10 @@ fn inertia_off_diagonals_are_tensor_entries_as_a_point_mass_body_shows() {
         com[0], com[1], com[2], i[0][0], i[1][1], i[2][2], i[0][1], i[0][2], i[1][2]
     );
     let m = tendyn_core::parse(&text).unwrap();
-    let mut s = Solver::new(&m);
+    let mut s = Data::new(&m);
     let (q, qd, qdd) = (0.4, 2.5, -3.0);
-    let r = s.inverse_dynamics(&[q], &[qd], &[qdd]).unwrap();
-    let (f, n) = r.bearings.unwrap()[0];
+    let r = s.inverse_dynamics(&m, &[q], &[qd], &[qdd]).unwrap();
+    let (f, n) = <Option<Vec<(Vec3<f64>, Vec3<f64>)>> as Clone>::clone(&r.bearings).unwrap()[0];
     let tau = r.motor_torques[0];
     // Particle sums in frame 1, about the joint point.
     let mut force = Vec3::<f64>::zero();
@@ -151,11 +151,13 @@ fn inertia_off_diagonals_are_tensor_entries_as_a_point_mass_body_shows() {
                 || e.to_string().contains("semi-definite")
         ),
         Ok(m2) => {
-            let (_, n2) = Solver::new(&m2)
-                .inverse_dynamics(&[q], &[qd], &[qdd])
-                .unwrap()
-                .bearings
-                .unwrap()[0];
+            let (_, n2) = <Option<Vec<(Vec3<f64>, Vec3<f64>)>> as Clone>::clone(
+                &Data::new(&m2)
+                    .inverse_dynamics(&m2, &[q], &[qd], &[qdd])
+                    .unwrap()
+                    .bearings,
+            )
+            .unwrap()[0];
             assert!(
                 !close(n2.x, moment.x) || !close(n2.y, moment.y),
                 "the test cannot tell the conventions apart"

@@ -7,7 +7,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::{Model, Solver};
+use tendyn_core::{Data, Model};
 use tendyn_spec::paper::{ARM, EX1};
 
 /// The example as shipped (a horizontal arm: gravity normal to its plane) and the same arm
@@ -46,10 +46,10 @@ fn close(got: f64, want: f64, scale: f64, what: &str) {
 #[test]
 fn example1_tension_difference_satisfies_eq28_link2_moment_balance() {
     for (m, g) in example("example1_endless") {
-        let mut s = Solver::new(&m);
+        let mut s = Data::new(&m);
         let (r2, _, _) = EX1;
         for [q, qd, qdd] in states(1, 500) {
-            let [t21, t22] = s.inverse_dynamics(&q, &qd, &qdd).unwrap().loop_sides[0];
+            let [t21, t22] = s.inverse_dynamics(&m, &q, &qd, &qdd).unwrap().loop_sides[0];
             close(r2 * (t21 - t22), ARM.eq28(&q, &qd, &qdd, g), 1.0, "Eq. 28");
             // The sides straddle the pretension.
             close(0.5 * (t21 + t22), 20.0, 20.0, "pretension");
@@ -60,11 +60,11 @@ fn example1_tension_difference_satisfies_eq28_link2_moment_balance() {
 #[test]
 fn example1_motor_torques_satisfy_eq29_and_corrected_eq30() {
     for (m, g) in example("example1_endless") {
-        let mut s = Solver::new(&m);
+        let mut s = Data::new(&m);
         let (r2, r3, i3) = EX1;
         let gamma = r2 / r3;
         for [q, qd, qdd] in states(2, 500) {
-            let id = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let id = s.inverse_dynamics(&m, &q, &qd, &qdd).unwrap();
             let [t21, t22] = id.loop_sides[0];
             let (n10, n30) = (id.motor_torques[0], id.motor_torques[1]);
             close(n30, ARM.eq29(&qdd, t21, t22), 1.0, "Eq. 29");
@@ -94,9 +94,12 @@ fn example2_structure_matrix_and_demand_match_eq33() {
                 );
             }
         }
-        let mut s = Solver::new(&m);
+        let mut s = Data::new(&m);
         for [q, qd, qdd] in states(3, 500) {
-            let t = s.inverse_dynamics(&q, &qd, &qdd).unwrap().tendon_tensions;
+            let t = &s
+                .inverse_dynamics(&m, &q, &qd, &qdd)
+                .unwrap()
+                .tendon_tensions;
             let (b1, b2) = ARM.eq33_b(&q, &qd, &qdd, g);
             let at = |j: usize| (0..3).map(|k| want[j][k] * t[k]).sum::<f64>();
             close(at(1), b1, 1.0, "Eq. 33a");

@@ -4,7 +4,7 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
+use tendyn_core::{Data, DoubleDouble, InverseDynamics, Model, Numeric};
 use tendyn_spec::measure::{max_rel as rel, random_state as state};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
@@ -55,17 +55,17 @@ fn double_double_agrees_with_f64_to_f64_precision_and_f32_to_f32_precision() {
     for m in mechanisms() {
         let m_dd = m.cast_numeric::<DoubleDouble>();
         let m_32 = m.cast_numeric::<f32>();
-        let (mut s64, mut sdd, mut s32) = (Solver::new(&m), Solver::new(&m_dd), Solver::new(&m_32));
+        let (mut s64, mut sdd, mut s32) = (Data::new(&m), Data::new(&m_dd), Data::new(&m_32));
         let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
         for _ in 0..50 {
-            let [q, qd, qdd] = state(&mut rng, m.dof);
+            let [q, qd, qdd] = state(&mut rng, m.dof());
             let reference = flatten(
-                &sdd.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd))
+                sdd.inverse_dynamics(&m_dd, &lift(&q), &lift(&qd), &lift(&qdd))
                     .unwrap(),
             );
-            let r64 = flatten(&s64.inverse_dynamics(&q, &qd, &qdd).unwrap());
+            let r64 = flatten(s64.inverse_dynamics(&m, &q, &qd, &qdd).unwrap());
             let r32 = flatten(
-                &s32.inverse_dynamics(&lift(&q), &lift(&qd), &lift(&qdd))
+                s32.inverse_dynamics(&m_32, &lift(&q), &lift(&qd), &lift(&qdd))
                     .unwrap(),
             );
             worst64 = worst64.max(rel(&r64, &reference));
@@ -73,17 +73,17 @@ fn double_double_agrees_with_f64_to_f64_precision_and_f32_to_f32_precision() {
         }
         println!(
             "{}: f64 {worst64:.2e}, f32 {worst32:.2e} (max-norm relative to double-double)",
-            m.name
+            m.name()
         );
         assert!(
             worst64 < 1e-12,
             "{}: f64 is {worst64:.3e} from the double-double reference",
-            m.name
+            m.name()
         );
         assert!(
             worst32 < 1e-4,
             "{}: f32 is {worst32:.3e} from the double-double reference",
-            m.name
+            m.name()
         );
         assert!(
             worst64 > 0.0,
@@ -99,17 +99,17 @@ fn mass_matrix_is_symmetric_positive_definite() {
     // `M e_j = Q(q, 0, e_j) − Q(q, 0, 0)`; `M_ij` and `M_ji` then come from different runs.
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     for m in mechanisms() {
-        let mut s = Solver::new(&m);
+        let mut s = Data::new(&m);
         for _ in 0..50 {
-            let [q, _, _] = state(&mut rng, m.dof);
-            let n = m.dof;
+            let [q, _, _] = state(&mut rng, m.dof());
+            let n = m.dof();
             let rest = vec![0.0; n];
-            let q0 = s.generalized_forces(&q, &rest, &rest).unwrap();
+            let q0 = s.generalized_forces(&m, &q, &rest, &rest).unwrap().to_vec();
             let columns: Vec<Vec<f64>> = (0..n)
                 .map(|j| {
                     let mut e = rest.clone();
                     e[j] = 1.0;
-                    let qj = s.generalized_forces(&q, &rest, &e).unwrap();
+                    let qj = s.generalized_forces(&m, &q, &rest, &e).unwrap();
                     qj.iter().zip(&q0).map(|(a, b)| a - b).collect()
                 })
                 .collect();
@@ -118,21 +118,21 @@ fn mass_matrix_is_symmetric_positive_definite() {
             // round-off is relative to those, not to M.
             let size = q0.iter().fold(dm.amax(), |a, x| a.max(x.abs()));
             let asym = (&dm - dm.transpose()).amax() / size;
-            assert!(asym < 1e-13, "{}: M is asymmetric by {asym:.2e}", m.name);
-            let mm = s.mass_matrix(&q).unwrap();
+            assert!(asym < 1e-13, "{}: M is asymmetric by {asym:.2e}", m.name());
+            let mm = s.mass_matrix(&m, &q).unwrap();
             let e_m = (0..n)
                 .flat_map(|i| (0..n).map(move |j| (i, j)))
                 .fold(0.0f64, |e, (i, j)| e.max((mm[i][j] - dm[(i, j)]).abs()));
             assert!(
                 e_m / size < 1e-13,
                 "{}: mass_matrix differs by {e_m:.2e}",
-                m.name
+                m.name()
             );
             let eig = dm.symmetric_eigen().eigenvalues;
             assert!(
                 eig.min() > 0.0,
                 "{}: M has eigenvalue {}",
-                m.name,
+                m.name(),
                 eig.min()
             );
         }
@@ -143,16 +143,16 @@ fn mass_matrix_is_symmetric_positive_definite() {
 fn forward_dynamics_undoes_inverse_dynamics() {
     let mut rng = ChaCha8Rng::seed_from_u64(13);
     for m in mechanisms() {
-        let mut s = Solver::new(&m);
+        let mut s = Data::new(&m);
         let mut worst = 0.0f64;
         for _ in 0..50 {
-            let [q, qd, qdd] = state(&mut rng, m.dof);
-            let id = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let [q, qd, qdd] = state(&mut rng, m.dof());
+            let id = s.inverse_dynamics(&m, &q, &qd, &qdd).unwrap().clone();
             let back = s
-                .forward_dynamics(&q, &qd, &id.motor_torques, &id.tendon_tensions)
+                .forward_dynamics(&m, &q, &qd, &id.motor_torques, &id.tendon_tensions)
                 .unwrap();
-            worst = worst.max(rel(&back, &qdd));
+            worst = worst.max(rel(back, &qdd));
         }
-        assert!(worst < 1e-10, "{}: round trip off by {worst:.3e}", m.name);
+        assert!(worst < 1e-10, "{}: round trip off by {worst:.3e}", m.name());
     }
 }

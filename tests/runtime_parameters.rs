@@ -1,7 +1,7 @@
 //! Runtime parameters: a mechanism whose payload, inertia and gravity are parameters, set at
 //! run time, is exactly the mechanism with those numbers typed into the file.
 
-use tendyn_core::Solver;
+use tendyn_core::Data;
 
 fn example(name: &str) -> String {
     tendyn_spec::examples::text(name)
@@ -19,14 +19,18 @@ fn parameters_set_at_run_time_give_the_mechanism_with_those_numbers_typed_in() {
         "substitutions applied"
     );
     let model = tendyn_core::parse(&text).unwrap();
-    assert_eq!(model.parameters.len(), 4);
+    assert_eq!(model.parameters().len(), 4);
     // Nominal values: the shipped example.
     let shipped = tendyn_core::parse(&example("example3_stanford_jpl")).unwrap();
     let (q, qd, qdd) = ([0.2, 0.7, -0.4], [1.0, -2.0, 0.5], [3.0, -1.0, 4.0]);
-    let nominal = Solver::new(&model).inverse_dynamics(&q, &qd, &qdd).unwrap();
-    let want = Solver::new(&shipped)
-        .inverse_dynamics(&q, &qd, &qdd)
-        .unwrap();
+    let nominal = Data::new(&model)
+        .inverse_dynamics(&model, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
+    let want = Data::new(&shipped)
+        .inverse_dynamics(&shipped, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
     assert_eq!(nominal.tendon_tensions, want.tendon_tensions);
     // A 50 g payload, a stiffer inertia, weaker gravity, a lighter idler.
     let heavy = model
@@ -39,8 +43,14 @@ fn parameters_set_at_run_time_give_the_mechanism_with_those_numbers_typed_in() {
             .replacen("yy: 0.0000000245, zz: 0.000000049)", "yy: 0.0000000245, zz: 0.000000045)", 1),
     )
     .unwrap();
-    let got = Solver::new(&heavy).inverse_dynamics(&q, &qd, &qdd).unwrap();
-    let want = Solver::new(&typed).inverse_dynamics(&q, &qd, &qdd).unwrap();
+    let got = Data::new(&heavy)
+        .inverse_dynamics(&heavy, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
+    let want = Data::new(&typed)
+        .inverse_dynamics(&typed, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
     assert_eq!(got.generalized_forces, want.generalized_forces);
     assert_eq!(got.tendon_tensions, want.tendon_tensions);
     assert_ne!(
@@ -68,4 +78,124 @@ fn parameter_values_are_checked_like_the_file() {
         .unwrap_err();
     assert!(err.to_string().contains("i3zz"), "{err}");
     assert!(model.with_parameters(&[0.02]).is_err());
+}
+
+/// One `Data` serves a mechanism and every parameter set of it, with results equal to a
+/// fresh `Data`'s; a mechanism of another shape gets an error from every evaluator, never
+/// a panic or a result computed with the wrong buffers.
+#[test]
+fn one_data_serves_a_mechanism_at_any_parameters_and_refuses_another_shape() {
+    let model = tendyn_core::parse(&parametric_finger()).unwrap();
+    let heavy = model
+        .with_parameters(&[0.07, 0.0000035, -3.7, 0.000000045])
+        .unwrap();
+    let (q, qd, qdd) = ([0.2, 0.7, -0.4], [1.0, -2.0, 0.5], [3.0, -1.0, 4.0]);
+    let mut data = Data::new(&model);
+    data.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
+    let reused = data
+        .inverse_dynamics(&heavy, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
+    let fresh = Data::new(&heavy)
+        .inverse_dynamics(&heavy, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
+    assert_eq!(reused.tendon_tensions, fresh.tendon_tensions);
+    assert_eq!(reused.segment_tensions, fresh.segment_tensions);
+
+    let other = tendyn_core::parse(&example("example1_endless")).unwrap();
+    let n = other.dof();
+    let z = vec![0.0; n];
+    let t = vec![0.0; other.tendons().len()];
+    let m = vec![0.0; other.motors().len()];
+    let refused = |e: tendyn_core::Error| {
+        let shown = e.to_string();
+        assert!(shown.contains("Data::new(&model)"), "{shown}");
+    };
+    refused(data.inverse_dynamics(&other, &z, &z, &z).unwrap_err());
+    refused(data.generalized_forces(&other, &z, &z, &z).unwrap_err());
+    refused(data.mass_matrix(&other, &z).unwrap_err());
+    refused(data.bias(&other, &z, &z).unwrap_err());
+    refused(data.gravity(&other, &z).unwrap_err());
+    refused(data.forward_dynamics(&other, &z, &z, &m, &t).unwrap_err());
+    refused(
+        data.forward_dynamics_scale(&other, &z, &z, &m, &t)
+            .unwrap_err(),
+    );
+    refused(data.last_balance_rows(&other).unwrap_err());
+}
+
+/// A tree of rigid bodies built in code has no tendons or motors: inverse dynamics says so
+/// (its generalized forces are the answer), the joint-space terms are those of the file.
+#[test]
+fn a_rigid_tree_built_in_code_gives_the_joint_space_terms_of_its_bodies() {
+    let file = tendyn_core::parse(&example("example3_stanford_jpl")).unwrap();
+    let links = file.bodies()[..file.dof()].to_vec();
+    let g = file.gravity().to_array();
+    let tree = tendyn_core::Model::rigid_tree("links", g, file.dof(), links, None).unwrap();
+    let (q, qd) = ([0.2, 0.7, -0.4], [1.0, -2.0, 0.5]);
+    let mut data = Data::new(&tree);
+    let err = data.inverse_dynamics(&tree, &q, &qd, &q).unwrap_err();
+    assert!(err.to_string().contains("no tendons or motors"), "{err}");
+    // The file's pulleys add inertia: the links alone weigh less than the whole finger.
+    let whole = Data::new(&file).mass_matrix(&file, &q).unwrap().to_vec();
+    let bare = data.mass_matrix(&tree, &q).unwrap().to_vec();
+    assert!(
+        bare[0][0] > 0.0 && bare[0][0] < whole[0][0],
+        "{bare:?} vs {whole:?}"
+    );
+    let qdd = data.forward_dynamics(&tree, &q, &qd, &[], &[]).unwrap();
+    assert!(qdd.iter().all(|x| x.is_finite()));
+}
+
+/// `tendyn equations` names more numbers than the file's parameters; what it asks is
+/// checked: no clash with a parameter, finite values, every index in range.
+#[test]
+fn numbers_named_for_printing_are_checked() {
+    use tendyn_core::model::Slot;
+    let model = tendyn_core::parse(&parametric_finger()).unwrap();
+    let mass = model.bodies()[0].mass;
+    let named = |names: &[(&str, f64)], slots: &[(Slot, usize)]| {
+        let names: Vec<(String, f64)> = names.iter().map(|&(n, v)| (n.to_string(), v)).collect();
+        model.with_named_numbers(&names, slots, &[])
+    };
+    let m = named(&[("m1", mass)], &[(Slot::Mass(0), 0), (Slot::Com(0, 0), 0)]).unwrap();
+    assert_eq!(m.parameters().len(), model.parameters().len() + 1);
+    assert_eq!(m.parameters().last().unwrap().name, "m1");
+    for (names, slots, said) in [
+        (
+            vec![("m3", mass)],
+            vec![],
+            "another parameter has this name",
+        ),
+        (
+            vec![("m1", mass), ("m1", mass)],
+            vec![],
+            "another parameter has this name",
+        ),
+        (vec![("m1", f64::NAN)], vec![], "not finite"),
+        (
+            vec![("m9", 1.0)],
+            vec![(Slot::Mass(99), 0)],
+            "not a number of the model",
+        ),
+        (
+            vec![("w", 1.0)],
+            vec![(Slot::WrenchForce(0), 0)],
+            "not a number of the model",
+        ),
+        (
+            vec![("m1", mass)],
+            vec![(Slot::Mass(0), 1)],
+            "names parameter 1 of 1",
+        ),
+    ] {
+        let err = named(&names, &slots).unwrap_err().to_string();
+        assert!(err.contains(said), "{err}");
+    }
+    let err = model
+        .with_named_numbers(&[], &[], &[((99, 0), 1.0)])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("out of range"), "{err}");
 }

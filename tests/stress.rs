@@ -15,7 +15,7 @@
 //! Long sweeps are `#[ignore]`d; everything else measures each case once (40 states).
 
 use std::sync::OnceLock;
-use tendyn_core::{DoubleDouble, Error, Model, Real, Solver};
+use tendyn_core::{Data, DoubleDouble, Error, Model, Real};
 use tendyn_spec::stress::{
     self, measure_case, CaseFigures, Options, StressCase, WELL_CONDITIONED_TARGET,
 };
@@ -269,9 +269,9 @@ fn tensions_near_and_past_the_pretension_are_flagged_and_max_tension_is_an_error
     assert_eq!(none.outcomes.flagged, none.outcomes.states);
     let case = stress::case("loop_near_slack");
     let model = case.model().unwrap();
-    let mut s = Solver::new(&model);
-    for [q, qd, qdd] in case.states(model.dof, 40) {
-        let r = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    let mut s = Data::new(&model);
+    for [q, qd, qdd] in case.states(model.dof(), 40) {
+        let r = s.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let negative = r.loop_sides[0].iter().any(|&t| t < 0.0);
         assert_eq!(r.slack_loops(), vec![negative]);
         assert!((r.loop_sides[0][0] + r.loop_sides[0][1] - 8.0).abs() < 1e-12);
@@ -333,45 +333,45 @@ fn mechanisms_for_range_checks() -> Vec<Model<f64>> {
 #[test]
 fn non_finite_and_overflowing_states_are_errors_in_every_precision() {
     for m in mechanisms_for_range_checks() {
-        let n = m.dof;
-        let mut s = Solver::new(&m);
+        let n = m.dof();
+        let mut s = Data::new(&m);
         let ok = vec![0.3; n];
-        let (mt, tt) = (vec![0.0; m.motors.len()], vec![1.0; m.tendons.len()]);
+        let (mt, tt) = (vec![0.0; m.motors().len()], vec![1.0; m.tendons().len()]);
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             let mut v = ok.clone();
             v[n - 1] = bad;
             for r in [
-                s.inverse_dynamics(&v, &ok, &ok).map(|_| ()),
-                s.inverse_dynamics(&ok, &v, &ok).map(|_| ()),
-                s.inverse_dynamics(&ok, &ok, &v).map(|_| ()),
-                s.forward_dynamics(&ok, &v, &mt, &tt).map(|_| ()),
-                s.mass_matrix(&v).map(|_| ()),
+                s.inverse_dynamics(&m, &v, &ok, &ok).map(|_| ()),
+                s.inverse_dynamics(&m, &ok, &v, &ok).map(|_| ()),
+                s.inverse_dynamics(&m, &ok, &ok, &v).map(|_| ()),
+                s.forward_dynamics(&m, &ok, &v, &mt, &tt).map(|_| ()),
+                s.mass_matrix(&m, &v).map(|_| ()),
             ] {
-                assert!(matches!(r, Err(Error::State(_))), "{}: {r:?}", m.name);
+                assert!(matches!(r, Err(Error::State(_))), "{}: {r:?}", m.name());
             }
         }
         // Finite inputs whose squares overflow: an error, not a NaN.
         let huge = vec![1e200; n];
         for r in [
-            s.inverse_dynamics(&ok, &huge, &ok).map(|_| ()),
-            s.bias(&ok, &huge).map(|_| ()),
-            s.generalized_forces(&ok, &huge, &ok).map(|_| ()),
-            s.forward_dynamics(&ok, &huge, &mt, &tt).map(|_| ()),
+            s.inverse_dynamics(&m, &ok, &huge, &ok).map(|_| ()),
+            s.bias(&m, &ok, &huge).map(|_| ()),
+            s.generalized_forces(&m, &ok, &huge, &ok).map(|_| ()),
+            s.forward_dynamics(&m, &ok, &huge, &mt, &tt).map(|_| ()),
         ] {
             assert!(
                 matches!(r, Err(Error::State(_)) | Err(Error::Tension(_))),
                 "{}: {r:?}",
-                m.name
+                m.name()
             );
         }
         // In f32 the same happens far sooner (1e20² overflows).
         let m32 = m.cast_numeric::<f32>();
-        let mut s32 = Solver::new(&m32);
+        let mut s32 = Data::new(&m32);
         let (ok32, huge32) = (vec![0.3f32; n], vec![1e20f32; n]);
-        let r = s32.inverse_dynamics(&ok32, &huge32, &ok32);
-        assert!(r.is_err(), "{}: f32 overflow returned {r:?}", m.name);
-        let r = s32.bias(&ok32, &huge32);
-        assert!(matches!(r, Err(Error::State(_))), "{}: {r:?}", m.name);
+        let r = s32.inverse_dynamics(&m32, &ok32, &huge32, &ok32);
+        assert!(r.is_err(), "{}: f32 overflow returned {r:?}", m.name());
+        let r = s32.bias(&m32, &ok32, &huge32);
+        assert!(matches!(r, Err(Error::State(_))), "{}: {r:?}", m.name());
     }
 }
 
@@ -418,7 +418,7 @@ fn passive_forward_dynamics_conserves_energy_to_the_order_of_rk4() {
         ("example3_stanford_jpl", vec![0.3, 0.8, 0.5]),
     ] {
         let model = stress::case(name).model().unwrap();
-        let qd0 = vec![0.0; model.dof];
+        let qd0 = vec![0.0; model.dof()];
         let coarse = stress::energy_drift(&model, &q0, &qd0, 2e-3, 3.0).unwrap();
         let fine = stress::energy_drift(&model, &q0, &qd0, 1e-3, 3.0).unwrap();
         let scale = fine.max_kinetic;

@@ -2,7 +2,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::{Error, Solver};
+use tendyn_core::{Data, Error};
 
 fn example(name: &str) -> String {
     tendyn_spec::examples::text(name)
@@ -18,30 +18,30 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
         (THREE_ON_ONE.to_string(), 2),
     ] {
         let m = tendyn_core::parse(&text).unwrap();
-        assert_eq!(m.system.null_space.len(), d);
-        let mut s = Solver::new(&m);
+        assert_eq!(m.system().null_space.len(), d);
+        let mut s = Data::new(&m);
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         for _ in 0..200 {
             let mut v = |s: f64| {
-                (0..m.dof)
+                (0..m.dof())
                     .map(|_| rng.random_range(-s..s))
                     .collect::<Vec<f64>>()
             };
             let (q, qd, qdd) = (v(3.0), v(3.0), v(10.0));
-            let r = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let r = s.inverse_dynamics(&m, &q, &qd, &qdd).unwrap();
             let t = &r.tendon_tensions;
-            let floors: Vec<f64> = m.tendons.iter().map(|t| t.floor).collect();
+            let floors: Vec<f64> = m.tendons().iter().map(|t| t.floor).collect();
             // Every tendon at or above its floor, and at least one on it (else less would do).
             let slack: Vec<f64> = t.iter().zip(&floors).map(|(t, f)| t - f).collect();
             assert!(
                 slack.iter().all(|&x| x >= -1e-12),
                 "{}: below a floor: {t:?}",
-                m.name
+                m.name()
             );
             assert!(
                 slack.iter().any(|&x| x.abs() < 1e-10),
                 "{}: no tendon at its floor: {t:?}",
-                m.name
+                m.name()
             );
             // Minimal-norm part plus null-space part; the null-space part is a null vector and
             // the minimal-norm part is orthogonal to the null space.
@@ -57,14 +57,14 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
                     "null part moves joint {j}"
                 );
             }
-            for nv in &m.system.null_space {
+            for nv in &m.system().null_space {
                 let dot: f64 = m
-                    .tendons
+                    .tendons()
                     .iter()
                     .map(|tt| {
                         nv[tt.unknown]
                             * r.minimal_norm_tensions[m
-                                .tendons
+                                .tendons()
                                 .iter()
                                 .position(|x| x.unknown == tt.unknown)
                                 .unwrap()]
@@ -81,9 +81,9 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
             for _ in 0..50 {
                 let mut cand = t.clone();
                 let step = 10f64.powf(rng.random_range(-4.0..0.0));
-                for nv in &m.system.null_space {
+                for nv in &m.system().null_space {
                     let c = rng.random_range(-step..step);
-                    for (k, tt) in m.tendons.iter().enumerate() {
+                    for (k, tt) in m.tendons().iter().enumerate() {
                         cand[k] += c * nv[tt.unknown];
                     }
                 }
@@ -91,7 +91,7 @@ fn open_ended_tensions_keep_their_floors_with_the_least_norm() {
                     assert!(
                         norm(&cand) >= norm(t) * (1.0 - 1e-12),
                         "{}: a feasible {cand:?} beats {t:?}",
-                        m.name
+                        m.name()
                     );
                 }
             }
@@ -106,13 +106,13 @@ fn a_motion_that_needs_more_than_an_actuator_can_pull_is_an_error_naming_the_ten
         "(name: \"T11\", route: [(\"drum1\", Ccw)], exit: (-0.25, 0.10, 0.0), max_tension: 200.0),",
     );
     let m = tendyn_core::parse(&text).unwrap();
-    let mut s = Solver::new(&m);
+    let mut s = Data::new(&m);
     // At rest, holding the arm against gravity needs about 130 N on T11 (r1 = 4 cm): fine.
     assert!(s
-        .inverse_dynamics(&[0.3, 0.5], &[0.0, 0.0], &[0.0, 0.0])
+        .inverse_dynamics(&m, &[0.3, 0.5], &[0.0, 0.0], &[0.0, 0.0])
         .is_ok());
     // A hard acceleration needs far more.
-    match s.inverse_dynamics(&[0.3, 0.5], &[1.0, 0.5], &[40.0, 30.0]) {
+    match s.inverse_dynamics(&m, &[0.3, 0.5], &[1.0, 0.5], &[40.0, 30.0]) {
         Err(Error::Tension(msg)) => assert!(
             msg.starts_with("`T11` at its maximum 200 N cannot produce ")
                 && msg.contains("the most they can produce with every other tendon at its floor"),
@@ -128,7 +128,10 @@ fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clea
     // pretension, so one side would have to push.
     let (q, qd, qdd) = ([0.3, 0.5], [1.0, 0.5], [20.0, 30.0]);
     let low = tendyn_core::parse(&example("example1_endless")).unwrap();
-    let r = Solver::new(&low).inverse_dynamics(&q, &qd, &qdd).unwrap();
+    let r = Data::new(&low)
+        .inverse_dynamics(&low, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
     let [ccw, cw] = r.loop_sides[0];
     let slack = r.slack_loops()[0];
     assert!(
@@ -139,7 +142,10 @@ fn an_endless_loop_side_below_zero_is_flagged_slack_and_a_higher_pretension_clea
         &example("example1_endless").replace("pretension: 20.0", "pretension: 50.0"),
     )
     .unwrap();
-    let r2 = Solver::new(&high).inverse_dynamics(&q, &qd, &qdd).unwrap();
+    let r2 = Data::new(&high)
+        .inverse_dynamics(&high, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
     let [ccw2, cw2] = r2.loop_sides[0];
     let slack2 = r2.slack_loops()[0];
     assert!(!slack2 && cw2 > 0.0, "sides {ccw2}, {cw2}");
@@ -179,10 +185,11 @@ fn a_maximum_is_a_constraint_of_the_choice_not_a_check_after_it() {
     // = 52·(1 − 15/26) = 22 N, and its KKT multipliers are non-negative (T = Aᵀy − ν₁e₁ + μ₃e₃
     // with y = 22/a₂, ν₁ = a₁y − 15 = 29, μ₃ = 1 + 0.01y ≈ 23.4).
     let m = tendyn_core::parse(&one_joint_three_tendons(15.0, 30.0)).unwrap();
-    assert_eq!(m.system.null_space.len(), 2);
-    let r = Solver::new(&m)
-        .inverse_dynamics(&[0.3], &[0.0], &[50.0])
-        .unwrap();
+    assert_eq!(m.system().null_space.len(), 2);
+    let r = Data::new(&m)
+        .inverse_dynamics(&m, &[0.3], &[0.0], &[50.0])
+        .unwrap()
+        .clone();
     let want = [15.0, 22.0, 1.0];
     for (got, want) in r.tendon_tensions.iter().zip(want) {
         assert!(
@@ -193,9 +200,10 @@ fn a_maximum_is_a_constraint_of_the_choice_not_a_check_after_it() {
     }
     // Without the maximum the old answer returns, T1 = 20.8 N.
     let free = tendyn_core::parse(&one_joint_three_tendons(1e6, 1e6)).unwrap();
-    let r = Solver::new(&free)
-        .inverse_dynamics(&[0.3], &[0.0], &[50.0])
-        .unwrap();
+    let r = Data::new(&free)
+        .inverse_dynamics(&free, &[0.3], &[0.0], &[50.0])
+        .unwrap()
+        .clone();
     assert!(
         (r.tendon_tensions[0] - 20.8).abs() < 1e-12,
         "{:?}",
@@ -207,7 +215,7 @@ fn a_maximum_is_a_constraint_of_the_choice_not_a_check_after_it() {
 fn a_state_the_bounds_cannot_meet_names_the_tendons_at_their_maxima_and_what_they_can_do() {
     // With T2 ≤ 20 N the most the tendons give is 15a₁ + 20a₂ − 0.01·1 = 0.4804 N·m.
     let m = tendyn_core::parse(&one_joint_three_tendons(15.0, 20.0)).unwrap();
-    match Solver::new(&m).inverse_dynamics(&[0.3], &[0.0], &[50.0]) {
+    match Data::new(&m).inverse_dynamics(&m, &[0.3], &[0.0], &[50.0]) {
         Err(Error::Tension(msg)) => assert_eq!(
             msg,
             "`T1` at its maximum 15 N and `T2` at its maximum 20 N cannot produce 0.5000 N·m \
@@ -217,8 +225,8 @@ fn a_state_the_bounds_cannot_meet_names_the_tendons_at_their_maxima_and_what_the
         other => panic!("expected a tension error, got {other:?}"),
     }
     // Pulling the other way, T3 has no maximum: every negative torque is feasible.
-    assert!(Solver::new(&m)
-        .inverse_dynamics(&[0.3], &[0.0], &[-5000.0])
+    assert!(Data::new(&m)
+        .inverse_dynamics(&m, &[0.3], &[0.0], &[-5000.0])
         .is_ok());
 }
 
@@ -243,8 +251,8 @@ fn the_centered_objective_puts_opposing_tendons_mid_way_between_their_bounds() {
             .all(|(g, w)| (g - w).abs() <= 1e-13 * w.abs().max(1.0))
     };
     let m = tendyn_core::parse(text).unwrap();
-    let mut s = Solver::new(&m);
-    let r = s.inverse_dynamics(&[0.0], &[0.0], &[20.0]).unwrap();
+    let mut s = Data::new(&m);
+    let r = s.inverse_dynamics(&m, &[0.0], &[0.0], &[20.0]).unwrap();
     assert!(
         close(&r.tendon_tensions, [21.0, 11.0]),
         "{:?}",
@@ -252,14 +260,14 @@ fn the_centered_objective_puts_opposing_tendons_mid_way_between_their_bounds() {
     );
     // Q = −0.7 N·m: T₁ − T₂ = −35, t = −12.5, c + t(1, −1) = (−1.5, 33.5) is below flex's
     // floor, so flex rests on it and ext takes the rest: (1, 36).
-    let r = s.inverse_dynamics(&[0.0], &[0.0], &[-70.0]).unwrap();
+    let r = s.inverse_dynamics(&m, &[0.0], &[0.0], &[-70.0]).unwrap();
     assert!(
         close(&r.tendon_tensions, [1.0, 36.0]),
         "{:?}",
         r.tendon_tensions
     );
     // In between, nothing binds: Q = −0.2 N·m, t = 0, T = c = (11, 21).
-    let r = s.inverse_dynamics(&[0.0], &[0.0], &[-20.0]).unwrap();
+    let r = s.inverse_dynamics(&m, &[0.0], &[0.0], &[-20.0]).unwrap();
     assert!(
         close(&r.tendon_tensions, [11.0, 21.0]),
         "{:?}",
@@ -267,9 +275,10 @@ fn the_centered_objective_puts_opposing_tendons_mid_way_between_their_bounds() {
     );
     // The least-norm objective keeps the antagonist on its floor instead: (11, 1).
     let least = tendyn_core::parse(&text.replace(" distribution: Centered,", "")).unwrap();
-    let r = Solver::new(&least)
-        .inverse_dynamics(&[0.0], &[0.0], &[20.0])
-        .unwrap();
+    let r = Data::new(&least)
+        .inverse_dynamics(&least, &[0.0], &[0.0], &[20.0])
+        .unwrap()
+        .clone();
     assert!(
         close(&r.tendon_tensions, [11.0, 1.0]),
         "{:?}",
@@ -308,22 +317,22 @@ fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
     let u = f32::EPSILON as f64 / 2.0;
     for text in mechanisms {
         let m = tendyn_core::parse(&text).unwrap();
-        let d = m.system.null_space.len();
+        let d = m.system().null_space.len();
         let m32 = m.cast_numeric::<f32>();
-        let (mut s64, mut s32) = (Solver::new(&m), Solver::new(&m32));
+        let (mut s64, mut s32) = (Data::new(&m), Data::new(&m32));
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let (mut compared, mut infeasible) = (0, 0);
         for _ in 0..2000 {
             // States exact in f32, so that both solve the same problem.
             let mut v = |s: f64| {
-                (0..m.dof)
+                (0..m.dof())
                     .map(|_| rng.random_range(-s..s) as f32)
                     .collect::<Vec<f32>>()
             };
             let (q, qd, qdd) = (v(3.0), v(2.0), v(5.0));
             let f = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
-            let r64 = s64.inverse_dynamics(&f(&q), &f(&qd), &f(&qdd));
-            let r32 = s32.inverse_dynamics(&q, &qd, &qdd);
+            let r64 = s64.inverse_dynamics(&m, &f(&q), &f(&qd), &f(&qdd));
+            let r32 = s32.inverse_dynamics(&m32, &q, &qd, &qdd);
             let (r64, r32) = match (r64, r32) {
                 (Ok(a), Ok(b)) => (a, b),
                 (Err(_), Err(_)) => {
@@ -331,7 +340,7 @@ fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
                     continue;
                 }
                 // Only a state on the boundary of feasibility, to f32 round-off, may differ.
-                (a, b) => panic!("{}: f64 {:?} but f32 {:?}", m.name, a.is_ok(), b.is_ok()),
+                (a, b) => panic!("{}: f64 {:?} but f32 {:?}", m.name(), a.is_ok(), b.is_ok()),
             };
             let scale = r64
                 .tendon_tensions
@@ -341,24 +350,24 @@ fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
                 .tendon_tensions
                 .iter()
                 .zip(&r64.tendon_tensions)
-                .zip(&m.tendons)
+                .zip(m.tendons())
             {
                 let t = *t as f64;
                 assert!(
                     t >= tendon.floor - 64.0 * u * scale,
                     "{}: {t} below the floor {} (d = {d})",
-                    m.name,
+                    m.name(),
                     tendon.floor
                 );
                 if let Some(max) = tendon.max_tension {
-                    assert!(t <= max + 64.0 * u * scale, "{}: {t} above {max}", m.name);
+                    assert!(t <= max + 64.0 * u * scale, "{}: {t} above {max}", m.name());
                 }
                 // The inputs themselves are rounded to f32, and the tensions follow the
                 // state with a condition of a few hundred at most on these mechanisms.
                 assert!(
                     (t - want).abs() <= 1e4 * u * scale,
                     "{}: f32 {:?} vs f64 {:?}",
-                    m.name,
+                    m.name(),
                     r32.tendon_tensions,
                     r64.tendon_tensions
                 );
@@ -367,12 +376,12 @@ fn the_distribution_is_exact_in_f32_for_two_and_three_null_directions() {
         }
         println!(
             "{} (d = {d}): {compared} states compared, {infeasible} infeasible in both",
-            m.name
+            m.name()
         );
         assert!(
             compared > 1000,
             "{}: only {compared} feasible states",
-            m.name
+            m.name()
         );
     }
 }
@@ -404,9 +413,9 @@ fn a_controllable_routing_with_a_thin_cone_of_positive_null_vectors_is_accepted(
         ], tendons: [{tendons}])"
     );
     let m = tendyn_core::parse(&text).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(m.system.null_space.len(), 2);
+    assert_eq!(m.system().null_space.len(), 2);
     let p = m
-        .system
+        .system()
         .positive_null
         .as_ref()
         .expect("a positive null vector");

@@ -266,9 +266,9 @@ fn random_systems_agree_with_vertex_enumeration() {
         let model: Model<f64> = tendyn_core::parse(&text).unwrap_or_else(|e| panic!("{e}"));
         // The model's own numbers, as parsed.
         let a = model.structure_matrix();
-        let lo: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
+        let lo: Vec<f64> = model.tendons().iter().map(|t| t.floor).collect();
         let hi: Vec<f64> = model
-            .tendons
+            .tendons()
             .iter()
             .map(|t| t.max_tension.unwrap())
             .collect();

@@ -27,7 +27,7 @@ struct Circle {
 
 fn circle(model: &Model<f64>, poses: &[Pose<f64>], q: &[f64], b: usize) -> Circle {
     let (r, o) = poses[b];
-    let body = &model.bodies[b];
+    let body = &model.bodies()[b];
     let phi = angle(body, q);
     let spin = Matrix3::new(
         phi.cos(),
@@ -70,7 +70,7 @@ struct Arcs {
 
 fn arcs(model: &Model<f64>, q: &[f64], strand: usize) -> Arcs {
     let poses = world_poses::<f64>(model, q);
-    let s = &model.strands[strand];
+    let s = &model.strands()[strand];
     let frame_rot = |f: Option<usize>| f.map_or(Matrix3::identity(), |l| poses[l].0);
     let contact = |seg: &tendyn_core::model::Segment<f64>, c: &Contact<f64>| -> Vector3<f64> {
         let rl = frame_rot(seg.frame);
@@ -81,7 +81,7 @@ fn arcs(model: &Model<f64>, q: &[f64], strand: usize) -> Arcs {
     };
     let mut wraps = Vec::new();
     let mut to_housing = Vec::new();
-    let radius = |b: usize| match model.bodies[b].kind {
+    let radius = |b: usize| match model.bodies()[b].kind {
         tendyn_core::model::BodyKind::Pulley { radius, .. } => radius,
         _ => unreachable!(),
     };
@@ -170,11 +170,11 @@ fn wrapped(d: f64) -> f64 {
 
 fn check(model: &Model<f64>, seed: u64) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = model.dof;
+    let n = model.dof();
     let q0: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
     let q1: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
     let steps = 400;
-    for (s, strand) in model.strands.iter().enumerate() {
+    for (s, strand) in model.strands().iter().enumerate() {
         let mut prev = arcs(model, &q0, s);
         let mut pulled = 0.0; // length change of the whole strand
         let mut rim: Vec<f64> = vec![0.0; strand.idlers.len()];
@@ -198,12 +198,12 @@ fn check(model: &Model<f64>, seed: u64) {
             prev = now;
         }
         let dq: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| b - a).collect();
-        if let Some(t) = model.tendons.iter().find(|t| t.strand == Some(s)) {
+        if let Some(t) = model.tendons().iter().find(|t| t.strand == Some(s)) {
             let want: f64 = t.structure.iter().zip(&dq).map(|(a, d)| a * d).sum();
             assert!(
                 (-pulled - want).abs() < 1e-12,
                 "{} {}: ground end pulled in by {} but A·Δq = {want}",
-                model.name,
+                model.name(),
                 strand.name,
                 -pulled
             );
@@ -211,19 +211,19 @@ fn check(model: &Model<f64>, seed: u64) {
             assert!(
                 pulled.abs() < 1e-12,
                 "{} {}: an endless loop changed length by {pulled}",
-                model.name,
+                model.name(),
                 strand.name
             );
         }
         for (j, idler) in strand.idlers.iter().enumerate() {
-            let c = &model.bodies[idler.body].coupling;
+            let c = &model.bodies()[idler.body].coupling;
             let want: f64 = idler.radius * c.iter().zip(&dq).map(|(a, d)| a * d).sum::<f64>();
             assert!(
                 (rim[j] - want).abs() < 1e-12,
                 "{} {}: idler {} rim moved {} but its coupling gives {want}",
-                model.name,
+                model.name(),
                 strand.name,
-                model.bodies[idler.body].name,
+                model.bodies()[idler.body].name,
                 rim[j]
             );
         }

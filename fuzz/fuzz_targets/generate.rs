@@ -16,7 +16,7 @@ fuzz_target!(|data: &[u8]| {
     let Ok(model) = tendyn_core::parse(text) else {
         return;
     };
-    if model.bodies.len() > MAX_BODIES {
+    if model.bodies().len() > MAX_BODIES {
         return;
     }
     let outputs = available_outputs(&model);

@@ -1,6 +1,6 @@
 //! A mechanism and a state: the input is RON text, then (after its first NUL byte, if any) a
 //! tail of bytes that gives the numbers. If the text validates, every public entry point of
-//! `tendyn_core::Solver` runs at that state (and `Model::with_parameters` first, if the
+//! `tendyn_core::Data` runs at that state (and `Model::with_parameters` first, if the
 //! file declares runtime parameters).
 //!
 //! Invariants: no panic, and every `Ok` holds only finite numbers (the project's rule: a
@@ -16,7 +16,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use tendyn_core::{InverseDynamics, Solver};
+use tendyn_core::{Data, InverseDynamics};
 
 /// Models with more bodies are skipped (the runtime solver is cheap, but not free).
 const MAX_BODIES: usize = 32;
@@ -128,7 +128,7 @@ fuzz_target!(|data: &[u8]| {
     let Ok(file_model) = tendyn_core::parse(text) else {
         return;
     };
-    if file_model.bodies.len() > MAX_BODIES {
+    if file_model.bodies().len() > MAX_BODIES {
         return;
     }
     let mut numbers = match tail.split_first() {
@@ -143,10 +143,10 @@ fuzz_target!(|data: &[u8]| {
     };
 
     let with_params;
-    let model = if file_model.parameters.is_empty() {
+    let model = if file_model.parameters().is_empty() {
         &file_model
     } else {
-        let p = numbers.take(file_model.parameters.len());
+        let p = numbers.take(file_model.parameters().len());
         match file_model.with_parameters(&p) {
             Ok(m) => {
                 with_params = m;
@@ -157,12 +157,12 @@ fuzz_target!(|data: &[u8]| {
         }
     };
 
-    let n = model.dof;
+    let n = model.dof();
     let q = numbers.take(n);
     let qd = numbers.take(n);
     let qdd = numbers.take(n);
-    let tau = numbers.take(model.motors.len());
-    let tensions = numbers.take(model.tendons.len());
+    let tau = numbers.take(model.motors().len());
+    let tensions = numbers.take(model.tendons().len());
     let state = &State {
         q: &q,
         qd: &qd,
@@ -174,27 +174,27 @@ fuzz_target!(|data: &[u8]| {
     // Properties of the model alone: no panic (NaN endpoints are documented).
     let _ = tendyn_core::torque_range::static_torque_ranges(model);
 
-    let mut s = Solver::new(model);
-    if let Ok(r) = s.inverse_dynamics(&q, &qd, &qdd) {
-        check_inverse(&r, state);
-        let _ = s.last_balance_rows();
+    let mut s = Data::new(model);
+    if let Ok(r) = s.inverse_dynamics(model, &q, &qd, &qdd) {
+        check_inverse(r, state);
+        let _ = s.last_balance_rows(model);
     }
-    if let Ok(x) = s.generalized_forces(&q, &qd, &qdd) {
-        assert_finite("generalized_forces", &x, state);
+    if let Ok(x) = s.generalized_forces(model, &q, &qd, &qdd) {
+        assert_finite("generalized_forces", x, state);
     }
-    if let Ok(m) = s.mass_matrix(&q) {
+    if let Ok(m) = s.mass_matrix(model, &q) {
         assert_finite("mass_matrix", m.iter().flatten(), state);
     }
-    if let Ok(h) = s.bias(&q, &qd) {
-        assert_finite("bias", &h, state);
+    if let Ok(h) = s.bias(model, &q, &qd) {
+        assert_finite("bias", h, state);
     }
-    if let Ok(g) = s.gravity(&q) {
-        assert_finite("gravity", &g, state);
+    if let Ok(g) = s.gravity(model, &q) {
+        assert_finite("gravity", g, state);
     }
-    if let Ok(a) = s.forward_dynamics(&q, &qd, &tau, &tensions) {
-        assert_finite("forward_dynamics", &a, state);
+    if let Ok(a) = s.forward_dynamics(model, &q, &qd, &tau, &tensions) {
+        assert_finite("forward_dynamics", a, state);
     }
-    if let Ok(x) = s.forward_dynamics_scale(&q, &qd, &tau, &tensions) {
+    if let Ok(x) = s.forward_dynamics_scale(model, &q, &qd, &tau, &tensions) {
         assert_finite("forward_dynamics_scale", [&x], state);
     }
 });

@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use tendyn_codegen::report::{self, JointSpace};
-use tendyn_core::{InverseDynamics, Model, Solver};
+use tendyn_core::{Data, InverseDynamics, Model};
 
 #[derive(Parser)]
 #[command(
@@ -261,7 +261,7 @@ fn run(cli: Cli) -> Result<(), String> {
             for (file, text) in tendyn_codegen::report::BUILT_IN {
                 let m = tendyn_core::parse(text).map_err(|e| format!("{file}: {e}"))?;
                 emit(&report::check_text(&m));
-                let n = m.dof;
+                let n = m.dof();
                 let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
                 let qd: Vec<f64> = (0..n).map(|i| 1.0 - 0.5 * i as f64).collect();
                 let qdd: Vec<f64> = (0..n).map(|i| 2.0 + i as f64).collect();
@@ -280,8 +280,8 @@ fn run(cli: Cli) -> Result<(), String> {
             csv,
         } => {
             let m = load(&file)?;
-            let n = m.dof;
-            let mut solver = Solver::new(&m);
+            let n = m.dof();
+            let mut solver = Data::new(&m);
             if csv {
                 say!("{}", report::inverse_csv_header(&m));
             }
@@ -324,9 +324,9 @@ fn run(cli: Cli) -> Result<(), String> {
                         let at = |e: String| format!("{path}:{}: {e}", i + 1);
                         if csv {
                             let r = solver
-                                .inverse_dynamics(q, qd, qdd)
+                                .inverse_dynamics(&m, q, qd, qdd)
                                 .map_err(|e| at(e.to_string()))?;
-                            say!("{}", report::inverse_csv_row(q, qd, qdd, &r));
+                            say!("{}", report::inverse_csv_row(q, qd, qdd, r));
                         } else {
                             say!("{}", eval_json(&m, q, qd, qdd).map_err(at)?);
                         }
@@ -375,7 +375,7 @@ fn run(cli: Cli) -> Result<(), String> {
             eprintln!(
                 "generated {} functions for `{}` in {:.2} ms:",
                 g.functions.len(),
-                m.name,
+                m.name(),
                 elapsed.as_secs_f64() * 1e3
             );
             for (o, ops, closed) in &g.functions {
@@ -467,31 +467,37 @@ fn run(cli: Cli) -> Result<(), String> {
                 (
                     "--torques",
                     torques.len(),
-                    m.motors.iter().map(|x| x.name.as_str()).collect::<Vec<_>>(),
+                    m.motors()
+                        .iter()
+                        .map(|x| x.name.as_str())
+                        .collect::<Vec<_>>(),
                     "motor torque (N·m)",
                 ),
                 (
                     "--tensions",
                     tensions.len(),
-                    m.tendons.iter().map(|x| x.name.as_str()).collect(),
+                    m.tendons().iter().map(|x| x.name.as_str()).collect(),
                     "ground-level tendon tension (N)",
                 ),
             ] {
                 if given != items.len() {
                     return Err(format!(
                         "{flag} has {given} numbers but `{}` needs {}: one {what} for each of {}, in file order",
-                        m.name,
+                        m.name(),
                         items.len(),
                         if items.is_empty() { "none (leave the flag out)".to_string() } else { items.join(", ") }
                     ));
                 }
             }
-            let mut s = Solver::new(&m);
+            let mut s = Data::new(&m);
             let qdd = s
-                .forward_dynamics(&q, &qd, &torques, &tensions)
+                .forward_dynamics(&m, &q, &qd, &torques, &tensions)
                 .map_err(|e| e.to_string())?;
             if json {
-                say!("{}", serde_json::json!({ "mechanism": m.name, "qdd": qdd }));
+                say!(
+                    "{}",
+                    serde_json::json!({ "mechanism": m.name(), "qdd": qdd })
+                );
             } else {
                 say!("qdd = {qdd:?}");
             }
@@ -560,13 +566,13 @@ fn evaluate(
     qd: &[f64],
     qdd: &[f64],
 ) -> Result<(InverseDynamics<f64>, JointSpace), String> {
-    let mut s = Solver::new(m);
+    let mut s = Data::new(m);
     let e = |e: tendyn_core::Error| e.to_string();
-    let r = s.inverse_dynamics(q, qd, qdd).map_err(e)?;
+    let r = s.inverse_dynamics(m, q, qd, qdd).map_err(e)?.clone();
     let js = JointSpace {
-        mass: s.mass_matrix(q).map_err(e)?,
-        bias: s.bias(q, qd).map_err(e)?,
-        gravity: s.gravity(q).map_err(e)?,
+        mass: s.mass_matrix(m, q).map_err(e)?.to_vec(),
+        bias: s.bias(m, q, qd).map_err(e)?.to_vec(),
+        gravity: s.gravity(m, q).map_err(e)?.to_vec(),
     };
     Ok((r, js))
 }

@@ -382,9 +382,10 @@ fn eval_states_as_csv_prints_a_header_and_one_full_precision_row_per_state() {
         "/../examples/mechanisms/example2_open_ended.ron"
     ))
     .unwrap();
-    let r = tendyn_core::Solver::new(&m)
-        .inverse_dynamics(&[0.3, 0.5], &[1.0, -0.5], &[2.0, 3.0])
-        .unwrap();
+    let r = tendyn_core::Data::new(&m)
+        .inverse_dynamics(&m, &[0.3, 0.5], &[1.0, -0.5], &[2.0, 3.0])
+        .unwrap()
+        .clone();
     let row: Vec<f64> = lines[1].split(',').map(|x| x.parse().unwrap()).collect();
     assert_eq!(&row[8..], r.tendon_tensions.as_slice());
     // --csv needs --states.
@@ -416,7 +417,7 @@ fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
     let text = text.replacen("    pulleys: [\n", &format!("    pulleys: [\n{pins}"), 1);
     let model = tendyn_core::parse(&text).unwrap();
     // Pins k and l (5 mm · |k − l| apart) overlap when closer than 20 mm: |k − l| ≤ 3.
-    let overlaps = tendyn_core::transmission::overlapping_pulleys(&model.bodies);
+    let overlaps = tendyn_core::transmission::overlapping_pulleys(model.bodies());
     assert_eq!(overlaps.len(), 8 + 7 + 6, "{overlaps:?}");
     let dir = scratch_dir("tendyn_cli_overlap");
     let file = dir.join("pins.ron");
@@ -440,7 +441,7 @@ fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
         ))
         .unwrap();
         assert!(
-            tendyn_core::transmission::overlapping_pulleys(&m.bodies).is_empty(),
+            tendyn_core::transmission::overlapping_pulleys(m.bodies()).is_empty(),
             "{name}"
         );
     }
@@ -504,8 +505,12 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
     let model = tendyn_core::parse(&text).unwrap();
     assert!(tendyn_core::transmission::segments_through_pulleys(&model).is_empty());
     // T11's one segment runs in the base frame, in the plane z = 0, from drum1 to its exit.
-    let s = model.strands.iter().position(|s| s.name == "T11").unwrap();
-    let g = &model.strands[s].segments[0];
+    let s = model
+        .strands()
+        .iter()
+        .position(|s| s.name == "T11")
+        .unwrap();
+    let g = &model.strands()[s].segments[0];
     let (exit, d) = (g.to.rel, g.dir);
     let on_line = |along: f64, aside: f64, z: f64| {
         [
@@ -534,9 +539,9 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
     let crossings = tendyn_core::transmission::segments_through_pulleys(&model);
     assert_eq!(crossings.len(), 1, "{crossings:?}");
     let c = crossings[0];
-    assert_eq!(model.bodies[c.pulley].name, "cut");
+    assert_eq!(model.bodies()[c.pulley].name, "cut");
     assert_eq!(
-        (model.strands[c.strand].name.as_str(), c.segment),
+        (model.strands()[c.strand].name.as_str(), c.segment),
         ("T11", 0)
     );
     assert!((c.distance - 0.002).abs() < 1e-12, "{}", c.distance);
@@ -550,10 +555,10 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
     let hub_model = tendyn_core::parse(&hub).unwrap();
     let through_hub: Vec<_> = tendyn_core::transmission::segments_through_pulleys(&hub_model)
         .into_iter()
-        .filter(|c| hub_model.bodies[c.pulley].name == "hub")
+        .filter(|c| hub_model.bodies()[c.pulley].name == "hub")
         .map(|c| {
             (
-                hub_model.strands[c.strand].name.clone(),
+                hub_model.strands()[c.strand].name.clone(),
                 c.segment,
                 c.distance,
             )

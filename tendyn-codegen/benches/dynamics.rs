@@ -82,14 +82,19 @@ macro_rules! bench_example {
             })
         });
         group.bench_function("runtime Q (f64)", |b| {
-            let mut s = tendyn_core::Solver::new(&model);
+            let mut s = tendyn_core::Data::new(&model);
             b.iter_batched_ref(
                 || (),
                 |_| {
                     for (q, qd, qdd) in &data {
                         black_box(
-                            s.generalized_forces(black_box(q), black_box(qd), black_box(qdd))
-                                .unwrap(),
+                            s.generalized_forces(
+                                &model,
+                                black_box(q),
+                                black_box(qd),
+                                black_box(qdd),
+                            )
+                            .unwrap(),
                         );
                     }
                 },
@@ -97,11 +102,11 @@ macro_rules! bench_example {
             )
         });
         group.bench_function("runtime inverse dynamics (f64)", |b| {
-            let mut s = tendyn_core::Solver::new(&model);
+            let mut s = tendyn_core::Data::new(&model);
             b.iter(|| {
                 for (q, qd, qdd) in &data {
                     black_box(
-                        s.inverse_dynamics(black_box(q), black_box(qd), black_box(qdd))
+                        s.inverse_dynamics(&model, black_box(q), black_box(qd), black_box(qdd))
                             .unwrap(),
                     );
                 }

@@ -27,7 +27,7 @@ fn generation(c: &mut Criterion) {
         let model = tendyn_core::load(&path).unwrap();
         let all = available_outputs(&model);
         let core: syn::Path = syn::parse_quote!(tendyn_core);
-        let mut group = c.benchmark_group(&model.name);
+        let mut group = c.benchmark_group(model.name());
         group.bench_function("load and validate", |b| {
             b.iter(|| tendyn_core::load(black_box(&path)).unwrap())
         });

@@ -46,8 +46,7 @@
 use crate::expr::{Graph, Id, Node};
 use crate::outputs::{result_labels, trace, Output, Traced};
 use tendyn_core::model::{
-    BodyKind, Contact, Model, MotorKind, Parameter, Place, PulleyRole, Row, Segment, Slot, Unknown,
-    Via,
+    BodyKind, Contact, Model, MotorKind, Place, PulleyRole, Row, Segment, Slot, Unknown, Via,
 };
 use tendyn_core::spatial::Vec3;
 use tendyn_core::transmission::{joint_parent, Frame};
@@ -436,14 +435,14 @@ fn turn_at(
     contact: &Contact<f64>,
 ) -> Option<(usize, f64)> {
     let b = contact.body?;
-    let body = model.bodies.get(b)?;
+    let body = model.bodies().get(b)?;
     let BodyKind::Pulley { radius, .. } = body.kind else {
         return None;
     };
     let axis = match contact.via {
         Via::Carrier => body.pre.rotation.column(2),
         Via::CarrierParent => Vec3::unit_z(),
-        Via::CarrierChild(l) => model.bodies.get(l)?.axis,
+        Via::CarrierChild(l) => model.bodies().get(l)?.axis,
     };
     let s = segment.dir.cross(axis).dot(contact.rel) / radius;
     ((s.abs() - 1.0).abs() <= 1e-9).then_some((b, s.signum()))
@@ -470,8 +469,8 @@ fn walk(
     ends_on_pulley: bool,
     couplings: &mut [Option<Vec<Poly>>],
 ) -> Option<Rate> {
-    let n = model.dof;
-    let carrier = |b: usize| model.bodies[b].parent;
+    let n = model.dof();
+    let carrier = |b: usize| model.bodies()[b].parent;
     let (start, s0) = stops[0];
     let start_coupling = Rate {
         joints: couplings[start].clone()?,
@@ -503,7 +502,7 @@ fn walk(
     let mut expanded = pull;
     let driving = |b: usize| {
         matches!(
-            model.bodies[b].kind,
+            model.bodies()[b].kind,
             BodyKind::Pulley {
                 role: PulleyRole::Driving,
                 ..
@@ -533,7 +532,7 @@ fn agrees(derived: &Poly, radius: &dyn Fn(usize) -> f64, x: f64, tol: f64) -> bo
 }
 
 fn radius_of(model: &Model<f64>, b: usize) -> f64 {
-    match model.bodies[b].kind {
+    match model.bodies()[b].kind {
         BodyKind::Pulley { radius, .. } => radius,
         BodyKind::Link { .. } => f64::NAN,
     }
@@ -544,7 +543,7 @@ fn radius_of(model: &Model<f64>, b: usize) -> f64 {
 fn derive(model: &Model<f64>) -> Option<Transmission> {
     let radius = |b: usize| radius_of(model, b);
     let mut couplings: Vec<Option<Vec<Poly>>> = model
-        .bodies
+        .bodies()
         .iter()
         .map(|b| match b.kind {
             // Links, fixed drums and explicitly coupled pulleys: the model's numbers.
@@ -564,7 +563,7 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
         ends_on_pulley: bool,
     }
     let mut walks = Vec::new();
-    for strand in &model.strands {
+    for strand in model.strands() {
         let segments = &strand.segments;
         let first = segments.first()?;
         let mut stops = vec![turn_at(model, first, &first.from)?];
@@ -616,7 +615,7 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
     let couplings: Vec<Vec<Poly>> = couplings.into_iter().collect::<Option<_>>()?;
 
     // E, column by column, as validation builds it (`validate::tension_system`).
-    let system = &model.system;
+    let system = model.system();
     let mut e = vec![vec![Poly::zero(); system.unknowns.len()]; system.rows.len()];
     for (col, u) in system.unknowns.iter().enumerate() {
         for (r, row) in system.rows.iter().enumerate() {
@@ -624,13 +623,13 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
                 (Unknown::Strand(s), Row::Joint(j)) => rates.get(*s)?.joints[*j].clone(),
                 (Unknown::Strand(s), Row::Pulley(b)) => rates.get(*s)?.pulley(*b),
                 (Unknown::Strand(s), Row::Pretension(l)) => {
-                    let on_loop = model.loops.get(*l)?.strands.contains(s);
+                    let on_loop = model.loops().get(*l)?.strands.contains(s);
                     Poly::constant(if on_loop { 0.5 } else { 0.0 })
                 }
                 (Unknown::Explicit(k), Row::Joint(j)) => {
-                    Poly::constant(model.tendons.get(*k)?.structure[*j])
+                    Poly::constant(model.tendons().get(*k)?.structure[*j])
                 }
-                (Unknown::Motor(k), row) => match (model.motors.get(*k)?.kind.clone(), row) {
+                (Unknown::Motor(k), row) => match (model.motors().get(*k)?.kind.clone(), row) {
                     (MotorKind::Joint(j), Row::Joint(i)) => {
                         Poly::constant(if j == *i { 1.0 } else { 0.0 })
                     }
@@ -649,7 +648,7 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
         }
     }
     let structure: Vec<Vec<Poly>> = model
-        .tendons
+        .tendons()
         .iter()
         .map(|t| match t.strand {
             Some(s) => rates[s].joints.clone(),
@@ -659,7 +658,7 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
 
     // Everything must be validation's numbers, by name.
     const TOL: f64 = 1e-12;
-    for (b, body) in model.bodies.iter().enumerate() {
+    for (b, body) in model.bodies().iter().enumerate() {
         for (c, &x) in couplings[b].iter().zip(&body.coupling) {
             if !agrees(c, &radius, x, TOL * (1.0 + x.abs())) {
                 return None;
@@ -678,7 +677,7 @@ fn derive(model: &Model<f64>) -> Option<Transmission> {
             }
         }
     }
-    for (t, column) in model.tendons.iter().zip(&structure) {
+    for (t, column) in model.tendons().iter().zip(&structure) {
         for (d, &x) in column.iter().zip(&t.structure) {
             if !agrees(d, &radius, x, TOL * scale) {
                 return None;
@@ -805,24 +804,34 @@ pub enum Quantity {
 impl Quantity {
     fn describe(self, model: &Model<f64>) -> String {
         match self {
-            Quantity::DhA(j) => format!("DH a of {}", model.bodies[j].name),
-            Quantity::DhD(j) => format!("DH d of {}", model.bodies[j].name),
-            Quantity::Radius(b) => format!("radius of {}", model.bodies[b].name),
+            Quantity::DhA(j) => format!("DH a of {}", model.bodies()[j].name),
+            Quantity::DhD(j) => format!("DH d of {}", model.bodies()[j].name),
+            Quantity::Radius(b) => format!("radius of {}", model.bodies()[b].name),
         }
     }
 }
 
-/// Adds parameters to a copy of the model, each name unique among all parameters.
-struct Namer {
-    m: Model<f64>,
+/// Names numbers of the model as new parameters, each name unique among all parameters
+/// (what [`Model::with_named_numbers`] then adds).
+struct Namer<'m> {
+    model: &'m Model<f64>,
     /// Slots the file's own runtime parameters already set.
     taken: Vec<Slot>,
+    /// The new parameters' names and values; parameter `k` is `added[k − file's count]`.
+    added: Vec<(String, f64)>,
+    /// Every number named, `(where, index into added)`.
+    slots: Vec<(Slot, usize)>,
 }
 
-impl Namer {
+impl Namer<'_> {
     fn unique(&self, name: String) -> String {
         let mut name = name;
-        while self.m.parameters.iter().any(|p| p.name == name) {
+        let file = self.model.parameters().iter().map(|p| &p.name);
+        while file
+            .clone()
+            .chain(self.added.iter().map(|(n, _)| n))
+            .any(|n| *n == name)
+        {
             name.push('\'');
         }
         name
@@ -835,10 +844,15 @@ impl Namer {
             return None;
         }
         let name = self.unique(name);
-        let k = self.m.parameters.len();
-        self.m.parameters.push(Parameter { name, value });
-        self.m.parameter_slots.extend(slots.iter().map(|&s| (s, k)));
-        Some(k)
+        let i = self.added.len();
+        self.added.push((name, value));
+        self.slots.extend(slots.iter().map(|&s| (s, i)));
+        Some(self.model.parameters().len() + i)
+    }
+
+    /// One more number that the added parameter `k` sets.
+    fn also(&mut self, k: usize, slot: Slot) {
+        self.slots.push((slot, k - self.model.parameters().len()));
     }
 }
 
@@ -851,12 +865,12 @@ fn radius_names(model: &Model<f64>) -> Vec<Option<String>> {
             .unwrap_or_else(|| format!("r_{name}"))
     };
     let shorts: Vec<Option<String>> = model
-        .bodies
+        .bodies()
         .iter()
         .map(|b| matches!(b.kind, BodyKind::Pulley { .. }).then(|| short(&b.name)))
         .collect();
     model
-        .bodies
+        .bodies()
         .iter()
         .zip(&shorts)
         .map(|(b, s)| {
@@ -874,13 +888,15 @@ fn radius_names(model: &Model<f64>) -> Vec<Option<String>> {
 /// `model` with its quantities named (see the module documentation), traced.
 pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Error> {
     let mut namer = Namer {
-        m: model.clone(),
-        taken: model.parameter_slots.iter().map(|(s, _)| *s).collect(),
+        model,
+        taken: model.parameter_slots().iter().map(|(s, _)| *s).collect(),
+        added: Vec::new(),
+        slots: Vec::new(),
     };
     let axes = ["x", "y", "z"];
-    let dof = model.dof;
+    let dof = model.dof();
     // Masses, centres of mass, inertias (Eqs. 6, 21-22) and gravity.
-    for (b, body) in model.bodies.iter().enumerate() {
+    for (b, body) in model.bodies().iter().enumerate() {
         let tag = if b < dof {
             format!("{}", b + 1)
         } else {
@@ -905,7 +921,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     for (c, axis) in axes.iter().enumerate() {
         namer.add(
             format!("g{axis}"),
-            model.gravity.to_array()[c],
+            model.gravity().to_array()[c],
             &[Slot::Gravity(c)],
         );
     }
@@ -915,7 +931,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     let geometry = |place: Place| Slot::Geometry(place, 1);
     let mut legend = Vec::new();
     for j in 0..dof {
-        let link = &model.bodies[j];
+        let link = &model.bodies()[j];
         let (a, d) = (link.post.translation.x, link.post.translation.z);
         let mut a_slots = vec![
             geometry(Place::Post(j, 0)),
@@ -923,7 +939,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
         ];
         // A pulley link j carries on its own joint's axis is placed by
         // `post⁻¹ · TransZ(h)`, whose x translation is exactly −a.
-        for (b, body) in model.bodies.iter().enumerate().skip(dof) {
+        for (b, body) in model.bodies().iter().enumerate().skip(dof) {
             if body.parent == Some(j)
                 && body.pre.rotation == link.post.rotation.transpose()
                 && body.pre.translation.x == -a
@@ -947,12 +963,12 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     // Pitch radii: contact points (Eq. 17) always; couplings and E⁻¹ where re-derived.
     let transmission = derive(model);
     let names = radius_names(model);
-    let mut radius_parameter = vec![None; model.bodies.len()];
+    let mut radius_parameter = vec![None; model.bodies().len()];
     for (b, name) in names.iter().enumerate() {
         let Some(name) = name else { continue };
         let r = radius_of(model, b);
         let mut slots = Vec::new();
-        for (s, strand) in model.strands.iter().enumerate() {
+        for (s, strand) in model.strands().iter().enumerate() {
             for (k, seg) in strand.segments.iter().enumerate() {
                 for (end, c) in [&seg.from, &seg.to].into_iter().enumerate() {
                     let exact = c.rel.dot(c.rel).sqrt();
@@ -967,18 +983,18 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
             legend.push((k, Quantity::Radius(b)));
         }
     }
-    let mut m = namer.m;
-    let monomial = |m: &mut Model<f64>, place: Place, t: &Term| {
+    let monomial = |namer: &mut Namer, place: Place, t: &Term| {
         for &(b, e) in &t.powers {
             let k = radius_parameter[b].expect("every pulley's radius is named");
-            m.parameter_slots.push((Slot::Geometry(place, e as i8), k));
+            namer.also(k, Slot::Geometry(place, e as i8));
         }
     };
+    let mut exact_inverse = Vec::new();
     if let Some(t) = &transmission {
         for (b, coupling) in t.couplings.iter().enumerate().skip(dof) {
             for (j, c) in coupling.iter().enumerate() {
                 if let Some(term) = c.single().filter(|t| !t.powers.is_empty()) {
-                    monomial(&mut m, Place::Coupling(b, j), term);
+                    monomial(&mut namer, Place::Coupling(b, j), term);
                 }
             }
         }
@@ -988,14 +1004,14 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
             let radius = |b: usize| radius_of(model, b);
             for (u, row) in inverse.iter().enumerate() {
                 for (r, entry) in row.iter().enumerate() {
-                    if matches!(m.system.rows[r], Row::Pretension(_)) {
+                    if matches!(model.system().rows[r], Row::Pretension(_)) {
                         continue;
                     }
                     match (entry.is_zero(), entry.single()) {
-                        (true, _) => m.system.pseudo_inverse[u][r] = 0.0,
+                        (true, _) => exact_inverse.push(((u, r), 0.0)),
                         (false, Some(term)) => {
-                            m.system.pseudo_inverse[u][r] = term.eval(&radius);
-                            monomial(&mut m, Place::PseudoInverse(u, r), term);
+                            exact_inverse.push(((u, r), term.eval(&radius)));
+                            monomial(&mut namer, Place::PseudoInverse(u, r), term);
                         }
                         (false, None) => {}
                     }
@@ -1003,17 +1019,18 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
             }
         }
     }
+    let m = model.with_named_numbers(&namer.added, &namer.slots, &exact_inverse)?;
     let traced = trace(&m, outputs)?;
     let lengths = legend
         .into_iter()
         .map(|(k, quantity)| NamedLength {
-            name: m.parameters[k].name.clone(),
-            value: m.parameters[k].value,
+            name: m.parameters()[k].name.clone(),
+            value: m.parameters()[k].value,
             quantity,
         })
         .collect();
-    let radius_names = (0..m.bodies.len())
-        .map(|b| radius_parameter[b].map(|k| m.parameters[k].name.clone()))
+    let radius_names = (0..m.bodies().len())
+        .map(|b| radius_parameter[b].map(|k| m.parameters()[k].name.clone()))
         .collect();
     Ok(Named {
         model: m,
@@ -1035,17 +1052,17 @@ fn render(named: &Named) -> String {
     let model = &named.model;
     let traced = &named.traced;
     PARAMETERS
-        .with(|p| *p.borrow_mut() = model.parameters.iter().map(|p| p.name.clone()).collect());
+        .with(|p| *p.borrow_mut() = model.parameters().iter().map(|p| p.name.clone()).collect());
     let g = &traced.graph;
     let radius_name = |b: usize| {
         named.radius_names[b]
             .clone()
-            .unwrap_or_else(|| format!("r_{}", model.bodies[b].name))
+            .unwrap_or_else(|| format!("r_{}", model.bodies()[b].name))
     };
     let mut out = String::new();
     out.push_str(&format!(
         "# {}: closed-form equations (th_k = joint angle q_k, th_kd, th_kdd its rates; S_k = sin th_k, C_k = cos th_k)\n",
-        model.name
+        model.name()
     ));
     if !named.lengths.is_empty() {
         out.push_str("\nLengths and radii by name (file values):\n");
@@ -1058,15 +1075,15 @@ fn render(named: &Named) -> String {
             ));
         }
     }
-    let pulleys: Vec<usize> = (model.dof..model.bodies.len())
-        .filter(|&b| model.bodies[b].coupling.iter().any(|&c| c != 0.0))
+    let pulleys: Vec<usize> = (model.dof()..model.bodies().len())
+        .filter(|&b| model.bodies()[b].coupling.iter().any(|&c| c != 0.0))
         .collect();
     if !pulleys.is_empty() {
         out.push_str("\nPulley angles relative to their carriers (Eqs. 9-10, 26, 31, 34):\n");
         for b in pulleys {
             let coupling: Vec<Poly> = match &named.transmission {
                 Some(t) => t.couplings[b].clone(),
-                None => model.bodies[b]
+                None => model.bodies()[b]
                     .coupling
                     .iter()
                     .map(|&c| Poly::constant(c))
@@ -1074,16 +1091,16 @@ fn render(named: &Named) -> String {
             };
             out.push_str(&format!(
                 "  {:<10} {}\n",
-                model.bodies[b].name,
+                model.bodies()[b].name,
                 linear_text(&coupling, &radius_name, &|j| format!("th{}", j + 1))
             ));
         }
     }
-    if !model.tendons.is_empty() {
+    if !model.tendons().is_empty() {
         out.push_str("\nStructure matrix A (Q = A T; rows per joint, columns per tendon):\n");
-        for j in 0..model.dof {
+        for j in 0..model.dof() {
             let cells: Vec<String> = model
-                .tendons
+                .tendons()
                 .iter()
                 .enumerate()
                 .map(|(k, t)| match &named.transmission {
@@ -1093,7 +1110,7 @@ fn render(named: &Named) -> String {
                 .collect();
             out.push_str(&format!(
                 "  {:<10} [{}]\n",
-                model.bodies[j].name,
+                model.bodies()[j].name,
                 cells.join(", ")
             ));
         }
@@ -1141,7 +1158,7 @@ fn render(named: &Named) -> String {
         for (i, &r) in f.results.iter().enumerate() {
             let label = match f.output {
                 Output::MassMatrix => {
-                    let n = model.dof;
+                    let n = model.dof();
                     format!("M[{}][{}]", labels[i / n], labels[i % n])
                 }
                 _ => labels.get(i).cloned().unwrap_or_else(|| format!("#{i}")),

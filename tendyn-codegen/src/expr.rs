@@ -12,7 +12,7 @@
 //! graph when it runs on `Sym`.
 
 use std::cell::RefCell;
-use tendyn_core::Real;
+use tendyn_core::{Real, Symbolic};
 
 /// A map keyed by nodes or ids of one graph. Interning hashes every node the recursion
 /// builds, so the hash is most of the cost of tracing: rustc's Fx hash (one multiplication
@@ -584,6 +584,9 @@ impl std::ops::Neg for Sym {
         Sym(with(|g| g.neg(self.0)))
     }
 }
+
+/// A handle is an expression of the generated code's inputs, never a number.
+impl Symbolic for Sym {}
 
 impl Real for Sym {
     fn from_f64(x: f64) -> Self {

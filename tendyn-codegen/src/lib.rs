@@ -215,7 +215,7 @@ fn fits(x: f64, scalar: Scalar) -> bool {
 /// is for models built or changed otherwise.
 fn check_bodies(model: &tendyn_core::Model<f64>, scalar: Scalar) -> Result<(), Error> {
     let (max, name) = largest(scalar);
-    for b in &model.bodies {
+    for b in model.bodies() {
         let c = b.com.to_array();
         // |c| without overflow of its squares.
         let c_max = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -352,7 +352,7 @@ fn check_constants(
     }
     // Written as f64 literals whatever the scalar.
     let a = model.structure_matrix();
-    for (k, t) in model.tendons.iter().enumerate() {
+    for (k, t) in model.tendons().iter().enumerate() {
         if let Some(x) = a.iter().map(|row| row[k]).find(|x| !x.is_finite()) {
             return Err(Error::Constant {
                 item: t.name.clone(),

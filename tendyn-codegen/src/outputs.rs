@@ -269,7 +269,7 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
-                if model.has_capstan() && model.system.null_space.len() > 1 =>
+                if model.has_capstan() && model.system().null_space.len() > 1 =>
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
@@ -281,25 +281,25 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             ),
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
-            Output::SegmentTensions | Output::Bearings if model.system.null_space.len() > 1 => {
+            Output::SegmentTensions | Output::Bearings if model.system().null_space.len() > 1 => {
                 Some(format!(
                     "the tension system has a {}-dimensional null space: generated code \
                      distributes the ground-level tensions (actuation) through a numeric routine, \
                      and does not carry them on to segments and bearings — use the runtime solver",
-                    model.system.null_space.len()
+                    model.system().null_space.len()
                 ))
             }
-            Output::Actuation if model.motors.is_empty() && model.tendons.is_empty() => {
+            Output::Actuation if model.motors().is_empty() && model.tendons().is_empty() => {
                 Some("the mechanism has neither motors nor tendons".to_string())
             }
-            Output::ForwardDynamics if model.motors.is_empty() && model.tendons.is_empty() => {
+            Output::ForwardDynamics if model.motors().is_empty() && model.tendons().is_empty() => {
                 Some("the mechanism has neither motors nor tendons to drive it".to_string())
             }
-            Output::SegmentTensions if model.strands.is_empty() => {
+            Output::SegmentTensions if model.strands().is_empty() => {
                 Some("the mechanism has no tendon segments (no routed tendon or loop)".to_string())
             }
             Output::SegmentTensions | Output::Bearings | Output::BaseReaction
-                if model.routing_incomplete =>
+                if model.routing_incomplete() =>
             {
                 Some(
                     "the routing is incomplete (an explicit coupling or structure column): where \
@@ -327,18 +327,17 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         }
     }
     let outputs = &unique[..];
-    let n = model.dof;
+    let n = model.dof();
     let (mut graph, results) = Graph::default().scope(|| {
-        let mut m = model.cast::<Sym>();
         // Runtime parameters stay symbols: inputs of every function.
-        let params = array("params", model.parameters.len());
-        m.set_parameters(&params);
+        let params = array("params", model.parameters().len());
+        let m = model.symbolic(|k| params[k]);
         let inputs = Inputs {
             q: array("q", n),
             qd: array("qd", n),
             qdd: array("qdd", n),
-            motor_torques: array("motor_torques", m.motors.len()),
-            tendon_tensions: array("tendon_tensions", m.tendons.len()),
+            motor_torques: array("motor_torques", m.motors().len()),
+            tendon_tensions: array("tendon_tensions", m.tendons().len()),
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
@@ -379,7 +378,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             traced: roots,
             traced_ops,
             closed_ops,
-            distribution: (output == Output::Actuation && model.system.null_space.len() > 1)
+            distribution: (output == Output::Actuation && model.system().null_space.len() > 1)
                 .then(|| distribution_constants(model)),
         });
     }
@@ -401,7 +400,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         graph,
         functions,
         dof: n,
-        parameters: model.parameters.len(),
+        parameters: model.parameters().len(),
         all,
         all_ops,
     })
@@ -409,7 +408,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
 
 /// The constants of a many-dimensional distribution, from the model's bounds.
 fn distribution_constants(model: &Model<f64>) -> Distribution {
-    let problem = tension::bounds(model, &model.system);
+    let problem = tension::bounds(model, model.system());
     let (k, d) = (problem.tendons(), problem.directions());
     Distribution {
         null: (0..d)
@@ -454,7 +453,7 @@ impl Shared {
                 Ok(tension::system_traced(model, rows, lead))
             };
             dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, |model, system, x| {
-                if system.null_space.len() == 1 && !model.tendons.is_empty() {
+                if system.null_space.len() == 1 && !model.tendons().is_empty() {
                     *excess = tension::along_line(model, system, x).excess;
                 }
                 Ok(())
@@ -477,7 +476,7 @@ fn trace_one(
     ws: &mut Workspace<Sym>,
     shared: &mut Shared,
 ) -> (Shape, Vec<Sym>) {
-    let n = m.dof;
+    let n = m.dof();
     let zeros = vec![Sym::zero(); n];
     match o {
         Output::GeneralizedForces => {
@@ -510,15 +509,15 @@ fn trace_one(
             match o {
                 Output::Actuation => {
                     let excess = shared.line_excess;
-                    let status = match (m.system.null_space.len(), excess) {
-                        (d, _) if d > 1 && !m.tendons.is_empty() => StatusFrom::Solve,
+                    let status = match (m.system().null_space.len(), excess) {
+                        (d, _) if d > 1 && !m.tendons().is_empty() => StatusFrom::Solve,
                         (_, Some(_)) => StatusFrom::Line,
                         _ => StatusFrom::Exact,
                     };
                     (
                         Shape::Actuation {
-                            motors: m.motors.len(),
-                            tendons: m.tendons.len(),
+                            motors: m.motors().len(),
+                            tendons: m.tendons().len(),
                             status,
                         },
                         r.motor_torques
@@ -564,22 +563,22 @@ fn trace_one(
 pub fn result_labels(model: &Model<f64>, o: Output) -> Vec<String> {
     match o {
         Output::SegmentTensions => model
-            .strands
+            .strands()
             .iter()
             .flat_map(|s| (0..s.segments.len()).map(move |k| format!("{}#{k}", s.name)))
             .collect(),
-        Output::Bearings => model.bodies.iter().map(|b| b.name.clone()).collect(),
+        Output::Bearings => model.bodies().iter().map(|b| b.name.clone()).collect(),
         Output::Actuation => model
-            .motors
+            .motors()
             .iter()
             .map(|m| format!("motor {}", m.name))
-            .chain(model.tendons.iter().map(|t| format!("tendon {}", t.name)))
+            .chain(model.tendons().iter().map(|t| format!("tendon {}", t.name)))
             .collect(),
         Output::BaseReaction => vec![
             "force".to_string(),
             "moment about the base origin".to_string(),
         ],
-        _ => model.bodies[..model.dof]
+        _ => model.bodies()[..model.dof()]
             .iter()
             .map(|b| b.name.clone())
             .collect(),
@@ -588,5 +587,5 @@ pub fn result_labels(model: &Model<f64>, o: Output) -> Vec<String> {
 
 /// Whether body `b` is a pulley (for documentation of bearings frames).
 pub fn is_pulley(model: &Model<f64>, b: usize) -> bool {
-    matches!(model.bodies[b].kind, BodyKind::Pulley { .. })
+    matches!(model.bodies()[b].kind, BodyKind::Pulley { .. })
 }

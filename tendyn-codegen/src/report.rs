@@ -23,18 +23,18 @@ fn v3(v: Vec3<f64>) -> Value {
 }
 
 fn unknown_name(m: &Model<f64>, u: &Unknown) -> String {
-    let strands: Vec<&str> = m.strands.iter().map(|s| s.name.as_str()).collect();
-    u.label(&strands, &m.tendons, &m.motors)
+    let strands: Vec<&str> = m.strands().iter().map(|s| s.name.as_str()).collect();
+    u.label(&strands, m.tendons(), m.motors())
 }
 
 fn row_name(m: &Model<f64>, r: &Row) -> String {
-    r.label(&m.bodies, &m.loops)
+    r.label(m.bodies(), m.loops())
 }
 
 /// Every guide of the model: strand, its step (between segments `k` and `k + 1`), the
 /// pulley (body index) and the guide.
 fn guides(m: &Model<f64>) -> Vec<(usize, usize, usize, &Guide)> {
-    m.strands
+    m.strands()
         .iter()
         .enumerate()
         .flat_map(|(s, st)| {
@@ -49,11 +49,11 @@ fn guides(m: &Model<f64>) -> Vec<(usize, usize, usize, &Guide)> {
 /// A pulley's role as `check` names it.
 fn role_name(m: &Model<f64>, name: &str, role: &PulleyRole) -> String {
     match role {
-        PulleyRole::Fixed if guides(m).iter().any(|g| m.bodies[g.2].name == name) => {
+        PulleyRole::Fixed if guides(m).iter().any(|g| m.bodies()[g.2].name == name) => {
             "fixed guide".to_string()
         }
         PulleyRole::Fixed => "fixed drum".to_string(),
-        PulleyRole::Idler { strand } => format!("idler of {}", m.strands[*strand].name),
+        PulleyRole::Idler { strand } => format!("idler of {}", m.strands()[*strand].name),
         PulleyRole::Driving => "driving pulley".to_string(),
         PulleyRole::Coupled => "explicit coupling".to_string(),
     }
@@ -71,7 +71,7 @@ fn finite_or_null(x: f64) -> Value {
 /// What `tendyn check --json` prints: the same as [`check_text`], one JSON object.
 pub fn check_json(m: &Model<f64>) -> Value {
     let names = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>();
-    let pulleys: serde_json::Map<String, Value> = m.bodies[m.dof..]
+    let pulleys: serde_json::Map<String, Value> = m.bodies()[m.dof()..]
         .iter()
         .filter_map(|b| match &b.kind {
             BodyKind::Pulley { radius, role } => Some((
@@ -81,10 +81,10 @@ pub fn check_json(m: &Model<f64>) -> Value {
             BodyKind::Link { .. } => None,
         })
         .collect();
-    let ranges: Value = if m.tendons.is_empty() {
+    let ranges: Value = if m.tendons().is_empty() {
         Value::Null
     } else {
-        m.bodies[..m.dof]
+        m.bodies()[..m.dof()]
             .iter()
             .zip(static_torque_ranges(m))
             .map(|(b, r)| {
@@ -98,7 +98,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
             .into()
     };
     let segments: serde_json::Map<String, Value> = m
-        .strands
+        .strands()
         .iter()
         .map(|st| {
             let list: Vec<Value> = st
@@ -106,7 +106,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
                 .iter()
                 .map(|g| {
                     json!({
-                        "frame": g.frame.map_or("base".to_string(), |f| m.bodies[f].name.clone()),
+                        "frame": g.frame.map_or("base".to_string(), |f| m.bodies()[f].name.clone()),
                         "dir": v3(g.dir),
                         "length": g.length,
                         "acting_angles": g.acting_angles.map(|a| finite_or_null(a.to_degrees())),
@@ -117,7 +117,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
         })
         .collect();
     let friction: serde_json::Map<String, Value> = m
-        .bodies
+        .bodies()
         .iter()
         .filter_map(|b| {
             let f = b.friction?;
@@ -128,26 +128,26 @@ pub fn check_json(m: &Model<f64>) -> Value {
         })
         .collect();
     json!({
-        "mechanism": m.name,
-        "joints": names(&mut m.bodies[..m.dof].iter().map(|b| b.name.clone())),
+        "mechanism": m.name(),
+        "joints": names(&mut m.bodies()[..m.dof()].iter().map(|b| b.name.clone())),
         "couplings": pulleys,
-        "tendons": names(&mut m.tendons.iter().map(|t| t.name.clone())),
-        "structure_matrix": if m.tendons.is_empty() { Value::Null } else { json!(m.structure_matrix()) },
+        "tendons": names(&mut m.tendons().iter().map(|t| t.name.clone())),
+        "structure_matrix": if m.tendons().is_empty() { Value::Null } else { json!(m.structure_matrix()) },
         "static_torque_range": ranges,
         "tension_system": {
-            "rows": names(&mut m.system.rows.iter().map(|r| row_name(m, r))),
-            "unknowns": names(&mut m.system.unknowns.iter().map(|u| unknown_name(m, u))),
-            "matrix": m.system.matrix,
-            "condition": finite_or_null(m.system.condition),
-            "null_space": m.system.null_space,
-            "positive_null_vector": m.system.positive_null,
+            "rows": names(&mut m.system().rows.iter().map(|r| row_name(m, r))),
+            "unknowns": names(&mut m.system().unknowns.iter().map(|u| unknown_name(m, u))),
+            "matrix": m.system().matrix,
+            "condition": finite_or_null(m.system().condition),
+            "null_space": m.system().null_space,
+            "positive_null_vector": m.system().positive_null,
         },
         "segments": segments,
         "bearing_friction": friction,
-        "friction_smoothing": m.friction_smoothing,
+        "friction_smoothing": m.friction_smoothing(),
         "guides": guides(m).into_iter().map(|(s, _, b, g)| json!({
-            "pulley": m.bodies[b].name,
-            "tendon": m.strands[s].name,
+            "pulley": m.bodies()[b].name,
+            "tendon": m.strands()[s].name,
             "wrap_angle": g.wrap,
             "wrap_angle_rate": g.wrap_rate,
             "mu": g.mu,
@@ -163,10 +163,10 @@ pub fn check_text(m: &Model<f64>) -> String {
         s.push_str(&t);
         s.push('\n');
     };
-    line(format!("mechanism `{}`: valid", m.name));
-    for o in tendyn_core::transmission::overlapping_pulleys(&m.bodies) {
-        let (a, b) = (&m.bodies[o.first], &m.bodies[o.second]);
-        let carrier = b.parent.map_or("base", |c| m.bodies[c].name.as_str());
+    line(format!("mechanism `{}`: valid", m.name()));
+    for o in tendyn_core::transmission::overlapping_pulleys(m.bodies()) {
+        let (a, b) = (&m.bodies()[o.first], &m.bodies()[o.second]);
+        let carrier = b.parent.map_or("base", |c| m.bodies()[c].name.as_str());
         line(format!(
             "  warning: pulleys `{}` and `{}` on `{carrier}` overlap: their centres are {} m \
              apart in one plane, closer than their radii {} + {} m; move one along its axis or \
@@ -179,30 +179,30 @@ pub fn check_text(m: &Model<f64>) -> String {
         ));
     }
     for c in tendyn_core::transmission::segments_through_pulleys(m) {
-        let radius = match m.bodies[c.pulley].kind {
+        let radius = match m.bodies()[c.pulley].kind {
             BodyKind::Pulley { radius, .. } => radius,
             BodyKind::Link { .. } => f64::NAN,
         };
         line(format!(
             "  warning: segment {}#{} passes through pulley `{}`, {} m from its centre (radius \
              {} m); route the tendon round it or move one of them",
-            m.strands[c.strand].name,
+            m.strands()[c.strand].name,
             c.segment,
-            m.bodies[c.pulley].name,
+            m.bodies()[c.pulley].name,
             number(c.distance),
             number(radius)
         ));
     }
     line(format!(
         "  {} degrees of freedom, {} intermediate links, {} open-ended tendons, {} loops, {} motors",
-        m.dof,
-        m.bodies.len() - m.dof,
-        m.tendons.len(),
-        m.loops.len(),
-        m.motors.len()
+        m.dof(),
+        m.bodies().len() - m.dof(),
+        m.tendons().len(),
+        m.loops().len(),
+        m.motors().len()
     ));
     line("couplings (intermediate-link angle relative to its carrier = Σ ratio · q):".into());
-    for b in &m.bodies[m.dof..] {
+    for b in &m.bodies()[m.dof()..] {
         if let BodyKind::Pulley { radius, role } = &b.kind {
             let role = role_name(m, &b.name, role);
             line(format!(
@@ -230,16 +230,16 @@ pub fn check_text(m: &Model<f64>) -> String {
             };
             line(format!(
                 "  {:<12} {:<8} β = {:.3}°{at}, μ = {}, μβ = {}{away}",
-                m.bodies[b].name,
-                m.strands[s].name,
+                m.bodies()[b].name,
+                m.strands()[s].name,
                 g.wrap.to_degrees(),
                 number(g.mu),
                 number(g.mu * g.wrap)
             ));
         }
     }
-    if m.bodies.iter().any(|b| b.friction.is_some()) {
-        let law = match m.friction_smoothing {
+    if m.bodies().iter().any(|b| b.friction.is_some()) {
+        let law = match m.friction_smoothing() {
             Some(v) => format!("tanh(ω / {v} rad/s)"),
             None => format!(
                 "sign(ω) (within {:e} rad/s of rest: sign(α))",
@@ -249,7 +249,7 @@ pub fn check_text(m: &Model<f64>) -> String {
         line(format!(
             "bearing friction, τ_f = −(coulomb · s + viscous · ω) with s = {law} (format.md §4a):"
         ));
-        for b in m.bodies.iter() {
+        for b in m.bodies().iter() {
             if let Some(f) = b.friction {
                 line(format!(
                     "  {:<12} coulomb {} N·m, viscous {} N·m·s/rad",
@@ -259,7 +259,7 @@ pub fn check_text(m: &Model<f64>) -> String {
         }
     }
     let system = implied_system(m);
-    if !m.tendons.is_empty() {
+    if !m.tendons().is_empty() {
         structure_lines(&mut line, &system);
         line(
             "static torque range, tendons alone without motors (tendons within floor and \
@@ -273,27 +273,27 @@ pub fn check_text(m: &Model<f64>) -> String {
                     "none (no tensions within the bounds hold every other joint at zero)".into()
                 }
             };
-            line(format!("  {:<12} {range}", m.bodies[j].name));
+            line(format!("  {:<12} {range}", m.bodies()[j].name));
         }
     }
     tension_system_lines(&mut line, &system);
     line(format!(
         "  condition number of E: {:.4}",
-        m.system.condition
+        m.system().condition
     ));
     line(format!(
         "  null space dimension: {}",
-        m.system.null_space.len()
+        m.system().null_space.len()
     ));
-    if let Some(p) = &m.system.positive_null {
+    if let Some(p) = &m.system().positive_null {
         line(format!("  positive null vector: {}", fmt_row(p)));
     }
     line("segments (frame, direction, length, acting angles in degrees):".into());
-    for st in &m.strands {
+    for st in m.strands() {
         for (k, g) in st.segments.iter().enumerate() {
             let frame = g
                 .frame
-                .map_or("base".to_string(), |f| m.bodies[f].name.clone());
+                .map_or("base".to_string(), |f| m.bodies()[f].name.clone());
             // The ground exit is a point, not a pulley: it has no acting angle.
             let angle = |a: f64| {
                 if a.is_nan() {
@@ -319,17 +319,17 @@ pub fn check_text(m: &Model<f64>) -> String {
 /// and [`tension_system_lines`] print, as for a rejected routing.
 fn implied_system(m: &Model<f64>) -> ImpliedSystem {
     ImpliedSystem {
-        rows: m.system.rows.iter().map(|r| row_name(m, r)).collect(),
+        rows: m.system().rows.iter().map(|r| row_name(m, r)).collect(),
         unknowns: m
-            .system
+            .system()
             .unknowns
             .iter()
             .map(|u| unknown_name(m, u))
             .collect(),
-        matrix: m.system.matrix.clone(),
-        joints: m.dof,
+        matrix: m.system().matrix.clone(),
+        joints: m.dof(),
         tendons: m
-            .tendons
+            .tendons()
             .iter()
             .map(|t| (t.name.clone(), t.unknown))
             .collect(),
@@ -414,18 +414,18 @@ pub fn inverse_json(
     let (mass, bias, gravity) = (&js.mass, &js.bias, &js.gravity);
     let names = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>();
     let mut out = json!({
-        "mechanism": m.name,
-        "joints": names(&mut m.bodies[..m.dof].iter().map(|b| b.name.clone())),
+        "mechanism": m.name(),
+        "joints": names(&mut m.bodies()[..m.dof()].iter().map(|b| b.name.clone())),
         "q": q, "qd": qd, "qdd": qdd,
         "generalized_forces": r.generalized_forces,
-        "motor_torques": m.motors.iter().zip(&r.motor_torques).map(|(mo, t)| (mo.name.clone(), json!(t))).collect::<serde_json::Map<_, _>>(),
-        "tendon_tensions": m.tendons.iter().zip(&r.tendon_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "minimal_norm_tensions": m.tendons.iter().zip(&r.minimal_norm_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "null_space_tensions": m.tendons.iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "loops": m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
-        "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "sticking": r.sticking.iter().map(|b| m.bodies[*b].name.clone()).collect::<Vec<_>>(),
+        "motor_torques": m.motors().iter().zip(&r.motor_torques).map(|(mo, t)| (mo.name.clone(), json!(t))).collect::<serde_json::Map<_, _>>(),
+        "tendon_tensions": m.tendons().iter().zip(&r.tendon_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "minimal_norm_tensions": m.tendons().iter().zip(&r.minimal_norm_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "null_space_tensions": m.tendons().iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "loops": m.loops().iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
+        "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "sticking": r.sticking.iter().map(|b| m.bodies()[*b].name.clone()).collect::<Vec<_>>(),
         "guides": guides(m).into_iter().map(|(s, k, b, g)| {
             let v = g.speed(qd);
             // The tension gained across the guide towards the ground end, times the sliding
@@ -435,12 +435,12 @@ pub fn inverse_json(
             // the impending motion; where friction acts and the exact law finds the tendon
             // at rest, it sticks.
             let accel = g.slide.iter().zip(qdd).map(|(c, a)| c * a).sum::<f64>();
-            let direction = tendyn_core::friction::direction(v, Some(accel), m.friction_smoothing);
+            let direction = tendyn_core::friction::direction(v, Some(accel), m.friction_smoothing());
             let rest = v.abs() <= tendyn_core::friction::REST;
-            let sticking = g.mu > 0.0 && m.friction_smoothing.is_none() && rest;
+            let sticking = g.mu > 0.0 && m.friction_smoothing().is_none() && rest;
             json!({
-                "pulley": m.bodies[b].name,
-                "tendon": m.strands[s].name,
+                "pulley": m.bodies()[b].name,
+                "tendon": m.strands()[s].name,
                 "wrap_angle": g.wrap_at(q),
                 "sliding_speed": v,
                 "direction": direction + 0.0,
@@ -457,7 +457,7 @@ pub fn inverse_json(
         "segment_tensions".into(),
         match &r.segment_tensions {
             Some(s) => m
-                .strands
+                .strands()
                 .iter()
                 .zip(s)
                 .map(|(st, v)| (st.name.clone(), json!(v)))
@@ -470,7 +470,7 @@ pub fn inverse_json(
         "bearings".into(),
         match &r.bearings {
             Some(b) => m
-                .bodies
+                .bodies()
                 .iter()
                 .zip(b)
                 .map(|(body, (f, n))| {
@@ -502,8 +502,8 @@ pub fn inverse_csv_header(m: &Model<f64>) -> String {
     for prefix in ["q", "qd", "qdd", "Q"] {
         columns.extend(joints.iter().map(|j| format!("{prefix}_{j}")));
     }
-    columns.extend(m.motors.iter().map(|mo| format!("tau_{}", mo.name)));
-    columns.extend(m.tendons.iter().map(|t| format!("T_{}", t.name)));
+    columns.extend(m.motors().iter().map(|mo| format!("tau_{}", mo.name)));
+    columns.extend(m.tendons().iter().map(|t| format!("T_{}", t.name)));
     columns.join(",")
 }
 
@@ -552,10 +552,10 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
         joints.join(", "),
         fmt_row(&r.generalized_forces)
     ));
-    for (mo, t) in m.motors.iter().zip(&r.motor_torques) {
+    for (mo, t) in m.motors().iter().zip(&r.motor_torques) {
         line(format!("  motor {:<12} {:>12} N·m", mo.name, number(*t)));
     }
-    for (k, t) in m.tendons.iter().enumerate() {
+    for (k, t) in m.tendons().iter().enumerate() {
         line(format!(
             "  tendon {:<11} {:>12} N  (minimal-norm {} + null-space {}, floor {} N)",
             t.name,
@@ -565,7 +565,7 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
             number(t.floor)
         ));
     }
-    for ((l, sides), slack) in m.loops.iter().zip(&r.loop_sides).zip(r.slack_loops()) {
+    for ((l, sides), slack) in m.loops().iter().zip(&r.loop_sides).zip(r.slack_loops()) {
         line(format!(
             "  loop {:<13} ccw side {} N, cw side {} N{}",
             l.name,
@@ -579,7 +579,7 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
         ));
     }
     if let Some(segs) = &r.segment_tensions {
-        for (st, v) in m.strands.iter().zip(segs) {
+        for (st, v) in m.strands().iter().zip(segs) {
             if v.len() > 1 {
                 line(format!(
                     "  segments of {:<8} {} N (anchor side first)",
@@ -592,14 +592,14 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
     for (b, v) in &r.pulley_demands {
         line(format!(
             "  pulley {:<11} needs {:>12} N·m about its axis",
-            m.bodies[*b].name,
+            m.bodies()[*b].name,
             number(*v)
         ));
     }
     for (b, v) in &r.bearing_friction {
         line(format!(
             "  bearing of {:<9} friction {:>12} N·m{}",
-            m.bodies[*b].name,
+            m.bodies()[*b].name,
             number(*v),
             if r.sticking.contains(b) {
                 "  (at rest: against the impending motion)"

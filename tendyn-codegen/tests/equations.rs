@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use tendyn_codegen::equations::{equations, named, Named, Quantity};
 use tendyn_codegen::Output;
 use tendyn_core::model::Slot;
-use tendyn_core::{Model, Solver};
+use tendyn_core::{Data, Model};
 use tendyn_spec::measure::{forward_dynamics_term_scale, max_rel, random_state};
 use tendyn_spec::paper::Arm;
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
@@ -49,15 +49,15 @@ struct State {
 }
 
 fn draw(rng: &mut ChaCha8Rng, m: &Model<f64>) -> State {
-    let [q, qd, qdd] = random_state(rng, m.dof);
+    let [q, qd, qdd] = random_state(rng, m.dof());
     State {
         q,
         qd,
         qdd,
-        motor_torques: (0..m.motors.len())
+        motor_torques: (0..m.motors().len())
             .map(|_| rng.random_range(-2.0..2.0))
             .collect(),
-        tendon_tensions: (0..m.tendons.len())
+        tendon_tensions: (0..m.tendons().len())
             .map(|_| rng.random_range(0.0..50.0))
             .collect(),
     }
@@ -80,7 +80,7 @@ fn inputs(n: &Named, s: &State, values: &HashMap<String, f64>) -> Vec<f64> {
                 "motor_torques" => s.motor_torques[k],
                 "tendon_tensions" => s.tendon_tensions[k],
                 "params" => {
-                    let p = &n.model.parameters[k];
+                    let p = &n.model.parameters()[k];
                     values.get(&p.name).copied().unwrap_or(p.value)
                 }
                 other => panic!("unexpected input {other}"),
@@ -92,23 +92,29 @@ fn inputs(n: &Named, s: &State, values: &HashMap<String, f64>) -> Vec<f64> {
 /// What the runtime solver gives for `o` at `s`, flattened as the printed function's
 /// results, and the scale its error is measured against.
 fn runtime(m: &Model<f64>, o: Output, s: &State) -> (Vec<f64>, f64) {
-    let mut solver = Solver::new(m);
+    let mut solver = Data::new(m);
     let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let v: Vec<f64> = match o {
-        Output::GeneralizedForces => solver.generalized_forces(&s.q, &s.qd, &s.qdd).unwrap(),
-        Output::MassMatrix => solver.mass_matrix(&s.q).unwrap().concat(),
-        Output::Bias => solver.bias(&s.q, &s.qd).unwrap(),
-        Output::Gravity => solver.gravity(&s.q).unwrap(),
+        Output::GeneralizedForces => solver
+            .generalized_forces(m, &s.q, &s.qd, &s.qdd)
+            .unwrap()
+            .to_vec(),
+        Output::MassMatrix => solver.mass_matrix(m, &s.q).unwrap().concat(),
+        Output::Bias => solver.bias(m, &s.q, &s.qd).unwrap().to_vec(),
+        Output::Gravity => solver.gravity(m, &s.q).unwrap().to_vec(),
         Output::ForwardDynamics => {
             let v = solver
-                .forward_dynamics(&s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
+                .forward_dynamics(m, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
                 .unwrap();
             let scale =
                 forward_dynamics_term_scale(m, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions);
-            return (v, scale);
+            return (v.to_vec(), scale);
         }
         _ => {
-            let r = solver.inverse_dynamics(&s.q, &s.qd, &s.qdd).unwrap();
+            let r = solver
+                .inverse_dynamics(m, &s.q, &s.qd, &s.qdd)
+                .unwrap()
+                .clone();
             match o {
                 Output::Actuation => [r.motor_torques, r.tendon_tensions].concat(),
                 Output::SegmentTensions => r.segment_tensions.unwrap().concat(),
@@ -195,10 +201,10 @@ fn printed_equations_of_random_spatial_mechanisms_are_what_the_runtime_solver_co
         let (text, m) = valid_random_mechanism(seed, features);
         let outputs = tendyn_codegen::available_outputs(&m);
         let worst = worst_errors(&text, &outputs, &m, &HashMap::new(), 100, seed);
-        assert_agree(&m.name, &worst);
+        assert_agree(m.name(), &worst);
         // The lengths are named: every non-zero DH length and offset has its name.
         let printed = equations(&m, &[Output::GeneralizedForces]).unwrap();
-        for (j, link) in m.bodies[..m.dof].iter().enumerate() {
+        for (j, link) in m.bodies()[..m.dof()].iter().enumerate() {
             if link.post.translation.x != 0.0 {
                 assert!(printed.contains(&format!("  a{} = ", j + 1)), "{printed}");
             }
@@ -240,12 +246,12 @@ fn validation_never_makes_a_length_or_radius_a_runtime_parameter() {
     models.push(parse(&tendyn_spec::parametric::finger()));
     for m in &models {
         assert!(
-            m.parameter_slots
+            m.parameter_slots()
                 .iter()
                 .all(|(s, _)| !matches!(s, Slot::Geometry(..))),
             "{}: {:?}",
-            m.name,
-            m.parameter_slots
+            m.name(),
+            m.parameter_slots()
         );
     }
 }
@@ -487,9 +493,9 @@ fn random_mechanisms_with_other_lengths_and_radii_have_the_same_printed_equation
             .iter()
             .map(|l| {
                 let v = match l.quantity {
-                    Quantity::DhA(j) => other.bodies[j].post.translation.x,
-                    Quantity::DhD(j) => other.bodies[j].post.translation.z,
-                    Quantity::Radius(b) => match other.bodies[b].kind {
+                    Quantity::DhA(j) => other.bodies()[j].post.translation.x,
+                    Quantity::DhD(j) => other.bodies()[j].post.translation.z,
+                    Quantity::Radius(b) => match other.bodies()[b].kind {
                         tendyn_core::model::BodyKind::Pulley { radius, .. } => radius,
                         _ => unreachable!("a radius belongs to a pulley"),
                     },
@@ -499,7 +505,7 @@ fn random_mechanisms_with_other_lengths_and_radii_have_the_same_printed_equation
             })
             .collect();
         let worst = worst_errors(&text, &outputs, &other, &values, 100, seed);
-        assert_agree(&format!("{} rescaled", m.name), &worst);
+        assert_agree(&format!("{} rescaled", m.name()), &worst);
         compared += 1;
     }
     assert!(
@@ -548,7 +554,7 @@ fn no_dh_length_of_the_examples_is_left_as_a_number() {
     // equals one (to the six digits printed).
     for name in tendyn_spec::examples::NAMES {
         let m = parse(&example(name));
-        let lengths: Vec<String> = m.bodies[..m.dof]
+        let lengths: Vec<String> = m.bodies()[..m.dof()]
             .iter()
             .map(|b| format!("{}", b.post.translation.x))
             .collect();

@@ -2,10 +2,10 @@
 //! bias and gravity terms, and forward dynamics, all on top of the one recursion in
 //! [`crate::kinematics`] and [`crate::newton_euler`].
 //!
-//! Everything here is generic over [`Real`] — the code generator traces these very
-//! functions — except [`Solver`], the runtime front end, which adds what only numbers can
-//! do: input checks, the tension distribution for null spaces of any dimension, the
-//! positive-definiteness check of forward dynamics, and the slack flags of loops.
+//! Everything here is generic over [`Real`]: the code generator traces these very
+//! functions, and the runtime front end ([`crate::data`]) adds to them what only numbers
+//! can do: input checks, the tension distribution for null spaces of any dimension, the
+//! positive-definiteness check of forward dynamics.
 //!
 //! `M`, `h` and `g` come from the expanded-tree form of the recursion: every body's axial
 //! joint moment `τ_b` mapped to the joint coordinates through its coupling,
@@ -13,10 +13,9 @@
 //! once the pulleys' couplings hold).
 
 use crate::affine::Affine;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
-use crate::linalg;
 use crate::model::{BodyKind, Model, MotorKind, TensionSystem};
 use crate::newton_euler::{backward, Loads};
 use crate::real::{Numeric, Real};
@@ -61,7 +60,7 @@ pub struct InverseDynamics<T> {
     pub bearing_friction: Vec<(usize, T)>,
     /// The bodies of `bearing_friction` whose bearing is within [`friction::REST`] of rest
     /// (exact law only): their friction is the direction of impending motion, or zero if
-    /// `q̈` does not turn them either ([`friction::at_rest`]; filled in by [`Solver`]).
+    /// `q̈` does not turn them either ([`friction::at_rest`]; filled in by [`crate::Data`]).
     pub sticking: Vec<usize>,
     /// The solved unknowns of the tension system, in the order of
     /// [`TensionSystem::unknowns`](crate::model::TensionSystem::unknowns).
@@ -79,25 +78,26 @@ impl<T: Numeric> InverseDynamics<T> {
     }
 }
 
-/// Work buffers of the recursion for one model; the model itself stays immutable.
+/// Work buffers of the recursion, sized by [`Workspace::new`] for one model's shape: the
+/// generic functions index them by that model's bodies and strands (the runtime
+/// [`crate::Data`] checks the shape; the code generator makes one per traced model).
 #[derive(Clone, Debug)]
 pub struct Workspace<T: Real> {
     /// Motion of every body from the last forward recursion.
-    pub motion: Vec<Motion<T>>,
+    pub(crate) motion: Vec<Motion<T>>,
     /// Loads affine in the unknowns (inverse dynamics with tensions).
-    pub loads: Loads<T>,
+    pub(crate) loads: Loads<T>,
     /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
-    pub known: Loads<T, Vec3<T>>,
+    pub(crate) known: Loads<T, Vec3<T>>,
     /// Tension of every segment of every strand, affine in the unknowns
     /// ([`tension::segment_tensions`]).
-    pub tensions: Vec<Vec<Affine<T>>>,
+    pub(crate) tensions: Vec<Vec<Affine<T>>>,
     /// Bearing friction torque of every body at the last inverse-dynamics call
     /// ([`friction::bearing_torques`]), which its balance rows carry.
-    pub friction: Vec<T>,
+    pub(crate) friction: Vec<T>,
     /// Capstan factor of every idler step, `[strand][idler]` (1 but on guides with
     /// friction; [`friction::capstan_factors`]).
-    pub capstan: Vec<Vec<T>>,
-    zeros: Vec<T>,
+    pub(crate) capstan: Vec<Vec<T>>,
 }
 
 impl<T: Real> Workspace<T> {
@@ -108,7 +108,6 @@ impl<T: Real> Workspace<T> {
             motion: vec![Motion::rest(); model.bodies.len()],
             loads: Loads::new(model.bodies.len(), nu),
             known: Loads::new(model.bodies.len(), 0),
-            zeros: vec![T::zero(); model.dof],
             friction: vec![T::zero(); model.bodies.len()],
             capstan: model
                 .strands
@@ -461,321 +460,5 @@ fn bearing<T: Real>(
         (spin.mul_vec(f), spin.mul_vec(n))
     } else {
         (f, n)
-    }
-}
-
-/// `Err` when a result is not finite although the inputs were: some intermediate value
-/// overflowed the scalar (a speed of 1e200 rad/s squares to infinity). The solver returns
-/// this error rather than a non-finite number, and names the largest of the `inputs`
-/// (each a name and its values), which is almost always the one to blame.
-fn finite<'a, T: Numeric>(
-    what: &str,
-    values: impl IntoIterator<Item = &'a T>,
-    inputs: &[(&str, &[T])],
-) -> Result<()> {
-    let Some(x) = values.into_iter().find(|x| !x.is_finite()) else {
-        return Ok(());
-    };
-    let largest = inputs
-        .iter()
-        .flat_map(|(name, v)| {
-            v.iter()
-                .enumerate()
-                .map(move |(i, x)| (*name, i, x.to_f64()))
-        })
-        .fold(None, |best: Option<(&str, usize, f64)>, c| match best {
-            Some(b) if b.2.abs() >= c.2.abs() => Some(b),
-            _ => Some(c),
-        });
-    let blame = match largest {
-        Some((name, i, v)) => format!(
-            "; the largest input is {name}[{i}] = {v:e}: make it smaller (a real mechanism's \
-             speeds, accelerations and forces are many orders of magnitude below the scalar's \
-             range)"
-        ),
-        None => String::new(),
-    };
-    Err(Error::State(format!(
-        "the {what} came out {} at this state although every input is finite: an intermediate \
-         value overflowed the scalar{blame}",
-        x.to_f64()
-    )))
-}
-
-/// The runtime solver: the generic functions above with input checks, on numbers.
-pub struct Solver<'m, T: Real> {
-    /// The model it evaluates.
-    pub model: &'m Model<T>,
-    ws: Workspace<T>,
-}
-
-impl<'m, T: Numeric> Solver<'m, T> {
-    /// A solver of `model`, with work buffers sized for it.
-    pub fn new(model: &'m Model<T>) -> Self {
-        Solver {
-            model,
-            ws: Workspace::new(model),
-        }
-    }
-
-    fn check_state(&self, what: &str, v: &[T]) -> Result<()> {
-        let n = self.model.dof;
-        if v.len() != n {
-            return Err(Error::State(format!(
-                "{what} has {} entries but the mechanism has {n} joints",
-                v.len()
-            )));
-        }
-        if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-            return Err(Error::State(format!(
-                "{what}[{i}] is {}; every entry must be finite",
-                x.to_f64()
-            )));
-        }
-        Ok(())
-    }
-
-    /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
-    /// ([`generalized_forces`]).
-    pub fn generalized_forces(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<Vec<T>> {
-        self.check_state("q", q)?;
-        self.check_state("qd", qd)?;
-        self.check_state("qdd", qdd)?;
-        let mut out = self.ws.zeros.clone();
-        generalized_forces(self.model, q, qd, qdd, &mut self.ws, &mut out);
-        finite(
-            "generalized forces",
-            &out,
-            &[("q", q), ("qd", qd), ("qdd", qdd)],
-        )?;
-        Ok(out)
-    }
-
-    /// Joint-space mass matrix `M(q)`.
-    pub fn mass_matrix(&mut self, q: &[T]) -> Result<Vec<Vec<T>>> {
-        self.check_state("q", q)?;
-        let m = mass_matrix(self.model, q, &mut self.ws);
-        finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
-        Ok(m)
-    }
-
-    /// Bias `h(q, q̇)`.
-    pub fn bias(&mut self, q: &[T], qd: &[T]) -> Result<Vec<T>> {
-        self.check_state("q", q)?;
-        self.check_state("qd", qd)?;
-        let h = bias(self.model, q, qd, &mut self.ws);
-        finite("bias", &h, &[("q", q), ("qd", qd)])?;
-        Ok(h)
-    }
-
-    /// Gravity generalized forces `g(q)`.
-    pub fn gravity(&mut self, q: &[T]) -> Result<Vec<T>> {
-        self.check_state("q", q)?;
-        let g = gravity(self.model, q, &mut self.ws);
-        finite("gravity", &g, &[("q", q)])?;
-        Ok(g)
-    }
-
-    /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext| + Σ_b |c_b τ_f,b|)‖∞`: the size of the
-    /// terms forward dynamics sums (`A`, `B` the tendons' and motors' columns, `τ_f,b` the
-    /// bearings' friction). Tensions that balance each
-    /// other make `q̈` a small difference of large numbers, so the error of a forward
-    /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
-    ///
-    /// Checked as [`Solver::forward_dynamics`] is, with the same errors: the inputs (their
-    /// lengths and finiteness), every intermediate result, and the mass matrix (which must
-    /// be positive definite); a finite scale or an error, never a non-finite number.
-    pub fn forward_dynamics_scale(
-        &mut self,
-        q: &[T],
-        qd: &[T],
-        motor_torques: &[T],
-        tendon_tensions: &[T],
-    ) -> Result<T> {
-        self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
-        let inputs = [
-            ("q", q),
-            ("qd", qd),
-            ("motor_torques", motor_torques),
-            ("tendon_tensions", tendon_tensions),
-        ];
-        let zero = T::from_f64(0.0);
-        let model = self.model;
-        let a = structure(model, q, qd, &mut self.ws);
-        let zeros = self.ws.zeros.clone();
-        let mut c = zeros.clone();
-        expanded_generalized_forces(model, q, qd, &zeros, true, true, &mut self.ws, &mut c);
-        finite("generalized forces", &c, &inputs)?;
-        // The bearings' friction, each body's part on its own: it may cancel gravity.
-        let mut torques = vec![zero; model.bodies.len()];
-        friction::bearing_torques(model, qd, None, &mut torques);
-        let rhs: Vec<T> = (0..model.dof)
-            .map(|j| {
-                let motors = model
-                    .motors
-                    .iter()
-                    .zip(motor_torques)
-                    .fold(zero, |s, (m, &t)| s + (T::from_f64(m.column[j]) * t).abs());
-                let tendons = a
-                    .iter()
-                    .zip(tendon_tensions)
-                    .fold(zero, |s, (a, &t)| s + (a[j] * t).abs());
-                let friction = model
-                    .bodies
-                    .iter()
-                    .zip(&torques)
-                    .fold(zero, |s, (b, &t)| s + (b.coupling[j] * t).abs());
-                motors + tendons + c[j].abs() + friction
-            })
-            .collect();
-        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
-        let y = self.solve_mass_matrix(q, &rhs)?;
-        // (`max` would pass over a NaN.)
-        finite("forward-dynamics term scale", &y, &inputs)?;
-        Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
-    }
-
-    /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
-    /// tensions of the open-ended tendons (file order).
-    pub fn forward_dynamics(
-        &mut self,
-        q: &[T],
-        qd: &[T],
-        motor_torques: &[T],
-        tendon_tensions: &[T],
-    ) -> Result<Vec<T>> {
-        self.check_forward_inputs(q, qd, motor_torques, tendon_tensions)?;
-        let inputs = [
-            ("q", q),
-            ("qd", qd),
-            ("motor_torques", motor_torques),
-            ("tendon_tensions", tendon_tensions),
-        ];
-        let model = self.model;
-        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
-        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
-        let qdd = self.solve_mass_matrix(q, &rhs)?;
-        finite("joint acceleration", &qdd, &inputs)?;
-        Ok(qdd)
-    }
-
-    /// The input checks of forward dynamics: the state, and as many finite motor torques
-    /// and tendon tensions as the mechanism has motors and open-ended tendons.
-    fn check_forward_inputs(
-        &self,
-        q: &[T],
-        qd: &[T],
-        motor_torques: &[T],
-        tendon_tensions: &[T],
-    ) -> Result<()> {
-        self.check_state("q", q)?;
-        self.check_state("qd", qd)?;
-        let model = self.model;
-        if model.capstan_before_an_idler() {
-            return Err(Error::NotYet(
-                "forward dynamics where a turning idler follows a guide with capstan friction \
-                 (`mu > 0`) towards the tendon's exit: the idler's inertia then reaches the \
-                 joints scaled by the guide's friction, which the mass matrix does not carry; \
-                 inverse dynamics handles it"
-                    .into(),
-            ));
-        }
-        if motor_torques.len() != model.motors.len() || tendon_tensions.len() != model.tendons.len()
-        {
-            return Err(Error::State(format!(
-                "expected {} motor torques and {} tendon tensions, got {} and {}",
-                model.motors.len(),
-                model.tendons.len(),
-                motor_torques.len(),
-                tendon_tensions.len()
-            )));
-        }
-        for (what, v) in [
-            ("motor torque", motor_torques),
-            ("tendon tension", tendon_tensions),
-        ] {
-            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-                return Err(Error::State(format!(
-                    "a {what} is {}; inputs must be finite",
-                    x.to_f64()
-                )));
-            }
-        }
-        Ok(())
-    }
-
-    /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
-    fn solve_mass_matrix(&mut self, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
-        let m = mass_matrix(self.model, q, &mut self.ws);
-        finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
-        let mut factor: Vec<T> = m.into_iter().flatten().collect();
-        let mut x = rhs.to_vec();
-        if !linalg::cholesky_solve(&mut factor, &mut x) {
-            return Err(Error::Singular(
-                "the mass matrix is not positive definite at this state (a massless chain, or a \
-                 link whose motion nothing resists)"
-                    .into(),
-            ));
-        }
-        Ok(x)
-    }
-
-    /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
-    /// tension distribution for null spaces of any dimension ([`tension::distribute`]:
-    /// every tendon within its floor and maximum, the model's objective least).
-    pub fn inverse_dynamics(&mut self, q: &[T], qd: &[T], qdd: &[T]) -> Result<InverseDynamics<T>> {
-        self.check_state("q", q)?;
-        self.check_state("qd", qd)?;
-        self.check_state("qdd", qdd)?;
-        let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
-        // Tensions that overflowed are reported before the distribution sees them, with the
-        // input to blame.
-        let distribute = |model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]| {
-            finite("tension or motor torque", &*x, &inputs)?;
-            tension::distribute(model, system, x)
-        };
-        let mut r = inverse_dynamics(
-            self.model,
-            q,
-            qd,
-            qdd,
-            &mut self.ws,
-            tension::system_at,
-            distribute,
-        )?;
-        r.sticking = friction::at_rest(self.model, qd);
-        finite("generalized forces", &r.generalized_forces, &inputs)?;
-        finite("tension or motor torque", &r.unknowns, &inputs)?;
-        finite(
-            "pulley moment",
-            r.pulley_demands.iter().map(|(_, v)| v),
-            &inputs,
-        )?;
-        finite(
-            "bearing friction",
-            r.bearing_friction.iter().map(|(_, v)| v),
-            &inputs,
-        )?;
-        if let Some(s) = &r.segment_tensions {
-            finite("segment tension", s.iter().flatten(), &inputs)?;
-        }
-        let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| f.to_array().into_iter().chain(n.to_array());
-        if let Some(b) = &r.bearings {
-            finite(
-                "bearing force",
-                &b.iter().flat_map(wrench).collect::<Vec<T>>(),
-                &inputs,
-            )?;
-        }
-        if let Some(b) = &r.base_reaction {
-            finite("base reaction", &wrench(b).collect::<Vec<T>>(), &inputs)?;
-        }
-        Ok(r)
-    }
-
-    /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
-    /// the recursion against the transmission's `E`).
-    pub fn last_balance_rows(&self) -> Vec<Affine<T>> {
-        tension::balance_rows(self.model, &self.ws.loads, &self.ws.friction)
     }
 }

@@ -15,7 +15,9 @@
 //!   recursion's balances and the generalized forces take in (not in the paper, §2 ii);
 //! - [`tension`]: `E x = b` and its minimal-norm solution, segment tensions, and the
 //!   model's data for the distribution (and the message when its bounds cannot be met);
-//! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics;
+//! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
+//! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
+//!   checked evaluators on numbers;
 //! - [`torque_range`]: the static torque range of each joint, what the tendons within their
 //!   floors and maxima can do on it with every other joint at rest (a linear program);
 //! - [`distribution`]: the tension distribution within floors and maxima (`no_std`,
@@ -33,16 +35,16 @@
 //! ```
 //! # fn main() -> Result<(), tendyn_core::Error> {
 //! let model = tendyn_core::load("../examples/mechanisms/example3_stanford_jpl.ron")?;
-//! let mut solver = tendyn_core::Solver::new(&model);
-//! let r = solver.inverse_dynamics(&[0.1, 0.5, 0.3], &[0.0; 3], &[1.0, 0.0, 0.0])?;
+//! let mut data = tendyn_core::Data::new(&model);
+//! let r = data.inverse_dynamics(&model, &[0.1, 0.5, 0.3], &[0.0; 3], &[1.0, 0.0, 0.0])?;
 //! // Every tendon stays at or above the 5 N floor of the file.
 //! assert!(r.tendon_tensions.iter().all(|&t| t >= 5.0 - 1e-9));
 //!
 //! // The same model in double-double, for a reference to f64 precision and beyond.
 //! let reference = model.cast_numeric::<tendyn_core::DoubleDouble>();
 //! let q = [0.1, 0.5, 0.3].map(tendyn_core::DoubleDouble::from);
-//! let mut dd = tendyn_core::Solver::new(&reference);
-//! let m = dd.mass_matrix(&q)?;
+//! let mut dd = tendyn_core::Data::new(&reference);
+//! let m = dd.mass_matrix(&reference, &q)?;
 //! assert!(m[0][0].to_f64() > 0.0);
 //! # Ok(())
 //! # }
@@ -56,10 +58,12 @@ pub mod linalg;
 pub mod mechanism;
 pub mod real;
 pub use mechanism::TendonMechanism;
-pub use real::{Numeric, Real};
+pub use real::{Numeric, Real, Symbolic};
 
 #[cfg(feature = "std")]
 pub mod affine;
+#[cfg(feature = "std")]
+pub mod data;
 #[cfg(feature = "std")]
 pub mod double_double;
 #[cfg(feature = "std")]
@@ -88,9 +92,11 @@ pub mod transmission;
 pub mod validate;
 
 #[cfg(feature = "std")]
+pub use data::Data;
+#[cfg(feature = "std")]
 pub use double_double::DoubleDouble;
 #[cfg(feature = "std")]
-pub use dynamics::{InverseDynamics, Solver};
+pub use dynamics::InverseDynamics;
 #[cfg(feature = "std")]
 pub use error::{Error, Result};
 #[cfg(feature = "std")]

@@ -1,14 +1,14 @@
 //! The validated, immutable mechanism: every body, every tendon segment and the tension
 //! system, in the scalar the solver runs on.
 //!
-//! A [`Model`] is produced once by [`crate::validate`] in `f64` and never changes; work
-//! buffers live in the solver's workspace. [`Model::cast`] converts it to another scalar
+//! A [`Model`] is produced once by [`crate::validate`] in `f64` and never changes (its
+//! fields are private); work and result buffers live in a [`crate::Data`]. [`Model::cast`] converts it to another scalar
 //! (a symbolic one for code generation); [`Model::cast_numeric`] also recomputes the
 //! tension system's pseudo-inverse and null space in the new precision.
 
 pub use crate::format::Objective;
 use crate::linalg;
-use crate::real::{Numeric, Real};
+use crate::real::{Numeric, Real, Symbolic};
 use crate::spatial::{Mat3, Transform, Vec3};
 
 /// What a body is in the paper's terms.
@@ -366,7 +366,7 @@ pub struct Parameter {
 ///
 /// Validation creates only the mass-property, gravity and wrench slots: the numbers a
 /// mechanism file may name as runtime parameters (`docs/format.md` §9a).
-/// [`Slot::Geometry`] is for `tendyn equations` alone, which makes lengths and radii named
+/// [`Slot::Geometry`] is for `tendyn equations` alone ([`Model::with_named_numbers`]), which makes lengths and radii named
 /// symbols of a traced model so that they print by name. Geometry must never become a
 /// runtime parameter: validation derives the routing from it once, in `f64` (segment
 /// directions, couplings, `E`, its pseudo-inverse and null space), and a length or radius
@@ -415,41 +415,127 @@ pub enum Place {
 }
 
 /// A validated mechanism in scalar `T`.
+///
+/// Immutable: its fields are read through the accessors below, and a changed model is a
+/// new one, made by the checked [`Model::with_parameters`] (numbers) or
+/// [`Model::symbolic`] (code generation). Nothing outside this crate can break the
+/// invariants that indexing relies on (every body index, unknown and coupling in range,
+/// `E`'s pseudo-inverse and null space those of its matrix).
 #[derive(Clone, Debug)]
 pub struct Model<T> {
     /// The mechanism's name (the file's `name`).
-    pub name: String,
+    pub(crate) name: String,
     /// Gravitational acceleration in the base frame (m/s²).
-    pub gravity: Vec3<T>,
+    pub(crate) gravity: Vec3<T>,
     /// Runtime parameters, in file order.
-    pub parameters: Vec<Parameter>,
+    pub(crate) parameters: Vec<Parameter>,
     /// Which numbers each parameter (by index) sets.
-    pub parameter_slots: Vec<(Slot, usize)>,
+    pub(crate) parameter_slots: Vec<(Slot, usize)>,
     /// Number of joint coordinates `n`.
-    pub dof: usize,
+    pub(crate) dof: usize,
     /// Links first (body `j` is moved by joint `j`), then pulleys in file order; parents
     /// come first.
-    pub bodies: Vec<Body<T>>,
+    pub(crate) bodies: Vec<Body<T>>,
     /// Every strand: the routed open-ended tendons in file order, then both sides of each
     /// loop (`LOOP/ccw`, `LOOP/cw`); strand `s` is unknown `s` of the tension system.
-    pub strands: Vec<Strand<T>>,
+    pub(crate) strands: Vec<Strand<T>>,
     /// Open-ended tendons, routed or structure-only, in file order.
-    pub tendons: Vec<Tendon>,
+    pub(crate) tendons: Vec<Tendon>,
     /// Endless loops, in file order.
-    pub loops: Vec<Loop>,
+    pub(crate) loops: Vec<Loop>,
     /// Motors, in file order.
-    pub motors: Vec<Motor>,
+    pub(crate) motors: Vec<Motor>,
     /// The tension system `E x = b`.
-    pub system: TensionSystem<T>,
+    pub(crate) system: TensionSystem<T>,
     /// What the tension distribution minimises (format.md §3).
-    pub objective: Objective,
+    pub(crate) objective: Objective,
     /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
-    pub friction_smoothing: Option<f64>,
+    pub(crate) friction_smoothing: Option<f64>,
     /// The file's `external_wrench`, if any.
-    pub external_wrench: Option<Wrench<T>>,
+    pub(crate) external_wrench: Option<Wrench<T>>,
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
-    pub routing_incomplete: bool,
+    pub(crate) routing_incomplete: bool,
+}
+
+impl<T> Model<T> {
+    /// The mechanism's name (the file's `name`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Gravitational acceleration in the base frame (m/s²).
+    pub fn gravity(&self) -> &Vec3<T> {
+        &self.gravity
+    }
+
+    /// Runtime parameters, in file order, with their nominal values.
+    pub fn parameters(&self) -> &[Parameter] {
+        &self.parameters
+    }
+
+    /// Which numbers each parameter (by index) sets.
+    pub fn parameter_slots(&self) -> &[(Slot, usize)] {
+        &self.parameter_slots
+    }
+
+    /// Number of joint coordinates `n`.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Links first (body `j` is moved by joint `j`), then pulleys in file order; parents
+    /// come first.
+    pub fn bodies(&self) -> &[Body<T>] {
+        &self.bodies
+    }
+
+    /// Every strand: the routed open-ended tendons in file order, then both sides of each
+    /// loop (`LOOP/ccw`, `LOOP/cw`); strand `s` is unknown `s` of the tension system.
+    pub fn strands(&self) -> &[Strand<T>] {
+        &self.strands
+    }
+
+    /// Open-ended tendons, routed or structure-only, in file order.
+    pub fn tendons(&self) -> &[Tendon] {
+        &self.tendons
+    }
+
+    /// Endless loops, in file order.
+    pub fn loops(&self) -> &[Loop] {
+        &self.loops
+    }
+
+    /// Motors, in file order.
+    pub fn motors(&self) -> &[Motor] {
+        &self.motors
+    }
+
+    /// The tension system `E x = b`.
+    pub fn system(&self) -> &TensionSystem<T> {
+        &self.system
+    }
+
+    /// What the tension distribution minimises (format.md §3).
+    pub fn objective(&self) -> Objective {
+        self.objective
+    }
+
+    /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
+    pub fn friction_smoothing(&self) -> Option<f64> {
+        self.friction_smoothing
+    }
+
+    /// The file's `external_wrench`, if any.
+    pub fn external_wrench(&self) -> Option<&Wrench<T>> {
+        self.external_wrench.as_ref()
+    }
+
+    /// Explicit couplings or structure columns are present: segment tensions and bearing
+    /// forces cannot be attributed and are reported as unavailable.
+    pub fn routing_incomplete(&self) -> bool {
+        self.routing_incomplete
+    }
 }
 
 impl<T: Real> Model<T> {
@@ -585,10 +671,10 @@ impl<T: Real> Model<T> {
 }
 
 impl<T: Real> Model<T> {
-    /// Sets every number a parameter names to `values[parameter]` (no checks: for a
-    /// symbolic model whose parameters are inputs, and for [`Model::with_parameters`]).
-    /// Geometry slots rescale their places (see [`Slot::Geometry`]).
-    pub fn set_parameters(&mut self, values: &[T]) {
+    /// Sets every number a parameter names to `values[parameter]`, unchecked: callers
+    /// check (`with_parameters`) or pass symbols (`symbolic`); both give one value per
+    /// parameter. Geometry slots rescale their places (see [`Slot::Geometry`]).
+    fn set_parameters(&mut self, values: &[T]) {
         // Factors `(parameter, power)` of each geometric place, in order of appearance.
         let mut geometry: Vec<(Place, Vec<(usize, i8)>)> = Vec::new();
         for &(slot, k) in &self.parameter_slots {
@@ -607,21 +693,22 @@ impl<T: Real> Model<T> {
                     self.bodies[b].inertia.rows[c][r] = v;
                 }
                 Slot::Gravity(c) => set3(&mut self.gravity, c, v),
-                Slot::WrenchPoint(c) => set3(
-                    &mut self.external_wrench.as_mut().expect("wrench").point,
-                    c,
-                    v,
-                ),
-                Slot::WrenchForce(c) => set3(
-                    &mut self.external_wrench.as_mut().expect("wrench").force,
-                    c,
-                    v,
-                ),
-                Slot::WrenchMoment(c) => set3(
-                    &mut self.external_wrench.as_mut().expect("wrench").moment,
-                    c,
-                    v,
-                ),
+                // Validation creates wrench slots only with a wrench.
+                Slot::WrenchPoint(c) => {
+                    if let Some(w) = &mut self.external_wrench {
+                        set3(&mut w.point, c, v);
+                    }
+                }
+                Slot::WrenchForce(c) => {
+                    if let Some(w) = &mut self.external_wrench {
+                        set3(&mut w.force, c, v);
+                    }
+                }
+                Slot::WrenchMoment(c) => {
+                    if let Some(w) = &mut self.external_wrench {
+                        set3(&mut w.moment, c, v);
+                    }
+                }
             }
         }
         for (place, factors) in geometry {
@@ -703,13 +790,7 @@ impl Model<f64> {
     /// The same mechanism with its runtime parameters set to `values` (file order), checked
     /// as validation checks the file: finite numbers, non-negative masses, physical inertias.
     pub fn with_parameters(&self, values: &[f64]) -> crate::Result<Model<f64>> {
-        if values.len() != self.parameters.len() {
-            return Err(crate::Error::State(format!(
-                "{} parameter values given but the mechanism declares {}",
-                values.len(),
-                self.parameters.len()
-            )));
-        }
+        self.check_parameter_count(values.len())?;
         if let Some((p, v)) = self
             .parameters
             .iter()
@@ -730,6 +811,125 @@ impl Model<f64> {
             crate::validate::check_wrench_point(&m.name, w.point)?;
         }
         Ok(m)
+    }
+
+    /// The model in a symbolic scalar whose runtime parameter `k` (file order) is
+    /// `input(k)`: what code generation traces, so that generated code takes the parameters
+    /// as inputs. Symbols cannot be checked; numbers go through [`Model::with_parameters`].
+    pub fn symbolic<U: Symbolic>(&self, input: impl Fn(usize) -> U) -> Model<U> {
+        let inputs: Vec<U> = (0..self.parameters.len()).map(input).collect();
+        let mut m = self.cast::<U>();
+        m.set_parameters(&inputs);
+        m
+    }
+
+    /// The same mechanism with more of its numbers named, for `tendyn equations` (crate
+    /// `tendyn-codegen`), which prints every mass, length and radius by name: `named[i]`
+    /// `(name, value)` becomes parameter `i` after the file's, and each `(slot, i)` of
+    /// `slots` makes the number at `slot` one it sets; `exact_inverse` replaces entries
+    /// `(unknown, row)` of `E`'s pseudo-inverse by the exact values the routing's closed
+    /// form gives. Geometry slots ([`Slot::Geometry`]) are allowed here alone: the result is
+    /// for tracing by name, never for setting lengths at run time.
+    ///
+    /// A name that is taken, a value that is not finite, or a slot or entry out of range is
+    /// an [`Error::Invalid`](crate::Error::Invalid) naming it.
+    pub fn with_named_numbers(
+        &self,
+        named: &[(String, f64)],
+        slots: &[(Slot, usize)],
+        exact_inverse: &[((usize, usize), f64)],
+    ) -> crate::Result<Model<f64>> {
+        let invalid = |item: &str, problem: String| crate::Error::Invalid {
+            item: item.to_string(),
+            at: crate::error::Location::default(),
+            problem,
+        };
+        let mut m = self.clone();
+        for (name, value) in named {
+            if !value.is_finite() {
+                return Err(invalid(name, format!("value {value} is not finite")));
+            }
+            if m.parameters.iter().any(|p| &p.name == name) {
+                return Err(invalid(name, "another parameter has this name".into()));
+            }
+            m.parameters.push(Parameter {
+                name: name.clone(),
+                value: *value,
+            });
+        }
+        for &(slot, i) in slots {
+            let Some((name, _)) = named.get(i) else {
+                return Err(invalid(
+                    &self.name,
+                    format!("{slot:?} names parameter {i} of {}", named.len()),
+                ));
+            };
+            if !self.slot_in_range(slot) {
+                return Err(invalid(
+                    name,
+                    format!("{slot:?} is not a number of the model"),
+                ));
+            }
+            m.parameter_slots.push((slot, self.parameters.len() + i));
+        }
+        for &((u, r), value) in exact_inverse {
+            let entry = m
+                .system
+                .pseudo_inverse
+                .get_mut(u)
+                .and_then(|row| row.get_mut(r));
+            match entry {
+                Some(x) if value.is_finite() => *x = value,
+                _ => {
+                    return Err(invalid(
+                        &self.name,
+                        format!(
+                        "pseudo-inverse entry ({u}, {r}) = {value} is out of range or not finite"
+                    ),
+                    ))
+                }
+            }
+        }
+        Ok(m)
+    }
+
+    /// `Err` unless `given` is the number of parameters.
+    fn check_parameter_count(&self, given: usize) -> crate::Result<()> {
+        if given != self.parameters.len() {
+            return Err(crate::Error::State(format!(
+                "{given} parameter values given but the mechanism declares {}",
+                self.parameters.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Whether every index of `slot` names a number of this model.
+    fn slot_in_range(&self, slot: Slot) -> bool {
+        let body = |b: usize| b < self.bodies.len();
+        match slot {
+            Slot::Mass(b) => body(b),
+            Slot::Com(b, c) => body(b) && c < 3,
+            Slot::Inertia(b, r, c) => body(b) && r < 3 && c < 3,
+            Slot::Gravity(c) => c < 3,
+            Slot::WrenchPoint(c) | Slot::WrenchForce(c) | Slot::WrenchMoment(c) => {
+                self.external_wrench.is_some() && c < 3
+            }
+            Slot::Geometry(place, _) => match place {
+                Place::Pre(b, c) | Place::Post(b, c) | Place::JointToOrigin(b, c) => {
+                    body(b) && c < 3
+                }
+                Place::Coupling(b, j) => body(b) && j < self.dof,
+                Place::Contact(s, k, end) => {
+                    self.strands.get(s).is_some_and(|s| k < s.segments.len()) && end < 2
+                }
+                Place::PseudoInverse(u, r) => self
+                    .system
+                    .pseudo_inverse
+                    .get(u)
+                    .is_some_and(|row| r < row.len()),
+            },
+        }
     }
 
     /// The model in another scalar (a symbolic one for code generation): every number is

@@ -58,6 +58,12 @@ pub trait Real:
     }
 }
 
+/// A [`Real`] whose values are expressions of named inputs, not numbers: the expression
+/// handle of `tendyn-codegen`. Nothing about such a value can be checked, so a model takes
+/// symbols as its parameters only through [`Model::symbolic`](crate::model::Model::symbolic)
+/// (numbers go through the checked `with_parameters`).
+pub trait Symbolic: Real {}
+
 /// A [`Real`] that is a number: it can be ordered, tested and converted back to `f64`.
 pub trait Numeric: Real + PartialOrd {
     /// The value as an `f64`, rounded to it (for a double-double, its high word).

@@ -344,7 +344,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
             span,
             format!(
                 "mechanism `{}` cannot provide `{}`: {}",
-                model.name,
+                model.name(),
                 u.output.name(),
                 u.reason
             ),
@@ -374,7 +374,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
         _ => quote_spanned!(attr.scalar.1=> f64),
     };
 
-    let params_value = if model.parameters.is_empty() {
+    let params_value = if model.parameters().is_empty() {
         None
     } else {
         let values = fields.iter().map(|f| quote_spanned!(f.span()=> self.#f));
@@ -420,7 +420,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     });
 
     // The trait: the associated types are the generated functions' shapes.
-    let (n, m, t) = (model.dof, model.motors.len(), model.tendons.len());
+    let (n, m, t) = (model.dof(), model.motors().len(), model.tendons().len());
     let return_of = |name: &str| match find(name).map(|f| &f.sig.output) {
         Some(syn::ReturnType::Type(_, ty)) => quote!(#ty),
         _ => quote!(()),
@@ -440,12 +440,12 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
         }
     });
     let names = |v: Vec<&String>| quote!(&[#(#v),*]);
-    let joint_names = names(model.bodies[..n].iter().map(|b| &b.name).collect());
-    let motor_names = names(model.motors.iter().map(|x| &x.name).collect());
-    let tendon_names = names(model.tendons.iter().map(|x| &x.name).collect());
-    let parameter_names = names(model.parameters.iter().map(|x| &x.name).collect());
+    let joint_names = names(model.bodies()[..n].iter().map(|b| &b.name).collect());
+    let motor_names = names(model.motors().iter().map(|x| &x.name).collect());
+    let tendon_names = names(model.tendons().iter().map(|x| &x.name).collect());
+    let parameter_names = names(model.parameters().iter().map(|x| &x.name).collect());
     let output_names = outputs.iter().map(|o| o.name());
-    let name = &model.name;
+    let name = model.name();
     let structure_rows = model.structure_matrix().into_iter().map(|row| {
         let cells = row.into_iter().map(|x| {
             let lit = proc_macro2::Literal::f64_suffixed(x.abs());
@@ -736,7 +736,7 @@ fn parameter_fields(
     input: &DeriveInput,
     model: &tendyn_core::Model<f64>,
 ) -> syn::Result<Vec<Ident>> {
-    let declared: Vec<&str> = model.parameters.iter().map(|p| p.name.as_str()).collect();
+    let declared: Vec<&str> = model.parameters().iter().map(|p| p.name.as_str()).collect();
     let list = |v: &[&str]| {
         if v.is_empty() {
             "none".to_string()
@@ -780,7 +780,7 @@ fn parameter_fields(
             extra.span(),
             format!(
                 "field `{extra}` is not a runtime parameter of mechanism `{}`: it declares {}",
-                model.name,
+                model.name(),
                 list(&declared)
             ),
         ));
@@ -796,7 +796,7 @@ fn parameter_fields(
             format!(
                 "mechanism `{}` declares the runtime parameter{} {}, missing from the fields of \
                  `{}` (fields: {}); add one field per parameter, of the scalar type",
-                model.name,
+                model.name(),
                 if missing.len() > 1 { "s" } else { "" },
                 list(&missing),
                 input.ident,

@@ -5,7 +5,7 @@
 //! | evaluator | what runs |
 //! |---|---|
 //! | generated f64, generated f32 | the generated function of that output, generic code at that scalar |
-//! | runtime f64, runtime f32 | the [`Solver`] method that gives the output (`inverse_dynamics` for actuation, segment tensions, bearings and the base reaction, which only it gives); f32 on `model.cast_numeric::<f32>()` |
+//! | runtime f64, runtime f32 | the [`Data`] method that gives the output (`inverse_dynamics` for actuation, segment tensions, bearings and the base reaction, which only it gives); f32 on `model.cast_numeric::<f32>()` |
 //!
 //! **States** (the benchmark protocol of `docs/references.md`): `q ∈ [−π, π]`,
 //! `q̇ ∈ [−3, 3]`, `q̈ ∈ [−10, 10]`, uniform, seeded; forward dynamics takes the reference
@@ -38,11 +38,11 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
-use tendyn_core::{DoubleDouble, InverseDynamics, Model, Numeric, Solver};
+use tendyn_core::{Data, DoubleDouble, InverseDynamics, Model, Numeric};
 
 pub use tendyn_codegen::Output;
 
-/// The [`Solver`] method the runtime evaluators time for `output`.
+/// The [`Data`] method the runtime evaluators time for `output`.
 pub fn runtime_call(output: Output) -> &'static str {
     match output {
         Output::GeneralizedForces => "generalized_forces",
@@ -112,7 +112,7 @@ pub enum Evaluator {
     GeneratedF64,
     /// The generated function, generic code at `f32`.
     GeneratedF32,
-    /// The runtime solver on the model (`Solver<f64>`).
+    /// The runtime solver on the model (`Data<f64>`).
     RuntimeF64,
     /// The runtime solver on `model.cast_numeric::<f32>()`.
     RuntimeF32,
@@ -305,30 +305,43 @@ fn from_inverse<T: Numeric>(output: Output, r: &InverseDynamics<T>) -> Result<Ve
 
 /// `output` by the runtime solver at one state, flattened as generated code flattens it.
 fn runtime<T: Numeric>(
-    s: &mut Solver<T>,
+    m: &Model<T>,
+    s: &mut Data<T>,
     output: Output,
     st: &RuntimeState<T>,
 ) -> Result<Vec<T>, String> {
     let e = |e: tendyn_core::Error| e.to_string();
     match output {
-        Output::GeneralizedForces => s.generalized_forces(&st.q, &st.qd, &st.qdd).map_err(e),
-        Output::MassMatrix => Ok(s.mass_matrix(&st.q).map_err(e)?.concat()),
-        Output::Bias => s.bias(&st.q, &st.qd).map_err(e),
-        Output::Gravity => s.gravity(&st.q).map_err(e),
-        Output::ForwardDynamics => s.forward_dynamics(&st.q, &st.qd, &st.mt, &st.tt).map_err(e),
+        Output::GeneralizedForces => s
+            .generalized_forces(m, &st.q, &st.qd, &st.qdd)
+            .map(<[T]>::to_vec)
+            .map_err(e),
+        Output::MassMatrix => Ok(s.mass_matrix(m, &st.q).map_err(e)?.concat()),
+        Output::Bias => s.bias(m, &st.q, &st.qd).map(<[T]>::to_vec).map_err(e),
+        Output::Gravity => s.gravity(m, &st.q).map(<[T]>::to_vec).map_err(e),
+        Output::ForwardDynamics => s
+            .forward_dynamics(m, &st.q, &st.qd, &st.mt, &st.tt)
+            .map(<[T]>::to_vec)
+            .map_err(e),
         _ => from_inverse(
             output,
-            &s.inverse_dynamics(&st.q, &st.qd, &st.qdd).map_err(e)?,
+            s.inverse_dynamics(m, &st.q, &st.qd, &st.qdd).map_err(e)?,
         ),
     }
 }
 
 /// One timed pass of the runtime solver's call for `output` over the states.
-fn runtime_pass<T: Numeric>(s: &mut Solver<T>, output: Output, states: &[RuntimeState<T>]) {
+fn runtime_pass<T: Numeric>(
+    m: &Model<T>,
+    s: &mut Data<T>,
+    output: Output,
+    states: &[RuntimeState<T>],
+) {
     match output {
         Output::GeneralizedForces => {
             for st in states {
                 let _ = black_box(s.generalized_forces(
+                    m,
                     black_box(&st.q),
                     black_box(&st.qd),
                     black_box(&st.qdd),
@@ -337,22 +350,23 @@ fn runtime_pass<T: Numeric>(s: &mut Solver<T>, output: Output, states: &[Runtime
         }
         Output::MassMatrix => {
             for st in states {
-                let _ = black_box(s.mass_matrix(black_box(&st.q)));
+                let _ = black_box(s.mass_matrix(m, black_box(&st.q)));
             }
         }
         Output::Bias => {
             for st in states {
-                let _ = black_box(s.bias(black_box(&st.q), black_box(&st.qd)));
+                let _ = black_box(s.bias(m, black_box(&st.q), black_box(&st.qd)));
             }
         }
         Output::Gravity => {
             for st in states {
-                let _ = black_box(s.gravity(black_box(&st.q)));
+                let _ = black_box(s.gravity(m, black_box(&st.q)));
             }
         }
         Output::ForwardDynamics => {
             for st in states {
                 let _ = black_box(s.forward_dynamics(
+                    m,
                     black_box(&st.q),
                     black_box(&st.qd),
                     black_box(&st.mt),
@@ -363,6 +377,7 @@ fn runtime_pass<T: Numeric>(s: &mut Solver<T>, output: Output, states: &[Runtime
         _ => {
             for st in states {
                 let _ = black_box(s.inverse_dynamics(
+                    m,
                     black_box(&st.q),
                     black_box(&st.qd),
                     black_box(&st.qdd),
@@ -398,12 +413,12 @@ pub fn time(config: &Config, states: usize, pass: &mut dyn FnMut()) -> Spread {
     Spread::of(&mut ns)
 }
 
-/// The size of the terms forward dynamics sums (`Solver::forward_dynamics_scale`, in
+/// The size of the terms forward dynamics sums (`Data::forward_dynamics_scale`, in
 /// f64; it only scales the error). Balancing tensions make `q̈` a small difference of large
 /// numbers, so its error is measured against this.
 pub fn forward_dynamics_term_scale(model: &Model<f64>, s: &Inputs) -> Result<f64, String> {
-    Solver::new(model)
-        .forward_dynamics_scale(&s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
+    Data::new(model)
+        .forward_dynamics_scale(model, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
         .map_err(|e| e.to_string())
 }
 
@@ -446,12 +461,12 @@ fn to_f32(v: &[f64]) -> Vec<f64> {
 
 fn draw_states(
     model: &Model<f64>,
-    reference: &mut Solver<DoubleDouble>,
+    (dd_model, reference): (&Model<DoubleDouble>, &mut Data<DoubleDouble>),
     config: &Config,
 ) -> Result<States, String> {
     let mut rng = ChaCha8Rng::seed_from_u64(config.seed);
-    let n = model.dof;
-    let parameters: Vec<f64> = model.parameters.iter().map(|p| p.value).collect();
+    let n = model.dof();
+    let parameters: Vec<f64> = model.parameters().iter().map(|p| p.value).collect();
     let mut out = States {
         f64: Vec::new(),
         f32: Vec::new(),
@@ -462,7 +477,8 @@ fn draw_states(
     let (mut redrawn, mut first) = (0usize, None);
     let mut id = |q: &[f64], qd: &[f64], qdd: &[f64]| {
         reference
-            .inverse_dynamics(&dd(q), &dd(qd), &dd(qdd))
+            .inverse_dynamics(dd_model, &dd(q), &dd(qd), &dd(qdd))
+            .cloned()
             .map_err(|e| e.to_string())
     };
     while out.f64.len() < config.states {
@@ -518,7 +534,7 @@ fn draw_states(
 /// `output` by the double-double reference at every state; `Err` names the first state at
 /// which it fails.
 fn reference_at(
-    reference: &mut Solver<DoubleDouble>,
+    (dd_model, reference): (&Model<DoubleDouble>, &mut Data<DoubleDouble>),
     output: Output,
     states: &[Inputs],
     ids: &[InverseDynamics<DoubleDouble>],
@@ -530,7 +546,7 @@ fn reference_at(
         .map(|(i, (s, id))| {
             match runtime_call(output) {
                 "inverse_dynamics" => from_inverse(output, id),
-                _ => runtime(reference, output, &RuntimeState::of(s)),
+                _ => runtime(dd_model, reference, output, &RuntimeState::of(s)),
             }
             .map_err(|e| format!("state {i} (q = {:?}): {e}", s.q))
         })
@@ -622,26 +638,36 @@ pub fn run(
         let model = tendyn_core::parse(mech.ron).map_err(|e| at(e.to_string()))?;
         let dd_model = model.cast_numeric::<DoubleDouble>();
         let f32_model = model.cast_numeric::<f32>();
-        let mut reference = Solver::new(&dd_model);
-        let states = draw_states(&model, &mut reference, config).map_err(at)?;
+        let mut reference = Data::new(&dd_model);
+        let states = draw_states(&model, (&dd_model, &mut reference), config).map_err(at)?;
         notes.extend(states.note.as_ref().map(|n| format!("{name}: {n}")));
         let f64_states: Vec<RuntimeState<f64>> = states.f64.iter().map(RuntimeState::of).collect();
         let f32_states: Vec<RuntimeState<f32>> = states.f32.iter().map(RuntimeState::of).collect();
         let internal = |what: &str| at(format!("internal: the generated {what} does not match"));
         let packed_f64 = (mech.pack_f64)(&states.f64).ok_or_else(|| internal("state sizes"))?;
         let packed_f32 = (mech.pack_f32)(&states.f32).ok_or_else(|| internal("state sizes"))?;
-        let mut solver_f64 = Solver::new(&model);
-        let mut solver_f32 = Solver::new(&f32_model);
+        let mut solver_f64 = Data::new(&model);
+        let mut solver_f32 = Data::new(&f32_model);
         for &output in mech.outputs {
             say(Some(output), None, progress);
             // The reference at every state, as each scalar's evaluators get it.
-            let want =
-                reference_at(&mut reference, output, &states.f64, &states.id_f64).and_then(|a| {
-                    Ok((
-                        a,
-                        reference_at(&mut reference, output, &states.f32, &states.id_f32)?,
-                    ))
-                });
+            let want = reference_at(
+                (&dd_model, &mut reference),
+                output,
+                &states.f64,
+                &states.id_f64,
+            )
+            .and_then(|a| {
+                Ok((
+                    a,
+                    reference_at(
+                        (&dd_model, &mut reference),
+                        output,
+                        &states.f32,
+                        &states.id_f32,
+                    )?,
+                ))
+            });
             let (want_f64, want_f32) = match want {
                 Ok(w) => w,
                 Err(e) => {
@@ -671,12 +697,12 @@ pub fn run(
                 errors[0].add(Ok(generated(mech.eval_f64, s64)?), &want_f64[i], floor64);
                 errors[1].add(Ok(generated(mech.eval_f32, s32)?), &want_f32[i], floor32);
                 errors[2].add(
-                    runtime(&mut solver_f64, output, &f64_states[i]),
+                    runtime(&model, &mut solver_f64, output, &f64_states[i]),
                     &want_f64[i],
                     floor64,
                 );
                 errors[3].add(
-                    runtime(&mut solver_f32, output, &f32_states[i]).map(to64),
+                    runtime(&f32_model, &mut solver_f32, output, &f32_states[i]).map(to64),
                     &want_f32[i],
                     floor32,
                 );
@@ -694,10 +720,10 @@ pub fn run(
                         time(config, n, &mut || ran &= packed_f32.pass(output))
                     }
                     Evaluator::RuntimeF64 => time(config, n, &mut || {
-                        runtime_pass(&mut solver_f64, output, &f64_states)
+                        runtime_pass(&model, &mut solver_f64, output, &f64_states)
                     }),
                     Evaluator::RuntimeF32 => time(config, n, &mut || {
-                        runtime_pass(&mut solver_f32, output, &f32_states)
+                        runtime_pass(&f32_model, &mut solver_f32, output, &f32_states)
                     }),
                 };
                 if !ran {

@@ -43,7 +43,7 @@ pub use tendyn_core::{Real, TendonMechanism};
 pub use tendyn_derive::TendonMechanism;
 
 #[cfg(feature = "std")]
-pub use tendyn_core::{load, parse, DoubleDouble, Error, InverseDynamics, Model, Solver};
+pub use tendyn_core::{load, parse, Data, DoubleDouble, Error, InverseDynamics, Model};
 
 /// The README's snippets, compiled and run as doctests.
 #[cfg(doctest)]

@@ -69,7 +69,11 @@ fn main() {
             endless: false,
         };
         let (text, model) = valid_random_mechanism(seed, features);
-        let idlers = model.strands.iter().map(|s| s.idlers.len()).sum::<usize>();
+        let idlers = model
+            .strands()
+            .iter()
+            .map(|s| s.idlers.len())
+            .sum::<usize>();
         (idlers > 0).then_some((seed, text))
     });
     for (seed, text) in with_idlers.take(2) {
@@ -107,9 +111,9 @@ fn main() {
         std::fs::write(out.join(format!("{name}.rs")), &generated.source).unwrap();
         std::fs::write(out.join(format!("{name}.ron")), text).unwrap();
         // The adapter: slices in, one vector per output out.
-        let (n, nm, nt) = (model.dof, model.motors.len(), model.tendons.len());
+        let (n, nm, nt) = (model.dof(), model.motors().len(), model.tendons().len());
         let mut adapter = String::new();
-        let np = model.parameters.len();
+        let np = model.parameters().len();
         writeln!(adapter, "pub fn evaluate<T: tendyn_core::Numeric>(q: &[T], qd: &[T], qdd: &[T], mt: &[T], tt: &[T], p: &[T]) -> Vec<(&'static str, Vec<T>)> {{").unwrap();
         writeln!(
             adapter,

@@ -1056,11 +1056,11 @@ mod tests {
                 let text = mechanism_ron(seed, n, m);
                 let model = tendyn_core::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
                 let p = random_problem(seed, n, m);
-                assert_eq!(model.name, format!("bounded_{n}x{m}_{seed}"));
-                assert_eq!(model.dof, n);
+                assert_eq!(model.name(), format!("bounded_{n}x{m}_{seed}"));
+                assert_eq!(model.dof(), n);
                 assert_eq!(model.structure_matrix(), p.a, "{text}");
-                assert_eq!(model.tendons.len(), m);
-                for (k, t) in model.tendons.iter().enumerate() {
+                assert_eq!(model.tendons().len(), m);
+                for (k, t) in model.tendons().iter().enumerate() {
                     assert_eq!(t.floor, p.lower[k]);
                     assert_eq!(t.max_tension, p.upper[k].is_finite().then_some(p.upper[k]));
                 }

@@ -1,10 +1,11 @@
-//! Tiny hand-built models (no file format, no validation) for tests with closed forms.
+//! Tiny models built in code (no file format; [`Model::rigid_tree`]) for tests with closed
+//! forms.
 //!
 //! Bodies are filled in field by field as the model's documentation defines them; derived
 //! fields (`axis`, `joint_to_origin`) are computed from `post` the way the validator is
 //! meant to. Every body starts massless; give it inertia with [`with_inertia`].
 
-use tendyn_core::model::{Body, BodyKind, Model, PulleyRole, TensionSystem};
+use tendyn_core::model::{Body, BodyKind, Model, PulleyRole, Wrench};
 use tendyn_core::spatial::{rot_x, Mat3, Transform, Vec3};
 
 /// Primary link `joint` of a DH chain with `[a, alpha, d, offset]`: `pre = I`,
@@ -68,33 +69,26 @@ pub fn with_inertia(
     body
 }
 
-/// A model of these bodies with no tendons, motors or external wrench.
+/// A model of these bodies with no tendons, motors or external wrench (checked as
+/// [`Model::rigid_tree`] checks every model built in code).
 pub fn model(dof: usize, gravity: [f64; 3], bodies: Vec<Body<f64>>) -> Model<f64> {
-    Model {
-        parameters: Vec::new(),
-        parameter_slots: Vec::new(),
-        name: "fixture".into(),
-        gravity: Vec3::from_array(gravity),
-        dof,
-        bodies,
-        strands: vec![],
-        tendons: vec![],
-        loops: vec![],
-        motors: vec![],
-        system: TensionSystem {
-            unknowns: vec![],
-            rows: vec![],
-            matrix: vec![],
-            pseudo_inverse: vec![],
-            null_space: vec![],
-            positive_null: None,
-            condition: 1.0,
-        },
-        objective: Default::default(),
-        friction_smoothing: None,
-        external_wrench: None,
-        routing_incomplete: false,
-    }
+    Model::rigid_tree("fixture", gravity, dof, bodies, None).expect("a valid fixture")
+}
+
+/// `model` with an external wrench on one link.
+pub fn with_wrench(model: &Model<f64>, wrench: Wrench<f64>) -> Model<f64> {
+    let g = model.gravity().to_array();
+    rebuilt(model, model.bodies().to_vec(), g, Some(wrench))
+}
+
+/// A model of `model`'s joints with other bodies, gravity and wrench.
+pub fn rebuilt(
+    model: &Model<f64>,
+    bodies: Vec<Body<f64>>,
+    gravity: [f64; 3],
+    wrench: Option<Wrench<f64>>,
+) -> Model<f64> {
+    Model::rigid_tree(model.name(), gravity, model.dof(), bodies, wrench).expect("a valid model")
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -57,7 +57,7 @@ pub const REST: f64 = 1e-6;
 /// within [`REST`] of it `sign(α)` (or 0 if `α` is within it too); `tanh(ω / v)` with
 /// `friction_smoothing: v`.
 pub fn direction(model: &Model<f64>, rate: f64, accel: f64) -> f64 {
-    match model.friction_smoothing {
+    match model.friction_smoothing() {
         Some(v) => (rate / v).tanh(),
         None if rate.abs() > REST => rate.signum(),
         None if accel.abs() > REST => accel.signum(),
@@ -68,8 +68,8 @@ pub fn direction(model: &Model<f64>, rate: f64, accel: f64) -> f64 {
 /// `Σ_b c_bᵀ τ_f,b` with `τ_f,b = −(coulomb · s + viscous · ω_b)` by [`direction`]: what
 /// the bearings' friction does to the joints.
 pub fn generalized_force(model: &Model<f64>, qd: &[f64], qdd: &[f64]) -> Vec<f64> {
-    let mut out = vec![0.0; model.dof];
-    for (b, body) in model.bodies.iter().enumerate() {
+    let mut out = vec![0.0; model.dof()];
+    for (b, body) in model.bodies().iter().enumerate() {
         if let Some(f) = body.friction {
             let w = rate(model, b, qd);
             let s = direction(model, w, rate(model, b, qdd));
@@ -84,7 +84,7 @@ pub fn generalized_force(model: &Model<f64>, qd: &[f64], qdd: &[f64]) -> Vec<f64
 
 /// The rate of body `b` relative to its parent: `c_b · q̇`.
 pub fn rate(model: &Model<f64>, b: usize, qd: &[f64]) -> f64 {
-    model.bodies[b]
+    model.bodies()[b]
         .coupling
         .iter()
         .zip(qd)
@@ -96,9 +96,9 @@ pub fn rate(model: &Model<f64>, b: usize, qd: &[f64]) -> f64 {
 /// dissipate while every one of them turns (then `s_b ω_b = |ω_b|` or `tanh` of it, so
 /// `≥ 0`).
 pub fn dissipated_power(model: &Model<f64>, qd: &[f64]) -> f64 {
-    (0..model.bodies.len())
+    (0..model.bodies().len())
         .filter_map(|b| {
-            let f = model.bodies[b].friction?;
+            let f = model.bodies()[b].friction?;
             let w = rate(model, b, qd);
             Some(f.coulomb * direction(model, w, 0.0) * w + f.viscous * w * w)
         })

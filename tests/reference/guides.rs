@@ -14,7 +14,7 @@ pub fn idlers_as_capstans(text: &str, mu: f64) -> String {
 fn idlers_as_guides_with(text: &str, mu: Option<f64>) -> String {
     let model = tendyn_core::parse(text).unwrap();
     let mut out = text.to_string();
-    for b in &model.bodies {
+    for b in model.bodies() {
         if let tendyn_core::model::BodyKind::Pulley {
             role: tendyn_core::model::PulleyRole::Idler { .. },
             ..

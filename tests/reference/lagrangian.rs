@@ -22,7 +22,7 @@ pub fn kinetic_energy_ad<S: Ad>(model: &Model<f64>, q: &[S], qd: &[S]) -> S {
     let half = S::from(0.5);
     body_motions(model, q, qd)
         .iter()
-        .zip(&model.bodies)
+        .zip(model.bodies())
         .fold(S::zero(), |acc, (m, b)| {
             let inertia = m.rotation * mat::<S>(&b.inertia) * m.rotation.transpose();
             let w = &m.angular_velocity;
@@ -33,10 +33,10 @@ pub fn kinetic_energy_ad<S: Ad>(model: &Model<f64>, q: &[S], qd: &[S]) -> S {
 
 /// Potential energy `V(q) = −Σ_b m_b g·p_b` in any AD scalar (zero at the base origin).
 pub fn potential_energy_ad<S: Ad>(model: &Model<f64>, q: &[S]) -> S {
-    let g = vec::<S>(&model.gravity);
+    let g = vec::<S>(model.gravity());
     world_poses(model, q)
         .iter()
-        .zip(&model.bodies)
+        .zip(model.bodies())
         .fold(S::zero(), |acc, ((r, o), b)| {
             let com = o + r * vec::<S>(&b.com);
             acc - g.dot(&com) * b.mass
@@ -56,13 +56,13 @@ pub fn potential_energy(model: &Model<f64>, q: &[f64]) -> f64 {
 /// Joint-space mass matrix `M(q) = Σ_b J_vᵀ m J_v + J_ωᵀ (R I Rᵀ) J_ω`, with the Jacobian
 /// columns `J_v e_j`, `J_ω e_j` the centre-of-mass and angular velocities at `q̇ = e_j`.
 pub fn mass_matrix(model: &Model<f64>, q: &[f64]) -> DMatrix<f64> {
-    let n = model.dof;
+    let n = model.dof();
     let columns: Vec<_> = (0..n)
         .map(|j| body_motions(model, q, &unit(n, j)))
         .collect();
     let poses = world_poses::<f64>(model, q);
     let mut m = DMatrix::zeros(n, n);
-    for (b, (body, (r, _))) in model.bodies.iter().zip(&poses).enumerate() {
+    for (b, (body, (r, _))) in model.bodies().iter().zip(&poses).enumerate() {
         let inertia = r * mat::<f64>(&body.inertia) * r.transpose();
         for (i, a) in columns.iter().map(|c| &c[b]).enumerate() {
             for (j, c) in columns.iter().map(|c| &c[b]).enumerate() {
@@ -89,12 +89,12 @@ pub fn lagrange_generalized_forces(
 /// Velocity product terms `h(q, q̇)` (Coriolis and centrifugal; no gravity): `Q` at `q̈ = 0`
 /// with `V = 0`.
 pub fn bias(model: &Model<f64>, q: &[f64], qd: &[f64]) -> DVector<f64> {
-    lagrange(model, q, qd, &vec![0.0; model.dof], false)
+    lagrange(model, q, qd, &vec![0.0; model.dof()], false)
 }
 
 /// Gravity terms `g(q) = ∂V/∂q`.
 pub fn gravity_forces(model: &Model<f64>, q: &[f64]) -> DVector<f64> {
-    DVector::from_fn(model.dof, |i, _| {
+    DVector::from_fn(model.dof(), |i, _| {
         potential_energy_ad(model, &seeded(q, i)).eps
     })
 }
@@ -119,12 +119,12 @@ pub fn power_in(
 ) -> Vec<f64> {
     let rate = |c: &[f64]| c.iter().zip(qd).map(|(a, v)| a * v).sum::<f64>();
     let tendons = model
-        .tendons
+        .tendons()
         .iter()
         .zip(tendon_tensions)
         .map(|(t, tension)| tension * rate(&t.structure));
     let motors = model
-        .motors
+        .motors()
         .iter()
         .zip(motor_torques)
         .map(|(m, tau)| tau * rate(&m.column));
@@ -136,8 +136,8 @@ pub fn power_in(
 /// has none), read as a follower wrench: `point`, `force` and `moment` fixed in the frame of
 /// body `link`. The actuation then supplies `lagrange_generalized_forces − Q_ext`.
 pub fn external_generalized_forces(model: &Model<f64>, q: &[f64]) -> DVector<f64> {
-    let n = model.dof;
-    let Some(w) = &model.external_wrench else {
+    let n = model.dof();
+    let Some(w) = &model.external_wrench() else {
         return DVector::zeros(n);
     };
     DVector::from_fn(n, |j, _| {
@@ -152,7 +152,7 @@ pub fn external_generalized_forces(model: &Model<f64>, q: &[f64]) -> DVector<f64
 }
 
 fn lagrange(model: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64], gravity: bool) -> DVector<f64> {
-    let n = model.dof;
+    let n = model.dof();
     assert!(
         q.len() == n && qd.len() == n && qdd.len() == n,
         "wrong lengths"
@@ -207,5 +207,5 @@ fn delta(i: usize, j: usize) -> f64 {
 
 /// World-frame gravity as an nalgebra vector.
 pub(crate) fn gravity(model: &Model<f64>) -> Vector3<f64> {
-    vec(&model.gravity)
+    vec(model.gravity())
 }

@@ -48,7 +48,7 @@ pub fn forward_dynamics_term_scale(
     motor_torques: &[f64],
     tendon_tensions: &[f64],
 ) -> f64 {
-    tendyn_core::Solver::new(model)
-        .forward_dynamics_scale(q, qd, motor_torques, tendon_tensions)
+    tendyn_core::Data::new(model)
+        .forward_dynamics_scale(model, q, qd, motor_torques, tendon_tensions)
         .expect("a valid state")
 }

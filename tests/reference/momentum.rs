@@ -67,7 +67,7 @@ fn momentum_of<S: Ad>(
     let mut p = Vector3::zeros();
     let mut h = Vector3::zeros();
     let motions = body_motions(model, q, qd);
-    for (i, (m, b)) in motions.iter().zip(&model.bodies).enumerate() {
+    for (i, (m, b)) in motions.iter().zip(model.bodies()).enumerate() {
         if !inside(i) {
             continue;
         }
@@ -119,7 +119,7 @@ fn gravity_of(
     let mut force = Vector3::zeros();
     let mut moment = Vector3::zeros();
     let poses = world_poses::<f64>(model, q);
-    for (i, ((r, o), b)) in poses.iter().zip(&model.bodies).enumerate() {
+    for (i, ((r, o), b)) in poses.iter().zip(model.bodies()).enumerate() {
         if !inside(i) {
             continue;
         }
@@ -133,7 +133,7 @@ fn gravity_of(
 /// The model's external wrench as force and moment about the base origin, in the base
 /// frame (zeros when it has none); `point`, `force` and `moment` are fixed in the link.
 pub fn external_wrench_world(model: &Model<f64>, q: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
-    let Some(w) = &model.external_wrench else {
+    let Some(w) = &model.external_wrench() else {
         return (Vector3::zeros(), Vector3::zeros());
     };
     let (r, o) = &world_poses::<f64>(model, q)[w.link];
@@ -164,8 +164,8 @@ pub fn subtree_reaction(
     qdd: &[f64],
     root: usize,
 ) -> (Vector3<f64>, Vector3<f64>) {
-    let mut inside = vec![false; model.bodies.len()];
-    for (b, body) in model.bodies.iter().enumerate() {
+    let mut inside = vec![false; model.bodies().len()];
+    for (b, body) in model.bodies().iter().enumerate() {
         inside[b] = b == root || body.parent.is_some_and(|p| inside[p]);
     }
     balance(model, q, qd, qdd, |b| inside[b])
@@ -181,7 +181,7 @@ fn balance(
 ) -> (Vector3<f64>, Vector3<f64>) {
     let (dp, dh) = rates_of(model, q, qd, qdd, inside);
     let (gf, gm) = gravity_of(model, q, inside);
-    let (ef, em) = match &model.external_wrench {
+    let (ef, em) = match &model.external_wrench() {
         Some(w) if inside(w.link) => external_wrench_world(model, q),
         _ => (Vector3::zeros(), Vector3::zeros()),
     };
@@ -198,7 +198,7 @@ pub fn subtree_moment_about_joint(
     qdd: &[f64],
     j: usize,
 ) -> f64 {
-    let body = &model.bodies[j];
+    let body = &model.bodies()[j];
     let (r, o) = &world_poses::<f64>(model, q)[j];
     // The joint point is at −postᵀ post.t in the body frame (whether the frame spins or not).
     let post_r = mat::<f64>(&body.post.rotation);

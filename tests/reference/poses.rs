@@ -56,9 +56,9 @@ pub fn spin_axis(body: &Body<f64>) -> Vector3<f64> {
 /// Every body's pose in the base frame: `X_parent · pre · RotZ(angle) · post`, with the
 /// rotation left out when `spins == false`. Bodies must come in topological order.
 pub fn world_poses<S: Ad>(model: &Model<f64>, q: &[S]) -> Vec<Pose<S>> {
-    assert_eq!(q.len(), model.dof, "q has the wrong length");
-    let mut poses: Vec<Pose<S>> = Vec::with_capacity(model.bodies.len());
-    for (index, body) in model.bodies.iter().enumerate() {
+    assert_eq!(q.len(), model.dof(), "q has the wrong length");
+    let mut poses: Vec<Pose<S>> = Vec::with_capacity(model.bodies().len());
+    for (index, body) in model.bodies().iter().enumerate() {
         let (pre_r, pre_t) = transform::<S>(&body.pre);
         let (post_r, post_t) = transform::<S>(&body.post);
         let joint_r = if body.spins {
@@ -113,12 +113,12 @@ fn vee<S: Ad>(w: &Matrix3<S>) -> Vector3<S> {
 /// `S` may itself be a dual number (then `q` and `q̇` carry further derivatives, e.g. the
 /// Lagrangian's partial derivatives or a second time derivative).
 pub fn body_motions<S: Ad>(model: &Model<f64>, q: &[S], qd: &[S]) -> Vec<BodyMotion<S>> {
-    assert_eq!(qd.len(), model.dof, "q̇ has the wrong length");
+    assert_eq!(qd.len(), model.dof(), "q̇ has the wrong length");
     let path: Vec<Dual<S>> = q.iter().zip(qd).map(|(&x, &v)| Dual::new(x, v)).collect();
     let poses = world_poses(model, &path);
     poses
         .iter()
-        .zip(&model.bodies)
+        .zip(model.bodies())
         .map(|((r, o), body)| {
             let com = o + r * vec::<Dual<S>>(&body.com);
             let rotation = r.map(|x| x.re);
@@ -137,62 +137,4 @@ pub fn body_motions<S: Ad>(model: &Model<f64>, q: &[S], qd: &[S]) -> Vec<BodyMot
             }
         })
         .collect()
-}
-
-/// Assumptions the reference (and the physics) rest on that a model could break, each
-/// violation as a sentence; empty when all hold to `tol`.
-///
-/// - `axis == post.rotationᵀ z` and `joint_to_origin == post.rotationᵀ post.translation`
-///   (derived fields agree with their definitions);
-/// - the inertia tensor is symmetric and the mass non-negative;
-/// - a body with `spins == false` that can turn (non-zero coupling) has its centre of mass
-///   on its spin axis and an inertia tensor invariant under rotation about it; only then
-///   is its material motion the frame's motion plus a spin, as assumed here.
-pub fn model_assumption_violations(model: &Model<f64>, tol: f64) -> Vec<String> {
-    let mut out = Vec::new();
-    for (index, b) in model.bodies.iter().enumerate() {
-        let name = format!("body {index} ({})", b.name);
-        let axis = spin_axis(b);
-        let post_r = mat::<f64>(&b.post.rotation);
-        let j2o = post_r.transpose() * vec::<f64>(&b.post.translation);
-        if (vec::<f64>(&b.axis) - axis).norm() > tol {
-            out.push(format!(
-                "{name}: axis {:?} is not postᵀ z = {axis:?}",
-                b.axis
-            ));
-        }
-        if (vec::<f64>(&b.joint_to_origin) - j2o).norm() > tol {
-            out.push(format!(
-                "{name}: joint_to_origin {:?} is not postᵀ post.t = {j2o:?}",
-                b.joint_to_origin
-            ));
-        }
-        let inertia = mat::<f64>(&b.inertia);
-        if (inertia - inertia.transpose()).norm() > tol {
-            out.push(format!("{name}: inertia is not symmetric"));
-        }
-        if b.mass < 0.0 {
-            out.push(format!("{name}: negative mass"));
-        }
-        if b.coupling.len() != model.dof {
-            out.push(format!("{name}: coupling has the wrong length"));
-        }
-        if !b.spins && b.coupling.iter().any(|&c| c != 0.0) {
-            // The axis passes through the joint point, -joint_to_origin in the body frame.
-            let from_axis = vec::<f64>(&b.com) + j2o;
-            if from_axis.cross(&axis).norm() > tol {
-                out.push(format!("{name}: turns without spinning, com off its axis"));
-            }
-            let along = axis.dot(&(inertia * axis));
-            let across = (inertia.trace() - along) / 2.0;
-            let axisymmetric = axis * axis.transpose() * along
-                + (Matrix3::identity() - axis * axis.transpose()) * across;
-            if (inertia - axisymmetric).norm() > tol * (1.0 + inertia.norm()) {
-                out.push(format!(
-                    "{name}: turns without spinning, inertia not axisymmetric"
-                ));
-            }
-        }
-    }
-    out
 }

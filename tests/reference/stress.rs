@@ -74,7 +74,7 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt::Write;
 use tendyn_core::model::{BodyKind, Model};
-use tendyn_core::{DoubleDouble, Error, InverseDynamics, Numeric, Solver};
+use tendyn_core::{Data, DoubleDouble, Error, InverseDynamics, Numeric};
 
 /// `q`, `q̇`, `q̈`.
 pub type State = [Vec<f64>; 3];
@@ -919,31 +919,37 @@ fn inverse_outputs<T: Numeric>(r: &InverseDynamics<T>) -> Vec<(&'static str, Vec
     out
 }
 
-fn run<T: Numeric>(s: &mut Solver<T>, state: &State, mt: &[f64], tt: &[f64]) -> Run {
+fn run<T: Numeric>(
+    model: &Model<T>,
+    s: &mut Data<T>,
+    state: &State,
+    mt: &[f64],
+    tt: &[f64],
+) -> Run {
     let [q, qd, qdd] = state;
     let (q, qd, qdd) = (lift::<T>(q), lift::<T>(qd), lift::<T>(qdd));
     let mut outputs = Vec::new();
-    let inverse = s.inverse_dynamics(&q, &qd, &qdd).map(|r| {
-        outputs.extend(inverse_outputs(&r));
+    let inverse = s.inverse_dynamics(model, &q, &qd, &qdd).map(|r| {
+        outputs.extend(inverse_outputs(r));
         r.slack_loops()
     });
     let slack = inverse.clone().unwrap_or_default();
     let inverse = inverse.map(|_| ());
-    if let Ok(v) = s.generalized_forces(&q, &qd, &qdd) {
-        outputs.push(("generalized_forces", f64s(&v)));
+    if let Ok(v) = s.generalized_forces(model, &q, &qd, &qdd) {
+        outputs.push(("generalized_forces", f64s(v)));
     }
-    if let Ok(m) = s.mass_matrix(&q) {
+    if let Ok(m) = s.mass_matrix(model, &q) {
         outputs.push(("mass_matrix", m.iter().flat_map(|r| f64s(r)).collect()));
     }
-    if let Ok(v) = s.bias(&q, &qd) {
-        outputs.push(("bias", f64s(&v)));
+    if let Ok(v) = s.bias(model, &q, &qd) {
+        outputs.push(("bias", f64s(v)));
     }
-    if let Ok(v) = s.gravity(&q) {
-        outputs.push(("gravity", f64s(&v)));
+    if let Ok(v) = s.gravity(model, &q) {
+        outputs.push(("gravity", f64s(v)));
     }
     let forward = s
-        .forward_dynamics(&q, &qd, &lift::<T>(mt), &lift::<T>(tt))
-        .map(|v| outputs.push(("forward_dynamics", f64s(&v))));
+        .forward_dynamics(model, &q, &qd, &lift::<T>(mt), &lift::<T>(tt))
+        .map(|v| outputs.push(("forward_dynamics", f64s(v))));
     Run {
         outputs,
         inverse,
@@ -984,7 +990,7 @@ fn max_angle(m: &Model<f64>, states: &[State]) -> f64 {
     states
         .iter()
         .flat_map(|[q, _, _]| {
-            m.bodies.iter().filter(|b| b.spins).map(move |b| {
+            m.bodies().iter().filter(|b| b.spins).map(move |b| {
                 (b.coupling.iter().zip(q).map(|(c, x)| c * x).sum::<f64>() + b.offset).abs()
             })
         })
@@ -1056,10 +1062,10 @@ fn conditions(m: &[f64], n: usize) -> (f64, f64) {
 
 /// Largest over smallest tendon component of the positive null vector.
 pub fn null_spread(model: &Model<f64>) -> f64 {
-    match &model.system.positive_null {
+    match &model.system().positive_null {
         None => 1.0,
         Some(p) => {
-            let v: Vec<f64> = model.tendons.iter().map(|t| p[t.unknown]).collect();
+            let v: Vec<f64> = model.tendons().iter().map(|t| p[t.unknown]).collect();
             v.iter().cloned().fold(0.0, f64::max) / v.iter().cloned().fold(f64::INFINITY, f64::min)
         }
     }
@@ -1074,10 +1080,10 @@ pub fn measure_case(
     let model = case.model()?;
     let m_dd = model.cast_numeric::<DoubleDouble>();
     let m_32 = options.f32.then(|| model.cast_numeric::<f32>());
-    let mut s64 = Solver::new(&model);
-    let mut sdd = Solver::new(&m_dd);
-    let mut s32 = m_32.as_ref().map(Solver::new);
-    let states = case.states(model.dof, options.states);
+    let mut s64 = Data::new(&model);
+    let mut sdd = Data::new(&m_dd);
+    let mut s32 = m_32.as_ref().map(Data::new);
+    let states = case.states(model.dof(), options.states);
     let mut outcomes = Outcomes {
         states: states.len(),
         ..Outcomes::default()
@@ -1089,19 +1095,22 @@ pub fn measure_case(
         let [q, qd, qdd] = state;
         // The inputs of forward dynamics: this state's torques and tensions in f64 (or
         // zero where inverse dynamics failed), rounded to f32.
-        let (mt, tt) = match s64.inverse_dynamics(q, qd, qdd) {
-            Ok(r) => (r.motor_torques, r.tendon_tensions),
+        let (mt, tt) = match s64.inverse_dynamics(&model, q, qd, qdd) {
+            Ok(r) => (r.motor_torques.clone(), r.tendon_tensions.clone()),
             Err(_) => (
-                vec![0.0; model.motors.len()],
-                vec![0.0; model.tendons.len()],
+                vec![0.0; model.motors().len()],
+                vec![0.0; model.tendons().len()],
             ),
         };
         let round =
             |v: Vec<f64>| -> Vec<f64> { v.into_iter().map(|x| f64::from(x as f32)).collect() };
         let (mt, tt) = (round(mt), round(tt));
-        let reference = run(&mut sdd, state, &mt, &tt);
-        let r64 = run(&mut s64, state, &mt, &tt);
-        let r32 = s32.as_mut().map(|s| run(s, state, &mt, &tt));
+        let reference = run(&m_dd, &mut sdd, state, &mt, &tt);
+        let r64 = run(&model, &mut s64, state, &mt, &tt);
+        let r32 = m_32
+            .as_ref()
+            .zip(s32.as_mut())
+            .map(|(m, s)| run(m, s, state, &mt, &tt));
         let gen = generated.map(|g| g(q, qd, qdd, &mt, &tt));
         tally(&mut outcomes, &r64, &reference);
         if let Some(r32) = &r32 {
@@ -1120,10 +1129,10 @@ pub fn measure_case(
         }
         // Condition of M at this state, from the reference.
         if let Some((_, m)) = reference.outputs.iter().find(|(n, _)| *n == "mass_matrix") {
-            conds.push(conditions(m, model.dof));
+            conds.push(conditions(m, model.dof()));
         }
         let fd_floor = s64
-            .forward_dynamics_scale(&state[0], &state[1], &mt, &tt)
+            .forward_dynamics_scale(&model, &state[0], &state[1], &mt, &tt)
             .unwrap_or(0.0);
         runs.push((reference, r64, r32, gen, fd_floor));
     }
@@ -1178,7 +1187,7 @@ pub fn measure_case(
         per_state.1.push(w32);
         per_state.2.push(wgen);
     }
-    let cond_e = model.system.condition;
+    let cond_e = model.system().condition;
     let cond_m = Stat::of(&conds.iter().map(|c| c.0).collect::<Vec<_>>());
     let cond_m_scaled = Stat::of(&conds.iter().map(|c| c.1).collect::<Vec<_>>());
     let angle = max_angle(&model, &states);
@@ -1203,15 +1212,15 @@ pub fn measure_case(
         })
         .collect();
     let pulleys = model
-        .bodies
+        .bodies()
         .iter()
         .filter(|b| matches!(b.kind, BodyKind::Pulley { .. }))
         .count();
     Ok(CaseFigures {
         name: case.name.clone(),
-        links: model.dof,
+        links: model.dof(),
         pulleys,
-        unknowns: model.system.unknowns.len(),
+        unknowns: model.system().unknowns.len(),
         runtime_f64: Stat::of(&per_state.0),
         runtime_f32: Stat::of(&per_state.1),
         generated_f64: generated.map(|_| Stat::of(&per_state.2)),
@@ -1222,7 +1231,7 @@ pub fn measure_case(
                 .filter(|row| row.iter().any(|&x| x != 0.0))
                 .collect::<Vec<_>>(),
         )
-        .filter(|_| !model.tendons.is_empty()),
+        .filter(|_| !model.tendons().is_empty()),
         cond_e,
         cond_m,
         cond_m_scaled,
@@ -1260,18 +1269,21 @@ pub fn energy_drift(
     dt: f64,
     duration: f64,
 ) -> Result<EnergyDrift, Error> {
-    let n = model.dof;
-    let mut s = Solver::new(model);
+    let n = model.dof();
+    let mut s = Data::new(model);
     let (mt, tt) = (
-        vec![0.0; model.motors.len()],
-        vec![0.0; model.tendons.len()],
+        vec![0.0; model.motors().len()],
+        vec![0.0; model.tendons().len()],
     );
     let energy = |q: &[f64], qd: &[f64]| {
         let t = crate::lagrangian::kinetic_energy(model, q, qd);
         (t, t + crate::lagrangian::potential_energy(model, q))
     };
     let mut deriv = |q: &[f64], qd: &[f64]| -> Result<(Vec<f64>, Vec<f64>), Error> {
-        Ok((qd.to_vec(), s.forward_dynamics(q, qd, &mt, &tt)?))
+        Ok((
+            qd.to_vec(),
+            s.forward_dynamics(model, q, qd, &mt, &tt)?.to_vec(),
+        ))
     };
     let (mut q, mut qd) = (q0.to_vec(), qd0.to_vec());
     let (t0, e0) = energy(&q, &qd);

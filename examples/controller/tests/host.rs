@@ -5,7 +5,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::Solver;
+use tendyn_core::Data;
 use tendyn_finger_controller::{ComputedTorque, Desired, Gains, DOF, TENDONS};
 
 const FLOOR: f64 = 5.0;
@@ -36,7 +36,7 @@ fn max_rel(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn controller_tensions_are_the_runtime_solvers_for_the_commanded_acceleration_and_stay_taut() {
     let model = finger();
-    let mut solver = Solver::new(&model);
+    let mut solver = Data::new(&model);
     let controller = ComputedTorque::new(gains::<f64>(400.0, 40.0));
     let controller32 = ComputedTorque::new(gains::<f32>(400.0, 40.0));
     let mut rng = ChaCha8Rng::seed_from_u64(11);
@@ -55,11 +55,11 @@ fn controller_tensions_are_the_runtime_solvers_for_the_commanded_acceleration_an
             let a = desired.qdd[j] + 40.0 * (desired.qd[j] - qd[j]) + 400.0 * (desired.q[j] - q[j]);
             assert!((cmd.acceleration[j] - a).abs() <= 1e-12 * a.abs().max(1.0));
         }
-        let want = solver
-            .inverse_dynamics(&q, &qd, &cmd.acceleration)
+        let want = &solver
+            .inverse_dynamics(&model, &q, &qd, &cmd.acceleration)
             .unwrap()
             .tendon_tensions;
-        worst64 = worst64.max(max_rel(&cmd.tensions, &want));
+        worst64 = worst64.max(max_rel(&cmd.tensions, want));
         assert!(
             cmd.tensions.iter().all(|&t| t >= FLOOR - 1e-9),
             "{:?}",
@@ -74,8 +74,9 @@ fn controller_tensions_are_the_runtime_solvers_for_the_commanded_acceleration_an
             qdd: f(desired.qdd),
         };
         let cmd32 = controller32.step(&desired32, &f(q), &f(qd));
-        let want32 = solver
+        let want32 = &solver
             .inverse_dynamics(
+                &model,
                 &q.map(|x| x as f32 as f64),
                 &qd.map(|x| x as f32 as f64),
                 &cmd32.acceleration.map(f64::from),
@@ -83,7 +84,7 @@ fn controller_tensions_are_the_runtime_solvers_for_the_commanded_acceleration_an
             .unwrap()
             .tendon_tensions;
         let got32: Vec<f64> = cmd32.tensions.iter().map(|&t| t as f64).collect();
-        worst32 = worst32.max(max_rel(&got32, &want32));
+        worst32 = worst32.max(max_rel(&got32, want32));
         assert!(cmd32
             .tensions
             .iter()
@@ -103,7 +104,7 @@ fn in_closed_loop_with_the_finger_the_controller_tracks_a_desired_trajectory() {
     // finger starts 0.2 rad off a smooth trajectory; computed torque with ω = 20 rad/s,
     // critically damped, must bring the error under 1e-3 rad within 1 s.
     let model = finger();
-    let mut solver = Solver::new(&model);
+    let mut solver = Data::new(&model);
     let (w, dt) = (20.0, 1e-3);
     let controller = ComputedTorque::new(gains::<f64>(w * w, 2.0 * w));
     let desired = |t: f64| {
@@ -120,7 +121,7 @@ fn in_closed_loop_with_the_finger_the_controller_tracks_a_desired_trajectory() {
     let mut t = 0.0;
     let mut accel = |q: &[f64; DOF], qd: &[f64; DOF], tensions: &[f64; TENDONS]| -> [f64; DOF] {
         solver
-            .forward_dynamics(q, qd, &[], tensions)
+            .forward_dynamics(&model, q, qd, &[], tensions)
             .unwrap()
             .try_into()
             .unwrap()

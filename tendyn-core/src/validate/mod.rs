@@ -11,6 +11,7 @@ mod bodies;
 mod locate;
 mod parameters;
 mod ranges;
+mod rigid_tree;
 mod routing;
 mod tension_system;
 

@@ -7,7 +7,7 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::{Model, Solver};
+use tendyn_core::{Data, Model};
 use tendyn_frontends_tests::{built, derived};
 use tendyn_spec::measure::{forward_dynamics_term_scale, max_rel, random_state};
 
@@ -19,8 +19,8 @@ fn runtime(
     qd: &[f64],
     qdd: &[f64],
 ) -> Vec<(&'static str, Vec<f64>)> {
-    let mut s = Solver::new(model);
-    let r = s.inverse_dynamics(q, qd, qdd).unwrap();
+    let mut s = Data::new(model);
+    let r = s.inverse_dynamics(model, q, qd, qdd).unwrap().clone();
     let mut out = vec![
         ("generalized_forces", r.generalized_forces.clone()),
         (
@@ -31,13 +31,14 @@ fn runtime(
                 .copied()
                 .collect(),
         ),
-        ("mass_matrix", s.mass_matrix(q).unwrap().concat()),
-        ("bias", s.bias(q, qd).unwrap()),
-        ("gravity", s.gravity(q).unwrap()),
+        ("mass_matrix", s.mass_matrix(model, q).unwrap().concat()),
+        ("bias", s.bias(model, q, qd).unwrap().to_vec()),
+        ("gravity", s.gravity(model, q).unwrap().to_vec()),
         (
             "forward_dynamics",
-            s.forward_dynamics(q, qd, &r.motor_torques, &r.tendon_tensions)
-                .unwrap(),
+            s.forward_dynamics(model, q, qd, &r.motor_torques, &r.tendon_tensions)
+                .unwrap()
+                .to_vec(),
         ),
     ];
     if let Some(seg) = &r.segment_tensions {

@@ -8,11 +8,11 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::{Numeric, Solver};
+use tendyn_core::{Data, Model, Numeric};
 use tendyn_generated_tests::MECHANISMS;
 
 fn runtime<T: Numeric>(
-    s: &mut Solver<T>,
+    (m, s): (&Model<T>, &mut Data<T>),
     output: &str,
     q: &[T],
     qd: &[T],
@@ -21,13 +21,13 @@ fn runtime<T: Numeric>(
     tt: &[T],
 ) -> Vec<T> {
     match output {
-        "generalized_forces" => s.generalized_forces(q, qd, qdd).unwrap(),
-        "mass_matrix" => s.mass_matrix(q).unwrap().into_iter().flatten().collect(),
-        "bias" => s.bias(q, qd).unwrap(),
-        "gravity" => s.gravity(q).unwrap(),
-        "forward_dynamics" => s.forward_dynamics(q, qd, mt, tt).unwrap(),
+        "generalized_forces" => s.generalized_forces(m, q, qd, qdd).unwrap().to_vec(),
+        "mass_matrix" => s.mass_matrix(m, q).unwrap().concat(),
+        "bias" => s.bias(m, q, qd).unwrap().to_vec(),
+        "gravity" => s.gravity(m, q).unwrap().to_vec(),
+        "forward_dynamics" => s.forward_dynamics(m, q, qd, mt, tt).unwrap().to_vec(),
         other => {
-            let r = s.inverse_dynamics(q, qd, qdd).unwrap();
+            let r = s.inverse_dynamics(m, q, qd, qdd).unwrap().clone();
             match other {
                 "actuation" => r
                     .motor_torques
@@ -58,18 +58,18 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
     for mech in MECHANISMS {
         let nominal = tendyn_core::parse(mech.ron).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(2024);
-        let n = nominal.dof;
+        let n = nominal.dof();
         let mut worst: Vec<(&str, f64)> = Vec::new();
         for _ in 0..1000 {
             // Runtime parameters between 90 % and 100 % of their nominal values (a thin disc
             // sits on the triangle-inequality bound), set in the runtime model and in the call.
             let p: Vec<f64> = nominal
-                .parameters
+                .parameters()
                 .iter()
                 .map(|p| p.value * rng.random_range(0.9..1.0))
                 .collect();
             let model = nominal.with_parameters(&p).unwrap();
-            let mut solver = Solver::new(&model);
+            let mut solver = Data::new(&model);
             let mut v = |len: usize, s: f64| {
                 (0..len)
                     .map(|_| rng.random_range(-s..s))
@@ -77,16 +77,20 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
             };
             let (q, qd, qdd) = (v(n, std::f64::consts::PI), v(n, 3.0), v(n, 10.0));
             // Inputs of forward dynamics: the torques and tensions of inverse dynamics.
-            let id = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let id = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
             let (mt, tt) = (id.motor_torques.clone(), id.tendon_tensions.clone());
             for (output, got) in (mech.evaluate)(&q, &qd, &qdd, &mt, &tt, &p) {
-                let want = runtime(&mut solver, output, &q, &qd, &qdd, &mt, &tt);
+                let want = runtime((&model, &mut solver), output, &q, &qd, &qdd, &mt, &tt);
                 assert_eq!(got.len(), want.len(), "{} {output}", mech.name);
                 let mut scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
                 if output == "forward_dynamics" {
                     // Tensions that balance each other make q̈ a small difference of large
                     // terms; measure against the size of those terms.
-                    scale = scale.max(solver.forward_dynamics_scale(&q, &qd, &mt, &tt).unwrap());
+                    scale = scale.max(
+                        solver
+                            .forward_dynamics_scale(&model, &q, &qd, &mt, &tt)
+                            .unwrap(),
+                    );
                 }
                 let err = got
                     .iter()
@@ -125,15 +129,18 @@ fn the_no_std_build_of_the_finger_links_into_a_host_program_and_agrees() {
         "/../../examples/mechanisms/example3_stanford_jpl.ron"
     ))
     .unwrap();
-    let mut s = Solver::new(&model);
+    let mut s = Data::new(&model);
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     for _ in 0..100 {
         let mut v = |x: f64| -> [f64; 3] { std::array::from_fn(|_| rng.random_range(-x..x)) };
         let (q, qd, qdd) = (v(3.0), v(3.0), v(10.0));
-        let want = s.inverse_dynamics(&q, &qd, &qdd).unwrap().tendon_tensions;
+        let want = &s
+            .inverse_dynamics(&model, &q, &qd, &qdd)
+            .unwrap()
+            .tendon_tensions;
         let got = finger::actuation::<f64>(&q, &qd, &qdd).tendon_tensions;
         let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (a, b) in got.iter().zip(&want) {
+        for (a, b) in got.iter().zip(want) {
             assert!((a - b).abs() <= 1e-12 * scale, "{got:?} vs {want:?}");
         }
     }
@@ -159,8 +166,8 @@ fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
     for mech in MECHANISMS.iter().filter(|m| m.name.contains("friction")) {
         let model = tendyn_core::parse(mech.ron).unwrap();
         let m32 = model.cast_numeric::<f32>();
-        let (mut s64, mut s32) = (Solver::new(&model), Solver::new(&m32));
-        let n = model.dof;
+        let (mut s64, mut s32) = (Data::new(&model), Data::new(&m32));
+        let n = model.dof();
         let mut rng = ChaCha8Rng::seed_from_u64(99);
         for i in 0..300 {
             let mut v = |s: f64| {
@@ -169,17 +176,17 @@ fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
                     .collect::<Vec<f32>>()
             };
             let (q, mut qd, mut qdd) = (v(std::f64::consts::PI), v(3.0), v(10.0));
-            let id = s32.inverse_dynamics(&q, &qd, &qdd).unwrap();
+            let id = s32.inverse_dynamics(&m32, &q, &qd, &qdd).unwrap();
             let (mt, tt) = (id.motor_torques.clone(), id.tendon_tensions.clone());
             for (output, got) in (mech.evaluate_f32)(&q, &qd, &qdd, &mt, &tt, &[]) {
-                let want = runtime(&mut s32, output, &q, &qd, &qdd, &mt, &tt);
+                let want = runtime((&m32, &mut s32), output, &q, &qd, &qdd, &mt, &tt);
                 let mut scale = want
                     .iter()
                     .fold(0.0f64, |m, x| m.max(x.abs() as f64))
                     .max(1e-30);
                 if output == "forward_dynamics" {
-                    scale =
-                        scale.max(s32.forward_dynamics_scale(&q, &qd, &mt, &tt).unwrap() as f64);
+                    scale = scale
+                        .max(s32.forward_dynamics_scale(&m32, &q, &qd, &mt, &tt).unwrap() as f64);
                 }
                 let err = distance(&got, &want, scale);
                 assert!(
@@ -196,8 +203,8 @@ fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
             }
             let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
             let (q, qd, qdd) = (wide(&q), wide(&qd), wide(&qdd));
-            let id = s64.inverse_dynamics(&q, &qd, &qdd).unwrap();
-            if model.friction_smoothing.is_none() {
+            let id = s64.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
+            if model.friction_smoothing().is_none() {
                 assert_eq!(
                     id.sticking.len(),
                     id.bearing_friction.len(),
@@ -207,11 +214,14 @@ fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
             }
             let (mt, tt) = (id.motor_torques.clone(), id.tendon_tensions.clone());
             for (output, got) in (mech.evaluate)(&q, &qd, &qdd, &mt, &tt, &[]) {
-                let want = runtime(&mut s64, output, &q, &qd, &qdd, &mt, &tt);
+                let want = runtime((&model, &mut s64), output, &q, &qd, &qdd, &mt, &tt);
                 let mut scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
                 if output == "forward_dynamics" {
                     // At rest forward dynamics takes no friction; the torques came with it.
-                    scale = scale.max(s64.forward_dynamics_scale(&q, &qd, &mt, &tt).unwrap());
+                    scale = scale.max(
+                        s64.forward_dynamics_scale(&model, &q, &qd, &mt, &tt)
+                            .unwrap(),
+                    );
                 }
                 let err = distance(&got, &want, scale);
                 assert!(err <= 1e-12, "{} {output} at rest: {err:.3e}", mech.name);

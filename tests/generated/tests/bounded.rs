@@ -9,7 +9,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::distribution::Status;
-use tendyn_core::{Error, Solver};
+use tendyn_core::{Data, Error};
 use tendyn_generated_tests::BOUNDED;
 
 #[test]
@@ -17,8 +17,8 @@ fn generated_actuation_agrees_with_the_runtime_on_status_and_tensions() {
     for mech in BOUNDED {
         let model = tendyn_core::parse(mech.ron).unwrap();
         let m32 = model.cast_numeric::<f32>();
-        let (mut s64, mut s32) = (Solver::new(&model), Solver::new(&m32));
-        let n = model.dof;
+        let (mut s64, mut s32) = (Data::new(&model), Data::new(&m32));
+        let n = model.dof();
         let mut rng = ChaCha8Rng::seed_from_u64(31);
         let (mut feasible, mut exceeded, mut worst64, mut worst32, mut disagree32) =
             (0, 0, 0.0f64, 0.0f64, 0);
@@ -33,14 +33,14 @@ fn generated_actuation_agrees_with_the_runtime_on_status_and_tensions() {
             let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
             let (t64, status64) = (mech.actuation_f64)(&q64, &qd64, &qdd64);
             let (t32, status32) = (mech.actuation_f32)(&q, &qd, &qdd);
-            for (t, f) in t64.iter().zip(&model.tendons) {
+            for (t, f) in t64.iter().zip(model.tendons()) {
                 assert!(
                     *t >= f.floor * (1.0 - 1e-12) - 1e-9,
                     "{}: below a floor",
                     mech.name
                 );
             }
-            match s64.inverse_dynamics(&q64, &qd64, &qdd64) {
+            match s64.inverse_dynamics(&model, &q64, &qd64, &qdd64) {
                 Ok(r) => {
                     feasible += 1;
                     assert_eq!(status64, Status::Feasible, "{} at q={q:?}", mech.name);
@@ -81,7 +81,7 @@ fn generated_actuation_agrees_with_the_runtime_on_status_and_tensions() {
             }
             // The runtime in f32 decides as generated f32 does, within its round-off of
             // the boundary.
-            let runtime32 = s32.inverse_dynamics(&q, &qd, &qdd).is_ok();
+            let runtime32 = s32.inverse_dynamics(&m32, &q, &qd, &qdd).is_ok();
             disagree32 += usize::from(runtime32 != (status32 == Status::Feasible));
         }
         println!(

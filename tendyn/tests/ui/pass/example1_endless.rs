@@ -11,13 +11,13 @@ struct Arm;
 
 fn main() {
     let model = tendyn::parse(include_str!("../../../../examples/mechanisms/example1_endless.ron")).unwrap();
-    let mut solver = tendyn::Solver::new(&model);
+    let mut solver = tendyn::Data::new(&model);
     assert_eq!((Arm::DOF, Arm::MOTORS, Arm::TENDONS), (2, 2, 0));
     assert_eq!(Arm::MOTOR_NAMES, ["motor1", "motor3"]);
     for k in 0..20 {
         let x = k as f64 * 0.37;
         let (q, qd, qdd) = ([x.sin(), 0.5 * x], [x.cos(), -1.0], [0.3, x]);
-        let runtime = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let runtime = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let motors = Arm.actuation(&q, &qd, &qdd).motor_torques;
         let generic = <Arm as TendonMechanism>::generalized_forces(&Arm, &q, &qd, &qdd).unwrap();
         for j in 0..2 {

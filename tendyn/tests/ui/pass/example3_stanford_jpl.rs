@@ -17,13 +17,13 @@ fn taut<M: TendonMechanism<Scalar = f64, Joints = [f64; 3], Tendons = [f64; 4]>>
 
 fn main() {
     let model = tendyn::parse(include_str!("../../../../examples/mechanisms/example3_stanford_jpl.ron")).unwrap();
-    let mut solver = tendyn::Solver::new(&model);
+    let mut solver = tendyn::Data::new(&model);
     assert_eq!(Finger::OUTPUTS.len(), 9);
     assert_eq!(Finger::JOINT_NAMES.len(), 3);
     for k in 0..20 {
         let x = k as f64 * 0.29;
         let (q, qd, qdd) = ([x.sin(), x, -x], [1.0, x.cos(), 0.5], [x, 2.0, -1.0]);
-        let runtime = solver.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let runtime = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
         let all = Finger.all(&q, &qd, &qdd, &[0.0; 0], &[1.0, 2.0, 3.0, 4.0]);
         for j in 0..3 {
             let scale = 1.0 + runtime.generalized_forces[j].abs();

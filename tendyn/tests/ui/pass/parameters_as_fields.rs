@@ -18,13 +18,13 @@ struct Finger {
 
 fn main() {
     assert_eq!(Finger::PARAMETER_NAMES, ["m3", "i3zz", "g", "i8"]);
-    let mut model = tendyn::parse(include_str!("../mechanisms/parametric_finger.ron")).unwrap();
-    let values = [0.05, 0.000004, -3.7, 0.0000001];
-    model.set_parameters(&values);
-    let mut solver = tendyn::Solver::new(&model);
+    let file = tendyn::parse(include_str!("../mechanisms/parametric_finger.ron")).unwrap();
+    let values = [0.05, 0.0000035, -3.7, 0.000000045];
+    let model = file.with_parameters(&values).unwrap();
+    let mut solver = tendyn::Data::new(&model);
     let finger = Finger { m3: values[0], i3zz: values[1], g: values[2], i8: values[3] };
     let q = [0.3, -0.2, 0.9];
-    let runtime = solver.gravity(&q).unwrap();
+    let runtime = solver.gravity(&model, &q).unwrap();
     let derived = finger.gravity(&q);
     for j in 0..3 {
         assert!((derived[j] - runtime[j]).abs() <= 1e-12 * (1.0 + runtime[j].abs()));

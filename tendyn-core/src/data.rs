@@ -1,0 +1,457 @@
+//! The runtime front end: [`Data`], the work and result buffers of one mechanism's
+//! evaluations (Pinocchio's `Data`), and its evaluators, which are the generic functions
+//! of [`crate::dynamics`] with what only numbers can do: input checks, the tension
+//! distribution for null spaces of any dimension, the positive-definiteness check of
+//! forward dynamics, and a named error instead of any non-finite result.
+//!
+//! ```
+//! # fn main() -> Result<(), tendyn_core::Error> {
+//! use tendyn_core::{load, Data};
+//! let model = load("../examples/mechanisms/example3_stanford_jpl.ron")?;
+//! let mut data = Data::new(&model);
+//! let r = data.inverse_dynamics(&model, &[0.1, 0.5, 0.3], &[0.0; 3], &[1.0, 0.0, 0.0])?;
+//! assert!(r.tendon_tensions.iter().all(|&t| t >= 5.0 - 1e-9));
+//! // The same buffers serve the same mechanism with other parameters, and nothing else.
+//! let other = load("../examples/mechanisms/example1_endless.ron")?;
+//! assert!(data.gravity(&other, &[0.0; 3]).is_err());
+//! # Ok(())
+//! # }
+//! ```
+
+use crate::affine::Affine;
+use crate::dynamics::{
+    bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces, gravity,
+    inverse_dynamics, mass_matrix, structure, InverseDynamics, Workspace,
+};
+use crate::error::{Error, Result};
+use crate::friction;
+use crate::linalg;
+use crate::model::{Model, TensionSystem};
+use crate::real::{Numeric, Real};
+use crate::spatial::Vec3;
+use crate::tension;
+
+/// The work and result buffers of the runtime solver for models of one shape (Pinocchio's
+/// `Data`): the generic functions of [`crate::dynamics`] with input checks, on numbers.
+/// The model is passed to every call, so that a controller can own both without a
+/// lifetime; a `Data` made for a model of another shape is an error, never a panic.
+///
+/// Each evaluator writes its result into the buffers and lends it out until the next call.
+#[derive(Clone, Debug)]
+pub struct Data<T: Real> {
+    shape: Shape,
+    ws: Workspace<T>,
+    generalized_forces: Vec<T>,
+    mass_matrix: Vec<Vec<T>>,
+    bias: Vec<T>,
+    gravity: Vec<T>,
+    joint_accelerations: Vec<T>,
+    inverse_dynamics: Option<InverseDynamics<T>>,
+}
+
+/// What the work buffers' sizes depend on: joints, bodies, unknowns of the tension
+/// system, and each strand's segments and idler steps.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Shape {
+    dof: usize,
+    bodies: usize,
+    unknowns: usize,
+    strands: Vec<(usize, usize)>,
+}
+
+impl Shape {
+    fn of<T>(model: &Model<T>) -> Self {
+        Shape {
+            dof: model.dof(),
+            bodies: model.bodies().len(),
+            unknowns: model.system().unknowns.len(),
+            strands: model
+                .strands()
+                .iter()
+                .map(|s| (s.segments.len(), s.idlers.len()))
+                .collect(),
+        }
+    }
+
+    /// Whether `model` has this shape (no allocation).
+    fn fits<T>(&self, model: &Model<T>) -> bool {
+        self.dof == model.dof()
+            && self.bodies == model.bodies().len()
+            && self.unknowns == model.system().unknowns.len()
+            && self.strands.len() == model.strands().len()
+            && self
+                .strands
+                .iter()
+                .zip(model.strands())
+                .all(|(&(segments, idlers), s)| {
+                    segments == s.segments.len() && idlers == s.idlers.len()
+                })
+    }
+}
+
+impl<T: Numeric> Data<T> {
+    /// Buffers for `model`, and for every model of its shape (the same mechanism with other
+    /// parameters, [`Model::with_parameters`]).
+    pub fn new(model: &Model<T>) -> Self {
+        let n = model.dof();
+        Data {
+            shape: Shape::of(model),
+            ws: Workspace::new(model),
+            generalized_forces: vec![T::zero(); n],
+            mass_matrix: vec![vec![T::zero(); n]; n],
+            bias: vec![T::zero(); n],
+            gravity: vec![T::zero(); n],
+            joint_accelerations: vec![T::zero(); n],
+            inverse_dynamics: None,
+        }
+    }
+
+    /// `Err` unless these buffers fit `model`.
+    fn check_model(&self, model: &Model<T>) -> Result<()> {
+        if self.shape.fits(model) {
+            return Ok(());
+        }
+        Err(Error::State(format!(
+            "this Data was made for a mechanism of another shape than `{}` ({} joints, {} \
+             bodies, {} tension unknowns); make one with `Data::new(&model)`",
+            model.name(),
+            self.shape.dof,
+            self.shape.bodies,
+            self.shape.unknowns
+        )))
+    }
+
+    fn check_state(model: &Model<T>, what: &str, v: &[T]) -> Result<()> {
+        let n = model.dof();
+        if v.len() != n {
+            return Err(Error::State(format!(
+                "{what} has {} entries but the mechanism has {n} joints",
+                v.len()
+            )));
+        }
+        if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(Error::State(format!(
+                "{what}[{i}] is {}; every entry must be finite",
+                x.to_f64()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
+    /// ([`generalized_forces`]).
+    pub fn generalized_forces(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<&[T]> {
+        self.check_model(model)?;
+        Self::check_state(model, "q", q)?;
+        Self::check_state(model, "qd", qd)?;
+        Self::check_state(model, "qdd", qdd)?;
+        let out = &mut self.generalized_forces;
+        generalized_forces(model, q, qd, qdd, &mut self.ws, out);
+        finite(
+            "generalized forces",
+            &*out,
+            &[("q", q), ("qd", qd), ("qdd", qdd)],
+        )?;
+        Ok(out)
+    }
+
+    /// Joint-space mass matrix `M(q)`.
+    pub fn mass_matrix(&mut self, model: &Model<T>, q: &[T]) -> Result<&[Vec<T>]> {
+        self.check_model(model)?;
+        Self::check_state(model, "q", q)?;
+        self.mass_matrix = mass_matrix(model, q, &mut self.ws);
+        finite(
+            "mass matrix",
+            self.mass_matrix.iter().flatten(),
+            &[("q", q)],
+        )?;
+        Ok(&self.mass_matrix)
+    }
+
+    /// Bias `h(q, q̇)`.
+    pub fn bias(&mut self, model: &Model<T>, q: &[T], qd: &[T]) -> Result<&[T]> {
+        self.check_model(model)?;
+        Self::check_state(model, "q", q)?;
+        Self::check_state(model, "qd", qd)?;
+        self.bias = bias(model, q, qd, &mut self.ws);
+        finite("bias", &self.bias, &[("q", q), ("qd", qd)])?;
+        Ok(&self.bias)
+    }
+
+    /// Gravity generalized forces `g(q)`.
+    pub fn gravity(&mut self, model: &Model<T>, q: &[T]) -> Result<&[T]> {
+        self.check_model(model)?;
+        Self::check_state(model, "q", q)?;
+        self.gravity = gravity(model, q, &mut self.ws);
+        finite("gravity", &self.gravity, &[("q", q)])?;
+        Ok(&self.gravity)
+    }
+
+    /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext| + Σ_b |c_b τ_f,b|)‖∞`: the size of the
+    /// terms forward dynamics sums (`A`, `B` the tendons' and motors' columns, `τ_f,b` the
+    /// bearings' friction). Tensions that balance each
+    /// other make `q̈` a small difference of large numbers, so the error of a forward
+    /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
+    ///
+    /// Checked as [`Data::forward_dynamics`] is, with the same errors: the inputs (their
+    /// lengths and finiteness), every intermediate result, and the mass matrix (which must
+    /// be positive definite); a finite scale or an error, never a non-finite number.
+    pub fn forward_dynamics_scale(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<T> {
+        self.check_model(model)?;
+        self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = [
+            ("q", q),
+            ("qd", qd),
+            ("motor_torques", motor_torques),
+            ("tendon_tensions", tendon_tensions),
+        ];
+        let zero = T::from_f64(0.0);
+        let a = structure(model, q, qd, &mut self.ws);
+        let zeros = vec![zero; model.dof()];
+        let mut c = zeros.clone();
+        expanded_generalized_forces(model, q, qd, &zeros, true, true, &mut self.ws, &mut c);
+        finite("generalized forces", &c, &inputs)?;
+        // The bearings' friction, each body's part on its own: it may cancel gravity.
+        let mut torques = vec![zero; model.bodies.len()];
+        friction::bearing_torques(model, qd, None, &mut torques);
+        let rhs: Vec<T> = (0..model.dof)
+            .map(|j| {
+                let motors = model
+                    .motors
+                    .iter()
+                    .zip(motor_torques)
+                    .fold(zero, |s, (m, &t)| s + (T::from_f64(m.column[j]) * t).abs());
+                let tendons = a
+                    .iter()
+                    .zip(tendon_tensions)
+                    .fold(zero, |s, (a, &t)| s + (a[j] * t).abs());
+                let friction = model
+                    .bodies
+                    .iter()
+                    .zip(&torques)
+                    .fold(zero, |s, (b, &t)| s + (b.coupling[j] * t).abs());
+                motors + tendons + c[j].abs() + friction
+            })
+            .collect();
+        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
+        let y = self.solve_mass_matrix(model, q, &rhs)?;
+        // (`max` would pass over a NaN.)
+        finite("forward-dynamics term scale", &y, &inputs)?;
+        Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
+    }
+
+    /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
+    /// tensions of the open-ended tendons (file order).
+    pub fn forward_dynamics(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<&[T]> {
+        self.check_model(model)?;
+        self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = [
+            ("q", q),
+            ("qd", qd),
+            ("motor_torques", motor_torques),
+            ("tendon_tensions", tendon_tensions),
+        ];
+        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        finite("right-hand side of forward dynamics", &rhs, &inputs)?;
+        self.joint_accelerations = self.solve_mass_matrix(model, q, &rhs)?;
+        finite("joint acceleration", &self.joint_accelerations, &inputs)?;
+        Ok(&self.joint_accelerations)
+    }
+
+    /// The input checks of forward dynamics: the state, and as many finite motor torques
+    /// and tendon tensions as the mechanism has motors and open-ended tendons.
+    fn check_forward_inputs(
+        &self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<()> {
+        Self::check_state(model, "q", q)?;
+        Self::check_state(model, "qd", qd)?;
+        if model.capstan_before_an_idler() {
+            return Err(Error::NotYet(
+                "forward dynamics where a turning idler follows a guide with capstan friction \
+                 (`mu > 0`) towards the tendon's exit: the idler's inertia then reaches the \
+                 joints scaled by the guide's friction, which the mass matrix does not carry; \
+                 inverse dynamics handles it"
+                    .into(),
+            ));
+        }
+        if motor_torques.len() != model.motors.len() || tendon_tensions.len() != model.tendons.len()
+        {
+            return Err(Error::State(format!(
+                "expected {} motor torques and {} tendon tensions, got {} and {}",
+                model.motors.len(),
+                model.tendons.len(),
+                motor_torques.len(),
+                tendon_tensions.len()
+            )));
+        }
+        for (what, v) in [
+            ("motor torque", motor_torques),
+            ("tendon tension", tendon_tensions),
+        ] {
+            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+                return Err(Error::State(format!(
+                    "a {what} is {}; inputs must be finite",
+                    x.to_f64()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
+    fn solve_mass_matrix(&mut self, model: &Model<T>, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
+        let m = mass_matrix(model, q, &mut self.ws);
+        finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
+        let mut factor: Vec<T> = m.into_iter().flatten().collect();
+        let mut x = rhs.to_vec();
+        if !linalg::cholesky_solve(&mut factor, &mut x) {
+            return Err(Error::Singular(
+                "the mass matrix is not positive definite at this state (a massless chain, or a \
+                 link whose motion nothing resists)"
+                    .into(),
+            ));
+        }
+        Ok(x)
+    }
+
+    /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
+    /// tension distribution for null spaces of any dimension ([`tension::distribute`]:
+    /// every tendon within its floor and maximum, the model's objective least).
+    pub fn inverse_dynamics(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<&InverseDynamics<T>> {
+        self.check_model(model)?;
+        if model.system().unknowns.is_empty() {
+            return Err(Error::State(format!(
+                "`{}` has no tendons or motors to solve for (a rigid tree): its generalized \
+                 forces are `Data::generalized_forces`",
+                model.name()
+            )));
+        }
+        Self::check_state(model, "q", q)?;
+        Self::check_state(model, "qd", qd)?;
+        Self::check_state(model, "qdd", qdd)?;
+        let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        // Tensions that overflowed are reported before the distribution sees them, with the
+        // input to blame.
+        let distribute = |model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]| {
+            finite("tension or motor torque", &*x, &inputs)?;
+            tension::distribute(model, system, x)
+        };
+        let mut r = inverse_dynamics(
+            model,
+            q,
+            qd,
+            qdd,
+            &mut self.ws,
+            tension::system_at,
+            distribute,
+        )?;
+        r.sticking = friction::at_rest(model, qd);
+        finite("generalized forces", &r.generalized_forces, &inputs)?;
+        finite("tension or motor torque", &r.unknowns, &inputs)?;
+        finite(
+            "pulley moment",
+            r.pulley_demands.iter().map(|(_, v)| v),
+            &inputs,
+        )?;
+        finite(
+            "bearing friction",
+            r.bearing_friction.iter().map(|(_, v)| v),
+            &inputs,
+        )?;
+        if let Some(s) = &r.segment_tensions {
+            finite("segment tension", s.iter().flatten(), &inputs)?;
+        }
+        let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| f.to_array().into_iter().chain(n.to_array());
+        if let Some(b) = &r.bearings {
+            finite(
+                "bearing force",
+                &b.iter().flat_map(wrench).collect::<Vec<T>>(),
+                &inputs,
+            )?;
+        }
+        if let Some(b) = &r.base_reaction {
+            finite("base reaction", &wrench(b).collect::<Vec<T>>(), &inputs)?;
+        }
+        Ok(self.inverse_dynamics.insert(r))
+    }
+
+    /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
+    /// the recursion against the transmission's `E`).
+    pub fn last_balance_rows(&self, model: &Model<T>) -> Result<Vec<Affine<T>>> {
+        self.check_model(model)?;
+        Ok(tension::balance_rows(
+            model,
+            &self.ws.loads,
+            &self.ws.friction,
+        ))
+    }
+}
+
+/// `Err` when a result is not finite although the inputs were: some intermediate value
+/// overflowed the scalar (a speed of 1e200 rad/s squares to infinity). The solver returns
+/// this error rather than a non-finite number, and names the largest of the `inputs`
+/// (each a name and its values), which is almost always the one to blame.
+fn finite<'a, T: Numeric>(
+    what: &str,
+    values: impl IntoIterator<Item = &'a T>,
+    inputs: &[(&str, &[T])],
+) -> Result<()> {
+    let Some(x) = values.into_iter().find(|x| !x.is_finite()) else {
+        return Ok(());
+    };
+    let largest = inputs
+        .iter()
+        .flat_map(|(name, v)| {
+            v.iter()
+                .enumerate()
+                .map(move |(i, x)| (*name, i, x.to_f64()))
+        })
+        .fold(None, |best: Option<(&str, usize, f64)>, c| match best {
+            Some(b) if b.2.abs() >= c.2.abs() => Some(b),
+            _ => Some(c),
+        });
+    let blame = match largest {
+        Some((name, i, v)) => format!(
+            "; the largest input is {name}[{i}] = {v:e}: make it smaller (a real mechanism's \
+             speeds, accelerations and forces are many orders of magnitude below the scalar's \
+             range)"
+        ),
+        None => String::new(),
+    };
+    Err(Error::State(format!(
+        "the {what} came out {} at this state although every input is finite: an intermediate \
+         value overflowed the scalar{blame}",
+        x.to_f64()
+    )))
+}

@@ -1,0 +1,237 @@
+//! A model built in code rather than read from a file: a tree of rigid bodies without
+//! tendons or motors ([`Model::rigid_tree`]), checked for what the recursion relies on.
+//! Invariant: a model it returns satisfies the same body invariants as a validated file's.
+
+use super::ranges::{beyond, Range};
+use super::{check_mass_properties, check_wrench_point};
+use crate::error::{Error, Location, Result};
+use crate::model::{Body, BodyKind, Model, TensionSystem, Wrench};
+use crate::spatial::{Mat3, Transform, Vec3};
+
+/// How far a body's derived numbers (`axis`, `joint_to_origin`, an orthonormal rotation, an
+/// axisymmetric inertia) may be from exact, relative to their size: a few hundred rounding
+/// errors of the products that derive them.
+const DERIVED: f64 = 1e-12;
+
+impl Model<f64> {
+    /// A tree of rigid bodies with no tendons, motors or loops, built in code: for the mass
+    /// matrix, bias and gravity of a linkage (and forward dynamics under gravity alone), and
+    /// for checks whose reference needs only the bodies.
+    ///
+    /// Bodies as [`Body`] documents them: the `dof` links first, link `j` of kind
+    /// `Link { joint: j }` with coupling `e_j`, then intermediate links (pulleys); parents
+    /// before children; `axis = postᵀ z` and `joint_to_origin = postᵀ t` as validation
+    /// derives them; a body that turns without spinning axisymmetric about its axis. Every
+    /// violation, and every number beyond the file format's ranges, is an
+    /// [`Error::Invalid`] naming the body.
+    pub fn rigid_tree(
+        name: &str,
+        gravity: [f64; 3],
+        dof: usize,
+        bodies: Vec<Body<f64>>,
+        external_wrench: Option<Wrench<f64>>,
+    ) -> Result<Model<f64>> {
+        let invalid = |item: &str, problem: String| Error::Invalid {
+            item: item.to_string(),
+            at: Location::default(),
+            problem,
+        };
+        if let Some(p) = finite_within("gravity", &gravity, Range::Acceleration) {
+            return Err(invalid(name, p));
+        }
+        if bodies.len() < dof {
+            return Err(invalid(
+                name,
+                format!(
+                    "{dof} joints need {dof} links, {} bodies given",
+                    bodies.len()
+                ),
+            ));
+        }
+        for (index, body) in bodies.iter().enumerate() {
+            check_body(index, body, dof).map_err(|p| invalid(&body.name, p))?;
+            check_mass_properties(&body.name, body.mass, body.com, &body.inertia)?;
+        }
+        if let Some(w) = &external_wrench {
+            if w.link >= dof {
+                return Err(invalid(
+                    name,
+                    format!("the external wrench acts on link {} of {dof}", w.link),
+                ));
+            }
+            let numbers = [w.point, w.force, w.moment].map(|v| v.to_array());
+            for (field, values, range) in [
+                ("external_wrench.point", numbers[0], Range::Length),
+                ("external_wrench.force", numbers[1], Range::Force),
+                ("external_wrench.moment", numbers[2], Range::Moment),
+            ] {
+                if let Some(p) = finite_within(field, &values, range) {
+                    return Err(invalid(name, p));
+                }
+            }
+            check_wrench_point(name, w.point)?;
+        }
+        Ok(Model {
+            name: name.to_string(),
+            gravity: Vec3::from_array(gravity),
+            parameters: Vec::new(),
+            parameter_slots: Vec::new(),
+            dof,
+            bodies,
+            strands: Vec::new(),
+            tendons: Vec::new(),
+            loops: Vec::new(),
+            motors: Vec::new(),
+            system: TensionSystem {
+                unknowns: Vec::new(),
+                rows: Vec::new(),
+                matrix: Vec::new(),
+                pseudo_inverse: Vec::new(),
+                null_space: Vec::new(),
+                positive_null: None,
+                condition: 1.0,
+            },
+            objective: Default::default(),
+            friction_smoothing: None,
+            external_wrench,
+            routing_incomplete: false,
+        })
+    }
+}
+
+/// What is wrong with body `index` of a rigid tree, if anything.
+fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result<(), String> {
+    match (&body.kind, index < dof) {
+        (BodyKind::Link { joint }, true) if *joint == index => {}
+        (BodyKind::Pulley { .. }, false) => {}
+        _ if index < dof => {
+            return Err(format!("body {index} must be `Link {{ joint: {index} }}`"))
+        }
+        _ => {
+            return Err(format!(
+                "body {index} comes after the {dof} links: a pulley"
+            ))
+        }
+    }
+    if body.parent.is_some_and(|p| p >= index) {
+        return Err(format!(
+            "its parent is body {:?}; parents come before their children",
+            body.parent
+        ));
+    }
+    if body.coupling.len() != dof {
+        return Err(format!(
+            "its coupling has {} entries for {dof} joints",
+            body.coupling.len()
+        ));
+    }
+    if let Some(p) = finite_within("coupling", &body.coupling, Range::Ratio) {
+        return Err(p);
+    }
+    if index < dof
+        && body
+            .coupling
+            .iter()
+            .enumerate()
+            .any(|(j, &c)| c != f64::from(u8::from(j == index)))
+    {
+        return Err(format!(
+            "link {index}'s coupling must be the unit vector of joint {index}"
+        ));
+    }
+    for (field, t) in [("pre", &body.pre), ("post", &body.post)] {
+        check_transform(field, t)?;
+    }
+    if let Some(p) = finite_within("offset", &[body.offset], Range::Angle) {
+        return Err(p);
+    }
+    let axis = body.post.rotation.tr_mul_vec(Vec3::unit_z());
+    let joint_to_origin = body.post.rotation.tr_mul_vec(body.post.translation);
+    let scale = 1.0 + body.post.translation.dot(body.post.translation).sqrt();
+    if distance(body.axis, axis) > DERIVED {
+        return Err(format!("`axis` {:?} is not postᵀ z = {axis:?}", body.axis));
+    }
+    if distance(body.joint_to_origin, joint_to_origin) > DERIVED * scale {
+        return Err(format!(
+            "`joint_to_origin` {:?} is not postᵀ t = {joint_to_origin:?}",
+            body.joint_to_origin
+        ));
+    }
+    if let Some(f) = body.friction {
+        let values = [f.coulomb, f.viscous];
+        if values.iter().any(|v| *v < 0.0) {
+            return Err("bearing friction coefficients must be non-negative".into());
+        }
+        if let Some(p) = finite_within("friction", &values, Range::Torque) {
+            return Err(p);
+        }
+    }
+    let turns = body.coupling.iter().any(|&c| c != 0.0);
+    if turns && !body.spins {
+        // Its frame stays the housing frame (Eq. 16 without the spin): the recursion is
+        // right only for a body whose mass distribution turning does not change.
+        let inertia = &body.inertia.rows;
+        let size = 1.0
+            + inertia
+                .iter()
+                .flatten()
+                .fold(0.0_f64, |m, x| m.max(x.abs()));
+        let along = axis.dot(body.inertia.mul_vec(axis));
+        let across = (inertia[0][0] + inertia[1][1] + inertia[2][2] - along) / 2.0;
+        let off = (0..3)
+            .flat_map(|r| (0..3).map(move |c| (r, c)))
+            .map(|(r, c)| {
+                let (a, b) = (axis.to_array()[r], axis.to_array()[c]);
+                let identity = f64::from(u8::from(r == c));
+                let symmetric = a * b * along + (identity - a * b) * across;
+                (inertia[r][c] - symmetric).abs()
+            })
+            .fold(0.0, f64::max);
+        let from_axis = body.com + joint_to_origin;
+        let radial = from_axis - axis.scale(from_axis.dot(axis));
+        if off > DERIVED * size || radial.dot(radial).sqrt() > DERIVED * scale {
+            return Err(
+                "it turns without spinning (`spins: false`) but its mass is not axisymmetric \
+                 about its axis: let it spin"
+                    .into(),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// What is wrong with a transform: a rotation that is not orthonormal, or a translation not
+/// finite or beyond the range of a length.
+fn check_transform(field: &str, t: &Transform<f64>) -> std::result::Result<(), String> {
+    let r = t.rotation;
+    let product: Mat3<f64> = r.transpose() * r;
+    let off = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .map(|(i, j)| (product.rows[i][j] - f64::from(u8::from(i == j))).abs())
+        .fold(0.0, f64::max);
+    let [a, b, c] = r.rows.map(|row| Vec3::new(row[0], row[1], row[2]));
+    if off.is_nan() || off > DERIVED || a.cross(b).dot(c) < 0.0 {
+        return Err(format!(
+            "`{field}.rotation` is not a rotation (orthonormal, det 1)"
+        ));
+    }
+    finite_within(
+        &format!("{field}.translation"),
+        &t.translation.to_array(),
+        Range::Length,
+    )
+    .map_or(Ok(()), Err)
+}
+
+/// What is wrong with `values`: a number not finite, or beyond `range`.
+fn finite_within(field: &str, values: &[f64], range: Range) -> Option<String> {
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Some(format!("`{field}` is {v}; it must be finite"));
+    }
+    beyond(field, values, range)
+}
+
+fn distance(a: Vec3<f64>, b: Vec3<f64>) -> f64 {
+    let d = a - b;
+    d.dot(d).sqrt()
+}
