@@ -15,6 +15,7 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use tendyn_codegen::outputs::flattened_numbers;
 use tendyn_codegen::Output;
 
 const VAR: &str = "TENDYN_REPORT_FILES";
@@ -104,7 +105,7 @@ fn run() -> Result<(), String> {
 
 /// The call of output `o` on state `s` (fields `q`, `qd`, `qdd`, `mt`, `tt`, `p`), with
 /// `wrap` applied to every argument, and how its result is flattened into `v: Vec<f64>`.
-fn call(o: Output, params: bool, wrap: &str) -> (String, &'static str) {
+fn call(o: Output, params: bool, wrap: &str) -> (String, String) {
     let arg = |f: &str| {
         if wrap.is_empty() {
             format!("&s.{f}")
@@ -121,16 +122,10 @@ fn call(o: Output, params: bool, wrap: &str) -> (String, &'static str) {
     if params {
         args.push(arg("p"));
     }
-    let flatten = match o {
-        Output::Actuation => {
-            "r.motor_torques.iter().chain(r.tendon_tensions.iter()).map(|x| x.to_f64()).collect()"
-        }
-        Output::MassMatrix => "r.iter().flatten().map(|x| x.to_f64()).collect()",
-        Output::Bearings | Output::BaseReaction => {
-            "r.iter().flatten().flatten().map(|x| x.to_f64()).collect()"
-        }
-        _ => "r.iter().map(|x| x.to_f64()).collect()",
-    };
+    let flatten = format!(
+        "{}.map(|x| x.to_f64()).collect()",
+        flattened_numbers(o, "r")
+    );
     (
         format!("code::{}::<T>({})", o.name(), args.join(", ")),
         flatten,

@@ -4,6 +4,7 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use tendyn_core::output::Output;
 use tendyn_core::{Data, DoubleDouble, InverseDynamics, Model, Numeric};
 use tendyn_spec::measure::{max_rel as rel, random_state as state};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
@@ -29,20 +30,17 @@ fn mechanisms() -> Vec<Model<f64>> {
     all
 }
 
-/// Every number inverse dynamics reports, flattened, as f64.
+/// Every number inverse dynamics reports, flattened, as f64: the generalized forces, every
+/// unknown (loop sides included), the segment tensions and the bearings.
 fn flatten<T: Numeric>(r: &InverseDynamics<T>) -> Vec<f64> {
-    let mut v: Vec<f64> = Vec::new();
-    v.extend(r.generalized_forces.iter().map(|x| x.to_f64()));
-    v.extend(r.unknowns.iter().map(|x| x.to_f64()));
-    if let Some(segs) = &r.segment_tensions {
-        v.extend(segs.iter().flatten().map(|x| x.to_f64()));
-    }
-    if let Some(b) = &r.bearings {
-        for (f, n) in b {
-            v.extend([f.x, f.y, f.z, n.x, n.y, n.z].map(|x| x.to_f64()));
-        }
-    }
-    v
+    let flat = |o| r.flattened(o).unwrap_or_default();
+    let parts = [
+        flat(Output::GeneralizedForces),
+        r.unknowns.clone(),
+        flat(Output::SegmentTensions),
+        flat(Output::Bearings),
+    ];
+    parts.concat().into_iter().map(|x| x.to_f64()).collect()
 }
 
 fn lift<T: Numeric>(v: &[f64]) -> Vec<T> {

@@ -12,121 +12,21 @@ use tendyn_core::affine::Affine;
 use tendyn_core::distribution::Problem;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model};
+pub use tendyn_core::output::{Output, Param};
 use tendyn_core::{linalg, tension, Real};
 
-/// One generated function.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Output {
-    /// `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` (what the actuators deliver, bearing
-    /// friction included).
-    GeneralizedForces,
-    /// Motor torques and ground-level tendon tensions (the tension distribution included).
-    Actuation,
-    /// `M(q)` (kg·m², pulley inertias included).
-    MassMatrix,
-    /// `h(q, q̇)`: Coriolis and centrifugal generalized forces (N·m).
-    Bias,
-    /// `g(q)`: gravity generalized forces (N·m).
-    Gravity,
-    /// `q̈` from motor torques and tendon tensions.
-    ForwardDynamics,
-    /// Every tendon segment's tension (N), strand by strand, each from its anchored end.
-    SegmentTensions,
-    /// Force (N) and moment (N·m) on every body from its parent, motor torque excluded.
-    Bearings,
-    /// The base's force (N) and moment about `O_0` (N·m) on the mechanism, base frame.
-    BaseReaction,
-}
-
-impl Output {
-    /// Every output, in the default order (that of `tendyn generate` and of the file).
-    pub const ALL: [Output; 9] = [
-        Output::GeneralizedForces,
-        Output::Actuation,
-        Output::MassMatrix,
-        Output::Bias,
-        Output::Gravity,
-        Output::ForwardDynamics,
-        Output::SegmentTensions,
-        Output::Bearings,
-        Output::BaseReaction,
-    ];
-
-    /// The name of the generated function (and of the output on the command line).
-    pub fn name(self) -> &'static str {
-        match self {
-            Output::GeneralizedForces => "generalized_forces",
-            Output::Actuation => "actuation",
-            Output::MassMatrix => "mass_matrix",
-            Output::Bias => "bias",
-            Output::Gravity => "gravity",
-            Output::ForwardDynamics => "forward_dynamics",
-            Output::SegmentTensions => "segment_tensions",
-            Output::Bearings => "bearings",
-            Output::BaseReaction => "base_reaction",
+/// A Rust expression over the numbers of `value` (a binding holding what the generated
+/// function of `output` returns) as an iterator of `&T`, in the order of
+/// [`tendyn_core::output`]: what build scripts emit to compare generated code with
+/// [`Data::output`](tendyn_core::Data::output).
+pub fn flattened_numbers(output: Output, value: &str) -> String {
+    match output {
+        Output::Actuation => {
+            format!("{value}.motor_torques.iter().chain({value}.tendon_tensions.iter())")
         }
-    }
-
-    /// The output whose [`name`](Output::name) is `name`; `None` for any other name.
-    pub fn parse(name: &str) -> Option<Output> {
-        Output::ALL.into_iter().find(|o| o.name() == name)
-    }
-
-    /// The inputs the function takes, in order.
-    pub fn params(self) -> &'static [Param] {
-        match self {
-            Output::MassMatrix | Output::Gravity => &[Param::Q],
-            Output::Bias => &[Param::Q, Param::Qd],
-            Output::ForwardDynamics => &[
-                Param::Q,
-                Param::Qd,
-                Param::MotorTorques,
-                Param::TendonTensions,
-            ],
-            _ => &[Param::Q, Param::Qd, Param::Qdd],
-        }
-    }
-}
-
-/// An array input of a generated function.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Param {
-    /// `q`: joint angles (rad), in joint order.
-    Q,
-    /// `qd`: joint rates (rad/s).
-    Qd,
-    /// `qdd`: joint accelerations (rad/s²).
-    Qdd,
-    /// `motor_torques` (N·m), in file order of the motors.
-    MotorTorques,
-    /// `tendon_tensions`: ground-level tensions (N), in file order of the open-ended
-    /// tendons.
-    TendonTensions,
-    /// The mechanism's runtime parameters, in declaration order.
-    Parameters,
-}
-
-impl Param {
-    /// Every input, in the order `all` takes those it needs.
-    pub const ALL: [Param; 6] = [
-        Param::Q,
-        Param::Qd,
-        Param::Qdd,
-        Param::MotorTorques,
-        Param::TendonTensions,
-        Param::Parameters,
-    ];
-
-    /// The argument's name in the generated signature.
-    pub fn name(self) -> &'static str {
-        match self {
-            Param::Q => "q",
-            Param::Qd => "qd",
-            Param::Qdd => "qdd",
-            Param::MotorTorques => "motor_torques",
-            Param::TendonTensions => "tendon_tensions",
-            Param::Parameters => "params",
-        }
+        Output::MassMatrix => format!("{value}.iter().flatten()"),
+        Output::Bearings | Output::BaseReaction => format!("{value}.iter().flatten().flatten()"),
+        _ => format!("{value}.iter()"),
     }
 }
 
@@ -505,55 +405,33 @@ fn trace_one(
             (Shape::Vector(n), x)
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
-            let r = shared.inverse(m, i, ws).clone();
-            match o {
+            let r = shared.inverse(m, i, ws);
+            // Availability was checked before tracing (`check`).
+            let flat = r.flattened(o).expect("an output inverse dynamics gives");
+            let shape = match o {
                 Output::Actuation => {
-                    let excess = shared.line_excess;
-                    let status = match (m.system().null_space.len(), excess) {
+                    let status = match (m.system().null_space.len(), shared.line_excess) {
                         (d, _) if d > 1 && !m.tendons().is_empty() => StatusFrom::Solve,
                         (_, Some(_)) => StatusFrom::Line,
                         _ => StatusFrom::Exact,
                     };
-                    (
-                        Shape::Actuation {
-                            motors: m.motors().len(),
-                            tendons: m.tendons().len(),
-                            status,
-                        },
-                        r.motor_torques
-                            .into_iter()
-                            .chain(r.tendon_tensions)
-                            .chain(excess.into_iter().flat_map(|(e, s)| [e, s]))
-                            .collect(),
-                    )
+                    Shape::Actuation {
+                        motors: m.motors().len(),
+                        tendons: m.tendons().len(),
+                        status,
+                    }
                 }
-                Output::SegmentTensions => {
-                    let s: Vec<Sym> = r
-                        .segment_tensions
-                        .expect("routing complete")
-                        .into_iter()
-                        .flatten()
-                        .collect();
-                    (Shape::Vector(s.len()), s)
-                }
-                Output::Bearings => {
-                    let b = r.bearings.expect("routing complete");
-                    let shape = Shape::Wrenches(b.len());
-                    (
-                        shape,
-                        b.into_iter()
-                            .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-                            .collect(),
-                    )
-                }
-                _ => {
-                    let (f, n) = r.base_reaction.expect("routing complete");
-                    (
-                        Shape::Wrenches(1),
-                        f.to_array().into_iter().chain(n.to_array()).collect(),
-                    )
-                }
-            }
+                Output::SegmentTensions => Shape::Vector(flat.len()),
+                Output::Bearings => Shape::Wrenches(flat.len() / 6),
+                _ => Shape::Wrenches(1),
+            };
+            // After the torques and tensions, what a one-dimensional `status` needs.
+            let excess = shared.line_excess.filter(|_| o == Output::Actuation);
+            let results = flat
+                .into_iter()
+                .chain(excess.into_iter().flat_map(|(e, s)| [e, s]))
+                .collect();
+            (shape, results)
         }
     }
 }

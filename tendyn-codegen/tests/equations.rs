@@ -92,46 +92,20 @@ fn inputs(n: &Named, s: &State, values: &HashMap<String, f64>) -> Vec<f64> {
 /// What the runtime solver gives for `o` at `s`, flattened as the printed function's
 /// results, and the scale its error is measured against.
 fn runtime(m: &Model<f64>, o: Output, s: &State) -> (Vec<f64>, f64) {
-    let mut solver = Data::new(m);
-    let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let v: Vec<f64> = match o {
-        Output::GeneralizedForces => solver
-            .generalized_forces(m, &s.q, &s.qd, &s.qdd)
-            .unwrap()
-            .to_vec(),
-        Output::MassMatrix => solver.mass_matrix(m, &s.q).unwrap().concat(),
-        Output::Bias => solver.bias(m, &s.q, &s.qd).unwrap().to_vec(),
-        Output::Gravity => solver.gravity(m, &s.q).unwrap().to_vec(),
-        Output::ForwardDynamics => {
-            let v = solver
-                .forward_dynamics(m, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
-                .unwrap();
-            let scale =
-                forward_dynamics_term_scale(m, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions);
-            return (v.to_vec(), scale);
-        }
-        _ => {
-            let r = solver
-                .inverse_dynamics(m, &s.q, &s.qd, &s.qdd)
-                .unwrap()
-                .clone();
-            match o {
-                Output::Actuation => [r.motor_torques, r.tendon_tensions].concat(),
-                Output::SegmentTensions => r.segment_tensions.unwrap().concat(),
-                Output::Bearings => r
-                    .bearings
-                    .unwrap()
-                    .into_iter()
-                    .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-                    .collect(),
-                _ => {
-                    let (f, n) = r.base_reaction.unwrap();
-                    f.to_array().into_iter().chain(n.to_array()).collect()
-                }
-            }
-        }
+    let state = tendyn_core::output::State {
+        q: &s.q,
+        qd: &s.qd,
+        qdd: &s.qdd,
+        motor_torques: &s.motor_torques,
+        tendon_tensions: &s.tendon_tensions,
     };
-    let scale = norm(&v).max(1e-300);
+    let v = Data::new(m).output(m, o, &state).unwrap();
+    let scale = match o {
+        Output::ForwardDynamics => {
+            forward_dynamics_term_scale(m, &s.q, &s.qd, &s.motor_torques, &s.tendon_tensions)
+        }
+        _ => v.iter().fold(0.0f64, |a, x| a.max(x.abs())).max(1e-300),
+    };
     (v, scale)
 }
 

@@ -27,6 +27,7 @@ use crate::error::{Error, Result};
 use crate::friction;
 use crate::linalg;
 use crate::model::{Model, TensionSystem};
+use crate::output::{Output, State};
 use crate::real::{Numeric, Real};
 use crate::spatial::Vec3;
 use crate::tension;
@@ -404,6 +405,42 @@ impl<T: Numeric> Data<T> {
             finite("base reaction", &wrench(b).collect::<Vec<T>>(), &inputs)?;
         }
         Ok(self.inverse_dynamics.insert(r))
+    }
+
+    /// `output` at `state` by the evaluator that gives it, flattened as its generated
+    /// function returns it ([`crate::output`]): what the report and the checks compare
+    /// generated code with. An output the routing cannot attribute (segment tensions,
+    /// bearings, base reaction with explicit couplings or structure columns) is an
+    /// [`Error::State`] that says so.
+    pub fn output(&mut self, model: &Model<T>, output: Output, state: &State<T>) -> Result<Vec<T>> {
+        let State {
+            q,
+            qd,
+            qdd,
+            motor_torques,
+            tendon_tensions,
+        } = *state;
+        Ok(match output {
+            Output::MassMatrix => self.mass_matrix(model, q)?.concat(),
+            Output::Bias => self.bias(model, q, qd)?.to_vec(),
+            Output::Gravity => self.gravity(model, q)?.to_vec(),
+            Output::GeneralizedForces => self.generalized_forces(model, q, qd, qdd)?.to_vec(),
+            Output::ForwardDynamics => self
+                .forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?
+                .to_vec(),
+            _ => self
+                .inverse_dynamics(model, q, qd, qdd)?
+                .flattened(output)
+                .ok_or_else(|| {
+                    Error::State(format!(
+                        "`{}` is not available: the routing of `{}` is incomplete (an explicit \
+                         coupling or structure column), so where those transmissions act is \
+                         unknown",
+                        output.name(),
+                        model.name()
+                    ))
+                })?,
+        })
     }
 
     /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of

@@ -18,6 +18,8 @@
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
+//! - [`output`]: the outputs by name and the one order their numbers are flattened in
+//!   (generated functions', the report's and the checks');
 //! - [`torque_range`]: the static torque range of each joint, what the tendons within their
 //!   floors and maxima can do on it with every other joint at rest (a linear program);
 //! - [`distribution`]: the tension distribution within floors and maxima (`no_std`,
@@ -80,6 +82,8 @@ pub mod kinematics;
 pub mod model;
 #[cfg(feature = "std")]
 pub mod newton_euler;
+#[cfg(feature = "std")]
+pub mod output;
 #[cfg(feature = "std")]
 pub mod spatial;
 #[cfg(feature = "std")]

@@ -38,22 +38,14 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
+use tendyn_core::output::State;
 use tendyn_core::{Data, DoubleDouble, InverseDynamics, Model, Numeric};
 
 pub use tendyn_codegen::Output;
 
 /// The [`Data`] method the runtime evaluators time for `output`.
 pub fn runtime_call(output: Output) -> &'static str {
-    match output {
-        Output::GeneralizedForces => "generalized_forces",
-        Output::MassMatrix => "mass_matrix",
-        Output::Bias => "bias",
-        Output::Gravity => "gravity",
-        Output::ForwardDynamics => "forward_dynamics",
-        Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
-            "inverse_dynamics"
-        }
-    }
+    output.evaluator()
 }
 
 /// One state, in f64, with everything any output takes.
@@ -252,6 +244,16 @@ struct RuntimeState<T> {
 }
 
 impl<T: Numeric> RuntimeState<T> {
+    fn state(&self) -> State<'_, T> {
+        State {
+            q: &self.q,
+            qd: &self.qd,
+            qdd: &self.qdd,
+            motor_torques: &self.mt,
+            tendon_tensions: &self.tt,
+        }
+    }
+
     fn of(s: &Inputs) -> Self {
         let c = |v: &[f64]| v.iter().map(|&x| T::from_f64(x)).collect();
         RuntimeState {
@@ -264,45 +266,6 @@ impl<T: Numeric> RuntimeState<T> {
     }
 }
 
-/// `output` from an inverse-dynamics result, flattened as generated code flattens it.
-fn from_inverse<T: Numeric>(output: Output, r: &InverseDynamics<T>) -> Result<Vec<T>, String> {
-    let incomplete = || format!("{} is not available (incomplete routing)", output.name());
-    Ok(match output {
-        Output::Actuation => r
-            .motor_torques
-            .iter()
-            .chain(&r.tendon_tensions)
-            .copied()
-            .collect(),
-        Output::SegmentTensions => r
-            .segment_tensions
-            .as_ref()
-            .ok_or_else(incomplete)?
-            .iter()
-            .flatten()
-            .copied()
-            .collect(),
-        Output::Bearings => r
-            .bearings
-            .as_ref()
-            .ok_or_else(incomplete)?
-            .iter()
-            .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-            .collect(),
-        Output::BaseReaction => {
-            let (f, n) = r.base_reaction.ok_or_else(incomplete)?;
-            f.to_array().into_iter().chain(n.to_array()).collect()
-        }
-        Output::GeneralizedForces => r.generalized_forces.clone(),
-        other => {
-            return Err(format!(
-                "{} is not an inverse-dynamics output",
-                other.name()
-            ))
-        }
-    })
-}
-
 /// `output` by the runtime solver at one state, flattened as generated code flattens it.
 fn runtime<T: Numeric>(
     m: &Model<T>,
@@ -310,24 +273,7 @@ fn runtime<T: Numeric>(
     output: Output,
     st: &RuntimeState<T>,
 ) -> Result<Vec<T>, String> {
-    let e = |e: tendyn_core::Error| e.to_string();
-    match output {
-        Output::GeneralizedForces => s
-            .generalized_forces(m, &st.q, &st.qd, &st.qdd)
-            .map(<[T]>::to_vec)
-            .map_err(e),
-        Output::MassMatrix => Ok(s.mass_matrix(m, &st.q).map_err(e)?.concat()),
-        Output::Bias => s.bias(m, &st.q, &st.qd).map(<[T]>::to_vec).map_err(e),
-        Output::Gravity => s.gravity(m, &st.q).map(<[T]>::to_vec).map_err(e),
-        Output::ForwardDynamics => s
-            .forward_dynamics(m, &st.q, &st.qd, &st.mt, &st.tt)
-            .map(<[T]>::to_vec)
-            .map_err(e),
-        _ => from_inverse(
-            output,
-            s.inverse_dynamics(m, &st.q, &st.qd, &st.qdd).map_err(e)?,
-        ),
-    }
+    s.output(m, output, &st.state()).map_err(|e| e.to_string())
 }
 
 /// One timed pass of the runtime solver's call for `output` over the states.
@@ -545,7 +491,9 @@ fn reference_at(
         .enumerate()
         .map(|(i, (s, id))| {
             match runtime_call(output) {
-                "inverse_dynamics" => from_inverse(output, id),
+                "inverse_dynamics" => id
+                    .flattened(output)
+                    .ok_or_else(|| format!("{} is not available", output.name())),
                 _ => runtime(dd_model, reference, output, &RuntimeState::of(s)),
             }
             .map_err(|e| format!("state {i} (q = {:?}): {e}", s.q))

@@ -7,6 +7,7 @@
 //! mechanism that the agreement test calls with slices.
 
 use std::fmt::Write;
+use tendyn_codegen::outputs::flattened_numbers;
 use tendyn_codegen::{available_outputs, generate, Output, Scalar};
 use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
 
@@ -114,6 +115,8 @@ fn main() {
         let (n, nm, nt) = (model.dof(), model.motors().len(), model.tendons().len());
         let mut adapter = String::new();
         let np = model.parameters().len();
+        // Vectors flatten through the same iterator expression as matrices and structs.
+        writeln!(adapter, "#[allow(clippy::iter_cloned_collect)]").unwrap();
         writeln!(adapter, "pub fn evaluate<T: tendyn_core::Numeric>(q: &[T], qd: &[T], qdd: &[T], mt: &[T], tt: &[T], p: &[T]) -> Vec<(&'static str, Vec<T>)> {{").unwrap();
         writeln!(
             adapter,
@@ -130,15 +133,17 @@ fn main() {
         )
         .unwrap();
         for o in &outputs {
-            let call = match o {
-                Output::MassMatrix => format!("code::mass_matrix(q{pa}).iter().flatten().copied().collect()"),
-                Output::Gravity => format!("code::gravity(q{pa}).to_vec()"),
-                Output::Bias => format!("code::bias(q, qd{pa}).to_vec()"),
-                Output::ForwardDynamics => format!("code::forward_dynamics(q, qd, mt, tt{pa}).to_vec()"),
-                Output::Actuation => format!("{{ let a = code::actuation(q, qd, qdd{pa}); a.motor_torques.iter().chain(a.tendon_tensions.iter()).copied().collect() }}"),
-                Output::Bearings | Output::BaseReaction => format!("code::{}(q, qd, qdd{pa}).iter().flatten().flatten().copied().collect()", o.name()),
-                _ => format!("code::{}(q, qd, qdd{pa}).to_vec()", o.name()),
+            let args = match o {
+                Output::MassMatrix | Output::Gravity => "q",
+                Output::Bias => "q, qd",
+                Output::ForwardDynamics => "q, qd, mt, tt",
+                _ => "q, qd, qdd",
             };
+            let numbers = flattened_numbers(*o, "r");
+            let call = format!(
+                "{{ let r = code::{}({args}{pa}); {numbers}.copied().collect() }}",
+                o.name()
+            );
             writeln!(adapter, "v.push((\"{}\", {call}));", o.name()).unwrap();
         }
         writeln!(adapter, "v }}").unwrap();

@@ -74,6 +74,7 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt::Write;
 use tendyn_core::model::{BodyKind, Model};
+use tendyn_core::output::Output;
 use tendyn_core::{Data, DoubleDouble, Error, InverseDynamics, Numeric};
 
 /// `q`, `q̇`, `q̈`.
@@ -871,51 +872,37 @@ fn lift<T: Numeric>(v: &[f64]) -> Vec<T> {
     v.iter().map(|&x| T::from_f64(x)).collect()
 }
 
+/// Every number inverse dynamics reports, by output (flattened as generated code returns
+/// it), plus the pulleys' moments and the loops' sides.
 fn inverse_outputs<T: Numeric>(r: &InverseDynamics<T>) -> Vec<(&'static str, Vec<f64>)> {
-    let mut out = vec![
-        (
-            "actuation",
-            f64s(&[r.motor_torques.clone(), r.tendon_tensions.clone()].concat()),
-        ),
+    let flat = |o: Output| {
+        r.flattened(o)
+            .filter(|v| !v.is_empty())
+            .map(|v| (o.name(), f64s(&v)))
+    };
+    let mut out: Vec<(&'static str, Vec<f64>)> = flat(Output::Actuation).into_iter().collect();
+    out.extend([
         ("delivered_forces", f64s(&r.generalized_forces)),
         (
             "pulley_moments",
             r.pulley_demands.iter().map(|(_, v)| v.to_f64()).collect(),
         ),
-    ];
+    ]);
     if !r.loop_sides.is_empty() {
         out.push((
             "loop_sides",
             r.loop_sides.iter().flatten().map(|v| v.to_f64()).collect(),
         ));
     }
-    if let Some(s) = &r.segment_tensions {
-        if !s.is_empty() {
-            out.push((
-                "segment_tensions",
-                s.iter().flatten().map(|v| v.to_f64()).collect(),
-            ));
-        }
-    }
-    if let Some(b) = &r.bearings {
-        out.push((
-            "bearings",
-            b.iter()
-                .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-                .map(|v| v.to_f64())
-                .collect(),
-        ));
-    }
-    if let Some((f, n)) = &r.base_reaction {
-        out.push((
-            "base_reaction",
-            f.to_array()
-                .into_iter()
-                .chain(n.to_array())
-                .map(|v| v.to_f64())
-                .collect(),
-        ));
-    }
+    out.extend(
+        [
+            Output::SegmentTensions,
+            Output::Bearings,
+            Output::BaseReaction,
+        ]
+        .into_iter()
+        .filter_map(flat),
+    );
     out
 }
 

@@ -7,12 +7,13 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use tendyn_core::output::{Output, State};
 use tendyn_core::{Data, Model};
 use tendyn_frontends_tests::{built, derived};
 use tendyn_spec::measure::{forward_dynamics_term_scale, max_rel, random_state};
 
 /// Everything the runtime solver says at a state, flattened per output as generated code
-/// shapes it.
+/// shapes it (forward dynamics driven by the actuation it solved).
 fn runtime(
     model: &Model<f64>,
     q: &[f64],
@@ -21,44 +22,22 @@ fn runtime(
 ) -> Vec<(&'static str, Vec<f64>)> {
     let mut s = Data::new(model);
     let r = s.inverse_dynamics(model, q, qd, qdd).unwrap().clone();
-    let mut out = vec![
-        ("generalized_forces", r.generalized_forces.clone()),
-        (
-            "actuation",
-            r.motor_torques
-                .iter()
-                .chain(&r.tendon_tensions)
-                .copied()
-                .collect(),
-        ),
-        ("mass_matrix", s.mass_matrix(model, q).unwrap().concat()),
-        ("bias", s.bias(model, q, qd).unwrap().to_vec()),
-        ("gravity", s.gravity(model, q).unwrap().to_vec()),
-        (
-            "forward_dynamics",
-            s.forward_dynamics(model, q, qd, &r.motor_torques, &r.tendon_tensions)
-                .unwrap()
-                .to_vec(),
-        ),
-    ];
-    if let Some(seg) = &r.segment_tensions {
-        out.push(("segment_tensions", seg.concat()));
-    }
-    if let Some(b) = &r.bearings {
-        out.push((
-            "bearings",
-            b.iter()
-                .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-                .collect(),
-        ));
-    }
-    if let Some((f, n)) = &r.base_reaction {
-        out.push((
-            "base_reaction",
-            f.to_array().into_iter().chain(n.to_array()).collect(),
-        ));
-    }
-    out
+    let state = State {
+        q,
+        qd,
+        qdd,
+        motor_torques: &r.motor_torques,
+        tendon_tensions: &r.tendon_tensions,
+    };
+    Output::ALL
+        .into_iter()
+        .filter_map(|o| match s.output(model, o, &state) {
+            Ok(v) => Some((o.name(), v)),
+            // Segment tensions, bearings and the base reaction of an incomplete routing.
+            Err(_) if model.routing_incomplete() && r.flattened(o).is_none() => None,
+            Err(e) => panic!("{}: {e}", o.name()),
+        })
+        .collect()
 }
 
 /// Checks one example: `$derived` (a value) against `$built` (a module) and the runtime.

@@ -3,14 +3,17 @@
 //! spatial mechanisms, at 1,000 random states each, every generated output
 //! matches the runtime solver's to 1e-12 relative in f64. The norm is the max norm of each
 //! output vector, relative: `‖generated − runtime‖∞ / ‖runtime‖∞` — for forward dynamics,
-//! relative to the size of the terms it sums (`Solver::forward_dynamics_scale`), since balancing tensions
+//! relative to the size of the terms it sums (`Data::forward_dynamics_scale`), since balancing tensions
 //! make `q̈` a small difference of large numbers.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use tendyn_core::output::{Output, State};
 use tendyn_core::{Data, Model, Numeric};
 use tendyn_generated_tests::MECHANISMS;
 
+/// What the runtime solver gives for the output named `output`, flattened as generated
+/// code returns it.
 fn runtime<T: Numeric>(
     (m, s): (&Model<T>, &mut Data<T>),
     output: &str,
@@ -20,36 +23,15 @@ fn runtime<T: Numeric>(
     mt: &[T],
     tt: &[T],
 ) -> Vec<T> {
-    match output {
-        "generalized_forces" => s.generalized_forces(m, q, qd, qdd).unwrap().to_vec(),
-        "mass_matrix" => s.mass_matrix(m, q).unwrap().concat(),
-        "bias" => s.bias(m, q, qd).unwrap().to_vec(),
-        "gravity" => s.gravity(m, q).unwrap().to_vec(),
-        "forward_dynamics" => s.forward_dynamics(m, q, qd, mt, tt).unwrap().to_vec(),
-        other => {
-            let r = s.inverse_dynamics(m, q, qd, qdd).unwrap().clone();
-            match other {
-                "actuation" => r
-                    .motor_torques
-                    .iter()
-                    .chain(&r.tendon_tensions)
-                    .copied()
-                    .collect(),
-                "segment_tensions" => r.segment_tensions.unwrap().into_iter().flatten().collect(),
-                "bearings" => r
-                    .bearings
-                    .unwrap()
-                    .into_iter()
-                    .flat_map(|(f, n)| f.to_array().into_iter().chain(n.to_array()))
-                    .collect(),
-                "base_reaction" => {
-                    let (f, n) = r.base_reaction.unwrap();
-                    f.to_array().into_iter().chain(n.to_array()).collect()
-                }
-                _ => panic!("unknown output {other}"),
-            }
-        }
-    }
+    let output = Output::parse(output).expect("a generated output");
+    let state = State {
+        q,
+        qd,
+        qdd,
+        motor_torques: mt,
+        tendon_tensions: tt,
+    };
+    s.output(m, output, &state).unwrap()
 }
 
 #[test]

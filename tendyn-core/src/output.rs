@@ -1,0 +1,178 @@
+//! The outputs of the dynamics by name, and each one's numbers flattened in one order: the
+//! order generated functions return them in (row-major matrices; motor torques, then
+//! tendon tensions; segment tensions strand by strand; per body force then moment). The
+//! runtime solver ([`Data::output`](crate::Data::output)), the code generator, the
+//! error report and the checks all flatten here.
+
+use crate::dynamics::InverseDynamics;
+use crate::spatial::Vec3;
+
+/// One output of the dynamics: a runtime evaluator of [`Data`](crate::Data), and one
+/// generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Output {
+    /// `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` (what the actuators deliver, bearing
+    /// friction included).
+    GeneralizedForces,
+    /// Motor torques and ground-level tendon tensions (the tension distribution included).
+    Actuation,
+    /// `M(q)` (kg·m², pulley inertias included).
+    MassMatrix,
+    /// `h(q, q̇)`: Coriolis and centrifugal generalized forces (N·m).
+    Bias,
+    /// `g(q)`: gravity generalized forces (N·m).
+    Gravity,
+    /// `q̈` from motor torques and tendon tensions.
+    ForwardDynamics,
+    /// Every tendon segment's tension (N), strand by strand, each from its anchored end.
+    SegmentTensions,
+    /// Force (N) and moment (N·m) on every body from its parent, motor torque excluded.
+    Bearings,
+    /// The base's force (N) and moment about `O_0` (N·m) on the mechanism, base frame.
+    BaseReaction,
+}
+
+impl Output {
+    /// Every output, in the default order (that of `tendyn generate` and of the file).
+    pub const ALL: [Output; 9] = [
+        Output::GeneralizedForces,
+        Output::Actuation,
+        Output::MassMatrix,
+        Output::Bias,
+        Output::Gravity,
+        Output::ForwardDynamics,
+        Output::SegmentTensions,
+        Output::Bearings,
+        Output::BaseReaction,
+    ];
+
+    /// The name of the generated function (and of the output on the command line).
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::GeneralizedForces => "generalized_forces",
+            Output::Actuation => "actuation",
+            Output::MassMatrix => "mass_matrix",
+            Output::Bias => "bias",
+            Output::Gravity => "gravity",
+            Output::ForwardDynamics => "forward_dynamics",
+            Output::SegmentTensions => "segment_tensions",
+            Output::Bearings => "bearings",
+            Output::BaseReaction => "base_reaction",
+        }
+    }
+
+    /// The output whose [`name`](Output::name) is `name`; `None` for any other name.
+    pub fn parse(name: &str) -> Option<Output> {
+        Output::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// The [`Data`](crate::Data) method that gives it (and that
+    /// [`Data::output`](crate::Data::output) calls).
+    pub fn evaluator(self) -> &'static str {
+        match self {
+            Output::GeneralizedForces => "generalized_forces",
+            Output::MassMatrix => "mass_matrix",
+            Output::Bias => "bias",
+            Output::Gravity => "gravity",
+            Output::ForwardDynamics => "forward_dynamics",
+            Output::Actuation
+            | Output::SegmentTensions
+            | Output::Bearings
+            | Output::BaseReaction => "inverse_dynamics",
+        }
+    }
+
+    /// The inputs the function takes, in order.
+    pub fn params(self) -> &'static [Param] {
+        match self {
+            Output::MassMatrix | Output::Gravity => &[Param::Q],
+            Output::Bias => &[Param::Q, Param::Qd],
+            Output::ForwardDynamics => &[
+                Param::Q,
+                Param::Qd,
+                Param::MotorTorques,
+                Param::TendonTensions,
+            ],
+            _ => &[Param::Q, Param::Qd, Param::Qdd],
+        }
+    }
+}
+
+/// An array input of an output (and of its generated function).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Param {
+    /// `q`: joint angles (rad), in joint order.
+    Q,
+    /// `qd`: joint rates (rad/s).
+    Qd,
+    /// `qdd`: joint accelerations (rad/s²).
+    Qdd,
+    /// `motor_torques` (N·m), in file order of the motors.
+    MotorTorques,
+    /// `tendon_tensions`: ground-level tensions (N), in file order of the open-ended
+    /// tendons.
+    TendonTensions,
+    /// The mechanism's runtime parameters, in declaration order.
+    Parameters,
+}
+
+impl Param {
+    /// Every input, in the order `all` takes those it needs.
+    pub const ALL: [Param; 6] = [
+        Param::Q,
+        Param::Qd,
+        Param::Qdd,
+        Param::MotorTorques,
+        Param::TendonTensions,
+        Param::Parameters,
+    ];
+
+    /// The argument's name in the generated signature.
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::Q => "q",
+            Param::Qd => "qd",
+            Param::Qdd => "qdd",
+            Param::MotorTorques => "motor_torques",
+            Param::TendonTensions => "tendon_tensions",
+            Param::Parameters => "params",
+        }
+    }
+}
+
+/// The inputs of every output at one state; an output reads those its
+/// [`params`](Output::params) name (runtime parameters are the model's).
+#[derive(Clone, Copy, Debug)]
+pub struct State<'a, T> {
+    /// Joint angles (rad).
+    pub q: &'a [T],
+    /// Joint rates (rad/s).
+    pub qd: &'a [T],
+    /// Joint accelerations (rad/s²).
+    pub qdd: &'a [T],
+    /// Motor torques (N·m), file order (forward dynamics).
+    pub motor_torques: &'a [T],
+    /// Ground-level tendon tensions (N), file order (forward dynamics).
+    pub tendon_tensions: &'a [T],
+}
+
+impl<T: Copy> InverseDynamics<T> {
+    /// `output` flattened as its generated function returns it, when inverse dynamics
+    /// gives it: `None` for the joint-space outputs (`mass_matrix`, `bias`, `gravity`,
+    /// `forward_dynamics`), and for segment tensions, bearings and the base reaction of an
+    /// incomplete routing.
+    pub fn flattened(&self, output: Output) -> Option<Vec<T>> {
+        let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| [f.x, f.y, f.z, n.x, n.y, n.z];
+        match output {
+            Output::GeneralizedForces => Some(self.generalized_forces.clone()),
+            Output::Actuation => Some([&self.motor_torques[..], &self.tendon_tensions].concat()),
+            Output::SegmentTensions => self.segment_tensions.as_ref().map(|s| s.concat()),
+            Output::Bearings => self
+                .bearings
+                .as_ref()
+                .map(|b| b.iter().flat_map(wrench).collect()),
+            Output::BaseReaction => self.base_reaction.as_ref().map(|b| wrench(b).to_vec()),
+            Output::MassMatrix | Output::Bias | Output::Gravity | Output::ForwardDynamics => None,
+        }
+    }
+}
