@@ -152,7 +152,7 @@ fn a_rigid_tree_built_in_code_gives_the_joint_space_terms_of_its_bodies() {
 /// checked: no clash with a parameter, finite values, every index in range.
 #[test]
 fn numbers_named_for_printing_are_checked() {
-    use tendyn_core::model::Slot;
+    use tendyn_core::model::{Place, Slot};
     let model = tendyn_core::parse(&parametric_finger()).unwrap();
     let mass = model.bodies()[0].mass;
     let named = |names: &[(&str, f64)], slots: &[(Slot, usize)]| {
@@ -198,4 +198,29 @@ fn numbers_named_for_printing_are_checked() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("out of range"), "{err}");
+    // A model named for printing is not one to set parameters on or generate from: its
+    // lengths would become runtime parameters the routing cannot follow.
+    let a1 = vec![("a1".to_string(), 0.012)];
+    let named = model
+        .with_named_numbers(&a1, &[(Slot::Geometry(Place::Post(0, 0), 1), 0)], &[])
+        .unwrap();
+    let values: Vec<f64> = named.parameters().iter().map(|p| p.value).collect();
+    let err = named.with_parameters(&values).unwrap_err().to_string();
+    assert!(err.contains("named for printing"), "{err}");
+    let outputs = [tendyn_codegen::Output::Gravity];
+    let err = tendyn_codegen::generate(&named, &outputs, tendyn_codegen::Scalar::F64, "t.ron")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("named for printing"), "{err}");
+}
+
+/// Gravity and the external wrench set at run time are checked as the file's are.
+#[test]
+fn gravity_set_at_run_time_is_checked_like_the_file() {
+    let model = tendyn_core::parse(&parametric_finger()).unwrap();
+    let err = model
+        .with_parameters(&[0.02, 0.000003, -1e7, 0.000000045])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("gravity") && err.contains("range"), "{err}");
 }

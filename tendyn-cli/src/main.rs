@@ -366,11 +366,12 @@ fn run(cli: Cli) -> Result<(), String> {
             let start = std::time::Instant::now();
             let g = tendyn_codegen::generate(&m, &outputs, scalar, &source)
                 .map_err(|e| format!("{file}: {e}"))?;
+            let text = g.source();
             let elapsed = start.elapsed();
             match out {
-                Some(path) => tendyn_codegen::builder::write_atomically(path.as_ref(), &g.source)
+                Some(path) => tendyn_codegen::builder::write_atomically(path.as_ref(), &text)
                     .map_err(|e| format!("{path}: {e}"))?,
-                None => emit(&g.source),
+                None => emit(&text),
             }
             eprintln!(
                 "generated {} functions for `{}` in {:.2} ms:",

@@ -1,9 +1,11 @@
 //! How long generation takes (issue 4: under 10 ms for each paper example, well under a
 //! second for a 7-link chain with a dozen pulleys), every available output, generic scalar.
 //!
-//! Per mechanism: loading and validation, then `generate` as a whole, then its two phases
-//! (`outputs::trace`: tracing and the closed forms; `emit::emit`: syntax tree and
-//! prettyplease), so that a regression points at its phase.
+//! Per mechanism: loading and validation, then `generate` as a whole (which builds the
+//! syntax tree but does not print it), then its phases: `outputs::trace` (tracing and the
+//! closed forms), `emit::emit_file` (the syntax tree: all the derive needs) and `emit::emit`
+//! (the tree printed by prettyplease: what the command line and build scripts write), so
+//! that a regression points at its phase.
 //!
 //! `cargo bench -p tendyn-codegen --bench generation` (the CLI's `generate` also prints the
 //! time of one run).
@@ -38,6 +40,9 @@ fn generation(c: &mut Criterion) {
             b.iter(|| outputs::trace(black_box(&model), &all).unwrap())
         });
         let traced = outputs::trace(&model, &all).unwrap();
+        group.bench_function("emit tree", |b| {
+            b.iter(|| emit::emit_file(&model, black_box(&traced), Scalar::Generic, &core))
+        });
         group.bench_function("emit", |b| {
             b.iter(|| {
                 emit::emit(

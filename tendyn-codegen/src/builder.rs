@@ -132,7 +132,7 @@ impl Builder {
             };
             let generated = generate_with(&model, &outputs, &options)?;
             let target = out_dir.join(format!("{stem}.rs"));
-            write_if_changed(&target, &generated.source)?;
+            write_if_changed(&target, &generated.source())?;
             written.push(target);
         }
         Ok(written)

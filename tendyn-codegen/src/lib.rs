@@ -8,7 +8,8 @@
 //!   `tendyn-core` (the same code the runtime solver runs);
 //! - [`closed_form`]: the collected polynomial form in sines, cosines, velocities and
 //!   accelerations, kept per function when it has fewer operations;
-//! - [`emit`]: graph → Rust source (quote, prettyplease), with operation counts;
+//! - [`emit`]: graph → one `syn` tree (the derive's expansion), printed with prettyplease
+//!   for files, with operation counts;
 //! - [`report`]: the CLI's text and JSON renderings of runtime results;
 //! - [`equations`]: the traced functions in mathematical notation (`tendyn equations`);
 //! - [`builder`]: [`Builder`], generation from a build script into `OUT_DIR`.
@@ -57,14 +58,22 @@ pub enum Error {
     /// The build environment is not what [`Builder`] needs (no `OUT_DIR`, an unwritable
     /// file).
     Build(String),
-    /// A number the emitted code would hold that its scalar cannot: one of the mechanism's,
-    /// or one folded from them (a product of a mass and a squared length, say). `item` names
-    /// the body it belongs to, or the output whose function holds it.
+    /// A constant the emitted code would hold that its scalar cannot, folded from the
+    /// mechanism's numbers (each of which f32 and f64 hold: validation keeps them within
+    /// the ranges of format.md §12). `item` names the output whose function holds it.
     Constant {
-        /// The body (or tendon) it belongs to, or `` output `NAME` ``.
+        /// `` output `NAME` ``.
         item: String,
         /// The number, the scalar's limit and what to do about it.
         problem: String,
+    },
+    /// The model has its lengths and radii named for printing
+    /// ([`Model::with_named_numbers`](tendyn_core::Model::with_named_numbers), as
+    /// `tendyn equations` does): generating from it would make them runtime parameters,
+    /// which the routing derived from them cannot follow. Generate from the file's model.
+    NamedGeometry {
+        /// The mechanism's name.
+        mechanism: String,
     },
 }
 
@@ -87,6 +96,11 @@ impl std::fmt::Display for Error {
             ),
             Error::Build(problem) => write!(f, "{problem}"),
             Error::Constant { item, problem } => write!(f, "{item}: {problem}"),
+            Error::NamedGeometry { mechanism } => write!(
+                f,
+                "{mechanism}: its lengths and radii are named for printing; generate from the \
+                 file's model, whose geometry is fixed"
+            ),
             Error::CorePath { path } => write!(
                 f,
                 "`{path}` is not a Rust path to tendyn-core (write `tendyn_core` or `::tendyn::core`)"
@@ -112,15 +126,37 @@ impl From<outputs::Unavailable> for Error {
     }
 }
 
-/// Generated source and what it costs.
-#[derive(Debug, Clone)]
+/// Generated code and what it costs.
+#[derive(Clone)]
 pub struct Generated {
-    /// The Rust source of the whole file, formatted, header comments included.
-    pub source: String,
+    /// Every emitted item, as one syntax tree: what the derive expands to.
+    pub file: syn::File,
+    /// The comments that open the file as text (generator, mechanism, outputs, scalar).
+    pub header: String,
     /// Per function: name, operations of the emitted form, whether it is the closed form.
     pub functions: Vec<(Output, expr::OpCount, bool)>,
     /// Operations of `all`.
     pub all: expr::OpCount,
+}
+
+impl std::fmt::Debug for Generated {
+    // (`syn::File` is `Debug` only with syn's `extra-traits`, which this crate does not need.)
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Generated")
+            .field("file", &format_args!("{} items", self.file.items.len()))
+            .field("header", &self.header)
+            .field("functions", &self.functions)
+            .field("all", &self.all)
+            .finish()
+    }
+}
+
+impl Generated {
+    /// The Rust source of the whole file: the header, then the tree as prettyplease prints
+    /// it (what the command line writes and build scripts include).
+    pub fn source(&self) -> String {
+        self.header.clone() + &prettyplease::unparse(&self.file)
+    }
 }
 
 /// How to emit: the scalar, the name of the input for the file's header, and the path by
@@ -167,7 +203,17 @@ pub fn generate_with(
     let core: syn::Path = syn::parse_str(&options.core_path).map_err(|_| Error::CorePath {
         path: options.core_path.clone(),
     })?;
-    check_bodies(model, options.scalar)?;
+    // A model whose lengths are named for printing (`tendyn equations`) would make them
+    // runtime parameters of the generated code, and the routing derived from them stale.
+    if model
+        .parameter_slots()
+        .iter()
+        .any(|(slot, _)| matches!(slot, tendyn_core::model::Slot::Geometry(..)))
+    {
+        return Err(Error::NamedGeometry {
+            mechanism: model.name().to_string(),
+        });
+    }
     let traced = outputs::trace(model, outputs)?;
     check_constants(model, &traced, options.scalar)?;
     let functions = traced
@@ -181,7 +227,8 @@ pub fn generate_with(
         })
         .collect();
     Ok(Generated {
-        source: emit::emit(model, &traced, options.scalar, &options.source, &core),
+        file: emit::emit_file(model, &traced, options.scalar, &core),
+        header: emit::header(model, &traced, options.scalar, &options.source),
         functions,
         all: traced.all_ops,
     })
@@ -207,81 +254,6 @@ fn largest(scalar: Scalar) -> (f64, &'static str) {
 /// Whether `x` can be written as a literal of `scalar`.
 fn fits(x: f64, scalar: Scalar) -> bool {
     x.abs() <= largest(scalar).0
-}
-
-/// Every body's numbers, and the products of its mass properties that the recursion folds
-/// (`m c`, `m |c|²`, `I + m |c|²`), fit the scalar: an error names the body. Validation
-/// keeps every number of a file within ranges (format.md §12) that f64 and f32 hold; this
-/// is for models built or changed otherwise.
-fn check_bodies(model: &tendyn_core::Model<f64>, scalar: Scalar) -> Result<(), Error> {
-    let (max, name) = largest(scalar);
-    for b in model.bodies() {
-        let c = b.com.to_array();
-        // |c| without overflow of its squares.
-        let c_max = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let c_norm = if c_max > 0.0 {
-            c_max * c.iter().map(|x| (x / c_max).powi(2)).sum::<f64>().sqrt()
-        } else {
-            0.0
-        };
-        let inertia = b
-            .inertia
-            .rows
-            .iter()
-            .flatten()
-            .fold(0.0f64, |a, x| a.max(x.abs()));
-        let radius = match b.kind {
-            tendyn_core::model::BodyKind::Pulley { radius, .. } => radius,
-            tendyn_core::model::BodyKind::Link { .. } => 0.0,
-        };
-        let lengths = [b.pre.translation, b.post.translation]
-            .into_iter()
-            .flat_map(|v| v.to_array())
-            .chain([radius]);
-        let numbers = [
-            ("its mass", " kg", b.mass),
-            ("an inertia entry", " kg·m²", inertia),
-        ]
-        .into_iter()
-        .chain(c.map(|x| ("its centre of mass", " m", x)))
-        .chain(lengths.map(|x| ("its placement", " m", x)))
-        .chain(b.coupling.iter().map(|&x| ("its coupling", "", x)));
-        let products = [
-            (
-                "its mass times its centre of mass, m |c|,",
-                " kg·m",
-                b.mass * c_norm,
-            ),
-            (
-                "its mass times its squared centre of mass, m |c|²,",
-                " kg·m²",
-                b.mass * c_norm * c_norm,
-            ),
-            (
-                "its inertia about its frame's origin",
-                " kg·m²",
-                inertia + b.mass * c_norm * c_norm,
-            ),
-        ];
-        for (what, unit, x) in numbers.chain(products) {
-            if !fits(x, scalar) {
-                let is = if x.is_finite() {
-                    format!("is {x:e}{unit}, which {name} cannot hold")
-                } else {
-                    format!("overflows {name}")
-                };
-                return Err(Error::Constant {
-                    item: b.name.clone(),
-                    problem: format!(
-                        "{what} {is} (its largest number is {max:.1e}): the generated code would \
-                         compute with an infinity; {}",
-                        fix(scalar)
-                    ),
-                });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// What to do about a number the scalar cannot hold.

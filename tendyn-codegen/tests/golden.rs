@@ -41,7 +41,7 @@ fn compare(name: &str, model: &tendyn_core::Model<f64>, outputs: &[Output], path
     {
         let source = generate(model, outputs, Scalar::Generic, &format!("{name}.ron"))
             .unwrap()
-            .source;
+            .source();
         if std::env::var("TENDYN_BLESS").as_deref() == Ok("1") {
             std::fs::write(path, &source).unwrap();
             return;

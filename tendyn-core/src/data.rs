@@ -444,7 +444,9 @@ impl<T: Numeric> Data<T> {
     }
 
     /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
-    /// the recursion against the transmission's `E`).
+    /// the recursion against the transmission's `E`); `model` must be the one that call
+    /// was given (a model of another shape is an error; one of the same shape, another
+    /// parameter set, gives that model's rows with the last call's loads).
     pub fn last_balance_rows(&self, model: &Model<T>) -> Result<Vec<Affine<T>>> {
         self.check_model(model)?;
         Ok(tension::balance_rows(

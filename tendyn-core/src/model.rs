@@ -389,7 +389,7 @@ pub enum Slot {
     WrenchMoment(usize),
     /// The number(s) at a [`Place`] are proportional to the parameter's quantity raised to
     /// the given power (a DH length in a translation, a radius in a contact point, a ratio
-    /// of radii in a coupling). [`Model::set_parameters`] rescales them by
+    /// of radii in a coupling). Setting the parameters rescales them by
     /// `(value / nominal)^power`, all factors of one place at once with their constant part
     /// folded into one number, so that on a symbolic scalar a factor that is one disappears
     /// (`r2/r3`, not `33.3*r2*0.03/r3`). Never created by validation (see above).
@@ -584,7 +584,7 @@ impl<T: Real> Model<T> {
     /// The same model with every number converted by [`Real::from_f64`] semantics.
     /// Numbers must come from an `f64` model; see [`Model::cast_numeric`] for a numeric
     /// target whose derived linear algebra should be recomputed in its own precision.
-    pub fn map_scalar<U: Real>(&self, f: impl Fn(T) -> U + Copy) -> Model<U> {
+    pub(crate) fn map_scalar<U: Real>(&self, f: impl Fn(T) -> U + Copy) -> Model<U> {
         let v = |x: Vec3<T>| x.map(f);
         Model {
             name: self.name.clone(),
@@ -802,14 +802,19 @@ impl Model<f64> {
                 p.name
             )));
         }
+        if self.names_geometry() {
+            return Err(crate::Error::State(format!(
+                "`{}` has its lengths and radii named for printing (`with_named_numbers`): \
+                 set parameters on the file's model, whose geometry is fixed",
+                self.name
+            )));
+        }
         let mut m = self.clone();
         m.set_parameters(values);
         for b in &m.bodies {
             crate::validate::check_mass_properties(&b.name, b.mass, b.com, &b.inertia)?;
         }
-        if let Some(w) = &m.external_wrench {
-            crate::validate::check_wrench_point(&m.name, w.point)?;
-        }
+        crate::validate::check_gravity_and_wrench(&m.name, m.gravity, m.external_wrench.as_ref())?;
         Ok(m)
     }
 
@@ -870,6 +875,20 @@ impl Model<f64> {
                     format!("{slot:?} is not a number of the model"),
                 ));
             }
+            if let Slot::Geometry(_, power) = slot {
+                // Rescaling divides by the nominal value (a DH length may be negative, never
+                // zero here); a place holds it to a small power.
+                let value = named[i].1;
+                if !(1..=MAX_POWER).contains(&power.unsigned_abs()) || value == 0.0 {
+                    return Err(invalid(
+                        name,
+                        format!(
+                            "{slot:?} needs a value other than 0 and a power of size 1 to \
+                             {MAX_POWER}, not {value} and {power}"
+                        ),
+                    ));
+                }
+            }
             m.parameter_slots.push((slot, self.parameters.len() + i));
         }
         for &((u, r), value) in exact_inverse {
@@ -891,6 +910,14 @@ impl Model<f64> {
             }
         }
         Ok(m)
+    }
+
+    /// Whether some parameter sets a length or radius ([`Slot::Geometry`]): a model named
+    /// for printing.
+    fn names_geometry(&self) -> bool {
+        self.parameter_slots
+            .iter()
+            .any(|(slot, _)| matches!(slot, Slot::Geometry(..)))
     }
 
     /// `Err` unless `given` is the number of parameters.
@@ -957,6 +984,10 @@ impl Model<f64> {
         m
     }
 }
+
+/// The largest power of a [`Slot::Geometry`] (a coupling or an entry of `E⁺` is a ratio of
+/// a few radii).
+const MAX_POWER: u8 = 8;
 
 /// Whether one of the strand's guides has capstan friction.
 fn has_capstan<T>(strand: &Strand<T>) -> bool {

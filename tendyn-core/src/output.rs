@@ -176,3 +176,47 @@ impl<T: Copy> InverseDynamics<T> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The order of docs/generated-code.md, written out by hand: torques then tensions;
+    /// segments strand by strand; per body force then moment, x y z.
+    #[test]
+    fn flattened_numbers_are_in_the_documented_order() {
+        let v = |x: f64, y: f64, z: f64| Vec3 { x, y, z };
+        let r = InverseDynamics {
+            generalized_forces: vec![1.0, 2.0],
+            motor_torques: vec![3.0],
+            tendon_tensions: vec![4.0, 5.0],
+            minimal_norm_tensions: vec![],
+            null_space_tensions: vec![],
+            loop_sides: vec![],
+            segment_tensions: Some(vec![vec![6.0, 7.0], vec![8.0]]),
+            pulley_demands: vec![],
+            bearings: Some(vec![
+                (v(9.0, 10.0, 11.0), v(12.0, 13.0, 14.0)),
+                (v(15.0, 16.0, 17.0), v(18.0, 19.0, 20.0)),
+            ]),
+            base_reaction: Some((v(21.0, 22.0, 23.0), v(24.0, 25.0, 26.0))),
+            bearing_friction: vec![],
+            sticking: vec![],
+            unknowns: vec![],
+        };
+        let run = |a: u32, b: u32| (a..=b).map(f64::from).collect::<Vec<f64>>();
+        assert_eq!(r.flattened(Output::GeneralizedForces), Some(run(1, 2)));
+        assert_eq!(r.flattened(Output::Actuation), Some(run(3, 5)));
+        assert_eq!(r.flattened(Output::SegmentTensions), Some(run(6, 8)));
+        assert_eq!(r.flattened(Output::Bearings), Some(run(9, 20)));
+        assert_eq!(r.flattened(Output::BaseReaction), Some(run(21, 26)));
+        assert_eq!(r.flattened(Output::MassMatrix), None);
+        let incomplete = InverseDynamics {
+            segment_tensions: None,
+            bearings: None,
+            base_reaction: None,
+            ..r
+        };
+        assert_eq!(incomplete.flattened(Output::Bearings), None);
+    }
+}

@@ -363,8 +363,7 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     };
     let generated = tendyn_codegen::generate_with(&model, &outputs, &options)
         .map_err(|e| syn::Error::new(source_span, e.to_string()))?;
-    let file = syn::parse_file(&generated.source)
-        .map_err(|e| syn::Error::new(source_span, format!("internal error: {e}")))?;
+    let file = &generated.file;
 
     let ident = &input.ident;
     let module = format_ident!("__tendyn_{}", snake(&ident.to_string()));

@@ -43,11 +43,6 @@ use tendyn_core::{Data, DoubleDouble, InverseDynamics, Model, Numeric};
 
 pub use tendyn_codegen::Output;
 
-/// The [`Data`] method the runtime evaluators time for `output`.
-pub fn runtime_call(output: Output) -> &'static str {
-    output.evaluator()
-}
-
 /// One state, in f64, with everything any output takes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Inputs {
@@ -490,7 +485,7 @@ fn reference_at(
         .zip(ids)
         .enumerate()
         .map(|(i, (s, id))| {
-            match runtime_call(output) {
+            match output.evaluator() {
                 "inverse_dynamics" => id
                     .flattened(output)
                     .ok_or_else(|| format!("{} is not available", output.name())),
@@ -875,7 +870,7 @@ impl Report {
                 "output": r.output.name(),
                 "evaluator": r.evaluator.name(),
                 "runtime_call": match r.evaluator {
-                    Evaluator::RuntimeF64 | Evaluator::RuntimeF32 => Some(runtime_call(r.output)),
+                    Evaluator::RuntimeF64 | Evaluator::RuntimeF32 => Some(r.output.evaluator()),
                     _ => None,
                 },
                 "ns_per_call": {

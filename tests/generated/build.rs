@@ -109,7 +109,7 @@ fn main() {
         let outputs = available_outputs(&model);
         let generated =
             generate(&model, &outputs, Scalar::Generic, &format!("{name}.ron")).unwrap();
-        std::fs::write(out.join(format!("{name}.rs")), &generated.source).unwrap();
+        std::fs::write(out.join(format!("{name}.rs")), generated.source()).unwrap();
         std::fs::write(out.join(format!("{name}.ron")), text).unwrap();
         // The adapter: slices in, one vector per output out.
         let (n, nm, nt) = (model.dof(), model.motors().len(), model.tendons().len());
@@ -171,7 +171,7 @@ fn main() {
             &format!("{name}.ron"),
         )
         .unwrap();
-        std::fs::write(out.join(format!("{name}.rs")), &generated.source).unwrap();
+        std::fs::write(out.join(format!("{name}.rs")), generated.source()).unwrap();
         std::fs::write(out.join(format!("{name}.ron")), &text).unwrap();
         let mut adapter = String::new();
         for t in ["f64", "f32"] {

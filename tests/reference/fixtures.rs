@@ -32,6 +32,7 @@ pub fn dh_link(dof: usize, joint: usize, parent: Option<usize>, dh: [f64; 4]) ->
 /// An intermediate link (pulley, drum) on `parent` whose joint frame is `pre` and whose
 /// body frame is tilted from it by `post_rotation` (no offset from the axis).
 pub fn pulley(
+    name: &str,
     parent: Option<usize>,
     pre: Transform<f64>,
     post_rotation: Mat3<f64>,
@@ -39,7 +40,7 @@ pub fn pulley(
     spins: bool,
 ) -> Body<f64> {
     body(
-        "pulley".into(),
+        name.into(),
         BodyKind::Pulley {
             radius: 0.01,
             role: PulleyRole::Coupled,

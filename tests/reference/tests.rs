@@ -303,7 +303,7 @@ fn coupled_pulley_on_base_adds_j_gamma() {
         } else {
             rot_x(0.5) * rot_z(0.8)
         };
-        let disc = pulley(None, pre, post, vec![1.0, gamma], spins);
+        let disc = pulley("disc", None, pre, post, vec![1.0, gamma], spins);
         let axis = spin_axis(&disc);
         let disc = with_inertia(disc, 0.5, (axis * 0.03).into(), axisymmetric(axis, j, jt));
         let m = arm(vec![disc]);
@@ -356,6 +356,7 @@ fn spatial_chain(seed: u64, pulley_spins: bool) -> Model<f64> {
         translation: Vec3::new(0.1, 0.05, -0.02),
     };
     let p = pulley(
+        "pulley",
         Some(1),
         pre,
         rot_x(0.7) * rot_z(-0.3),
@@ -373,7 +374,7 @@ fn spatial_chain(seed: u64, pulley_spins: bool) -> Model<f64> {
         rotation: rot_z(1.1),
         translation: Vec3::new(-0.05, 0.1, 0.0),
     };
-    let drum = pulley(Some(2), drum_pre, rot_y(0.9), vec![0.0; n], false);
+    let drum = pulley("drum", Some(2), drum_pre, rot_y(0.9), vec![0.0; n], false);
     let inertia = random_inertia(&mut rng);
     bodies.push(with_inertia(drum, 0.3, [0.02, -0.01, 0.04], inertia));
     let gravity: [f64; 3] = random_vec(&mut rng, 3, 6.0).try_into().unwrap();
@@ -572,4 +573,18 @@ fn a_rigid_tree_the_recursion_does_not_model_is_refused() {
     assert!(off_axis.contains("not axisymmetric"), "{off_axis}");
     let axis = refused(&|b| b[0].axis = Vec3::new(1.0, 0.0, 0.0));
     assert!(axis.contains("is not postᵀ z"), "{axis}");
+    // NaN anywhere, an asymmetric inertia, a pulley carried by a pulley, a shared name.
+    let nan = refused(&|b| b[1].post.rotation.rows[0][0] = f64::NAN);
+    assert!(nan.contains("must be finite"), "{nan}");
+    let nan = refused(&|b| b[0].joint_to_origin.y = f64::NAN);
+    assert!(nan.contains("must be finite"), "{nan}");
+    let lopsided = refused(&|b| b[2].inertia.rows[1][0] += 1e-3);
+    assert!(lopsided.contains("not symmetric"), "{lopsided}");
+    let carried = refused(&|b| b[n + 1].parent = Some(n));
+    assert!(
+        carried.contains("carried by the base or a link"),
+        "{carried}"
+    );
+    let twin = refused(&|b| b[1].name = b[0].name.clone());
+    assert!(twin.contains("a name of its own"), "{twin}");
 }

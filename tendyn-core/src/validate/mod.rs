@@ -429,19 +429,35 @@ pub fn check_mass_properties(
     Validator::new("").mass_properties(item, &mp)
 }
 
-/// The range check of validation for the external wrench's point, for parameter values set
-/// at run time (`mechanism` names the item, as in a file).
-pub fn check_wrench_point(mechanism: &str, point: Vec3<f64>) -> Result<()> {
-    match point.to_array().into_iter().find(|v| v.abs() > MAX_LENGTH) {
-        None => Ok(()),
-        Some(v) => Err(Error::Invalid {
-            item: mechanism.to_string(),
-            at: Location::default(),
-            problem: format!(
-                "the `point` of `external_wrench` has {} m, beyond the range of a length (at \
-                 most {MAX_LENGTH:e} m in size; format.md §12, ranges of magnitude)",
-                shown(v)
-            ),
-        }),
+/// The checks of validation for the numbers a runtime parameter may set besides mass
+/// properties: gravity and the external wrench, finite and within their ranges of
+/// magnitude (format.md §12). `mechanism` names the item, as in a file.
+pub fn check_gravity_and_wrench(
+    mechanism: &str,
+    gravity: Vec3<f64>,
+    wrench: Option<&Wrench<f64>>,
+) -> Result<()> {
+    let mut fields = vec![("gravity", gravity, Range::Acceleration)];
+    if let Some(w) = wrench {
+        fields.extend([
+            ("external_wrench.point", w.point, Range::Length),
+            ("external_wrench.force", w.force, Range::Force),
+            ("external_wrench.moment", w.moment, Range::Moment),
+        ]);
     }
+    for (field, v, range) in fields {
+        let values = v.to_array();
+        let problem = match values.iter().find(|x| !x.is_finite()) {
+            Some(x) => Some(format!("`{field}` has {x}; every component must be finite")),
+            None => beyond(field, &values, range),
+        };
+        if let Some(problem) = problem {
+            return Err(Error::Invalid {
+                item: mechanism.to_string(),
+                at: Location::default(),
+                problem,
+            });
+        }
+    }
+    Ok(())
 }

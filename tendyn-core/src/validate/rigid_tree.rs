@@ -1,12 +1,12 @@
 //! A model built in code rather than read from a file: a tree of rigid bodies without
 //! tendons or motors ([`Model::rigid_tree`]), checked for what the recursion relies on.
-//! Invariant: a model it returns satisfies the same body invariants as a validated file's.
+//! Invariant: a model it returns satisfies the body invariants of a validated file's.
 
-use super::ranges::{beyond, Range};
-use super::{check_mass_properties, check_wrench_point};
+use super::ranges::{beyond, Range, MIN_RADIUS};
+use super::{check_gravity_and_wrench, check_mass_properties};
 use crate::error::{Error, Location, Result};
 use crate::model::{Body, BodyKind, Model, TensionSystem, Wrench};
-use crate::spatial::{Mat3, Transform, Vec3};
+use crate::spatial::{Transform, Vec3};
 
 /// How far a body's derived numbers (`axis`, `joint_to_origin`, an orthonormal rotation, an
 /// axisymmetric inertia) may be from exact, relative to their size: a few hundred rounding
@@ -18,12 +18,13 @@ impl Model<f64> {
     /// matrix, bias and gravity of a linkage (and forward dynamics under gravity alone), and
     /// for checks whose reference needs only the bodies.
     ///
-    /// Bodies as [`Body`] documents them: the `dof` links first, link `j` of kind
-    /// `Link { joint: j }` with coupling `e_j`, then intermediate links (pulleys); parents
-    /// before children; `axis = postᵀ z` and `joint_to_origin = postᵀ t` as validation
-    /// derives them; a body that turns without spinning axisymmetric about its axis. Every
-    /// violation, and every number beyond the file format's ranges, is an
-    /// [`Error::Invalid`] naming the body.
+    /// Bodies as [`Body`] documents them: at least one joint; the `dof` links first, link
+    /// `j` of kind `Link { joint: j }` with coupling `e_j`, then intermediate links (pulleys)
+    /// carried by the base or a link; parents before children; names unique and not empty;
+    /// `axis = postᵀ z` and `joint_to_origin = postᵀ t` as validation derives them; a
+    /// symmetric inertia; a body that turns without spinning axisymmetric about its axis.
+    /// Every violation, and every number not finite or beyond the file format's ranges, is
+    /// an [`Error::Invalid`] naming the body.
     pub fn rigid_tree(
         name: &str,
         gravity: [f64; 3],
@@ -36,40 +37,33 @@ impl Model<f64> {
             at: Location::default(),
             problem,
         };
-        if let Some(p) = finite_within("gravity", &gravity, Range::Acceleration) {
-            return Err(invalid(name, p));
-        }
-        if bodies.len() < dof {
+        if dof == 0 || bodies.len() < dof {
             return Err(invalid(
                 name,
                 format!(
-                    "{dof} joints need {dof} links, {} bodies given",
+                    "{dof} joints and {} bodies: a tree needs at least one joint and a link \
+                     for each",
                     bodies.len()
                 ),
             ));
         }
         for (index, body) in bodies.iter().enumerate() {
+            let named_before = bodies[..index].iter().any(|b| b.name == body.name);
+            if body.name.is_empty() || named_before {
+                return Err(invalid(
+                    &body.name,
+                    format!("body {index} needs a name of its own"),
+                ));
+            }
             check_body(index, body, dof).map_err(|p| invalid(&body.name, p))?;
             check_mass_properties(&body.name, body.mass, body.com, &body.inertia)?;
         }
-        if let Some(w) = &external_wrench {
-            if w.link >= dof {
-                return Err(invalid(
-                    name,
-                    format!("the external wrench acts on link {} of {dof}", w.link),
-                ));
-            }
-            let numbers = [w.point, w.force, w.moment].map(|v| v.to_array());
-            for (field, values, range) in [
-                ("external_wrench.point", numbers[0], Range::Length),
-                ("external_wrench.force", numbers[1], Range::Force),
-                ("external_wrench.moment", numbers[2], Range::Moment),
-            ] {
-                if let Some(p) = finite_within(field, &values, range) {
-                    return Err(invalid(name, p));
-                }
-            }
-            check_wrench_point(name, w.point)?;
+        check_gravity_and_wrench(name, Vec3::from_array(gravity), external_wrench.as_ref())?;
+        if let Some(w) = external_wrench.as_ref().filter(|w| w.link >= dof) {
+            return Err(invalid(
+                name,
+                format!("the external wrench acts on link {} of {dof}", w.link),
+            ));
         }
         Ok(Model {
             name: name.to_string(),
@@ -99,11 +93,37 @@ impl Model<f64> {
     }
 }
 
-/// What is wrong with body `index` of a rigid tree, if anything.
+/// What is wrong with body `index` of a rigid tree, if anything. Every number is checked
+/// finite before it is compared (a comparison with NaN is false, and would pass).
 fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result<(), String> {
+    let numbers = [
+        body.pre.rotation.rows.concat(),
+        body.pre.translation.to_array().to_vec(),
+        body.post.rotation.rows.concat(),
+        body.post.translation.to_array().to_vec(),
+        body.axis.to_array().to_vec(),
+        body.joint_to_origin.to_array().to_vec(),
+        body.inertia.rows.concat(),
+        vec![body.offset],
+    ]
+    .concat();
+    if numbers.iter().any(|x| !x.is_finite()) {
+        return Err("every number of its transforms, axis and inertia must be finite".into());
+    }
     match (&body.kind, index < dof) {
         (BodyKind::Link { joint }, true) if *joint == index => {}
-        (BodyKind::Pulley { .. }, false) => {}
+        (BodyKind::Pulley { radius, .. }, false) => {
+            let out_of_range = beyond("radius", &[*radius], Range::Length).is_some();
+            if !radius.is_finite() || *radius < MIN_RADIUS || out_of_range {
+                return Err(format!(
+                    "its radius is {radius} m; a pitch radius lies between {MIN_RADIUS:e} and \
+                     the range of a length"
+                ));
+            }
+            if body.parent.is_some_and(|p| p >= dof) {
+                return Err("a pulley is carried by the base or a link".into());
+            }
+        }
         _ if index < dof => {
             return Err(format!("body {index} must be `Link {{ joint: {index} }}`"))
         }
@@ -128,13 +148,8 @@ fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result
     if let Some(p) = finite_within("coupling", &body.coupling, Range::Ratio) {
         return Err(p);
     }
-    if index < dof
-        && body
-            .coupling
-            .iter()
-            .enumerate()
-            .any(|(j, &c)| c != f64::from(u8::from(j == index)))
-    {
+    let unit = |j: usize| f64::from(u8::from(j == index));
+    if index < dof && body.coupling.iter().enumerate().any(|(j, &c)| c != unit(j)) {
         return Err(format!(
             "link {index}'s coupling must be the unit vector of joint {index}"
         ));
@@ -142,7 +157,7 @@ fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result
     for (field, t) in [("pre", &body.pre), ("post", &body.post)] {
         check_transform(field, t)?;
     }
-    if let Some(p) = finite_within("offset", &[body.offset], Range::Angle) {
+    if let Some(p) = beyond("offset", &[body.offset], Range::Angle) {
         return Err(p);
     }
     let axis = body.post.rotation.tr_mul_vec(Vec3::unit_z());
@@ -157,39 +172,45 @@ fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result
             body.joint_to_origin
         ));
     }
+    let inertia = &body.inertia.rows;
+    let size = inertia
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let asymmetry = [(0, 1), (0, 2), (1, 2)]
+        .map(|(r, c)| (inertia[r][c] - inertia[c][r]).abs())
+        .into_iter()
+        .fold(0.0_f64, f64::max);
+    if asymmetry > DERIVED * size {
+        return Err("its inertia is not symmetric".into());
+    }
     if let Some(f) = body.friction {
         let values = [f.coulomb, f.viscous];
-        if values.iter().any(|v| *v < 0.0) {
-            return Err("bearing friction coefficients must be non-negative".into());
-        }
         if let Some(p) = finite_within("friction", &values, Range::Torque) {
             return Err(p);
+        }
+        if values.iter().any(|v| *v < 0.0) {
+            return Err("bearing friction coefficients must be non-negative".into());
         }
     }
     let turns = body.coupling.iter().any(|&c| c != 0.0);
     if turns && !body.spins {
         // Its frame stays the housing frame (Eq. 16 without the spin): the recursion is
         // right only for a body whose mass distribution turning does not change.
-        let inertia = &body.inertia.rows;
-        let size = 1.0
-            + inertia
-                .iter()
-                .flatten()
-                .fold(0.0_f64, |m, x| m.max(x.abs()));
         let along = axis.dot(body.inertia.mul_vec(axis));
         let across = (inertia[0][0] + inertia[1][1] + inertia[2][2] - along) / 2.0;
-        let off = (0..3)
-            .flat_map(|r| (0..3).map(move |c| (r, c)))
-            .map(|(r, c)| {
-                let (a, b) = (axis.to_array()[r], axis.to_array()[c]);
+        let a = axis.to_array();
+        let off = (0..9)
+            .map(|k| {
+                let (r, c) = (k / 3, k % 3);
                 let identity = f64::from(u8::from(r == c));
-                let symmetric = a * b * along + (identity - a * b) * across;
+                let symmetric = a[r] * a[c] * along + (identity - a[r] * a[c]) * across;
                 (inertia[r][c] - symmetric).abs()
             })
             .fold(0.0, f64::max);
         let from_axis = body.com + joint_to_origin;
         let radial = from_axis - axis.scale(from_axis.dot(axis));
-        if off > DERIVED * size || radial.dot(radial).sqrt() > DERIVED * scale {
+        if off > DERIVED * (1.0 + size) || radial.dot(radial).sqrt() > DERIVED * scale {
             return Err(
                 "it turns without spinning (`spins: false`) but its mass is not axisymmetric \
                  about its axis: let it spin"
@@ -200,22 +221,21 @@ fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result
     Ok(())
 }
 
-/// What is wrong with a transform: a rotation that is not orthonormal, or a translation not
-/// finite or beyond the range of a length.
+/// What is wrong with a transform (its numbers checked finite): a rotation that is not
+/// orthonormal with determinant 1, or a translation beyond the range of a length.
 fn check_transform(field: &str, t: &Transform<f64>) -> std::result::Result<(), String> {
     let r = t.rotation;
-    let product: Mat3<f64> = r.transpose() * r;
-    let off = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .map(|(i, j)| (product.rows[i][j] - f64::from(u8::from(i == j))).abs())
+    let product = r.transpose() * r;
+    let off = (0..9)
+        .map(|k| (product.rows[k / 3][k % 3] - f64::from(u8::from(k / 3 == k % 3))).abs())
         .fold(0.0, f64::max);
     let [a, b, c] = r.rows.map(|row| Vec3::new(row[0], row[1], row[2]));
-    if off.is_nan() || off > DERIVED || a.cross(b).dot(c) < 0.0 {
+    if off > DERIVED || a.cross(b).dot(c) <= 0.0 {
         return Err(format!(
             "`{field}.rotation` is not a rotation (orthonormal, det 1)"
         ));
     }
-    finite_within(
+    beyond(
         &format!("{field}.translation"),
         &t.translation.to_array(),
         Range::Length,
