@@ -211,14 +211,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<T> {
-        self.check_model(model)?;
-        self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
-        let inputs = [
-            ("q", q),
-            ("qd", qd),
-            ("motor_torques", motor_torques),
-            ("tendon_tensions", tendon_tensions),
-        ];
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let zero = T::from_f64(0.0);
         let a = structure(model, q, qd, &mut self.ws);
         let zeros = vec![zero; model.dof()];
@@ -264,14 +257,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<&[T]> {
-        self.check_model(model)?;
-        self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
-        let inputs = [
-            ("q", q),
-            ("qd", qd),
-            ("motor_torques", motor_torques),
-            ("tendon_tensions", tendon_tensions),
-        ];
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
         self.joint_accelerations = self.solve_mass_matrix(model, q, &rhs)?;
@@ -279,16 +265,18 @@ impl<T: Numeric> Data<T> {
         Ok(&self.joint_accelerations)
     }
 
-    /// The input checks of forward dynamics: the state, and as many finite motor torques
-    /// and tendon tensions as the mechanism has motors and open-ended tendons.
-    fn check_forward_inputs(
+    /// The input checks of forward dynamics: buffers that fit the model, the state, and as
+    /// many finite motor torques and tendon tensions as the mechanism has motors and
+    /// open-ended tendons; the inputs by name, for the errors of the results.
+    fn check_forward_inputs<'a>(
         &self,
         model: &Model<T>,
-        q: &[T],
-        qd: &[T],
-        motor_torques: &[T],
-        tendon_tensions: &[T],
-    ) -> Result<()> {
+        q: &'a [T],
+        qd: &'a [T],
+        motor_torques: &'a [T],
+        tendon_tensions: &'a [T],
+    ) -> Result<[(&'static str, &'a [T]); 4]> {
+        self.check_model(model)?;
         Self::check_state(model, "q", q)?;
         Self::check_state(model, "qd", qd)?;
         if model.capstan_before_an_idler() {
@@ -321,7 +309,12 @@ impl<T: Numeric> Data<T> {
                 )));
             }
         }
-        Ok(())
+        Ok([
+            ("q", q),
+            ("qd", qd),
+            ("motor_torques", motor_torques),
+            ("tendon_tensions", tendon_tensions),
+        ])
     }
 
     /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
