@@ -1,0 +1,431 @@
+//! `tendyn` for Python: a mechanism's file loaded into a [`Model`] whose methods run the
+//! runtime solver of `tendyn-core` on numpy arrays, one state or a batch of states per
+//! call (the loop over the batch is in Rust, without the GIL), and generate Rust code with
+//! `tendyn-codegen`.
+//!
+//! Every array a method takes is `(n,)` for one state or `(N, n)` for `N` states; what it
+//! returns has the same leading axis. Errors of the mechanism or of a state raise
+//! `tendyn.TendynError` with the message the command line prints; arrays of the wrong
+//! shape raise `ValueError`.
+
+use numpy::ndarray::{Array, ArrayD, IxDyn};
+use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::sync::Mutex;
+use tendyn_codegen::{available_outputs, Output, Scalar};
+use tendyn_core::{Data, InverseDynamics};
+
+create_exception!(
+    tendyn,
+    TendynError,
+    PyException,
+    "A mechanism file that does not validate, or a state the solver cannot evaluate; the \
+     message names the item, its line and column, and what would fix it."
+);
+
+fn tendyn_error(e: impl std::fmt::Display) -> PyErr {
+    TendynError::new_err(e.to_string())
+}
+
+/// A validated mechanism and the solver's buffers for it.
+#[pyclass(module = "tendyn", frozen)]
+struct Model {
+    model: tendyn_core::Model<f64>,
+    data: Mutex<Data<f64>>,
+}
+
+/// Loads and validates the mechanism file at `path`.
+#[pyfunction]
+fn load(path: &str) -> PyResult<Model> {
+    let model = tendyn_core::load(path).map_err(|e| match e {
+        tendyn_core::Error::Io { .. } => tendyn_error(e),
+        _ => tendyn_error(format!("{path}: {e}")),
+    })?;
+    Ok(Model::new(model))
+}
+
+/// Validates the mechanism in `text` (RON); `name` stands for the file in messages.
+#[pyfunction]
+#[pyo3(signature = (text, name = "<string>"))]
+fn loads(text: &str, name: &str) -> PyResult<Model> {
+    let model = tendyn_core::parse(text).map_err(|e| tendyn_error(format!("{name}: {e}")))?;
+    Ok(Model::new(model))
+}
+
+/// States of one input: `(n,)` (one state) or `(N, n)`, as rows of `n` numbers.
+struct Batch {
+    rows: Vec<Vec<f64>>,
+    batched: bool,
+}
+
+impl Batch {
+    fn of(what: &str, array: &PyReadonlyArrayDyn<'_, f64>, n: usize) -> PyResult<Batch> {
+        let shape = array.shape().to_vec();
+        let view = array.as_array();
+        match shape.as_slice() {
+            [k] if *k == n => Ok(Batch {
+                rows: vec![view.iter().copied().collect()],
+                batched: false,
+            }),
+            [_, k] if *k == n => Ok(Batch {
+                rows: view
+                    .outer_iter()
+                    .map(|row| row.iter().copied().collect())
+                    .collect(),
+                batched: true,
+            }),
+            _ => Err(PyValueError::new_err(format!(
+                "`{what}` has shape {shape:?}; expected ({n},) for one state or (N, {n}) for N \
+                 states"
+            ))),
+        }
+    }
+
+    /// The batches of several inputs, which must agree on batching and on `N`.
+    fn all(inputs: Vec<(&str, Batch)>) -> PyResult<(Vec<Batch>, bool, usize)> {
+        let batched = inputs[0].1.batched;
+        let count = inputs[0].1.rows.len();
+        if let Some((what, _)) = inputs
+            .iter()
+            .find(|(_, b)| b.batched != batched || b.rows.len() != count)
+        {
+            return Err(PyValueError::new_err(format!(
+                "`{what}` has another number of states than `{}`",
+                inputs[0].0
+            )));
+        }
+        Ok((inputs.into_iter().map(|(_, b)| b).collect(), batched, count))
+    }
+}
+
+/// `values` (one result of `shape` per state) as one array, with the batch axis first when
+/// the call was batched.
+fn stacked<'py>(
+    py: Python<'py>,
+    values: Vec<Vec<f64>>,
+    shape: &[usize],
+    batched: bool,
+) -> Bound<'py, PyArrayDyn<f64>> {
+    let mut dims = Vec::with_capacity(shape.len() + 1);
+    if batched {
+        dims.push(values.len());
+    }
+    dims.extend_from_slice(shape);
+    let flat: Vec<f64> = values.into_iter().flatten().collect();
+    let array: ArrayD<f64> =
+        Array::from_shape_vec(IxDyn(&dims), flat).expect("each state's result has the shape");
+    array.into_pyarray(py)
+}
+
+impl Model {
+    fn new(model: tendyn_core::Model<f64>) -> Model {
+        let data = Mutex::new(Data::new(&model));
+        Model { model, data }
+    }
+
+    /// Runs `evaluate` on every state (rows of `inputs`), without the GIL; the first error
+    /// raises `TendynError` naming the state.
+    fn each<R: Send>(
+        &self,
+        py: Python<'_>,
+        inputs: &[Batch],
+        count: usize,
+        evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<R> + Send + Sync,
+    ) -> PyResult<Vec<R>> {
+        py.detach(|| {
+            let mut data = self.data.lock().unwrap_or_else(|p| p.into_inner());
+            (0..count)
+                .map(|k| {
+                    let state: Vec<&[f64]> = inputs.iter().map(|b| b.rows[k].as_slice()).collect();
+                    evaluate(&mut data, &state).map_err(|e| {
+                        if count > 1 {
+                            format!("batch row {k}: {e}")
+                        } else {
+                            e.to_string()
+                        }
+                    })
+                })
+                .collect::<Result<Vec<R>, String>>()
+        })
+        .map_err(tendyn_error)
+    }
+
+    fn states(
+        &self,
+        named: Vec<(&str, PyReadonlyArrayDyn<'_, f64>, usize)>,
+    ) -> PyResult<(Vec<Batch>, bool, usize)> {
+        let batches = named
+            .iter()
+            .map(|(what, a, n)| Ok((*what, Batch::of(what, a, *n)?)))
+            .collect::<PyResult<Vec<_>>>()?;
+        Batch::all(batches)
+    }
+}
+
+#[pymethods]
+impl Model {
+    /// The mechanism's name.
+    #[getter]
+    fn name(&self) -> &str {
+        self.model.name()
+    }
+
+    /// Number of joint coordinates `n`.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.model.dof()
+    }
+
+    /// The joints' (links') names, in joint order.
+    #[getter]
+    fn joint_names(&self) -> Vec<String> {
+        self.model.joint_names().map(String::from).collect()
+    }
+
+    /// The open-ended tendons' names, in file order (the columns of `structure_matrix`).
+    #[getter]
+    fn tendon_names(&self) -> Vec<String> {
+        self.model
+            .tendons()
+            .iter()
+            .map(|t| t.name.clone())
+            .collect()
+    }
+
+    /// The motors' names, in file order.
+    #[getter]
+    fn motor_names(&self) -> Vec<String> {
+        self.model.motors().iter().map(|m| m.name.clone()).collect()
+    }
+
+    /// The structure matrix `A` (m), `(n, tendons)`: `Q = A T` (paper Eqs. 33, 35).
+    #[getter]
+    fn structure_matrix<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        let (n, k) = (self.model.dof(), self.model.tendons().len());
+        debug_assert_eq!(self.model.structure_matrix().len(), n);
+        stacked(py, self.model.structure_matrix(), &[k], true)
+    }
+
+    /// Each pulley's coupling to the joints: name → `(n,)` row, its angle relative to its
+    /// carrier per joint angle (paper Eqs. 9-10).
+    #[getter]
+    fn couplings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let out = PyDict::new(py);
+        for b in &self.model.bodies()[self.model.dof()..] {
+            out.set_item(&b.name, b.coupling.clone().into_pyarray(py))?;
+        }
+        Ok(out)
+    }
+
+    /// Inverse dynamics at `(q, qd, qdd)`: a dict of arrays, the keys of docs/outputs.md —
+    /// `generalized_forces`, `motor_torques`, `tendon_tensions`, `minimal_norm_tensions`,
+    /// `null_space_tensions`, `loop_sides` (`(loops, 2)`), `segment_tensions` (every
+    /// segment of every strand, in order), `bearings` (`(bodies, 2, 3)`: force, moment),
+    /// `base_reaction` (`(2, 3)`), `pulley_moments` — each with the batch axis first when
+    /// the states are batched; `None` where the routing cannot attribute them.
+    fn inverse_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArrayDyn<'py, f64>,
+        qd: PyReadonlyArrayDyn<'py, f64>,
+        qdd: PyReadonlyArrayDyn<'py, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let n = self.model.dof();
+        let (inputs, batched, count) =
+            self.states(vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)])?;
+        let model = &self.model;
+        let results: Vec<InverseDynamics<f64>> = self.each(py, &inputs, count, |data, s| {
+            data.inverse_dynamics(model, s[0], s[1], s[2]).cloned()
+        })?;
+        let out = PyDict::new(py);
+        let put = |key: &str, shape: &[usize], f: &dyn Fn(&InverseDynamics<f64>) -> Vec<f64>| {
+            let values = results.iter().map(f).collect();
+            out.set_item(key, stacked(py, values, shape, batched))
+        };
+        let wrench = |(f, m): &(
+            tendyn_core::spatial::Vec3<f64>,
+            tendyn_core::spatial::Vec3<f64>,
+        )| { [f.to_array(), m.to_array()].concat() };
+        let first = &results[0];
+        put("generalized_forces", &[n], &|r| {
+            r.generalized_forces.clone()
+        })?;
+        put("motor_torques", &[first.motor_torques.len()], &|r| {
+            r.motor_torques.clone()
+        })?;
+        put("tendon_tensions", &[first.tendon_tensions.len()], &|r| {
+            r.tendon_tensions.clone()
+        })?;
+        put(
+            "minimal_norm_tensions",
+            &[first.tendon_tensions.len()],
+            &|r| r.minimal_norm_tensions.clone(),
+        )?;
+        put(
+            "null_space_tensions",
+            &[first.tendon_tensions.len()],
+            &|r| r.null_space_tensions.clone(),
+        )?;
+        put("loop_sides", &[first.loop_sides.len(), 2], &|r| {
+            r.loop_sides.iter().flatten().copied().collect()
+        })?;
+        put("pulley_moments", &[first.pulley_demands.len()], &|r| {
+            r.pulley_demands.iter().map(|(_, m)| *m).collect()
+        })?;
+        match &first.segment_tensions {
+            Some(s) => put("segment_tensions", &[s.iter().map(Vec::len).sum()], &|r| {
+                r.flattened(Output::SegmentTensions).unwrap_or_default()
+            })?,
+            None => out.set_item("segment_tensions", py.None())?,
+        }
+        match &first.bearings {
+            Some(b) => put("bearings", &[b.len(), 2, 3], &|r| {
+                r.bearings.iter().flatten().flat_map(wrench).collect()
+            })?,
+            None => out.set_item("bearings", py.None())?,
+        }
+        match &first.base_reaction {
+            Some(_) => put("base_reaction", &[2, 3], &|r| {
+                r.base_reaction.iter().flat_map(wrench).collect()
+            })?,
+            None => out.set_item("base_reaction", py.None())?,
+        }
+        Ok(out)
+    }
+
+    /// The joint-space mass matrix `M(q)` (kg·m²), `(n, n)` per state.
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArrayDyn<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n = self.model.dof();
+        let (inputs, batched, count) = self.states(vec![("q", q, n)])?;
+        let model = &self.model;
+        let values = self.each(py, &inputs, count, |data, s| {
+            data.mass_matrix(model, s[0]).map(|m| m.concat())
+        })?;
+        Ok(stacked(py, values, &[n, n], batched))
+    }
+
+    /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
+    fn bias<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArrayDyn<'py, f64>,
+        qd: PyReadonlyArrayDyn<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n = self.model.dof();
+        let (inputs, batched, count) = self.states(vec![("q", q, n), ("qd", qd, n)])?;
+        let model = &self.model;
+        let values = self.each(py, &inputs, count, |data, s| {
+            data.bias(model, s[0], s[1]).map(<[f64]>::to_vec)
+        })?;
+        Ok(stacked(py, values, &[n], batched))
+    }
+
+    /// Gravity generalized forces `g(q)` (N·m).
+    fn gravity<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArrayDyn<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n = self.model.dof();
+        let (inputs, batched, count) = self.states(vec![("q", q, n)])?;
+        let model = &self.model;
+        let values = self.each(py, &inputs, count, |data, s| {
+            data.gravity(model, s[0]).map(<[f64]>::to_vec)
+        })?;
+        Ok(stacked(py, values, &[n], batched))
+    }
+
+    /// Joint accelerations `q̈` (rad/s²) from motor torques and ground-level tendon
+    /// tensions (file order; zeros where not given).
+    #[pyo3(signature = (q, qd, motor_torques = None, tendon_tensions = None))]
+    fn forward_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArrayDyn<'py, f64>,
+        qd: PyReadonlyArrayDyn<'py, f64>,
+        motor_torques: Option<PyReadonlyArrayDyn<'py, f64>>,
+        tendon_tensions: Option<PyReadonlyArrayDyn<'py, f64>>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n = self.model.dof();
+        let (nm, nt) = (self.model.motors().len(), self.model.tendons().len());
+        let mut named = vec![("q", q, n), ("qd", qd, n)];
+        let (given_m, given_t) = (motor_torques.is_some(), tendon_tensions.is_some());
+        named.extend(motor_torques.map(|a| ("motor_torques", a, nm)));
+        named.extend(tendon_tensions.map(|a| ("tendon_tensions", a, nt)));
+        let (inputs, batched, count) = self.states(named)?;
+        let model = &self.model;
+        let (zeros_m, zeros_t) = (vec![0.0; nm], vec![0.0; nt]);
+        let values = self.each(py, &inputs, count, |data, s| {
+            let mut rest = s[2..].iter();
+            let mt = if given_m {
+                rest.next().copied().unwrap_or(&zeros_m)
+            } else {
+                &zeros_m
+            };
+            let tt = if given_t {
+                rest.next().copied().unwrap_or(&zeros_t)
+            } else {
+                &zeros_t
+            };
+            data.forward_dynamics(model, s[0], s[1], mt, tt)
+                .map(<[f64]>::to_vec)
+        })?;
+        Ok(stacked(py, values, &[n], batched))
+    }
+
+    /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; all
+    /// the mechanism provides when `None`), in `scalar` `"generic"`, `"f64"` or `"f32"`.
+    #[pyo3(signature = (outputs = None, scalar = "generic"))]
+    fn generate(&self, outputs: Option<Vec<String>>, scalar: &str) -> PyResult<String> {
+        let scalar = Scalar::parse(scalar).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "unknown scalar `{scalar}`; use generic, f64 or f32"
+            ))
+        })?;
+        let outputs = match outputs {
+            None => available_outputs(&self.model),
+            Some(names) => names
+                .iter()
+                .map(|name| {
+                    Output::parse(name).ok_or_else(|| {
+                        let all: Vec<&str> = Output::ALL.iter().map(|o| o.name()).collect();
+                        PyValueError::new_err(format!(
+                            "unknown output `{name}`; the outputs are {}",
+                            all.join(", ")
+                        ))
+                    })
+                })
+                .collect::<PyResult<Vec<Output>>>()?,
+        };
+        let generated = tendyn_codegen::generate(&self.model, &outputs, scalar, "python")
+            .map_err(tendyn_error)?;
+        Ok(generated.source())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<tendyn.Model {:?}: {} joints, {} tendons, {} motors>",
+            self.model.name(),
+            self.model.dof(),
+            self.model.tendons().len(),
+            self.model.motors().len()
+        )
+    }
+}
+
+/// Dynamics of tendon-driven robotic mechanisms (recursive Newton-Euler) from a RON file.
+#[pymodule]
+fn tendyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(loads, m)?)?;
+    m.add_class::<Model>()?;
+    m.add("TendynError", m.py().get_type::<TendynError>())?;
+    Ok(())
+}

@@ -1,0 +1,63 @@
+"""Dynamics of tendon-driven robotic mechanisms (recursive Newton-Euler) from a RON file.
+
+Arrays of states are `(n,)` for one state or `(N, n)` for `N` states; results carry the
+same leading axis.
+"""
+
+from typing import Optional, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+Array = npt.NDArray[np.float64]
+ArrayLike = npt.ArrayLike
+
+class TendynError(Exception):
+    """A mechanism file that does not validate, or a state the solver cannot evaluate."""
+
+def load(path: str) -> Model:
+    """Loads and validates the mechanism file at `path`."""
+
+def loads(text: str, name: str = "<string>") -> Model:
+    """Validates the mechanism in `text` (RON); `name` stands for the file in messages."""
+
+class Model:
+    """A validated mechanism and the solver's buffers for it."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def joint_names(self) -> list[str]: ...
+    @property
+    def tendon_names(self) -> list[str]: ...
+    @property
+    def motor_names(self) -> list[str]: ...
+    @property
+    def structure_matrix(self) -> Array:
+        """`A` (m), `(n, tendons)`: `Q = A T`."""
+    @property
+    def couplings(self) -> dict[str, Array]:
+        """Each pulley's angle relative to its carrier per joint angle, `(n,)`."""
+    def inverse_dynamics(
+        self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
+    ) -> dict[str, Optional[Array]]:
+        """Every output of inverse dynamics, keys of docs/outputs.md; `None` where the
+        routing cannot attribute them."""
+    def mass_matrix(self, q: ArrayLike) -> Array:
+        """`M(q)` (kg·m²), `(n, n)` per state."""
+    def bias(self, q: ArrayLike, qd: ArrayLike) -> Array:
+        """`h(q, q̇)` (N·m)."""
+    def gravity(self, q: ArrayLike) -> Array:
+        """`g(q)` (N·m)."""
+    def forward_dynamics(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        motor_torques: Optional[ArrayLike] = None,
+        tendon_tensions: Optional[ArrayLike] = None,
+    ) -> Array:
+        """`q̈` (rad/s²) from motor torques and ground-level tendon tensions."""
+    def generate(self, outputs: Optional[Sequence[str]] = None, scalar: str = "generic") -> str:
+        """The generated Rust source of `outputs` (all available when `None`)."""

@@ -1,0 +1,134 @@
+"""The Python package against the Rust solver (through the command line), against the
+physics' own relations, and against bad input.
+
+Run from the repository: `pytest tendyn-python/tests` in a virtual environment where
+`pip install ./tendyn-python` installed the module.
+"""
+
+import json
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import tendyn
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples" / "mechanisms"
+PAPER = ["example1_endless", "example2_open_ended", "example3_stanford_jpl"]
+
+
+def model(name):
+    return tendyn.load(str(EXAMPLES / f"{name}.ron"))
+
+
+def states(m, count, seed):
+    rng = np.random.default_rng(seed)
+    n = m.dof
+    q = rng.uniform(-np.pi, np.pi, (count, n))
+    qd = rng.uniform(-3.0, 3.0, (count, n))
+    qdd = rng.uniform(-10.0, 10.0, (count, n))
+    return q, qd, qdd
+
+
+def cli_eval(name, q, qd, qdd):
+    """`tendyn eval --json` at one state: the Rust solver as the command line prints it
+    (serde_json writes the shortest decimal that reads back to the same f64)."""
+    arg = lambda v: ",".join(repr(float(x)) for x in v)
+    out = subprocess.run(
+        ["cargo", "run", "-q", "-p", "tendyn-cli", "--bin", "tendyn", "--", "eval",
+         str(EXAMPLES / f"{name}.ron"), "--q", arg(q), "--qd", arg(qd), "--qdd", arg(qdd),
+         "--json"],
+        cwd=ROOT, check=True, capture_output=True, text=True,
+    )
+    return json.loads(out.stdout)
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_results_are_the_rust_solvers_to_the_bit(name):
+    m = model(name)
+    q, qd, qdd = (x[0] for x in states(m, 1, 7))
+    want = cli_eval(name, q, qd, qdd)
+    got = m.inverse_dynamics(q, qd, qdd)
+    assert got["generalized_forces"].tolist() == want["generalized_forces"]
+    assert got["tendon_tensions"].tolist() == [want["tendon_tensions"][t] for t in m.tendon_names]
+    assert got["motor_torques"].tolist() == [want["motor_torques"][t] for t in m.motor_names]
+    assert m.mass_matrix(q).tolist() == want["mass_matrix"]
+    assert m.bias(q, qd).tolist() == want["bias"]
+    assert m.gravity(q).tolist() == want["gravity"]
+    bodies = m.joint_names + list(m.couplings)
+    if got["bearings"] is not None:
+        for body, (force, moment) in zip(bodies, got["bearings"].tolist()):
+            assert force == want["bearings"][body]["force"]
+            assert moment == want["bearings"][body]["moment"]
+        assert got["base_reaction"][0].tolist() == want["base_reaction"]["force"]
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_a_batch_is_each_state_alone(name):
+    m = model(name)
+    q, qd, qdd = states(m, 20, 3)
+    batch = m.inverse_dynamics(q, qd, qdd)
+    forward = m.forward_dynamics(q, qd, batch["motor_torques"], batch["tendon_tensions"])
+    for k in range(len(q)):
+        one = m.inverse_dynamics(q[k], qd[k], qdd[k])
+        for key, value in one.items():
+            if value is None:
+                assert batch[key] is None
+            else:
+                assert np.array_equal(batch[key][k], value), key
+        assert np.array_equal(m.mass_matrix(q)[k], m.mass_matrix(q[k]))
+        assert np.array_equal(m.bias(q, qd)[k], m.bias(q[k], qd[k]))
+        assert np.array_equal(m.gravity(q)[k], m.gravity(q[k]))
+        alone = m.forward_dynamics(q[k], qd[k], one["motor_torques"], one["tendon_tensions"])
+        assert np.array_equal(forward[k], alone)
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_the_outputs_obey_the_equations_of_motion(name):
+    """`Q = M q̈ + h + g` (no friction in the paper's examples), and forward dynamics of the
+    solved actuation gives `q̈` back."""
+    m = model(name)
+    q, qd, qdd = states(m, 50, 11)
+    r = m.inverse_dynamics(q, qd, qdd)
+    mm, h, g = m.mass_matrix(q), m.bias(q, qd), m.gravity(q)
+    q_from_terms = np.einsum("kij,kj->ki", mm, qdd) + h + g
+    scale = np.abs(q_from_terms).max(axis=1, keepdims=True) + 1e-300
+    assert np.abs(r["generalized_forces"] - q_from_terms).max() <= 1e-12 * scale.max()
+    back = m.forward_dynamics(q, qd, r["motor_torques"], r["tendon_tensions"])
+    assert np.allclose(back, qdd, rtol=1e-9, atol=1e-9)
+
+
+def test_model_describes_the_mechanism():
+    m = model("example3_stanford_jpl")
+    assert m.dof == 3
+    assert m.joint_names == ["knuckle", "proximal", "distal"]
+    assert m.tendon_names == ["Ta", "Tb", "Tc", "Td"]
+    assert m.structure_matrix.shape == (3, 4)
+    assert set(m.couplings) >= {"drum2", "drum3a", "drum3b"}
+    assert all(row.shape == (3,) for row in m.couplings.values())
+    source = m.generate(["gravity"], "f64")
+    assert "pub fn gravity" in source and "pub fn actuation" not in source
+
+
+def test_a_bad_file_raises_tendyn_error_naming_line_and_column():
+    with pytest.raises(tendyn.TendynError, match=r"mine.ron: .*line 1, column 21"):
+        tendyn.loads('(name: "x", links: [)', name="mine.ron")
+    with pytest.raises(tendyn.TendynError, match="no-such.ron"):
+        tendyn.load("no-such.ron")
+
+
+def test_bad_shapes_and_states_are_named():
+    m = model("example1_endless")
+    n = m.dof
+    with pytest.raises(ValueError, match=r"`q` has shape \[3\]"):
+        m.gravity(np.zeros(n + 1))
+    with pytest.raises(ValueError, match="`qd` has another number of states than `q`"):
+        m.bias(np.zeros((4, n)), np.zeros((3, n)))
+    with pytest.raises(ValueError, match="unknown output `nope`"):
+        m.generate(["nope"])
+    bad = np.zeros((2, n))
+    bad[1, 0] = np.nan
+    with pytest.raises(tendyn.TendynError, match=r"batch row 1: .*qd\[0\] is NaN"):
+        m.inverse_dynamics(np.zeros((2, n)), bad, np.zeros((2, n)))
