@@ -59,5 +59,7 @@ class Model:
         tendon_tensions: Optional[ArrayLike] = None,
     ) -> Array:
         """`q̈` (rad/s²) from motor torques and ground-level tendon tensions."""
+    def check(self) -> dict:
+        """The `tendyn check --json` report."""
     def generate(self, outputs: Optional[Sequence[str]] = None, scalar: str = "generic") -> str:
         """The generated Rust source of `outputs` (all available when `None`)."""

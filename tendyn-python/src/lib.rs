@@ -14,9 +14,10 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use rayon::prelude::*;
 use std::sync::Mutex;
 use tendyn_codegen::{available_outputs, Output, Scalar};
-use tendyn_core::{Data, InverseDynamics};
+use tendyn_core::Data;
 
 create_exception!(
     tendyn,
@@ -29,6 +30,10 @@ create_exception!(
 fn tendyn_error(e: impl std::fmt::Display) -> PyErr {
     TendynError::new_err(e.to_string())
 }
+
+/// From this many states on, a batch is spread over threads (rayon): below it, the
+/// threads' start-up and buffers cost more than they save.
+const PARALLEL: usize = 256;
 
 /// A validated mechanism and the solver's buffers for it.
 #[pyclass(module = "tendyn", frozen)]
@@ -120,14 +125,41 @@ fn stacked<'py>(
     array.into_pyarray(py)
 }
 
+/// The keys of [`Model::inverse_dynamics`]'s dict and each one's shape per state, in the
+/// order a state's row holds them; segment tensions, bearings and the base reaction only
+/// where the routing attributes them.
+fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usize>)> {
+    let (n, tendons) = (model.dof(), model.tendons().len());
+    let mut fields = vec![
+        ("generalized_forces", vec![n]),
+        ("motor_torques", vec![model.motors().len()]),
+        ("tendon_tensions", vec![tendons]),
+        ("minimal_norm_tensions", vec![tendons]),
+        ("null_space_tensions", vec![tendons]),
+        ("loop_sides", vec![model.loops().len(), 2]),
+        ("pulley_moments", vec![model.bodies().len() - n]),
+    ];
+    if !model.routing_incomplete() {
+        let segments = model.strands().iter().map(|s| s.segments.len()).sum();
+        fields.extend([
+            ("segment_tensions", vec![segments]),
+            ("bearings", vec![model.bodies().len(), 2, 3]),
+            ("base_reaction", vec![2, 3]),
+        ]);
+    }
+    fields
+}
+
 impl Model {
     fn new(model: tendyn_core::Model<f64>) -> Model {
         let data = Mutex::new(Data::new(&model));
         Model { model, data }
     }
 
-    /// Runs `evaluate` on every state (rows of `inputs`), without the GIL; the first error
-    /// raises `TendynError` naming the state.
+    /// Runs `evaluate` on every state (rows of `inputs`), without the GIL: in order on this
+    /// model's buffers, or from [`PARALLEL`] states on, across threads with buffers of
+    /// their own (each state's result is the same either way). The first failing state
+    /// raises `TendynError` naming its row.
     fn each<R: Send>(
         &self,
         py: Python<'_>,
@@ -135,22 +167,38 @@ impl Model {
         count: usize,
         evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<R> + Send + Sync,
     ) -> PyResult<Vec<R>> {
-        py.detach(|| {
-            let mut data = self.data.lock().unwrap_or_else(|p| p.into_inner());
-            (0..count)
-                .map(|k| {
-                    let state: Vec<&[f64]> = inputs.iter().map(|b| b.rows[k].as_slice()).collect();
-                    evaluate(&mut data, &state).map_err(|e| {
-                        if count > 1 {
-                            format!("batch row {k}: {e}")
-                        } else {
-                            e.to_string()
-                        }
+        let state =
+            |k: usize| -> Vec<&[f64]> { inputs.iter().map(|b| b.rows[k].as_slice()).collect() };
+        let results: Vec<tendyn_core::Result<R>> = py.detach(|| {
+            if count >= PARALLEL {
+                // One run of consecutive states per thread, each with its own buffers.
+                let rows: Vec<usize> = (0..count).collect();
+                let chunk = count.div_ceil(rayon::current_num_threads().max(1));
+                let runs: Vec<Vec<tendyn_core::Result<R>>> = rows
+                    .par_chunks(chunk)
+                    .map(|run| {
+                        let mut data = Data::new(&self.model);
+                        run.iter()
+                            .map(|&k| evaluate(&mut data, &state(k)))
+                            .collect()
                     })
+                    .collect();
+                runs.into_iter().flatten().collect()
+            } else {
+                let mut data = self.data.lock().unwrap_or_else(|p| p.into_inner());
+                (0..count).map(|k| evaluate(&mut data, &state(k))).collect()
+            }
+        });
+        results
+            .into_iter()
+            .enumerate()
+            .map(|(k, r)| {
+                r.map_err(|e| match count {
+                    1 => tendyn_error(e),
+                    _ => tendyn_error(format!("batch row {k}: {e}")),
                 })
-                .collect::<Result<Vec<R>, String>>()
-        })
-        .map_err(tendyn_error)
+            })
+            .collect()
     }
 
     fn states(
@@ -237,61 +285,47 @@ impl Model {
         let (inputs, batched, count) =
             self.states(vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)])?;
         let model = &self.model;
-        let results: Vec<InverseDynamics<f64>> = self.each(py, &inputs, count, |data, s| {
-            data.inverse_dynamics(model, s[0], s[1], s[2]).cloned()
+        let fields = inverse_fields(model);
+        let width: usize = fields
+            .iter()
+            .map(|(_, shape)| shape.iter().product::<usize>())
+            .sum();
+        // One row of numbers per state, every field in turn: no copy of the result.
+        let rows = self.each(py, &inputs, count, |data, s| {
+            let r = data.inverse_dynamics(model, s[0], s[1], s[2])?;
+            let mut row = Vec::with_capacity(width);
+            row.extend(&r.generalized_forces);
+            row.extend(&r.motor_torques);
+            row.extend(&r.tendon_tensions);
+            row.extend(&r.minimal_norm_tensions);
+            row.extend(&r.null_space_tensions);
+            row.extend(r.loop_sides.iter().flatten());
+            row.extend(r.pulley_demands.iter().map(|(_, m)| m));
+            for output in [
+                Output::SegmentTensions,
+                Output::Bearings,
+                Output::BaseReaction,
+            ] {
+                row.extend(r.flattened(output).unwrap_or_default());
+            }
+            debug_assert_eq!(row.len(), width, "a row holds every field");
+            Ok(row)
         })?;
         let out = PyDict::new(py);
-        let put = |key: &str, shape: &[usize], f: &dyn Fn(&InverseDynamics<f64>) -> Vec<f64>| {
-            let values = results.iter().map(f).collect();
-            out.set_item(key, stacked(py, values, shape, batched))
-        };
-        let wrench = |(f, m): &(
-            tendyn_core::spatial::Vec3<f64>,
-            tendyn_core::spatial::Vec3<f64>,
-        )| { [f.to_array(), m.to_array()].concat() };
-        let first = &results[0];
-        put("generalized_forces", &[n], &|r| {
-            r.generalized_forces.clone()
-        })?;
-        put("motor_torques", &[first.motor_torques.len()], &|r| {
-            r.motor_torques.clone()
-        })?;
-        put("tendon_tensions", &[first.tendon_tensions.len()], &|r| {
-            r.tendon_tensions.clone()
-        })?;
-        put(
-            "minimal_norm_tensions",
-            &[first.tendon_tensions.len()],
-            &|r| r.minimal_norm_tensions.clone(),
-        )?;
-        put(
-            "null_space_tensions",
-            &[first.tendon_tensions.len()],
-            &|r| r.null_space_tensions.clone(),
-        )?;
-        put("loop_sides", &[first.loop_sides.len(), 2], &|r| {
-            r.loop_sides.iter().flatten().copied().collect()
-        })?;
-        put("pulley_moments", &[first.pulley_demands.len()], &|r| {
-            r.pulley_demands.iter().map(|(_, m)| *m).collect()
-        })?;
-        match &first.segment_tensions {
-            Some(s) => put("segment_tensions", &[s.iter().map(Vec::len).sum()], &|r| {
-                r.flattened(Output::SegmentTensions).unwrap_or_default()
-            })?,
-            None => out.set_item("segment_tensions", py.None())?,
+        let mut offset = 0;
+        for (key, shape) in fields {
+            let size: usize = shape.iter().product();
+            let values = rows
+                .iter()
+                .map(|row| row[offset..offset + size].to_vec())
+                .collect();
+            offset += size;
+            out.set_item(key, stacked(py, values, &shape, batched))?;
         }
-        match &first.bearings {
-            Some(b) => put("bearings", &[b.len(), 2, 3], &|r| {
-                r.bearings.iter().flatten().flat_map(wrench).collect()
-            })?,
-            None => out.set_item("bearings", py.None())?,
-        }
-        match &first.base_reaction {
-            Some(_) => put("base_reaction", &[2, 3], &|r| {
-                r.base_reaction.iter().flat_map(wrench).collect()
-            })?,
-            None => out.set_item("base_reaction", py.None())?,
+        for key in ["segment_tensions", "bearings", "base_reaction"] {
+            if !out.contains(key)? {
+                out.set_item(key, py.None())?;
+            }
         }
         Ok(out)
     }
@@ -407,6 +441,13 @@ impl Model {
         let generated = tendyn_codegen::generate(&self.model, &outputs, scalar, "python")
             .map_err(tendyn_error)?;
         Ok(generated.source())
+    }
+
+    /// The `tendyn check --json` report as a dict: joints, tendons, motors, couplings, the
+    /// tension system and its condition, the static torque ranges.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = tendyn_codegen::report::check_json(&self.model).to_string();
+        py.import("json")?.call_method1("loads", (text,))
     }
 
     fn __repr__(&self) -> String {

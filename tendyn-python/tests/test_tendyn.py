@@ -132,3 +132,32 @@ def test_bad_shapes_and_states_are_named():
     bad[1, 0] = np.nan
     with pytest.raises(tendyn.TendynError, match=r"batch row 1: .*qd\[0\] is NaN"):
         m.inverse_dynamics(np.zeros((2, n)), bad, np.zeros((2, n)))
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_a_batch_spread_over_threads_is_the_same_batch_in_order(name):
+    """From 256 states a batch runs on several threads, each with buffers of its own."""
+    m = model(name)
+    q, qd, qdd = states(m, 600, 5)
+    together = m.inverse_dynamics(q, qd, qdd)
+    for start in range(0, 600, 200):
+        part = m.inverse_dynamics(q[start:start + 200], qd[start:start + 200], qdd[start:start + 200])
+        for key, value in part.items():
+            if value is not None:
+                assert np.array_equal(together[key][start:start + 200], value), key
+    assert np.array_equal(m.mass_matrix(q)[:200], m.mass_matrix(q[:200]))
+    bad = qd.copy()
+    bad[599, 0] = np.inf
+    with pytest.raises(tendyn.TendynError, match=r"batch row 599: .*qd\[0\] is inf"):
+        m.inverse_dynamics(q, bad, qdd)
+
+
+def test_check_is_the_command_lines_report():
+    name = "example3_stanford_jpl"
+    report = model(name).check()
+    out = subprocess.run(
+        ["cargo", "run", "-q", "-p", "tendyn-cli", "--bin", "tendyn", "--", "check",
+         str(EXAMPLES / f"{name}.ron"), "--json"],
+        cwd=ROOT, check=True, capture_output=True, text=True,
+    )
+    assert report == json.loads(out.stdout)
