@@ -1,6 +1,8 @@
 //! The `tendyn` command line: check a mechanism, evaluate its dynamics, run the demo,
 //! generate code, and measure error against run time (`report`, through cargo).
 
+mod draw;
+
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use tendyn_codegen::report::{self, JointSpace};
@@ -104,6 +106,48 @@ enum Command {
         /// Print `{"mechanism": NAME, "qdd": [...]}` instead of text.
         #[arg(long)]
         json: bool,
+    },
+    /// Draw the mechanism at a state as SVG: links, joints, pulleys to scale, every tendon
+    /// segment in its strand's colour, exits and anchors, a scale bar and a legend.
+    Draw {
+        /// The mechanism's RON file (docs/format.md).
+        file: String,
+        /// Joint angles (rad), comma-separated, link 1 first (default: all 0).
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_parser = number,
+            value_name = "Q1,..."
+        )]
+        q: Vec<f64>,
+        /// With --tensions: joint velocities (rad/s) (default: all 0).
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_parser = number,
+            value_name = "QD1,..."
+        )]
+        qd: Vec<f64>,
+        /// With --tensions: joint accelerations (rad/s²) (default: all 0).
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            value_parser = number,
+            value_name = "QDD1,..."
+        )]
+        qdd: Vec<f64>,
+        /// The plane it is seen in (xy: along the first joint's axis in a DH chain).
+        #[arg(long, value_enum, default_value = "xy")]
+        view: draw::View,
+        /// Draw each segment as wide as its tension at (q, qd, qdd) (inverse dynamics).
+        #[arg(long)]
+        tensions: bool,
+        /// The SVG file to write.
+        #[arg(short = 'o', long)]
+        out: String,
     },
     /// Generate straight-line Rust for a mechanism's dynamics.
     Generate {
@@ -333,6 +377,39 @@ fn run(cli: Cli) -> Result<(), String> {
                     }
                 }
             }
+            Ok(())
+        }
+        Command::Draw {
+            file,
+            q,
+            qd,
+            qdd,
+            view,
+            tensions,
+            out,
+        } => {
+            let m = load(&file)?;
+            let zeros = |v: Vec<f64>| if v.is_empty() { vec![0.0; m.dof()] } else { v };
+            let (q, qd, qdd) = (zeros(q), zeros(qd), zeros(qdd));
+            let mut data = Data::new(&m);
+            // The state is checked (length, finiteness) even when only drawn.
+            data.gravity(&m, &q).map_err(|e| e.to_string())?;
+            let segment_tensions = if tensions {
+                let r = data
+                    .inverse_dynamics(&m, &q, &qd, &qdd)
+                    .map_err(|e| e.to_string())?;
+                Some(r.segment_tensions.clone().ok_or(
+                    "--tensions: the routing is incomplete (an explicit coupling or structure \
+                     column), so segment tensions are unknown",
+                )?)
+            } else {
+                None
+            };
+            let scene = draw::scene(&m, &q, segment_tensions.as_deref());
+            let svg = draw::svg(&m, &scene, view)?;
+            tendyn_codegen::builder::write_atomically(out.as_ref(), &svg)
+                .map_err(|e| format!("{out}: {e}"))?;
+            eprintln!("drew `{}` ({view:?}) to {out}", m.name());
             Ok(())
         }
         Command::Generate {

@@ -624,3 +624,27 @@ fn check_and_eval_report_the_guides_tendons_slide_over() {
     assert_eq!(guides[0]["dissipated_power"], 0.0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `draw` writes an SVG of the mechanism; a state of the wrong length is an error and
+/// writes nothing; `--tensions` on an incomplete routing says why it cannot.
+#[test]
+fn draw_writes_an_svg_or_says_what_is_wrong() {
+    let dir = scratch_dir("draw");
+    let svg = dir.join("mech.svg");
+    let svg_path = svg.to_str().unwrap();
+    let file = "examples/mechanisms/example2_open_ended.ron";
+    let (ok, _, err) = tendyn(&["draw", file, "--q", "0.3,0.4", "--tensions", "-o", svg_path]);
+    assert!(ok, "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<svg") && text.contains("\nT32\n"),
+        "{text}"
+    );
+    let wrong = dir.join("wrong.svg");
+    let (ok, _, err) = tendyn(&["draw", file, "--q", "0.3", "-o", wrong.to_str().unwrap()]);
+    assert!(
+        !ok && err.contains("q has 1 entries but the mechanism has 2 joints"),
+        "{err}"
+    );
+    assert!(!wrong.exists());
+}
