@@ -2,6 +2,7 @@
 //! generate code, and measure error against run time (`report`, through cargo).
 
 mod draw;
+mod mjcf;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -146,6 +147,17 @@ enum Command {
         #[arg(long)]
         tensions: bool,
         /// The SVG file to write.
+        #[arg(short = 'o', long)]
+        out: String,
+    },
+    /// Export the mechanism to another tool's format (MuJoCo's MJCF; docs/outputs.md).
+    Export {
+        /// The mechanism's RON file (docs/format.md).
+        file: String,
+        /// Write MJCF (the only format so far).
+        #[arg(long, required = true)]
+        mjcf: bool,
+        /// The file to write.
         #[arg(short = 'o', long)]
         out: String,
     },
@@ -410,6 +422,14 @@ fn run(cli: Cli) -> Result<(), String> {
             tendyn_codegen::builder::write_atomically(out.as_ref(), &svg)
                 .map_err(|e| format!("{out}: {e}"))?;
             eprintln!("drew `{}` ({view:?}) to {out}", m.name());
+            Ok(())
+        }
+        Command::Export { file, mjcf: _, out } => {
+            let m = load(&file)?;
+            let xml = mjcf::mjcf(&m)?;
+            tendyn_codegen::builder::write_atomically(out.as_ref(), &xml)
+                .map_err(|e| format!("{out}: {e}"))?;
+            eprintln!("exported `{}` as MJCF to {out}", m.name());
             Ok(())
         }
         Command::Generate {
