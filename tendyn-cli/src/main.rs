@@ -43,6 +43,20 @@ struct State {
     qd: Vec<f64>,
 }
 
+/// Joint accelerations, comma-separated, in joint order.
+#[derive(clap::Args)]
+struct Acceleration {
+    /// Joint accelerations (rad/s²), comma-separated, link 1 first.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_parser = number,
+        value_name = "QDD1,..."
+    )]
+    qdd: Vec<f64>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Validate a mechanism file and print what the routing implies.
@@ -59,15 +73,8 @@ enum Command {
         file: String,
         #[command(flatten)]
         state: State,
-        /// Joint accelerations (rad/s²), comma-separated, link 1 first.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            allow_hyphen_values = true,
-            value_parser = number,
-                value_name = "QDD1,..."
-        )]
-        qdd: Vec<f64>,
+        #[command(flatten)]
+        acceleration: Acceleration,
         /// A CSV file with one state per line: q..., qd..., qdd... (3n numbers).
         #[arg(long)]
         states: Option<String>,
@@ -113,33 +120,11 @@ enum Command {
     Draw {
         /// The mechanism's RON file (docs/format.md).
         file: String,
-        /// Joint angles (rad), comma-separated, link 1 first (default: all 0).
-        #[arg(
-            long,
-            value_delimiter = ',',
-            allow_hyphen_values = true,
-            value_parser = number,
-            value_name = "Q1,..."
-        )]
-        q: Vec<f64>,
-        /// With --tensions: joint velocities (rad/s) (default: all 0).
-        #[arg(
-            long,
-            value_delimiter = ',',
-            allow_hyphen_values = true,
-            value_parser = number,
-            value_name = "QD1,..."
-        )]
-        qd: Vec<f64>,
-        /// With --tensions: joint accelerations (rad/s²) (default: all 0).
-        #[arg(
-            long,
-            value_delimiter = ',',
-            allow_hyphen_values = true,
-            value_parser = number,
-            value_name = "QDD1,..."
-        )]
-        qdd: Vec<f64>,
+        /// The state drawn (default: all 0; qd and qdd matter with --tensions).
+        #[command(flatten)]
+        state: State,
+        #[command(flatten)]
+        acceleration: Acceleration,
         /// The plane it is seen in (xy: along the first joint's axis in a DH chain).
         #[arg(long, value_enum, default_value = "xy")]
         view: draw::View,
@@ -330,7 +315,7 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::Eval {
             file,
             state: State { q, qd },
-            qdd,
+            acceleration: Acceleration { qdd },
             states,
             json,
             csv,
@@ -393,9 +378,8 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Draw {
             file,
-            q,
-            qd,
-            qdd,
+            state: State { q, qd },
+            acceleration: Acceleration { qdd },
             view,
             tensions,
             out,

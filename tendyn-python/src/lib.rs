@@ -201,6 +201,20 @@ impl Model {
             .collect()
     }
 
+    /// One array per state of `shape`, from `evaluate` on the states of `named`, stacked
+    /// as [`stacked`] does.
+    fn per_state<'py>(
+        &self,
+        py: Python<'py>,
+        named: Vec<(&str, PyReadonlyArrayDyn<'_, f64>, usize)>,
+        shape: &[usize],
+        evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<Vec<f64>> + Send + Sync,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let (inputs, batched, count) = self.states(named)?;
+        let values = self.each(py, &inputs, count, evaluate)?;
+        Ok(stacked(py, values, shape, batched))
+    }
+
     fn states(
         &self,
         named: Vec<(&str, PyReadonlyArrayDyn<'_, f64>, usize)>,
@@ -336,13 +350,10 @@ impl Model {
         py: Python<'py>,
         q: PyReadonlyArrayDyn<'py, f64>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let n = self.model.dof();
-        let (inputs, batched, count) = self.states(vec![("q", q, n)])?;
-        let model = &self.model;
-        let values = self.each(py, &inputs, count, |data, s| {
+        let (model, n) = (&self.model, self.model.dof());
+        self.per_state(py, vec![("q", q, n)], &[n, n], |data, s| {
             data.mass_matrix(model, s[0]).map(|m| m.concat())
-        })?;
-        Ok(stacked(py, values, &[n, n], batched))
+        })
     }
 
     /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
@@ -352,13 +363,10 @@ impl Model {
         q: PyReadonlyArrayDyn<'py, f64>,
         qd: PyReadonlyArrayDyn<'py, f64>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let n = self.model.dof();
-        let (inputs, batched, count) = self.states(vec![("q", q, n), ("qd", qd, n)])?;
-        let model = &self.model;
-        let values = self.each(py, &inputs, count, |data, s| {
+        let (model, n) = (&self.model, self.model.dof());
+        self.per_state(py, vec![("q", q, n), ("qd", qd, n)], &[n], |data, s| {
             data.bias(model, s[0], s[1]).map(<[f64]>::to_vec)
-        })?;
-        Ok(stacked(py, values, &[n], batched))
+        })
     }
 
     /// Gravity generalized forces `g(q)` (N·m).
@@ -367,13 +375,10 @@ impl Model {
         py: Python<'py>,
         q: PyReadonlyArrayDyn<'py, f64>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let n = self.model.dof();
-        let (inputs, batched, count) = self.states(vec![("q", q, n)])?;
-        let model = &self.model;
-        let values = self.each(py, &inputs, count, |data, s| {
+        let (model, n) = (&self.model, self.model.dof());
+        self.per_state(py, vec![("q", q, n)], &[n], |data, s| {
             data.gravity(model, s[0]).map(<[f64]>::to_vec)
-        })?;
-        Ok(stacked(py, values, &[n], batched))
+        })
     }
 
     /// Joint accelerations `q̈` (rad/s²) from motor torques and ground-level tendon
@@ -393,10 +398,9 @@ impl Model {
         let (given_m, given_t) = (motor_torques.is_some(), tendon_tensions.is_some());
         named.extend(motor_torques.map(|a| ("motor_torques", a, nm)));
         named.extend(tendon_tensions.map(|a| ("tendon_tensions", a, nt)));
-        let (inputs, batched, count) = self.states(named)?;
         let model = &self.model;
         let (zeros_m, zeros_t) = (vec![0.0; nm], vec![0.0; nt]);
-        let values = self.each(py, &inputs, count, |data, s| {
+        self.per_state(py, named, &[n], |data, s| {
             let mut rest = s[2..].iter();
             let mt = if given_m {
                 rest.next().copied().unwrap_or(&zeros_m)
@@ -410,8 +414,7 @@ impl Model {
             };
             data.forward_dynamics(model, s[0], s[1], mt, tt)
                 .map(<[f64]>::to_vec)
-        })?;
-        Ok(stacked(py, values, &[n], batched))
+        })
     }
 
     /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; all
