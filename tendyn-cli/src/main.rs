@@ -135,7 +135,7 @@ enum Command {
         #[arg(short = 'o', long)]
         out: String,
     },
-    /// Export the mechanism to another tool's format (MuJoCo's MJCF; docs/outputs.md).
+    /// Export the mechanism to another tool's format (MuJoCo's MJCF; docs/outputs.md §6c).
     Export {
         /// The mechanism's RON file (docs/format.md).
         file: String,
