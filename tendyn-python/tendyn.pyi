@@ -35,6 +35,11 @@ class Model:
     @property
     def motor_names(self) -> list[str]: ...
     @property
+    def pulley_names(self) -> list[str]: ...
+    @property
+    def strands(self) -> list[tuple[str, int]]:
+        """Each strand's name and number of segments."""
+    @property
     def structure_matrix(self) -> Array:
         """`A` (m), `(n, tendons)`: `Q = A T`."""
     @property
@@ -43,8 +48,10 @@ class Model:
     def inverse_dynamics(
         self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
     ) -> dict[str, Optional[Array]]:
-        """Every output of inverse dynamics, keys of docs/outputs.md; `None` where the
-        routing cannot attribute them."""
+        """`generalized_forces`, `motor_torques`, `tendon_tensions`,
+        `minimal_norm_tensions`, `null_space_tensions`, `loop_sides`, `pulley_moments`,
+        `segment_tensions`, `bearings`, `base_reaction` (the last three `None` where the
+        routing cannot attribute them)."""
     def mass_matrix(self, q: ArrayLike) -> Array:
         """`M(q)` (kg·m²), `(n, n)` per state."""
     def bias(self, q: ArrayLike, qd: ArrayLike) -> Array:

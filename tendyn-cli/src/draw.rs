@@ -18,11 +18,12 @@ use tendyn_core::Model;
 pub enum View {
     /// Looking down the base's z axis.
     Xy,
-    /// Looking along −y: x right, z up.
+    /// Looking along +y: x right, z up.
     Xz,
-    /// Looking along x: y right, z up.
+    /// Looking along −x: y right, z up.
     Yz,
-    /// Isometric: x and y at 30° below the horizontal, z up.
+    /// Isometric, seen from (1, 1, 1): y to the right and x to the left, 30° below the
+    /// horizontal, z up.
     Iso,
 }
 
@@ -34,7 +35,7 @@ impl View {
             View::Yz => (p.y, p.z),
             View::Iso => {
                 let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
-                ((p.x - p.y) * c, p.z - (p.x + p.y) * s)
+                ((p.y - p.x) * c, p.z - (p.x + p.y) * s)
             }
         }
     }

@@ -388,8 +388,9 @@ fn run(cli: Cli) -> Result<(), String> {
             let zeros = |v: Vec<f64>| if v.is_empty() { vec![0.0; m.dof()] } else { v };
             let (q, qd, qdd) = (zeros(q), zeros(qd), zeros(qdd));
             let mut data = Data::new(&m);
-            // The state is checked (length, finiteness) even when only drawn.
-            data.gravity(&m, &q).map_err(|e| e.to_string())?;
+            // The state is checked (lengths, finiteness) even when only drawn.
+            data.generalized_forces(&m, &q, &qd, &qdd)
+                .map_err(|e| e.to_string())?;
             let segment_tensions = if tensions {
                 let r = data
                     .inverse_dynamics(&m, &q, &qd, &qdd)

@@ -16,7 +16,8 @@
 //! friction): MuJoCo's fixed tendons carry the kinematics `Q = A T`, not the path; loops
 //! (their pretension acts inside the transmission); bearing friction; the external
 //! wrench; pulleys without mass (they carry nothing and have no dynamics, and MuJoCo
-//! refuses a massless moving body).
+//! refuses a massless moving body). A turning link without positive mass and inertia, or
+//! a body named `world`, is refused with an error naming it.
 
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
@@ -139,9 +140,33 @@ fn body(w: &mut Writer<Vec<u8>>, model: &Model<f64>, b: usize) -> Result<()> {
     Ok(())
 }
 
-/// The MJCF text of `model` (see the module documentation for what it holds).
+/// The MJCF text of `model` (see the module documentation for what it holds); `Err`
+/// names a body MuJoCo would refuse.
 pub fn mjcf(model: &Model<f64>) -> std::result::Result<String, String> {
+    for (b, body) in model.bodies().iter().enumerate() {
+        if body.name == "world" {
+            return Err("a body named `world` would clash with MuJoCo's world body".into());
+        }
+        if exported(model, b) && turns(model, b) && !mass_properties_are_positive(body) {
+            return Err(format!(
+                "`{}` turns but has no positive mass and positive-definite inertia, which \
+                 MuJoCo needs on every moving body (a massless link or a point mass cannot \
+                 be exported): give it mass properties",
+                body.name
+            ));
+        }
+    }
     write(model).map_err(|e| format!("cannot write MJCF: {e}"))
+}
+
+/// A positive mass and a positive-definite inertia (Sylvester: positive leading minors).
+fn mass_properties_are_positive(body: &tendyn_core::model::Body<f64>) -> bool {
+    let i = &body.inertia.rows;
+    let minor2 = i[0][0] * i[1][1] - i[0][1] * i[1][0];
+    let det = i[0][0] * (i[1][1] * i[2][2] - i[1][2] * i[2][1])
+        - i[0][1] * (i[1][0] * i[2][2] - i[1][2] * i[2][0])
+        + i[0][2] * (i[1][0] * i[2][1] - i[1][1] * i[2][0]);
+    body.mass > 0.0 && i[0][0] > 0.0 && minor2 > 0.0 && det > 0.0
 }
 
 fn write(model: &Model<f64>) -> Result<String> {

@@ -648,3 +648,41 @@ fn draw_writes_an_svg_or_says_what_is_wrong() {
     );
     assert!(!wrong.exists());
 }
+
+/// `export --mjcf` refuses what MuJoCo would: a turning link without mass, by name.
+#[test]
+fn export_names_a_link_mujoco_cannot_take() {
+    let dir = scratch_dir("export");
+    let file = dir.join("massless.ron");
+    std::fs::write(
+        &file,
+        r#"(
+    name: "massless",
+    links: [(name: "arm", dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: 0.0, com: (0.0, 0.0, 0.0))],
+    motors: [(name: "m", on: Joint("arm"))],
+)"#,
+    )
+    .unwrap();
+    let out = dir.join("massless.xml");
+    let (ok, _, err) = tendyn(&[
+        "export",
+        file.to_str().unwrap(),
+        "--mjcf",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("`arm` turns but has no positive mass"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let (ok, _, err) = tendyn(&[
+        "draw",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--qd",
+        "1",
+        "-o",
+        dir.join("d.svg").to_str().unwrap(),
+    ]);
+    assert!(!ok && err.contains("qd has 1 entries"), "{err}");
+}

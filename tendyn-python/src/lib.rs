@@ -9,7 +9,13 @@
 //! shape raise `ValueError`.
 
 use numpy::ndarray::{Array, ArrayD, IxDyn};
-use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, IntoPyArray, PyArrayDyn, PyArrayLikeDyn, PyReadonlyArrayDyn,
+    PyUntypedArrayMethods,
+};
+
+/// An array argument: anything `numpy.asarray(x, dtype=float)` takes (lists, int arrays).
+type Input<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
@@ -82,10 +88,17 @@ impl Batch {
                     .collect(),
                 batched: true,
             }),
-            _ => Err(PyValueError::new_err(format!(
-                "`{what}` has shape {shape:?}; expected ({n},) for one state or (N, {n}) for N \
-                 states"
-            ))),
+            _ => {
+                let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+                let shown = match dims.len() {
+                    1 => format!("({},)", dims[0]),
+                    _ => format!("({})", dims.join(", ")),
+                };
+                Err(PyValueError::new_err(format!(
+                    "`{what}` has shape {shown}; expected ({n},) for one state or (N, {n}) \
+                     for N states"
+                )))
+            }
         }
     }
 
@@ -93,14 +106,19 @@ impl Batch {
     fn all(inputs: Vec<(&str, Batch)>) -> PyResult<(Vec<Batch>, bool, usize)> {
         let batched = inputs[0].1.batched;
         let count = inputs[0].1.rows.len();
-        if let Some((what, _)) = inputs
+        if let Some((what, b)) = inputs
             .iter()
             .find(|(_, b)| b.batched != batched || b.rows.len() != count)
         {
-            return Err(PyValueError::new_err(format!(
-                "`{what}` has another number of states than `{}`",
-                inputs[0].0
-            )));
+            let first = inputs[0].0;
+            return Err(PyValueError::new_err(if b.batched != batched {
+                format!(
+                    "`{what}` and `{first}` mix one state (n,) and a batch (N, n): give both \
+                     the same way"
+                )
+            } else {
+                format!("`{what}` has another number of states than `{first}`")
+            }));
         }
         Ok((inputs.into_iter().map(|(_, b)| b).collect(), batched, count))
     }
@@ -206,7 +224,7 @@ impl Model {
     fn per_state<'py>(
         &self,
         py: Python<'py>,
-        named: Vec<(&str, PyReadonlyArrayDyn<'_, f64>, usize)>,
+        named: Vec<(&str, Input<'_>, usize)>,
         shape: &[usize],
         evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<Vec<f64>> + Send + Sync,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
@@ -215,10 +233,7 @@ impl Model {
         Ok(stacked(py, values, shape, batched))
     }
 
-    fn states(
-        &self,
-        named: Vec<(&str, PyReadonlyArrayDyn<'_, f64>, usize)>,
-    ) -> PyResult<(Vec<Batch>, bool, usize)> {
+    fn states(&self, named: Vec<(&str, Input<'_>, usize)>) -> PyResult<(Vec<Batch>, bool, usize)> {
         let batches = named
             .iter()
             .map(|(what, a, n)| Ok((*what, Batch::of(what, a, *n)?)))
@@ -257,6 +272,28 @@ impl Model {
             .collect()
     }
 
+    /// The pulleys' names, in file order: the rows of `pulley_moments` and, after the
+    /// joints, of `bearings`.
+    #[getter]
+    fn pulley_names(&self) -> Vec<String> {
+        let n = self.model.dof();
+        self.model.bodies()[n..]
+            .iter()
+            .map(|b| b.name.clone())
+            .collect()
+    }
+
+    /// Each strand's name and number of segments, in order (`segment_tensions` runs
+    /// through them; a loop has two strands, `LOOP/ccw` and `LOOP/cw`).
+    #[getter]
+    fn strands(&self) -> Vec<(String, usize)> {
+        self.model
+            .strands()
+            .iter()
+            .map(|s| (s.name.clone(), s.segments.len()))
+            .collect()
+    }
+
     /// The motors' names, in file order.
     #[getter]
     fn motor_names(&self) -> Vec<String> {
@@ -282,18 +319,21 @@ impl Model {
         Ok(out)
     }
 
-    /// Inverse dynamics at `(q, qd, qdd)`: a dict of arrays, the keys of docs/outputs.md —
-    /// `generalized_forces`, `motor_torques`, `tendon_tensions`, `minimal_norm_tensions`,
-    /// `null_space_tensions`, `loop_sides` (`(loops, 2)`), `segment_tensions` (every
-    /// segment of every strand, in order), `bearings` (`(bodies, 2, 3)`: force, moment),
-    /// `base_reaction` (`(2, 3)`), `pulley_moments` — each with the batch axis first when
-    /// the states are batched; `None` where the routing cannot attribute them.
+    /// Inverse dynamics at `(q, qd, qdd)`: a dict of arrays, each with the batch axis first
+    /// when the states are batched — `generalized_forces` `(n,)`, `motor_torques`,
+    /// `tendon_tensions`, `minimal_norm_tensions` and `null_space_tensions` (file order),
+    /// `loop_sides` `(loops, 2)` (ccw, cw side at the driving pulley), `pulley_moments`
+    /// (`pulley_names` order), `segment_tensions` (every segment of every strand, `strands`
+    /// order), `bearings` `(bodies, 2, 3)` (force, moment; joints then pulleys),
+    /// `base_reaction` `(2, 3)`; the last three `None` where the routing cannot attribute
+    /// them. Units and frames as docs/outputs.md §3; bearing friction, sticking and guides
+    /// are not returned yet.
     fn inverse_dynamics<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArrayDyn<'py, f64>,
-        qd: PyReadonlyArrayDyn<'py, f64>,
-        qdd: PyReadonlyArrayDyn<'py, f64>,
+        q: Input<'py>,
+        qd: Input<'py>,
+        qdd: Input<'py>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let n = self.model.dof();
         let (inputs, batched, count) =
@@ -348,7 +388,7 @@ impl Model {
     fn mass_matrix<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArrayDyn<'py, f64>,
+        q: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
         self.per_state(py, vec![("q", q, n)], &[n, n], |data, s| {
@@ -360,8 +400,8 @@ impl Model {
     fn bias<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArrayDyn<'py, f64>,
-        qd: PyReadonlyArrayDyn<'py, f64>,
+        q: Input<'py>,
+        qd: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
         self.per_state(py, vec![("q", q, n), ("qd", qd, n)], &[n], |data, s| {
@@ -373,7 +413,7 @@ impl Model {
     fn gravity<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArrayDyn<'py, f64>,
+        q: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
         self.per_state(py, vec![("q", q, n)], &[n], |data, s| {
@@ -387,10 +427,10 @@ impl Model {
     fn forward_dynamics<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArrayDyn<'py, f64>,
-        qd: PyReadonlyArrayDyn<'py, f64>,
-        motor_torques: Option<PyReadonlyArrayDyn<'py, f64>>,
-        tendon_tensions: Option<PyReadonlyArrayDyn<'py, f64>>,
+        q: Input<'py>,
+        qd: Input<'py>,
+        motor_torques: Option<Input<'py>>,
+        tendon_tensions: Option<Input<'py>>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let n = self.model.dof();
         let (nm, nt) = (self.model.motors().len(), self.model.tendons().len());

@@ -61,7 +61,9 @@ def test_mujoco_has_the_mass_matrix_bias_and_gravity_of_tendyn(name, tmp_path):
 
 
 @pytest.mark.parametrize("name", PAPER)
-def test_a_passive_simulation_keeps_the_couplings(name, tmp_path):
+def test_a_simulation_with_every_tendon_at_its_floor_keeps_the_couplings(name, tmp_path):
+    """With zero controls MuJoCo holds each tendon actuator at the bottom of its force
+    range, the tendon's floor: the mechanism moves under gravity and the floors."""
     m, tm = exported(name, tmp_path)
     G = reduction(m, tm)
     d = mujoco.MjData(m)

@@ -100,6 +100,12 @@ def test_the_outputs_obey_the_equations_of_motion(name):
     assert np.allclose(back, qdd, rtol=1e-9, atol=1e-9)
 
 
+def test_lists_and_integer_arrays_are_states_too():
+    m = model("example2_open_ended")
+    assert np.array_equal(m.gravity([0, 1]), m.gravity(np.array([0.0, 1.0])))
+    assert np.array_equal(m.gravity(np.array([[0, 1]], dtype=np.int32))[0], m.gravity([0.0, 1.0]))
+
+
 def test_model_describes_the_mechanism():
     m = model("example3_stanford_jpl")
     assert m.dof == 3
@@ -108,6 +114,11 @@ def test_model_describes_the_mechanism():
     assert m.structure_matrix.shape == (3, 4)
     assert set(m.couplings) >= {"drum2", "drum3a", "drum3b"}
     assert all(row.shape == (3,) for row in m.couplings.values())
+    assert m.pulley_names == list(m.couplings)
+    r = m.inverse_dynamics(np.zeros(3), np.zeros(3), np.zeros(3))
+    assert r["pulley_moments"].shape == (len(m.pulley_names),)
+    assert r["segment_tensions"].shape == (sum(count for _, count in m.strands),)
+    assert [name for name, _ in m.strands] == ["Ta", "Tb", "Tc", "Td"]
     source = m.generate(["gravity"], "f64")
     assert "pub fn gravity" in source and "pub fn actuation" not in source
 
@@ -122,8 +133,10 @@ def test_a_bad_file_raises_tendyn_error_naming_line_and_column():
 def test_bad_shapes_and_states_are_named():
     m = model("example1_endless")
     n = m.dof
-    with pytest.raises(ValueError, match=r"`q` has shape \[3\]"):
+    with pytest.raises(ValueError, match=r"`q` has shape \(3,\)"):
         m.gravity(np.zeros(n + 1))
+    with pytest.raises(ValueError, match="mix one state"):
+        m.bias(np.zeros(n), np.zeros((1, n)))
     with pytest.raises(ValueError, match="`qd` has another number of states than `q`"):
         m.bias(np.zeros((4, n)), np.zeros((3, n)))
     with pytest.raises(ValueError, match="unknown output `nope`"):
