@@ -387,11 +387,11 @@ fn run(cli: Cli) -> Result<(), String> {
             let m = load(&file)?;
             let zeros = |v: Vec<f64>| if v.is_empty() { vec![0.0; m.dof()] } else { v };
             let (q, qd, qdd) = (zeros(q), zeros(qd), zeros(qdd));
-            let mut data = Data::new(&m);
-            // The state is checked (lengths, finiteness) even when only drawn.
-            data.generalized_forces(&m, &q, &qd, &qdd)
-                .map_err(|e| e.to_string())?;
+            for (what, v) in [("q", &q), ("qd", &qd), ("qdd", &qdd)] {
+                m.check_state(what, v).map_err(|e| e.to_string())?;
+            }
             let segment_tensions = if tensions {
+                let mut data = Data::new(&m);
                 let r = data
                     .inverse_dynamics(&m, &q, &qd, &qdd)
                     .map_err(|e| e.to_string())?;

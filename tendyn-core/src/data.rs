@@ -122,23 +122,6 @@ impl<T: Numeric> Data<T> {
         )))
     }
 
-    fn check_state(model: &Model<T>, what: &str, v: &[T]) -> Result<()> {
-        let n = model.dof();
-        if v.len() != n {
-            return Err(Error::State(format!(
-                "{what} has {} entries but the mechanism has {n} joints",
-                v.len()
-            )));
-        }
-        if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-            return Err(Error::State(format!(
-                "{what}[{i}] is {}; every entry must be finite",
-                x.to_f64()
-            )));
-        }
-        Ok(())
-    }
-
     /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
     /// ([`generalized_forces`]).
     pub fn generalized_forces(
@@ -149,9 +132,9 @@ impl<T: Numeric> Data<T> {
         qdd: &[T],
     ) -> Result<&[T]> {
         self.check_model(model)?;
-        Self::check_state(model, "q", q)?;
-        Self::check_state(model, "qd", qd)?;
-        Self::check_state(model, "qdd", qdd)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
         let out = &mut self.generalized_forces;
         generalized_forces(model, q, qd, qdd, &mut self.ws, out);
         finite(
@@ -165,7 +148,7 @@ impl<T: Numeric> Data<T> {
     /// Joint-space mass matrix `M(q)`.
     pub fn mass_matrix(&mut self, model: &Model<T>, q: &[T]) -> Result<&[Vec<T>]> {
         self.check_model(model)?;
-        Self::check_state(model, "q", q)?;
+        model.check_state("q", q)?;
         self.mass_matrix = mass_matrix(model, q, &mut self.ws);
         finite(
             "mass matrix",
@@ -178,8 +161,8 @@ impl<T: Numeric> Data<T> {
     /// Bias `h(q, q̇)`.
     pub fn bias(&mut self, model: &Model<T>, q: &[T], qd: &[T]) -> Result<&[T]> {
         self.check_model(model)?;
-        Self::check_state(model, "q", q)?;
-        Self::check_state(model, "qd", qd)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
         self.bias = bias(model, q, qd, &mut self.ws);
         finite("bias", &self.bias, &[("q", q), ("qd", qd)])?;
         Ok(&self.bias)
@@ -188,7 +171,7 @@ impl<T: Numeric> Data<T> {
     /// Gravity generalized forces `g(q)`.
     pub fn gravity(&mut self, model: &Model<T>, q: &[T]) -> Result<&[T]> {
         self.check_model(model)?;
-        Self::check_state(model, "q", q)?;
+        model.check_state("q", q)?;
         self.gravity = gravity(model, q, &mut self.ws);
         finite("gravity", &self.gravity, &[("q", q)])?;
         Ok(&self.gravity)
@@ -277,8 +260,8 @@ impl<T: Numeric> Data<T> {
         tendon_tensions: &'a [T],
     ) -> Result<[(&'static str, &'a [T]); 4]> {
         self.check_model(model)?;
-        Self::check_state(model, "q", q)?;
-        Self::check_state(model, "qd", qd)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
         if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
                 "forward dynamics where a turning idler follows a guide with capstan friction \
@@ -351,9 +334,9 @@ impl<T: Numeric> Data<T> {
                 model.name()
             )));
         }
-        Self::check_state(model, "q", q)?;
-        Self::check_state(model, "qd", qd)?;
-        Self::check_state(model, "qdd", qdd)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
         // Tensions that overflowed are reported before the distribution sees them, with the
         // input to blame.
@@ -447,6 +430,27 @@ impl<T: Numeric> Data<T> {
             &self.ws.loads,
             &self.ws.friction,
         ))
+    }
+}
+
+impl<T: Numeric> Model<T> {
+    /// `Err` unless `v` (named `what` in the message: `q`, `qd`, …) has one finite entry
+    /// per joint: the check every evaluator of [`Data`] makes of its state.
+    pub fn check_state(&self, what: &str, v: &[T]) -> Result<()> {
+        let n = self.dof();
+        if v.len() != n {
+            return Err(Error::State(format!(
+                "{what} has {} entries but the mechanism has {n} joints",
+                v.len()
+            )));
+        }
+        if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(Error::State(format!(
+                "{what}[{i}] is {}; every entry must be finite",
+                x.to_f64()
+            )));
+        }
+        Ok(())
     }
 }
 

@@ -23,7 +23,7 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use tendyn_codegen::{available_outputs, Output, Scalar};
-use tendyn_core::Data;
+use tendyn_core::{Data, InverseDynamics};
 
 create_exception!(
     tendyn,
@@ -143,26 +143,54 @@ fn stacked<'py>(
     array.into_pyarray(py)
 }
 
-/// The keys of [`Model::inverse_dynamics`]'s dict and each one's shape per state, in the
-/// order a state's row holds them; segment tensions, bearings and the base reaction only
-/// where the routing attributes them.
-fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usize>)> {
+/// Writes one field of an inverse-dynamics result onto a state's row.
+type Reader = fn(&InverseDynamics<f64>, &mut Vec<f64>);
+
+/// The fields of [`Model::inverse_dynamics`]'s dict: key, shape per state, and how a
+/// result is read into a state's row; segment tensions, bearings and the base reaction
+/// only where the routing attributes them (`None` in the dict otherwise).
+fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usize>, Reader)> {
     let (n, tendons) = (model.dof(), model.tendons().len());
-    let mut fields = vec![
-        ("generalized_forces", vec![n]),
-        ("motor_torques", vec![model.motors().len()]),
-        ("tendon_tensions", vec![tendons]),
-        ("minimal_norm_tensions", vec![tendons]),
-        ("null_space_tensions", vec![tendons]),
-        ("loop_sides", vec![model.loops().len(), 2]),
-        ("pulley_moments", vec![model.bodies().len() - n]),
+    let mut fields: Vec<(&'static str, Vec<usize>, Reader)> = vec![
+        ("generalized_forces", vec![n], |r, row| {
+            row.extend(&r.generalized_forces)
+        }),
+        ("motor_torques", vec![model.motors().len()], |r, row| {
+            row.extend(&r.motor_torques)
+        }),
+        ("tendon_tensions", vec![tendons], |r, row| {
+            row.extend(&r.tendon_tensions)
+        }),
+        ("minimal_norm_tensions", vec![tendons], |r, row| {
+            row.extend(&r.minimal_norm_tensions)
+        }),
+        ("null_space_tensions", vec![tendons], |r, row| {
+            row.extend(&r.null_space_tensions)
+        }),
+        ("loop_sides", vec![model.loops().len(), 2], |r, row| {
+            row.extend(r.loop_sides.iter().flatten())
+        }),
+        (
+            "pulley_moments",
+            vec![model.bodies().len() - n],
+            |r, row| row.extend(r.pulley_demands.iter().map(|(_, m)| m)),
+        ),
     ];
     if !model.routing_incomplete() {
         let segments = model.strands().iter().map(|s| s.segments.len()).sum();
         fields.extend([
-            ("segment_tensions", vec![segments]),
-            ("bearings", vec![model.bodies().len(), 2, 3]),
-            ("base_reaction", vec![2, 3]),
+            (
+                "segment_tensions",
+                vec![segments],
+                (|r, row| row.extend(r.flattened(Output::SegmentTensions).unwrap_or_default()))
+                    as Reader,
+            ),
+            ("bearings", vec![model.bodies().len(), 2, 3], |r, row| {
+                row.extend(r.flattened(Output::Bearings).unwrap_or_default())
+            }),
+            ("base_reaction", vec![2, 3], |r, row| {
+                row.extend(r.flattened(Output::BaseReaction).unwrap_or_default())
+            }),
         ]);
     }
     fields
@@ -342,39 +370,28 @@ impl Model {
         let fields = inverse_fields(model);
         let width: usize = fields
             .iter()
-            .map(|(_, shape)| shape.iter().product::<usize>())
+            .map(|(_, shape, _)| shape.iter().product::<usize>())
             .sum();
         // One row of numbers per state, every field in turn: no copy of the result.
         let rows = self.each(py, &inputs, count, |data, s| {
             let r = data.inverse_dynamics(model, s[0], s[1], s[2])?;
             let mut row = Vec::with_capacity(width);
-            row.extend(&r.generalized_forces);
-            row.extend(&r.motor_torques);
-            row.extend(&r.tendon_tensions);
-            row.extend(&r.minimal_norm_tensions);
-            row.extend(&r.null_space_tensions);
-            row.extend(r.loop_sides.iter().flatten());
-            row.extend(r.pulley_demands.iter().map(|(_, m)| m));
-            for output in [
-                Output::SegmentTensions,
-                Output::Bearings,
-                Output::BaseReaction,
-            ] {
-                row.extend(r.flattened(output).unwrap_or_default());
+            for (_, _, read) in &fields {
+                read(r, &mut row);
             }
             debug_assert_eq!(row.len(), width, "a row holds every field");
             Ok(row)
         })?;
         let out = PyDict::new(py);
         let mut offset = 0;
-        for (key, shape) in fields {
+        for (key, shape, _) in &fields {
             let size: usize = shape.iter().product();
             let values = rows
                 .iter()
                 .map(|row| row[offset..offset + size].to_vec())
                 .collect();
             offset += size;
-            out.set_item(key, stacked(py, values, &shape, batched))?;
+            out.set_item(*key, stacked(py, values, shape, batched))?;
         }
         for key in ["segment_tensions", "bearings", "base_reaction"] {
             if !out.contains(key)? {
