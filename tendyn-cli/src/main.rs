@@ -461,17 +461,8 @@ fn run(cli: Cli) -> Result<(), String> {
                 m.name(),
                 elapsed.as_secs_f64() * 1e3
             );
-            for (o, ops, closed) in &g.functions {
-                eprintln!(
-                    "  {:<20} {} ({})",
-                    o.name(),
-                    ops,
-                    if *closed {
-                        "closed form"
-                    } else {
-                        "traced recursion"
-                    }
-                );
+            for (o, ops, form) in &g.functions {
+                eprintln!("  {:<20} {} ({})", o.name(), ops, form.label());
             }
             eprintln!("  {:<20} {}", "all", g.all);
             Ok(())

@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t597 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
-    let t604 = T::from_f64(0.03) * s68;
-    let t613 = qdd[0] * (c69 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t597 - qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t604));
-    let t619 = qdd[0] * t597
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t604));
-    [t613, t619]
+    let t483 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
+    let t490 = T::from_f64(0.03) * s68;
+    let t499 = qdd[0] * (c69 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t483 - qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t490));
+    let t505 = qdd[0] * t483
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t490));
+    [t499, t505]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -45,19 +45,19 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s68, c69) = q[1].sin_cos();
-    let t644 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
+    let t530 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
         - (qd[0]
             * (qd[0] * (s68 * T::from_f64(0.04499999999999987))
                 + qd[1] * (s68 * T::from_f64(0.06)))
             + qd[1] * (qd[1] * (T::from_f64(0.03) * s68)));
-    let t645 = qdd[0]
+    let t531 = qdd[0]
         * (c69 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t644;
-    let t657 = qdd[0]
+        + t530;
+    let t543 = qdd[0]
         * (c69 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
             + qd[0] * (qd[0] * (s68 * T::from_f64(0.045000000000000005))));
-    tendyn_core::distribution::Actuation::exact([t645, t657], [])
+    tendyn_core::distribution::Actuation::exact([t531, t543], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -68,9 +68,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t69 = q[1].cos();
-    let t593 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t659 = T::from_f64(0.03) * t69 + T::from_f64(0.0166967);
-    [[t593, t659], [t659, T::from_f64(0.0166867)]]
+    let t479 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t545 = T::from_f64(0.03) * t69 + T::from_f64(0.0166967);
+    [[t479, t545], [t545, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -81,10 +81,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t68 = q[1].sin();
-    let t604 = T::from_f64(0.03) * t68;
-    let t611 = -(qd[1] * (qd[0] * (t68 * T::from_f64(0.06)) + qd[1] * t604));
-    let t617 = qd[0] * (qd[0] * t604);
-    [t611, t617]
+    let t490 = T::from_f64(0.03) * t68;
+    let t497 = -(qd[1] * (qd[0] * (t68 * T::from_f64(0.06)) + qd[1] * t490));
+    let t503 = qd[0] * (qd[0] * t490);
+    [t497, t503]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -100,7 +100,7 @@ pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
 ///
 /// Entries: link1, link2.
 ///
-/// Operations (closed form): 37 arithmetic (13 add/sub, 21 mul, 3 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (L D Lᵀ over the best forms of M and the right-hand side): 26 arithmetic (9 add/sub, 14 mul, 3 div, 0 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics<T: Real>(
@@ -110,19 +110,16 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t591 = c69 * T::from_f64(0.06);
-    let t593 = t591 + T::from_f64(0.1247117);
-    let t604 = T::from_f64(0.03) * s68;
-    let t662 = (T::from_f64(0.03) * c69 + T::from_f64(0.0166967)) / t593;
-    let t690 = motor_torques[1] * (T::from_f64(0.6666666666666667) - t662)
-        - motor_torques[0] * t662 - qd[1] * (qd[1] * (s68 * (T::from_f64(0.03) * t662)))
-        - qd[0] * (qd[0] * t604 + qd[1] * (s68 * (T::from_f64(0.06) * t662)));
-    let t697 = t690
-        / (T::from_f64(0.0166867) + t662 * (t662 * (T::from_f64(-0.1247117) - t591)));
-    let t701 = (motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t604)) / t593
-        - t662 * t697;
-    [t701, t697]
+    let t479 = c69 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t490 = T::from_f64(0.03) * s68;
+    let t546 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t490);
+    let t548 = (T::from_f64(0.03) * c69 + T::from_f64(0.0166967)) / t479;
+    let t698 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t490) - t546 * t548)
+        / (T::from_f64(0.0166867) - t479 * (t548 * t548));
+    let t700 = t546 / t479 - t548 * t698;
+    [t700, t698]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -133,20 +130,20 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s68, c69) = q[1].sin_cos();
-    let t713 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let t599 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
             + (T::from_f64(20.0) + qd[0] * (qd[0] * (s68 * T::from_f64(0.75)))));
-    let t732 = qdd[0]
+    let t618 = qdd[0]
         * (T::from_f64(-0.4166675000000001) - c69 * T::from_f64(0.7500000000000001))
         + (T::from_f64(20.0) - qd[0] * (qd[0] * (s68 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
-    [t713, t732]
+    [t599, t618]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, pulley3, drum2.
 ///
-/// Operations (traced recursion): 223 arithmetic (97 add/sub, 126 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 166 arithmetic (72 add/sub, 90 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
@@ -163,94 +160,73 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             + t71 * (t71 * T::from_f64(0.125)));
     let t109 = T::from_f64(0.8)
         * (t57 * s68 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t120 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
-        + T::from_f64(0.25) * t109;
+    let t115 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109;
+    let t120 = t115 + T::from_f64(0.25) * t109;
     let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t143 = s68 * t108 + c69 * t109 + t137;
-    let t157 = t120 + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
-        + T::from_f64(0.3) * t143;
-    let t184 = c69 * T::from_f64(0.9994442900376633);
-    let t186 = T::from_f64(0.03333333333333362) * s68;
-    let t187 = t186 - t184;
-    let t188 = s68 * T::from_f64(0.9994442900376633);
-    let t191 = t188 + T::from_f64(0.03333333333333362) * c69;
-    let t193 = T::from_f64(0.019988885800753267) * s68;
-    let t197 = T::from_f64(0.019988885800753267) * c69;
-    let t199 = t191 * (T::from_f64(0.0006666666666666724) * c69 + t193);
-    let t200 = t187 * (t197 - T::from_f64(0.0006666666666666724) * s68);
-    let t202 = c53 * T::from_f64(0.9994442900376633);
-    let t205 = t202 + T::from_f64(0.03333333333333362) * s52;
-    let t206 = s52 * T::from_f64(0.9994442900376633);
-    let t207 = T::from_f64(0.03333333333333362) * c53;
-    let t211 = T::from_f64(0.029983328701129897) * s52;
-    let t215 = T::from_f64(0.029983328701129897) * c53;
-    let t223 = t184 + s68 * T::from_f64(0.03333333333333337);
-    let t225 = c69 * T::from_f64(0.03333333333333337);
-    let t227 = t188 - t225;
-    let t236 = t227 * (T::from_f64(0.0006666666666666674) * c69 - t193);
-    let t237 = t223 * (t197 + T::from_f64(0.0006666666666666674) * s68);
-    let t239 = s52 * T::from_f64(0.03333333333333337);
-    let t243 = t206 + c53 * T::from_f64(0.03333333333333337);
-    let t252 = t184 - t186;
-    let t254 = t225 - t188;
-    let t257 = T::from_f64(0.02) * t191;
-    let t259 = T::from_f64(0.02) * t187;
-    let t260 = T::from_f64(0.25) * t191;
-    let t262 = T::from_f64(0.02) * t227;
-    let t264 = T::from_f64(0.02) * t223;
-    let t289 = t260 - (t199 - t200) - t260;
-    let t290 = T::from_f64(0.25) * t227 - (t236 - t237) + T::from_f64(0.25) * t254;
-    let t297 = s68 * t252 - c69 * t191;
-    let t304 = s68 * t223 + c69 * t254;
-    let t406 = T::from_f64(20.0)
+    let t149 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137;
+    let t157 = t120 + t149 + T::from_f64(0.3) * (s68 * t108 + c69 * t109 + t137);
+    let t183 = T::from_f64(0.019988885800753267) * s68;
+    let t187 = T::from_f64(0.019988885800753267) * c69;
+    let t190 = T::from_f64(0.029983328701129897) * s52;
+    let t194 = T::from_f64(0.029983328701129897) * c53;
+    let t231 = T::from_f64(20.0)
         + (T::from_f64(25.0) * t120
             - t157 * T::from_f64(0.000000000000000009071958584846753));
-    let t407 = T::from_f64(20.0)
+    let t232 = T::from_f64(20.0)
         - (t157 * T::from_f64(0.00000000000000003335808724852205)
             + t120 * T::from_f64(25.000000000000004));
-    let t410 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s68 * t109 - c69 * t108) + (c69 * t252 + s68 * t191) * t406;
-    let t414 = t410 + (c69 * t223 - s68 * t254) * t407;
-    let t415 = t143 + t297 * t406 + t304 * t407;
-    let t425 = s68 * T::from_f64(0.9810000000000001) + (c69 * t257 + s68 * t259) * t406
-        + (c69 * t262 - s68 * t264) * t407;
-    let t426 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
-        - T::from_f64(5.886) + (s68 * t257 - c69 * t259) * t406
-        + (s68 * t262 + c69 * t264) * t407;
-    let t428 = t157 + (t289 + T::from_f64(0.3) * t297) * t406
-        + (t290 + T::from_f64(0.3) * t304) * t407
+    let t234 = t231 * T::from_f64(0.9994442900376633);
+    let t236 = T::from_f64(0.03333333333333362) * t231;
+    let t241 = s68 * t236 - c69 * t234;
+    let t244 = s68 * t234 + c69 * t236;
+    let t250 = c53 * t234 + s52 * t236;
+    let t254 = s52 * t234 - c53 * t236;
+    let t258 = t232 * T::from_f64(0.9994442900376633);
+    let t261 = t232 * T::from_f64(0.03333333333333337);
+    let t267 = c69 * t258 + s68 * t261;
+    let t272 = s68 * t258 - c69 * t261;
+    let t273 = t241 - t267;
+    let t274 = t244 + t272;
+    let t278 = (T::from_f64(0.0006666666666666724) * c69 + t183) * t244
+        - (t187 - T::from_f64(0.0006666666666666724) * s68) * t241
+        + ((T::from_f64(0.0006666666666666674) * c69 - t183) * t272
+            - (t187 + T::from_f64(0.0006666666666666674) * s68) * t267);
+    let t282 = c53 * t258 - s52 * t261;
+    let t285 = s52 * t258 + c53 * t261;
+    let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
+        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t250
+        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t285
+            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t282);
+    let t292 = t267 - t241;
+    let t293 = -t274;
+    let t294 = -t278;
+    let t295 = T::from_f64(0.02) * t274;
+    let t301 = -(t250 + t282);
+    let t302 = -(t254 + t285);
+    let t309 = t108 - t273;
+    let t310 = t109 - t274;
+    let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
+        - T::from_f64(1.9620000000000002);
+    let t316 = t115 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
+    let t329 = c69 * t295 - s68 * t315;
+    let t336 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
+        - (s68 * t310 - c69 * t309);
+    let t337 = t137 + (s68 * t309 + c69 * t310);
+    let t342 = T::from_f64(1.7658) + (s68 * t295 + c69 * t315) - T::from_f64(5.886);
+    let t369 = t149 + t316 + T::from_f64(0.3) * t337
         - (t157 - t120 * T::from_f64(1.4999999999999958));
-    let t429 = t252 * t406;
-    let t430 = t191 * t406;
-    let t434 = t223 * t407;
-    let t435 = t254 * t407;
-    let t436 = t108 + t429 + t434;
-    let t437 = t109 - t430 + t435;
-    let t447 = t257 * t406 + t262 * t407;
-    let t448 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
-    let t449 = t120 + t289 * t406 + t290 * t407;
-    let t456 = (t239 - t202) * t407 - t205 * t406;
-    let t457 = (t207 - t206) * t406 - t243 * t407;
-    let t461 = t105
-        + (t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
-            - (t206 - t207) * (T::from_f64(0.0010000000000000085) * c53 - t211)) * t406
-        + ((t202 - t239) * (T::from_f64(0.0010000000000000009) * s52 - t215)
-            - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53)) * t407;
-    let t462 = t461
+    let t370 = t105 - t291
         - (t105
             + (T::from_f64(0.0000000000000000047704895589362195) * t157
                 + T::from_f64(1.5000000000000002) * t120));
-    let t463 = t429 + t434;
-    let t464 = t435 - t430;
-    let t467 = (t200 - t199) * t406 + (t237 - t236) * t407;
     [
-        [[t414, t415, T::from_f64(19.62)], [t425, t426, t428]],
-        [[t436, t437, T::from_f64(7.848000000000001)], [t447, t448, t449]],
+        [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
+        [[t309, t310, T::from_f64(7.848000000000001)], [t295, t315, t316]],
         [
-            [t456, t457, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t462],
+            [t301, t302, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t370],
         ],
-        [[t463, t464, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t467]],
+        [[t292, t293, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t294]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
@@ -317,7 +293,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 286 arithmetic (125 add/sub, 158 mul, 3 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 225 arithmetic (100 add/sub, 118 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -342,131 +318,109 @@ pub fn all<T: Real>(
     let t108 = T::from_f64(0.8) * (t55 * s68 - t73 - t83 + t92);
     let t109 = T::from_f64(0.8)
         * (t77 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t120 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
-        + T::from_f64(0.25) * t109;
+    let t115 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109;
+    let t120 = t115 + T::from_f64(0.25) * t109;
     let t131 = s68 * T::from_f64(0.9810000000000001);
+    let t136 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57);
     let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t142 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s68 * t109 - c69 * t108);
+    let t142 = t136 - (s68 * t109 - c69 * t108);
     let t143 = s68 * t108 + c69 * t109 + t137;
+    let t149 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137;
     let t156 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t157 = t120 + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
-        + T::from_f64(0.3) * t143;
+    let t157 = t120 + t149 + T::from_f64(0.3) * t143;
     let t161 = c53 * t142 - s52 * t143;
     let t164 = s52 * t142 + c53 * t143;
     let t171 = c53 * t131 - s52 * t156;
     let t174 = s52 * t131 + c53 * t156;
     let t179 = t105 + t157;
     let t181 = t120 + T::from_f64(0.6666666666666667) * t105;
-    let t184 = c69 * T::from_f64(0.9994442900376633);
-    let t186 = T::from_f64(0.03333333333333362) * s68;
-    let t187 = t186 - t184;
-    let t188 = s68 * T::from_f64(0.9994442900376633);
-    let t191 = t188 + T::from_f64(0.03333333333333362) * c69;
-    let t193 = T::from_f64(0.019988885800753267) * s68;
-    let t197 = T::from_f64(0.019988885800753267) * c69;
-    let t199 = t191 * (T::from_f64(0.0006666666666666724) * c69 + t193);
-    let t200 = t187 * (t197 - T::from_f64(0.0006666666666666724) * s68);
-    let t202 = c53 * T::from_f64(0.9994442900376633);
-    let t205 = t202 + T::from_f64(0.03333333333333362) * s52;
-    let t206 = s52 * T::from_f64(0.9994442900376633);
-    let t207 = T::from_f64(0.03333333333333362) * c53;
-    let t211 = T::from_f64(0.029983328701129897) * s52;
-    let t215 = T::from_f64(0.029983328701129897) * c53;
-    let t223 = t184 + s68 * T::from_f64(0.03333333333333337);
-    let t225 = c69 * T::from_f64(0.03333333333333337);
-    let t227 = t188 - t225;
-    let t236 = t227 * (T::from_f64(0.0006666666666666674) * c69 - t193);
-    let t237 = t223 * (t197 + T::from_f64(0.0006666666666666674) * s68);
-    let t239 = s52 * T::from_f64(0.03333333333333337);
-    let t243 = t206 + c53 * T::from_f64(0.03333333333333337);
-    let t252 = t184 - t186;
-    let t254 = t225 - t188;
-    let t257 = T::from_f64(0.02) * t191;
-    let t259 = T::from_f64(0.02) * t187;
-    let t260 = T::from_f64(0.25) * t191;
-    let t262 = T::from_f64(0.02) * t227;
-    let t264 = T::from_f64(0.02) * t223;
-    let t289 = t260 - (t199 - t200) - t260;
-    let t290 = T::from_f64(0.25) * t227 - (t236 - t237) + T::from_f64(0.25) * t254;
-    let t297 = s68 * t252 - c69 * t191;
-    let t304 = s68 * t223 + c69 * t254;
-    let t401 = t157 - t120 * T::from_f64(1.4999999999999958);
-    let t405 = t105
+    let t183 = T::from_f64(0.019988885800753267) * s68;
+    let t187 = T::from_f64(0.019988885800753267) * c69;
+    let t190 = T::from_f64(0.029983328701129897) * s52;
+    let t194 = T::from_f64(0.029983328701129897) * c53;
+    let t226 = t157 - t120 * T::from_f64(1.4999999999999958);
+    let t230 = t105
         + (T::from_f64(0.0000000000000000047704895589362195) * t157
             + T::from_f64(1.5000000000000002) * t120);
-    let t406 = T::from_f64(20.0)
+    let t231 = T::from_f64(20.0)
         + (T::from_f64(25.0) * t120
             - t157 * T::from_f64(0.000000000000000009071958584846753));
-    let t407 = T::from_f64(20.0)
+    let t232 = T::from_f64(20.0)
         - (t157 * T::from_f64(0.00000000000000003335808724852205)
             + t120 * T::from_f64(25.000000000000004));
-    let t414 = t142 + (c69 * t252 + s68 * t191) * t406
-        + (c69 * t223 - s68 * t254) * t407;
-    let t415 = t143 + t297 * t406 + t304 * t407;
-    let t425 = t131 + (c69 * t257 + s68 * t259) * t406
-        + (c69 * t262 - s68 * t264) * t407;
-    let t426 = t156 + (s68 * t257 - c69 * t259) * t406
-        + (s68 * t262 + c69 * t264) * t407;
-    let t428 = t157 + (t289 + T::from_f64(0.3) * t297) * t406
-        + (t290 + T::from_f64(0.3) * t304) * t407 - t401;
-    let t429 = t252 * t406;
-    let t430 = t191 * t406;
-    let t434 = t223 * t407;
-    let t435 = t254 * t407;
-    let t436 = t108 + t429 + t434;
-    let t437 = t109 - t430 + t435;
-    let t447 = t257 * t406 + t262 * t407;
-    let t448 = T::from_f64(-0.9810000000000001) - t259 * t406 + t264 * t407;
-    let t449 = t120 + t289 * t406 + t290 * t407;
-    let t456 = (t239 - t202) * t407 - t205 * t406;
-    let t457 = (t207 - t206) * t406 - t243 * t407;
-    let t461 = t105
-        + (t205 * (T::from_f64(0.0010000000000000085) * s52 + t215)
-            - (t206 - t207) * (T::from_f64(0.0010000000000000085) * c53 - t211)) * t406
-        + ((t202 - t239) * (T::from_f64(0.0010000000000000009) * s52 - t215)
-            - t243 * (t211 + T::from_f64(0.0010000000000000009) * c53)) * t407;
-    let t462 = t461 - t405;
-    let t463 = t429 + t434;
-    let t464 = t435 - t430;
-    let t467 = (t200 - t199) * t406 + (t237 - t236) * t407;
-    let t475 = T::from_f64(0.8)
-        * (T::from_f64(-0.125) + (T::from_f64(0.25) + T::from_f64(0.3) * c69));
-    let t499 = T::from_f64(0.0041667) - T::from_f64(0.125) * t475
-        + T::from_f64(0.25) * t475 + T::from_f64(-0.018000000000000002)
+    let t234 = t231 * T::from_f64(0.9994442900376633);
+    let t236 = T::from_f64(0.03333333333333362) * t231;
+    let t241 = s68 * t236 - c69 * t234;
+    let t244 = s68 * t234 + c69 * t236;
+    let t250 = c53 * t234 + s52 * t236;
+    let t254 = s52 * t234 - c53 * t236;
+    let t258 = t232 * T::from_f64(0.9994442900376633);
+    let t261 = t232 * T::from_f64(0.03333333333333337);
+    let t267 = c69 * t258 + s68 * t261;
+    let t272 = s68 * t258 - c69 * t261;
+    let t273 = t241 - t267;
+    let t274 = t244 + t272;
+    let t278 = (T::from_f64(0.0006666666666666724) * c69 + t183) * t244
+        - (t187 - T::from_f64(0.0006666666666666724) * s68) * t241
+        + ((T::from_f64(0.0006666666666666674) * c69 - t183) * t272
+            - (t187 + T::from_f64(0.0006666666666666674) * s68) * t267);
+    let t282 = c53 * t258 - s52 * t261;
+    let t285 = s52 * t258 + c53 * t261;
+    let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
+        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t250
+        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t285
+            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t282);
+    let t292 = t267 - t241;
+    let t293 = -t274;
+    let t294 = -t278;
+    let t295 = T::from_f64(0.02) * t274;
+    let t301 = -(t250 + t282);
+    let t302 = -(t254 + t285);
+    let t309 = t108 - t273;
+    let t310 = t109 - t274;
+    let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
+        - T::from_f64(1.9620000000000002);
+    let t316 = t115 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
+    let t329 = c69 * t295 - s68 * t315;
+    let t336 = t136 - (s68 * t310 - c69 * t309);
+    let t337 = t137 + (s68 * t309 + c69 * t310);
+    let t342 = T::from_f64(1.7658) + (s68 * t295 + c69 * t315) - T::from_f64(5.886);
+    let t369 = t149 + t316 + T::from_f64(0.3) * t337 - t226;
+    let t370 = t105 - t291 - t230;
+    let t380 = T::from_f64(0.1) * c69;
+    let t400 = T::from_f64(-0.18) + t380;
+    let t421 = T::from_f64(0.000045)
+        + (T::from_f64(0.0526667)
+            + T::from_f64(0.3) * (t400 + (t400 + T::from_f64(0.6))));
+    let t423 = T::from_f64(0.0166667) + T::from_f64(0.3) * t380
+        + T::from_f64(0.000030000000000000004);
+    let t432 = T::from_f64(0.8) * t77;
+    let t437 = T::from_f64(0.25) * t432 - T::from_f64(0.125) * t432;
+    let t451 = t437
         + T::from_f64(0.3)
-            * (s68 * (T::from_f64(0.8) * (T::from_f64(0.3) * s68)) + c69 * t475
-                + T::from_f64(0.18));
-    let t510 = T::from_f64(0.000045) + t499;
-    let t538 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.3) * (T::from_f64(0.1) * c69));
-    let t546 = T::from_f64(0.8) * t77;
-    let t551 = T::from_f64(0.25) * t546 - T::from_f64(0.125) * t546;
-    let t565 = t551
-        + T::from_f64(0.3)
-            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t546);
-    let t578 = motor_torques[0] + motor_torques[1] - t565;
-    let t580 = t538 / t510;
-    let t587 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t551 - t578 * t580)
-        / (T::from_f64(0.0166867) - t510 * (t580 * t580));
-    let t589 = t578 / t510 - t580 * t587;
+            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t432);
+    let t464 = motor_torques[0] + motor_torques[1] - t451;
+    let t466 = t423 / t421;
+    let t473 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t437 - t464 * t466)
+        / (T::from_f64(0.0166867) - t421 * (t466 * t466));
+    let t475 = t464 / t421 - t466 * t473;
     Outputs {
         generalized_forces: [t179, t181],
-        actuation: tendyn_core::distribution::Actuation::exact([t401, t405], []),
-        mass_matrix: [[t510, t538], [t538, T::from_f64(0.0166867)]],
-        bias: [t565, t551],
+        actuation: tendyn_core::distribution::Actuation::exact([t226, t230], []),
+        mass_matrix: [[t421, t423], [t423, T::from_f64(0.0166867)]],
+        bias: [t451, t437],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t589, t587],
-        segment_tensions: [t406, t407],
+        forward_dynamics: [t475, t473],
+        segment_tensions: [t231, t232],
         bearings: [
-            [[t414, t415, T::from_f64(19.62)], [t425, t426, t428]],
-            [[t436, t437, T::from_f64(7.848000000000001)], [t447, t448, t449]],
+            [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
+            [[t309, t310, T::from_f64(7.848000000000001)], [t295, t315, t316]],
             [
-                [t456, t457, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t462],
+                [t301, t302, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t370],
             ],
-            [[t463, t464, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t467]],
+            [[t292, t293, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t294]],
         ],
         base_reaction: [
             [[t161, t164, T::from_f64(20.601000000000003)], [t171, t174, t179]],

@@ -598,7 +598,7 @@ fn param_len(model: &Model<f64>, p: Param) -> usize {
     }
 }
 
-fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
+fn doc(model: &Model<f64>, f: &Function) -> String {
     let labels = result_labels(model, f.output);
     let what = match f.output {
         Output::GeneralizedForces => {
@@ -622,13 +622,10 @@ fn doc(model: &Model<f64>, f: &Function, chosen: &str) -> String {
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),
     };
     format!(
-        " {what}.\n\n Entries: {}.\n\n Operations ({chosen}): {}.",
+        " {what}.\n\n Entries: {}.\n\n Operations ({}): {}.",
         labels.join(", "),
-        if chosen == "closed form" {
-            f.closed_ops.expect("closed")
-        } else {
-            f.traced_ops
-        }
+        f.form.label(),
+        f.ops
     )
 }
 
@@ -736,18 +733,7 @@ pub fn emit_file(
         let mut body = Body::new(&atoms);
         body.bind(&f.results);
         let values = f.results.iter().map(|&r| body.expr(r)).collect();
-        let closed = f
-            .closed_ops
-            .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
-        let d = doc(
-            model,
-            f,
-            if closed {
-                "closed form"
-            } else {
-                "traced recursion"
-            },
-        );
+        let d = doc(model, f);
         let mut item = function(
             d.lines().map(doc_attribute).collect(),
             f.output.name(),

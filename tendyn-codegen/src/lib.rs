@@ -133,8 +133,8 @@ pub struct Generated {
     pub file: syn::File,
     /// The comments that open the file as text (generator, mechanism, outputs, scalar).
     pub header: String,
-    /// Per function: name, operations of the emitted form, whether it is the closed form.
-    pub functions: Vec<(Output, expr::OpCount, bool)>,
+    /// Per function: name, operations of the emitted form, and which form it is.
+    pub functions: Vec<(Output, expr::OpCount, outputs::Form)>,
     /// Operations of `all`.
     pub all: expr::OpCount,
 }
@@ -219,12 +219,7 @@ pub fn generate_with(
     let functions = traced
         .functions
         .iter()
-        .map(|f| {
-            let closed = f
-                .closed_ops
-                .is_some_and(|c| c.arithmetic() < f.traced_ops.arithmetic());
-            (f.output, traced.graph.count(&f.results), closed)
-        })
+        .map(|f| (f.output, f.ops, f.form))
         .collect();
     Ok(Generated {
         file: emit::emit_file(model, &traced, options.scalar, &core),

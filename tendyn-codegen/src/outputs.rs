@@ -79,13 +79,36 @@ pub struct Function {
     pub traced: Vec<Id>,
     /// Operations of the traced form.
     pub traced_ops: OpCount,
-    /// Operations of the closed form; `None` if it could not be built (the expansion
-    /// gave up). The closed form is chosen when it has fewer arithmetic operations.
-    pub closed_ops: Option<OpCount>,
+    /// Which form `results` are.
+    pub form: Form,
+    /// Operations of `results`.
+    pub ops: OpCount,
     /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`]):
     /// the constants of `tendyn_core::distribution::Fixed` the emitted code distributes
     /// the minimal-norm tensions with.
     pub distribution: Option<Distribution>,
+}
+
+/// The form a function is emitted in: whichever has the fewest arithmetic operations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// The recursion as traced.
+    Traced,
+    /// Collected and expanded in the state ([`crate::closed_form`]).
+    ClosedForm,
+    /// Forward dynamics: `L D Lᵀ` over the best form of `M` and of the right-hand side.
+    SolvedOverParts,
+}
+
+impl Form {
+    /// How the generated documentation and the command line name it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Form::Traced => "traced recursion",
+            Form::ClosedForm => "closed form",
+            Form::SolvedOverParts => "L D Lᵀ over the best forms of M and the right-hand side",
+        }
+    }
 }
 
 /// The constants of the fixed-size tension distribution (see [`Function::distribution`]).
@@ -244,11 +267,13 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             lead: tension::lead_tendon(model),
             ..Shared::default()
         };
-        outputs
+        let results = outputs
             .iter()
             .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws, &mut shared)))
-            .collect::<Vec<_>>()
+            .collect::<Vec<_>>();
+        (results, shared.forward_parts)
     });
+    let (results, forward_parts) = results;
     let mut functions = Vec::new();
     // One collector for all functions, so that shared subexpressions are expanded once;
     // its limit is the largest function's budget.
@@ -263,24 +288,53 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         .collect();
     let largest = traced.iter().map(|t| budget_of(t.3)).max().unwrap_or(0);
     let mut collector = Collector::new(largest);
+    // A closed form with more terms than the trace has operations cannot win.
+    let mut choose = |graph: &mut Graph, roots: &[Id], traced_ops: OpCount| {
+        let closed = collector.collect(graph, roots, &StateRank, budget_of(traced_ops));
+        match closed.map(|c| (graph.count(&c), c)) {
+            Some((ops, c)) if ops.arithmetic() < traced_ops.arithmetic() => {
+                (c, Form::ClosedForm, ops)
+            }
+            _ => (roots.to_vec(), Form::Traced, traced_ops),
+        }
+    };
     for (output, shape, roots, traced_ops) in traced {
-        // A closed form with more terms than the trace has operations cannot win.
-        let closed = collector.collect(&mut graph, &roots, &StateRank, budget_of(traced_ops));
-        let closed_ops = closed.as_ref().map(|c| graph.count(c));
-        let results = match (&closed, closed_ops) {
-            (Some(c), Some(ops)) if ops.arithmetic() < traced_ops.arithmetic() => c.clone(),
-            _ => roots.clone(),
-        };
+        let (results, form, ops) = choose(&mut graph, &roots, traced_ops);
         functions.push(Function {
             output,
             shape,
             results,
             traced: roots,
             traced_ops,
-            closed_ops,
+            form,
+            ops,
             distribution: (output == Output::Actuation && model.system().null_space.len() > 1)
                 .then(|| distribution_constants(model)),
         });
+    }
+    // Forward dynamics is `L D Lᵀ` over `M` and the right-hand side: solved over each
+    // part's own best form, it can beat both its trace and its closed form as a whole
+    // (whose divisions stop the expansion at the solve).
+    if let Some((mass, rhs)) = forward_parts {
+        let ops = graph.count(&mass);
+        let (mass, ..) = choose(&mut graph, &mass, ops);
+        let ops = graph.count(&rhs);
+        let (rhs, ..) = choose(&mut graph, &rhs, ops);
+        let (g, composed) = graph.scope(|| {
+            let mut m: Vec<Sym> = mass.into_iter().map(Sym).collect();
+            let mut x: Vec<Sym> = rhs.into_iter().map(Sym).collect();
+            linalg::ldlt_solve(&mut m, &mut x);
+            x.into_iter().map(|s| s.0).collect::<Vec<Id>>()
+        });
+        graph = g;
+        let f = functions
+            .iter_mut()
+            .find(|f| f.output == Output::ForwardDynamics)
+            .expect("forward dynamics was traced");
+        let ops = graph.count(&composed);
+        if ops.arithmetic() < f.ops.arithmetic() {
+            (f.results, f.form, f.ops) = (composed, Form::SolvedOverParts, ops);
+        }
     }
     let chosen: Vec<Id> = functions
         .iter()
@@ -333,6 +387,9 @@ struct Shared {
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
     mass: Option<Vec<Vec<Sym>>>,
+    /// Forward dynamics' mass matrix (flat) and right-hand side, to solve again over each
+    /// one's best form.
+    forward_parts: Option<(Vec<Id>, Vec<Id>)>,
 }
 
 impl Shared {
@@ -400,6 +457,10 @@ fn trace_one(
                 ws,
             );
             let mut mm: Vec<Sym> = shared.mass(m, i, ws).into_iter().flatten().collect();
+            shared.forward_parts = Some((
+                mm.iter().map(|s| s.0).collect(),
+                rhs.iter().map(|s| s.0).collect(),
+            ));
             let mut x = rhs;
             linalg::ldlt_solve(&mut mm, &mut x);
             (Shape::Vector(n), x)

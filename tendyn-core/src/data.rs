@@ -18,9 +18,9 @@
 //! # }
 //! ```
 
-use crate::affine::Affine;
+use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::dynamics::{
-    bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces, gravity,
+    balance, bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces, gravity,
     inverse_dynamics, mass_matrix, structure, InverseDynamics, Workspace,
 };
 use crate::error::{Error, Result};
@@ -419,17 +419,21 @@ impl<T: Numeric> Data<T> {
         })
     }
 
-    /// The balance rows of the last inverse-dynamics call, as affine forms (for checks of
-    /// the recursion against the transmission's `E`); `model` must be the one that call
-    /// was given (a model of another shape is an error; one of the same shape, another
-    /// parameter set, gives that model's rows with the last call's loads).
-    pub fn last_balance_rows(&self, model: &Model<T>) -> Result<Vec<Affine<T>>> {
+    /// The balance rows at the state of the last inverse-dynamics call, as affine forms in
+    /// the unknowns (for checks of the recursion against the transmission's `E`); `model`
+    /// must be the one that call was given (a model of another shape is an error; one of
+    /// the same shape, another parameter set, gives that model's rows at the last call's
+    /// motion). At most [`MAX_UNKNOWNS`] unknowns.
+    pub fn last_balance_rows(&mut self, model: &Model<T>) -> Result<Vec<Affine<T>>> {
         self.check_model(model)?;
-        Ok(tension::balance_rows(
-            model,
-            &self.ws.loads,
-            &self.ws.friction,
-        ))
+        let nu = model.system().unknowns.len();
+        if nu > MAX_UNKNOWNS {
+            return Err(Error::State(format!(
+                "`{}` has {nu} unknowns; balance rows as affine forms carry at most {MAX_UNKNOWNS}",
+                model.name()
+            )));
+        }
+        Ok(balance(model, &mut self.ws))
     }
 }
 

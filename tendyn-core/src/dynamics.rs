@@ -13,6 +13,7 @@
 //! once the pulleys' couplings hold).
 
 use crate::affine::Affine;
+use crate::composite::{self, Composite};
 use crate::error::Result;
 use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
@@ -85,30 +86,45 @@ impl<T: Numeric> InverseDynamics<T> {
 pub struct Workspace<T: Real> {
     /// Motion of every body from the last forward recursion.
     pub(crate) motion: Vec<Motion<T>>,
-    /// Loads affine in the unknowns (inverse dynamics with tensions).
+    /// Loads affine in the unknowns (the state's `E` with capstan friction).
     pub(crate) loads: Loads<T>,
     /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
     pub(crate) known: Loads<T, Vec3<T>>,
     /// Tension of every segment of every strand, affine in the unknowns
-    /// ([`tension::segment_tensions`]).
+    /// ([`tension::segment_tensions`]; with capstan friction).
     pub(crate) tensions: Vec<Vec<Affine<T>>>,
+    /// Tension of every segment of every strand at known ground-level tensions.
+    pub(crate) segments: Vec<Vec<T>>,
+    /// Plain loads of the pass with those tensions (`b`, then the bearings).
+    pub(crate) tendon_loads: Loads<T, Vec3<T>>,
     /// Bearing friction torque of every body at the last inverse-dynamics call
     /// ([`friction::bearing_torques`]), which its balance rows carry.
     pub(crate) friction: Vec<T>,
     /// Capstan factor of every idler step, `[strand][idler]` (1 but on guides with
     /// friction; [`friction::capstan_factors`]).
     pub(crate) capstan: Vec<Vec<T>>,
+    /// Composite inertias of the mass matrix ([`composite::mass_matrix`]).
+    pub(crate) composite: Vec<Composite<T>>,
 }
 
 impl<T: Real> Workspace<T> {
     /// Buffers sized for `model`.
     pub fn new(model: &Model<T>) -> Self {
-        let nu = model.system.unknowns.len();
+        // The affine buffers are only read after `balance` has filled them, which needs a
+        // model within the affine forms' capacity; any size does until then.
+        let nu = model.system.unknowns.len().min(crate::affine::MAX_UNKNOWNS);
         Workspace {
             motion: vec![Motion::rest(); model.bodies.len()],
             loads: Loads::new(model.bodies.len(), nu),
             known: Loads::new(model.bodies.len(), 0),
+            tendon_loads: Loads::new(model.bodies.len(), 0),
+            segments: model
+                .strands
+                .iter()
+                .map(|s| vec![T::zero(); s.segments.len()])
+                .collect(),
             friction: vec![T::zero(); model.bodies.len()],
+            composite: vec![Composite::empty(); model.bodies.len()],
             capstan: model
                 .strands
                 .iter()
@@ -169,25 +185,13 @@ pub fn generalized_forces<T: Real>(
     friction::apply_at(model, qd, Some(qdd), Side::Delivered, out);
 }
 
-/// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings: column
-/// `j` is the expanded tree's `Q` at `q̈ = e_j` with no velocity and no gravity. Only the
-/// upper triangle is computed from the recursion; the lower one mirrors it.
+/// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings, by
+/// the composite-rigid-body algorithm over the expanded tree ([`crate::composite`]).
 pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], ws: &mut Workspace<T>) -> Vec<Vec<T>> {
     let n = model.dof;
-    let zeros = vec![T::zero(); n];
-    let mut m = vec![vec![T::zero(); n]; n];
-    let mut unit = zeros.clone();
-    let mut col = zeros.clone();
-    for j in 0..n {
-        unit[j] = T::one();
-        expanded_generalized_forces(model, q, &zeros, &unit, false, false, ws, &mut col);
-        for i in 0..=j {
-            m[i][j] = col[i];
-            m[j][i] = col[i];
-        }
-        unit[j] = T::zero();
-    }
-    m
+    let mut flat = vec![T::zero(); n * n];
+    composite::mass_matrix(model, q, &mut ws.composite, &mut flat);
+    flat.chunks_exact(n.max(1)).map(|r| r.to_vec()).collect()
 }
 
 /// Bias `h(q, q̇)`: Coriolis and centrifugal generalized forces.
@@ -304,17 +308,19 @@ pub fn system_sliding<T: Numeric>(
     tension::system_at(model, &rows)
 }
 
-/// The balance rows of `E x = b` at the motion, bearing friction and capstan factors in
-/// `ws`: the segment tensions (Eq. 24b), the backward recursion with them as unknowns
-/// (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).
-fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
+/// The balance rows of `E x = b` as affine forms, at the motion, bearing friction and
+/// capstan factors in `ws`: the segment tensions (Eq. 24b), the backward recursion with
+/// them as unknowns (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).
+/// Needed only where `E` must be read off the recursion (capstan friction on guides, and
+/// the checks of `E`); at most [`crate::affine::MAX_UNKNOWNS`] unknowns.
+pub(crate) fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
     let nu = model.system.unknowns.len();
     tension::segment_tensions(
         model,
         &ws.motion,
         &ws.friction,
         &ws.capstan,
-        nu,
+        |k| Affine::unknown(k, T::zero(), nu),
         &mut ws.tensions,
     );
     backward(
@@ -328,9 +334,41 @@ fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
     tension::balance_rows(model, &ws.loads, &ws.friction)
 }
 
-/// Inverse dynamics by the paper's recursion: tensions carried to the base as unknowns,
-/// `E x = b` solved there (`distribute` chooses among the solutions of a redundant
-/// routing), every segment tension and bearing force by back-substitution.
+/// The recursion with every strand's ground-level tension known, `ground(unknown)`: the
+/// segment tensions into `ws.segments`, the loads into `ws.tendon_loads`. With every
+/// unknown zero its balance rows are `b`; with the solved unknowns its loads are the
+/// bearings'.
+fn with_ground_tensions<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    ground: impl Fn(usize) -> T,
+) {
+    tension::segment_tensions(
+        model,
+        &ws.motion,
+        &ws.friction,
+        &ws.capstan,
+        ground,
+        &mut ws.segments,
+    );
+    backward(
+        model,
+        &ws.motion,
+        Some(&ws.segments),
+        0,
+        true,
+        &mut ws.tendon_loads,
+    );
+}
+
+/// Inverse dynamics by the paper's recursion, with the unknowns solved apart from it: a
+/// pass with every tension zero leaves `b`, `E x = b` is solved (`E` constant, `E⁺`
+/// precomputed; `distribute` chooses among the solutions of a redundant routing), and a
+/// pass with the solved tensions gives every segment tension and bearing force. This is
+/// the paper's carrying of the tensions as unknowns to the base (Section 6), by
+/// superposition: the recursion is linear in them. Only with capstan friction on guides,
+/// where `E` depends on the state, are the tensions carried as unknowns (`at_state` reads
+/// the state's `E` off the affine rows).
 pub fn inverse_dynamics<T: Real>(
     model: &Model<T>,
     q: &[T],
@@ -344,16 +382,16 @@ pub fn inverse_dynamics<T: Real>(
     forward(model, q, qd, qdd, true, &mut ws.motion);
     friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
     friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
-    let rows = balance(model, ws);
-    let b: Vec<T> = rows.iter().map(|r| r.constant).collect();
-    // With friction on guides `E` depends on the state (`at_state`, tension::system_at);
-    // otherwise it is the model's own.
     let state_system;
-    let system = if model.has_capstan() {
+    let (b, system) = if model.has_capstan() {
+        let rows = balance(model, ws);
         state_system = at_state(model, &rows)?;
-        &state_system
+        let b: Vec<T> = rows.iter().map(|r| r.constant).collect();
+        (b, &state_system)
     } else {
-        &model.system
+        with_ground_tensions(model, ws, |_| T::zero());
+        let b = tension::balance_rows(model, &ws.tendon_loads, &ws.friction);
+        (b, &model.system)
     };
     let mut x = vec![T::zero(); nu];
     tension::minimal_norm(model, system, &b, &mut x);
@@ -406,11 +444,8 @@ pub fn inverse_dynamics<T: Real>(
     let (segment_tensions, bearings, base_reaction) = if model.routing_incomplete {
         (None, None, None)
     } else {
-        let segs = ws
-            .tensions
-            .iter()
-            .map(|s| s.iter().map(|t| t.eval(&x)).collect())
-            .collect();
+        with_ground_tensions(model, ws, |k| x[k]);
+        let segs = ws.segments.clone();
         let bearings = (0..model.bodies.len())
             .map(|i| bearing(model, ws, q, &x, i))
             .collect();
@@ -434,7 +469,8 @@ pub fn inverse_dynamics<T: Real>(
     })
 }
 
-/// Bearing force and moment of body `i` at the solved unknowns `x`.
+/// Bearing force and moment of body `i` from the pass with the solved unknowns `x`
+/// ([`with_ground_tensions`]).
 fn bearing<T: Real>(
     model: &Model<T>,
     ws: &Workspace<T>,
@@ -443,8 +479,8 @@ fn bearing<T: Real>(
     i: usize,
 ) -> (Vec3<T>, Vec3<T>) {
     let b = &model.bodies[i];
-    let f = ws.loads.force[i].eval(x);
-    let mut n = ws.loads.moment[i].eval(x);
+    let f = ws.tendon_loads.force[i];
+    let mut n = ws.tendon_loads.moment[i];
     // The bearing carries what the motor on this joint does not.
     if let Some(m) = model.motors.iter().find(|m| match m.kind {
         MotorKind::Joint(j) => j == i,

@@ -15,6 +15,8 @@
 //!   recursion's balances and the generalized forces take in (not in the paper, §2 ii);
 //! - [`tension`]: `E x = b` and its minimal-norm solution, segment tensions, and the
 //!   model's data for the distribution (and the message when its bounds cannot be met);
+//! - [`composite`]: the joint-space mass matrix by the composite-rigid-body algorithm over
+//!   the expanded tree (pulleys through their couplings);
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
@@ -64,6 +66,8 @@ pub use real::{Numeric, Real, Symbolic};
 
 #[cfg(feature = "std")]
 pub mod affine;
+#[cfg(feature = "std")]
+pub mod composite;
 #[cfg(feature = "std")]
 pub mod data;
 #[cfg(feature = "std")]

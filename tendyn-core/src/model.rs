@@ -456,6 +456,22 @@ pub struct Model<T> {
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
     pub(crate) routing_incomplete: bool,
+    /// For each body, the joints its angle moves with: the nonzero entries of its
+    /// coupling, in increasing order (derived from the `f64` couplings by
+    /// [`coupled_joints`]; parameters rescale nonzero ratios and never change it).
+    pub(crate) coupled_joints: Vec<Vec<usize>>,
+}
+
+/// The nonzero entries of each body's coupling ([`Model::coupled_joints`]).
+pub(crate) fn coupled_joints(bodies: &[Body<f64>]) -> Vec<Vec<usize>> {
+    bodies
+        .iter()
+        .map(|b| {
+            (0..b.coupling.len())
+                .filter(|&j| b.coupling[j] != 0.0)
+                .collect()
+        })
+        .collect()
 }
 
 impl<T> Model<T> {
@@ -535,6 +551,12 @@ impl<T> Model<T> {
     /// forces cannot be attributed and are reported as unavailable.
     pub fn routing_incomplete(&self) -> bool {
         self.routing_incomplete
+    }
+
+    /// For each body, the joints whose coordinates its angle depends on (the nonzero
+    /// entries of its coupling, increasing): what the recursions sum over.
+    pub fn coupled_joints(&self) -> &[Vec<usize>] {
+        &self.coupled_joints
     }
 }
 
@@ -666,6 +688,7 @@ impl<T: Real> Model<T> {
                 moment: v(w.moment),
             }),
             routing_incomplete: self.routing_incomplete,
+            coupled_joints: self.coupled_joints.clone(),
         }
     }
 }

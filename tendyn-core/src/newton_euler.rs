@@ -27,12 +27,56 @@ use crate::model::{BodyKind, Contact, Model, Via};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
+/// A tension or moment of the recursion: a number when the unknowns are known (or zero),
+/// or affine in them ([`Affine`], where the state's `E` must be read off the recursion).
+pub trait LoadScalar<T: Real>: Copy + core::fmt::Debug {
+    /// The known value `c`, over `unknowns` unknowns (ignored by a number).
+    fn known(c: T, unknowns: usize) -> Self;
+    /// `self + o`.
+    fn add(&self, o: &Self) -> Self;
+    /// `s · self`.
+    fn scale(&self, s: T) -> Self;
+    /// `self + c` for a known `c`.
+    fn add_known(&self, c: T) -> Self;
+}
+
+impl<T: Real> LoadScalar<T> for T {
+    fn known(c: T, _: usize) -> Self {
+        c
+    }
+    fn add(&self, o: &Self) -> Self {
+        *self + *o
+    }
+    fn scale(&self, s: T) -> Self {
+        *self * s
+    }
+    fn add_known(&self, c: T) -> Self {
+        *self + c
+    }
+}
+
+impl<T: Real> LoadScalar<T> for Affine<T> {
+    fn known(c: T, unknowns: usize) -> Self {
+        Affine::constant(c, unknowns)
+    }
+    fn add(&self, o: &Self) -> Self {
+        Affine::add(self, o)
+    }
+    fn scale(&self, s: T) -> Self {
+        Affine::scale(self, s)
+    }
+    fn add_known(&self, c: T) -> Self {
+        self.add_constant(c)
+    }
+}
+
 /// What a force or moment of the recursion is: a plain vector when everything is known
-/// (the expanded-tree pass behind `M`, `h`, `g`), or affine in the unknown tensions. The
-/// recursion is written once, over this.
+/// (the expanded-tree pass behind `M`, `h`, `g`, and the passes with known tensions behind
+/// `b` and the bearings), or affine in the unknown tensions (the state's `E` with capstan
+/// friction). The recursion is written once, over this.
 pub trait Load<T: Real>: Copy + core::fmt::Debug {
     /// Its components' type (`T`, or [`Affine`]).
-    type Scalar: Copy + core::fmt::Debug;
+    type Scalar: LoadScalar<T>;
     /// The known vector `v`, over `unknowns` unknowns (ignored by a plain vector).
     fn known(v: Vec3<T>, unknowns: usize) -> Self;
     /// `dir · s`: a force of known direction and (possibly unknown) magnitude.

@@ -20,7 +20,7 @@ use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use crate::model::{BodyKind, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown};
-use crate::newton_euler::Loads;
+use crate::newton_euler::{Load, LoadScalar, Loads};
 use crate::real::{Numeric, Real};
 
 /// Axial moment a pulley needs about its own axis to move as it does (inertia and gravity),
@@ -34,22 +34,23 @@ pub fn axial_demand<T: Real>(model: &Model<T>, motion: &[Motion<T>], body: usize
     b.axis.dot(n)
 }
 
-/// Tension of every segment of every strand, affine in the unknowns (Eq. 24b), written
-/// into `out[s][k]`. An idler's tensions balance what its bearing's friction `τ_f`
-/// (`friction[body]`, [`crate::friction`]) does not: `T_in = T_out − s (N_axial − τ_f) / r`.
-/// A guide with friction scales them by its capstan factor (`capstan[s][k]`,
-/// [`crate::friction::capstan_factors`]): `T_in = T_out e^{−σμβ}`.
-pub fn segment_tensions<T: Real>(
+/// Tension of every segment of every strand (Eq. 24b), written into `out[s][k]`, each
+/// strand's ground-level tension being `ground(unknown)`: a number (the solved unknowns, or
+/// zero for `b`) or affine in the unknowns. An idler's tensions balance what its bearing's
+/// friction `τ_f` (`friction[body]`, [`crate::friction`]) does not:
+/// `T_in = T_out − s (N_axial − τ_f) / r`. A guide with friction scales them by its capstan
+/// factor (`capstan[s][k]`, [`crate::friction::capstan_factors`]): `T_in = T_out e^{−σμβ}`.
+pub fn segment_tensions<T: Real, S: LoadScalar<T>>(
     model: &Model<T>,
     motion: &[Motion<T>],
     friction: &[T],
     capstan: &[Vec<T>],
-    unknowns: usize,
-    out: &mut [Vec<Affine<T>>],
+    ground: impl Fn(usize) -> S,
+    out: &mut [Vec<S>],
 ) {
     for (s, strand) in model.strands.iter().enumerate() {
         let last = strand.segments.len() - 1;
-        let mut t = Affine::unknown(strand.unknown, T::zero(), unknowns);
+        let mut t = ground(strand.unknown);
         out[s][last] = t;
         for k in (0..last).rev() {
             let idler = &strand.idlers[k];
@@ -67,25 +68,29 @@ pub fn segment_tensions<T: Real>(
             if model.bodies[idler.body].friction.is_some() {
                 moment = moment - friction[idler.body];
             }
-            t = t.add_constant(-(step * moment));
+            t = t.add_known(-(step * moment));
             out[s][k] = t;
         }
     }
 }
 
-/// The balance rows as affine forms, before motors and explicit tendons are added (their
-/// constants are `b` of `E x = b`): for a
-/// joint, `τ_j + Σ_coupled c_Pj τ_P`; for a driving pulley, its `τ`; for a loop, its
-/// pretension (a constant: the loop's row of `E` carries the strand tensions). Each `τ` is
-/// the body's axial moment less what its bearing's friction provides (`friction[body]`):
-/// what the tendons and motors must.
-/// Their coefficients are `−E` on the strand columns, which tests check against the
-/// transmission's derivation.
-pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T]) -> Vec<Affine<T>> {
+/// The balance rows, before motors and explicit tendons are added: numbers (`b` of
+/// `E x = b`, from a pass with every unknown zero) or affine forms (whose constants are
+/// `b`). For a joint, `τ_j + Σ_coupled c_Pj τ_P`; for a driving pulley, its `τ`; for a
+/// loop, its pretension (a constant: the loop's row of `E` carries the strand tensions).
+/// Each `τ` is the body's axial moment less what its bearing's friction provides
+/// (`friction[body]`): what the tendons and motors must.
+/// The affine rows' coefficients are `−E` on the strand columns, which tests check against
+/// the transmission's derivation.
+pub fn balance_rows<T: Real, L: Load<T>>(
+    model: &Model<T>,
+    loads: &Loads<T, L>,
+    friction: &[T],
+) -> Vec<L::Scalar> {
     let n_unknowns = model.system.unknowns.len();
     let axial = |b: usize| {
         if model.bodies[b].friction.is_some() {
-            loads.axial[b].add_constant(-friction[b])
+            loads.axial[b].add_known(-friction[b])
         } else {
             loads.axial[b]
         }
@@ -112,7 +117,7 @@ pub fn balance_rows<T: Real>(model: &Model<T>, loads: &Loads<T>, friction: &[T])
             }
             Row::Pulley(b) => axial(*b),
             Row::Pretension(l) => {
-                Affine::constant(T::from_f64(model.loops[*l].pretension), n_unknowns)
+                L::Scalar::known(T::from_f64(model.loops[*l].pretension), n_unknowns)
             }
         })
         .collect()

@@ -215,6 +215,7 @@ impl<'a> Validator<'a> {
                     }
                 )
             });
+        let coupled_joints = crate::model::coupled_joints(&bodies);
         Ok(Model {
             name: f.name.clone(),
             gravity: Vec3::from_array(gravity),
@@ -247,6 +248,7 @@ impl<'a> Validator<'a> {
             system,
             external_wrench,
             routing_incomplete,
+            coupled_joints,
         })
     }
 

@@ -65,6 +65,7 @@ impl Model<f64> {
                 format!("the external wrench acts on link {} of {dof}", w.link),
             ));
         }
+        let coupled_joints = crate::model::coupled_joints(&bodies);
         Ok(Model {
             name: name.to_string(),
             gravity: Vec3::from_array(gravity),
@@ -89,6 +90,7 @@ impl Model<f64> {
             friction_smoothing: None,
             external_wrench,
             routing_incomplete: false,
+            coupled_joints,
         })
     }
 }

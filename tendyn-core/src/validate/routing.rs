@@ -557,16 +557,6 @@ impl Validator<'_> {
                 column,
             });
         }
-        if unknowns.len() > crate::affine::MAX_UNKNOWNS {
-            return Err(self.invalid(
-                &f.name,
-                format!(
-                    "{} tendon strands and motors exceed the supported {}",
-                    unknowns.len(),
-                    crate::affine::MAX_UNKNOWNS
-                ),
-            ));
-        }
         Ok(motors)
     }
 }

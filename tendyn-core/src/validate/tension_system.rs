@@ -540,6 +540,19 @@ fn reachable(groups: &[Vec<f64>], pattern: &[f64]) -> bool {
 /// slides one way and those with one group flipped (a sufficient condition only at run
 /// time, where every state's system is checked again).
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
+    // The state's `E` is read off the recursion's rows in affine form, which carry a
+    // bounded number of unknowns (without capstan friction there is no bound).
+    let unknowns = model.system.unknowns.len();
+    if model.has_capstan() && unknowns > crate::affine::MAX_UNKNOWNS {
+        return Err(v.invalid(
+            &model.name,
+            format!(
+                "{unknowns} tendon strands and motors: with capstan friction on guides (`mu > 0`) \
+                 at most {} are supported; set `mu: 0` or drive fewer joints by motors",
+                crate::affine::MAX_UNKNOWNS
+            ),
+        ));
+    }
     // The guides with friction, by strand and idler, and the group each belongs to with
     // the sign relating its speed to the group's.
     let mut groups: Vec<Vec<f64>> = Vec::new();
