@@ -388,27 +388,27 @@ pub fn all<T: Real>(
     let t342 = T::from_f64(1.7658) + (s68 * t295 + c69 * t315) - T::from_f64(5.886);
     let t369 = t149 + t316 + T::from_f64(0.3) * t337 - t226;
     let t370 = t105 - t291 - t230;
-    let t380 = T::from_f64(0.1) * c69;
-    let t400 = T::from_f64(-0.18) + t380;
-    let t421 = T::from_f64(0.000045)
+    let t386 = T::from_f64(0.1) * c69;
+    let t407 = T::from_f64(-0.18) + t386;
+    let t425 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
-            + T::from_f64(0.3) * (t400 + (t400 + T::from_f64(0.6))));
-    let t423 = T::from_f64(0.0166667) + T::from_f64(0.3) * t380
-        + T::from_f64(0.000030000000000000004);
+            + T::from_f64(0.3) * (t407 + (t407 + T::from_f64(0.6))));
+    let t426 = T::from_f64(0.000030000000000000004)
+        + (T::from_f64(0.0166667) + T::from_f64(0.3) * t386);
     let t432 = T::from_f64(0.8) * t77;
     let t437 = T::from_f64(0.25) * t432 - T::from_f64(0.125) * t432;
     let t451 = t437
         + T::from_f64(0.3)
             * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t432);
     let t464 = motor_torques[0] + motor_torques[1] - t451;
-    let t466 = t423 / t421;
+    let t466 = t426 / t425;
     let t473 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t437 - t464 * t466)
-        / (T::from_f64(0.0166867) - t421 * (t466 * t466));
-    let t475 = t464 / t421 - t466 * t473;
+        / (T::from_f64(0.0166867) - t425 * (t466 * t466));
+    let t475 = t464 / t425 - t466 * t473;
     Outputs {
         generalized_forces: [t179, t181],
         actuation: tendyn_core::distribution::Actuation::exact([t226, t230], []),
-        mass_matrix: [[t421, t423], [t423, T::from_f64(0.0166867)]],
+        mass_matrix: [[t425, t426], [t426, T::from_f64(0.0166867)]],
         bias: [t451, t437],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
         forward_dynamics: [t475, t473],

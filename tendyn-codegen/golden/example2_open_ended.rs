@@ -27,13 +27,13 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s89, c90) = q[1].sin_cos();
-    let t853 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
-    let t860 = s89 * T::from_f64(0.03);
-    let t869 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t853 - qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t860));
-    let t875 = qdd[0] * t853
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t860));
-    [t869, t875]
+    let t851 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
+    let t858 = s89 * T::from_f64(0.03);
+    let t867 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t851 - qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t858));
+    let t873 = qdd[0] * t851
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t858));
+    [t867, t873]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -48,29 +48,29 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s89, c90) = q[1].sin_cos();
-    let t878 = c90 * T::from_f64(0.22058823529411686);
-    let t884 = c90 * T::from_f64(0.2647058823529412);
-    let t902 = qd[0]
+    let t876 = c90 * T::from_f64(0.22058823529411686);
+    let t882 = c90 * T::from_f64(0.2647058823529412);
+    let t900 = qd[0]
         * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
             + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t909 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t917 = c90 * T::from_f64(1.279411764705882);
-    let t922 = c90 * T::from_f64(0.2647058823529411);
-    let t928 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
-    let t933 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
-    let t942 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
-    let t948 = T::from_f64(0.0)
+    let t907 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
+    let t915 = c90 * T::from_f64(1.279411764705882);
+    let t920 = c90 * T::from_f64(0.2647058823529411);
+    let t926 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
+    let t931 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
+    let t940 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
+    let t946 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t878)
-                + (qdd[1] * (t884 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t909 - t902)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t876)
+                + (qdd[1] * (t882 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t907 - t900)),
         )
         .max(
-            qdd[0] * (t917 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t922 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t928 - t933) + (T::from_f64(5.0) - t942))),
+            qdd[0] * (t915 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t920 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t926 - t931) + (T::from_f64(5.0) - t940))),
         );
-    let t973 = qdd[0]
+    let t971 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
@@ -78,21 +78,21 @@ pub fn actuation<T: Real>(
                 * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t974 = t948.max(t973);
-    let t985 = qdd[0] * (t878 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t884) + (t902 + (t909 + t974)));
-    let t1003 = qdd[0] * (T::from_f64(-1.517064852941176) - t917)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t922)
-            + (qd[0] * (t933 - t928) + (t942 + t974)));
-    let t1032 = qdd[0]
+    let t972 = t946.max(t971);
+    let t983 = qdd[0] * (t876 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t882) + (t900 + (t907 + t972)));
+    let t1001 = qdd[0] * (T::from_f64(-1.517064852941176) - t915)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t920)
+            + (qd[0] * (t931 - t926) + (t940 + t972)));
+    let t1030 = qdd[0]
         * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t974
+            + (T::from_f64(1.5000000000000002) * t972
                 - qd[1]
                     * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    tendyn_core::distribution::Actuation::exact([], [t985, t1003, t1032])
+    tendyn_core::distribution::Actuation::exact([], [t983, t1001, t1030])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -103,9 +103,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t90 = q[1].cos();
-    let t850 = t90 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t853 = T::from_f64(0.0166667) + t90 * T::from_f64(0.03);
-    [[t850, t853], [t853, T::from_f64(0.0166867)]]
+    let t848 = t90 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t851 = T::from_f64(0.0166667) + t90 * T::from_f64(0.03);
+    [[t848, t851], [t851, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -116,10 +116,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t89 = q[1].sin();
-    let t860 = t89 * T::from_f64(0.03);
-    let t867 = -(qd[1] * (qd[0] * (t89 * T::from_f64(0.06)) + qd[1] * t860));
-    let t873 = qd[0] * (qd[0] * t860);
-    [t867, t873]
+    let t858 = t89 * T::from_f64(0.03);
+    let t865 = -(qd[1] * (qd[0] * (t89 * T::from_f64(0.06)) + qd[1] * t858));
+    let t871 = qd[0] * (qd[0] * t858);
+    [t865, t871]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -145,18 +145,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s89, c90) = q[1].sin_cos();
-    let t850 = c90 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t860 = s89 * T::from_f64(0.03);
-    let t1035 = qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t860)
+    let t848 = c90 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t858 = s89 * T::from_f64(0.03);
+    let t1033 = qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t858)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1037 = (T::from_f64(0.0166667) + c90 * T::from_f64(0.03)) / t850;
-    let t1177 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t860)
-        - t1035 * t1037) / (T::from_f64(0.0166867) - t850 * (t1037 * t1037));
-    let t1179 = t1035 / t850 - t1037 * t1177;
-    [t1179, t1177]
+    let t1035 = (T::from_f64(0.0166667) + c90 * T::from_f64(0.03)) / t848;
+    let t1175 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t858)
+        - t1033 * t1035) / (T::from_f64(0.0166867) - t848 * (t1035 * t1035));
+    let t1177 = t1033 / t848 - t1035 * t1175;
+    [t1177, t1175]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -167,29 +167,29 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s89, c90) = q[1].sin_cos();
-    let t878 = c90 * T::from_f64(0.22058823529411686);
-    let t884 = c90 * T::from_f64(0.2647058823529412);
-    let t902 = qd[0]
+    let t876 = c90 * T::from_f64(0.22058823529411686);
+    let t882 = c90 * T::from_f64(0.2647058823529412);
+    let t900 = qd[0]
         * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
             + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t909 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t917 = c90 * T::from_f64(1.279411764705882);
-    let t922 = c90 * T::from_f64(0.2647058823529411);
-    let t928 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
-    let t933 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
-    let t942 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
-    let t948 = T::from_f64(0.0)
+    let t907 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
+    let t915 = c90 * T::from_f64(1.279411764705882);
+    let t920 = c90 * T::from_f64(0.2647058823529411);
+    let t926 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
+    let t931 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
+    let t940 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
+    let t946 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t878)
-                + (qdd[1] * (t884 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t909 - t902)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t876)
+                + (qdd[1] * (t882 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t907 - t900)),
         )
         .max(
-            qdd[0] * (t917 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t922 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t928 - t933) + (T::from_f64(5.0) - t942))),
+            qdd[0] * (t915 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t920 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t926 - t931) + (T::from_f64(5.0) - t940))),
         );
-    let t973 = qdd[0]
+    let t971 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
@@ -197,26 +197,26 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
                 * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t974 = t948.max(t973);
-    let t983 = t902 + (t909 + t974);
-    let t985 = qdd[0] * (t878 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t884) + t983);
-    let t1001 = qd[0] * (t933 - t928) + (t942 + t974);
-    let t1003 = qdd[0] * (T::from_f64(-1.517064852941176) - t917)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t922) + t1001);
-    let t1032 = qdd[0]
+    let t972 = t946.max(t971);
+    let t981 = t900 + (t907 + t972);
+    let t983 = qdd[0] * (t876 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t882) + t981);
+    let t999 = qd[0] * (t931 - t926) + (t940 + t972);
+    let t1001 = qdd[0] * (T::from_f64(-1.517064852941176) - t915)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t920) + t999);
+    let t1030 = qdd[0]
         * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t974
+            + (T::from_f64(1.5000000000000002) * t972
                 - qd[1]
                     * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    let t1089 = qdd[0] * (t878 + T::from_f64(-0.6829798529411769))
-        + (t983 + qdd[1] * (T::from_f64(0.26960838235294077) - t884));
-    let t1097 = qdd[0] * (T::from_f64(-1.516314852941176) - t917)
-        + (t1001 + qdd[1] * (T::from_f64(-0.5637266176470587) - t922));
-    [t1089, t985, t1097, t1003, t1032]
+    let t1087 = qdd[0] * (t876 + T::from_f64(-0.6829798529411769))
+        + (t981 + qdd[1] * (T::from_f64(0.26960838235294077) - t882));
+    let t1095 = qdd[0] * (T::from_f64(-1.516314852941176) - t915)
+        + (t999 + qdd[1] * (T::from_f64(-0.5637266176470587) - t920));
+    [t1087, t983, t1095, t1001, t1030]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -389,32 +389,32 @@ pub fn base_reaction<T: Real>(
     let (s89, c90) = q[1].sin_cos();
     let t164 = s89 * T::from_f64(0.9810000000000001);
     let t166 = c90 * T::from_f64(0.9810000000000001);
-    let t736 = T::from_f64(0.1) * c90;
-    let t737 = T::from_f64(0.1) * s89;
-    let t869 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
+    let t743 = T::from_f64(0.1) * s89;
+    let t745 = T::from_f64(0.1) * c90;
+    let t867 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
         + (qdd[1] * (T::from_f64(0.0166667) + c90 * T::from_f64(0.03))
             - qd[1]
                 * (qd[0] * (s89 * T::from_f64(0.06))
                     + qd[1] * (s89 * T::from_f64(0.03))));
-    let t1100 = T::from_f64(-0.42) - t736;
-    let t1102 = c74 * t737;
-    let t1104 = s73 * t1100 - t1102;
-    let t1108 = t1102 + s73 * t736;
-    let t1113 = s73 * t737;
-    let t1116 = s89 * T::from_f64(0.2);
-    let t1119 = c90 * T::from_f64(0.2);
-    let t1127 = c74 * t736;
-    let t1132 = qd[0]
-        * (qd[0] * (c74 * t1100 + t1113) + qd[1] * (s73 * t1116 - c74 * t1119))
-        + qd[1] * (qd[1] * (t1113 - t1127));
-    let t1134 = qdd[0] * t1104 + (t1132 - qdd[1] * t1108);
-    let t1160 = qdd[1] * (t1127 - t1113)
-        + (qd[0] * (qd[0] * t1104 - qd[1] * (s73 * t1119 + c74 * t1116))
-            - qd[1] * (qd[1] * t1108));
-    let t1161 = qdd[0] * (c74 * (t736 + T::from_f64(0.42)) - t1113) + t1160;
-    let t1165 = c74 * t164 + s73 * (t166 + T::from_f64(4.1202000000000005));
-    let t1169 = s73 * t164 + c74 * (T::from_f64(-4.1202000000000005) - t166);
-    [[[t1134, t1161, T::from_f64(20.601000000000003)], [t1165, t1169, t869]]]
+    let t1098 = T::from_f64(-0.42) - t745;
+    let t1100 = c74 * t743;
+    let t1102 = s73 * t1098 - t1100;
+    let t1106 = t1100 + s73 * t745;
+    let t1111 = s73 * t743;
+    let t1114 = s89 * T::from_f64(0.2);
+    let t1117 = c90 * T::from_f64(0.2);
+    let t1125 = c74 * t745;
+    let t1130 = qd[0]
+        * (qd[0] * (c74 * t1098 + t1111) + qd[1] * (s73 * t1114 - c74 * t1117))
+        + qd[1] * (qd[1] * (t1111 - t1125));
+    let t1132 = qdd[0] * t1102 + (t1130 - qdd[1] * t1106);
+    let t1158 = qdd[1] * (t1125 - t1111)
+        + (qd[0] * (qd[0] * t1102 - qd[1] * (s73 * t1117 + c74 * t1114))
+            - qd[1] * (qd[1] * t1106));
+    let t1159 = qdd[0] * (c74 * (t745 + T::from_f64(0.42)) - t1111) + t1158;
+    let t1163 = c74 * t164 + s73 * (t166 + T::from_f64(4.1202000000000005));
+    let t1167 = s73 * t164 + c74 * (T::from_f64(-4.1202000000000005) - t166);
+    [[[t1132, t1159, T::from_f64(20.601000000000003)], [t1163, t1167, t867]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -438,7 +438,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 338 arithmetic (152 add/sub, 177 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 335 arithmetic (149 add/sub, 177 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -596,34 +596,32 @@ pub fn all<T: Real>(
     let t700 = T::from_f64(1.7658) + (s89 * t665 + c90 * t670) - T::from_f64(5.886);
     let t701 = t181 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
         + T::from_f64(0.3) * t695;
-    let t736 = T::from_f64(0.1) * c90;
-    let t756 = T::from_f64(-0.18) + t736;
-    let t783 = T::from_f64(0.0000225)
-        + (T::from_f64(0.0000225)
-            + (T::from_f64(0.0526667)
-                + T::from_f64(0.3) * (t756 + (t756 + T::from_f64(0.6)))));
-    let t785 = T::from_f64(0.0166667) + T::from_f64(0.3) * t736
-        + T::from_f64(-0.000015000000000000002) + T::from_f64(0.000015000000000000002);
-    let t792 = T::from_f64(0.8) * t98;
-    let t797 = T::from_f64(0.25) * t792 - T::from_f64(0.125) * t792;
-    let t811 = t797
+    let t745 = T::from_f64(0.1) * c90;
+    let t747 = T::from_f64(0.0166667) + T::from_f64(0.3) * t745;
+    let t766 = T::from_f64(-0.18) + t745;
+    let t784 = T::from_f64(0.000045)
+        + (T::from_f64(0.0526667)
+            + T::from_f64(0.3) * (t766 + (t766 + T::from_f64(0.6))));
+    let t790 = T::from_f64(0.8) * t98;
+    let t795 = T::from_f64(0.25) * t790 - T::from_f64(0.125) * t790;
+    let t809 = t795
         + T::from_f64(0.3)
-            * (s89 * (T::from_f64(0.8) * (t113 - (t94 + t104))) + c90 * t792);
-    let t835 = T::from_f64(0.04) * tendon_tensions[2]
+            * (s89 * (T::from_f64(0.8) * (t113 - (t94 + t104))) + c90 * t790);
+    let t833 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t811;
-    let t837 = t785 / t783;
-    let t844 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - t797 - t835 * t837)
-        / (T::from_f64(0.0166867) - t783 * (t837 * t837));
-    let t846 = t835 / t783 - t837 * t844;
+            + tendon_tensions[1] * T::from_f64(0.03)) - t809;
+    let t835 = t747 / t784;
+    let t842 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - t795 - t833 * t835)
+        / (T::from_f64(0.0166867) - t784 * (t835 * t835));
+    let t844 = t833 / t784 - t835 * t842;
     Outputs {
         generalized_forces: [t216, t218],
         actuation: tendyn_core::distribution::Actuation::exact([], [t460, t461, t463]),
-        mass_matrix: [[t783, t785], [t785, T::from_f64(0.0166867)]],
-        bias: [t811, t797],
+        mass_matrix: [[t784, t747], [t747, T::from_f64(0.0166867)]],
+        bias: [t809, t795],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t846, t844],
+        forward_dynamics: [t844, t842],
         segment_tensions: [t467, t460, t468, t461, t463],
         bearings: [
             [[t694, t695, T::from_f64(19.62)], [t684, t700, t701]],

@@ -1,8 +1,8 @@
 //! The joint-space mass matrix by the composite-rigid-body algorithm (Walker and Orin
 //! 1982; Featherstone, *Rigid Body Dynamics Algorithms*, §6.2), over the expanded tree.
 //! Not in the paper, which needs `M` only implicitly; one Newton-Euler pass per joint
-//! (what `M` cost before) grows as `n` passes over every body, this as one pass plus a
-//! walk up each body's ancestors.
+//! (what `M` cost before) grows as `n` passes over every body, this as one pass from the
+//! tips to the base.
 //!
 //! Every link and pulley is a body turning about its own axis by `θ_b = c_b · q +
 //! offset_b` (Eqs. 9-10). On the expanded tree, with one coordinate `θ_b` per body, the
@@ -20,9 +20,21 @@
 //! A composite inertia is kept as mass `m`, first moment `h = Σ m c` and rotational
 //! inertia `I` about the body's joint point, in body-frame axes. The unit turn of body `i`
 //! is a rotation about its axis `a` through that point, so the subtree's momentum is
-//! `F = a × h`, `N = I a` about it. `M_θ[i][k]` is the moment of that momentum about
-//! `k`'s joint point along `k`'s axis, with `(F, N)` carried to `k`'s frame as a force and
-//! its moment.
+//! `f_i = (a × h, I a)` (force, moment about it). `M_θ[k][i]` is the moment of `f_i`
+//! about `k`'s joint point along `k`'s axis, `f_i` carried to `k`'s frame.
+//!
+//! The sums of `Cᵀ M_θ C` are taken per joint rather than per body: with
+//! `S_k[b] = Σ_i c_i[b] f_i` over the strict descendants `i` of `k` (carried to `k`),
+//!
+//! ```text
+//! M[a][b] = Σ_k  c_k[a] c_k[b] M_θ[k][k] + c_k[a] (a_k · S_k[b]) + c_k[b] (a_k · S_k[a])
+//! ```
+//!
+//! so a pulley on a link costs one transfer to its carrier per joint it turns with, where
+//! it is summed with the column the links below already carry, instead of a walk of its
+//! own to the base. A pulley that turns with joints whose links are not below its carrier
+//! (whose columns would be carried for it alone) walks to the base on its own instead,
+//! adding `c_k[a] c_i[b] M_θ[k][i]` and its mirror at each ancestor `k`.
 //!
 //! Everything is arranged for the symbolic scalar, which makes this the generated `M`:
 //! frames change by the factors of `pre · RotZ(θ) · post` one at a time (constant
@@ -38,7 +50,7 @@ use crate::spatial::{Mat3, Vec3};
 
 /// Mass, first moment and rotational inertia of a body and everything it carries.
 #[derive(Clone, Copy, Debug)]
-pub struct Composite<T> {
+struct Composite<T> {
     /// Sine and cosine of the body's angle (`(0, 1)` where the frame does not spin).
     spin: (T, T),
     /// Total mass (kg).
@@ -50,16 +62,63 @@ pub struct Composite<T> {
     inertia: Mat3<T>,
 }
 
-impl<T: Real> Composite<T> {
-    /// No mass: what work buffers start as.
-    pub fn empty() -> Self {
-        Composite {
-            spin: (T::zero(), T::one()),
-            mass: T::zero(),
-            first_moment: Vec3::zero(),
-            inertia: Mat3 {
-                rows: [[T::zero(); 3]; 3],
-            },
+/// A force and its moment about a body's joint point, in the body's frame.
+type Wrench<T> = (Vec3<T>, Vec3<T>);
+
+/// Work buffers of [`mass_matrix`], sized for one model.
+#[derive(Clone, Debug)]
+pub struct Work<T> {
+    /// Per body.
+    composite: Vec<Composite<T>>,
+    /// `S_k[b]`, body-major (`k · n + b`).
+    columns: Vec<Wrench<T>>,
+    /// Whether `S_k[b]` has a term yet.
+    present: Vec<bool>,
+    /// Per body, whether it walks to the base on its own rather than joining its
+    /// carrier's columns (a fact of the model's structure).
+    walks: Vec<bool>,
+}
+
+impl<T: Real> Work<T> {
+    /// Buffers for `model`.
+    pub fn new<U>(model: &Model<U>) -> Self {
+        let (bodies, n) = (model.bodies(), model.dof());
+        let nb = bodies.len();
+        // The joints whose links are in each body's subtree: the columns carried anyway.
+        let mut below = vec![false; nb * n];
+        for k in (0..nb).rev() {
+            if k < n {
+                below[k * n + k] = true;
+            }
+            if let Some(p) = bodies[k].parent {
+                for j in 0..n {
+                    below[p * n + j] |= below[k * n + j];
+                }
+            }
+        }
+        let walks = (0..nb)
+            .map(|k| {
+                bodies[k]
+                    .parent
+                    .is_some_and(|p| model.coupled_joints()[k].iter().any(|&j| !below[p * n + j]))
+            })
+            .collect();
+        let zero = Vec3::zero();
+        Work {
+            composite: vec![
+                Composite {
+                    spin: (T::zero(), T::one()),
+                    mass: T::zero(),
+                    first_moment: zero,
+                    inertia: Mat3 {
+                        rows: [[T::zero(); 3]; 3],
+                    },
+                };
+                nb
+            ],
+            columns: vec![(zero, zero); nb * n],
+            present: vec![false; nb * n],
+            walks,
         }
     }
 }
@@ -124,21 +183,45 @@ fn tensor_to_parent<T: Real>(b: &Body<T>, spin: (T, T), s: &Mat3<T>) -> Mat3<T> 
     congruence(&b.pre.rotation, &s)
 }
 
+/// A wrench about body `k`'s joint point in its frame, carried to its parent's axes and
+/// joint point (the joint point is `pre`'s translation from the parent's origin, which is
+/// `p` from the parent's joint point).
+fn carry<T: Real>(bodies: &[Body<T>], k: usize, spin: (T, T), (f, m): Wrench<T>) -> Wrench<T> {
+    let b = &bodies[k];
+    let f = to_parent(b, spin, f);
+    let m = to_parent(b, spin, m) + b.pre.translation.cross(f);
+    let parent = b.parent.expect("a body with a parent");
+    (f, m + bodies[parent].joint_to_origin.cross(f))
+}
+
+/// Adds `c_k[a] e` for every joint `a` of body `k` to the upper triangle at `(a, j)` (both
+/// orders fall on one entry; on the diagonal they are two terms).
+fn add_column<T: Real>(out: &mut [T], n: usize, ck: &[T], pattern: &[usize], j: usize, e: T) {
+    for &a in pattern {
+        let w = if a == j {
+            T::from_f64(2.0) * ck[a]
+        } else {
+            ck[a]
+        };
+        let (lo, hi) = (a.min(j), a.max(j));
+        out[lo * n + hi] = out[lo * n + hi] + w * e;
+    }
+}
+
 /// The joint-space mass matrix `M(q)` (row-major `n × n` into `out`), every pulley's
-/// inertia included through its coupling. `composite` holds one entry per body. Only the
-/// upper triangle is summed; the lower one mirrors it.
-pub fn mass_matrix<T: Real>(
-    model: &Model<T>,
-    q: &[T],
-    composite: &mut [Composite<T>],
-    out: &mut [T],
-) {
+/// inertia included through its coupling. Only the upper triangle is summed; the lower
+/// one mirrors it.
+pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: &mut [T]) {
     let bodies = model.bodies();
     let n = model.dof();
     let joints = model.coupled_joints();
-    // Each body's own inertia about its origin; then, from the tips down (parents come
-    // before children), each composite is moved to its joint point and added to its
-    // parent's, about the parent's origin.
+    let Work {
+        composite,
+        columns,
+        present,
+        walks,
+    } = work;
+    // Each body's own inertia about its origin.
     for (b, c) in bodies.iter().zip(composite.iter_mut()) {
         // The angle as the forward recursion forms it, so that traces share its sine.
         c.spin = if b.spins {
@@ -150,19 +233,70 @@ pub fn mass_matrix<T: Real>(
         c.first_moment = b.com.scale(b.mass);
         c.inertia = add(&b.inertia, &point_shift(b.com, b.mass, Vec3::zero()));
     }
-    for i in (0..bodies.len()).rev() {
-        let b = &bodies[i];
-        let c = &mut composite[i];
-        // The origin is `p` from the joint point.
+    present.fill(false);
+    out.fill(T::zero());
+    // From the tips to the base (parents come before children): when body k is reached,
+    // its composite and its columns hold everything it carries.
+    for k in (0..bodies.len()).rev() {
+        let b = &bodies[k];
+        let (c, ck, pattern) = (&mut composite[k], &b.coupling, &joints[k]);
+        // About the joint point, from which the origin is `p`.
         let p = b.joint_to_origin;
         c.inertia = add(&c.inertia, &point_shift(p, c.mass, c.first_moment));
         c.first_moment = c.first_moment + p.scale(c.mass);
         let c = *c;
+        let own = (b.axis.cross(c.first_moment), c.inertia.mul_vec(b.axis));
+        // c_k[a] c_k[b] M_θ[k][k], then c_k[a] (a_k · S_k[b]) and its mirror.
+        let diagonal = b.axis.dot(own.1);
+        for (x, &i) in pattern.iter().enumerate() {
+            for &j in &pattern[x..] {
+                out[i * n + j] = out[i * n + j] + ck[i] * ck[j] * diagonal;
+            }
+        }
+        for j in (0..n).filter(|&j| present[k * n + j]) {
+            add_column(out, n, ck, pattern, j, b.axis.dot(columns[k * n + j].1));
+        }
         let Some(parent) = b.parent else { continue };
-        // In the parent's axes, then about its origin, from which the joint point is
-        // `pre`'s translation.
-        let h = to_parent(b, c.spin, c.first_moment);
+        if walks[k] && !pattern.is_empty() {
+            // M_θ[a][k] at each ancestor a, weighted by both couplings.
+            let (mut wrench, mut at) = (own, k);
+            while bodies[at].parent.is_some() {
+                wrench = carry(bodies, at, composite[at].spin, wrench);
+                at = bodies[at].parent.expect("checked");
+                let e = bodies[at].axis.dot(wrench.1);
+                for &j in pattern {
+                    add_column(out, n, &bodies[at].coupling, &joints[at], j, ck[j] * e);
+                }
+            }
+        } else {
+            // k's own turns join its columns.
+            for &j in pattern {
+                let term = (own.0.scale(ck[j]), own.1.scale(ck[j]));
+                let s = &mut columns[k * n + j];
+                *s = if present[k * n + j] {
+                    (s.0 + term.0, s.1 + term.1)
+                } else {
+                    term
+                };
+                present[k * n + j] = true;
+            }
+        }
+        for j in 0..n {
+            if !present[k * n + j] {
+                continue;
+            }
+            let (f, m) = carry(bodies, k, c.spin, columns[k * n + j]);
+            let s = &mut columns[parent * n + j];
+            *s = if present[parent * n + j] {
+                (s.0 + f, s.1 + m)
+            } else {
+                (f, m)
+            };
+            present[parent * n + j] = true;
+        }
+        // The composite moves to the parent: its axes, then about its origin.
         let r = b.pre.translation;
+        let h = to_parent(b, c.spin, c.first_moment);
         let inertia = add(
             &tensor_to_parent(b, c.spin, &c.inertia),
             &point_shift(r, c.mass, h),
@@ -172,63 +306,9 @@ pub fn mass_matrix<T: Real>(
         to.first_moment = to.first_moment + h + r.scale(c.mass);
         to.inertia = add(&to.inertia, &inertia);
     }
-
-    for x in out.iter_mut() {
-        *x = T::zero();
-    }
-    for i in 0..bodies.len() {
-        if joints[i].is_empty() {
-            continue;
-        }
-        let b = &bodies[i];
-        let c = &composite[i];
-        // The subtree's momentum for a unit turn of body i, about its joint point.
-        let mut force = b.axis.cross(c.first_moment);
-        let mut moment = c.inertia.mul_vec(b.axis);
-        let mut k = i;
-        loop {
-            let bk = &bodies[k];
-            accumulate(model, i, k, bk.axis.dot(moment), n, out);
-            let Some(parent) = bk.parent else { break };
-            // To the parent's axes, about its origin, then about its joint point.
-            let spin = composite[k].spin;
-            force = to_parent(bk, spin, force);
-            moment = to_parent(bk, spin, moment) + bk.pre.translation.cross(force);
-            k = parent;
-            moment = moment + bodies[k].joint_to_origin.cross(force);
-        }
-    }
     for a in 0..n {
         for b in 0..a {
             out[a * n + b] = out[b * n + a];
-        }
-    }
-}
-
-/// Adds `M_θ[i][k]` (`k` = `i` or an ancestor) to the upper triangle of `M = Cᵀ M_θ C`:
-/// for `k = i`, `c_i[a] c_i[b]` at `(a, b)`; otherwise `c_k[a] c_i[b]` and its mirror
-/// `c_i[a] c_k[b]` (the term of `M_θ[k][i]`), both at `(min, max)`.
-fn accumulate<T: Real>(model: &Model<T>, i: usize, k: usize, entry: T, n: usize, out: &mut [T]) {
-    let joints = model.coupled_joints();
-    let (ci, ck) = (&model.bodies()[i].coupling, &model.bodies()[k].coupling);
-    if i == k {
-        for (x, &a) in joints[i].iter().enumerate() {
-            for &b in &joints[i][x..] {
-                out[a * n + b] = out[a * n + b] + ci[a] * ci[b] * entry;
-            }
-        }
-        return;
-    }
-    for &a in &joints[k] {
-        for &b in &joints[i] {
-            // On the diagonal the term and its mirror fall on one entry.
-            let w = if a == b {
-                T::from_f64(2.0) * ck[a] * ci[a]
-            } else {
-                ck[a] * ci[b]
-            };
-            let (lo, hi) = (a.min(b), a.max(b));
-            out[lo * n + hi] = out[lo * n + hi] + w * entry;
         }
     }
 }

@@ -13,7 +13,7 @@
 //! once the pulleys' couplings hold).
 
 use crate::affine::Affine;
-use crate::composite::{self, Composite};
+use crate::composite;
 use crate::error::Result;
 use crate::friction::{self, Side};
 use crate::kinematics::{coupled, forward, Motion};
@@ -104,7 +104,7 @@ pub struct Workspace<T: Real> {
     /// friction; [`friction::capstan_factors`]).
     pub(crate) capstan: Vec<Vec<T>>,
     /// Composite inertias of the mass matrix ([`composite::mass_matrix`]).
-    pub(crate) composite: Vec<Composite<T>>,
+    pub(crate) composite: composite::Work<T>,
 }
 
 impl<T: Real> Workspace<T> {
@@ -124,7 +124,7 @@ impl<T: Real> Workspace<T> {
                 .map(|s| vec![T::zero(); s.segments.len()])
                 .collect(),
             friction: vec![T::zero(); model.bodies.len()],
-            composite: vec![Composite::empty(); model.bodies.len()],
+            composite: composite::Work::new(model),
             capstan: model
                 .strands
                 .iter()

@@ -1,6 +1,7 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
 //! bearing friction (Example 2 and four random ones), three with fixed guides, Example 2
-//! with capstan friction on its guides, and a few
+//! with capstan friction on its guides, the five mechanisms of the scale benchmarks, and a
+//! few
 //! mechanisms of the stress
 //! suite into
 //! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
@@ -90,6 +91,25 @@ fn main() {
         "example2_capstan_friction".to_string(),
         std::fs::read_to_string(capstan).unwrap(),
     ));
+    // The scale benchmarks' mechanisms (issue 16): a finger, a random arm with gears, and
+    // chains of 7, 8 and 12 links (the last with 13 unknowns).
+    let benches =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tendyn-codegen/benches");
+    for file in [
+        "mechanisms/finger4",
+        "mechanisms/arm6",
+        "mechanisms/chain8",
+        "mechanisms/chain12",
+        "chain7",
+    ] {
+        let path = benches.join(format!("{file}.ron"));
+        println!("cargo:rerun-if-changed={}", path.display());
+        let name = file.trim_start_matches("mechanisms/").to_string();
+        mechanisms.push((
+            format!("bench_{name}"),
+            std::fs::read_to_string(path).unwrap(),
+        ));
+    }
     // Representative stress mechanisms, in a registry of their own (`STRESS`):
     // `tests/stress.rs` checks them against the double-double reference under the stress
     // suite's condition rule.
