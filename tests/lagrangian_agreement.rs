@@ -164,20 +164,19 @@ fn random_spatial_mechanisms_agree_with_lagrange_power_and_momentum() {
     }
 }
 
-/// The mechanisms of the scale benchmarks (`tendyn-codegen/benches/mechanisms`): a planar
-/// finger, a random spatial arm with tilted gears, chains of 8 and 12 links with 20 and 30
-/// pulleys (13 unknowns in the last), and the generation benchmark's 7-link chain.
+/// The mechanisms of the scale benchmarks (`bench/mechanisms`): a planar finger, a random
+/// spatial arm with tilted gears, chains of 8 and 12 links with 20 and 30 pulleys (13
+/// unknowns in the last), and the generation benchmark's 7-link chain.
 fn benchmark_mechanisms() -> Vec<Model<f64>> {
-    let dir = "../tendyn-codegen/benches";
     [
-        "mechanisms/finger4",
-        "mechanisms/arm6",
-        "mechanisms/chain8",
-        "mechanisms/chain12",
-        "chain7",
+        "bench/mechanisms/finger4",
+        "bench/mechanisms/arm6",
+        "bench/mechanisms/chain8",
+        "bench/mechanisms/chain12",
+        "tendyn-codegen/benches/chain7",
     ]
     .iter()
-    .map(|name| tendyn_core::load(format!("{dir}/{name}.ron")).unwrap())
+    .map(|path| tendyn_core::load(format!("../{path}.ron")).unwrap())
     .collect()
 }
 

@@ -93,18 +93,17 @@ fn main() {
     ));
     // The scale benchmarks' mechanisms (issue 16): a finger, a random arm with gears, and
     // chains of 7, 8 and 12 links (the last with 13 unknowns).
-    let benches =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tendyn-codegen/benches");
+    let top = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     for file in [
-        "mechanisms/finger4",
-        "mechanisms/arm6",
-        "mechanisms/chain8",
-        "mechanisms/chain12",
-        "chain7",
+        "bench/mechanisms/finger4",
+        "bench/mechanisms/arm6",
+        "bench/mechanisms/chain8",
+        "bench/mechanisms/chain12",
+        "tendyn-codegen/benches/chain7",
     ] {
-        let path = benches.join(format!("{file}.ron"));
+        let path = top.join(format!("{file}.ron"));
         println!("cargo:rerun-if-changed={}", path.display());
-        let name = file.trim_start_matches("mechanisms/").to_string();
+        let name = file.rsplit('/').next().expect("a file name");
         mechanisms.push((
             format!("bench_{name}"),
             std::fs::read_to_string(path).unwrap(),
