@@ -1,5 +1,6 @@
 //! How long generation takes (issue 4: under 10 ms for each paper example, well under a
-//! second for a 7-link chain with a dozen pulleys), every available output, generic scalar.
+//! second for a 7-link chain with a dozen pulleys; issue 16: under 100 ms for a 12-link
+//! chain with 30 pulleys), every available output, generic scalar.
 //!
 //! Per mechanism: loading and validation, then `generate` as a whole (which builds the
 //! syntax tree but does not print it), then its phases: `outputs::trace` (tracing and the
@@ -14,13 +15,15 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use tendyn_codegen::{available_outputs, emit, generate, outputs, Scalar};
 
-/// The paper's examples, and a 7-link spatial chain whose four parallel proximal joints
-/// are driven by five tendons over 14 drums and idlers (`benches/chain7.ron`).
-const MECHANISMS: [&str; 4] = [
+/// The paper's examples, a 7-link spatial chain whose four parallel proximal joints are
+/// driven by five tendons over 14 drums and idlers (`benches/chain7.ron`), and the 12-link
+/// chain with 30 pulleys of the scale benchmarks (`bench/mechanisms/chain12.ron`).
+const MECHANISMS: [&str; 5] = [
     "/../examples/mechanisms/example1_endless.ron",
     "/../examples/mechanisms/example2_open_ended.ron",
     "/../examples/mechanisms/example3_stanford_jpl.ron",
     "/benches/chain7.ron",
+    "/../bench/mechanisms/chain12.ron",
 ];
 
 fn generation(c: &mut Criterion) {

@@ -23,14 +23,14 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s68, c69) = q[1].sin_cos();
-    let t483 = T::from_f64(0.03) * c69 + T::from_f64(0.016696700000000002);
-    let t490 = T::from_f64(0.03) * s68;
-    let t499 = qdd[0] * (c69 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t483 - qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t490));
-    let t505 = qdd[0] * t483
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t490));
-    [t499, t505]
+    let (s78, c79) = q[1].sin_cos();
+    let t482 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t489 = T::from_f64(0.03) * s78;
+    let t498 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t482 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t489));
+    let t504 = qdd[0] * t482
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t489));
+    [t498, t504]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -44,20 +44,20 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
-    let (s68, c69) = q[1].sin_cos();
-    let t530 = qdd[1] * (T::from_f64(0.03) * c69 + T::from_f64(-0.00833334999999993))
+    let (s78, c79) = q[1].sin_cos();
+    let t529 = qdd[1] * (T::from_f64(0.03) * c79 + T::from_f64(-0.00833334999999993))
         - (qd[0]
-            * (qd[0] * (s68 * T::from_f64(0.04499999999999987))
-                + qd[1] * (s68 * T::from_f64(0.06)))
-            + qd[1] * (qd[1] * (T::from_f64(0.03) * s68)));
-    let t531 = qdd[0]
-        * (c69 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t530;
-    let t543 = qdd[0]
-        * (c69 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
+            * (qd[0] * (s78 * T::from_f64(0.04499999999999987))
+                + qd[1] * (s78 * T::from_f64(0.06)))
+            + qd[1] * (qd[1] * (T::from_f64(0.03) * s78)));
+    let t530 = qdd[0]
+        * (c79 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
+        + t529;
+    let t542 = qdd[0]
+        * (c79 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
-            + qd[0] * (qd[0] * (s68 * T::from_f64(0.045000000000000005))));
-    tendyn_core::distribution::Actuation::exact([t531, t543], [])
+            + qd[0] * (qd[0] * (s78 * T::from_f64(0.045000000000000005))));
+    tendyn_core::distribution::Actuation::exact([t530, t542], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -67,10 +67,10 @@ pub fn actuation<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
-    let t69 = q[1].cos();
-    let t479 = t69 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t545 = T::from_f64(0.03) * t69 + T::from_f64(0.0166967);
-    [[t479, t545], [t545, T::from_f64(0.0166867)]]
+    let t79 = q[1].cos();
+    let t478 = t79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t544 = T::from_f64(0.03) * t79 + T::from_f64(0.0166967);
+    [[t478, t544], [t544, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -80,11 +80,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
-    let t68 = q[1].sin();
-    let t490 = T::from_f64(0.03) * t68;
-    let t497 = -(qd[1] * (qd[0] * (t68 * T::from_f64(0.06)) + qd[1] * t490));
-    let t503 = qd[0] * (qd[0] * t490);
-    [t497, t503]
+    let t78 = q[1].sin();
+    let t489 = T::from_f64(0.03) * t78;
+    let t496 = -(qd[1] * (qd[0] * (t78 * T::from_f64(0.06)) + qd[1] * t489));
+    let t502 = qd[0] * (qd[0] * t489);
+    [t496, t502]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -109,17 +109,17 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    let (s68, c69) = q[1].sin_cos();
-    let t479 = c69 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t490 = T::from_f64(0.03) * s68;
-    let t546 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s68 * T::from_f64(0.06)) + qd[1] * t490);
-    let t548 = (T::from_f64(0.03) * c69 + T::from_f64(0.0166967)) / t479;
-    let t698 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t490) - t546 * t548)
-        / (T::from_f64(0.0166867) - t479 * (t548 * t548));
-    let t700 = t546 / t479 - t548 * t698;
-    [t700, t698]
+    let (s78, c79) = q[1].sin_cos();
+    let t478 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t489 = T::from_f64(0.03) * s78;
+    let t545 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t489);
+    let t547 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t478;
+    let t697 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t489) - t545 * t547)
+        / (T::from_f64(0.0166867) - t478 * (t547 * t547));
+    let t699 = t545 / t478 - t547 * t697;
+    [t699, t697]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -129,15 +129,15 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s68, c69) = q[1].sin_cos();
-    let t599 = qdd[0] * (c69 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let (s78, c79) = q[1].sin_cos();
+    let t598 = qdd[0] * (c79 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
-            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s68 * T::from_f64(0.75)))));
-    let t618 = qdd[0]
-        * (T::from_f64(-0.4166675000000001) - c69 * T::from_f64(0.7500000000000001))
-        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s68 * T::from_f64(0.7500000000000001)))
+            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s78 * T::from_f64(0.75)))));
+    let t617 = qdd[0]
+        * (T::from_f64(-0.4166675000000001) - c79 * T::from_f64(0.7500000000000001))
+        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s78 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
-    [t599, t618]
+    [t598, t617]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -150,47 +150,47 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
     let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let (s68, c69) = q[1].sin_cos();
-    let t71 = qd[0] + qd[1];
-    let t72 = qdd[0] + qdd[1];
-    let t105 = T::from_f64(0.000045)
+    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
+    let t77 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69;
+    let (s78, c79) = q[1].sin_cos();
+    let t81 = qd[0] + qd[1];
+    let t82 = qdd[0] + qdd[1];
+    let t105 = T::from_f64(0.8)
+        * (t55 * s78 - t57 * c79 - t81 * (T::from_f64(0.25) * t81)
+            + t81 * (t81 * T::from_f64(0.125)));
+    let t106 = T::from_f64(0.8)
+        * (t57 * s78 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
+    let t114 = T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106;
+    let t120 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t108 = T::from_f64(0.8)
-        * (t55 * s68 - t57 * c69 - t71 * (T::from_f64(0.25) * t71)
-            + t71 * (t71 * T::from_f64(0.125)));
-    let t109 = T::from_f64(0.8)
-        * (t57 * s68 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t115 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109;
-    let t120 = t115 + T::from_f64(0.25) * t109;
-    let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t149 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137;
-    let t157 = t120 + t149 + T::from_f64(0.3) * (s68 * t108 + c69 * t109 + t137);
-    let t183 = T::from_f64(0.019988885800753267) * s68;
-    let t187 = T::from_f64(0.019988885800753267) * c69;
+    let t126 = t114 + T::from_f64(0.25) * t106;
+    let t153 = t77 + t126 + T::from_f64(0.3) * (t69 + (s78 * t105 + c79 * t106));
+    let t183 = T::from_f64(0.019988885800753267) * s78;
+    let t187 = T::from_f64(0.019988885800753267) * c79;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
     let t231 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t120
-            - t157 * T::from_f64(0.000000000000000009071958584846753));
+        + (T::from_f64(25.0) * t126
+            - t153 * T::from_f64(0.000000000000000009071958584846753));
     let t232 = T::from_f64(20.0)
-        - (t157 * T::from_f64(0.00000000000000003335808724852205)
-            + t120 * T::from_f64(25.000000000000004));
+        - (t153 * T::from_f64(0.00000000000000003335808724852205)
+            + t126 * T::from_f64(25.000000000000004));
     let t234 = t231 * T::from_f64(0.9994442900376633);
     let t236 = T::from_f64(0.03333333333333362) * t231;
-    let t241 = s68 * t236 - c69 * t234;
-    let t244 = s68 * t234 + c69 * t236;
+    let t241 = s78 * t236 - c79 * t234;
+    let t244 = s78 * t234 + c79 * t236;
     let t250 = c53 * t234 + s52 * t236;
     let t254 = s52 * t234 - c53 * t236;
     let t258 = t232 * T::from_f64(0.9994442900376633);
     let t261 = t232 * T::from_f64(0.03333333333333337);
-    let t267 = c69 * t258 + s68 * t261;
-    let t272 = s68 * t258 - c69 * t261;
+    let t267 = c79 * t258 + s78 * t261;
+    let t272 = s78 * t258 - c79 * t261;
     let t273 = t241 - t267;
     let t274 = t244 + t272;
-    let t278 = (T::from_f64(0.0006666666666666724) * c69 + t183) * t244
-        - (t187 - T::from_f64(0.0006666666666666724) * s68) * t241
-        + ((T::from_f64(0.0006666666666666674) * c69 - t183) * t272
-            - (t187 + T::from_f64(0.0006666666666666674) * s68) * t267);
+    let t278 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t244
+        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t241
+        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t272
+            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t267);
     let t282 = c53 * t258 - s52 * t261;
     let t285 = s52 * t258 + c53 * t261;
     let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
@@ -203,22 +203,22 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t295 = T::from_f64(0.02) * t274;
     let t301 = -(t250 + t282);
     let t302 = -(t254 + t285);
-    let t309 = t108 - t273;
-    let t310 = t109 - t274;
+    let t309 = t105 - t273;
+    let t310 = t106 - t274;
     let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
         - T::from_f64(1.9620000000000002);
-    let t316 = t115 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
-    let t329 = c69 * t295 - s68 * t315;
+    let t316 = t114 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
+    let t329 = c79 * t295 - s78 * t315;
     let t336 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s68 * t310 - c69 * t309);
-    let t337 = t137 + (s68 * t309 + c69 * t310);
-    let t342 = T::from_f64(1.7658) + (s68 * t295 + c69 * t315) - T::from_f64(5.886);
-    let t369 = t149 + t316 + T::from_f64(0.3) * t337
-        - (t157 - t120 * T::from_f64(1.4999999999999958));
-    let t370 = t105 - t291
-        - (t105
-            + (T::from_f64(0.0000000000000000047704895589362195) * t157
-                + T::from_f64(1.5000000000000002) * t120));
+        - (s78 * t310 - c79 * t309);
+    let t337 = t69 + (s78 * t309 + c79 * t310);
+    let t342 = T::from_f64(1.7658) + (s78 * t295 + c79 * t315) - T::from_f64(5.886);
+    let t369 = t77 + t316 + T::from_f64(0.3) * t337
+        - (t153 - t126 * T::from_f64(1.4999999999999958));
+    let t370 = t120 - t291
+        - (t120
+            + (T::from_f64(0.0000000000000000047704895589362195) * t153
+                + T::from_f64(1.5000000000000002) * t126));
     [
         [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
         [[t309, t310, T::from_f64(7.848000000000001)], [t295, t315, t316]],
@@ -244,32 +244,31 @@ pub fn base_reaction<T: Real>(
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
     let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let (s68, c69) = q[1].sin_cos();
-    let t71 = qd[0] + qd[1];
-    let t72 = qdd[0] + qdd[1];
-    let t108 = T::from_f64(0.8)
-        * (t55 * s68 - t57 * c69 - t71 * (T::from_f64(0.25) * t71)
-            + t71 * (t71 * T::from_f64(0.125)));
-    let t109 = T::from_f64(0.8)
-        * (t57 * s68 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t131 = s68 * T::from_f64(0.9810000000000001);
-    let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t142 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s68 * t109 - c69 * t108);
-    let t143 = s68 * t108 + c69 * t109 + t137;
-    let t156 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
+    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
+    let (s78, c79) = q[1].sin_cos();
+    let t81 = qd[0] + qd[1];
+    let t82 = qdd[0] + qdd[1];
+    let t105 = T::from_f64(0.8)
+        * (t55 * s78 - t57 * c79 - t81 * (T::from_f64(0.25) * t81)
+            + t81 * (t81 * T::from_f64(0.125)));
+    let t106 = T::from_f64(0.8)
+        * (t57 * s78 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
+    let t137 = s78 * T::from_f64(0.9810000000000001);
+    let t143 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
+        - (s78 * t106 - c79 * t105);
+    let t144 = t69 + (s78 * t105 + c79 * t106);
+    let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t161 = c53 * t142 - s52 * t143;
-    let t164 = s52 * t142 + c53 * t143;
-    let t171 = c53 * t131 - s52 * t156;
-    let t174 = s52 * t131 + c53 * t156;
-    let t179 = T::from_f64(0.000045)
+    let t157 = c53 * t143 - s52 * t144;
+    let t160 = s52 * t143 + c53 * t144;
+    let t167 = c53 * t137 - s52 * t152;
+    let t170 = s52 * t137 + c53 * t152;
+    let t175 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
-        + (T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109
-            + T::from_f64(0.25) * t109
-            + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137)
-            + T::from_f64(0.3) * t143);
-    [[[t161, t164, T::from_f64(20.601000000000003)], [t171, t174, t179]]]
+        + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69
+            + (T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106
+                + T::from_f64(0.25) * t106) + T::from_f64(0.3) * t144);
+    [[[t157, t160, T::from_f64(20.601000000000003)], [t167, t170, t175]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -306,65 +305,65 @@ pub fn all<T: Real>(
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
     let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let (s68, c69) = q[1].sin_cos();
-    let t71 = qd[0] + qd[1];
-    let t72 = qdd[0] + qdd[1];
-    let t73 = t57 * c69;
-    let t77 = t57 * s68;
-    let t83 = t71 * (T::from_f64(0.25) * t71);
-    let t92 = t71 * (t71 * T::from_f64(0.125));
-    let t105 = T::from_f64(0.000045)
+    let t68 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57);
+    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
+    let t77 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69;
+    let (s78, c79) = q[1].sin_cos();
+    let t81 = qd[0] + qd[1];
+    let t82 = qdd[0] + qdd[1];
+    let t83 = t57 * c79;
+    let t87 = t57 * s78;
+    let t93 = t81 * (T::from_f64(0.25) * t81);
+    let t102 = t81 * (t81 * T::from_f64(0.125));
+    let t105 = T::from_f64(0.8) * (t55 * s78 - t83 - t93 + t102);
+    let t106 = T::from_f64(0.8)
+        * (t87 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
+    let t114 = T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106;
+    let t120 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t108 = T::from_f64(0.8) * (t55 * s68 - t73 - t83 + t92);
-    let t109 = T::from_f64(0.8)
-        * (t77 + t55 * c69 + T::from_f64(0.25) * t72 - t72 * T::from_f64(0.125));
-    let t115 = T::from_f64(0.0041667) * t72 - T::from_f64(0.125) * t109;
-    let t120 = t115 + T::from_f64(0.25) * t109;
-    let t131 = s68 * T::from_f64(0.9810000000000001);
-    let t136 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57);
-    let t137 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t142 = t136 - (s68 * t109 - c69 * t108);
-    let t143 = s68 * t108 + c69 * t109 + t137;
-    let t149 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t137;
-    let t156 = T::from_f64(1.7658) - c69 * T::from_f64(0.9810000000000001)
+    let t126 = t114 + T::from_f64(0.25) * t106;
+    let t137 = s78 * T::from_f64(0.9810000000000001);
+    let t143 = t68 - (s78 * t106 - c79 * t105);
+    let t144 = t69 + (s78 * t105 + c79 * t106);
+    let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t157 = t120 + t149 + T::from_f64(0.3) * t143;
-    let t161 = c53 * t142 - s52 * t143;
-    let t164 = s52 * t142 + c53 * t143;
-    let t171 = c53 * t131 - s52 * t156;
-    let t174 = s52 * t131 + c53 * t156;
-    let t179 = t105 + t157;
-    let t181 = t120 + T::from_f64(0.6666666666666667) * t105;
-    let t183 = T::from_f64(0.019988885800753267) * s68;
-    let t187 = T::from_f64(0.019988885800753267) * c69;
+    let t153 = t77 + t126 + T::from_f64(0.3) * t144;
+    let t157 = c53 * t143 - s52 * t144;
+    let t160 = s52 * t143 + c53 * t144;
+    let t167 = c53 * t137 - s52 * t152;
+    let t170 = s52 * t137 + c53 * t152;
+    let t175 = t120 + t153;
+    let t177 = t126 + T::from_f64(0.6666666666666667) * t120;
+    let t183 = T::from_f64(0.019988885800753267) * s78;
+    let t187 = T::from_f64(0.019988885800753267) * c79;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
-    let t226 = t157 - t120 * T::from_f64(1.4999999999999958);
-    let t230 = t105
-        + (T::from_f64(0.0000000000000000047704895589362195) * t157
-            + T::from_f64(1.5000000000000002) * t120);
+    let t226 = t153 - t126 * T::from_f64(1.4999999999999958);
+    let t230 = t120
+        + (T::from_f64(0.0000000000000000047704895589362195) * t153
+            + T::from_f64(1.5000000000000002) * t126);
     let t231 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t120
-            - t157 * T::from_f64(0.000000000000000009071958584846753));
+        + (T::from_f64(25.0) * t126
+            - t153 * T::from_f64(0.000000000000000009071958584846753));
     let t232 = T::from_f64(20.0)
-        - (t157 * T::from_f64(0.00000000000000003335808724852205)
-            + t120 * T::from_f64(25.000000000000004));
+        - (t153 * T::from_f64(0.00000000000000003335808724852205)
+            + t126 * T::from_f64(25.000000000000004));
     let t234 = t231 * T::from_f64(0.9994442900376633);
     let t236 = T::from_f64(0.03333333333333362) * t231;
-    let t241 = s68 * t236 - c69 * t234;
-    let t244 = s68 * t234 + c69 * t236;
+    let t241 = s78 * t236 - c79 * t234;
+    let t244 = s78 * t234 + c79 * t236;
     let t250 = c53 * t234 + s52 * t236;
     let t254 = s52 * t234 - c53 * t236;
     let t258 = t232 * T::from_f64(0.9994442900376633);
     let t261 = t232 * T::from_f64(0.03333333333333337);
-    let t267 = c69 * t258 + s68 * t261;
-    let t272 = s68 * t258 - c69 * t261;
+    let t267 = c79 * t258 + s78 * t261;
+    let t272 = s78 * t258 - c79 * t261;
     let t273 = t241 - t267;
     let t274 = t244 + t272;
-    let t278 = (T::from_f64(0.0006666666666666724) * c69 + t183) * t244
-        - (t187 - T::from_f64(0.0006666666666666724) * s68) * t241
-        + ((T::from_f64(0.0006666666666666674) * c69 - t183) * t272
-            - (t187 + T::from_f64(0.0006666666666666674) * s68) * t267);
+    let t278 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t244
+        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t241
+        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t272
+            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t267);
     let t282 = c53 * t258 - s52 * t261;
     let t285 = s52 * t258 + c53 * t261;
     let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
@@ -377,41 +376,41 @@ pub fn all<T: Real>(
     let t295 = T::from_f64(0.02) * t274;
     let t301 = -(t250 + t282);
     let t302 = -(t254 + t285);
-    let t309 = t108 - t273;
-    let t310 = t109 - t274;
+    let t309 = t105 - t273;
+    let t310 = t106 - t274;
     let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
         - T::from_f64(1.9620000000000002);
-    let t316 = t115 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
-    let t329 = c69 * t295 - s68 * t315;
-    let t336 = t136 - (s68 * t310 - c69 * t309);
-    let t337 = t137 + (s68 * t309 + c69 * t310);
-    let t342 = T::from_f64(1.7658) + (s68 * t295 + c69 * t315) - T::from_f64(5.886);
-    let t369 = t149 + t316 + T::from_f64(0.3) * t337 - t226;
-    let t370 = t105 - t291 - t230;
-    let t386 = T::from_f64(0.1) * c69;
+    let t316 = t114 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
+    let t329 = c79 * t295 - s78 * t315;
+    let t336 = t68 - (s78 * t310 - c79 * t309);
+    let t337 = t69 + (s78 * t309 + c79 * t310);
+    let t342 = T::from_f64(1.7658) + (s78 * t295 + c79 * t315) - T::from_f64(5.886);
+    let t369 = t77 + t316 + T::from_f64(0.3) * t337 - t226;
+    let t370 = t120 - t291 - t230;
+    let t386 = T::from_f64(0.1) * c79;
     let t407 = T::from_f64(-0.18) + t386;
     let t425 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
             + T::from_f64(0.3) * (t407 + (t407 + T::from_f64(0.6))));
     let t426 = T::from_f64(0.000030000000000000004)
         + (T::from_f64(0.0166667) + T::from_f64(0.3) * t386);
-    let t432 = T::from_f64(0.8) * t77;
-    let t437 = T::from_f64(0.25) * t432 - T::from_f64(0.125) * t432;
-    let t451 = t437
+    let t431 = T::from_f64(0.8) * t87;
+    let t436 = T::from_f64(0.25) * t431 - T::from_f64(0.125) * t431;
+    let t450 = t436
         + T::from_f64(0.3)
-            * (s68 * (T::from_f64(0.8) * (t92 - (t73 + t83))) + c69 * t432);
-    let t464 = motor_torques[0] + motor_torques[1] - t451;
-    let t466 = t426 / t425;
-    let t473 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t437 - t464 * t466)
-        / (T::from_f64(0.0166867) - t425 * (t466 * t466));
-    let t475 = t464 / t425 - t466 * t473;
+            * (s78 * (T::from_f64(0.8) * (t102 - (t83 + t93))) + c79 * t431);
+    let t463 = motor_torques[0] + motor_torques[1] - t450;
+    let t465 = t426 / t425;
+    let t472 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t436 - t463 * t465)
+        / (T::from_f64(0.0166867) - t425 * (t465 * t465));
+    let t474 = t463 / t425 - t465 * t472;
     Outputs {
-        generalized_forces: [t179, t181],
+        generalized_forces: [t175, t177],
         actuation: tendyn_core::distribution::Actuation::exact([t226, t230], []),
         mass_matrix: [[t425, t426], [t426, T::from_f64(0.0166867)]],
-        bias: [t451, t437],
+        bias: [t450, t436],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t475, t473],
+        forward_dynamics: [t474, t472],
         segment_tensions: [t231, t232],
         bearings: [
             [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
@@ -423,7 +422,7 @@ pub fn all<T: Real>(
             [[t292, t293, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t294]],
         ],
         base_reaction: [
-            [[t161, t164, T::from_f64(20.601000000000003)], [t171, t174, t179]],
+            [[t157, t160, T::from_f64(20.601000000000003)], [t167, t170, t175]],
         ],
     }
 }

@@ -26,14 +26,14 @@ pub const TENDONS: usize = 3;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s89, c90) = q[1].sin_cos();
-    let t851 = T::from_f64(0.0166667) + c90 * T::from_f64(0.03);
-    let t858 = s89 * T::from_f64(0.03);
-    let t867 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t851 - qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t858));
-    let t873 = qdd[0] * t851
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t858));
-    [t867, t873]
+    let (s99, c100) = q[1].sin_cos();
+    let t850 = T::from_f64(0.0166667) + c100 * T::from_f64(0.03);
+    let t857 = s99 * T::from_f64(0.03);
+    let t866 = qdd[0] * (c100 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t850 - qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t857));
+    let t872 = qdd[0] * t850
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t857));
+    [t866, t872]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -47,52 +47,54 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let (s89, c90) = q[1].sin_cos();
-    let t876 = c90 * T::from_f64(0.22058823529411686);
-    let t882 = c90 * T::from_f64(0.2647058823529412);
-    let t900 = qd[0]
-        * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
-            + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t907 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t915 = c90 * T::from_f64(1.279411764705882);
-    let t920 = c90 * T::from_f64(0.2647058823529411);
-    let t926 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
-    let t931 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
-    let t940 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
-    let t946 = T::from_f64(0.0)
+    let (s99, c100) = q[1].sin_cos();
+    let t875 = c100 * T::from_f64(0.22058823529411686);
+    let t881 = c100 * T::from_f64(0.2647058823529412);
+    let t899 = qd[0]
+        * (qd[0] * (s99 * T::from_f64(0.7499999999999992))
+            + qd[1] * (s99 * T::from_f64(0.5294117647058824)));
+    let t906 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
+    let t914 = c100 * T::from_f64(1.279411764705882);
+    let t919 = c100 * T::from_f64(0.2647058823529411);
+    let t925 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
+    let t930 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
+    let t939 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
+    let t945 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t876)
-                + (qdd[1] * (t882 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t907 - t900)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t875)
+                + (qdd[1] * (t881 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t906 - t899)),
         )
         .max(
-            qdd[0] * (t915 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t920 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t926 - t931) + (T::from_f64(5.0) - t940))),
+            qdd[0] * (t914 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t919 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t925 - t930) + (T::from_f64(5.0) - t939))),
         );
-    let t971 = qdd[0]
-        * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
+    let t970 = qdd[0]
+        * (T::from_f64(-0.9781309803921567) - c100 * T::from_f64(0.47058823529411764))
         + (qdd[1]
-            * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
+            * (T::from_f64(-0.13071921568627454)
+                - c100 * T::from_f64(0.2352941176470588))
             + (qd[1]
-                * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
-                    + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
+                * (qd[0] * (s99 * T::from_f64(0.4705882352941176))
+                    + qd[1] * (s99 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t972 = t946.max(t971);
-    let t983 = qdd[0] * (t876 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t882) + (t900 + (t907 + t972)));
-    let t1001 = qdd[0] * (T::from_f64(-1.517064852941176) - t915)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t920)
-            + (qd[0] * (t931 - t926) + (t940 + t972)));
-    let t1030 = qdd[0]
-        * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
+    let t971 = t945.max(t970);
+    let t982 = qdd[0] * (t875 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t881) + (t899 + (t906 + t971)));
+    let t1000 = qdd[0] * (T::from_f64(-1.517064852941176) - t914)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t919)
+            + (qd[0] * (t930 - t925) + (t939 + t971)));
+    let t1029 = qdd[0]
+        * (c100 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
-            * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t972
+            * (c100 * T::from_f64(0.35294117647058826)
+                + T::from_f64(0.19607882352941183))
+            + (T::from_f64(1.5000000000000002) * t971
                 - qd[1]
-                    * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    tendyn_core::distribution::Actuation::exact([], [t983, t1001, t1030])
+                    * (qd[0] * (s99 * T::from_f64(0.7058823529411765))
+                        + qd[1] * (s99 * T::from_f64(0.35294117647058826)))));
+    tendyn_core::distribution::Actuation::exact([], [t982, t1000, t1029])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -102,10 +104,10 @@ pub fn actuation<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
-    let t90 = q[1].cos();
-    let t848 = t90 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t851 = T::from_f64(0.0166667) + t90 * T::from_f64(0.03);
-    [[t848, t851], [t851, T::from_f64(0.0166867)]]
+    let t100 = q[1].cos();
+    let t847 = t100 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t850 = T::from_f64(0.0166667) + t100 * T::from_f64(0.03);
+    [[t847, t850], [t850, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -115,11 +117,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
-    let t89 = q[1].sin();
-    let t858 = t89 * T::from_f64(0.03);
-    let t865 = -(qd[1] * (qd[0] * (t89 * T::from_f64(0.06)) + qd[1] * t858));
-    let t871 = qd[0] * (qd[0] * t858);
-    [t865, t871]
+    let t99 = q[1].sin();
+    let t857 = t99 * T::from_f64(0.03);
+    let t864 = -(qd[1] * (qd[0] * (t99 * T::from_f64(0.06)) + qd[1] * t857));
+    let t870 = qd[0] * (qd[0] * t857);
+    [t864, t870]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -144,19 +146,19 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
-    let (s89, c90) = q[1].sin_cos();
-    let t848 = c90 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t858 = s89 * T::from_f64(0.03);
-    let t1033 = qd[1] * (qd[0] * (s89 * T::from_f64(0.06)) + qd[1] * t858)
+    let (s99, c100) = q[1].sin_cos();
+    let t847 = c100 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t857 = s99 * T::from_f64(0.03);
+    let t1032 = qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t857)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1035 = (T::from_f64(0.0166667) + c90 * T::from_f64(0.03)) / t848;
-    let t1175 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t858)
-        - t1033 * t1035) / (T::from_f64(0.0166867) - t848 * (t1035 * t1035));
-    let t1177 = t1033 / t848 - t1035 * t1175;
-    [t1177, t1175]
+    let t1034 = (T::from_f64(0.0166667) + c100 * T::from_f64(0.03)) / t847;
+    let t1174 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t857)
+        - t1032 * t1034) / (T::from_f64(0.0166867) - t847 * (t1034 * t1034));
+    let t1176 = t1032 / t847 - t1034 * t1174;
+    [t1176, t1174]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -166,57 +168,59 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
-    let (s89, c90) = q[1].sin_cos();
-    let t876 = c90 * T::from_f64(0.22058823529411686);
-    let t882 = c90 * T::from_f64(0.2647058823529412);
-    let t900 = qd[0]
-        * (qd[0] * (s89 * T::from_f64(0.7499999999999992))
-            + qd[1] * (s89 * T::from_f64(0.5294117647058824)));
-    let t907 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529412)));
-    let t915 = c90 * T::from_f64(1.279411764705882);
-    let t920 = c90 * T::from_f64(0.2647058823529411);
-    let t926 = qd[0] * (s89 * T::from_f64(0.7499999999999998));
-    let t931 = qd[1] * (s89 * T::from_f64(0.5294117647058822));
-    let t940 = qd[1] * (qd[1] * (s89 * T::from_f64(0.2647058823529411)));
-    let t946 = T::from_f64(0.0)
+    let (s99, c100) = q[1].sin_cos();
+    let t875 = c100 * T::from_f64(0.22058823529411686);
+    let t881 = c100 * T::from_f64(0.2647058823529412);
+    let t899 = qd[0]
+        * (qd[0] * (s99 * T::from_f64(0.7499999999999992))
+            + qd[1] * (s99 * T::from_f64(0.5294117647058824)));
+    let t906 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
+    let t914 = c100 * T::from_f64(1.279411764705882);
+    let t919 = c100 * T::from_f64(0.2647058823529411);
+    let t925 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
+    let t930 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
+    let t939 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
+    let t945 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t876)
-                + (qdd[1] * (t882 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t907 - t900)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t875)
+                + (qdd[1] * (t881 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t906 - t899)),
         )
         .max(
-            qdd[0] * (t915 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t920 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t926 - t931) + (T::from_f64(5.0) - t940))),
+            qdd[0] * (t914 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t919 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t925 - t930) + (T::from_f64(5.0) - t939))),
         );
-    let t971 = qdd[0]
-        * (T::from_f64(-0.9781309803921567) - c90 * T::from_f64(0.47058823529411764))
+    let t970 = qdd[0]
+        * (T::from_f64(-0.9781309803921567) - c100 * T::from_f64(0.47058823529411764))
         + (qdd[1]
-            * (T::from_f64(-0.13071921568627454) - c90 * T::from_f64(0.2352941176470588))
+            * (T::from_f64(-0.13071921568627454)
+                - c100 * T::from_f64(0.2352941176470588))
             + (qd[1]
-                * (qd[0] * (s89 * T::from_f64(0.4705882352941176))
-                    + qd[1] * (s89 * T::from_f64(0.2352941176470588)))
+                * (qd[0] * (s99 * T::from_f64(0.4705882352941176))
+                    + qd[1] * (s99 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t972 = t946.max(t971);
-    let t981 = t900 + (t907 + t972);
-    let t983 = qdd[0] * (t876 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t882) + t981);
-    let t999 = qd[0] * (t931 - t926) + (t940 + t972);
-    let t1001 = qdd[0] * (T::from_f64(-1.517064852941176) - t915)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t920) + t999);
-    let t1030 = qdd[0]
-        * (c90 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
+    let t971 = t945.max(t970);
+    let t980 = t899 + (t906 + t971);
+    let t982 = qdd[0] * (t875 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t881) + t980);
+    let t998 = qd[0] * (t930 - t925) + (t939 + t971);
+    let t1000 = qdd[0] * (T::from_f64(-1.517064852941176) - t914)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t919) + t998);
+    let t1029 = qdd[0]
+        * (c100 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
-            * (c90 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t972
+            * (c100 * T::from_f64(0.35294117647058826)
+                + T::from_f64(0.19607882352941183))
+            + (T::from_f64(1.5000000000000002) * t971
                 - qd[1]
-                    * (qd[0] * (s89 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s89 * T::from_f64(0.35294117647058826)))));
-    let t1087 = qdd[0] * (t876 + T::from_f64(-0.6829798529411769))
-        + (t981 + qdd[1] * (T::from_f64(0.26960838235294077) - t882));
-    let t1095 = qdd[0] * (T::from_f64(-1.516314852941176) - t915)
-        + (t999 + qdd[1] * (T::from_f64(-0.5637266176470587) - t920));
-    [t1087, t983, t1095, t1001, t1030]
+                    * (qd[0] * (s99 * T::from_f64(0.7058823529411765))
+                        + qd[1] * (s99 * T::from_f64(0.35294117647058826)))));
+    let t1086 = qdd[0] * (t875 + T::from_f64(-0.6829798529411769))
+        + (t980 + qdd[1] * (T::from_f64(0.26960838235294077) - t881));
+    let t1094 = qdd[0] * (T::from_f64(-1.516314852941176) - t914)
+        + (t998 + qdd[1] * (T::from_f64(-0.5637266176470587) - t919));
+    [t1086, t982, t1094, t1000, t1029]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -229,45 +233,46 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let (s73, c74) = q[0].sin_cos();
     let t76 = T::from_f64(0.3) * qdd[0];
     let t78 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let (s89, c90) = q[1].sin_cos();
-    let t92 = qd[0] + qd[1];
-    let t93 = qdd[0] + qdd[1];
-    let t125 = T::from_f64(0.6666666666666667) * qdd[1];
-    let t132 = T::from_f64(0.0000225) * (qdd[0] + t125);
-    let t136 = T::from_f64(0.0000225) * (qdd[0] - t125);
-    let t140 = T::from_f64(0.8)
-        * (t76 * s89 - t78 * c90 - t92 * (T::from_f64(0.25) * t92)
-            + t92 * (t92 * T::from_f64(0.125)));
-    let t141 = T::from_f64(0.8)
-        * (t78 * s89 + t76 * c90 + T::from_f64(0.25) * t93 - t93 * T::from_f64(0.125));
-    let t148 = T::from_f64(0.0041667) * t93 - T::from_f64(0.125) * t141;
-    let t170 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
-    let t181 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t170;
-    let t221 = t136 * T::from_f64(33.333333333333336);
-    let t223 = t132 * T::from_f64(33.333333333333336);
+    let t90 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
+    let t98 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t90;
+    let (s99, c100) = q[1].sin_cos();
+    let t102 = qd[0] + qd[1];
+    let t103 = qdd[0] + qdd[1];
+    let t126 = T::from_f64(0.8)
+        * (t76 * s99 - t78 * c100 - t102 * (T::from_f64(0.25) * t102)
+            + t102 * (t102 * T::from_f64(0.125)));
+    let t127 = T::from_f64(0.8)
+        * (t78 * s99 + t76 * c100 + T::from_f64(0.25) * t103
+            - t103 * T::from_f64(0.125));
+    let t135 = T::from_f64(0.0041667) * t103 - T::from_f64(0.125) * t127;
+    let t139 = T::from_f64(0.6666666666666667) * qdd[1];
+    let t144 = T::from_f64(0.0000225) * (qdd[0] - t139);
+    let t148 = T::from_f64(0.0000225) * (qdd[0] + t139);
+    let t221 = t144 * T::from_f64(33.333333333333336);
+    let t223 = t148 * T::from_f64(33.333333333333336);
     let t226 = t221 * T::from_f64(0.9860132971832694);
     let t229 = t221 * T::from_f64(0.16666666666666652);
-    let t235 = c90 * t226 + s89 * t229;
-    let t240 = s89 * t226 - c90 * t229;
-    let t245 = T::from_f64(0.019720265943665386) * s89
-        - c90 * T::from_f64(0.0033333333333333305);
-    let t249 = s89 * T::from_f64(0.0033333333333333305)
-        + T::from_f64(0.019720265943665386) * c90;
+    let t235 = c100 * t226 + s99 * t229;
+    let t240 = s99 * t226 - c100 * t229;
+    let t245 = T::from_f64(0.019720265943665386) * s99
+        - c100 * T::from_f64(0.0033333333333333305);
+    let t249 = s99 * T::from_f64(0.0033333333333333305)
+        + T::from_f64(0.019720265943665386) * c100;
     let t274 = t223 * T::from_f64(0.9994442900376633);
     let t277 = t223 * T::from_f64(0.03333333333333337);
-    let t283 = c90 * t274 + s89 * t277;
-    let t288 = s89 * t274 - c90 * t277;
-    let t293 = T::from_f64(0.0006666666666666674) * c90
-        - s89 * T::from_f64(0.019988885800753267);
-    let t298 = T::from_f64(0.0006666666666666674) * s89
-        + c90 * T::from_f64(0.019988885800753267);
-    let t375 = t141 - (t240 + t288);
-    let t382 = t148
+    let t283 = c100 * t274 + s99 * t277;
+    let t288 = s99 * t274 - c100 * t277;
+    let t293 = T::from_f64(0.0006666666666666674) * c100
+        - s99 * T::from_f64(0.019988885800753267);
+    let t298 = T::from_f64(0.0006666666666666674) * s99
+        + c100 * T::from_f64(0.019988885800753267);
+    let t375 = t127 - (t240 + t288);
+    let t382 = t135
         - (t288 * t293 - t283 * t298 - T::from_f64(0.25) * t288
             + (t240 * t245 + t235 * t249 - T::from_f64(0.25) * t240))
         + T::from_f64(0.25) * t375;
-    let t409 = t181 + t382
-        + T::from_f64(0.3) * (t170 + (s89 * (t140 + (t235 + t283)) + c90 * t375));
+    let t409 = t98 + t382
+        + T::from_f64(0.3) * (t90 + (s99 * (t126 + (t235 + t283)) + c100 * t375));
     let t438 = T::from_f64(24.999999999999975) * t382
         - t409 * T::from_f64(8.823529411764707);
     let t445 = t409 * T::from_f64(8.823529411764705)
@@ -285,9 +290,9 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t468 = t223 + t461;
     let t469 = T::from_f64(0.9860132971832694) * t467;
     let t471 = T::from_f64(0.16666666666666652) * t467;
-    let t477 = c90 * t469 + s89 * t471;
-    let t479 = s89 * t469;
-    let t480 = c90 * t471;
+    let t477 = c100 * t469 + s99 * t471;
+    let t479 = s99 * t469;
+    let t480 = c100 * t471;
     let t482 = t479 - t480;
     let t486 = t245 * t482 + t249 * t477;
     let t490 = c74 * t469 - s73 * t471;
@@ -302,9 +307,9 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             + t498 * T::from_f64(0.02852074361808961));
     let t522 = T::from_f64(0.9994442900376633) * t468;
     let t524 = T::from_f64(0.03333333333333337) * t468;
-    let t530 = c90 * t522 + s89 * t524;
-    let t532 = s89 * t522;
-    let t533 = c90 * t524;
+    let t530 = c100 * t522 + s99 * t524;
+    let t532 = s99 * t522;
+    let t533 = c100 * t524;
     let t535 = t532 - t533;
     let t536 = t293 * t535;
     let t537 = t298 * t530;
@@ -330,10 +335,10 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         - T::from_f64(0.009173546985593762) * s73) * t589;
     let t605 = t550 - t542;
     let t606 = t553 - t545;
-    let t607 = t132 - t564;
+    let t607 = t148 - t564;
     let t620 = t498 - t490;
     let t621 = -(t493 + t500);
-    let t622 = t136 - t512;
+    let t622 = t144 - t512;
     let t633 = t586 - t588;
     let t634 = -t592;
     let t635 = t594 - t593;
@@ -341,21 +346,21 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t640 = t537 - t536;
     let t648 = t480 - t479;
     let t649 = -t486;
-    let t663 = t140 + (t477 + t530);
-    let t664 = t141 - (t482 + t535);
+    let t663 = t126 + (t477 + t530);
+    let t664 = t127 - (t482 + t535);
     let t665 = T::from_f64(0.01) * t482 - T::from_f64(0.01) * t535;
     let t670 = T::from_f64(0.9810000000000001)
         - (T::from_f64(0.01) * t530 - T::from_f64(0.01) * t477)
         - T::from_f64(1.9620000000000002);
-    let t671 = t148
+    let t671 = t135
         - (t536 - t537 - T::from_f64(0.25) * t535 + (t486 - T::from_f64(0.25) * t482))
         + T::from_f64(0.25) * t664;
-    let t684 = c90 * t665 - s89 * t670;
+    let t684 = c100 * t665 - s99 * t670;
     let t694 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78)
-        - (t589 + (s89 * t664 - c90 * t663));
-    let t695 = t170 - (t592 - (s89 * t663 + c90 * t664));
-    let t700 = T::from_f64(1.7658) + (s89 * t665 + c90 * t670) - T::from_f64(5.886);
-    let t701 = t181 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
+        - (t589 + (s99 * t664 - c100 * t663));
+    let t695 = t90 - (t592 - (s99 * t663 + c100 * t664));
+    let t700 = T::from_f64(1.7658) + (s99 * t665 + c100 * t670) - T::from_f64(5.886);
+    let t701 = t98 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
         + T::from_f64(0.3) * t695;
     [
         [[t694, t695, T::from_f64(19.62)], [t684, t700, t701]],
@@ -386,35 +391,35 @@ pub fn base_reaction<T: Real>(
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
     let (s73, c74) = q[0].sin_cos();
-    let (s89, c90) = q[1].sin_cos();
-    let t164 = s89 * T::from_f64(0.9810000000000001);
-    let t166 = c90 * T::from_f64(0.9810000000000001);
-    let t743 = T::from_f64(0.1) * s89;
-    let t745 = T::from_f64(0.1) * c90;
-    let t867 = qdd[0] * (c90 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * (T::from_f64(0.0166667) + c90 * T::from_f64(0.03))
+    let (s99, c100) = q[1].sin_cos();
+    let t168 = s99 * T::from_f64(0.9810000000000001);
+    let t170 = c100 * T::from_f64(0.9810000000000001);
+    let t743 = T::from_f64(0.1) * s99;
+    let t745 = T::from_f64(0.1) * c100;
+    let t866 = qdd[0] * (c100 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * (T::from_f64(0.0166667) + c100 * T::from_f64(0.03))
             - qd[1]
-                * (qd[0] * (s89 * T::from_f64(0.06))
-                    + qd[1] * (s89 * T::from_f64(0.03))));
-    let t1098 = T::from_f64(-0.42) - t745;
-    let t1100 = c74 * t743;
-    let t1102 = s73 * t1098 - t1100;
-    let t1106 = t1100 + s73 * t745;
-    let t1111 = s73 * t743;
-    let t1114 = s89 * T::from_f64(0.2);
-    let t1117 = c90 * T::from_f64(0.2);
-    let t1125 = c74 * t745;
-    let t1130 = qd[0]
-        * (qd[0] * (c74 * t1098 + t1111) + qd[1] * (s73 * t1114 - c74 * t1117))
-        + qd[1] * (qd[1] * (t1111 - t1125));
-    let t1132 = qdd[0] * t1102 + (t1130 - qdd[1] * t1106);
-    let t1158 = qdd[1] * (t1125 - t1111)
-        + (qd[0] * (qd[0] * t1102 - qd[1] * (s73 * t1117 + c74 * t1114))
-            - qd[1] * (qd[1] * t1106));
-    let t1159 = qdd[0] * (c74 * (t745 + T::from_f64(0.42)) - t1111) + t1158;
-    let t1163 = c74 * t164 + s73 * (t166 + T::from_f64(4.1202000000000005));
-    let t1167 = s73 * t164 + c74 * (T::from_f64(-4.1202000000000005) - t166);
-    [[[t1132, t1159, T::from_f64(20.601000000000003)], [t1163, t1167, t867]]]
+                * (qd[0] * (s99 * T::from_f64(0.06))
+                    + qd[1] * (s99 * T::from_f64(0.03))));
+    let t1097 = T::from_f64(-0.42) - t745;
+    let t1099 = c74 * t743;
+    let t1101 = s73 * t1097 - t1099;
+    let t1105 = t1099 + s73 * t745;
+    let t1110 = s73 * t743;
+    let t1113 = s99 * T::from_f64(0.2);
+    let t1116 = c100 * T::from_f64(0.2);
+    let t1124 = c74 * t745;
+    let t1129 = qd[0]
+        * (qd[0] * (c74 * t1097 + t1110) + qd[1] * (s73 * t1113 - c74 * t1116))
+        + qd[1] * (qd[1] * (t1110 - t1124));
+    let t1131 = qdd[0] * t1101 + (t1129 - qdd[1] * t1105);
+    let t1157 = qdd[1] * (t1124 - t1110)
+        + (qd[0] * (qd[0] * t1101 - qd[1] * (s73 * t1116 + c74 * t1113))
+            - qd[1] * (qd[1] * t1105));
+    let t1158 = qdd[0] * (c74 * (t745 + T::from_f64(0.42)) - t1110) + t1157;
+    let t1162 = c74 * t168 + s73 * (t170 + T::from_f64(4.1202000000000005));
+    let t1166 = s73 * t168 + c74 * (T::from_f64(-4.1202000000000005) - t170);
+    [[[t1131, t1158, T::from_f64(20.601000000000003)], [t1162, t1166, t866]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -451,63 +456,63 @@ pub fn all<T: Real>(
     let (s73, c74) = q[0].sin_cos();
     let t76 = T::from_f64(0.3) * qdd[0];
     let t78 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let (s89, c90) = q[1].sin_cos();
-    let t92 = qd[0] + qd[1];
-    let t93 = qdd[0] + qdd[1];
-    let t94 = t78 * c90;
-    let t98 = t78 * s89;
-    let t104 = t92 * (T::from_f64(0.25) * t92);
-    let t113 = t92 * (t92 * T::from_f64(0.125));
-    let t125 = T::from_f64(0.6666666666666667) * qdd[1];
-    let t132 = T::from_f64(0.0000225) * (qdd[0] + t125);
-    let t136 = T::from_f64(0.0000225) * (qdd[0] - t125);
-    let t140 = T::from_f64(0.8) * (t76 * s89 - t94 - t104 + t113);
-    let t141 = T::from_f64(0.8)
-        * (t98 + t76 * c90 + T::from_f64(0.25) * t93 - t93 * T::from_f64(0.125));
-    let t148 = T::from_f64(0.0041667) * t93 - T::from_f64(0.125) * t141;
-    let t153 = t148 + T::from_f64(0.25) * t141;
-    let t164 = s89 * T::from_f64(0.9810000000000001);
-    let t169 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78);
-    let t170 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
-    let t174 = t169 - (s89 * t141 - c90 * t140);
-    let t175 = s89 * t140 + c90 * t141 + t170;
-    let t181 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t170;
-    let t188 = T::from_f64(1.7658) - c90 * T::from_f64(0.9810000000000001)
+    let t89 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78);
+    let t90 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
+    let t98 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t90;
+    let (s99, c100) = q[1].sin_cos();
+    let t102 = qd[0] + qd[1];
+    let t103 = qdd[0] + qdd[1];
+    let t104 = t78 * c100;
+    let t108 = t78 * s99;
+    let t114 = t102 * (T::from_f64(0.25) * t102);
+    let t123 = t102 * (t102 * T::from_f64(0.125));
+    let t126 = T::from_f64(0.8) * (t76 * s99 - t104 - t114 + t123);
+    let t127 = T::from_f64(0.8)
+        * (t108 + t76 * c100 + T::from_f64(0.25) * t103 - t103 * T::from_f64(0.125));
+    let t135 = T::from_f64(0.0041667) * t103 - T::from_f64(0.125) * t127;
+    let t139 = T::from_f64(0.6666666666666667) * qdd[1];
+    let t144 = T::from_f64(0.0000225) * (qdd[0] - t139);
+    let t148 = T::from_f64(0.0000225) * (qdd[0] + t139);
+    let t157 = t135 + T::from_f64(0.25) * t127;
+    let t168 = s99 * T::from_f64(0.9810000000000001);
+    let t173 = t89 - (s99 * t127 - c100 * t126);
+    let t174 = t90 + (s99 * t126 + c100 * t127);
+    let t182 = T::from_f64(1.7658) - c100 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t189 = t153 + t181 + T::from_f64(0.3) * t175;
-    let t193 = c74 * t174 - s73 * t175;
-    let t196 = s73 * t174 + c74 * t175;
-    let t203 = c74 * t164 - s73 * t188;
-    let t206 = s73 * t164 + c74 * t188;
-    let t211 = t132 + t136 + t189;
-    let t216 = t132 + (t136 + t189);
-    let t218 = t153 - T::from_f64(0.6666666666666667) * t136
-        + T::from_f64(0.6666666666666667) * t132;
-    let t221 = t136 * T::from_f64(33.333333333333336);
-    let t223 = t132 * T::from_f64(33.333333333333336);
+    let t183 = t98 + t157 + T::from_f64(0.3) * t174;
+    let t187 = c74 * t173 - s73 * t174;
+    let t190 = s73 * t173 + c74 * t174;
+    let t197 = c74 * t168 - s73 * t182;
+    let t200 = s73 * t168 + c74 * t182;
+    let t205 = t144 + t148 + t183;
+    let t210 = t148 + (t144 + t183);
+    let t212 = t157 - T::from_f64(0.6666666666666667) * t144
+        + T::from_f64(0.6666666666666667) * t148;
+    let t221 = t144 * T::from_f64(33.333333333333336);
+    let t223 = t148 * T::from_f64(33.333333333333336);
     let t226 = t221 * T::from_f64(0.9860132971832694);
     let t229 = t221 * T::from_f64(0.16666666666666652);
-    let t235 = c90 * t226 + s89 * t229;
-    let t240 = s89 * t226 - c90 * t229;
-    let t245 = T::from_f64(0.019720265943665386) * s89
-        - c90 * T::from_f64(0.0033333333333333305);
-    let t249 = s89 * T::from_f64(0.0033333333333333305)
-        + T::from_f64(0.019720265943665386) * c90;
+    let t235 = c100 * t226 + s99 * t229;
+    let t240 = s99 * t226 - c100 * t229;
+    let t245 = T::from_f64(0.019720265943665386) * s99
+        - c100 * T::from_f64(0.0033333333333333305);
+    let t249 = s99 * T::from_f64(0.0033333333333333305)
+        + T::from_f64(0.019720265943665386) * c100;
     let t274 = t223 * T::from_f64(0.9994442900376633);
     let t277 = t223 * T::from_f64(0.03333333333333337);
-    let t283 = c90 * t274 + s89 * t277;
-    let t288 = s89 * t274 - c90 * t277;
-    let t293 = T::from_f64(0.0006666666666666674) * c90
-        - s89 * T::from_f64(0.019988885800753267);
-    let t298 = T::from_f64(0.0006666666666666674) * s89
-        + c90 * T::from_f64(0.019988885800753267);
-    let t375 = t141 - (t240 + t288);
-    let t382 = t148
+    let t283 = c100 * t274 + s99 * t277;
+    let t288 = s99 * t274 - c100 * t277;
+    let t293 = T::from_f64(0.0006666666666666674) * c100
+        - s99 * T::from_f64(0.019988885800753267);
+    let t298 = T::from_f64(0.0006666666666666674) * s99
+        + c100 * T::from_f64(0.019988885800753267);
+    let t375 = t127 - (t240 + t288);
+    let t382 = t135
         - (t288 * t293 - t283 * t298 - T::from_f64(0.25) * t288
             + (t240 * t245 + t235 * t249 - T::from_f64(0.25) * t240))
         + T::from_f64(0.25) * t375;
-    let t409 = t181 + t382
-        + T::from_f64(0.3) * (t170 + (s89 * (t140 + (t235 + t283)) + c90 * t375));
+    let t409 = t98 + t382
+        + T::from_f64(0.3) * (t90 + (s99 * (t126 + (t235 + t283)) + c100 * t375));
     let t438 = T::from_f64(24.999999999999975) * t382
         - t409 * T::from_f64(8.823529411764707);
     let t445 = t409 * T::from_f64(8.823529411764705)
@@ -525,9 +530,9 @@ pub fn all<T: Real>(
     let t468 = t223 + t461;
     let t469 = T::from_f64(0.9860132971832694) * t467;
     let t471 = T::from_f64(0.16666666666666652) * t467;
-    let t477 = c90 * t469 + s89 * t471;
-    let t479 = s89 * t469;
-    let t480 = c90 * t471;
+    let t477 = c100 * t469 + s99 * t471;
+    let t479 = s99 * t469;
+    let t480 = c100 * t471;
     let t482 = t479 - t480;
     let t486 = t245 * t482 + t249 * t477;
     let t490 = c74 * t469 - s73 * t471;
@@ -542,9 +547,9 @@ pub fn all<T: Real>(
             + t498 * T::from_f64(0.02852074361808961));
     let t522 = T::from_f64(0.9994442900376633) * t468;
     let t524 = T::from_f64(0.03333333333333337) * t468;
-    let t530 = c90 * t522 + s89 * t524;
-    let t532 = s89 * t522;
-    let t533 = c90 * t524;
+    let t530 = c100 * t522 + s99 * t524;
+    let t532 = s99 * t522;
+    let t533 = c100 * t524;
     let t535 = t532 - t533;
     let t536 = t293 * t535;
     let t537 = t298 * t530;
@@ -570,10 +575,10 @@ pub fn all<T: Real>(
         - T::from_f64(0.009173546985593762) * s73) * t589;
     let t605 = t550 - t542;
     let t606 = t553 - t545;
-    let t607 = t132 - t564;
+    let t607 = t148 - t564;
     let t620 = t498 - t490;
     let t621 = -(t493 + t500);
-    let t622 = t136 - t512;
+    let t622 = t144 - t512;
     let t633 = t586 - t588;
     let t634 = -t592;
     let t635 = t594 - t593;
@@ -581,47 +586,47 @@ pub fn all<T: Real>(
     let t640 = t537 - t536;
     let t648 = t480 - t479;
     let t649 = -t486;
-    let t663 = t140 + (t477 + t530);
-    let t664 = t141 - (t482 + t535);
+    let t663 = t126 + (t477 + t530);
+    let t664 = t127 - (t482 + t535);
     let t665 = T::from_f64(0.01) * t482 - T::from_f64(0.01) * t535;
     let t670 = T::from_f64(0.9810000000000001)
         - (T::from_f64(0.01) * t530 - T::from_f64(0.01) * t477)
         - T::from_f64(1.9620000000000002);
-    let t671 = t148
+    let t671 = t135
         - (t536 - t537 - T::from_f64(0.25) * t535 + (t486 - T::from_f64(0.25) * t482))
         + T::from_f64(0.25) * t664;
-    let t684 = c90 * t665 - s89 * t670;
-    let t694 = t169 - (t589 + (s89 * t664 - c90 * t663));
-    let t695 = t170 - (t592 - (s89 * t663 + c90 * t664));
-    let t700 = T::from_f64(1.7658) + (s89 * t665 + c90 * t670) - T::from_f64(5.886);
-    let t701 = t181 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
+    let t684 = c100 * t665 - s99 * t670;
+    let t694 = t89 - (t589 + (s99 * t664 - c100 * t663));
+    let t695 = t90 - (t592 - (s99 * t663 + c100 * t664));
+    let t700 = T::from_f64(1.7658) + (s99 * t665 + c100 * t670) - T::from_f64(5.886);
+    let t701 = t98 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
         + T::from_f64(0.3) * t695;
-    let t745 = T::from_f64(0.1) * c90;
+    let t745 = T::from_f64(0.1) * c100;
     let t747 = T::from_f64(0.0166667) + T::from_f64(0.3) * t745;
     let t766 = T::from_f64(-0.18) + t745;
     let t784 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
             + T::from_f64(0.3) * (t766 + (t766 + T::from_f64(0.6))));
-    let t790 = T::from_f64(0.8) * t98;
-    let t795 = T::from_f64(0.25) * t790 - T::from_f64(0.125) * t790;
-    let t809 = t795
+    let t789 = T::from_f64(0.8) * t108;
+    let t794 = T::from_f64(0.25) * t789 - T::from_f64(0.125) * t789;
+    let t808 = t794
         + T::from_f64(0.3)
-            * (s89 * (T::from_f64(0.8) * (t113 - (t94 + t104))) + c90 * t790);
-    let t833 = T::from_f64(0.04) * tendon_tensions[2]
+            * (s99 * (T::from_f64(0.8) * (t123 - (t104 + t114))) + c100 * t789);
+    let t832 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t809;
-    let t835 = t747 / t784;
-    let t842 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - t795 - t833 * t835)
-        / (T::from_f64(0.0166867) - t784 * (t835 * t835));
-    let t844 = t833 / t784 - t835 * t842;
+            + tendon_tensions[1] * T::from_f64(0.03)) - t808;
+    let t834 = t747 / t784;
+    let t841 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - t794 - t832 * t834)
+        / (T::from_f64(0.0166867) - t784 * (t834 * t834));
+    let t843 = t832 / t784 - t834 * t841;
     Outputs {
-        generalized_forces: [t216, t218],
+        generalized_forces: [t210, t212],
         actuation: tendyn_core::distribution::Actuation::exact([], [t460, t461, t463]),
         mass_matrix: [[t784, t747], [t747, T::from_f64(0.0166867)]],
-        bias: [t809, t795],
+        bias: [t808, t794],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t844, t842],
+        forward_dynamics: [t843, t841],
         segment_tensions: [t467, t460, t468, t461, t463],
         bearings: [
             [[t694, t695, T::from_f64(19.62)], [t684, t700, t701]],
@@ -639,7 +644,7 @@ pub fn all<T: Real>(
             ],
         ],
         base_reaction: [
-            [[t193, t196, T::from_f64(20.601000000000003)], [t203, t206, t211]],
+            [[t187, t190, T::from_f64(20.601000000000003)], [t197, t200, t205]],
         ],
     }
 }

@@ -11,7 +11,7 @@ use crate::expr::{Graph, Id, OpCount, Sym};
 use tendyn_core::affine::Affine;
 use tendyn_core::distribution::Problem;
 use tendyn_core::dynamics::{self, Workspace};
-use tendyn_core::model::{BodyKind, Model};
+use tendyn_core::model::{BodyKind, Model, TensionSystem};
 pub use tendyn_core::output::{Output, Param};
 use tendyn_core::{linalg, tension, Real};
 
@@ -409,13 +409,16 @@ impl Shared {
             let at_state = |model: &Model<Sym>, rows: &[Affine<Sym>]| {
                 Ok(tension::system_traced(model, rows, lead))
             };
-            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, |model, system, x| {
+            let distribute = |model: &Model<Sym>, system: &TensionSystem<Sym>, x: &mut [Sym]| {
                 if system.null_space.len() == 1 && !model.tendons().is_empty() {
                     *excess = tension::along_line(model, system, x).excess;
                 }
                 Ok(())
-            })
-            .expect("tracing the distribution cannot fail")
+            };
+            let mut r = dynamics::InverseDynamics::empty();
+            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, distribute, &mut r)
+                .expect("tracing the distribution cannot fail");
+            r
         })
     }
 

@@ -222,10 +222,10 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         walks,
     } = work;
     // Each body's own inertia about its origin.
-    for (b, c) in bodies.iter().zip(composite.iter_mut()) {
+    for ((b, c), pattern) in bodies.iter().zip(composite.iter_mut()).zip(joints) {
         // The angle as the forward recursion forms it, so that traces share its sine.
         c.spin = if b.spins {
-            (coupled(&b.coupling, q) + b.offset).sin_cos()
+            (coupled(&b.coupling, pattern, q) + b.offset).sin_cos()
         } else {
             (T::zero(), T::one())
         };

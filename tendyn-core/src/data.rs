@@ -47,7 +47,7 @@ pub struct Data<T: Real> {
     bias: Vec<T>,
     gravity: Vec<T>,
     joint_accelerations: Vec<T>,
-    inverse_dynamics: Option<InverseDynamics<T>>,
+    inverse_dynamics: InverseDynamics<T>,
 }
 
 /// What the work buffers' sizes depend on: joints, bodies, unknowns of the tension
@@ -103,7 +103,7 @@ impl<T: Numeric> Data<T> {
             bias: vec![T::zero(); n],
             gravity: vec![T::zero(); n],
             joint_accelerations: vec![T::zero(); n],
-            inverse_dynamics: None,
+            inverse_dynamics: InverseDynamics::empty(),
         }
     }
 
@@ -344,7 +344,8 @@ impl<T: Numeric> Data<T> {
             finite("tension or motor torque", &*x, &inputs)?;
             tension::distribute(model, system, x)
         };
-        let mut r = inverse_dynamics(
+        let r = &mut self.inverse_dynamics;
+        inverse_dynamics(
             model,
             q,
             qd,
@@ -352,6 +353,7 @@ impl<T: Numeric> Data<T> {
             &mut self.ws,
             tension::system_at,
             distribute,
+            r,
         )?;
         r.sticking = friction::at_rest(model, qd);
         finite("generalized forces", &r.generalized_forces, &inputs)?;
@@ -371,16 +373,12 @@ impl<T: Numeric> Data<T> {
         }
         let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| f.to_array().into_iter().chain(n.to_array());
         if let Some(b) = &r.bearings {
-            finite(
-                "bearing force",
-                &b.iter().flat_map(wrench).collect::<Vec<T>>(),
-                &inputs,
-            )?;
+            finite("bearing force", b.iter().flat_map(wrench), &inputs)?;
         }
         if let Some(b) = &r.base_reaction {
-            finite("base reaction", &wrench(b).collect::<Vec<T>>(), &inputs)?;
+            finite("base reaction", wrench(b), &inputs)?;
         }
-        Ok(self.inverse_dynamics.insert(r))
+        Ok(r)
     }
 
     /// `output` at `state` by the evaluator that gives it, flattened as its generated
@@ -462,12 +460,16 @@ impl<T: Numeric> Model<T> {
 /// overflowed the scalar (a speed of 1e200 rad/s squares to infinity). The solver returns
 /// this error rather than a non-finite number, and names the largest of the `inputs`
 /// (each a name and its values), which is almost always the one to blame.
-fn finite<'a, T: Numeric>(
+fn finite<T: Numeric>(
     what: &str,
-    values: impl IntoIterator<Item = &'a T>,
+    values: impl IntoIterator<Item = impl core::borrow::Borrow<T>>,
     inputs: &[(&str, &[T])],
 ) -> Result<()> {
-    let Some(x) = values.into_iter().find(|x| !x.is_finite()) else {
+    let Some(x) = values
+        .into_iter()
+        .map(|x| *x.borrow())
+        .find(|x| !x.is_finite())
+    else {
         return Ok(());
     };
     let largest = inputs

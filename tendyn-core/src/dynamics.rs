@@ -68,6 +68,27 @@ pub struct InverseDynamics<T> {
     pub unknowns: Vec<T>,
 }
 
+impl<T> InverseDynamics<T> {
+    /// No results yet: the buffers [`inverse_dynamics`] fills.
+    pub fn empty() -> Self {
+        InverseDynamics {
+            generalized_forces: Vec::new(),
+            motor_torques: Vec::new(),
+            tendon_tensions: Vec::new(),
+            minimal_norm_tensions: Vec::new(),
+            null_space_tensions: Vec::new(),
+            loop_sides: Vec::new(),
+            segment_tensions: None,
+            pulley_demands: Vec::new(),
+            bearings: None,
+            base_reaction: None,
+            bearing_friction: Vec::new(),
+            sticking: Vec::new(),
+            unknowns: Vec::new(),
+        }
+    }
+}
+
 impl<T: Numeric> InverseDynamics<T> {
     /// Whether each loop has a side below zero tension (it would go slack: raise the
     /// loop's pretension).
@@ -97,6 +118,10 @@ pub struct Workspace<T: Real> {
     pub(crate) segments: Vec<Vec<T>>,
     /// Plain loads of the pass with those tensions (`b`, then the bearings).
     pub(crate) tendon_loads: Loads<T, Vec3<T>>,
+    /// `b` of `E x = b`.
+    pub(crate) b: Vec<T>,
+    /// The minimal-norm solution `x₀ = E⁺ b`.
+    pub(crate) minimal: Vec<T>,
     /// Bearing friction torque of every body at the last inverse-dynamics call
     /// ([`friction::bearing_torques`]), which its balance rows carry.
     pub(crate) friction: Vec<T>,
@@ -118,6 +143,8 @@ impl<T: Real> Workspace<T> {
             loads: Loads::new(model.bodies.len(), nu),
             known: Loads::new(model.bodies.len(), 0),
             tendon_loads: Loads::new(model.bodies.len(), 0),
+            b: vec![T::zero(); model.system.rows.len()],
+            minimal: vec![T::zero(); model.system.unknowns.len()],
             segments: model
                 .strands
                 .iter()
@@ -153,7 +180,7 @@ pub fn expanded_generalized_forces<T: Real>(
     ws: &mut Workspace<T>,
     out: &mut [T],
 ) {
-    forward(model, q, qd, qdd, gravity, &mut ws.motion);
+    forward(model, q, qd, qdd, gravity, false, &mut ws.motion);
     backward(model, &ws.motion, None, 0, external, &mut ws.known);
     expanded_sum(model, &ws.known, out);
 }
@@ -230,7 +257,7 @@ pub fn structure<T: Real>(
         return columns;
     }
     let zeros = vec![T::zero(); model.dof];
-    forward(model, q, qd, &zeros, true, &mut ws.motion);
+    forward(model, q, qd, &zeros, true, true, &mut ws.motion);
     friction::capstan_factors(model, q, qd, None, &mut ws.capstan);
     let rows = balance(model, ws);
     for (k, column) in model.tendons.iter().zip(&mut columns) {
@@ -300,7 +327,7 @@ pub fn system_sliding<T: Numeric>(
 ) -> Result<TensionSystem<T>> {
     let mut ws = Workspace::new(model);
     let zeros = vec![T::zero(); model.dof];
-    forward(model, q, &zeros, &zeros, true, &mut ws.motion);
+    forward(model, q, &zeros, &zeros, true, true, &mut ws.motion);
     friction::capstan_factors_sliding(model, q, &mut ws.capstan, |s, k, _| {
         T::from_f64(sigma[s][k])
     });
@@ -331,7 +358,9 @@ pub(crate) fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<A
         true,
         &mut ws.loads,
     );
-    tension::balance_rows(model, &ws.loads, &ws.friction)
+    let mut rows = vec![Affine::constant(T::zero(), nu); model.system.rows.len()];
+    tension::balance_rows(model, &ws.loads, &ws.friction, &mut rows);
+    rows
 }
 
 /// The recursion with every strand's ground-level tension known, `ground(unknown)`: the
@@ -369,6 +398,10 @@ fn with_ground_tensions<T: Real>(
 /// superposition: the recursion is linear in them. Only with capstan friction on guides,
 /// where `E` depends on the state, are the tensions carried as unknowns (`at_state` reads
 /// the state's `E` off the affine rows).
+///
+/// The results are written into `out`, whose buffers are reused (no allocation once they
+/// have the model's sizes; `sticking` is left to the caller).
+#[allow(clippy::too_many_arguments)]
 pub fn inverse_dynamics<T: Real>(
     model: &Model<T>,
     q: &[T],
@@ -377,35 +410,45 @@ pub fn inverse_dynamics<T: Real>(
     ws: &mut Workspace<T>,
     at_state: impl FnOnce(&Model<T>, &[Affine<T>]) -> Result<TensionSystem<T>>,
     distribute: impl FnOnce(&Model<T>, &TensionSystem<T>, &mut [T]) -> Result<()>,
-) -> Result<InverseDynamics<T>> {
-    let nu = model.system.unknowns.len();
-    forward(model, q, qd, qdd, true, &mut ws.motion);
+    out: &mut InverseDynamics<T>,
+) -> Result<()> {
+    forward(model, q, qd, qdd, true, true, &mut ws.motion);
     friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
     friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
     let state_system;
-    let (b, system) = if model.has_capstan() {
+    let system = if model.has_capstan() {
         let rows = balance(model, ws);
         state_system = at_state(model, &rows)?;
-        let b: Vec<T> = rows.iter().map(|r| r.constant).collect();
-        (b, &state_system)
+        refill(&mut ws.b, rows.iter().map(|r| r.constant));
+        &state_system
     } else {
         with_ground_tensions(model, ws, |_| T::zero());
-        let b = tension::balance_rows(model, &ws.tendon_loads, &ws.friction);
-        (b, &model.system)
+        tension::balance_rows(model, &ws.tendon_loads, &ws.friction, &mut ws.b);
+        &model.system
     };
-    let mut x = vec![T::zero(); nu];
-    tension::minimal_norm(model, system, &b, &mut x);
-    let x0 = x.clone();
-    distribute(model, system, &mut x)?;
+    let x = &mut out.unknowns;
+    refill(x, model.system.unknowns.iter().map(|_| T::zero()));
+    tension::minimal_norm(model, system, &ws.b, x);
+    refill(&mut ws.minimal, x.iter().copied());
+    distribute(model, system, x)?;
+    let (x, x0) = (&out.unknowns, &ws.minimal);
 
-    let motor_torques: Vec<T> = model.motors.iter().map(|m| x[m.unknown]).collect();
-    let tendon_tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
-    let minimal_norm_tensions = model.tendons.iter().map(|t| x0[t.unknown]).collect();
-    let null_space_tensions = model
-        .tendons
-        .iter()
-        .map(|t| x[t.unknown] - x0[t.unknown])
-        .collect();
+    refill(
+        &mut out.motor_torques,
+        model.motors.iter().map(|m| x[m.unknown]),
+    );
+    refill(
+        &mut out.tendon_tensions,
+        model.tendons.iter().map(|t| x[t.unknown]),
+    );
+    refill(
+        &mut out.minimal_norm_tensions,
+        model.tendons.iter().map(|t| x0[t.unknown]),
+    );
+    refill(
+        &mut out.null_space_tensions,
+        model.tendons.iter().map(|t| x[t.unknown] - x0[t.unknown]),
+    );
     // What the actuators deliver, `Σ c_m τ_m + A T`, is `M q̈ + h + g − Q_ext`: take it from
     // the tension-free pass over the same motion rather than from the solved tensions. A
     // redundant routing's null-space part, `A N λ`, vanishes only to rounding, so summing
@@ -413,60 +456,56 @@ pub fn inverse_dynamics<T: Real>(
     // the motion needs. The base reaction likewise (momentum balance: the tendons are
     // internal between the mechanism and its base, so their pulls cancel in it).
     backward(model, &ws.motion, None, 0, true, &mut ws.known);
-    let mut generalized_forces = vec![T::zero(); model.dof];
-    expanded_sum(model, &ws.known, &mut generalized_forces);
+    refill(
+        &mut out.generalized_forces,
+        (0..model.dof).map(|_| T::zero()),
+    );
+    expanded_sum(model, &ws.known, &mut out.generalized_forces);
     friction::apply(
         model,
         &ws.friction,
         Side::Delivered,
-        &mut generalized_forces,
+        &mut out.generalized_forces,
     );
-    let bearing_friction = model
-        .bodies
-        .iter()
-        .zip(&ws.friction)
-        .enumerate()
-        .filter(|(_, (b, _))| b.friction.is_some())
-        .map(|(i, (_, t))| (i, *t))
-        .collect();
-    let loop_sides = model
-        .loops
-        .iter()
-        .map(|l| l.strands.map(|s| x[model.strands[s].unknown]))
-        .collect();
-    let pulley_demands = model
-        .bodies
-        .iter()
-        .enumerate()
-        .filter(|(_, b)| matches!(b.kind, BodyKind::Pulley { .. }))
-        .map(|(i, _)| (i, tension::axial_demand(model, &ws.motion, i)))
-        .collect();
-    let (segment_tensions, bearings, base_reaction) = if model.routing_incomplete {
-        (None, None, None)
+    refill(
+        &mut out.bearing_friction,
+        (model.bodies.iter().zip(&ws.friction).enumerate())
+            .filter(|(_, (b, _))| b.friction.is_some())
+            .map(|(i, (_, t))| (i, *t)),
+    );
+    refill(
+        &mut out.loop_sides,
+        (model.loops.iter()).map(|l| l.strands.map(|s| x[model.strands[s].unknown])),
+    );
+    refill(
+        &mut out.pulley_demands,
+        (model.bodies.iter().enumerate())
+            .filter(|(_, b)| matches!(b.kind, BodyKind::Pulley { .. }))
+            .map(|(i, _)| (i, tension::axial_demand(model, &ws.motion, i))),
+    );
+    if model.routing_incomplete {
+        (out.segment_tensions, out.bearings, out.base_reaction) = (None, None, None);
     } else {
-        with_ground_tensions(model, ws, |k| x[k]);
-        let segs = ws.segments.clone();
-        let bearings = (0..model.bodies.len())
-            .map(|i| bearing(model, ws, q, &x, i))
-            .collect();
-        let base = (ws.known.base_force, ws.known.base_moment);
-        (Some(segs), Some(bearings), Some(base))
-    };
-    Ok(InverseDynamics {
-        generalized_forces,
-        motor_torques,
-        tendon_tensions,
-        minimal_norm_tensions,
-        null_space_tensions,
-        loop_sides,
-        segment_tensions,
-        pulley_demands,
-        bearings,
-        base_reaction,
-        bearing_friction,
-        sticking: Vec::new(),
-        unknowns: x,
-    })
+        with_ground_tensions(model, ws, |k| out.unknowns[k]);
+        let segments = out.segment_tensions.get_or_insert_with(Vec::new);
+        segments.resize_with(ws.segments.len(), Vec::new);
+        for (to, from) in segments.iter_mut().zip(&ws.segments) {
+            refill(to, from.iter().copied());
+        }
+        let bearings = out.bearings.get_or_insert_with(Vec::new);
+        refill(
+            bearings,
+            (0..model.bodies.len()).map(|i| bearing(model, ws, q, &out.unknowns, i)),
+        );
+        out.base_reaction = Some((ws.known.base_force, ws.known.base_moment));
+    }
+    Ok(())
+}
+
+/// `v`'s entries replaced by `values`, in the buffer `v` already has.
+fn refill<T>(v: &mut Vec<T>, values: impl IntoIterator<Item = T>) {
+    v.clear();
+    v.extend(values);
 }
 
 /// Bearing force and moment of body `i` from the pass with the solved unknowns `x`
@@ -491,7 +530,7 @@ fn bearing<T: Real>(
     // A spinning pulley's frame turns with it; report it in its housing frame (the
     // pulley frame at zero spin) like every other pulley.
     if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
-        let (sn, cs) = coupled(&b.coupling, q).sin_cos();
+        let (sn, cs) = coupled(&b.coupling, &model.coupled_joints[i], q).sin_cos();
         let spin = Mat3::rot_z(sn, cs);
         (spin.mul_vec(f), spin.mul_vec(n))
     } else {

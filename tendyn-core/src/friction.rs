@@ -66,14 +66,14 @@ pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> 
 /// `τ_f` of every body (0 where its bearing has no friction), written into `out` (one entry
 /// per body). `qdd`: the accelerations of inverse dynamics, or `None` in forward dynamics.
 pub fn bearing_torques<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, out: &mut [T]) {
-    for (o, b) in out.iter_mut().zip(&model.bodies) {
+    for ((o, b), joints) in out.iter_mut().zip(&model.bodies).zip(&model.coupled_joints) {
         *o = match b.friction {
             None => T::zero(),
             Some(f) => {
-                let rate = coupled(&b.coupling, qd);
+                let rate = coupled(&b.coupling, joints, qd);
                 let s = direction(
                     rate,
-                    qdd.map(|a| coupled(&b.coupling, a)),
+                    qdd.map(|a| coupled(&b.coupling, joints, a)),
                     model.friction_smoothing,
                 );
                 -(T::from_f64(f.coulomb) * s + T::from_f64(f.viscous) * rate)
@@ -181,8 +181,9 @@ pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
         .bodies
         .iter()
         .enumerate()
-        .filter(|(_, b)| {
-            b.friction.is_some() && coupled(&b.coupling, qd).abs() <= T::from_f64(REST)
+        .filter(|&(i, b)| {
+            b.friction.is_some()
+                && coupled(&b.coupling, &model.coupled_joints[i], qd).abs() <= T::from_f64(REST)
         })
         .map(|(i, _)| i)
         .collect()

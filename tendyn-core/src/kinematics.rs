@@ -31,6 +31,12 @@ pub struct Motion<T> {
     /// parent), gravity included, in the **parent's** frame: what the backward recursion
     /// hands a pulley's inertial force back to its carrier in (see `newton_euler::backward`).
     pub joint_accel: Vec3<T>,
+    /// Inertial force `m a_c` (N, Eq. 21), body frame.
+    pub inertial_force: Vec3<T>,
+    /// Inertial moment about the body-frame origin, `I ω̇ + ω × I ω + c × m a_c` (N·m,
+    /// Eq. 22 moved to the origin), body frame: what every backward pass over this motion
+    /// takes, computed once.
+    pub inertial_moment: Vec3<T>,
     /// Rate of the body's angle relative to its parent, `coupling · q̇` (rad/s).
     pub rate: T,
     /// Acceleration of the body's angle relative to its parent, `coupling · q̈` (rad/s²).
@@ -47,25 +53,29 @@ impl<T: Real> Motion<T> {
             accel: Vec3::zero(),
             com_accel: Vec3::zero(),
             joint_accel: Vec3::zero(),
+            inertial_force: Vec3::zero(),
+            inertial_moment: Vec3::zero(),
             rate: T::zero(),
             rate_dot: T::zero(),
         }
     }
 }
 
-/// `coupling · v` (Eqs. 9-10: a body's angle is linear in the joint coordinates).
-pub fn coupled<T: Real>(coupling: &[T], v: &[T]) -> T {
+/// `coupling · v` (Eqs. 9-10: a body's angle is linear in the joint coordinates), summed
+/// over `joints`, the coupling's nonzero entries ([`Model::coupled_joints`]).
+pub fn coupled<T: Real>(coupling: &[T], joints: &[usize], v: &[T]) -> T {
     let mut s = T::zero();
-    for (c, x) in coupling.iter().zip(v) {
-        s = s + *c * *x;
+    for &j in joints {
+        s = s + coupling[j] * v[j];
     }
     s
 }
 
-/// `ᵇR_parent` of a body at joint coordinates `q`.
-pub fn body_rotation<T: Real>(b: &Body<T>, q: &[T]) -> Mat3<T> {
+/// `ᵇR_parent` of a body at joint coordinates `q` (`joints`: its coupling's nonzero
+/// entries).
+pub fn body_rotation<T: Real>(b: &Body<T>, joints: &[usize], q: &[T]) -> Mat3<T> {
     let down = if b.spins {
-        let (s, c) = (coupled(&b.coupling, q) + b.offset).sin_cos();
+        let (s, c) = (coupled(&b.coupling, joints, q) + b.offset).sin_cos();
         b.pre.rotation * Mat3::rot_z(s, c) * b.post.rotation
     } else {
         b.pre.rotation * b.post.rotation
@@ -74,13 +84,17 @@ pub fn body_rotation<T: Real>(b: &Body<T>, q: &[T]) -> Mat3<T> {
 }
 
 /// Runs the forward recursion and writes one [`Motion`] per body into `out`.
-/// With `gravity == false` the base does not accelerate (for `M` and `h`).
+/// With `gravity == false` the base does not accelerate (for `M` and `h`). With
+/// `tendons == false` the inert bodies (massless pulleys that carry nothing), which only
+/// tendons load, are left as they were.
+#[allow(clippy::too_many_arguments)]
 pub fn forward<T: Real>(
     model: &Model<T>,
     q: &[T],
     qd: &[T],
     qdd: &[T],
     gravity: bool,
+    tendons: bool,
     out: &mut [Motion<T>],
 ) {
     let base_accel = if gravity {
@@ -88,14 +102,17 @@ pub fn forward<T: Real>(
     } else {
         Vec3::zero()
     };
-    for (i, b) in model.bodies.iter().enumerate() {
+    for (i, (b, joints)) in model.bodies.iter().zip(&model.coupled_joints).enumerate() {
+        if !tendons && model.inert[i] {
+            continue;
+        }
         let (w_p, wd_p, a_p) = match b.parent {
             None => (Vec3::zero(), Vec3::zero(), base_accel),
             Some(p) => (out[p].omega, out[p].omega_dot, out[p].accel),
         };
-        let r = body_rotation(b, q);
-        let rate = coupled(&b.coupling, qd);
-        let rate_dot = coupled(&b.coupling, qdd);
+        let r = body_rotation(b, joints, q);
+        let rate = coupled(&b.coupling, joints, qd);
+        let rate_dot = coupled(&b.coupling, joints, qdd);
         // Eqs. 2-3 (11-12): ω = R(ω_p) + θ̇ z, ω̇ = R ω̇_p + θ̈ z + (R ω_p) × θ̇ z.
         let w_in = r.mul_vec(w_p);
         let spin = b.axis.scale(rate);
@@ -110,7 +127,14 @@ pub fn forward<T: Real>(
         // Eq. 6 (15): the centre of mass.
         let c = b.com;
         let com_accel = accel + omega_dot.cross(c) + omega.cross(omega.cross(c));
+        // Eqs. 21-22.
+        let inertial_force = com_accel.scale(b.mass);
+        let spin_momentum = b.inertia.mul_vec(omega);
+        let inertial_moment =
+            b.inertia.mul_vec(omega_dot) + omega.cross(spin_momentum) + c.cross(inertial_force);
         out[i] = Motion {
+            inertial_force,
+            inertial_moment,
             rotation: r,
             omega,
             omega_dot,

@@ -460,18 +460,32 @@ pub struct Model<T> {
     /// coupling, in increasing order (derived from the `f64` couplings by
     /// [`coupled_joints`]; parameters rescale nonzero ratios and never change it).
     pub(crate) coupled_joints: Vec<Vec<usize>>,
+    /// For each body, whether it is a pulley without mass or inertia that carries nothing:
+    /// the tension-free recursion (`Q`, `M`, `h`, `g`) neither moves nor loads it.
+    pub(crate) inert: Vec<bool>,
 }
 
-/// The nonzero entries of each body's coupling ([`Model::coupled_joints`]).
-pub(crate) fn coupled_joints(bodies: &[Body<f64>]) -> Vec<Vec<usize>> {
-    bodies
+/// The nonzero entries of each body's coupling ([`Model::coupled_joints`]) and which
+/// bodies are inert (`Model::inert`), derived once from the `f64` bodies.
+pub(crate) fn structure_of(bodies: &[Body<f64>]) -> (Vec<Vec<usize>>, Vec<bool>) {
+    let coupled = bodies
         .iter()
         .map(|b| {
             (0..b.coupling.len())
                 .filter(|&j| b.coupling[j] != 0.0)
                 .collect()
         })
-        .collect()
+        .collect();
+    let inert = (0..bodies.len())
+        .map(|i| {
+            let b = &bodies[i];
+            matches!(b.kind, BodyKind::Pulley { .. })
+                && b.mass == 0.0
+                && b.inertia.rows.iter().flatten().all(|&x| x == 0.0)
+                && !bodies.iter().any(|c| c.parent == Some(i))
+        })
+        .collect();
+    (coupled, inert)
 }
 
 impl<T> Model<T> {
@@ -689,6 +703,7 @@ impl<T: Real> Model<T> {
             }),
             routing_incomplete: self.routing_incomplete,
             coupled_joints: self.coupled_joints.clone(),
+            inert: self.inert.clone(),
         }
     }
 }

@@ -271,18 +271,19 @@ pub fn backward<T: Real, L: Load<T>>(
     }
 
     for i in (0..nb).rev() {
+        if tensions.is_none() && model.inert[i] {
+            // Nothing loads it without tendons, and it carries nothing: its loads stay the
+            // zeros they were reset to.
+            out.axial[i] = out.force[i].dot(Vec3::unit_z());
+            continue;
+        }
         let b = &model.bodies[i];
         let m = &motion[i];
-        // Inertia force and moment (Eqs. 21-22).
-        let inertia_force = m.com_accel.scale(b.mass);
-        let spin_momentum = b.inertia.mul_vec(m.omega);
-        let inertia_moment = b.inertia.mul_vec(m.omega_dot) + m.omega.cross(spin_momentum);
         let joint_point = -b.joint_to_origin;
         // Eq. 19 / 23: force from the parent.
-        let f = L::known(inertia_force, unknowns).sub(&out.force[i]);
+        let f = L::known(m.inertial_force, unknowns).sub(&out.force[i]);
         // Eq. 20 / 24: moment from the parent about the joint point.
-        let needed = inertia_moment + b.com.cross(inertia_force);
-        let n = L::known(needed, unknowns)
+        let n = L::known(m.inertial_moment, unknowns)
             .sub(&out.moment[i])
             .sub(&f.moment_of(joint_point));
         out.axial[i] = n.dot(b.axis);

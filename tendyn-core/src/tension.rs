@@ -26,12 +26,7 @@ use crate::real::{Numeric, Real};
 /// Axial moment a pulley needs about its own axis to move as it does (inertia and gravity),
 /// taken about its centre: `z · (I ω̇ + ω × I ω + c × m a_c)`.
 pub fn axial_demand<T: Real>(model: &Model<T>, motion: &[Motion<T>], body: usize) -> T {
-    let b = &model.bodies[body];
-    let m = &motion[body];
-    let f = m.com_accel.scale(b.mass);
-    let n =
-        b.inertia.mul_vec(m.omega_dot) + m.omega.cross(b.inertia.mul_vec(m.omega)) + b.com.cross(f);
-    b.axis.dot(n)
+    model.bodies[body].axis.dot(motion[body].inertial_moment)
 }
 
 /// Tension of every segment of every strand (Eq. 24b), written into `out[s][k]`, each
@@ -74,7 +69,8 @@ pub fn segment_tensions<T: Real, S: LoadScalar<T>>(
     }
 }
 
-/// The balance rows, before motors and explicit tendons are added: numbers (`b` of
+/// The balance rows into `out` (one per row of `E`), before motors and explicit tendons
+/// are added: numbers (`b` of
 /// `E x = b`, from a pass with every unknown zero) or affine forms (whose constants are
 /// `b`). For a joint, `τ_j + Σ_coupled c_Pj τ_P`; for a driving pulley, its `τ`; for a
 /// loop, its pretension (a constant: the loop's row of `E` carries the strand tensions).
@@ -86,7 +82,8 @@ pub fn balance_rows<T: Real, L: Load<T>>(
     model: &Model<T>,
     loads: &Loads<T, L>,
     friction: &[T],
-) -> Vec<L::Scalar> {
+    out: &mut [L::Scalar],
+) {
     let n_unknowns = model.system.unknowns.len();
     let axial = |b: usize| {
         if model.bodies[b].friction.is_some() {
@@ -95,32 +92,28 @@ pub fn balance_rows<T: Real, L: Load<T>>(
             loads.axial[b]
         }
     };
-    model
-        .system
-        .rows
-        .iter()
-        .map(|row| match row {
-            Row::Joint(j) => {
-                let mut r = axial(*j);
-                for (i, b) in model.bodies.iter().enumerate() {
-                    if matches!(
-                        b.kind,
-                        BodyKind::Pulley {
-                            role: PulleyRole::Coupled,
-                            ..
-                        }
-                    ) {
-                        r = r.add(&axial(i).scale(b.coupling[*j]));
+    let rows = model.system.rows.iter().map(|row| match row {
+        Row::Joint(j) => {
+            let mut r = axial(*j);
+            for (i, b) in model.bodies.iter().enumerate() {
+                if matches!(
+                    b.kind,
+                    BodyKind::Pulley {
+                        role: PulleyRole::Coupled,
+                        ..
                     }
+                ) {
+                    r = r.add(&axial(i).scale(b.coupling[*j]));
                 }
-                r
             }
-            Row::Pulley(b) => axial(*b),
-            Row::Pretension(l) => {
-                L::Scalar::known(T::from_f64(model.loops[*l].pretension), n_unknowns)
-            }
-        })
-        .collect()
+            r
+        }
+        Row::Pulley(b) => axial(*b),
+        Row::Pretension(l) => L::Scalar::known(T::from_f64(model.loops[*l].pretension), n_unknowns),
+    });
+    for (o, r) in out.iter_mut().zip(rows) {
+        *o = r;
+    }
 }
 
 /// The tension system at a state where guides with friction make `E` depend on it

@@ -215,7 +215,7 @@ impl<'a> Validator<'a> {
                     }
                 )
             });
-        let coupled_joints = crate::model::coupled_joints(&bodies);
+        let (coupled_joints, inert) = crate::model::structure_of(&bodies);
         Ok(Model {
             name: f.name.clone(),
             gravity: Vec3::from_array(gravity),
@@ -249,6 +249,7 @@ impl<'a> Validator<'a> {
             external_wrench,
             routing_incomplete,
             coupled_joints,
+            inert,
         })
     }
 

@@ -65,7 +65,7 @@ impl Model<f64> {
                 format!("the external wrench acts on link {} of {dof}", w.link),
             ));
         }
-        let coupled_joints = crate::model::coupled_joints(&bodies);
+        let (coupled_joints, inert) = crate::model::structure_of(&bodies);
         Ok(Model {
             name: name.to_string(),
             gravity: Vec3::from_array(gravity),
@@ -91,6 +91,7 @@ impl Model<f64> {
             external_wrench,
             routing_incomplete: false,
             coupled_joints,
+            inert,
         })
     }
 }
