@@ -1662,3 +1662,43 @@ fn an_overflowing_state_names_the_input_to_blame() {
         "{shown}"
     );
 }
+
+#[test]
+fn more_than_thirty_links_are_refused_naming_the_limit() {
+    let links: String = (1..=31)
+        .map(|k| {
+            format!(
+                "        (name: \"l{k}\", dh: (a: 0.1, alpha: 0, d: 0, offset: 0), mass: 0.1),\n"
+            )
+        })
+        .collect();
+    let motors: String = (1..=31)
+        .map(|k| format!("        (name: \"m{k}\", on: Joint(\"l{k}\")),\n"))
+        .collect();
+    let text = format!(
+        "(\n    name: \"long\",\n    gravity: (0, -9.81, 0),\n    links: [\n{links}    ],\n    motors: [\n{motors}    ],\n)\n"
+    );
+    assert_invalid(&text, "long", "name: \"long\"", "at most 30 are supported");
+    // Thirty are fine.
+    let thirty = text
+        .replace(
+            "        (name: \"l31\", dh: (a: 0.1, alpha: 0, d: 0, offset: 0), mass: 0.1),\n",
+            "",
+        )
+        .replace("        (name: \"m31\", on: Joint(\"l31\")),\n", "");
+    parse(&thirty).unwrap();
+}
+
+#[test]
+fn capstan_friction_with_more_than_twelve_unknowns_is_refused_and_without_it_there_is_no_limit() {
+    let text = std::fs::read_to_string("../bench/mechanisms/chain12.ron").unwrap();
+    let model = parse(&text).unwrap();
+    assert_eq!(model.system().unknowns.len(), 13);
+    let capstans = tendyn_spec::guides::idlers_as_capstans(&text, 0.2);
+    assert_invalid(
+        &capstans,
+        "chain12",
+        "name: \"chain12\"",
+        "with capstan friction on guides (`mu > 0`) at most 12 are supported",
+    );
+}

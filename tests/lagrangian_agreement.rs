@@ -54,7 +54,7 @@ fn check_mechanism(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         // (Affine rows carry a bounded number of unknowns; beyond it the power balance
         // below still checks the tensions against the transmission.)
         let rows = if model.system().unknowns.len() <= MAX_UNKNOWNS {
-            solver.last_balance_rows(model).unwrap()
+            solver.balance_rows(model, &q, &qd, &qdd).unwrap()
         } else {
             Vec::new()
         };

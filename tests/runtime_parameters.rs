@@ -122,7 +122,7 @@ fn one_data_serves_a_mechanism_at_any_parameters_and_refuses_another_shape() {
         data.forward_dynamics_scale(&other, &z, &z, &m, &t)
             .unwrap_err(),
     );
-    refused(data.last_balance_rows(&other).unwrap_err());
+    refused(data.balance_rows(&other, &z, &z, &z).unwrap_err());
 }
 
 /// A tree of rigid bodies built in code has no tendons or motors: inverse dynamics says so
@@ -223,4 +223,53 @@ fn gravity_set_at_run_time_is_checked_like_the_file() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("gravity") && err.contains("range"), "{err}");
+}
+
+/// A massless drum whose mass is a parameter is not massless for good: set at run time,
+/// its mass reaches `Q`, `h`, `g` and `M` alike, as when typed into the file.
+#[test]
+fn a_drum_massless_at_its_nominal_value_carries_the_mass_set_at_run_time() {
+    let drum = "            radius: 0.02,\n            fixed: true,";
+    let text = example("example1_endless");
+    assert!(text.contains(drum));
+    let with_mass = |mass: &str| {
+        text.replacen(
+            drum,
+            &format!("            radius: 0.02,\n            fixed: true,\n            mass: {mass},\n            com: (0.01, 0.005, 0.0),"),
+            1,
+        )
+    };
+    let parametric = with_mass("\"md\"").replacen(
+        "(\n    name:",
+        "(\n    parameters: [(name: \"md\", value: 0.0)],\n    name:",
+        1,
+    );
+    let model = tendyn_core::parse(&parametric).unwrap();
+    let set = model.with_parameters(&[0.3]).unwrap();
+    let typed = tendyn_core::parse(&with_mass("0.3")).unwrap();
+    let (q, qd, qdd) = ([0.4, -1.1], [1.5, -0.7], [2.0, 3.0]);
+    let (mut a, mut b) = (Data::new(&set), Data::new(&typed));
+    assert_eq!(
+        a.generalized_forces(&set, &q, &qd, &qdd).unwrap(),
+        b.generalized_forces(&typed, &q, &qd, &qdd).unwrap()
+    );
+    assert_eq!(
+        a.bias(&set, &q, &qd).unwrap(),
+        b.bias(&typed, &q, &qd).unwrap()
+    );
+    assert_eq!(a.gravity(&set, &q).unwrap(), b.gravity(&typed, &q).unwrap());
+    assert_eq!(
+        a.mass_matrix(&set, &q).unwrap(),
+        b.mass_matrix(&typed, &q).unwrap()
+    );
+    // And the nominal (massless) drum changes nothing.
+    let nominal = tendyn_core::parse(&example("example1_endless")).unwrap();
+    assert_eq!(
+        Data::new(&model)
+            .generalized_forces(&model, &q, &qd, &qdd)
+            .unwrap(),
+        Data::new(&nominal)
+            .generalized_forces(&nominal, &q, &qd, &qdd)
+            .unwrap()
+    );
 }

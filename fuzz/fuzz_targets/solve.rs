@@ -177,7 +177,7 @@ fuzz_target!(|data: &[u8]| {
     let mut s = Data::new(model);
     if let Ok(r) = s.inverse_dynamics(model, &q, &qd, &qdd) {
         check_inverse(r, state);
-        let _ = s.last_balance_rows(model);
+        let _ = s.balance_rows(model, &q, &qd, &qdd);
     }
     if let Ok(x) = s.generalized_forces(model, &q, &qd, &qdd) {
         assert_finite("generalized_forces", x, state);

@@ -9,7 +9,7 @@
 //! kinetic energy is `½ θ̇ᵀ M_θ θ̇` and `θ̇ = C q̇` (the couplings as rows of `C`), so
 //!
 //! ```text
-//! M = Cᵀ M_θ C,   M_θ[i][k] = s_kᵀ I^C_i s_i   (k = i or an ancestor of i; 0 otherwise)
+//! M = Cᵀ M_θ C,   M_θ[k][i] = s_kᵀ I^C_i s_i   (k = i or an ancestor of i; 0 otherwise)
 //! ```
 //!
 //! where `I^C_i` is the composite inertia of `i` and everything it carries and `s_i` its

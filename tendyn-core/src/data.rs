@@ -20,8 +20,8 @@
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::dynamics::{
-    balance, bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces, gravity,
-    inverse_dynamics, mass_matrix, structure, InverseDynamics, Workspace,
+    balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces,
+    gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics, Workspace,
 };
 use crate::error::{Error, Result};
 use crate::friction;
@@ -50,13 +50,14 @@ pub struct Data<T: Real> {
     inverse_dynamics: InverseDynamics<T>,
 }
 
-/// What the work buffers' sizes depend on: joints, bodies, unknowns of the tension
-/// system, and each strand's segments and idler steps.
+/// What the work buffers' sizes depend on: joints, bodies, unknowns and rows of the
+/// tension system, and each strand's segments and idler steps.
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct Shape {
     dof: usize,
     bodies: usize,
     unknowns: usize,
+    rows: usize,
     strands: Vec<(usize, usize)>,
 }
 
@@ -66,6 +67,7 @@ impl Shape {
             dof: model.dof(),
             bodies: model.bodies().len(),
             unknowns: model.system().unknowns.len(),
+            rows: model.system().rows.len(),
             strands: model
                 .strands()
                 .iter()
@@ -417,12 +419,17 @@ impl<T: Numeric> Data<T> {
         })
     }
 
-    /// The balance rows at the state of the last inverse-dynamics call, as affine forms in
-    /// the unknowns (for checks of the recursion against the transmission's `E`); `model`
-    /// must be the one that call was given (a model of another shape is an error; one of
-    /// the same shape, another parameter set, gives that model's rows at the last call's
-    /// motion). At most [`MAX_UNKNOWNS`] unknowns.
-    pub fn last_balance_rows(&mut self, model: &Model<T>) -> Result<Vec<Affine<T>>> {
+    /// The balance rows of `E x = b` at a state, as affine forms in the unknowns (for
+    /// checks of the recursion against the transmission's `E`: their coefficients are
+    /// `−E` on the strand columns, their constants `b`). At most [`MAX_UNKNOWNS`] unknowns;
+    /// checked as [`Data::inverse_dynamics`] is.
+    pub fn balance_rows(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<Vec<Affine<T>>> {
         self.check_model(model)?;
         let nu = model.system().unknowns.len();
         if nu > MAX_UNKNOWNS {
@@ -431,7 +438,10 @@ impl<T: Numeric> Data<T> {
                 model.name()
             )));
         }
-        Ok(balance(model, &mut self.ws))
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
+        Ok(balance_at(model, q, qd, qdd, &mut self.ws))
     }
 }
 

@@ -7,10 +7,11 @@
 //! can do: input checks, the tension distribution for null spaces of any dimension, the
 //! positive-definiteness check of forward dynamics.
 //!
-//! `M`, `h` and `g` come from the expanded-tree form of the recursion: every body's axial
+//! `Q`, `h` and `g` come from the expanded-tree form of the recursion: every body's axial
 //! joint moment `τ_b` mapped to the joint coordinates through its coupling,
 //! `Q = Σ_b c_bᵀ τ_b` (virtual work), with the tendons left out (their forces are internal
-//! once the pulleys' couplings hold).
+//! once the pulleys' couplings hold); `M` from the composite-rigid-body algorithm over the
+//! same expanded tree ([`crate::composite`]).
 
 use crate::affine::Affine;
 use crate::composite;
@@ -109,7 +110,7 @@ pub struct Workspace<T: Real> {
     pub(crate) motion: Vec<Motion<T>>,
     /// Loads affine in the unknowns (the state's `E` with capstan friction).
     pub(crate) loads: Loads<T>,
-    /// Plain loads (the expanded-tree pass: `M`, `h`, `g`, `Q`).
+    /// Plain loads (the tension-free expanded-tree pass: `Q`, `h`, `g`).
     pub(crate) known: Loads<T, Vec3<T>>,
     /// Tension of every segment of every strand, affine in the unknowns
     /// ([`tension::segment_tensions`]; with capstan friction).
@@ -325,6 +326,14 @@ pub fn system_sliding<T: Numeric>(
     q: &[T],
     sigma: &[Vec<f64>],
 ) -> Result<TensionSystem<T>> {
+    let nu = model.system.unknowns.len();
+    if nu > crate::affine::MAX_UNKNOWNS {
+        return Err(crate::Error::State(format!(
+            "`{}` has {nu} unknowns; the sliding systems are read off affine rows of at most {}",
+            model.name,
+            crate::affine::MAX_UNKNOWNS
+        )));
+    }
     let mut ws = Workspace::new(model);
     let zeros = vec![T::zero(); model.dof];
     forward(model, q, &zeros, &zeros, true, true, &mut ws.motion);
@@ -340,7 +349,7 @@ pub fn system_sliding<T: Numeric>(
 /// them as unknowns (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).
 /// Needed only where `E` must be read off the recursion (capstan friction on guides, and
 /// the checks of `E`); at most [`crate::affine::MAX_UNKNOWNS`] unknowns.
-pub(crate) fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
+fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
     let nu = model.system.unknowns.len();
     tension::segment_tensions(
         model,
@@ -388,6 +397,21 @@ fn with_ground_tensions<T: Real>(
         true,
         &mut ws.tendon_loads,
     );
+}
+
+/// The balance rows as affine forms at a state (`balance` after the forward pass and the
+/// friction of that state): what [`crate::Data::balance_rows`] checks `E` with.
+pub(crate) fn balance_at<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    ws: &mut Workspace<T>,
+) -> Vec<Affine<T>> {
+    forward(model, q, qd, qdd, true, true, &mut ws.motion);
+    friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
+    friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
+    balance(model, ws)
 }
 
 /// Inverse dynamics by the paper's recursion, with the unknowns solved apart from it: a

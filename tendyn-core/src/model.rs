@@ -466,8 +466,12 @@ pub struct Model<T> {
 }
 
 /// The nonzero entries of each body's coupling ([`Model::coupled_joints`]) and which
-/// bodies are inert (`Model::inert`), derived once from the `f64` bodies.
-pub(crate) fn structure_of(bodies: &[Body<f64>]) -> (Vec<Vec<usize>>, Vec<bool>) {
+/// bodies are inert (`Model::inert`), derived once from the `f64` bodies and the
+/// parameter slots (a mass a parameter sets is not zero for good).
+pub(crate) fn structure_of(
+    bodies: &[Body<f64>],
+    slots: &[(Slot, usize)],
+) -> (Vec<Vec<usize>>, Vec<bool>) {
     let coupled = bodies
         .iter()
         .map(|b| {
@@ -483,6 +487,9 @@ pub(crate) fn structure_of(bodies: &[Body<f64>]) -> (Vec<Vec<usize>>, Vec<bool>)
                 && b.mass == 0.0
                 && b.inertia.rows.iter().flatten().all(|&x| x == 0.0)
                 && !bodies.iter().any(|c| c.parent == Some(i))
+                && !slots.iter().any(|(slot, _)| {
+                    matches!(*slot, Slot::Mass(b) | Slot::Com(b, _) | Slot::Inertia(b, _, _) if b == i)
+                })
         })
         .collect();
     (coupled, inert)
@@ -947,6 +954,8 @@ impl Model<f64> {
                 }
             }
         }
+        // A named mass makes its body no longer inert.
+        (m.coupled_joints, m.inert) = structure_of(&m.bodies, &m.parameter_slots);
         Ok(m)
     }
 

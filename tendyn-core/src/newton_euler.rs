@@ -2,9 +2,11 @@
 //! base, with the tendon tensions left as unknowns (paper Eqs. 19-24).
 //!
 //! A primary link always has more unknowns than balance equations (joint force, joint
-//! moment and tendon tensions, Section 7), so every force here is affine in the unknowns
-//! of the tension system ([`crate::affine`]); the unknowns are solved at the base
-//! ([`crate::tension`]) and substituted back.
+//! moment and tendon tensions, Section 7), so the unknowns of the tension system are
+//! solved at the base ([`crate::tension`]). The recursion is linear in them, so it runs
+//! with known tensions ([`Load`] a plain vector: every unknown zero for `b`, then the
+//! solved ones for the bearings), or, where capstan friction makes `E` depend on the state,
+//! with every force affine in them ([`crate::affine`]), which gives `E` too.
 //!
 //! For body `b` with parent `p`, in `b`'s frame, with `F = m a_c` and `N = I ω̇ + ω × I ω`
 //! (Eqs. 21-22):

@@ -17,8 +17,8 @@
 //! - joint speeds to 1e3 rad/s, angles to 1e4 rad, accelerations to 1e6 rad/s²;
 //! - chains of 2 to 12 links, motor-driven with 2.5 explicitly coupled pulleys per link
 //!   (30 at 12 links), and of 2 to 11 links with a tendon-driven proximal block over idlers
-//!   (an open-ended routing needs one tendon more than the joints it drives, and a
-//!   mechanism has at most 12 unknowns, so a tendon-driven chain stops at 11 links);
+//!   (the block is at most four joints; the 12-link chain of `bench/mechanisms`, with 13
+//!   unknowns, is checked by `tests/lagrangian_agreement.rs`);
 //! - a distal link from 1e-3 of its nominal mass down to zero (near-singular `M`);
 //! - a loop whose pretension the dynamics nearly exhausts and exceeds, and a tendon whose
 //!   `max_tension` some states need more than.

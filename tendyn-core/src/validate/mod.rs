@@ -17,8 +17,9 @@ mod tension_system;
 
 pub use bodies::dh_post;
 pub use ranges::{
-    MAX_ACCELERATION, MAX_ANGLE, MAX_FORCE, MAX_FRICTION_TORQUE, MAX_INERTIA, MAX_LENGTH, MAX_MASS,
-    MAX_MOMENT, MAX_RATIO, MAX_SMOOTHING, MAX_VISCOUS, MIN_RADIUS, MIN_SMOOTHING,
+    MAX_ACCELERATION, MAX_ANGLE, MAX_FORCE, MAX_FRICTION_TORQUE, MAX_INERTIA, MAX_LENGTH,
+    MAX_LINKS, MAX_MASS, MAX_MOMENT, MAX_RATIO, MAX_SMOOTHING, MAX_VISCOUS, MIN_RADIUS,
+    MIN_SMOOTHING,
 };
 
 use crate::error::{Error, Location, Result};
@@ -173,6 +174,16 @@ impl<'a> Validator<'a> {
         if f.links.is_empty() {
             return Err(self.invalid(&f.name, "a mechanism needs at least one link"));
         }
+        if f.links.len() > ranges::MAX_LINKS {
+            return Err(self.invalid(
+                &f.name,
+                format!(
+                    "{} links: at most {} are supported (a position sums every link's length,                      whose square must stay far from the scalar's range)",
+                    f.links.len(),
+                    ranges::MAX_LINKS
+                ),
+            ));
+        }
         self.unique_names(f)?;
         let n = f.links.len();
         let (mut bodies, pulleys) = self.bodies(f)?;
@@ -215,7 +226,8 @@ impl<'a> Validator<'a> {
                     }
                 )
             });
-        let (coupled_joints, inert) = crate::model::structure_of(&bodies);
+        let parameter_slots = parameter_slots(f);
+        let (coupled_joints, inert) = crate::model::structure_of(&bodies, &parameter_slots);
         Ok(Model {
             name: f.name.clone(),
             gravity: Vec3::from_array(gravity),
@@ -227,7 +239,7 @@ impl<'a> Validator<'a> {
                     value: p.value,
                 })
                 .collect(),
-            parameter_slots: parameter_slots(f),
+            parameter_slots,
             dof: n,
             bodies,
             strands: strands

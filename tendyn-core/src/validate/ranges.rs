@@ -133,6 +133,9 @@ pub(super) fn shown(v: f64) -> String {
 /// The largest size of a length (DH `a` and `d`, centres of mass, pulley heights and
 /// origins, tendon exits, the external wrench's point), m.
 pub const MAX_LENGTH: f64 = 1e6;
+/// The most links a mechanism may have: a position sums at most this many lengths, so it
+/// stays within `3e7` m and its square below `1e15` (format.md §12).
+pub const MAX_LINKS: usize = 30;
 /// The smallest pitch radius, m (the largest is [`MAX_LENGTH`]).
 pub const MIN_RADIUS: f64 = 1e-9;
 /// The largest mass, kg.

@@ -37,6 +37,16 @@ impl Model<f64> {
             at: Location::default(),
             problem,
         };
+        if dof > super::ranges::MAX_LINKS {
+            return Err(invalid(
+                name,
+                format!(
+                    "{dof} joints: at most {} are supported (a position sums every link's \
+                     length, whose square must stay far from the scalar's range)",
+                    super::ranges::MAX_LINKS
+                ),
+            ));
+        }
         if dof == 0 || bodies.len() < dof {
             return Err(invalid(
                 name,
@@ -65,7 +75,7 @@ impl Model<f64> {
                 format!("the external wrench acts on link {} of {dof}", w.link),
             ));
         }
-        let (coupled_joints, inert) = crate::model::structure_of(&bodies);
+        let (coupled_joints, inert) = crate::model::structure_of(&bodies, &[]);
         Ok(Model {
             name: name.to_string(),
             gravity: Vec3::from_array(gravity),
