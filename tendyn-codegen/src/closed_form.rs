@@ -463,7 +463,8 @@ impl Expander<'_, '_> {
             self.g,
             self.monos,
             &self.terms[p.range()],
-        ))?;
+            self.max_terms,
+        )?)?;
         Some(horner(self.g, self.rank, &mut p))
     }
 }
@@ -472,12 +473,22 @@ use tendyn_core::Real;
 
 /// Replaces `cos^k` (k ≥ 2) by `cos^(k−2) (1 − sin²)` for every angle whose sine and cosine
 /// both occur, until no such power is left. The terms come out in no particular order
-/// (what follows does not depend on it).
-fn reduce_pythagoras(g: &Graph, monos: &Monomials, p: &[Term]) -> Vec<(Monomial, DoubleDouble)> {
+/// (what follows does not depend on it). `None` once more than `max_terms` terms result
+/// or are pending: a monomial with high powers of several cosines multiplies into many
+/// terms, and such a form cannot beat the trace.
+fn reduce_pythagoras(
+    g: &Graph,
+    monos: &Monomials,
+    p: &[Term],
+    max_terms: usize,
+) -> Option<Vec<(Monomial, DoubleDouble)>> {
     let mut pending: Vec<(Monomial, DoubleDouble)> =
         p.iter().map(|&(m, c)| (monos.get(m).clone(), c)).collect();
     let mut out: NodeMap<Monomial, DoubleDouble> = NodeMap::default();
     while let Some((m, c)) = pending.pop() {
+        if out.len() + pending.len() > max_terms {
+            return None;
+        }
         let hit = m
             .iter()
             .position(|&(v, k)| k >= 2 && matches!(g.node(v), Node::Cos(a) if g_has_sin(g, a)));
@@ -503,7 +514,7 @@ fn reduce_pythagoras(g: &Graph, monos: &Monomials, p: &[Term]) -> Vec<(Monomial,
             }
         }
     }
-    out.into_iter().collect()
+    Some(out.into_iter().collect())
 }
 
 fn g_has_sin(g: &Graph, a: Id) -> bool {
@@ -657,4 +668,37 @@ impl Collector {
 /// The collected closed form of `roots`, built into `g` (see [`Collector::collect`]).
 pub fn collect(g: &mut Graph, roots: &[Id], rank: &dyn Rank, max_terms: usize) -> Option<Vec<Id>> {
     Collector::new(max_terms).collect(g, roots, rank, max_terms)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::Sym;
+
+    /// `cos(x)¹² cos(y)¹²` is one monomial, but `1 − sin²` for each square makes it 49
+    /// terms: the expansion stops at its limit instead of building them.
+    #[test]
+    fn the_pythagorean_reduction_stops_at_the_term_limit() {
+        let (mut g, root) = Graph::default().scope(|| {
+            let (x, y) = (Sym::input("x"), Sym::input("y"));
+            let _ = (x.sin(), y.sin());
+            let (cx, cy) = (x.cos(), y.cos());
+            let mut r = cx * cy;
+            for _ in 0..11 {
+                r = r * cx * cy;
+            }
+            r.0
+        });
+        assert!(collect(&mut g, &[root], &StateRank, 20).is_none());
+        let reduced = collect(&mut g, &[root], &StateRank, 64).expect("within the limit");
+        // The reduced form is the product: its 49 terms of alternating sign sum to it up to
+        // their own size (at most 2¹² in all, times the rounding of each).
+        let at = |ids: &[Id]| g.eval(ids, &[0.3, -1.1])[0];
+        let want = (0.3f64.cos() * (-1.1f64).cos()).powi(12);
+        assert!(
+            (at(&reduced) - want).abs() <= 4096.0 * 1e-15,
+            "{} {want}",
+            at(&reduced)
+        );
+    }
 }
