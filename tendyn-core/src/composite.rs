@@ -44,7 +44,7 @@
 //! link).
 
 use crate::kinematics::coupled;
-use crate::model::{Body, Model};
+use crate::model::{Body, BodyPattern, Model};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
@@ -98,9 +98,12 @@ impl<T: Real> Work<T> {
         }
         let walks = (0..nb)
             .map(|k| {
-                bodies[k]
-                    .parent
-                    .is_some_and(|p| model.coupled_joints()[k].iter().any(|&j| !below[p * n + j]))
+                bodies[k].parent.is_some_and(|p| {
+                    model.patterns()[k]
+                        .joints
+                        .iter()
+                        .any(|&j| !below[p * n + j])
+                })
             })
             .collect();
         let zero = Vec3::zero();
@@ -161,35 +164,49 @@ fn congruence<T: Real>(r: &Mat3<T>, s: &Mat3<T>) -> Mat3<T> {
 }
 
 /// A vector of body `b`'s frame in its parent's axes: `pre · RotZ(θ) · post` one factor at a
-/// time.
-fn to_parent<T: Real>(b: &Body<T>, spin: (T, T), v: Vec3<T>) -> Vec3<T> {
-    let v = b.post.rotation.mul_vec(v);
-    let v = if b.spins {
-        Mat3::rot_z(spin.0, spin.1).mul_vec(v)
-    } else {
-        v
-    };
-    b.pre.rotation.mul_vec(v)
+/// time, those its pattern knows to be the identity skipped.
+fn to_parent<T: Real>(b: &Body<T>, pattern: &BodyPattern, spin: (T, T), v: Vec3<T>) -> Vec3<T> {
+    let mut v = v;
+    if !pattern.plain_post {
+        v = b.post.rotation.mul_vec(v);
+    }
+    if b.spins {
+        v = Mat3::rot_z(spin.0, spin.1).mul_vec(v);
+    }
+    if !pattern.plain_pre {
+        v = b.pre.rotation.mul_vec(v);
+    }
+    v
 }
 
 /// A symmetric tensor of body `b`'s frame in its parent's axes, factor by factor.
-fn tensor_to_parent<T: Real>(b: &Body<T>, spin: (T, T), s: &Mat3<T>) -> Mat3<T> {
-    let s = congruence(&b.post.rotation, s);
-    let s = if b.spins {
-        congruence(&Mat3::rot_z(spin.0, spin.1), &s)
-    } else {
-        s
-    };
-    congruence(&b.pre.rotation, &s)
+fn tensor_to_parent<T: Real>(
+    b: &Body<T>,
+    pattern: &BodyPattern,
+    spin: (T, T),
+    s: &Mat3<T>,
+) -> Mat3<T> {
+    let mut s = *s;
+    if !pattern.plain_post {
+        s = congruence(&b.post.rotation, &s);
+    }
+    if b.spins {
+        s = congruence(&Mat3::rot_z(spin.0, spin.1), &s);
+    }
+    if !pattern.plain_pre {
+        s = congruence(&b.pre.rotation, &s);
+    }
+    s
 }
 
 /// A wrench about body `k`'s joint point in its frame, carried to its parent's axes and
 /// joint point (the joint point is `pre`'s translation from the parent's origin, which is
 /// `p` from the parent's joint point).
-fn carry<T: Real>(bodies: &[Body<T>], k: usize, spin: (T, T), (f, m): Wrench<T>) -> Wrench<T> {
+fn carry<T: Real>(model: &Model<T>, k: usize, spin: (T, T), (f, m): Wrench<T>) -> Wrench<T> {
+    let (bodies, pattern) = (model.bodies(), &model.patterns()[k]);
     let b = &bodies[k];
-    let f = to_parent(b, spin, f);
-    let m = to_parent(b, spin, m) + b.pre.translation.cross(f);
+    let f = to_parent(b, pattern, spin, f);
+    let m = to_parent(b, pattern, spin, m) + b.pre.translation.cross(f);
     let parent = b.parent.expect("a body with a parent");
     (f, m + bodies[parent].joint_to_origin.cross(f))
 }
@@ -214,7 +231,7 @@ fn add_column<T: Real>(out: &mut [T], n: usize, ck: &[T], pattern: &[usize], j: 
 pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: &mut [T]) {
     let bodies = model.bodies();
     let n = model.dof();
-    let joints = model.coupled_joints();
+    let patterns = model.patterns();
     let Work {
         composite,
         columns,
@@ -222,10 +239,10 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         walks,
     } = work;
     // Each body's own inertia about its origin.
-    for ((b, c), pattern) in bodies.iter().zip(composite.iter_mut()).zip(joints) {
+    for ((b, c), pattern) in bodies.iter().zip(composite.iter_mut()).zip(patterns) {
         // The angle as the forward recursion forms it, so that traces share its sine.
         c.spin = if b.spins {
-            (coupled(&b.coupling, pattern, q) + b.offset).sin_cos()
+            (coupled(&b.coupling, &pattern.joints, q) + b.offset).sin_cos()
         } else {
             (T::zero(), T::one())
         };
@@ -239,7 +256,7 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
     // its composite and its columns hold everything it carries.
     for k in (0..bodies.len()).rev() {
         let b = &bodies[k];
-        let (c, ck, pattern) = (&mut composite[k], &b.coupling, &joints[k]);
+        let (c, ck, pattern) = (&mut composite[k], &b.coupling, &patterns[k].joints);
         // About the joint point, from which the origin is `p`.
         let p = b.joint_to_origin;
         c.inertia = add(&c.inertia, &point_shift(p, c.mass, c.first_moment));
@@ -261,11 +278,18 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
             // M_θ[a][k] at each ancestor a, weighted by both couplings.
             let (mut wrench, mut at) = (own, k);
             while bodies[at].parent.is_some() {
-                wrench = carry(bodies, at, composite[at].spin, wrench);
+                wrench = carry(model, at, composite[at].spin, wrench);
                 at = bodies[at].parent.expect("checked");
                 let e = bodies[at].axis.dot(wrench.1);
                 for &j in pattern {
-                    add_column(out, n, &bodies[at].coupling, &joints[at], j, ck[j] * e);
+                    add_column(
+                        out,
+                        n,
+                        &bodies[at].coupling,
+                        &patterns[at].joints,
+                        j,
+                        ck[j] * e,
+                    );
                 }
             }
         } else {
@@ -285,7 +309,7 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
             if !present[k * n + j] {
                 continue;
             }
-            let (f, m) = carry(bodies, k, c.spin, columns[k * n + j]);
+            let (f, m) = carry(model, k, c.spin, columns[k * n + j]);
             let s = &mut columns[parent * n + j];
             *s = if present[parent * n + j] {
                 (s.0 + f, s.1 + m)
@@ -296,9 +320,9 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         }
         // The composite moves to the parent: its axes, then about its origin.
         let r = b.pre.translation;
-        let h = to_parent(b, c.spin, c.first_moment);
+        let h = to_parent(b, &patterns[k], c.spin, c.first_moment);
         let inertia = add(
-            &tensor_to_parent(b, c.spin, &c.inertia),
+            &tensor_to_parent(b, &patterns[k], c.spin, &c.inertia),
             &point_shift(r, c.mass, h),
         );
         let to = &mut composite[parent];

@@ -554,7 +554,7 @@ fn bearing<T: Real>(
     // A spinning pulley's frame turns with it; report it in its housing frame (the
     // pulley frame at zero spin) like every other pulley.
     if b.spins && matches!(b.kind, BodyKind::Pulley { .. }) {
-        let (sn, cs) = coupled(&b.coupling, &model.coupled_joints[i], q).sin_cos();
+        let (sn, cs) = coupled(&b.coupling, &model.patterns[i].joints, q).sin_cos();
         let spin = Mat3::rot_z(sn, cs);
         (spin.mul_vec(f), spin.mul_vec(n))
     } else {

@@ -66,7 +66,8 @@ pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> 
 /// `τ_f` of every body (0 where its bearing has no friction), written into `out` (one entry
 /// per body). `qdd`: the accelerations of inverse dynamics, or `None` in forward dynamics.
 pub fn bearing_torques<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, out: &mut [T]) {
-    for ((o, b), joints) in out.iter_mut().zip(&model.bodies).zip(&model.coupled_joints) {
+    for ((o, b), pattern) in out.iter_mut().zip(&model.bodies).zip(&model.patterns) {
+        let joints = &pattern.joints;
         *o = match b.friction {
             None => T::zero(),
             Some(f) => {
@@ -183,7 +184,7 @@ pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
         .enumerate()
         .filter(|&(i, b)| {
             b.friction.is_some()
-                && coupled(&b.coupling, &model.coupled_joints[i], qd).abs() <= T::from_f64(REST)
+                && coupled(&b.coupling, &model.patterns[i].joints, qd).abs() <= T::from_f64(REST)
         })
         .map(|(i, _)| i)
         .collect()

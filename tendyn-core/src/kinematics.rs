@@ -9,7 +9,7 @@
 //! its acceleration is the parent's there (Eq. 5, and Eq. 14 with the carrier's motion).
 //! Gravity enters as an upward acceleration of the base (`v̇_0 = −g`).
 
-use crate::model::{Body, Model};
+use crate::model::{Body, BodyPattern, Model};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
@@ -62,7 +62,7 @@ impl<T: Real> Motion<T> {
 }
 
 /// `coupling · v` (Eqs. 9-10: a body's angle is linear in the joint coordinates), summed
-/// over `joints`, the coupling's nonzero entries ([`Model::coupled_joints`]).
+/// over `joints`, the coupling's nonzero entries ([`BodyPattern::joints`]).
 pub fn coupled<T: Real>(coupling: &[T], joints: &[usize], v: &[T]) -> T {
     let mut s = T::zero();
     for &j in joints {
@@ -71,15 +71,21 @@ pub fn coupled<T: Real>(coupling: &[T], joints: &[usize], v: &[T]) -> T {
     s
 }
 
-/// `ᵇR_parent` of a body at joint coordinates `q` (`joints`: its coupling's nonzero
-/// entries).
-pub fn body_rotation<T: Real>(b: &Body<T>, joints: &[usize], q: &[T]) -> Mat3<T> {
-    let down = if b.spins {
-        let (s, c) = (coupled(&b.coupling, joints, q) + b.offset).sin_cos();
-        b.pre.rotation * Mat3::rot_z(s, c) * b.post.rotation
+/// `ᵇR_parent` of a body at joint coordinates `q`: `(pre · RotZ(angle) · post)ᵀ`, the
+/// factors its pattern knows to be the identity skipped.
+pub fn body_rotation<T: Real>(b: &Body<T>, pattern: &BodyPattern, q: &[T]) -> Mat3<T> {
+    let mut down = if pattern.plain_post {
+        Mat3::identity()
     } else {
-        b.pre.rotation * b.post.rotation
+        b.post.rotation
     };
+    if b.spins {
+        let (s, c) = (coupled(&b.coupling, &pattern.joints, q) + b.offset).sin_cos();
+        down = Mat3::rot_z(s, c) * down;
+    }
+    if !pattern.plain_pre {
+        down = b.pre.rotation * down;
+    }
     down.transpose()
 }
 
@@ -102,17 +108,17 @@ pub fn forward<T: Real>(
     } else {
         Vec3::zero()
     };
-    for (i, (b, joints)) in model.bodies.iter().zip(&model.coupled_joints).enumerate() {
-        if !tendons && model.inert[i] {
+    for (i, (b, pattern)) in model.bodies.iter().zip(&model.patterns).enumerate() {
+        if !tendons && pattern.inert {
             continue;
         }
         let (w_p, wd_p, a_p) = match b.parent {
             None => (Vec3::zero(), Vec3::zero(), base_accel),
             Some(p) => (out[p].omega, out[p].omega_dot, out[p].accel),
         };
-        let r = body_rotation(b, joints, q);
-        let rate = coupled(&b.coupling, joints, qd);
-        let rate_dot = coupled(&b.coupling, joints, qdd);
+        let r = body_rotation(b, pattern, q);
+        let rate = coupled(&b.coupling, &pattern.joints, qd);
+        let rate_dot = coupled(&b.coupling, &pattern.joints, qdd);
         // Eqs. 2-3 (11-12): ω = R(ω_p) + θ̇ z, ω̇ = R ω̇_p + θ̈ z + (R ω_p) × θ̇ z.
         let w_in = r.mul_vec(w_p);
         let spin = b.axis.scale(rate);

@@ -456,43 +456,50 @@ pub struct Model<T> {
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
     pub(crate) routing_incomplete: bool,
-    /// For each body, the joints its angle moves with: the nonzero entries of its
-    /// coupling, in increasing order (derived from the `f64` couplings by
-    /// [`coupled_joints`]; parameters rescale nonzero ratios and never change it).
-    pub(crate) coupled_joints: Vec<Vec<usize>>,
-    /// For each body, whether it is a pulley without mass or inertia that carries nothing:
-    /// the tension-free recursion (`Q`, `M`, `h`, `g`) neither moves nor loads it.
-    pub(crate) inert: Vec<bool>,
+    /// What the recursions may skip for each body (derived at validation by
+    /// [`patterns_of`]).
+    pub(crate) patterns: Vec<BodyPattern>,
 }
 
-/// The nonzero entries of each body's coupling ([`Model::coupled_joints`]) and which
-/// bodies are inert (`Model::inert`), derived once from the `f64` bodies and the
-/// parameter slots (a mass a parameter sets is not zero for good).
-pub(crate) fn structure_of(
-    bodies: &[Body<f64>],
-    slots: &[(Slot, usize)],
-) -> (Vec<Vec<usize>>, Vec<bool>) {
-    let coupled = bodies
-        .iter()
-        .map(|b| {
-            (0..b.coupling.len())
-                .filter(|&j| b.coupling[j] != 0.0)
-                .collect()
-        })
-        .collect();
-    let inert = (0..bodies.len())
+/// What the recursions may skip for one body: facts of the model's structure, derived
+/// once from the `f64` model and valid for every parameter value.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BodyPattern {
+    /// The joints its angle moves with: the nonzero entries of its coupling, increasing
+    /// (parameters rescale nonzero ratios and never make one zero).
+    pub joints: Vec<usize>,
+    /// A pulley without mass or inertia that carries nothing (and whose mass no parameter
+    /// sets): the tension-free recursion (`Q`, `M`, `h`, `g`) neither moves nor loads it.
+    pub inert: bool,
+    /// Whether `pre`'s rotation is the identity (every link's), and `post`'s (every
+    /// pulley's, and a link's without twist): frame changes skip those factors.
+    pub plain_pre: bool,
+    /// See `plain_pre`.
+    pub plain_post: bool,
+}
+
+/// Each body's [`BodyPattern`], from the `f64` bodies and the parameter slots (a mass a
+/// parameter sets is not zero for good).
+pub(crate) fn patterns_of(bodies: &[Body<f64>], slots: &[(Slot, usize)]) -> Vec<BodyPattern> {
+    let identity = Mat3::<f64>::identity();
+    (0..bodies.len())
         .map(|i| {
             let b = &bodies[i];
-            matches!(b.kind, BodyKind::Pulley { .. })
+            let inert = matches!(b.kind, BodyKind::Pulley { .. })
                 && b.mass == 0.0
                 && b.inertia.rows.iter().flatten().all(|&x| x == 0.0)
                 && !bodies.iter().any(|c| c.parent == Some(i))
                 && !slots.iter().any(|(slot, _)| {
-                    matches!(*slot, Slot::Mass(b) | Slot::Com(b, _) | Slot::Inertia(b, _, _) if b == i)
-                })
+                    matches!(*slot, Slot::Mass(s) | Slot::Com(s, _) | Slot::Inertia(s, _, _) if s == i)
+                });
+            BodyPattern {
+                joints: (0..b.coupling.len()).filter(|&j| b.coupling[j] != 0.0).collect(),
+                inert,
+                plain_pre: b.pre.rotation == identity,
+                plain_post: b.post.rotation == identity,
+            }
         })
-        .collect();
-    (coupled, inert)
+        .collect()
 }
 
 impl<T> Model<T> {
@@ -574,10 +581,9 @@ impl<T> Model<T> {
         self.routing_incomplete
     }
 
-    /// For each body, the joints whose coordinates its angle depends on (the nonzero
-    /// entries of its coupling, increasing): what the recursions sum over.
-    pub fn coupled_joints(&self) -> &[Vec<usize>] {
-        &self.coupled_joints
+    /// What the recursions may skip for each body ([`BodyPattern`]).
+    pub fn patterns(&self) -> &[BodyPattern] {
+        &self.patterns
     }
 }
 
@@ -709,8 +715,7 @@ impl<T: Real> Model<T> {
                 moment: v(w.moment),
             }),
             routing_incomplete: self.routing_incomplete,
-            coupled_joints: self.coupled_joints.clone(),
-            inert: self.inert.clone(),
+            patterns: self.patterns.clone(),
         }
     }
 }
@@ -955,7 +960,7 @@ impl Model<f64> {
             }
         }
         // A named mass makes its body no longer inert.
-        (m.coupled_joints, m.inert) = structure_of(&m.bodies, &m.parameter_slots);
+        m.patterns = patterns_of(&m.bodies, &m.parameter_slots);
         Ok(m)
     }
 

@@ -273,7 +273,7 @@ pub fn backward<T: Real, L: Load<T>>(
     }
 
     for i in (0..nb).rev() {
-        if tensions.is_none() && model.inert[i] {
+        if tensions.is_none() && model.patterns[i].inert {
             // Nothing loads it without tendons, and it carries nothing: its loads stay the
             // zeros they were reset to.
             out.axial[i] = out.force[i].dot(Vec3::unit_z());

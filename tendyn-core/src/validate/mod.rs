@@ -227,7 +227,7 @@ impl<'a> Validator<'a> {
                 )
             });
         let parameter_slots = parameter_slots(f);
-        let (coupled_joints, inert) = crate::model::structure_of(&bodies, &parameter_slots);
+        let patterns = crate::model::patterns_of(&bodies, &parameter_slots);
         Ok(Model {
             name: f.name.clone(),
             gravity: Vec3::from_array(gravity),
@@ -260,8 +260,7 @@ impl<'a> Validator<'a> {
             system,
             external_wrench,
             routing_incomplete,
-            coupled_joints,
-            inert,
+            patterns,
         })
     }
 

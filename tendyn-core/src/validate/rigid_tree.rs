@@ -75,7 +75,7 @@ impl Model<f64> {
                 format!("the external wrench acts on link {} of {dof}", w.link),
             ));
         }
-        let (coupled_joints, inert) = crate::model::structure_of(&bodies, &[]);
+        let patterns = crate::model::patterns_of(&bodies, &[]);
         Ok(Model {
             name: name.to_string(),
             gravity: Vec3::from_array(gravity),
@@ -100,8 +100,7 @@ impl Model<f64> {
             friction_smoothing: None,
             external_wrench,
             routing_incomplete: false,
-            coupled_joints,
-            inert,
+            patterns,
         })
     }
 }
