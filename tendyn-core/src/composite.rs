@@ -211,6 +211,17 @@ fn carry<T: Real>(model: &Model<T>, k: usize, spin: (T, T), (f, m): Wrench<T>) -
     (f, m + bodies[parent].joint_to_origin.cross(f))
 }
 
+/// Adds `w` to column `index` (`k · n + b`), which holds nothing until `present` says so.
+fn join<T: Real>(columns: &mut [Wrench<T>], present: &mut [bool], index: usize, w: Wrench<T>) {
+    let s = &mut columns[index];
+    *s = if present[index] {
+        (s.0 + w.0, s.1 + w.1)
+    } else {
+        w
+    };
+    present[index] = true;
+}
+
 /// Adds `c_k[a] e` for every joint `a` of body `k` to the upper triangle at `(a, j)` (both
 /// orders fall on one entry; on the diagonal they are two terms).
 fn add_column<T: Real>(out: &mut [T], n: usize, ck: &[T], pattern: &[usize], j: usize, e: T) {
@@ -275,7 +286,7 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         }
         let Some(parent) = b.parent else { continue };
         if walks[k] && !pattern.is_empty() {
-            // M_θ[a][k] at each ancestor a, weighted by both couplings.
+            // M_θ[at][k] at each ancestor `at`, weighted by both couplings.
             let (mut wrench, mut at) = (own, k);
             while bodies[at].parent.is_some() {
                 wrench = carry(model, at, composite[at].spin, wrench);
@@ -296,27 +307,15 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
             // k's own turns join its columns.
             for &j in pattern {
                 let term = (own.0.scale(ck[j]), own.1.scale(ck[j]));
-                let s = &mut columns[k * n + j];
-                *s = if present[k * n + j] {
-                    (s.0 + term.0, s.1 + term.1)
-                } else {
-                    term
-                };
-                present[k * n + j] = true;
+                join(columns, present, k * n + j, term);
             }
         }
         for j in 0..n {
             if !present[k * n + j] {
                 continue;
             }
-            let (f, m) = carry(model, k, c.spin, columns[k * n + j]);
-            let s = &mut columns[parent * n + j];
-            *s = if present[parent * n + j] {
-                (s.0 + f, s.1 + m)
-            } else {
-                (f, m)
-            };
-            present[parent * n + j] = true;
+            let carried = carry(model, k, c.spin, columns[k * n + j]);
+            join(columns, present, parent * n + j, carried);
         }
         // The composite moves to the parent: its axes, then about its origin.
         let r = b.pre.translation;
