@@ -29,6 +29,7 @@ use crate::linalg;
 use crate::model::{Model, TensionSystem};
 use crate::output::{Output, State};
 use crate::real::{Numeric, Real};
+use crate::regressor;
 use crate::spatial::Vec3;
 use crate::tension;
 
@@ -48,6 +49,20 @@ pub struct Data<T: Real> {
     gravity: Vec<T>,
     joint_accelerations: Vec<T>,
     inverse_dynamics: InverseDynamics<T>,
+    regressor_work: regressor::Work<T>,
+    regressor: Regressor<T>,
+}
+
+/// The identification regressor at one state ([`crate::regressor`]): `Q = Y π + Q₀`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Regressor<T> {
+    /// Columns of `Y`: the count of [`regressor::parameters`].
+    pub columns: usize,
+    /// `Y`, `n` rows of `columns` entries, row-major.
+    pub y: Vec<T>,
+    /// `Q₀`, the generalized forces the actuators need whatever `π` (the external
+    /// wrench's; zero without one).
+    pub known: Vec<T>,
 }
 
 /// What the work buffers' sizes depend on: joints, bodies, unknowns and rows of the
@@ -106,6 +121,12 @@ impl<T: Numeric> Data<T> {
             gravity: vec![T::zero(); n],
             joint_accelerations: vec![T::zero(); n],
             inverse_dynamics: InverseDynamics::empty(),
+            regressor_work: regressor::Work::new(model),
+            regressor: Regressor {
+                columns: 0,
+                y: Vec::new(),
+                known: Vec::new(),
+            },
         }
     }
 
@@ -145,6 +166,40 @@ impl<T: Numeric> Data<T> {
             &[("q", q), ("qd", qd), ("qdd", qdd)],
         )?;
         Ok(out)
+    }
+
+    /// The identification regressor at a state: `Y` and `Q₀` with
+    /// `Q = Y π + Q₀` ([`crate::regressor`]), `π` the parameters of
+    /// [`regressor::parameters`] (their model values: [`regressor::values`]).
+    pub fn regressor(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<&Regressor<T>> {
+        self.check_model(model)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
+        let n = model.dof();
+        let columns = regressor::parameters(model).len();
+        let out = &mut self.regressor;
+        out.columns = columns;
+        out.y.resize(n * columns, T::zero());
+        out.known.resize(n, T::zero());
+        regressor::regressor(
+            model,
+            q,
+            qd,
+            qdd,
+            &mut self.regressor_work,
+            &mut out.y,
+            &mut out.known,
+        );
+        let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        finite("regressor", out.y.iter().chain(&out.known), &inputs)?;
+        Ok(&self.regressor)
     }
 
     /// Joint-space mass matrix `M(q)`.

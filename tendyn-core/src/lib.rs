@@ -17,6 +17,9 @@
 //!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`composite`]: the joint-space mass matrix by the composite-rigid-body algorithm over
 //!   the expanded tree (pulleys through their couplings);
+//! - [`regressor`]: the identification regressor `Q = Y π + Q₀`, linear in every body's
+//!   inertial parameters and the bearings' friction, by virtual power (not the backward
+//!   recursion, which it thereby checks);
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
@@ -89,6 +92,8 @@ pub mod newton_euler;
 #[cfg(feature = "std")]
 pub mod output;
 #[cfg(feature = "std")]
+pub mod regressor;
+#[cfg(feature = "std")]
 pub mod spatial;
 #[cfg(feature = "std")]
 pub mod tension;
@@ -100,7 +105,7 @@ pub mod transmission;
 pub mod validate;
 
 #[cfg(feature = "std")]
-pub use data::Data;
+pub use data::{Data, Regressor};
 #[cfg(feature = "std")]
 pub use double_double::DoubleDouble;
 #[cfg(feature = "std")]

@@ -1,0 +1,155 @@
+//! The identification regressor: `Q = Y(q, q̇, q̈) π + Q₀` (`tendyn_core::regressor`).
+//!
+//! `Y` comes from virtual power over the forward recursion's Jacobians; `Q` from the
+//! Newton-Euler backward recursion, computed here in double-double. The two share no
+//! balance of forces, so their agreement checks both.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use tendyn_core::regressor::{parameters, values, Quantity};
+use tendyn_core::{Data, DoubleDouble, Model};
+use tendyn_spec::measure::random_state;
+
+/// `‖Y π + Q₀ − Q‖∞ / ‖Q‖∞` (Y in f64, Q in double-double), worst over `states` states.
+fn worst_error(model: &Model<f64>, states: usize, seed: u64) -> f64 {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let reference = model.cast_numeric::<DoubleDouble>();
+    let (mut data, mut dd) = (Data::new(model), Data::new(&reference));
+    let pi = values(model);
+    assert_eq!(pi.len(), parameters(model).len());
+    let n = model.dof();
+    let mut worst = 0.0f64;
+    for _ in 0..states {
+        let [q, qd, qdd] = random_state(&mut rng, n);
+        let r = data.regressor(model, &q, &qd, &qdd).unwrap().clone();
+        assert_eq!(r.columns, pi.len());
+        let lift = |v: &[f64]| v.iter().map(|&x| DoubleDouble::from(x)).collect::<Vec<_>>();
+        let exact = dd
+            .generalized_forces(&reference, &lift(&q), &lift(&qd), &lift(&qdd))
+            .unwrap()
+            .to_vec();
+        let scale = exact.iter().fold(1e-300f64, |m, x| m.max(x.to_f64().abs()));
+        let rows = r.y.chunks_exact(r.columns);
+        for ((row, known), exact) in rows.zip(&r.known).zip(&exact) {
+            let y_pi: f64 = row.iter().zip(&pi).map(|(y, p)| y * p).sum::<f64>() + known;
+            worst = worst.max((y_pi - exact.to_f64()).abs() / scale);
+        }
+    }
+    worst
+}
+
+fn report(model: &Model<f64>, worst: f64) {
+    println!(
+        "{}: {} parameters, worst relative error {worst:.2e}",
+        model.name(),
+        parameters(model).len()
+    );
+}
+
+const TOL: f64 = 1e-13;
+
+#[test]
+fn the_regressor_times_the_parameters_is_the_generalized_force_on_the_paper_examples() {
+    for (i, model) in tendyn_spec::examples::all().iter().enumerate() {
+        let worst = worst_error(model, 50, i as u64);
+        report(model, worst);
+        assert!(worst < TOL, "{}: {worst:e}", model.name());
+    }
+}
+
+#[test]
+fn the_regressor_holds_on_random_spatial_mechanisms_with_coupled_pulleys() {
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+    for seed in 0..16u64 {
+        let features = Features {
+            coupled_pulleys: seed % 2 == 1,
+            endless: seed % 4 == 2,
+        };
+        let (_, model) = valid_random_mechanism(seed, features);
+        let worst = worst_error(&model, 20, 100 + seed);
+        report(&model, worst);
+        assert!(worst < TOL, "{}: {worst:e}", model.name());
+    }
+}
+
+/// The scale mechanisms: a finger, a spatial arm with tilted gears and an external wrench
+/// (the known part `Q₀`), and chains of 8 and 12 links with 20 and 30 pulleys.
+#[test]
+fn the_regressor_holds_on_the_benchmark_mechanisms_and_the_external_wrench_is_known() {
+    for name in ["finger4", "arm6", "chain8", "chain12"] {
+        let model = tendyn_core::load(format!("../bench/mechanisms/{name}.ron")).unwrap();
+        let worst = worst_error(&model, 10, 7);
+        report(&model, worst);
+        assert!(worst < TOL, "{name}: {worst:e}");
+    }
+    let arm = tendyn_core::load("../bench/mechanisms/arm6.ron").unwrap();
+    let mut data = Data::new(&arm);
+    let r = data
+        .regressor(&arm, &[0.3; 6], &[0.0; 6], &[0.0; 6])
+        .unwrap();
+    assert!(r.known.iter().any(|&x| x != 0.0), "arm6's wrench is in Q₀");
+}
+
+/// Bearing friction enters as two parameters per bearing that has it, by the exact law and
+/// smoothed: Example 2 with friction in every bearing, and random mechanisms with it added.
+#[test]
+fn bearing_friction_parameters_complete_the_regressor() {
+    use tendyn_spec::friction::with_bearing_friction;
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+    let mut models =
+        vec![tendyn_core::parse(&tendyn_spec::examples::text("example2_friction")).unwrap()];
+    for seed in 0..6u64 {
+        let features = Features {
+            coupled_pulleys: seed % 3 == 2,
+            endless: seed % 2 == 1,
+        };
+        let (text, _) = valid_random_mechanism(seed, features);
+        let smoothing = (seed % 2 == 1).then_some(0.2);
+        models.push(tendyn_core::parse(&with_bearing_friction(&text, seed, smoothing)).unwrap());
+    }
+    for (i, model) in models.iter().enumerate() {
+        let frictional = parameters(model)
+            .iter()
+            .filter(|p| p.quantity == Quantity::Coulomb)
+            .count();
+        assert!(frictional > 0, "{}: the fixture has friction", model.name());
+        assert_eq!(
+            parameters(model).len(),
+            10 * model.bodies().len() + 2 * frictional
+        );
+        let worst = worst_error(model, 50, 30 + i as u64);
+        report(model, worst);
+        assert!(worst < TOL, "{}: {worst:e}", model.name());
+    }
+}
+
+/// The model's values are mass, first moment and the inertia about the body-frame origin:
+/// a body whose centre of mass sits at `c` carries `m (|c|² − c_x²)` more `xx` than about
+/// its centre of mass.
+#[test]
+fn the_inertia_parameters_are_about_the_body_frame_origin() {
+    let model = tendyn_core::load("../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let pi = values(&model);
+    let body = &model.bodies()[1];
+    let (m, c) = (body.mass, body.com);
+    let names: Vec<String> = parameters(&model).iter().map(|p| p.name(&model)).collect();
+    let at = |name: &str| pi[names.iter().position(|n| n == name).unwrap()];
+    let link = &body.name;
+    assert_eq!(at(&format!("{link}.m")), m);
+    assert_eq!(at(&format!("{link}.mx")), m * c.x);
+    let xx = body.inertia.rows[0][0] + m * (c.y * c.y + c.z * c.z);
+    assert!((at(&format!("{link}.xx")) - xx).abs() <= 1e-15 * xx.abs());
+}
+
+#[test]
+fn a_bad_state_is_an_error_not_a_regressor() {
+    let model = tendyn_core::load("../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let mut data = Data::new(&model);
+    let err = data
+        .regressor(&model, &[0.0, f64::NAN, 0.0], &[0.0; 3], &[0.0; 3])
+        .unwrap_err();
+    assert!(err.to_string().contains("q[1]"), "{err}");
+    assert!(data
+        .regressor(&model, &[0.0; 2], &[0.0; 3], &[0.0; 3])
+        .is_err());
+}
