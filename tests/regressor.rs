@@ -153,3 +153,144 @@ fn a_bad_state_is_an_error_not_a_regressor() {
         .regressor(&model, &[0.0; 2], &[0.0; 3], &[0.0; 3])
         .is_err());
 }
+
+mod base {
+    use super::*;
+    use nalgebra::DMatrix;
+    use tendyn_core::base_parameters::BaseParameters;
+
+    /// `‖Y_base π_base + Q₀ − Q‖∞ / ‖Q‖∞` at `states` fresh random states (not those the
+    /// base was found from), Q in double-double.
+    fn worst_reduced_error(model: &Model<f64>, base: &BaseParameters, states: usize) -> f64 {
+        let mut rng = ChaCha8Rng::seed_from_u64(0xba5e);
+        let reference = model.cast_numeric::<DoubleDouble>();
+        let (mut data, mut dd) = (Data::new(model), Data::new(&reference));
+        let values = base.values(&values(model));
+        let mut worst = 0.0f64;
+        for _ in 0..states {
+            let [q, qd, qdd] = random_state(&mut rng, model.dof());
+            let r = data.regressor(model, &q, &qd, &qdd).unwrap().clone();
+            let reduced = base.reduce(&r.y);
+            let lift = |v: &[f64]| v.iter().map(|&x| DoubleDouble::from(x)).collect::<Vec<_>>();
+            let exact: Vec<f64> = dd
+                .generalized_forces(&reference, &lift(&q), &lift(&qd), &lift(&qdd))
+                .unwrap()
+                .iter()
+                .map(|x| x.to_f64())
+                .collect();
+            let scale = exact.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+            let rows = reduced.chunks_exact(values.len().max(1));
+            for ((row, known), exact) in rows.zip(&r.known).zip(&exact) {
+                let q: f64 = row.iter().zip(&values).map(|(y, p)| y * p).sum::<f64>() + known;
+                worst = worst.max((q - exact).abs() / scale);
+            }
+        }
+        worst
+    }
+
+    /// The singular values of `Y` stacked over `3p` rows of random states, largest first.
+    fn stacked_singular_values(model: &Model<f64>, seed: u64) -> Vec<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let (n, p) = (model.dof(), parameters(model).len());
+        let states = (3 * p).div_ceil(n);
+        let mut stack = DMatrix::<f64>::zeros(states * n, p);
+        let mut data = Data::new(model);
+        for s in 0..states {
+            let [q, qd, qdd] = random_state(&mut rng, n);
+            let r = data.regressor(model, &q, &qd, &qdd).unwrap();
+            for (k, row) in r.y.chunks_exact(p).enumerate() {
+                for (c, y) in row.iter().enumerate() {
+                    stack[(s * n + k, c)] = *y;
+                }
+            }
+        }
+        let mut sv: Vec<f64> = stack.singular_values().iter().copied().collect();
+        sv.sort_by(|a, b| b.total_cmp(a));
+        sv
+    }
+
+    fn mechanisms() -> Vec<Model<f64>> {
+        use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+        let mut models = tendyn_spec::examples::all();
+        models.push(tendyn_core::parse(&tendyn_spec::examples::text("example2_friction")).unwrap());
+        for seed in 0..8u64 {
+            let features = Features {
+                coupled_pulleys: seed % 2 == 1,
+                endless: seed % 4 == 2,
+            };
+            models.push(valid_random_mechanism(seed, features).1);
+        }
+        for name in ["finger4", "arm6"] {
+            models.push(tendyn_core::load(format!("../bench/mechanisms/{name}.ron")).unwrap());
+        }
+        models
+    }
+
+    #[test]
+    fn the_base_parameters_give_the_generalized_force_at_states_they_were_not_found_from() {
+        for model in mechanisms() {
+            let base = BaseParameters::of(&model).unwrap();
+            let worst = worst_reduced_error(&model, &base, 30);
+            println!(
+                "{}: {} of {} parameters are base, {} act on nothing; worst relative error {worst:.2e}",
+                model.name(),
+                base.groups.len(),
+                base.parameters.len(),
+                base.unidentifiable.len()
+            );
+            assert!(worst < TOL, "{}: {worst:e}", model.name());
+        }
+    }
+
+    /// The count of base parameters is the numerical rank of the regressor stacked over
+    /// random states: a gap of many orders in its singular values right after that count.
+    #[test]
+    fn there_are_as_many_base_parameters_as_the_stacked_regressor_has_rank() {
+        for (i, model) in mechanisms().iter().enumerate() {
+            let r = BaseParameters::of(model).unwrap().groups.len();
+            let sv = stacked_singular_values(model, 40 + i as u64);
+            let (last, next) = (sv[r - 1] / sv[0], sv.get(r).map_or(0.0, |s| s / sv[0]));
+            println!(
+                "{}: rank {r}; σ_r/σ_1 = {last:.1e}, σ_(r+1)/σ_1 = {next:.1e}",
+                model.name()
+            );
+            assert!(next < 1e-12 && last > 1e6 * next, "{}", model.name());
+        }
+    }
+
+    /// Example 1's planar arm, by hand: link 1's frame origin sits at its tip, `a₁ = 0.3 m`
+    /// from joint 1, so about that joint its inertia is `zz₁ + 2 a₁ mx₁ + a₁² m₁`, and the
+    /// masses of link 2 and the drum it carries (their origins at that tip, or on joint 2)
+    /// add `a₁² m`. The motor pulley on the base turns alone: its `zz` is a base parameter.
+    #[test]
+    fn example1_groups_by_the_parallel_axis_theorem() {
+        let model = tendyn_core::parse(&tendyn_spec::examples::text("example1_endless")).unwrap();
+        let base = BaseParameters::of(&model).unwrap();
+        let names: Vec<String> = base.parameters.iter().map(|p| p.name(&model)).collect();
+        let group = |kept: &str| {
+            let g = base
+                .groups
+                .iter()
+                .find(|g| names[g.column] == kept)
+                .unwrap_or_else(|| panic!("{kept} is not a base parameter"));
+            g.merged
+                .iter()
+                .map(|&(c, b)| (names[c].clone(), b))
+                .collect::<Vec<_>>()
+        };
+        let link1 = group("link1.zz");
+        let expect = [
+            ("link1.mx", 0.6),
+            ("link1.m", 0.09),
+            ("link2.m", 0.09),
+            ("drum2.m", 0.09),
+        ];
+        assert_eq!(link1.len(), expect.len(), "{link1:?}");
+        for ((name, b), (want, value)) in link1.iter().zip(expect) {
+            assert_eq!(name, want);
+            assert!((b - value).abs() < 1e-12, "{name}: {b}");
+        }
+        assert!(group("pulley3.zz").is_empty());
+        assert_eq!(base.groups.len(), 5);
+    }
+}

@@ -20,6 +20,8 @@
 //! - [`regressor`]: the identification regressor `Q = Y π + Q₀`, linear in every body's
 //!   inertial parameters and the bearings' friction, by virtual power (not the backward
 //!   recursion, which it thereby checks);
+//! - [`base_parameters`]: the combinations of those parameters that `Q` can tell apart,
+//!   with the grouping of each (what identification can estimate);
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
@@ -69,6 +71,8 @@ pub use real::{Numeric, Real, Symbolic};
 
 #[cfg(feature = "std")]
 pub mod affine;
+#[cfg(feature = "std")]
+pub mod base_parameters;
 #[cfg(feature = "std")]
 pub mod composite;
 #[cfg(feature = "std")]
