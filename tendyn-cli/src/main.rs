@@ -7,6 +7,7 @@ mod mjcf;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use tendyn_codegen::report::{self, JointSpace};
+use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::{Data, InverseDynamics, Model};
 
 #[derive(Parser)]
@@ -81,10 +82,42 @@ enum Command {
         /// Print one JSON object per state.
         #[arg(long)]
         json: bool,
+        /// With --json: add the base regressor at the state, the base parameters with the
+        /// file's values and the offset of the external wrench (docs/outputs.md §7).
+        #[arg(long, requires = "json")]
+        regressor: bool,
         /// With --states: print a CSV table instead of JSON lines (a header, then per
         /// state q, qd, qdd, generalized forces, motor torques and tendon tensions).
         #[arg(long, requires = "states", conflicts_with = "json")]
         csv: bool,
+    },
+    /// The identification regressor's parameters and the mechanism's base parameters: the
+    /// combinations of masses, first moments, inertias and bearing friction that the
+    /// generalized forces can tell apart, with the file's values (docs/outputs.md §7).
+    Regressor {
+        /// The mechanism's RON file (docs/format.md).
+        file: String,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Estimate the base parameters from measured motion by least squares, with the
+    /// standard deviation of each estimate and the residual (docs/outputs.md §7).
+    Identify {
+        /// The mechanism's RON file (docs/format.md): its structure, and its values to compare.
+        file: String,
+        /// A CSV file with one sample per line: q..., qd..., qdd..., then the motor torques
+        /// (file order) and the open-ended tendons' ground-level tensions (file order);
+        /// with --forces, the n generalized forces instead. Lines starting with `#` and a
+        /// first line that is not numbers (a header) are skipped.
+        #[arg(long)]
+        data: String,
+        /// The measured columns are generalized forces, one per joint.
+        #[arg(long)]
+        forces: bool,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
     },
     /// Forward dynamics: joint accelerations from motor torques and tendon tensions.
     Forward {
@@ -318,18 +351,38 @@ fn run(cli: Cli) -> Result<(), String> {
             acceleration: Acceleration { qdd },
             states,
             json,
+            regressor,
             csv,
         } => {
             let m = load(&file)?;
             let n = m.dof();
             let mut solver = Data::new(&m);
+            let base = match regressor {
+                true => Some(BaseParameters::of(&m).map_err(|e| e.to_string())?),
+                false => None,
+            };
+            let eval_json = |q: &[f64], qd: &[f64], qdd: &[f64]| -> Result<_, String> {
+                let mut out = eval_json(&m, q, qd, qdd)?;
+                if let Some(base) = &base {
+                    let r = Data::new(&m)
+                        .regressor(&m, q, qd, qdd)
+                        .map_err(|e| e.to_string())?
+                        .clone();
+                    let extra = report::regressor_at_json(&m, base, &r);
+                    let (o, extra) = (out.as_object_mut(), extra.as_object());
+                    if let (Some(o), Some(extra)) = (o, extra) {
+                        o.extend(extra.clone());
+                    }
+                }
+                Ok(out)
+            };
             if csv {
                 say!("{}", report::inverse_csv_header(&m));
             }
             match states {
                 None => {
                     if json {
-                        say!("{}", eval_json(&m, &q, &qd, &qdd)?);
+                        say!("{}", eval_json(&q, &qd, &qdd)?);
                     } else {
                         emit(&eval_text(&m, &q, &qd, &qdd)?);
                     }
@@ -369,10 +422,38 @@ fn run(cli: Cli) -> Result<(), String> {
                                 .map_err(|e| at(e.to_string()))?;
                             say!("{}", report::inverse_csv_row(q, qd, qdd, r));
                         } else {
-                            say!("{}", eval_json(&m, q, qd, qdd).map_err(at)?);
+                            say!("{}", eval_json(q, qd, qdd).map_err(at)?);
                         }
                     }
                 }
+            }
+            Ok(())
+        }
+        Command::Regressor { file, json } => {
+            let m = load(&file)?;
+            let base = BaseParameters::of(&m).map_err(|e| e.to_string())?;
+            if json {
+                say!("{}", report::regressor_json(&m, &base));
+            } else {
+                emit(&report::regressor_text(&m, &base));
+            }
+            Ok(())
+        }
+        Command::Identify {
+            file,
+            data,
+            forces,
+            json,
+        } => {
+            let m = load(&file)?;
+            let samples = identification_samples(&m, &data, forces)?;
+            let base = BaseParameters::of(&m).map_err(|e| e.to_string())?;
+            let id = tendyn_core::identification::identify(&m, &base, &samples)
+                .map_err(|e| format!("{data}: {e}"))?;
+            if json {
+                say!("{}", report::identification_json(&m, &base, &id));
+            } else {
+                emit(&report::identification_text(&m, &base, &id));
             }
             Ok(())
         }
@@ -649,6 +730,63 @@ fn evaluate(
         gravity: s.gravity(m, q).map_err(e)?.to_vec(),
     };
     Ok((r, js))
+}
+
+/// The samples of `tendyn identify --data`: per line the state, then what was measured
+/// (actuators, or with `forces` the generalized forces), turned into generalized forces.
+fn identification_samples(
+    m: &Model<f64>,
+    path: &str,
+    forces: bool,
+) -> Result<Vec<tendyn_core::identification::Sample>, String> {
+    let n = m.dof();
+    let (motors, tendons) = (m.motors().len(), m.tendons().len());
+    let measured = if forces { n } else { motors + tendons };
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let mut data = Data::new(m);
+    let mut samples = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let at = |e: String| format!("{path}:{}: {e}", i + 1);
+        let parsed: Result<Vec<f64>, _> = line.split(',').map(|x| x.trim().parse()).collect();
+        let vals = match parsed {
+            Ok(v) => v,
+            // A header line (column names) before any sample.
+            Err(_) if samples.is_empty() && i == 0 => continue,
+            Err(e) => return Err(at(format!("{e} (every column must be a number)"))),
+        };
+        if vals.len() != 3 * n + measured {
+            return Err(at(format!(
+                "expected {} numbers (q, qd, qdd: {n} each, then {}), got {}",
+                3 * n + measured,
+                if forces {
+                    format!("{n} generalized forces")
+                } else {
+                    format!("{motors} motor torques and {tendons} tendon tensions")
+                },
+                vals.len()
+            )));
+        }
+        let (q, qd, qdd) = (&vals[..n], &vals[n..2 * n], &vals[2 * n..3 * n]);
+        let rest = &vals[3 * n..];
+        let delivered = if forces {
+            rest.to_vec()
+        } else {
+            let (torques, tensions) = rest.split_at(motors);
+            data.actuator_forces(m, q, qd, torques, tensions)
+                .map_err(|e| at(e.to_string()))?
+        };
+        samples.push(tendyn_core::identification::Sample {
+            q: q.to_vec(),
+            qd: qd.to_vec(),
+            qdd: qdd.to_vec(),
+            forces: delivered,
+        });
+    }
+    Ok(samples)
 }
 
 fn eval_text(m: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<String, String> {

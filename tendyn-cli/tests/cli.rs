@@ -686,3 +686,136 @@ fn export_names_a_link_mujoco_cannot_take() {
     ]);
     assert!(!ok && err.contains("qd has 1 entries"), "{err}");
 }
+
+#[test]
+fn regressor_lists_the_base_parameters_and_eval_adds_the_regressor_at_a_state() {
+    let file = "examples/mechanisms/example1_endless.ron";
+    let (ok, out, err) = tendyn(&["regressor", file]);
+    assert!(ok, "{err}");
+    assert!(out.contains("5 base parameters"), "{out}");
+    // Link 1 about joint 1, by the parallel-axis theorem (a₁ = 0.3 m).
+    assert!(
+        out.contains("link1.zz + 0.6 link1.mx + 0.09 link1.m + 0.09 link2.m + 0.09 drum2.m"),
+        "{out}"
+    );
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        file,
+        "--q",
+        "0.1,0.2",
+        "--qd",
+        "0.3,-0.4",
+        "--qdd",
+        "1,2",
+        "--json",
+        "--regressor",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let values: Vec<f64> = v["base_parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["value"].as_f64().unwrap())
+        .collect();
+    for (k, row) in v["regressor"].as_array().unwrap().iter().enumerate() {
+        let row: Vec<f64> = row
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let q: f64 = row.iter().zip(&values).map(|(y, p)| y * p).sum::<f64>()
+            + v["regressor_offset"][k].as_f64().unwrap();
+        let expected = v["generalized_forces"][k].as_f64().unwrap();
+        assert!(
+            (q - expected).abs() <= 1e-14 * expected.abs().max(1e-3),
+            "{q} {expected}"
+        );
+    }
+}
+
+/// `eval --states --csv` prints q, q̇, q̈, Q, the motor torques and the tensions: the
+/// actuators' columns (or Q's) are what `identify` takes, and noise-free data give back the
+/// file's base parameters.
+#[test]
+fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
+    let dir = scratch_dir("tendyn_cli_identify");
+    let file = "examples/mechanisms/example2_open_ended.ron";
+    let states: String = (0..300)
+        .map(|i| {
+            let t = i as f64 * 0.05;
+            let (a, b) = (1.3 * t, 2.1 * t + 1.0);
+            format!(
+                "{},{},{},{},{},{}\n",
+                a.sin(),
+                0.8 * b.sin(),
+                1.3 * a.cos(),
+                1.68 * b.cos(),
+                -1.69 * a.sin(),
+                -3.53 * b.sin()
+            )
+        })
+        .collect();
+    let states_path = dir.join("states.csv");
+    std::fs::write(&states_path, states).unwrap();
+    let (ok, table, err) = tendyn(&[
+        "eval",
+        file,
+        "--states",
+        states_path.to_str().unwrap(),
+        "--csv",
+    ]);
+    assert!(ok, "{err}");
+    // Columns: q (2), qd (2), qdd (2), Q (2), then the three tendons' tensions.
+    let keep = |columns: &[usize]| -> String {
+        table
+            .lines()
+            .map(|l| {
+                let cells: Vec<&str> = l.split(',').collect();
+                columns
+                    .iter()
+                    .map(|&c| cells[c])
+                    .collect::<Vec<_>>()
+                    .join(",")
+                    + "\n"
+            })
+            .collect()
+    };
+    let actuators = dir.join("actuators.csv");
+    std::fs::write(&actuators, keep(&[0, 1, 2, 3, 4, 5, 8, 9, 10])).unwrap();
+    let forces = dir.join("forces.csv");
+    std::fs::write(&forces, keep(&[0, 1, 2, 3, 4, 5, 6, 7])).unwrap();
+    for (data, extra) in [(&actuators, None), (&forces, Some("--forces"))] {
+        let mut args = vec!["identify", file, "--data", data.to_str().unwrap(), "--json"];
+        args.extend(extra);
+        let (ok, out, err) = tendyn(&args);
+        assert!(ok, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["samples"], 300);
+        let base = v["base_parameters"].as_array().unwrap();
+        let size = base.iter().fold(0.0f64, |m, b| {
+            m.max(b["file_value"].as_f64().unwrap().abs())
+        });
+        for b in base {
+            let (e, f) = (
+                b["estimate"].as_f64().unwrap(),
+                b["file_value"].as_f64().unwrap(),
+            );
+            assert!((e - f).abs() <= 1e-10 * size, "{}: {e} vs {f}", b["name"]);
+        }
+        assert!(v["relative_residual"].as_f64().unwrap() < 1e-12);
+    }
+    // A short line is named with what it should hold.
+    std::fs::write(&forces, "0.1,0.2,0,0,0,0,1\n").unwrap();
+    let (ok, _, err) = tendyn(&[
+        "identify",
+        file,
+        "--data",
+        forces.to_str().unwrap(),
+        "--forces",
+    ]);
+    assert!(!ok);
+    assert!(err.contains(":1: expected 8 numbers"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -2,11 +2,14 @@
 //! Every JSON key is documented in `docs/outputs.md`.
 
 use serde_json::{json, Value};
+use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::error::ImpliedSystem;
+use tendyn_core::identification::Identification;
 use tendyn_core::model::{BodyKind, Guide, Model, PulleyRole, Row, Unknown};
+use tendyn_core::regressor;
 use tendyn_core::spatial::Vec3;
 use tendyn_core::torque_range::static_torque_ranges;
-use tendyn_core::InverseDynamics;
+use tendyn_core::{InverseDynamics, Regressor};
 
 /// The joint-space terms evaluated beside inverse dynamics, at the same state.
 pub struct JointSpace {
@@ -621,5 +624,139 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
     }
     line(format!("  bias h: {} N·m", fmt_row(bias)));
     line(format!("  gravity g: {} N·m", fmt_row(gravity)));
+    s
+}
+
+/// The base parameters with the file's values, in the base regressor's column order: each
+/// its name, value, the parameter it keeps and the ones merged into it with their
+/// coefficients (`docs/outputs.md` §7).
+pub fn base_parameters_json(m: &Model<f64>, base: &BaseParameters) -> Value {
+    let values = base.values(&regressor::values(m));
+    let names = base.names(m);
+    let parameters = &base.parameters;
+    let groups = base.groups.iter().zip(names).zip(values);
+    Value::Array(
+        groups
+            .map(|((g, name), value)| {
+                json!({
+                    "name": name,
+                    "value": value,
+                    "kept": parameters[g.column].name(m),
+                    "merged": g.merged.iter().map(|&(c, b)| json!({
+                        "parameter": parameters[c].name(m),
+                        "coefficient": b,
+                    })).collect::<Vec<_>>(),
+                })
+            })
+            .collect(),
+    )
+}
+
+/// What `tendyn regressor --json` prints: every parameter of the regressor with the file's
+/// value, the base parameters, and the parameters that act on no generalized force.
+pub fn regressor_json(m: &Model<f64>, base: &BaseParameters) -> Value {
+    let values = regressor::values(m);
+    let parameters = &base.parameters;
+    json!({
+        "mechanism": m.name(),
+        "parameters": parameters.iter().zip(&values).map(|(p, v)| json!({
+            "name": p.name(m),
+            "value": v,
+        })).collect::<Vec<_>>(),
+        "base_parameters": base_parameters_json(m, base),
+        "unidentifiable": base.unidentifiable.iter().map(|&c| parameters[c].name(m)).collect::<Vec<_>>(),
+    })
+}
+
+/// What `tendyn regressor` prints: the base parameters with the file's values.
+pub fn regressor_text(m: &Model<f64>, base: &BaseParameters) -> String {
+    let values = base.values(&regressor::values(m));
+    let mut s = format!(
+        "{}: {} parameters ({} bodies × 10 inertial, {} of bearing friction), {} base \
+         parameters, {} act on no generalized force\n\nbase parameters (file values):\n",
+        m.name(),
+        base.parameters.len(),
+        m.bodies().len(),
+        base.parameters.len() - 10 * m.bodies().len(),
+        base.groups.len(),
+        base.unidentifiable.len()
+    );
+    for (i, (name, v)) in base.names(m).iter().zip(values).enumerate() {
+        s.push_str(&format!("  {:>3}  {:>12}  {name}\n", i + 1, number(v)));
+    }
+    let none: Vec<String> = base
+        .unidentifiable
+        .iter()
+        .map(|&c| base.parameters[c].name(m))
+        .collect();
+    s.push_str(&format!(
+        "\nact on no generalized force: {}\n",
+        if none.is_empty() {
+            "none".to_string()
+        } else {
+            none.join(", ")
+        }
+    ));
+    s
+}
+
+/// The keys `tendyn eval --regressor` adds at one state: `regressor` (`n` rows of the base
+/// parameters' columns), `base_parameters` and `regressor_offset` (`Q₀`), so that
+/// `generalized_forces = regressor · values + regressor_offset`.
+pub fn regressor_at_json(m: &Model<f64>, base: &BaseParameters, r: &Regressor<f64>) -> Value {
+    let columns = base.groups.len();
+    let reduced = base.reduce(&r.y);
+    let rows = (0..r.known.len()).map(|k| &reduced[k * columns..(k + 1) * columns]);
+    json!({
+        "regressor": rows.collect::<Vec<_>>(),
+        "base_parameters": base_parameters_json(m, base),
+        "regressor_offset": r.known,
+    })
+}
+
+/// What `tendyn identify --json` prints: each base parameter's estimate, standard deviation
+/// and the file's value, and how well the model explains the data.
+pub fn identification_json(m: &Model<f64>, base: &BaseParameters, id: &Identification) -> Value {
+    let file = base.values(&regressor::values(m));
+    let names = base.names(m);
+    json!({
+        "mechanism": m.name(),
+        "samples": id.samples,
+        "base_parameters": names.iter().enumerate().map(|(k, name)| json!({
+            "name": name,
+            "estimate": id.estimates[k],
+            "standard_deviation": id.standard_deviations[k],
+            "file_value": file[k],
+        })).collect::<Vec<_>>(),
+        "residual_rms": id.residual_rms,
+        "relative_residual": id.relative_residual,
+        "condition": id.condition,
+    })
+}
+
+/// What `tendyn identify` prints.
+pub fn identification_text(m: &Model<f64>, base: &BaseParameters, id: &Identification) -> String {
+    let file = base.values(&regressor::values(m));
+    let mut s = format!(
+        "{}: {} base parameters from {} samples; residual {} N·m rms ({:.2} % of the \
+         forces), condition number {:.1e}\n\n  {:>12}  {:>10}  {:>12}  base parameter\n",
+        m.name(),
+        id.estimates.len(),
+        id.samples,
+        number(id.residual_rms),
+        100.0 * id.relative_residual,
+        id.condition,
+        "estimate",
+        "std. dev.",
+        "file value"
+    );
+    for (k, name) in base.names(m).iter().enumerate() {
+        s.push_str(&format!(
+            "  {:>12}  {:>10}  {:>12}  {name}\n",
+            number(id.estimates[k]),
+            number(id.standard_deviations[k]),
+            number(file[k])
+        ));
+    }
     s
 }

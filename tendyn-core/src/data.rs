@@ -20,8 +20,9 @@
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::dynamics::{
-    balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs, generalized_forces,
-    gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics, Workspace,
+    actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
+    generalized_forces, gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics,
+    Workspace,
 };
 use crate::error::{Error, Result};
 use crate::friction;
@@ -303,6 +304,24 @@ impl<T: Numeric> Data<T> {
         self.joint_accelerations = self.solve_mass_matrix(model, q, &rhs)?;
         finite("joint acceleration", &self.joint_accelerations, &inputs)?;
         Ok(&self.joint_accelerations)
+    }
+
+    /// The generalized forces that motor torques and ground-level tendon tensions deliver
+    /// at `(q, q̇)`: `Σ motor columns · τ + A(q, q̇) T` ([`actuator_forces`], `A` the state's
+    /// where guides have capstan friction). What identification takes as measured `Q`.
+    pub fn actuator_forces(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<Vec<T>> {
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let a = structure(model, q, qd, &mut self.ws);
+        let out = actuator_forces(model, &a, motor_torques, tendon_tensions);
+        finite("actuator forces", &out, &inputs)?;
+        Ok(out)
     }
 
     /// The input checks of forward dynamics: buffers that fit the model, the state, and as

@@ -22,6 +22,8 @@
 //!   recursion, which it thereby checks);
 //! - [`base_parameters`]: the combinations of those parameters that `Q` can tell apart,
 //!   with the grouping of each (what identification can estimate);
+//! - [`identification`]: least-squares estimates of the base parameters from measured
+//!   motion and actuator forces, with standard deviations;
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
@@ -87,6 +89,8 @@ pub mod error;
 pub mod format;
 #[cfg(feature = "std")]
 pub mod friction;
+#[cfg(feature = "std")]
+pub mod identification;
 #[cfg(feature = "std")]
 pub mod kinematics;
 #[cfg(feature = "std")]
