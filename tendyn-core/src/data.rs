@@ -19,6 +19,8 @@
 //! ```
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
+use crate::derivatives::{jacobians, Derivatives};
+use crate::dual::Dual;
 use crate::dynamics::{
     actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
     generalized_forces, gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics,
@@ -201,6 +203,119 @@ impl<T: Numeric> Data<T> {
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
         finite("regressor", out.y.iter().chain(&out.known), &inputs)?;
         Ok(&self.regressor)
+    }
+
+    /// `Q` and its derivatives `∂Q/∂q`, `∂Q/∂q̇` ([`crate::derivatives`]; `∂Q/∂q̈` is `M`,
+    /// [`Data::mass_matrix`]).
+    pub fn generalized_forces_derivatives(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<Derivatives<T>> {
+        self.check_model(model)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
+        let dual = model.dual();
+        let mut ws = Workspace::new(&dual);
+        let qdd: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
+        let (value, mut d) = jacobians(&[q, qd], |x, out| {
+            out.resize(model.dof(), Dual::constant(T::zero()));
+            generalized_forces(&dual, &x[0], &x[1], &qdd, &mut ws, out);
+            Ok::<(), Error>(())
+        })?;
+        let d_qd = d.pop().unwrap_or_default();
+        let d_q = d.pop().unwrap_or_default();
+        let derivatives = Derivatives {
+            value,
+            d_q,
+            d_qd,
+            d_qdd: Vec::new(),
+            d_u: Vec::new(),
+        };
+        finite_derivatives("generalized forces", &derivatives, &[("q", q), ("qd", qd)])?;
+        Ok(derivatives)
+    }
+
+    /// `q̈` of forward dynamics and its derivatives `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u`, `u`
+    /// the motor torques then the tendon tensions ([`crate::derivatives`]). Checked as
+    /// [`Data::forward_dynamics`] is.
+    pub fn forward_dynamics_derivatives(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        motor_torques: &[T],
+        tendon_tensions: &[T],
+    ) -> Result<Derivatives<T>> {
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let dual = model.dual();
+        let mut data = Data::new(&dual);
+        let u: Vec<T> = motor_torques
+            .iter()
+            .chain(tendon_tensions)
+            .copied()
+            .collect();
+        let motors = motor_torques.len();
+        let (value, mut d) = jacobians(&[q, qd, &u], |x, out| {
+            let (torques, tensions) = x[2].split_at(motors);
+            let qdd = data.forward_dynamics(&dual, &x[0], &x[1], torques, tensions)?;
+            out.clear();
+            out.extend_from_slice(qdd);
+            Ok::<(), Error>(())
+        })?;
+        let d_u = d.pop().unwrap_or_default();
+        let d_qd = d.pop().unwrap_or_default();
+        let d_q = d.pop().unwrap_or_default();
+        let derivatives = Derivatives {
+            value,
+            d_q,
+            d_qd,
+            d_qdd: Vec::new(),
+            d_u,
+        };
+        finite_derivatives("joint acceleration", &derivatives, &inputs)?;
+        Ok(derivatives)
+    }
+
+    /// The motor torques and tendon tensions of inverse dynamics (in that order, as one
+    /// vector) and their derivatives with respect to `q`, `q̇`, `q̈`
+    /// ([`crate::derivatives`]: where the distribution's active set changes, those of the
+    /// active set chosen at the state).
+    pub fn actuation_derivatives(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+    ) -> Result<Derivatives<T>> {
+        self.check_model(model)?;
+        model.check_state("q", q)?;
+        model.check_state("qd", qd)?;
+        model.check_state("qdd", qdd)?;
+        let dual = model.dual();
+        let mut data = Data::new(&dual);
+        let (value, mut d) = jacobians(&[q, qd, qdd], |x, out| {
+            let r = data.inverse_dynamics(&dual, &x[0], &x[1], &x[2])?;
+            out.clear();
+            out.extend(r.motor_torques.iter().chain(&r.tendon_tensions));
+            Ok::<(), Error>(())
+        })?;
+        let d_qdd = d.pop().unwrap_or_default();
+        let d_qd = d.pop().unwrap_or_default();
+        let d_q = d.pop().unwrap_or_default();
+        let derivatives = Derivatives {
+            value,
+            d_q,
+            d_qd,
+            d_qdd,
+            d_u: Vec::new(),
+        };
+        let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        finite_derivatives("actuation", &derivatives, &inputs)?;
+        Ok(derivatives)
     }
 
     /// Joint-space mass matrix `M(q)`.
@@ -538,6 +653,20 @@ impl<T: Numeric> Model<T> {
         }
         Ok(())
     }
+}
+
+/// [`finite`] over a value and every derivative.
+fn finite_derivatives<T: Numeric>(
+    what: &str,
+    d: &Derivatives<T>,
+    inputs: &[(&str, &[T])],
+) -> Result<()> {
+    let all = d.value.iter().chain(&d.d_q).chain(&d.d_qd).chain(&d.d_qdd);
+    finite(
+        &format!("derivative of the {what}"),
+        all.chain(&d.d_u),
+        inputs,
+    )
 }
 
 /// `Err` when a result is not finite although the inputs were: some intermediate value

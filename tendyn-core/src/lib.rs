@@ -17,6 +17,8 @@
 //!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`composite`]: the joint-space mass matrix by the composite-rigid-body algorithm over
 //!   the expanded tree (pulleys through their couplings);
+//! - [`dual`](mod@dual) and [`derivatives`]: dual numbers (`no_std`), on which the generic
+//!   functions give their exact derivatives with respect to the state and the actuators;
 //! - [`regressor`]: the identification regressor `Q = Y π + Q₀`, linear in every body's
 //!   inertial parameters and the bearings' friction, by virtual power (not the backward
 //!   recursion, which it thereby checks);
@@ -65,6 +67,7 @@
 #![warn(missing_docs)]
 
 pub mod distribution;
+pub mod dual;
 pub mod linalg;
 pub mod mechanism;
 pub mod real;
@@ -79,6 +82,8 @@ pub mod base_parameters;
 pub mod composite;
 #[cfg(feature = "std")]
 pub mod data;
+#[cfg(feature = "std")]
+pub mod derivatives;
 #[cfg(feature = "std")]
 pub mod double_double;
 #[cfg(feature = "std")]

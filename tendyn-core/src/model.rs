@@ -630,6 +630,12 @@ impl<T: Real> Model<T> {
             .collect()
     }
 
+    /// The same model on dual numbers, every number a constant (zero derivative): what
+    /// the derivatives of [`crate::derivatives`] run the generic functions on.
+    pub fn dual(&self) -> Model<crate::dual::Dual<T>> {
+        self.map_scalar(crate::dual::Dual::constant)
+    }
+
     /// The same model with every number converted by [`Real::from_f64`] semantics.
     /// Numbers must come from an `f64` model; see [`Model::cast_numeric`] for a numeric
     /// target whose derived linear algebra should be recomputed in its own precision.

@@ -1,0 +1,82 @@
+//! Derivatives of the dynamics with respect to the state and the actuators, for model-
+//! predictive control and trajectory optimisation: the generic functions run on
+//! [`Dual`] numbers, one input coordinate seeded at a time (forward mode), so every
+//! derivative is exact to round-off and follows the very arithmetic of the value.
+//!
+//! What [`crate::Data`] offers on this:
+//!
+//! - [`crate::Data::generalized_forces_derivatives`]: `∂Q/∂q`, `∂Q/∂q̇` (`∂Q/∂q̈ = M`);
+//! - [`crate::Data::forward_dynamics_derivatives`]: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u`, `u` the
+//!   motor torques then the open-ended tendons' tensions;
+//! - [`crate::Data::actuation_derivatives`]: the derivatives of the motor torques and
+//!   tendon tensions inverse dynamics chooses, `∂(τ, T)/∂(q, q̇, q̈)`. Where the tension
+//!   distribution's active set (which tendons sit at a floor or a maximum) does not change
+//!   near the state, the distribution is differentiable and this is its derivative; at a
+//!   change, it is the derivative of the active set chosen at the state (one-sided).
+//!
+//! Friction differentiates as its law: the smoothed `tanh` exactly; the exact law's
+//! direction (a sign) has derivative zero away from rest, and none at it.
+
+use crate::dual::Dual;
+use crate::real::Real;
+
+/// A function's value at a state and its derivatives with respect to each input, each
+/// row-major with one row per entry of `value` and one column per input coordinate:
+/// `d_q[i * n + k] = ∂value_i/∂q_k`. Inputs a function does not take are empty.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Derivatives<T> {
+    /// The value.
+    pub value: Vec<T>,
+    /// `∂value/∂q` (`value.len() × n`).
+    pub d_q: Vec<T>,
+    /// `∂value/∂q̇` (`value.len() × n`).
+    pub d_qd: Vec<T>,
+    /// `∂value/∂q̈` (`value.len() × n`), where the function takes `q̈`.
+    pub d_qdd: Vec<T>,
+    /// `∂value/∂u` (`value.len() × m`), `u` the motor torques then the tendon tensions,
+    /// where the function takes them.
+    pub d_u: Vec<T>,
+}
+
+/// The Jacobians of `f` at `inputs`: `f` is evaluated once per coordinate of every input
+/// on dual numbers with that coordinate's tangent one and every other zero. `f` writes
+/// its result into the vector it is given. Returns the value and, per input, the
+/// row-major Jacobian (`rows × inputs[i].len()`).
+pub fn jacobians<T: Real, E>(
+    inputs: &[&[T]],
+    mut f: impl FnMut(&[Vec<Dual<T>>], &mut Vec<Dual<T>>) -> Result<(), E>,
+) -> Result<(Vec<T>, Vec<Vec<T>>), E> {
+    let mut seeded: Vec<Vec<Dual<T>>> = inputs
+        .iter()
+        .map(|x| x.iter().map(|&v| Dual::constant(v)).collect())
+        .collect();
+    let mut out = Vec::new();
+    let mut value = Vec::new();
+    let mut blocks: Vec<Vec<T>> = Vec::with_capacity(inputs.len());
+    let mut columns: Vec<Vec<T>> = Vec::new();
+    for i in 0..inputs.len() {
+        columns.clear();
+        for k in 0..inputs[i].len() {
+            seeded[i][k].tangent = T::one();
+            f(&seeded, &mut out)?;
+            seeded[i][k].tangent = T::zero();
+            if value.is_empty() {
+                value = out.iter().map(|d| d.value).collect();
+            }
+            columns.push(out.iter().map(|d| d.tangent).collect());
+        }
+        // Row-major: entry (row r, coordinate k).
+        let rows = value.len();
+        let mut block = Vec::with_capacity(rows * columns.len());
+        for r in 0..rows {
+            block.extend(columns.iter().map(|c| c[r]));
+        }
+        blocks.push(block);
+    }
+    if value.is_empty() {
+        // No input coordinate at all: the value alone.
+        f(&seeded, &mut out)?;
+        value = out.iter().map(|d| d.value).collect();
+    }
+    Ok((value, blocks))
+}
