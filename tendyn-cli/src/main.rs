@@ -82,6 +82,9 @@ enum Command {
         /// Print one JSON object per state.
         #[arg(long)]
         json: bool,
+        /// With --json: add `dQ_dq` and `dQ_dqd` (n × n, arrays of rows; docs/outputs.md §3).
+        #[arg(long, requires = "json")]
+        derivatives: bool,
         /// With --json: add the base regressor at the state, the base parameters with the
         /// file's values and the offset of the external wrench (docs/outputs.md §7).
         #[arg(long, requires = "json")]
@@ -147,6 +150,10 @@ enum Command {
         /// Print `{"mechanism": NAME, "qdd": [...]}` instead of text.
         #[arg(long)]
         json: bool,
+        /// With --json: add `dqdd_dq`, `dqdd_dqd` (n × n) and `dqdd_du` (n × m, u the
+        /// torques then the tensions), as arrays of rows (docs/outputs.md §5).
+        #[arg(long, requires = "json")]
+        derivatives: bool,
     },
     /// Draw the mechanism at a state as SVG: links, joints, pulleys to scale, every tendon
     /// segment in its strand's colour, exits and anchors, a scale bar and a legend.
@@ -351,6 +358,7 @@ fn run(cli: Cli) -> Result<(), String> {
             acceleration: Acceleration { qdd },
             states,
             json,
+            derivatives,
             regressor,
             csv,
         } => {
@@ -363,6 +371,13 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             let eval_json = |q: &[f64], qd: &[f64], qdd: &[f64]| -> Result<_, String> {
                 let mut out = eval_json(&m, q, qd, qdd)?;
+                if derivatives {
+                    let d = Data::new(&m)
+                        .generalized_forces_derivatives(&m, q, qd, qdd)
+                        .map_err(|e| e.to_string())?;
+                    out["dQ_dq"] = rows(&d.d_q, n);
+                    out["dQ_dqd"] = rows(&d.d_qd, n);
+                }
                 if let Some(base) = &base {
                     let r = Data::new(&m)
                         .regressor(&m, q, qd, qdd)
@@ -616,6 +631,7 @@ fn run(cli: Cli) -> Result<(), String> {
             torques,
             tensions,
             json,
+            derivatives,
         } => {
             let m = load(&file)?;
             for (flag, given, items, what) in [
@@ -647,12 +663,19 @@ fn run(cli: Cli) -> Result<(), String> {
             let mut s = Data::new(&m);
             let qdd = s
                 .forward_dynamics(&m, &q, &qd, &torques, &tensions)
-                .map_err(|e| e.to_string())?;
+                .map_err(|e| e.to_string())?
+                .to_vec();
             if json {
-                say!(
-                    "{}",
-                    serde_json::json!({ "mechanism": m.name(), "qdd": qdd })
-                );
+                let mut out = serde_json::json!({ "mechanism": m.name(), "qdd": qdd });
+                if derivatives {
+                    let d = s
+                        .forward_dynamics_derivatives(&m, &q, &qd, &torques, &tensions)
+                        .map_err(|e| e.to_string())?;
+                    out["dqdd_dq"] = rows(&d.d_q, m.dof());
+                    out["dqdd_dqd"] = rows(&d.d_qd, m.dof());
+                    out["dqdd_du"] = rows(&d.d_u, m.dof());
+                }
+                say!("{out}");
             } else {
                 say!("qdd = {qdd:?}");
             }
@@ -730,6 +753,14 @@ fn evaluate(
         gravity: s.gravity(m, q).map_err(e)?.to_vec(),
     };
     Ok((r, js))
+}
+
+/// A row-major matrix of `n` rows as a JSON array of rows.
+fn rows(flat: &[f64], n: usize) -> serde_json::Value {
+    let columns = flat.len() / n.max(1);
+    serde_json::json!((0..n)
+        .map(|i| &flat[i * columns..(i + 1) * columns])
+        .collect::<Vec<_>>())
 }
 
 /// The samples of `tendyn identify --data`: per line the state, then what was measured

@@ -819,3 +819,88 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     assert!(err.contains(":1: expected 8 numbers"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--derivatives` adds the Jacobians as arrays of rows, the library's numbers.
+#[test]
+fn eval_and_forward_give_their_derivatives_on_request() {
+    let file = "examples/mechanisms/example3_stanford_jpl.ron";
+    let m = tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example3_stanford_jpl.ron"
+    ))
+    .unwrap();
+    let mut data = tendyn_core::Data::new(&m);
+    let (q, qd, qdd) = ([0.1, 0.2, 0.3], [0.0, 0.5, -1.0], [1.0, 2.0, 3.0]);
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        file,
+        "--q",
+        "0.1,0.2,0.3",
+        "--qd",
+        "0,0.5,-1",
+        "--qdd",
+        "1,2,3",
+        "--json",
+        "--derivatives",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let d = data
+        .generalized_forces_derivatives(&m, &q, &qd, &qdd)
+        .unwrap();
+    let flat = |key: &str| -> Vec<f64> {
+        let rows = v[key].as_array().unwrap();
+        assert_eq!(rows.len(), 3, "{key}: one row per joint");
+        rows.iter()
+            .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+            .collect()
+    };
+    // (serde_json reads a printed f64 back to within one unit in the last place.)
+    let same = |a: &[f64], b: &[f64]| {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - y).abs() <= 4e-16 * y.abs())
+    };
+    assert!(same(&flat("dQ_dq"), &d.d_q));
+    assert!(same(&flat("dQ_dqd"), &d.d_qd));
+    let tensions = [10.0, 12.0, 14.0, 20.0];
+    let (ok, out, err) = tendyn(&[
+        "forward",
+        file,
+        "--q",
+        "0.1,0.2,0.3",
+        "--qd",
+        "0,0.5,-1",
+        "--tensions",
+        "10,12,14,20",
+        "--json",
+        "--derivatives",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let d = data
+        .forward_dynamics_derivatives(&m, &q, &qd, &[], &tensions)
+        .unwrap();
+    let du: Vec<f64> = v["dqdd_du"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+        .collect();
+    assert!(same(&du, &d.d_u));
+    assert_eq!(v["dqdd_dq"].as_array().unwrap().len(), 3);
+    // Without --json the flag is refused by the parser.
+    let (code, _, _) = run(&[
+        "forward",
+        file,
+        "--q",
+        "0,0,0",
+        "--qd",
+        "0,0,0",
+        "--tensions",
+        "1,1,1,1",
+        "--derivatives",
+    ]);
+    assert_eq!(code, Some(2));
+}

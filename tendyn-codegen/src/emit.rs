@@ -504,6 +504,20 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             let force = take(3);
             ast::array([force, take(3)])
         })),
+        Shape::Jacobians { n, actuators } => {
+            let value = take(*n);
+            let d_q = ast::array((0..*n).map(|_| take(*n)));
+            let d_qd = ast::array((0..*n).map(|_| take(*n)));
+            match actuators {
+                None => {
+                    parse_quote!(#core::dual::StateJacobians { value: #value, d_q: #d_q, d_qd: #d_qd })
+                }
+                Some(m) => {
+                    let d_u = ast::array((0..*n).map(|_| take(*m)));
+                    parse_quote!(#core::dual::ForwardJacobians { value: #value, d_q: #d_q, d_qd: #d_qd, d_u: #d_u })
+                }
+            }
+        }
     }
 }
 
@@ -550,6 +564,19 @@ fn return_type(f: &Function, t: &syn::Type, core: &syn::Path) -> syn::Type {
             parse_quote!(#core::distribution::Actuation<#m, #k>)
         }
         Shape::Wrenches(n) => array_type(array_type(array_type(t.clone(), 3), 2), *n),
+        Shape::Jacobians { n, actuators } => {
+            let (v, j) = (
+                array_type(t.clone(), *n),
+                array_type(array_type(t.clone(), *n), *n),
+            );
+            match actuators {
+                None => parse_quote!(#core::dual::StateJacobians<#v, #j>),
+                Some(m) => {
+                    let u = array_type(array_type(t.clone(), *m), *n);
+                    parse_quote!(#core::dual::ForwardJacobians<#v, #j, #u>)
+                }
+            }
+        }
     }
 }
 
@@ -620,6 +647,8 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
         Output::SegmentTensions => "Tension of every tendon segment (N), strands in order, each from its anchored end".to_string(),
         Output::Bearings => "Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame".to_string(),
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),
+        Output::GeneralizedForcesDerivatives => "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion".to_string(),
+        Output::ForwardDynamicsDerivatives => "`q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion".to_string(),
     };
     format!(
         " {what}.\n\n Entries: {}.\n\n Operations ({}): {}.",

@@ -229,9 +229,10 @@ pub fn generate_with(
     })
 }
 
-/// The outputs `model` can provide (every output, less those [`outputs::check`] refuses).
+/// The default outputs `model` can provide ([`Output::DEFAULT`], less those [`outputs::check`]
+/// refuses): what is generated when no output is named.
 pub fn available_outputs(model: &tendyn_core::Model<f64>) -> Vec<Output> {
-    Output::ALL
+    Output::DEFAULT
         .into_iter()
         .filter(|o| outputs::check(model, &[*o]).is_ok())
         .collect()

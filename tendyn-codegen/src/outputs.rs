@@ -9,7 +9,9 @@
 use crate::closed_form::{Collector, StateRank};
 use crate::expr::{Graph, Id, OpCount, Sym};
 use tendyn_core::affine::Affine;
+use tendyn_core::derivatives;
 use tendyn_core::distribution::Problem;
+use tendyn_core::dual::Dual;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model, TensionSystem};
 pub use tendyn_core::output::{Output, Param};
@@ -25,6 +27,12 @@ pub fn flattened_numbers(output: Output, value: &str) -> String {
             format!("{value}.motor_torques.iter().chain({value}.tendon_tensions.iter())")
         }
         Output::MassMatrix => format!("{value}.iter().flatten()"),
+        Output::GeneralizedForcesDerivatives => format!(
+            "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten())"
+        ),
+        Output::ForwardDynamicsDerivatives => format!(
+            "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten()).chain({value}.d_u.iter().flatten())"
+        ),
         Output::Bearings | Output::BaseReaction => format!("{value}.iter().flatten().flatten()"),
         _ => format!("{value}.iter()"),
     }
@@ -49,6 +57,15 @@ pub enum Shape {
     },
     /// `[[[T; 3]; 2]; count]`: force and moment per entry.
     Wrenches(usize),
+    /// `tendyn_core::dual::StateJacobians<[T; n], [[T; n]; n]>` (no `actuators`), or
+    /// `tendyn_core::dual::ForwardJacobians<[T; n], [[T; n]; n], [[T; actuators]; n]>`:
+    /// the flat results are the value, then each Jacobian row by row.
+    Jacobians {
+        /// Joints `n`.
+        n: usize,
+        /// Motors and tendons `m`, for forward dynamics' `∂q̈/∂u`.
+        actuators: Option<usize>,
+    },
 }
 
 /// How a generated `actuation` tells a feasible distribution from a best effort.
@@ -196,12 +213,16 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
-            Output::ForwardDynamics if model.capstan_before_an_idler() => Some(
-                "a turning idler follows a guide with capstan friction towards the tendon's \
+            Output::ForwardDynamics | Output::ForwardDynamicsDerivatives
+                if model.capstan_before_an_idler() =>
+            {
+                Some(
+                    "a turning idler follows a guide with capstan friction towards the tendon's \
                  exit: its inertia reaches the joints scaled by the guide's friction, which \
                  the mass matrix of forward dynamics does not carry — use inverse dynamics"
-                    .to_string(),
-            ),
+                        .to_string(),
+                )
+            }
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
             Output::SegmentTensions | Output::Bearings if model.system().null_space.len() > 1 => {
@@ -215,7 +236,9 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             Output::Actuation if model.motors().is_empty() && model.tendons().is_empty() => {
                 Some("the mechanism has neither motors nor tendons".to_string())
             }
-            Output::ForwardDynamics if model.motors().is_empty() && model.tendons().is_empty() => {
+            Output::ForwardDynamics | Output::ForwardDynamicsDerivatives
+                if model.motors().is_empty() && model.tendons().is_empty() =>
+            {
                 Some("the mechanism has neither motors nor tendons to drive it".to_string())
             }
             Output::SegmentTensions if model.strands().is_empty() => {
@@ -390,7 +413,12 @@ struct Shared {
     /// Forward dynamics' mass matrix (flat) and right-hand side, to solve again over each
     /// one's best form.
     forward_parts: Option<(Vec<Id>, Vec<Id>)>,
+    /// The model on dual numbers and its workspace, for the derivatives.
+    dual: Option<DualModel>,
 }
+
+/// The model on dual numbers and a workspace for it (the derivatives' trace).
+type DualModel = (Model<Dual<Sym>>, Workspace<Dual<Sym>>);
 
 impl Shared {
     fn inverse(
@@ -420,6 +448,16 @@ impl Shared {
                 .expect("tracing the distribution cannot fail");
             r
         })
+    }
+
+    /// The model on dual numbers (every number a constant) and a workspace for it.
+    fn dual(&mut self, m: &Model<Sym>) -> (&Model<Dual<Sym>>, &mut Workspace<Dual<Sym>>) {
+        let (model, ws) = self.dual.get_or_insert_with(|| {
+            let dual = m.dual();
+            let ws = Workspace::new(&dual);
+            (dual, ws)
+        });
+        (model, ws)
     }
 
     fn mass(&mut self, m: &Model<Sym>, i: &Inputs, ws: &mut Workspace<Sym>) -> Vec<Vec<Sym>> {
@@ -468,6 +506,54 @@ fn trace_one(
             linalg::ldlt_solve(&mut mm, &mut x);
             (Shape::Vector(n), x)
         }
+        Output::GeneralizedForcesDerivatives => {
+            let shape = Shape::Jacobians { n, actuators: None };
+            let inputs = [&i.q[..], &i.qd];
+            let qdd = dual_constants(&i.qdd);
+            let (value, d) = derivatives::jacobians(inputs.as_slice(), |x, out| {
+                let (dual, ws) = shared.dual(m);
+                out.resize(n, Dual::constant(Sym::zero()));
+                dynamics::generalized_forces(dual, &x[0], &x[1], &qdd, ws, out);
+                Ok::<(), ()>(())
+            })
+            .expect("tracing cannot fail");
+            (
+                shape,
+                value.into_iter().chain(d.into_iter().flatten()).collect(),
+            )
+        }
+        Output::ForwardDynamicsDerivatives => {
+            let motors = i.motor_torques.len();
+            let u: Vec<Sym> = i
+                .motor_torques
+                .iter()
+                .chain(&i.tendon_tensions)
+                .copied()
+                .collect();
+            let shape = Shape::Jacobians {
+                n,
+                actuators: Some(u.len()),
+            };
+            let inputs = [&i.q[..], &i.qd, &u];
+            let (value, d) = derivatives::jacobians(inputs.as_slice(), |x, out| {
+                let (dual, ws) = shared.dual(m);
+                let (torques, tensions) = x[2].split_at(motors);
+                let rhs = dynamics::forward_dynamics_rhs(dual, &x[0], &x[1], torques, tensions, ws);
+                let mut mass: Vec<Dual<Sym>> = dynamics::mass_matrix(dual, &x[0], ws)
+                    .into_iter()
+                    .flatten()
+                    .collect();
+                out.clear();
+                out.extend(rhs);
+                linalg::ldlt_solve(&mut mass, out);
+                Ok::<(), ()>(())
+            })
+            .expect("tracing cannot fail");
+            (
+                shape,
+                value.into_iter().chain(d.into_iter().flatten()).collect(),
+            )
+        }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
             let r = shared.inverse(m, i, ws);
             // Availability was checked before tracing (`check`).
@@ -498,6 +584,11 @@ fn trace_one(
             (shape, results)
         }
     }
+}
+
+/// Symbols as dual constants (no derivative).
+fn dual_constants(x: &[Sym]) -> Vec<Dual<Sym>> {
+    x.iter().map(|&s| Dual::constant(s)).collect()
 }
 
 /// Names of what each result of a function is, for documentation (`segment_tensions`:

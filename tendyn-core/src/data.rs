@@ -593,6 +593,12 @@ impl<T: Numeric> Data<T> {
             Output::ForwardDynamics => self
                 .forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?
                 .to_vec(),
+            Output::GeneralizedForcesDerivatives => self
+                .generalized_forces_derivatives(model, q, qd, qdd)?
+                .flattened(),
+            Output::ForwardDynamicsDerivatives => self
+                .forward_dynamics_derivatives(model, q, qd, motor_torques, tendon_tensions)?
+                .flattened(),
             _ => self
                 .inverse_dynamics(model, q, qd, qdd)?
                 .flattened(output)

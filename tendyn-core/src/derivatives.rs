@@ -38,6 +38,22 @@ pub struct Derivatives<T> {
     pub d_u: Vec<T>,
 }
 
+impl<T: Copy> Derivatives<T> {
+    /// The value, then `d_q`, `d_qd`, `d_qdd` and `d_u` (each row-major; absent ones add
+    /// nothing): the order of the generated `*_derivatives` functions
+    /// ([`crate::output`]).
+    pub fn flattened(&self) -> Vec<T> {
+        [
+            &self.value[..],
+            &self.d_q,
+            &self.d_qd,
+            &self.d_qdd,
+            &self.d_u,
+        ]
+        .concat()
+    }
+}
+
 /// The Jacobians of `f` at `inputs`: `f` is evaluated once per coordinate of every input
 /// on dual numbers with that coordinate's tangent one and every other zero. `f` writes
 /// its result into the vector it is given. Returns the value and, per input, the

@@ -159,3 +159,30 @@ impl<T: Numeric> Numeric for Dual<T> {
         T::unit_roundoff()
     }
 }
+
+/// What a generated `generalized_forces_derivatives` returns: `value` (`[T; n]`) and its
+/// Jacobians `d_q`, `d_qd` (`[[T; n]; n]`, `d_q[i][k] = ∂value_i/∂q_k`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StateJacobians<V, J> {
+    /// The function's value.
+    pub value: V,
+    /// `∂value/∂q`, row by row.
+    pub d_q: J,
+    /// `∂value/∂q̇`, row by row.
+    pub d_qd: J,
+}
+
+/// What a generated `forward_dynamics_derivatives` returns: `value` (`q̈`, `[T; n]`),
+/// `d_q`, `d_qd` (`[[T; n]; n]`) and `d_u` (`[[T; m]; n]`, `u` the motor torques then the
+/// tendon tensions).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForwardJacobians<V, J, U> {
+    /// `q̈`.
+    pub value: V,
+    /// `∂q̈/∂q`, row by row.
+    pub d_q: J,
+    /// `∂q̈/∂q̇`, row by row.
+    pub d_qd: J,
+    /// `∂q̈/∂u`, row by row.
+    pub d_u: U,
+}

@@ -30,11 +30,34 @@ pub enum Output {
     Bearings,
     /// The base's force (N) and moment about `O_0` (N·m) on the mechanism, base frame.
     BaseReaction,
+    /// `Q` with `∂Q/∂q` and `∂Q/∂q̇` (`crate::derivatives`), flattened value first, then
+    /// each Jacobian row by row.
+    GeneralizedForcesDerivatives,
+    /// `q̈` with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` (`u`: motor torques, then tendon
+    /// tensions), flattened value first, then each Jacobian row by row.
+    ForwardDynamicsDerivatives,
 }
 
 impl Output {
-    /// Every output, in the default order (that of `tendyn generate` and of the file).
-    pub const ALL: [Output; 9] = [
+    /// Every output: the [`DEFAULT`](Output::DEFAULT) ones, then the derivatives, which are
+    /// generated only when asked for.
+    pub const ALL: [Output; 11] = [
+        Output::GeneralizedForces,
+        Output::Actuation,
+        Output::MassMatrix,
+        Output::Bias,
+        Output::Gravity,
+        Output::ForwardDynamics,
+        Output::SegmentTensions,
+        Output::Bearings,
+        Output::BaseReaction,
+        Output::GeneralizedForcesDerivatives,
+        Output::ForwardDynamicsDerivatives,
+    ];
+
+    /// What is generated when no output is named, in the default order (that of
+    /// `tendyn generate` and of the file): every output but the derivatives.
+    pub const DEFAULT: [Output; 9] = [
         Output::GeneralizedForces,
         Output::Actuation,
         Output::MassMatrix,
@@ -58,6 +81,8 @@ impl Output {
             Output::SegmentTensions => "segment_tensions",
             Output::Bearings => "bearings",
             Output::BaseReaction => "base_reaction",
+            Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
+            Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
         }
     }
 
@@ -75,6 +100,8 @@ impl Output {
             Output::Bias => "bias",
             Output::Gravity => "gravity",
             Output::ForwardDynamics => "forward_dynamics",
+            Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
+            Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
             Output::Actuation
             | Output::SegmentTensions
             | Output::Bearings
@@ -87,7 +114,7 @@ impl Output {
         match self {
             Output::MassMatrix | Output::Gravity => &[Param::Q],
             Output::Bias => &[Param::Q, Param::Qd],
-            Output::ForwardDynamics => &[
+            Output::ForwardDynamics | Output::ForwardDynamicsDerivatives => &[
                 Param::Q,
                 Param::Qd,
                 Param::MotorTorques,
@@ -172,7 +199,12 @@ impl<T: Copy> InverseDynamics<T> {
                 .as_ref()
                 .map(|b| b.iter().flat_map(wrench).collect()),
             Output::BaseReaction => self.base_reaction.as_ref().map(|b| wrench(b).to_vec()),
-            Output::MassMatrix | Output::Bias | Output::Gravity | Output::ForwardDynamics => None,
+            Output::MassMatrix
+            | Output::Bias
+            | Output::Gravity
+            | Output::ForwardDynamics
+            | Output::GeneralizedForcesDerivatives
+            | Output::ForwardDynamicsDerivatives => None,
         }
     }
 }

@@ -69,7 +69,7 @@ use tendyn_codegen::{Options, Output, Scalar};
 /// |---|---|
 /// | `file = "path"` | The mechanism file, relative to the crate's manifest directory. The expansion embeds it with `include_bytes!`, so editing it rebuilds the crate. |
 /// | `ron = "..."` | The mechanism inline (a raw string `r#"..."#` is convenient). Exactly one of `file` and `ron`. |
-/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`. Default: every output the mechanism can provide. |
+/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`, and the derivatives `generalized_forces_derivatives`, `forward_dynamics_derivatives` (inherent methods only; not in the trait). Default: every output the mechanism can provide, less the derivatives. |
 /// | `scalar = f64` or `scalar = f32` | The type of every input, output and field. Default `f64`. (The derive always generates concrete code; there is no generic scalar.) |
 /// | `crate = "path"` | Where the front crate is, default `::tendyn`: the expansion implements `<path>::TendonMechanism`, and the generated code reaches `<path>::core`. |
 ///
@@ -427,10 +427,12 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     let segments = return_of("segment_tensions");
     let bearings = return_of("bearings");
     let base_reaction = return_of("base_reaction");
-    let trait_methods = outputs.iter().map(|o| {
+    // The derivatives are inherent methods only: the trait has no method for them.
+    let in_trait = outputs.iter().filter(|o| Output::DEFAULT.contains(o));
+    let trait_methods = in_trait.map(|o| {
         let name = format_ident!("{}", o.name());
         let params = params_value.iter();
-        let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t));
+        let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t), &quote!(()));
         quote! {
             #[inline]
             fn #name(&self, #signature) -> ::core::option::Option<#ret> {
@@ -510,18 +512,20 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
 
 /// An output's parameters as the trait declares them, the arguments that pass them on, and
 /// its return type (inside the trait's `Option`). `ty` writes one of the trait's associated
-/// types (`Joints`, `Motors`, …) as a path: `Self::Joints` in the trait's impl.
+/// types (`Joints`, `Motors`, …) as a path: `Self::Joints` in the trait's impl. `actuated`
+/// is the type of `∂q̈/∂u`, `[[T; motors + tendons]; n]`, which the trait has no name for.
 fn signature(
     o: Output,
     krate: &syn::Path,
     ty: &dyn Fn(Ident) -> TokenStream,
+    actuated: &TokenStream,
 ) -> (TokenStream, TokenStream, TokenStream) {
     let t = |name: &str| ty(format_ident!("{name}"));
     let (joints, motors, tendons) = (t("Joints"), t("Motors"), t("Tendons"));
     let (signature, args) = match o {
         Output::MassMatrix | Output::Gravity => (quote!(q: &#joints), quote!(q)),
         Output::Bias => (quote!(q: &#joints, qd: &#joints), quote!(q, qd)),
-        Output::ForwardDynamics => (
+        Output::ForwardDynamics | Output::ForwardDynamicsDerivatives => (
             quote!(q: &#joints, qd: &#joints, motor_torques: &#motors, tendon_tensions: &#tendons),
             quote!(q, qd, motor_torques, tendon_tensions),
         ),
@@ -539,6 +543,14 @@ fn signature(
         Output::SegmentTensions => t("Segments"),
         Output::Bearings => t("Bearings"),
         Output::BaseReaction => t("BaseReaction"),
+        Output::GeneralizedForcesDerivatives => {
+            let mass = t("MassMatrix");
+            quote!(#krate::core::dual::StateJacobians<#joints, #mass>)
+        }
+        Output::ForwardDynamicsDerivatives => {
+            let mass = t("MassMatrix");
+            quote!(#krate::core::dual::ForwardJacobians<#joints, #mass, #actuated>)
+        }
     };
     (signature, args, ret)
 }
@@ -564,7 +576,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
     // A tendon has a segment after each of its wraps; a loop one on each side.
     let segments = f.tendons.iter().map(|t| t.route.len()).sum::<usize>() + 2 * f.loops.len();
     let outputs: Vec<Output> = match &attr.outputs {
-        None => Output::ALL.to_vec(),
+        None => Output::DEFAULT.to_vec(),
         Some(list) => list
             .iter()
             .filter_map(|i| Output::parse(&i.to_string()))
@@ -581,12 +593,17 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
     let never = quote!(::core::unreachable!(
         "emitted only beside the compile error of `#[derive(TendonMechanism)]`"
     ));
+    let actuated = {
+        let u = m + t;
+        quote!([[#scalar; #u]; #n])
+    };
     let methods = outputs.iter().map(|o| {
         let name = format_ident!("{}", o.name());
         let (signature, _, ret) = signature(
             *o,
             krate,
             &|t| quote!(<Self as #krate::TendonMechanism>::#t),
+            &actuated,
         );
         quote! {
             #[allow(unused_variables)]
@@ -626,6 +643,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
             *o,
             krate,
             &|t| quote!(<super::#ident as #krate::TendonMechanism>::#t),
+            &actuated,
         );
         quote!(pub #name: #ret,)
     });

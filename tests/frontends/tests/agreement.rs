@@ -29,7 +29,7 @@ fn runtime(
         motor_torques: &r.motor_torques,
         tendon_tensions: &r.tendon_tensions,
     };
-    Output::ALL
+    Output::DEFAULT
         .into_iter()
         .filter_map(|o| match s.output(model, o, &state) {
             Ok(v) => Some((o.name(), v)),
@@ -145,4 +145,37 @@ fn example3_derive_build_script_and_runtime_agree() {
         built::example3,
         3
     );
+}
+
+/// The derive's derivatives are the runtime solver's dual numbers (to round-off of the
+/// closed form's different grouping).
+#[test]
+fn example3_derived_derivatives_agree_with_the_runtime_solver() {
+    use tendyn_frontends_tests::derived::Example3Derivatives;
+    let model = tendyn_core::load("../../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let mut data = tendyn_core::Data::new(&model);
+    let (q, qd, qdd) = ([0.3, -0.7, 1.1], [0.5, -1.0, 2.0], [3.0, -2.0, 1.0]);
+    let close = |got: &[f64], want: &[f64]| {
+        let scale = want.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+        let err = got
+            .iter()
+            .zip(want)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(err <= 1e-13 * scale, "{err:e} of {scale:e}");
+    };
+    let g = Example3Derivatives.generalized_forces_derivatives(&q, &qd, &qdd);
+    let r = data
+        .generalized_forces_derivatives(&model, &q, &qd, &qdd)
+        .unwrap();
+    close(&g.value, &r.value);
+    close(g.d_q.as_flattened(), &r.d_q);
+    close(g.d_qd.as_flattened(), &r.d_qd);
+    let tensions = [12.0, 20.0, 15.0, 30.0];
+    let g = Example3Derivatives.forward_dynamics_derivatives(&q, &qd, &[], &tensions);
+    let r = data
+        .forward_dynamics_derivatives(&model, &q, &qd, &[], &tensions)
+        .unwrap();
+    close(&g.value, &r.value);
+    close(g.d_q.as_flattened(), &r.d_q);
+    close(g.d_u.as_flattened(), &r.d_u);
 }

@@ -4,7 +4,9 @@
 //! matches the runtime solver's to 1e-12 relative in f64. The norm is the max norm of each
 //! output vector, relative: `‖generated − runtime‖∞ / ‖runtime‖∞` — for forward dynamics,
 //! relative to the size of the terms it sums (`Data::forward_dynamics_scale`), since balancing tensions
-//! make `q̈` a small difference of large numbers.
+//! make `q̈` a small difference of large numbers. The derivatives (value and Jacobians
+//! flattened, against the runtime solver's dual numbers) are measured per block the same
+//! way: each Jacobian relative to its own max norm.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -64,21 +66,35 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
             for (output, got) in (mech.evaluate)(&q, &qd, &qdd, &mt, &tt, &p) {
                 let want = runtime((&model, &mut solver), output, &q, &qd, &qdd, &mt, &tt);
                 assert_eq!(got.len(), want.len(), "{} {output}", mech.name);
-                let mut scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
-                if output == "forward_dynamics" {
-                    // Tensions that balance each other make q̈ a small difference of large
-                    // terms; measure against the size of those terms.
-                    scale = scale.max(
-                        solver
-                            .forward_dynamics_scale(&model, &q, &qd, &mt, &tt)
-                            .unwrap(),
-                    );
+                // Derivatives: the value, then each Jacobian, each measured on its own.
+                let blocks = match output {
+                    "generalized_forces_derivatives" => vec![n, n * n, n * n],
+                    "forward_dynamics_derivatives" => {
+                        vec![n, n * n, n * n, n * (mt.len() + tt.len())]
+                    }
+                    _ => vec![want.len()],
+                };
+                let mut err = 0.0f64;
+                let mut at = 0;
+                for (b, len) in blocks.into_iter().enumerate() {
+                    let (got, want) = (&got[at..at + len], &want[at..at + len]);
+                    at += len;
+                    let mut scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
+                    if output.starts_with("forward_dynamics") && b == 0 {
+                        // Tensions that balance each other make q̈ a small difference of
+                        // large terms; measure against the size of those terms.
+                        scale = scale.max(
+                            solver
+                                .forward_dynamics_scale(&model, &q, &qd, &mt, &tt)
+                                .unwrap(),
+                        );
+                    }
+                    let e = got
+                        .iter()
+                        .zip(want)
+                        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                    err = err.max(e / scale);
                 }
-                let err = got
-                    .iter()
-                    .zip(&want)
-                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-                    / scale;
                 assert!(
                     err <= 1e-12,
                     "{} {output}: generated code is {err:.3e} from the runtime solver at q={q:?}",
