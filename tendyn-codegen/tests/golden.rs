@@ -4,7 +4,9 @@
 
 //!
 //! The benchmark of the tension distribution compiles `golden/distribution/`: `actuation`
-//! of the mechanisms in `benches/distribution/`, kept the same way.
+//! of the mechanisms in `benches/distribution/`, kept the same way; the benchmark of the
+//! derivatives compiles `golden/derivatives/`: Examples 1 and 3 with `generalized_forces`,
+//! `forward_dynamics` and their derivatives.
 
 use tendyn_codegen::{available_outputs, generate, Output, Scalar};
 
@@ -34,6 +36,22 @@ fn generated_distribution_benchmarks_match_their_golden_files() {
         let model = tendyn_core::load(format!("{root}/benches/distribution/{name}.ron")).unwrap();
         let path = format!("{root}/golden/distribution/{name}.rs");
         compare(name, &model, &[Output::Actuation], &path);
+    }
+}
+
+#[test]
+fn generated_derivatives_match_their_golden_files() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for name in ["example1_endless", "example3_stanford_jpl"] {
+        let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
+        let outputs = [
+            Output::GeneralizedForces,
+            Output::GeneralizedForcesDerivatives,
+            Output::ForwardDynamics,
+            Output::ForwardDynamicsDerivatives,
+        ];
+        let path = format!("{root}/tendyn-codegen/golden/derivatives/{name}.rs");
+        compare(name, &model, &outputs, &path);
     }
 }
 
