@@ -504,6 +504,11 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             let force = take(3);
             ast::array([force, take(3)])
         })),
+        Shape::Regression { n, columns } => {
+            let y = ast::array((0..*n).map(|_| take(*columns)));
+            let offset = take(*n);
+            parse_quote!(#core::mechanism::Regression { y: #y, offset: #offset })
+        }
         Shape::Jacobians { n, actuators } => {
             let value = take(*n);
             let d_q = ast::array((0..*n).map(|_| take(*n)));
@@ -564,6 +569,11 @@ fn return_type(f: &Function, t: &syn::Type, core: &syn::Path) -> syn::Type {
             parse_quote!(#core::distribution::Actuation<#m, #k>)
         }
         Shape::Wrenches(n) => array_type(array_type(array_type(t.clone(), 3), 2), *n),
+        Shape::Regression { n, columns } => {
+            let y = array_type(array_type(t.clone(), *columns), *n);
+            let v = array_type(t.clone(), *n);
+            parse_quote!(#core::mechanism::Regression<#y, #v>)
+        }
         Shape::Jacobians { n, actuators } => {
             let (v, j) = (
                 array_type(t.clone(), *n),
@@ -647,6 +657,7 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
         Output::SegmentTensions => "Tension of every tendon segment (N), strands in order, each from its anchored end".to_string(),
         Output::Bearings => "Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame".to_string(),
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),
+        Output::Regressor => "The identification regressor: `y[j][c]`, the generalized force on joint `j` per unit of parameter `c` (`tendyn regressor --json` lists them: each body's `m`, `mx`, `my`, `mz`, `xx`, `xy`, `xz`, `yy`, `yz`, `zz` about its frame origin, then `coulomb`, `viscous` where its bearing has friction), and `offset`, the external wrench's part: `Q = y · π + offset`".to_string(),
         Output::GeneralizedForcesDerivatives => "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion".to_string(),
         Output::ForwardDynamicsDerivatives => "`q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion".to_string(),
     };

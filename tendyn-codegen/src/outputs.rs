@@ -15,6 +15,7 @@ use tendyn_core::dual::Dual;
 use tendyn_core::dynamics::{self, Workspace};
 use tendyn_core::model::{BodyKind, Model, TensionSystem};
 pub use tendyn_core::output::{Output, Param};
+use tendyn_core::regressor;
 use tendyn_core::{linalg, tension, Real};
 
 /// A Rust expression over the numbers of `value` (a binding holding what the generated
@@ -30,6 +31,7 @@ pub fn flattened_numbers(output: Output, value: &str) -> String {
         Output::GeneralizedForcesDerivatives => format!(
             "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten())"
         ),
+        Output::Regressor => format!("{value}.y.iter().flatten().chain({value}.offset.iter())"),
         Output::ForwardDynamicsDerivatives => format!(
             "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten()).chain({value}.d_u.iter().flatten())"
         ),
@@ -65,6 +67,14 @@ pub enum Shape {
         n: usize,
         /// Motors and tendons `m`, for forward dynamics' `∂q̈/∂u`.
         actuators: Option<usize>,
+    },
+    /// `tendyn_core::mechanism::Regression<[[T; columns]; n], [T; n]>`: the flat results
+    /// are `Y` row by row, then the offset `Q₀`.
+    Regression {
+        /// Joints `n`.
+        n: usize,
+        /// Parameters `p` (columns of `Y`).
+        columns: usize,
     },
 }
 
@@ -553,6 +563,14 @@ fn trace_one(
                 shape,
                 value.into_iter().chain(d.into_iter().flatten()).collect(),
             )
+        }
+        Output::Regressor => {
+            let columns = regressor::parameters(m).len();
+            let mut work = regressor::Work::new(m);
+            let (mut y, mut offset) = (vec![Sym::zero(); n * columns], zeros.clone());
+            regressor::regressor(m, &i.q, &i.qd, &i.qdd, &mut work, &mut y, &mut offset);
+            y.extend(offset);
+            (Shape::Regression { n, columns }, y)
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
             let r = shared.inverse(m, i, ws);

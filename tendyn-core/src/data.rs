@@ -599,6 +599,10 @@ impl<T: Numeric> Data<T> {
             Output::ForwardDynamicsDerivatives => self
                 .forward_dynamics_derivatives(model, q, qd, motor_torques, tendon_tensions)?
                 .flattened(),
+            Output::Regressor => {
+                let r = self.regressor(model, q, qd, qdd)?;
+                [&r.y[..], &r.known].concat()
+            }
             _ => self
                 .inverse_dynamics(model, q, qd, qdd)?
                 .flattened(output)

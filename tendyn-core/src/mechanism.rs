@@ -9,6 +9,17 @@
 use crate::distribution::Actuation;
 use crate::real::Real;
 
+/// What a generated `regressor` returns: `y` (`[[T; p]; n]`, one row per joint, one column
+/// per parameter of `tendyn_core::regressor::parameters`) and `offset` (`[T; n]`, the
+/// external wrench's part), so that `Q = y · π + offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Regression<Y, V> {
+    /// The regressor `Y(q, q̇, q̈)`, row by row.
+    pub y: Y,
+    /// `Q₀`: what the actuators deliver whatever the parameters.
+    pub offset: V,
+}
+
 /// A mechanism whose dynamics were generated at compile time, by
 /// `#[derive(TendonMechanism)]` (crate `tendyn`).
 ///

@@ -36,12 +36,15 @@ pub enum Output {
     /// `q̈` with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` (`u`: motor torques, then tendon
     /// tensions), flattened value first, then each Jacobian row by row.
     ForwardDynamicsDerivatives,
+    /// The identification regressor `Y(q, q̇, q̈)` (`crate::regressor`, every parameter's
+    /// column) and the offset `Q₀`: `Q = Y π + Q₀`; flattened `Y` row by row, then `Q₀`.
+    Regressor,
 }
 
 impl Output {
     /// Every output: the [`DEFAULT`](Output::DEFAULT) ones, then the derivatives, which are
     /// generated only when asked for.
-    pub const ALL: [Output; 11] = [
+    pub const ALL: [Output; 12] = [
         Output::GeneralizedForces,
         Output::Actuation,
         Output::MassMatrix,
@@ -53,10 +56,12 @@ impl Output {
         Output::BaseReaction,
         Output::GeneralizedForcesDerivatives,
         Output::ForwardDynamicsDerivatives,
+        Output::Regressor,
     ];
 
     /// What is generated when no output is named, in the default order (that of
-    /// `tendyn generate` and of the file): every output but the derivatives.
+    /// `tendyn generate` and of the file): every output but the derivatives and the
+    /// regressor.
     pub const DEFAULT: [Output; 9] = [
         Output::GeneralizedForces,
         Output::Actuation,
@@ -83,6 +88,7 @@ impl Output {
             Output::BaseReaction => "base_reaction",
             Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
             Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Output::Regressor => "regressor",
         }
     }
 
@@ -102,6 +108,7 @@ impl Output {
             Output::ForwardDynamics => "forward_dynamics",
             Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
             Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Output::Regressor => "regressor",
             Output::Actuation
             | Output::SegmentTensions
             | Output::Bearings
@@ -204,7 +211,8 @@ impl<T: Copy> InverseDynamics<T> {
             | Output::Gravity
             | Output::ForwardDynamics
             | Output::GeneralizedForcesDerivatives
-            | Output::ForwardDynamicsDerivatives => None,
+            | Output::ForwardDynamicsDerivatives
+            | Output::Regressor => None,
         }
     }
 }

@@ -69,7 +69,7 @@ use tendyn_codegen::{Options, Output, Scalar};
 /// |---|---|
 /// | `file = "path"` | The mechanism file, relative to the crate's manifest directory. The expansion embeds it with `include_bytes!`, so editing it rebuilds the crate. |
 /// | `ron = "..."` | The mechanism inline (a raw string `r#"..."#` is convenient). Exactly one of `file` and `ron`. |
-/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`, and the derivatives `generalized_forces_derivatives`, `forward_dynamics_derivatives` (inherent methods only; not in the trait). Default: every output the mechanism can provide, less the derivatives. |
+/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`, the derivatives `generalized_forces_derivatives`, `forward_dynamics_derivatives` and the identification `regressor` (these three as inherent methods only; not in the trait). Default: every output the mechanism can provide, less those three. |
 /// | `scalar = f64` or `scalar = f32` | The type of every input, output and field. Default `f64`. (The derive always generates concrete code; there is no generic scalar.) |
 /// | `crate = "path"` | Where the front crate is, default `::tendyn`: the expansion implements `<path>::TendonMechanism`, and the generated code reaches `<path>::core`. |
 ///
@@ -432,7 +432,11 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     let trait_methods = in_trait.map(|o| {
         let name = format_ident!("{}", o.name());
         let params = params_value.iter();
-        let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t), &quote!(()));
+        let unnamed = Unnamed {
+            actuated: quote!(()),
+            regression: quote!(()),
+        };
+        let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t), &unnamed);
         quote! {
             #[inline]
             fn #name(&self, #signature) -> ::core::option::Option<#ret> {
@@ -512,14 +516,18 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
 
 /// An output's parameters as the trait declares them, the arguments that pass them on, and
 /// its return type (inside the trait's `Option`). `ty` writes one of the trait's associated
-/// types (`Joints`, `Motors`, …) as a path: `Self::Joints` in the trait's impl. `actuated`
-/// is the type of `∂q̈/∂u`, `[[T; motors + tendons]; n]`, which the trait has no name for.
+/// types (`Joints`, `Motors`, …) as a path: `Self::Joints` in the trait's impl. `unnamed`
+/// holds the types the trait has no name for (those of outputs outside it).
 fn signature(
     o: Output,
     krate: &syn::Path,
     ty: &dyn Fn(Ident) -> TokenStream,
-    actuated: &TokenStream,
+    unnamed: &Unnamed,
 ) -> (TokenStream, TokenStream, TokenStream) {
+    let Unnamed {
+        actuated,
+        regression,
+    } = unnamed;
     let t = |name: &str| ty(format_ident!("{name}"));
     let (joints, motors, tendons) = (t("Joints"), t("Motors"), t("Tendons"));
     let (signature, args) = match o {
@@ -551,8 +559,16 @@ fn signature(
             let mass = t("MassMatrix");
             quote!(#krate::core::dual::ForwardJacobians<#joints, #mass, #actuated>)
         }
+        Output::Regressor => quote!(#krate::core::mechanism::Regression<#regression, #joints>),
     };
     (signature, args, ret)
+}
+
+/// Types of outputs the trait has no associated type for: `∂q̈/∂u`,
+/// `[[T; motors + tendons]; n]`, and the regressor's `[[T; parameters]; n]`.
+struct Unnamed {
+    actuated: TokenStream,
+    regression: TokenStream,
 }
 
 /// What the expansion holds beside a compile error: the inherent methods and the trait with
@@ -593,9 +609,13 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
     let never = quote!(::core::unreachable!(
         "emitted only beside the compile error of `#[derive(TendonMechanism)]`"
     ));
-    let actuated = {
-        let u = m + t;
-        quote!([[#scalar; #u]; #n])
+    // Ten inertial parameters per body, two more where its bearing has friction.
+    let frictional = f.links.iter().filter(|l| l.friction.is_some()).count()
+        + f.pulleys.iter().filter(|p| p.friction.is_some()).count();
+    let (u, p) = (m + t, 10 * bodies + 2 * frictional);
+    let unnamed = Unnamed {
+        actuated: quote!([[#scalar; #u]; #n]),
+        regression: quote!([[#scalar; #p]; #n]),
     };
     let methods = outputs.iter().map(|o| {
         let name = format_ident!("{}", o.name());
@@ -603,7 +623,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
             *o,
             krate,
             &|t| quote!(<Self as #krate::TendonMechanism>::#t),
-            &actuated,
+            &unnamed,
         );
         quote! {
             #[allow(unused_variables)]
@@ -643,7 +663,7 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
             *o,
             krate,
             &|t| quote!(<super::#ident as #krate::TendonMechanism>::#t),
-            &actuated,
+            &unnamed,
         );
         quote!(pub #name: #ret,)
     });

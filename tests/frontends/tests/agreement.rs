@@ -179,3 +179,21 @@ fn example3_derived_derivatives_agree_with_the_runtime_solver() {
     close(g.d_q.as_flattened(), &r.d_q);
     close(g.d_u.as_flattened(), &r.d_u);
 }
+
+/// The derive's regressor times the file's parameters is the generalized force.
+#[test]
+fn example3_derived_regressor_times_the_parameters_is_q() {
+    use tendyn_frontends_tests::derived::Example3Derivatives;
+    let model = tendyn_core::load("../../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let pi = tendyn_core::regressor::values(&model);
+    let (q, qd, qdd) = ([0.3, -0.7, 1.1], [0.5, -1.0, 2.0], [3.0, -2.0, 1.0]);
+    let r = Example3Derivatives.regressor(&q, &qd, &qdd);
+    let q_runtime = tendyn_core::Data::new(&model)
+        .generalized_forces(&model, &q, &qd, &qdd)
+        .unwrap()
+        .to_vec();
+    for ((row, offset), want) in r.y.iter().zip(&r.offset).zip(&q_runtime) {
+        let got: f64 = row.iter().zip(&pi).map(|(y, p)| y * p).sum::<f64>() + offset;
+        assert!((got - want).abs() <= 1e-13 * want.abs().max(1.0), "{got} {want}");
+    }
+}
