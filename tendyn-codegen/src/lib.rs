@@ -233,7 +233,8 @@ pub fn generate_with(
 /// refuses): what is generated when no output is named.
 pub fn available_outputs(model: &tendyn_core::Model<f64>) -> Vec<Output> {
     Output::DEFAULT
-        .into_iter()
+        .iter()
+        .copied()
         .filter(|o| outputs::check(model, &[*o]).is_ok())
         .collect()
 }

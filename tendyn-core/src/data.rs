@@ -148,6 +148,15 @@ impl<T: Numeric> Data<T> {
         )))
     }
 
+    /// `Err` unless these buffers fit `model` and every named state vector has one finite
+    /// entry per joint.
+    fn check_states(&self, model: &Model<T>, states: &[(&str, &[T])]) -> Result<()> {
+        self.check_model(model)?;
+        states
+            .iter()
+            .try_for_each(|(what, v)| model.check_state(what, v))
+    }
+
     /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
     /// ([`generalized_forces`]).
     pub fn generalized_forces(
@@ -157,10 +166,7 @@ impl<T: Numeric> Data<T> {
         qd: &[T],
         qdd: &[T],
     ) -> Result<&[T]> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
+        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let out = &mut self.generalized_forces;
         generalized_forces(model, q, qd, qdd, &mut self.ws, out);
         finite(
@@ -181,10 +187,7 @@ impl<T: Numeric> Data<T> {
         qd: &[T],
         qdd: &[T],
     ) -> Result<&Regressor<T>> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
+        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let n = model.dof();
         let columns = regressor::parameters(model).len();
         let out = &mut self.regressor;
@@ -214,10 +217,7 @@ impl<T: Numeric> Data<T> {
         qd: &[T],
         qdd: &[T],
     ) -> Result<Derivatives<T>> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
+        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let dual = model.dual();
         let mut ws = Workspace::new(&dual);
         let qdd: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
@@ -291,10 +291,7 @@ impl<T: Numeric> Data<T> {
         qd: &[T],
         qdd: &[T],
     ) -> Result<Derivatives<T>> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
+        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let dual = model.dual();
         let mut data = Data::new(&dual);
         let (value, mut d) = jacobians(&[q, qd, qdd], |x, out| {
@@ -320,8 +317,7 @@ impl<T: Numeric> Data<T> {
 
     /// Joint-space mass matrix `M(q)`.
     pub fn mass_matrix(&mut self, model: &Model<T>, q: &[T]) -> Result<&[Vec<T>]> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
+        self.check_states(model, &[("q", q)])?;
         self.mass_matrix = mass_matrix(model, q, &mut self.ws);
         finite(
             "mass matrix",
@@ -333,9 +329,7 @@ impl<T: Numeric> Data<T> {
 
     /// Bias `h(q, q̇)`.
     pub fn bias(&mut self, model: &Model<T>, q: &[T], qd: &[T]) -> Result<&[T]> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
+        self.check_states(model, &[("q", q), ("qd", qd)])?;
         self.bias = bias(model, q, qd, &mut self.ws);
         finite("bias", &self.bias, &[("q", q), ("qd", qd)])?;
         Ok(&self.bias)
@@ -343,8 +337,7 @@ impl<T: Numeric> Data<T> {
 
     /// Gravity generalized forces `g(q)`.
     pub fn gravity(&mut self, model: &Model<T>, q: &[T]) -> Result<&[T]> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
+        self.check_states(model, &[("q", q)])?;
         self.gravity = gravity(model, q, &mut self.ws);
         finite("gravity", &self.gravity, &[("q", q)])?;
         Ok(&self.gravity)
@@ -450,9 +443,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &'a [T],
         tendon_tensions: &'a [T],
     ) -> Result<[(&'static str, &'a [T]); 4]> {
-        self.check_model(model)?;
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
+        self.check_states(model, &[("q", q), ("qd", qd)])?;
         if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
                 "forward dynamics where a turning idler follows a guide with capstan friction \
@@ -525,10 +516,8 @@ impl<T: Numeric> Data<T> {
                 model.name()
             )));
         }
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        self.check_states(model, &inputs)?;
         // Tensions that overflowed are reported before the distribution sees them, with the
         // input to blame.
         let distribute = |model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]| {
@@ -637,9 +626,7 @@ impl<T: Numeric> Data<T> {
                 model.name()
             )));
         }
-        model.check_state("q", q)?;
-        model.check_state("qd", qd)?;
-        model.check_state("qdd", qdd)?;
+        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         Ok(balance_at(model, q, qd, qdd, &mut self.ws))
     }
 }

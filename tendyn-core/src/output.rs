@@ -42,8 +42,8 @@ pub enum Output {
 }
 
 impl Output {
-    /// Every output: the [`DEFAULT`](Output::DEFAULT) ones, then the derivatives, which are
-    /// generated only when asked for.
+    /// Every output: the [`DEFAULT`](Output::DEFAULT) ones, then the derivatives and the
+    /// regressor, which are generated only when asked for.
     pub const ALL: [Output; 12] = [
         Output::GeneralizedForces,
         Output::Actuation,
@@ -61,18 +61,8 @@ impl Output {
 
     /// What is generated when no output is named, in the default order (that of
     /// `tendyn generate` and of the file): every output but the derivatives and the
-    /// regressor.
-    pub const DEFAULT: [Output; 9] = [
-        Output::GeneralizedForces,
-        Output::Actuation,
-        Output::MassMatrix,
-        Output::Bias,
-        Output::Gravity,
-        Output::ForwardDynamics,
-        Output::SegmentTensions,
-        Output::Bearings,
-        Output::BaseReaction,
-    ];
+    /// regressor, which come last in [`ALL`](Output::ALL).
+    pub const DEFAULT: &'static [Output] = Output::ALL.split_at(9).0;
 
     /// The name of the generated function (and of the output on the command line).
     pub fn name(self) -> &'static str {

@@ -32,7 +32,7 @@ fn example_1_every_output_and_evaluator_within_its_precision() {
     assert!(report.notes.is_empty(), "{:?}", report.notes);
     // Example 1 provides all nine outputs; each is measured by all four evaluators.
     assert_eq!(report.rows.len(), Output::DEFAULT.len() * 4);
-    for output in Output::DEFAULT {
+    for &output in Output::DEFAULT {
         for evaluator in Evaluator::ALL {
             let row = report
                 .rows
@@ -96,7 +96,7 @@ fn table_json_and_chart_carry_every_row() {
     let svg = std::fs::read_to_string(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
     assert!(svg.starts_with("<svg"), "{}", &svg[..svg.len().min(80)]);
-    for output in Output::DEFAULT {
+    for &output in Output::DEFAULT {
         assert!(svg.contains(output.name()), "panel {}", output.name());
     }
     for evaluator in Evaluator::ALL {

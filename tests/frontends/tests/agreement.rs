@@ -30,7 +30,8 @@ fn runtime(
         tendon_tensions: &r.tendon_tensions,
     };
     Output::DEFAULT
-        .into_iter()
+        .iter()
+        .copied()
         .filter_map(|o| match s.output(model, o, &state) {
             Ok(v) => Some((o.name(), v)),
             // Segment tensions, bearings and the base reaction of an incomplete routing.
@@ -194,6 +195,9 @@ fn example3_derived_regressor_times_the_parameters_is_q() {
         .to_vec();
     for ((row, offset), want) in r.y.iter().zip(&r.offset).zip(&q_runtime) {
         let got: f64 = row.iter().zip(&pi).map(|(y, p)| y * p).sum::<f64>() + offset;
-        assert!((got - want).abs() <= 1e-13 * want.abs().max(1.0), "{got} {want}");
+        assert!(
+            (got - want).abs() <= 1e-13 * want.abs().max(1.0),
+            "{got} {want}"
+        );
     }
 }
