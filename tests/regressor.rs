@@ -17,6 +17,7 @@ fn worst_error(model: &Model<f64>, states: usize, seed: u64) -> f64 {
     let (mut data, mut dd) = (Data::new(model), Data::new(&reference));
     let pi = values(model);
     assert_eq!(pi.len(), parameters(model).len());
+    assert_eq!(tendyn_core::regressor::count(model), pi.len());
     let n = model.dof();
     let mut worst = 0.0f64;
     for _ in 0..states {
@@ -123,22 +124,47 @@ fn bearing_friction_parameters_complete_the_regressor() {
     }
 }
 
-/// The model's values are mass, first moment and the inertia about the body-frame origin:
-/// a body whose centre of mass sits at `c` carries `m (|c|² − c_x²)` more `xx` than about
-/// its centre of mass.
+/// The model's values are mass, first moment and the inertia about the body-frame origin,
+/// `I_o = I_c + m (|c|² 1 − c cᵀ)`, written here entry by entry for a body of a random
+/// mechanism whose centre of mass is off every axis.
 #[test]
 fn the_inertia_parameters_are_about_the_body_frame_origin() {
-    let model = tendyn_core::load("../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    use tendyn_spec::random_mechanism::{valid_random_mechanism, Features};
+    let features = Features {
+        coupled_pulleys: false,
+        endless: false,
+    };
+    let (_, model) = valid_random_mechanism(3, features);
     let pi = values(&model);
-    let body = &model.bodies()[1];
-    let (m, c) = (body.mass, body.com);
     let names: Vec<String> = parameters(&model).iter().map(|p| p.name(&model)).collect();
-    let at = |name: &str| pi[names.iter().position(|n| n == name).unwrap()];
-    let link = &body.name;
-    assert_eq!(at(&format!("{link}.m")), m);
-    assert_eq!(at(&format!("{link}.mx")), m * c.x);
-    let xx = body.inertia.rows[0][0] + m * (c.y * c.y + c.z * c.z);
-    assert!((at(&format!("{link}.xx")) - xx).abs() <= 1e-15 * xx.abs());
+    let at = |name: String| pi[names.iter().position(|n| *n == name).unwrap()];
+    let body = model
+        .bodies()
+        .iter()
+        .find(|b| b.com.x * b.com.y * b.com.z != 0.0 && b.mass > 0.0)
+        .expect("a body with its centre of mass off every axis");
+    let (m, [x, y, z], name) = (body.mass, body.com.to_array(), &body.name);
+    let i = |r: usize, c: usize| body.inertia.rows[r][c];
+    let expected = [
+        ("m", m),
+        ("mx", m * x),
+        ("my", m * y),
+        ("mz", m * z),
+        ("xx", i(0, 0) + m * (y * y + z * z)),
+        ("xy", i(0, 1) - m * x * y),
+        ("xz", i(0, 2) - m * x * z),
+        ("yy", i(1, 1) + m * (x * x + z * z)),
+        ("yz", i(1, 2) - m * y * z),
+        ("zz", i(2, 2) + m * (x * x + y * y)),
+    ];
+    let size = i(0, 0) + i(1, 1) + i(2, 2) + m * (x * x + y * y + z * z);
+    for (quantity, want) in expected {
+        let got = at(format!("{name}.{quantity}"));
+        assert!(
+            (got - want).abs() <= 1e-15 * size.max(m),
+            "{name}.{quantity}: {got} vs {want}"
+        );
+    }
 }
 
 #[test]
@@ -249,7 +275,13 @@ mod base {
         for (i, model) in mechanisms().iter().enumerate() {
             let r = BaseParameters::of(model).unwrap().groups.len();
             let sv = stacked_singular_values(model, 40 + i as u64);
-            let (last, next) = (sv[r - 1] / sv[0], sv.get(r).map_or(0.0, |s| s / sv[0]));
+            assert!(
+                r > 0 && r < sv.len(),
+                "{}: {r} of {}",
+                model.name(),
+                sv.len()
+            );
+            let (last, next) = (sv[r - 1] / sv[0], sv[r] / sv[0]);
             println!(
                 "{}: rank {r}; σ_r/σ_1 = {last:.1e}, σ_(r+1)/σ_1 = {next:.1e}",
                 model.name()
@@ -335,24 +367,31 @@ mod identification {
                 Sample { q, qd, qdd, forces }
             })
             .collect();
-        // Noise of power 10^(−snr/10) of each joint's signal (Box-Muller).
-        for j in 0..n {
-            let power = samples.iter().map(|s| s.forces[j].powi(2)).sum::<f64>() / count as f64;
-            let sigma = (power * 10f64.powf(-snr_db / 10.0)).sqrt();
-            for s in &mut samples {
+        // White noise of one variance on every joint (the estimator's assumption), of power
+        // 10^(−snr/10) of the signal's mean power per joint (Box-Muller).
+        let power = samples
+            .iter()
+            .flat_map(|s| &s.forces)
+            .map(|f| f * f)
+            .sum::<f64>()
+            / (count * n) as f64;
+        let sigma = (power * 10f64.powf(-snr_db / 10.0)).sqrt();
+        for s in &mut samples {
+            for f in &mut s.forces {
                 let (u1, u2): (f64, f64) = (rng.random_range(1e-300..1.0), rng.random());
                 let normal = (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
-                s.forces[j] += sigma * normal;
+                *f += sigma * normal;
             }
         }
         samples
     }
 
-    /// At 40 dB every estimate lies within 4.5 of its own standard deviations of the truth
-    /// (the estimator is unbiased and says how sure it is), and every base parameter the
-    /// motion determines to 0.25 % (one standard deviation) is recovered within 1 %. A
-    /// pulley's inertia of 1e-5 kg·m² moves the torques by far less than the noise: no
-    /// practical record determines it, and its estimate only has to be within its spread.
+    /// At 40 dB (white noise of one variance on every joint) the estimator is unbiased and
+    /// says how sure it is: every estimate lies within 4.5 of its standard deviations of
+    /// the truth, and over all of them about 95 % within 2 (at least 85 % is asked, for
+    /// about 70 estimates). Every base parameter the motion determines to 0.25 % (one
+    /// standard deviation) is then recovered within 1 %. A pulley's inertia of 1e-5 kg·m²
+    /// moves the torques by far less than the noise: no practical record determines it.
     #[test]
     fn identification_at_40_db_recovers_the_base_parameters_the_motion_determines() {
         let mut models = vec![
@@ -361,6 +400,7 @@ mod identification {
             tendyn_core::parse(&tendyn_spec::examples::text("example2_friction")).unwrap(),
         ];
         models.push(tendyn_core::load("../bench/mechanisms/finger4.ron").unwrap());
+        let (mut estimates, mut within_two) = (0, 0);
         for (i, model) in models.iter().enumerate() {
             let base = BaseParameters::of(model).unwrap();
             let truth = base.values(&values(model));
@@ -376,6 +416,8 @@ mod identification {
                     "{}: {name}: {estimate} ± {sd} for {t}",
                     model.name()
                 );
+                estimates += 1;
+                within_two += usize::from(error <= 2.0 * sd);
                 if sd <= 0.0025 * t.abs() {
                     determined += 1;
                     assert!(
@@ -387,8 +429,7 @@ mod identification {
             }
             println!(
                 "{}: {} base parameters from {} samples (condition {:.1e}, relative residual \
-                 {:.2e}): {determined} determined to 0.25 % and recovered within 1 %, every \
-                 estimate within 4.5 σ",
+                 {:.2e}): {determined} determined to 0.25 % and recovered within 1 %",
                 model.name(),
                 truth.len(),
                 id.samples,
@@ -401,11 +442,14 @@ mod identification {
                 model.name()
             );
         }
+        println!("{within_two} of {estimates} estimates within 2 standard deviations");
+        assert!(within_two as f64 >= 0.85 * estimates as f64);
     }
 
     /// Without noise, through the actuators: motor torques and tendon tensions of inverse
     /// dynamics, turned back into generalized forces by `Data::actuator_forces`, identify
-    /// every base parameter to round-off, the tiny ones included.
+    /// every base parameter to round-off, each against its own value: the tiny ones
+    /// included.
     #[test]
     fn identification_from_actuator_forces_without_noise_is_exact() {
         for name in [
@@ -431,14 +475,22 @@ mod identification {
                 })
                 .collect();
             let id = identify(&model, &base, &samples).unwrap();
+            // Each against its own value: within 1e-9 of it, or 1e-13 of the largest for
+            // those that are zero in exact arithmetic (whose round-off is that of their column
+            // against the others', friction columns in other units than inertias).
             let size = truth.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let worst = id
-                .estimates
-                .iter()
-                .zip(&truth)
-                .fold(0.0f64, |m, (e, t)| m.max((e - t).abs() / size));
-            println!("{name}: worst error {worst:.1e} of the largest base parameter");
-            assert!(worst < 1e-11, "{name}: {worst:e}");
+            let mut worst = 0.0f64;
+            for (e, t) in id.estimates.iter().zip(&truth) {
+                let error = (e - t).abs();
+                assert!(
+                    error <= 1e-9 * t.abs() + 1e-13 * size,
+                    "{name}: {e} for {t}"
+                );
+                if t.abs() > 1e-13 * size {
+                    worst = worst.max(error / t.abs());
+                }
+            }
+            println!("{name}: worst error {worst:.1e} relative to each base parameter");
             assert!(
                 id.relative_residual < 1e-12,
                 "{name}: {}",

@@ -86,7 +86,7 @@ enum Command {
         #[arg(long, requires = "json")]
         derivatives: bool,
         /// With --json: add the base regressor at the state, the base parameters with the
-        /// file's values and the offset of the external wrench (docs/outputs.md §7).
+        /// file's values and the offset of the external wrench (docs/outputs.md §6d).
         #[arg(long, requires = "json")]
         regressor: bool,
         /// With --states: print a CSV table instead of JSON lines (a header, then per
@@ -96,7 +96,7 @@ enum Command {
     },
     /// The identification regressor's parameters and the mechanism's base parameters: the
     /// combinations of masses, first moments, inertias and bearing friction that the
-    /// generalized forces can tell apart, with the file's values (docs/outputs.md §7).
+    /// generalized forces can tell apart, with the file's values (docs/outputs.md §6d).
     Regressor {
         /// The mechanism's RON file (docs/format.md).
         file: String,
@@ -105,7 +105,7 @@ enum Command {
         json: bool,
     },
     /// Estimate the base parameters from measured motion by least squares, with the
-    /// standard deviation of each estimate and the residual (docs/outputs.md §7).
+    /// standard deviation of each estimate and the residual (docs/outputs.md §6d).
     Identify {
         /// The mechanism's RON file (docs/format.md): its structure, and its values to compare.
         file: String,
@@ -190,9 +190,10 @@ enum Command {
     Generate {
         /// The mechanism's RON file (docs/format.md).
         file: String,
-        /// Comma-separated outputs (default: every output the mechanism can provide):
-        /// generalized_forces, actuation, mass_matrix, bias, gravity, forward_dynamics,
-        /// segment_tensions, bearings, base_reaction.
+        /// Comma-separated outputs: generalized_forces, actuation, mass_matrix, bias,
+        /// gravity, forward_dynamics, segment_tensions, bearings, base_reaction (the
+        /// default: each of these the mechanism can provide), and only when named
+        /// generalized_forces_derivatives, forward_dynamics_derivatives, regressor.
         #[arg(long, value_delimiter = ',')]
         outputs: Vec<String>,
         /// generic (over tendyn_core::Real), f64 or f32.
@@ -406,31 +407,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     if !(q.is_empty() && qd.is_empty() && qdd.is_empty()) {
                         return Err("give either --states or --q/--qd/--qdd, not both".into());
                     }
-                    let text =
-                        std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?;
-                    for (i, line) in text.lines().enumerate() {
-                        let line = line.trim();
-                        if line.is_empty() || line.starts_with('#') {
-                            continue;
-                        }
-                        let vals: Vec<f64> = line
-                            .split(',')
-                            .map(|x| {
-                                x.trim()
-                                    .parse::<f64>()
-                                    .map_err(|e| format!("{path}:{}: `{x}`: {e}", i + 1))
-                            })
-                            .collect::<Result<_, _>>()?;
-                        if vals.len() != 3 * n {
-                            return Err(format!(
-                                "{path}:{}: expected {} numbers (q, qd, qdd), got {}",
-                                i + 1,
-                                3 * n,
-                                vals.len()
-                            ));
-                        }
+                    for (line, vals) in csv_rows(&path, 3 * n, "q, qd, qdd")? {
                         let (q, qd, qdd) = (&vals[..n], &vals[n..2 * n], &vals[2 * n..]);
-                        let at = |e: String| format!("{path}:{}: {e}", i + 1);
+                        let at = |e: String| format!("{path}:{line}: {e}");
                         if csv {
                             let r = solver
                                 .inverse_dynamics(&m, q, qd, qdd)
@@ -755,6 +734,41 @@ fn evaluate(
     Ok((r, js))
 }
 
+/// The numbers of a CSV file, `columns` per line, with each line's number (from 1): blank
+/// lines and lines starting with `#` are skipped, and so is a first line that is not
+/// numbers (a header, as `eval --states --csv` prints). A wrong count or a word elsewhere
+/// is an error naming the line and what it should hold (`what`).
+fn csv_rows(path: &str, columns: usize, what: &str) -> Result<Vec<(usize, Vec<f64>)>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let mut rows = Vec::new();
+    let mut first = true;
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let parsed: Result<Vec<f64>, String> = line
+            .split(',')
+            .map(|x| x.trim().parse().map_err(|e| format!("`{}`: {e}", x.trim())))
+            .collect();
+        let header = std::mem::replace(&mut first, false);
+        let vals = match parsed {
+            Ok(v) => v,
+            Err(_) if header => continue,
+            Err(e) => return Err(format!("{path}:{}: {e}", i + 1)),
+        };
+        if vals.len() != columns {
+            return Err(format!(
+                "{path}:{}: expected {columns} numbers ({what}), got {}",
+                i + 1,
+                vals.len()
+            ));
+        }
+        rows.push((i + 1, vals));
+    }
+    Ok(rows)
+}
+
 /// A row-major matrix of `n` rows as a JSON array of rows.
 fn rows(flat: &[f64], n: usize) -> serde_json::Value {
     let columns = flat.len() / n.max(1);
@@ -773,34 +787,15 @@ fn identification_samples(
     let n = m.dof();
     let (motors, tendons) = (m.motors().len(), m.tendons().len());
     let measured = if forces { n } else { motors + tendons };
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let what = if forces {
+        format!("q, qd, qdd: {n} each, then {n} generalized forces")
+    } else {
+        format!("q, qd, qdd: {n} each, then {motors} motor torques and {tendons} tendon tensions")
+    };
     let mut data = Data::new(m);
     let mut samples = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let at = |e: String| format!("{path}:{}: {e}", i + 1);
-        let parsed: Result<Vec<f64>, _> = line.split(',').map(|x| x.trim().parse()).collect();
-        let vals = match parsed {
-            Ok(v) => v,
-            // A header line (column names) before any sample.
-            Err(_) if samples.is_empty() && i == 0 => continue,
-            Err(e) => return Err(at(format!("{e} (every column must be a number)"))),
-        };
-        if vals.len() != 3 * n + measured {
-            return Err(at(format!(
-                "expected {} numbers (q, qd, qdd: {n} each, then {}), got {}",
-                3 * n + measured,
-                if forces {
-                    format!("{n} generalized forces")
-                } else {
-                    format!("{motors} motor torques and {tendons} tendon tensions")
-                },
-                vals.len()
-            )));
-        }
+    for (line, vals) in csv_rows(path, 3 * n + measured, &what)? {
+        let at = |e: String| format!("{path}:{line}: {e}");
         let (q, qd, qdd) = (&vals[..n], &vals[n..2 * n], &vals[2 * n..3 * n]);
         let rest = &vals[3 * n..];
         let delivered = if forces {

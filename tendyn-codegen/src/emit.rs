@@ -661,9 +661,31 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
         Output::GeneralizedForcesDerivatives => "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion".to_string(),
         Output::ForwardDynamicsDerivatives => "`q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion".to_string(),
     };
+    let joints = labels.join(", ");
+    let entries = match f.output {
+        Output::GeneralizedForcesDerivatives | Output::ForwardDynamicsDerivatives => {
+            format!(
+                "`value` and each Jacobian's rows: {joints}; columns of `d_q`, `d_qd`: {joints}"
+            ) + &match f.output {
+                Output::ForwardDynamicsDerivatives => format!(
+                    "; of `d_u`: {}",
+                    result_labels(model, Output::Actuation).join(", ")
+                ),
+                _ => String::new(),
+            }
+        }
+        Output::Regressor => format!(
+            "rows of `y` and `offset`: {joints}; columns of `y`: {}",
+            tendyn_core::regressor::parameters(model)
+                .iter()
+                .map(|p| p.name(model))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        _ => joints,
+    };
     format!(
-        " {what}.\n\n Entries: {}.\n\n Operations ({}): {}.",
-        labels.join(", "),
+        " {what}.\n\n Entries: {entries}.\n\n Operations ({}): {}.",
         f.form.label(),
         f.ops
     )

@@ -565,7 +565,7 @@ fn trace_one(
             )
         }
         Output::Regressor => {
-            let columns = regressor::parameters(m).len();
+            let columns = regressor::count(m);
             let mut work = regressor::Work::new(m);
             let (mut y, mut offset) = (vec![Sym::zero(); n * columns], zeros.clone());
             regressor::regressor(m, &i.q, &i.qd, &i.qdd, &mut work, &mut y, &mut offset);

@@ -629,7 +629,7 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
 
 /// The base parameters with the file's values, in the base regressor's column order: each
 /// its name, value, the parameter it keeps and the ones merged into it with their
-/// coefficients (`docs/outputs.md` §7).
+/// coefficients (`docs/outputs.md` §6d).
 pub fn base_parameters_json(m: &Model<f64>, base: &BaseParameters) -> Value {
     let values = base.values(&regressor::values(m));
     let names = base.names(m);

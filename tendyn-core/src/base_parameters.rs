@@ -140,10 +140,13 @@ impl BaseParameters {
             base.column_mut(g).scale_mut(1.0 / norms[c]);
         }
         let dependent = stack.select_columns(&merged);
-        let mut coefficients = base
-            .svd(true, true)
-            .solve(&dependent, 0.0)
-            .map_err(|e| Error::State(format!("base parameters: {e}")))?;
+        let mut coefficients = if kept.is_empty() || merged.is_empty() {
+            DMatrix::zeros(kept.len(), merged.len())
+        } else {
+            base.svd(true, true)
+                .solve(&dependent, 0.0)
+                .map_err(|e| Error::State(format!("base parameters: {e}")))?
+        };
         for (g, &c) in kept.iter().enumerate() {
             coefficients.row_mut(g).scale_mut(1.0 / norms[c]);
         }

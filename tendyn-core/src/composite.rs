@@ -143,7 +143,7 @@ fn add<T: Real>(a: &Mat3<T>, b: &Mat3<T>) -> Mat3<T> {
 /// point's position from the new one) adds to its rotational inertia:
 /// `−m [r]×² − [r]×[h]× − [h]×[r]×`, whose entries are `δᵢⱼ r·(w + h) − rᵢ wⱼ − hᵢ rⱼ`
 /// with `w = m r + h`, the first moment about the new point.
-fn point_shift<T: Real>(r: Vec3<T>, mass: T, h: Vec3<T>) -> Mat3<T> {
+pub(crate) fn point_shift<T: Real>(r: Vec3<T>, mass: T, h: Vec3<T>) -> Mat3<T> {
     let w = r.scale(mass) + h;
     let d = r.dot(w + h);
     let (r, w, h) = (r.to_array(), w.to_array(), h.to_array());

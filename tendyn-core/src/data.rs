@@ -189,7 +189,7 @@ impl<T: Numeric> Data<T> {
     ) -> Result<&Regressor<T>> {
         self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let n = model.dof();
-        let columns = regressor::parameters(model).len();
+        let columns = regressor::count(model);
         let out = &mut self.regressor;
         out.columns = columns;
         out.y.resize(n * columns, T::zero());

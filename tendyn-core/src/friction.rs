@@ -63,20 +63,28 @@ pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> 
     }
 }
 
+/// Body `b`'s bearing rate `ω_b = c_b · q̇` and the direction `s` its friction opposes
+/// ([`direction`]; `qdd` as in [`bearing_torques`]).
+pub fn rate_and_direction<T: Real>(
+    model: &Model<T>,
+    b: usize,
+    qd: &[T],
+    qdd: Option<&[T]>,
+) -> (T, T) {
+    let (body, joints) = (&model.bodies[b], &model.patterns[b].joints);
+    let rate = coupled(&body.coupling, joints, qd);
+    let accel = qdd.map(|a| coupled(&body.coupling, joints, a));
+    (rate, direction(rate, accel, model.friction_smoothing))
+}
+
 /// `τ_f` of every body (0 where its bearing has no friction), written into `out` (one entry
 /// per body). `qdd`: the accelerations of inverse dynamics, or `None` in forward dynamics.
 pub fn bearing_torques<T: Real>(model: &Model<T>, qd: &[T], qdd: Option<&[T]>, out: &mut [T]) {
-    for ((o, b), pattern) in out.iter_mut().zip(&model.bodies).zip(&model.patterns) {
-        let joints = &pattern.joints;
-        *o = match b.friction {
+    for (b, (o, body)) in out.iter_mut().zip(&model.bodies).enumerate() {
+        *o = match body.friction {
             None => T::zero(),
             Some(f) => {
-                let rate = coupled(&b.coupling, joints, qd);
-                let s = direction(
-                    rate,
-                    qdd.map(|a| coupled(&b.coupling, joints, a)),
-                    model.friction_smoothing,
-                );
+                let (rate, s) = rate_and_direction(model, b, qd, qdd);
                 -(T::from_f64(f.coulomb) * s + T::from_f64(f.viscous) * rate)
             }
         };

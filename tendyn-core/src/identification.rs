@@ -17,6 +17,7 @@
 use crate::base_parameters::BaseParameters;
 use crate::error::{Error, Result};
 use crate::model::Model;
+use crate::regressor;
 use crate::Data;
 use nalgebra::{DMatrix, DVector};
 
@@ -58,6 +59,19 @@ pub fn identify(
     samples: &[Sample],
 ) -> Result<Identification> {
     let (n, r) = (model.dof(), base.groups.len());
+    if base.parameters != regressor::parameters(model) {
+        return Err(Error::State(format!(
+            "these base parameters were found for another mechanism than `{}`: make them with \
+             `BaseParameters::of(&model)`",
+            model.name()
+        )));
+    }
+    if r == 0 {
+        return Err(Error::State(format!(
+            "`{}` has no base parameters: no mass property acts on its generalized forces",
+            model.name()
+        )));
+    }
     let rows = samples.len() * n;
     if rows <= r {
         return Err(Error::State(format!(

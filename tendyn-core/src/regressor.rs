@@ -47,8 +47,9 @@
 //! This shares the forward recursion with [`crate::dynamics`] but not the backward one, so
 //! `Y π + Q₀ = Q` checks the Newton-Euler recursion against the principle of virtual power.
 
+use crate::composite::point_shift;
 use crate::friction;
-use crate::kinematics::{coupled, forward, Motion};
+use crate::kinematics::{forward, Motion};
 use crate::model::Model;
 use crate::real::Real;
 use crate::spatial::Vec3;
@@ -109,19 +110,24 @@ pub fn parameters<T>(model: &Model<T>) -> Vec<Parameter> {
     out
 }
 
+/// How many parameters [`parameters`] lists (the columns of `Y`).
+pub fn count<T>(model: &Model<T>) -> usize {
+    model
+        .bodies
+        .iter()
+        .map(|b| 10 + if b.friction.is_some() { 2 } else { 0 })
+        .sum()
+}
+
 /// The model's own parameter values `π`, in [`parameters`]' order.
 pub fn values<T: Real>(model: &Model<T>) -> Vec<T> {
     let mut out = Vec::new();
     for b in &model.bodies {
         let (m, c) = (b.mass, b.com);
         let h = c.scale(m);
-        // Parallel axes: I_o = I_c + m (|c|² 1 − c cᵀ).
-        let cc = c.dot(c);
-        let cv = c.to_array();
-        let at = |i: usize, j: usize| {
-            let diagonal = if i == j { cc } else { T::zero() };
-            b.inertia.rows[i][j] + m * (diagonal - cv[i] * cv[j])
-        };
+        // Parallel axes from the centre of mass to the origin: I_o = I_c + m (|c|² 1 − c cᵀ).
+        let shift = point_shift(c, m, Vec3::zero());
+        let at = |i: usize, j: usize| b.inertia.rows[i][j] + shift.rows[i][j];
         out.extend([m, h.x, h.y, h.z]);
         out.extend(INERTIA_ENTRIES.iter().map(|&(i, j)| at(i, j)));
         if let Some(f) = b.friction {
@@ -216,12 +222,7 @@ pub fn regressor<T: Real>(
         column += 10;
         if body.friction.is_some() {
             let joints = &pattern.joints;
-            let rate = coupled(&body.coupling, joints, qd);
-            let direction = friction::direction(
-                rate,
-                Some(coupled(&body.coupling, joints, qdd)),
-                model.friction_smoothing,
-            );
+            let (rate, direction) = friction::rate_and_direction(model, b, qd, Some(qdd));
             for &k in joints {
                 y[k * p + column] = body.coupling[k] * direction;
                 y[k * p + column + 1] = body.coupling[k] * rate;

@@ -474,8 +474,9 @@ impl Model {
         })
     }
 
-    /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; all
-    /// the mechanism provides when `None`), in `scalar` `"generic"`, `"f64"` or `"f32"`.
+    /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; the
+    /// default outputs the mechanism provides when `None`), in `scalar` `"generic"`,
+    /// `"f64"` or `"f32"`.
     #[pyo3(signature = (outputs = None, scalar = "generic"))]
     fn generate(&self, outputs: Option<Vec<String>>, scalar: &str) -> PyResult<String> {
         let scalar = Scalar::parse(scalar).ok_or_else(|| {

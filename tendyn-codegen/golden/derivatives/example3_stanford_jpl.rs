@@ -93,7 +93,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
-/// Entries: knuckle, proximal, distal.
+/// Entries: `value` and each Jacobian's rows: knuckle, proximal, distal; columns of `d_q`, `d_qd`: knuckle, proximal, distal.
 ///
 /// Operations (closed form): 268 arithmetic (126 add/sub, 140 mul, 0 div, 2 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
@@ -339,7 +339,7 @@ pub fn forward_dynamics<T: Real>(
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
-/// Entries: knuckle, proximal, distal.
+/// Entries: `value` and each Jacobian's rows: knuckle, proximal, distal; columns of `d_q`, `d_qd`: knuckle, proximal, distal; of `d_u`: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
 /// Operations (traced recursion): 956 arithmetic (419 add/sub, 490 mul, 38 div, 9 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]

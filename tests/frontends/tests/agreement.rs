@@ -178,6 +178,7 @@ fn example3_derived_derivatives_agree_with_the_runtime_solver() {
         .unwrap();
     close(&g.value, &r.value);
     close(g.d_q.as_flattened(), &r.d_q);
+    close(g.d_qd.as_flattened(), &r.d_qd);
     close(g.d_u.as_flattened(), &r.d_u);
 }
 
