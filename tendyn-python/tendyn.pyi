@@ -66,7 +66,30 @@ class Model:
         tendon_tensions: Optional[ArrayLike] = None,
     ) -> Array:
         """`q̈` (rad/s²) from motor torques and ground-level tendon tensions."""
+    def generalized_forces_derivatives(
+        self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
+    ) -> Array:
+        """`(2, n, n)` per state: `[0] = ∂Q/∂q`, `[1] = ∂Q/∂q̇`, exact."""
+    def forward_dynamics_derivatives(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        motor_torques: ArrayLike,
+        tendon_tensions: ArrayLike,
+    ) -> Array:
+        """`(n, 2n + m)` per state: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u` side by side, exact."""
+    def regressor(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array:
+        """`Y` (`(n, p)` per state, columns `parameter_names`): `Q = Y π + offset`."""
+    def regressor_offset(self, q: ArrayLike) -> Array:
+        """`Q₀` (N·m): the external wrench's part of `Q`."""
+    @property
+    def parameter_names(self) -> list[str]:
+        """The regressor's parameters (`BODY.m`, `BODY.mx`, …, `BODY.coulomb`, …)."""
+    def parameter_values(self) -> Array:
+        """The file's values of `parameter_names`."""
+    def base_parameters(self) -> list[dict]:
+        """The base parameters: `name`, `value`, `kept`, `merged` (docs/outputs.md §6d)."""
     def check(self) -> dict:
         """The `tendyn check --json` report."""
     def generate(self, outputs: Optional[Sequence[str]] = None, scalar: str = "generic") -> str:
-        """The generated Rust source of `outputs` (all available when `None`)."""
+        """The generated Rust source of `outputs` (the default ones available when `None`)."""

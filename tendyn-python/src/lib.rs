@@ -23,6 +23,7 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use tendyn_codegen::{available_outputs, Output, Scalar};
+use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::{Data, InverseDynamics};
 
 create_exception!(
@@ -472,6 +473,118 @@ impl Model {
             data.forward_dynamics(model, s[0], s[1], mt, tt)
                 .map(<[f64]>::to_vec)
         })
+    }
+
+    /// `∂Q/∂q` and `∂Q/∂q̇`, exact (dual numbers through the recursion): `(2, n, n)` per
+    /// state, `[0][i][k] = ∂Q_i/∂q_k`, `[1][i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `mass_matrix`).
+    fn generalized_forces_derivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: Input<'py>,
+        qd: Input<'py>,
+        qdd: Input<'py>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let (model, n) = (&self.model, self.model.dof());
+        let named = vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)];
+        self.per_state(py, named, &[2, n, n], |data, s| {
+            let d = data.generalized_forces_derivatives(model, s[0], s[1], s[2])?;
+            Ok([d.d_q, d.d_qd].concat())
+        })
+    }
+
+    /// `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` of forward dynamics side by side, exact: `(n, 2n + m)`
+    /// per state, columns `q`, then `q̇`, then `u` (the motor torques, then the tendon
+    /// tensions, file order). Both actuator arrays are required.
+    fn forward_dynamics_derivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: Input<'py>,
+        qd: Input<'py>,
+        motor_torques: Input<'py>,
+        tendon_tensions: Input<'py>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n = self.model.dof();
+        let (nm, nt) = (self.model.motors().len(), self.model.tendons().len());
+        let named = vec![
+            ("q", q, n),
+            ("qd", qd, n),
+            ("motor_torques", motor_torques, nm),
+            ("tendon_tensions", tendon_tensions, nt),
+        ];
+        let model = &self.model;
+        self.per_state(py, named, &[n, 2 * n + nm + nt], |data, s| {
+            let d = data.forward_dynamics_derivatives(model, s[0], s[1], s[2], s[3])?;
+            let (cq, cu) = (n, nm + nt);
+            Ok((0..n)
+                .flat_map(|i| {
+                    let row = |m: &[f64], c: usize| m[i * c..(i + 1) * c].to_vec();
+                    [row(&d.d_q, cq), row(&d.d_qd, cq), row(&d.d_u, cu)].concat()
+                })
+                .collect())
+        })
+    }
+
+    /// The identification regressor `Y(q, q̇, q̈)`: `(n, p)` per state, one column per
+    /// name of `parameter_names` (`Q = Y π + offset`, `offset` the external wrench's part:
+    /// `regressor_offset`).
+    fn regressor<'py>(
+        &self,
+        py: Python<'py>,
+        q: Input<'py>,
+        qd: Input<'py>,
+        qdd: Input<'py>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let (model, n) = (&self.model, self.model.dof());
+        let p = tendyn_core::regressor::count(model);
+        let named = vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)];
+        self.per_state(py, named, &[n, p], |data, s| {
+            Ok(data.regressor(model, s[0], s[1], s[2])?.y.clone())
+        })
+    }
+
+    /// The regressor's offset `Q₀` (N·m), the external wrench's part (zeros without one).
+    fn regressor_offset<'py>(
+        &self,
+        py: Python<'py>,
+        q: Input<'py>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let (model, n) = (&self.model, self.model.dof());
+        self.per_state(py, vec![("q", q, n)], &[n], |data, s| {
+            let zeros = vec![0.0; n];
+            Ok(data.regressor(model, s[0], &zeros, &zeros)?.known.clone())
+        })
+    }
+
+    /// The regressor's parameters, in its column order (`BODY.m`, `BODY.mx`, …, `BODY.zz`
+    /// about the body-frame origin, `BODY.coulomb`, `BODY.viscous`).
+    #[getter]
+    fn parameter_names(&self) -> Vec<String> {
+        let model = &self.model;
+        tendyn_core::regressor::parameters(model)
+            .iter()
+            .map(|p| p.name(model))
+            .collect()
+    }
+
+    /// The model's own parameter values `π`, in `parameter_names` order.
+    fn parameter_values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        let values = tendyn_core::regressor::values(&self.model);
+        stacked(
+            py,
+            vec![values],
+            &[tendyn_core::regressor::count(&self.model)],
+            false,
+        )
+    }
+
+    /// The base parameters as `tendyn regressor --json` lists them: a list of dicts with
+    /// `name`, `value` (the file's), `kept` and `merged`; the base regressor is
+    /// `regressor(...)[..., columns]` with `columns = [parameter_names.index(b["kept"])
+    /// for b in base_parameters()]`.
+    fn base_parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let base = BaseParameters::of(&self.model).map_err(tendyn_error)?;
+        let text = tendyn_codegen::report::base_parameters_json(&self.model, &base).to_string();
+        py.import("json")?.call_method1("loads", (text,))
     }
 
     /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; the

@@ -174,3 +174,48 @@ def test_check_is_the_command_lines_report():
         cwd=ROOT, check=True, capture_output=True, text=True,
     )
     assert report == json.loads(out.stdout)
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_the_regressor_times_the_parameters_is_the_generalized_force(name):
+    m = model(name)
+    q, qd, qdd = states(m, 50, 11)
+    y = m.regressor(q, qd, qdd)
+    assert y.shape == (50, m.dof, len(m.parameter_names))
+    q_of = y @ m.parameter_values() + m.regressor_offset(q)
+    expected = m.inverse_dynamics(q, qd, qdd)["generalized_forces"]
+    assert np.abs(q_of - expected).max() <= 1e-12 * np.abs(expected).max()
+    # The base regressor (its kept columns) times the base parameters' values, likewise.
+    base = m.base_parameters()
+    columns = [m.parameter_names.index(b["kept"]) for b in base]
+    values = np.array([b["value"] for b in base])
+    assert np.abs(y[:, :, columns] @ values - expected).max() <= 1e-12 * np.abs(expected).max()
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_derivatives_are_the_limits_of_difference_quotients(name):
+    """Central differences in f64 (step 1e-6, so agreement to about 1e-8 of the size)."""
+    m = model(name)
+    q, qd, qdd = states(m, 1, 12)
+    q, qd, qdd = q[0], qd[0], qdd[0]
+    d = m.generalized_forces_derivatives(q, qd, qdd)
+    assert d.shape == (2, m.dof, m.dof)
+    h = 1e-6
+    f = lambda q, qd: m.inverse_dynamics(q, qd, qdd)["generalized_forces"]
+    for k in range(m.dof):
+        e = np.eye(m.dof)[k] * h
+        for which, (a, b) in enumerate([((q + e, qd), (q - e, qd)), ((q, qd + e), (q, qd - e))]):
+            column = (f(*a) - f(*b)) / (2 * h)
+            assert np.abs(d[which][:, k] - column).max() <= 1e-7 * max(np.abs(d[which]).max(), 1.0)
+    r = m.inverse_dynamics(q, qd, qdd)
+    mt, tt = r["motor_torques"], r["tendon_tensions"]
+    fd = m.forward_dynamics_derivatives(q, qd, mt, tt)
+    u = np.concatenate([mt, tt])
+    assert fd.shape == (m.dof, 2 * m.dof + len(u))
+    # q̈ is affine in u: a unit step in each actuator moves it by that column exactly.
+    nm = len(mt)
+    for k in range(len(u)):
+        step = np.eye(len(u))[k]
+        after = m.forward_dynamics(q, qd, mt + step[:nm], tt + step[nm:])
+        before = m.forward_dynamics(q, qd, mt, tt)
+        assert np.allclose(after - before, fd[:, 2 * m.dof + k], rtol=1e-9, atol=1e-9 * np.abs(fd).max())
