@@ -544,6 +544,21 @@ fn trace_one(
                 n,
                 actuators: Some(u.len()),
             };
+            if !m.has_capstan() {
+                let mut mass_ws = Workspace::new(m);
+                let (dual, dual_ws) = shared.dual(m);
+                let d = derivatives::forward_dynamics_through_inverse(
+                    m,
+                    dual,
+                    &i.q,
+                    &i.qd,
+                    &i.motor_torques,
+                    &i.tendon_tensions,
+                    &mut mass_ws,
+                    dual_ws,
+                );
+                return (shape, d.flattened());
+            }
             let inputs = [&i.q[..], &i.qd, &u];
             let (value, d) = derivatives::jacobians(inputs.as_slice(), |x, out| {
                 let (dual, ws) = shared.dual(m);

@@ -19,7 +19,7 @@
 //! ```
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
-use crate::derivatives::{jacobians, Derivatives};
+use crate::derivatives::{forward_dynamics_through_inverse, jacobians, Derivatives};
 use crate::dual::Dual;
 use crate::dynamics::{
     actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
@@ -240,8 +240,9 @@ impl<T: Numeric> Data<T> {
     }
 
     /// `q̈` of forward dynamics and its derivatives `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u`, `u`
-    /// the motor torques then the tendon tensions ([`crate::derivatives`]). Checked as
-    /// [`Data::forward_dynamics`] is.
+    /// the motor torques then the tendon tensions ([`crate::derivatives`]; through inverse
+    /// dynamics, [`forward_dynamics_through_inverse`], unless guides have capstan friction).
+    /// Checked as [`Data::forward_dynamics`] is.
     pub fn forward_dynamics_derivatives(
         &mut self,
         model: &Model<T>,
@@ -252,6 +253,23 @@ impl<T: Numeric> Data<T> {
     ) -> Result<Derivatives<T>> {
         let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let dual = model.dual();
+        if !model.has_capstan() {
+            // Through inverse dynamics, after the checked solve has vouched for `M`.
+            self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
+            let mut dual_ws = Workspace::new(&dual);
+            let derivatives = forward_dynamics_through_inverse(
+                model,
+                &dual,
+                q,
+                qd,
+                motor_torques,
+                tendon_tensions,
+                &mut self.ws,
+                &mut dual_ws,
+            );
+            finite_derivatives("joint acceleration", &derivatives, &inputs)?;
+            return Ok(derivatives);
+        }
         let mut data = Data::new(&dual);
         let u: Vec<T> = motor_torques
             .iter()

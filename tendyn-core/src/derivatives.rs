@@ -18,6 +18,9 @@
 //! direction (a sign) has derivative zero away from rest, and none at it.
 
 use crate::dual::Dual;
+use crate::dynamics::{self, Workspace};
+use crate::linalg;
+use crate::model::Model;
 use crate::real::Real;
 
 /// A function's value at a state and its derivatives with respect to each input, each
@@ -95,4 +98,80 @@ pub fn jacobians<T: Real, E>(
         value = out.iter().map(|d| d.value).collect();
     }
     Ok((value, blocks))
+}
+
+/// `q̈` of forward dynamics with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` by way of inverse dynamics
+/// (the route of Carpentier and Mansard for the derivatives of the articulated-body
+/// algorithm): at the solution `q̈*`, `Q(q, q̇, q̈*) = Σ c_m τ_m + A T`, so differentiating,
+/// `∂Q/∂x + M ∂q̈*/∂x = 0` for `x = q, q̇` and `M ∂q̈*/∂u = [c_m | A]`. One dual pass of
+/// `Q` per joint coordinate and one solve per column, instead of a dual pass of the whole
+/// forward dynamics (mass matrix and factorisation included) per input coordinate.
+///
+/// Bearing friction differentiates alike on both sides (its viscous part the same, its
+/// Coulomb part piecewise constant). Valid only where `A` does not depend on the state: the
+/// caller takes the direct route for guides with capstan friction. `M` is factorised by
+/// the unchecked `L D Lᵀ` (the runtime checks it is positive definite before).
+#[allow(clippy::too_many_arguments)]
+pub fn forward_dynamics_through_inverse<T: Real>(
+    model: &Model<T>,
+    dual: &Model<Dual<T>>,
+    q: &[T],
+    qd: &[T],
+    motor_torques: &[T],
+    tendon_tensions: &[T],
+    ws: &mut Workspace<T>,
+    dual_ws: &mut Workspace<Dual<T>>,
+) -> Derivatives<T> {
+    let n = model.dof();
+    let mass: Vec<T> = dynamics::mass_matrix(model, q, ws).concat();
+    let solve = |b: &mut [T]| linalg::ldlt_solve(&mut mass.clone(), b);
+    let mut qdd = dynamics::forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, ws);
+    solve(&mut qdd);
+    let at: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
+    let (_, blocks) = jacobians(&[q, qd], |x, out| {
+        out.resize(n, Dual::constant(T::zero()));
+        dynamics::generalized_forces(dual, &x[0], &x[1], &at, dual_ws, out);
+        Ok::<(), ()>(())
+    })
+    .unwrap_or_default();
+    // The actuators' columns: each motor's, then each tendon's structure column.
+    let actuators: Vec<Vec<T>> = model
+        .motors()
+        .iter()
+        .map(|m| m.column.iter().map(|&c| T::from_f64(c)).collect())
+        .chain(
+            model
+                .tendons()
+                .iter()
+                .map(|k| k.structure.iter().map(|&c| T::from_f64(c)).collect()),
+        )
+        .collect();
+    // `M⁻¹` times each column of `sign · block` (row-major, `n` rows), row-major again.
+    let solved = |block: &[T], columns: usize, sign: T| {
+        let mut out = vec![T::zero(); n * columns];
+        for c in 0..columns {
+            let mut b: Vec<T> = (0..n).map(|i| sign * block[i * columns + c]).collect();
+            solve(&mut b);
+            for i in 0..n {
+                out[i * columns + c] = b[i];
+            }
+        }
+        out
+    };
+    let minus = -T::one();
+    let d_q = blocks
+        .first()
+        .map_or_else(Vec::new, |b| solved(b, n, minus));
+    let d_qd = blocks.get(1).map_or_else(Vec::new, |b| solved(b, n, minus));
+    let u: Vec<T> = (0..n)
+        .flat_map(|i| actuators.iter().map(move |col| col[i]))
+        .collect();
+    let d_u = solved(&u, actuators.len(), T::one());
+    Derivatives {
+        value: qdd,
+        d_q,
+        d_qd,
+        d_qdd: Vec::new(),
+        d_u,
+    }
 }

@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t518 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t525 = T::from_f64(0.03) * s78;
-    let t534 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t518 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t525));
-    let t540 = qdd[0] * t518
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t525));
-    [t534, t540]
+    let t538 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t545 = T::from_f64(0.03) * s78;
+    let t554 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t538 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t545));
+    let t560 = qdd[0] * t538
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t545));
+    [t554, t560]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -45,26 +45,26 @@ pub fn generalized_forces_derivatives<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t512 = c79 * T::from_f64(0.06);
-    let t516 = T::from_f64(0.03) * c79;
-    let t518 = t516 + T::from_f64(0.016696700000000002);
-    let t521 = s78 * T::from_f64(0.06);
-    let t523 = qd[0] * t521;
-    let t525 = T::from_f64(0.03) * s78;
-    let t534 = qdd[0] * (t512 + T::from_f64(0.1247117))
-        + (qdd[1] * t518 - qd[1] * (t523 + qd[1] * t525));
-    let t540 = qdd[0] * t518
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t525));
-    let t558 = -(qdd[0] * t521
-        + (qdd[1] * t525 + qd[1] * (qd[0] * t512 + qd[1] * t516)));
-    let t563 = qd[0] * (qd[0] * t516) - qdd[0] * t525;
-    let t564 = qd[1] * t521;
-    let t565 = -t564;
-    let t567 = -(t523 + t564);
+    let t532 = c79 * T::from_f64(0.06);
+    let t536 = T::from_f64(0.03) * c79;
+    let t538 = t536 + T::from_f64(0.016696700000000002);
+    let t541 = s78 * T::from_f64(0.06);
+    let t543 = qd[0] * t541;
+    let t545 = T::from_f64(0.03) * s78;
+    let t554 = qdd[0] * (t532 + T::from_f64(0.1247117))
+        + (qdd[1] * t538 - qd[1] * (t543 + qd[1] * t545));
+    let t560 = qdd[0] * t538
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t545));
+    let t578 = -(qdd[0] * t541
+        + (qdd[1] * t545 + qd[1] * (qd[0] * t532 + qd[1] * t536)));
+    let t583 = qd[0] * (qd[0] * t536) - qdd[0] * t545;
+    let t584 = qd[1] * t541;
+    let t585 = -t584;
+    let t587 = -(t543 + t584);
     tendyn_core::dual::StateJacobians {
-        value: [t534, t540],
-        d_q: [[T::from_f64(0.0), t558], [T::from_f64(0.0), t563]],
-        d_qd: [[t565, t567], [t523, T::from_f64(0.0)]],
+        value: [t554, t560],
+        d_q: [[T::from_f64(0.0), t578], [T::from_f64(0.0), t583]],
+        d_qd: [[t585, t587], [t543, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -81,22 +81,22 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t514 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t525 = T::from_f64(0.03) * s78;
-    let t568 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t525);
-    let t572 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t514;
-    let t705 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t525) - t568 * t572)
-        / (T::from_f64(0.0166867) - t514 * (t572 * t572));
-    let t707 = t568 / t514 - t572 * t705;
-    [t707, t705]
+    let t534 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t545 = T::from_f64(0.03) * s78;
+    let t588 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t545);
+    let t592 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t534;
+    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t545) - t588 * t592)
+        / (T::from_f64(0.0166867) - t534 * (t592 * t592));
+    let t705 = t588 / t534 - t592 * t703;
+    [t705, t703]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
 /// Entries: `value` and each Jacobian's rows: link1, link2; columns of `d_q`, `d_qd`: link1, link2; of `d_u`: motor motor1, motor motor3.
 ///
-/// Operations (closed form): 102 arithmetic (34 add/sub, 52 mul, 13 div, 3 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (closed form): 91 arithmetic (31 add/sub, 45 mul, 12 div, 3 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics_derivatives<T: Real>(
@@ -106,50 +106,46 @@ pub fn forward_dynamics_derivatives<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t512 = c79 * T::from_f64(0.06);
-    let t514 = t512 + T::from_f64(0.1247117);
-    let t516 = T::from_f64(0.03) * c79;
-    let t521 = s78 * T::from_f64(0.06);
-    let t523 = qd[0] * t521;
-    let t525 = T::from_f64(0.03) * s78;
-    let t564 = qd[1] * t521;
-    let t569 = (motor_torques[0] + motor_torques[1] + qd[1] * (t523 + qd[1] * t525))
-        / t514;
-    let t572 = (t516 + T::from_f64(0.0166967)) / t514;
-    let t574 = T::from_f64(0.06) * t572;
-    let t576 = s78 * t574;
-    let t578 = qd[1] * t576;
-    let t584 = T::from_f64(0.03) * t572;
-    let t594 = T::from_f64(0.6666666666666667) - t572;
-    let t605 = T::from_f64(0.0166867) + t572 * (t572 * (T::from_f64(-0.1247117) - t512));
-    let t606 = (motor_torques[1] * t594 - motor_torques[0] * t572
-        - qd[1] * (qd[1] * (s78 * t584)) - qd[0] * (qd[0] * t525 + t578)) / t605;
-    let t610 = t569 - t572 * t606;
-    let t617 = s78 * (T::from_f64(-0.03) + t574) / t514;
-    let t659 = t572
-        * (t606 * (t617 * (c79 * T::from_f64(0.12) + T::from_f64(0.2494234)) - t576))
-        - motor_torques[1] * t617 - motor_torques[0] * t617 - qd[0] * (qd[0] * t516);
-    let t660 = t659
-        - qd[1]
-            * (qd[0] * (s78 * (T::from_f64(0.06) * t617) + c79 * t574)
-                + qd[1] * (s78 * (T::from_f64(0.03) * t617) + c79 * t584));
-    let t661 = t660 / t605;
-    let t665 = -(t523 + t578) / t605;
-    let t671 = -(t578 + qd[0] * t576) / t605;
-    let t672 = T::from_f64(1.0) / t514;
-    let t673 = -t572 / t605;
-    let t674 = t594 / t605;
-    let t681 = (qd[1] * (qd[0] * t512 + qd[1] * t516) + s78 * (T::from_f64(0.06) * t569))
-        / t514 - t606 * t617 - t572 * t661;
-    let t685 = t564 / t514 - t572 * t665;
-    let t689 = (t523 + t564) / t514 - t572 * t671;
-    let t693 = t672 - t572 * t673;
-    let t697 = t672 - t572 * t674;
+    let t532 = c79 * T::from_f64(0.06);
+    let t534 = t532 + T::from_f64(0.1247117);
+    let t536 = T::from_f64(0.03) * c79;
+    let t541 = s78 * T::from_f64(0.06);
+    let t543 = qd[0] * t541;
+    let t545 = T::from_f64(0.03) * s78;
+    let t584 = qd[1] * t541;
+    let t589 = (motor_torques[0] + motor_torques[1] + qd[1] * (t543 + qd[1] * t545))
+        / t534;
+    let t592 = (t536 + T::from_f64(0.0166967)) / t534;
+    let t594 = T::from_f64(0.06) * t592;
+    let t596 = s78 * t594;
+    let t598 = qd[1] * t596;
+    let t604 = T::from_f64(0.03) * t592;
+    let t613 = T::from_f64(0.6666666666666667) - t592;
+    let t624 = T::from_f64(0.0166867) + t592 * (t592 * (T::from_f64(-0.1247117) - t532));
+    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t592
+        - qd[1] * (qd[1] * (s78 * t604)) - qd[0] * (qd[0] * t545 + t598)) / t624;
+    let t629 = t589 - t592 * t625;
+    let t632 = T::from_f64(0.06) * t589;
+    let t661 = s78
+        * (t592 * (t625 * (T::from_f64(-0.06) + t594) - t632) + T::from_f64(0.03) * t589)
+        - qd[1] * (qd[1] * (c79 * t604)) - qd[0] * (qd[0] * t536 + qd[1] * (c79 * t594));
+    let t662 = t661 / t624;
+    let t666 = -(t543 + t598) / t624;
+    let t672 = -(t598 + qd[0] * t596) / t624;
+    let t673 = T::from_f64(1.0) / t534;
+    let t674 = -t592 / t624;
+    let t675 = t613 / t624;
+    let t679 = (qd[1] * (qd[0] * t532 + qd[1] * t536)
+        + s78 * (t625 * (T::from_f64(0.03) - t594) + t632)) / t534 - t592 * t662;
+    let t683 = t584 / t534 - t592 * t666;
+    let t687 = (t543 + t584) / t534 - t592 * t672;
+    let t691 = t673 - t592 * t674;
+    let t695 = t673 - t592 * t675;
     tendyn_core::dual::ForwardJacobians {
-        value: [t610, t606],
-        d_q: [[T::from_f64(0.0), t681], [T::from_f64(0.0), t661]],
-        d_qd: [[t685, t689], [t665, t671]],
-        d_u: [[t693, t697], [t673, t674]],
+        value: [t629, t625],
+        d_q: [[T::from_f64(0.0), t679], [T::from_f64(0.0), t662]],
+        d_qd: [[t683, t687], [t666, t672]],
+        d_u: [[t691, t695], [t674, t675]],
     }
 }
 /// Every requested output of [`all`].
@@ -171,7 +167,7 @@ pub struct Outputs<T> {
         [[T; 2]; 2],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 131 arithmetic (46 add/sub, 65 mul, 14 div, 6 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 121 arithmetic (43 add/sub, 59 mul, 13 div, 6 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -182,73 +178,70 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s78, c79) = q[1].sin_cos();
-    let t512 = c79 * T::from_f64(0.06);
-    let t514 = t512 + T::from_f64(0.1247117);
-    let t516 = T::from_f64(0.03) * c79;
-    let t518 = t516 + T::from_f64(0.016696700000000002);
-    let t521 = s78 * T::from_f64(0.06);
-    let t523 = qd[0] * t521;
-    let t525 = T::from_f64(0.03) * s78;
-    let t531 = qd[1] * (t523 + qd[1] * t525);
-    let t534 = qdd[0] * t514 + (qdd[1] * t518 - t531);
-    let t537 = qd[0] * t525;
-    let t538 = qd[0] * t537;
-    let t540 = qdd[0] * t518 + (qdd[1] * T::from_f64(0.0166867) + t538);
-    let t553 = qd[1] * (qd[0] * t512 + qd[1] * t516);
-    let t558 = -(qdd[0] * t521 + (qdd[1] * t525 + t553));
-    let t562 = qd[0] * (qd[0] * t516);
-    let t563 = t562 - qdd[0] * t525;
-    let t564 = qd[1] * t521;
-    let t565 = -t564;
-    let t566 = t523 + t564;
-    let t567 = -t566;
-    let t568 = motor_torques[0] + motor_torques[1] + t531;
-    let t569 = t568 / t514;
-    let t572 = (t516 + T::from_f64(0.0166967)) / t514;
-    let t574 = T::from_f64(0.06) * t572;
-    let t576 = s78 * t574;
-    let t578 = qd[1] * t576;
-    let t584 = T::from_f64(0.03) * t572;
-    let t594 = T::from_f64(0.6666666666666667) - t572;
-    let t605 = T::from_f64(0.0166867) + t572 * (t572 * (T::from_f64(-0.1247117) - t512));
-    let t606 = (motor_torques[1] * t594 - motor_torques[0] * t572
-        - qd[1] * (qd[1] * (s78 * t584)) - qd[0] * (t537 + t578)) / t605;
-    let t610 = t569 - t572 * t606;
-    let t617 = s78 * (T::from_f64(-0.03) + t574) / t514;
-    let t660 = t572
-        * (t606 * (t617 * (c79 * T::from_f64(0.12) + T::from_f64(0.2494234)) - t576))
-        - motor_torques[1] * t617 - motor_torques[0] * t617 - t562
-        - qd[1]
-            * (qd[0] * (s78 * (T::from_f64(0.06) * t617) + c79 * t574)
-                + qd[1] * (s78 * (T::from_f64(0.03) * t617) + c79 * t584));
-    let t661 = t660 / t605;
-    let t665 = -(t523 + t578) / t605;
-    let t671 = -(t578 + qd[0] * t576) / t605;
-    let t672 = T::from_f64(1.0) / t514;
-    let t673 = -t572 / t605;
-    let t674 = t594 / t605;
-    let t681 = (t553 + s78 * (T::from_f64(0.06) * t569)) / t514 - t606 * t617
-        - t572 * t661;
-    let t685 = t564 / t514 - t572 * t665;
-    let t689 = t566 / t514 - t572 * t671;
-    let t693 = t672 - t572 * t673;
-    let t697 = t672 - t572 * t674;
-    let t705 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t538 - t568 * t572)
-        / (T::from_f64(0.0166867) - t514 * (t572 * t572));
-    let t707 = t569 - t572 * t705;
+    let t532 = c79 * T::from_f64(0.06);
+    let t534 = t532 + T::from_f64(0.1247117);
+    let t536 = T::from_f64(0.03) * c79;
+    let t538 = t536 + T::from_f64(0.016696700000000002);
+    let t541 = s78 * T::from_f64(0.06);
+    let t543 = qd[0] * t541;
+    let t545 = T::from_f64(0.03) * s78;
+    let t551 = qd[1] * (t543 + qd[1] * t545);
+    let t554 = qdd[0] * t534 + (qdd[1] * t538 - t551);
+    let t557 = qd[0] * t545;
+    let t558 = qd[0] * t557;
+    let t560 = qdd[0] * t538 + (qdd[1] * T::from_f64(0.0166867) + t558);
+    let t573 = qd[1] * (qd[0] * t532 + qd[1] * t536);
+    let t578 = -(qdd[0] * t541 + (qdd[1] * t545 + t573));
+    let t581 = qd[0] * t536;
+    let t583 = qd[0] * t581 - qdd[0] * t545;
+    let t584 = qd[1] * t541;
+    let t585 = -t584;
+    let t586 = t543 + t584;
+    let t587 = -t586;
+    let t588 = motor_torques[0] + motor_torques[1] + t551;
+    let t589 = t588 / t534;
+    let t592 = (t536 + T::from_f64(0.0166967)) / t534;
+    let t594 = T::from_f64(0.06) * t592;
+    let t596 = s78 * t594;
+    let t598 = qd[1] * t596;
+    let t604 = T::from_f64(0.03) * t592;
+    let t613 = T::from_f64(0.6666666666666667) - t592;
+    let t624 = T::from_f64(0.0166867) + t592 * (t592 * (T::from_f64(-0.1247117) - t532));
+    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t592
+        - qd[1] * (qd[1] * (s78 * t604)) - qd[0] * (t557 + t598)) / t624;
+    let t629 = t589 - t592 * t625;
+    let t632 = T::from_f64(0.06) * t589;
+    let t661 = s78
+        * (t592 * (t625 * (T::from_f64(-0.06) + t594) - t632) + T::from_f64(0.03) * t589)
+        - qd[1] * (qd[1] * (c79 * t604)) - qd[0] * (t581 + qd[1] * (c79 * t594));
+    let t662 = t661 / t624;
+    let t666 = -(t543 + t598) / t624;
+    let t672 = -(t598 + qd[0] * t596) / t624;
+    let t673 = T::from_f64(1.0) / t534;
+    let t674 = -t592 / t624;
+    let t675 = t613 / t624;
+    let t679 = (t573 + s78 * (t625 * (T::from_f64(0.03) - t594) + t632)) / t534
+        - t592 * t662;
+    let t683 = t584 / t534 - t592 * t666;
+    let t687 = t586 / t534 - t592 * t672;
+    let t691 = t673 - t592 * t674;
+    let t695 = t673 - t592 * t675;
+    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t558 - t588 * t592)
+        / (T::from_f64(0.0166867) - t534 * (t592 * t592));
+    let t705 = t589 - t592 * t703;
     Outputs {
-        generalized_forces: [t534, t540],
+        generalized_forces: [t554, t560],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t534, t540],
-            d_q: [[T::from_f64(0.0), t558], [T::from_f64(0.0), t563]],
-            d_qd: [[t565, t567], [t523, T::from_f64(0.0)]],
+            value: [t554, t560],
+            d_q: [[T::from_f64(0.0), t578], [T::from_f64(0.0), t583]],
+            d_qd: [[t585, t587], [t543, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t707, t705],
+        forward_dynamics: [t705, t703],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t610, t606],
-            d_q: [[T::from_f64(0.0), t681], [T::from_f64(0.0), t661]],
-            d_qd: [[t685, t689], [t665, t671]],
-            d_u: [[t693, t697], [t673, t674]],
+            value: [t629, t625],
+            d_q: [[T::from_f64(0.0), t679], [T::from_f64(0.0), t662]],
+            d_qd: [[t683, t687], [t666, t672]],
+            d_u: [[t691, t695], [t674, t675]],
         },
     }
 }
