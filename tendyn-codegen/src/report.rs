@@ -739,7 +739,7 @@ pub fn identification_text(m: &Model<f64>, base: &BaseParameters, id: &Identific
     let file = base.values(&regressor::values(m));
     let mut s = format!(
         "{}: {} base parameters from {} samples; residual {} N·m rms ({:.2} % of the \
-         forces), condition number {:.1e}\n\n  {:>12}  {:>10}  {:>12}  base parameter\n",
+         forces), condition number {:.1e}\n\n  {:>12}  {:>12}  {:>12}  base parameter\n",
         m.name(),
         id.estimates.len(),
         id.samples,
@@ -752,7 +752,7 @@ pub fn identification_text(m: &Model<f64>, base: &BaseParameters, id: &Identific
     );
     for (k, name) in base.names(m).iter().enumerate() {
         s.push_str(&format!(
-            "  {:>12}  {:>10}  {:>12}  {name}\n",
+            "  {:>12}  {:>12}  {:>12}  {name}\n",
             number(id.estimates[k]),
             number(id.standard_deviations[k]),
             number(file[k])

@@ -8,7 +8,9 @@
 //! The two value-dependent operations differentiate as the branch they take: `max(a, b)`
 //! as `a` where `a > b`, as `b` where `a < b`, and as the mean of both where they are equal
 //! (a subgradient: the derivative does not exist there); `sign_outside` is piecewise
-//! constant, with derivative zero (where it jumps, it has none).
+//! constant, with derivative zero (where it jumps, it has none). `sqrt` at exactly zero
+//! has no derivative: the tangent comes out infinite or NaN there, and the runtime's
+//! checked evaluators report it as a non-finite result rather than return it.
 
 use crate::real::{Numeric, Real};
 use core::ops::{Add, Div, Mul, Neg, Sub};
