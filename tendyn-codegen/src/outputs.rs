@@ -517,67 +517,24 @@ fn trace_one(
             (Shape::Vector(n), x)
         }
         Output::GeneralizedForcesDerivatives => {
-            let shape = Shape::Jacobians { n, actuators: None };
-            let inputs = [&i.q[..], &i.qd];
-            let qdd = dual_constants(&i.qdd);
-            let (value, d) = derivatives::jacobians(inputs.as_slice(), |x, out| {
-                let (dual, ws) = shared.dual(m);
-                out.resize(n, Dual::constant(Sym::zero()));
-                dynamics::generalized_forces(dual, &x[0], &x[1], &qdd, ws, out);
-                Ok::<(), ()>(())
-            })
-            .expect("tracing cannot fail");
-            (
-                shape,
-                value.into_iter().chain(d.into_iter().flatten()).collect(),
-            )
+            let (dual, dual_ws) = shared.dual(m);
+            let d = derivatives::generalized_forces_derivatives(dual, &i.q, &i.qd, &i.qdd, dual_ws);
+            (Shape::Jacobians { n, actuators: None }, d.flattened())
         }
         Output::ForwardDynamicsDerivatives => {
-            let motors = i.motor_torques.len();
-            let u: Vec<Sym> = i
-                .motor_torques
-                .iter()
-                .chain(&i.tendon_tensions)
-                .copied()
-                .collect();
-            let shape = Shape::Jacobians {
-                n,
-                actuators: Some(u.len()),
-            };
-            if !m.has_capstan() {
-                let mut mass_ws = Workspace::new(m);
-                let (dual, dual_ws) = shared.dual(m);
-                let d = derivatives::forward_dynamics_through_inverse(
-                    m,
-                    dual,
-                    &i.q,
-                    &i.qd,
-                    &i.motor_torques,
-                    &i.tendon_tensions,
-                    &mut mass_ws,
-                    dual_ws,
-                );
-                return (shape, d.flattened());
-            }
-            let inputs = [&i.q[..], &i.qd, &u];
-            let (value, d) = derivatives::jacobians(inputs.as_slice(), |x, out| {
-                let (dual, ws) = shared.dual(m);
-                let (torques, tensions) = x[2].split_at(motors);
-                let rhs = dynamics::forward_dynamics_rhs(dual, &x[0], &x[1], torques, tensions, ws);
-                let mut mass: Vec<Dual<Sym>> = dynamics::mass_matrix(dual, &x[0], ws)
-                    .into_iter()
-                    .flatten()
-                    .collect();
-                out.clear();
-                out.extend(rhs);
-                linalg::ldlt_solve(&mut mass, out);
-                Ok::<(), ()>(())
-            })
-            .expect("tracing cannot fail");
-            (
-                shape,
-                value.into_iter().chain(d.into_iter().flatten()).collect(),
-            )
+            let (dual, dual_ws) = shared.dual(m);
+            let d = derivatives::forward_dynamics_derivatives(
+                m,
+                dual,
+                &i.q,
+                &i.qd,
+                &i.motor_torques,
+                &i.tendon_tensions,
+                ws,
+                dual_ws,
+            );
+            let actuators = Some(i.motor_torques.len() + i.tendon_tensions.len());
+            (Shape::Jacobians { n, actuators }, d.flattened())
         }
         Output::Regressor => {
             let columns = regressor::count(m);
@@ -617,11 +574,6 @@ fn trace_one(
             (shape, results)
         }
     }
-}
-
-/// Symbols as dual constants (no derivative).
-fn dual_constants(x: &[Sym]) -> Vec<Dual<Sym>> {
-    x.iter().map(|&s| Dual::constant(s)).collect()
 }
 
 /// Names of what each result of a function is, for documentation (`segment_tensions`:

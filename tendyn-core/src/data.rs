@@ -19,8 +19,7 @@
 //! ```
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
-use crate::derivatives::{forward_dynamics_through_inverse, jacobians, Derivatives};
-use crate::dual::Dual;
+use crate::derivatives::{self, jacobians, Derivatives};
 use crate::dynamics::{
     actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
     generalized_forces, gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics,
@@ -208,8 +207,8 @@ impl<T: Numeric> Data<T> {
         Ok(&self.regressor)
     }
 
-    /// `Q` and its derivatives `∂Q/∂q`, `∂Q/∂q̇` ([`crate::derivatives`]; `∂Q/∂q̈` is `M`,
-    /// [`Data::mass_matrix`]).
+    /// `Q` and its derivatives `∂Q/∂q`, `∂Q/∂q̇` ([`derivatives::generalized_forces_derivatives`];
+    /// `∂Q/∂q̈` is `M`, [`Data::mass_matrix`]).
     pub fn generalized_forces_derivatives(
         &mut self,
         model: &Model<T>,
@@ -219,30 +218,17 @@ impl<T: Numeric> Data<T> {
     ) -> Result<Derivatives<T>> {
         self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let dual = model.dual();
-        let mut ws = Workspace::new(&dual);
-        let qdd: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
-        let (value, mut d) = jacobians(&[q, qd], |x, out| {
-            out.resize(model.dof(), Dual::constant(T::zero()));
-            generalized_forces(&dual, &x[0], &x[1], &qdd, &mut ws, out);
-            Ok::<(), Error>(())
-        })?;
-        let d_qd = d.pop().unwrap_or_default();
-        let d_q = d.pop().unwrap_or_default();
-        let derivatives = Derivatives {
-            value,
-            d_q,
-            d_qd,
-            d_qdd: Vec::new(),
-            d_u: Vec::new(),
-        };
-        finite_derivatives("generalized forces", &derivatives, &[("q", q), ("qd", qd)])?;
-        Ok(derivatives)
+        let mut dual_ws = Workspace::new(&dual);
+        let d = derivatives::generalized_forces_derivatives(&dual, q, qd, qdd, &mut dual_ws);
+        finite_derivatives("generalized forces", &d, &[("q", q), ("qd", qd)])?;
+        Ok(d)
     }
 
     /// `q̈` of forward dynamics and its derivatives `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u`, `u`
-    /// the motor torques then the tendon tensions ([`crate::derivatives`]; through inverse
-    /// dynamics, [`forward_dynamics_through_inverse`], unless guides have capstan friction).
-    /// Checked as [`Data::forward_dynamics`] is.
+    /// the motor torques then the tendon tensions
+    /// ([`derivatives::forward_dynamics_derivatives`], after the checked solve of
+    /// [`Data::forward_dynamics`] has vouched that `M` is positive definite). Checked as
+    /// [`Data::forward_dynamics`] is.
     pub fn forward_dynamics_derivatives(
         &mut self,
         model: &Model<T>,
@@ -252,50 +238,21 @@ impl<T: Numeric> Data<T> {
         tendon_tensions: &[T],
     ) -> Result<Derivatives<T>> {
         let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
         let dual = model.dual();
-        if !model.has_capstan() {
-            // Through inverse dynamics, after the checked solve has vouched for `M`.
-            self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
-            let mut dual_ws = Workspace::new(&dual);
-            let derivatives = forward_dynamics_through_inverse(
-                model,
-                &dual,
-                q,
-                qd,
-                motor_torques,
-                tendon_tensions,
-                &mut self.ws,
-                &mut dual_ws,
-            );
-            finite_derivatives("joint acceleration", &derivatives, &inputs)?;
-            return Ok(derivatives);
-        }
-        let mut data = Data::new(&dual);
-        let u: Vec<T> = motor_torques
-            .iter()
-            .chain(tendon_tensions)
-            .copied()
-            .collect();
-        let motors = motor_torques.len();
-        let (value, mut d) = jacobians(&[q, qd, &u], |x, out| {
-            let (torques, tensions) = x[2].split_at(motors);
-            let qdd = data.forward_dynamics(&dual, &x[0], &x[1], torques, tensions)?;
-            out.clear();
-            out.extend_from_slice(qdd);
-            Ok::<(), Error>(())
-        })?;
-        let d_u = d.pop().unwrap_or_default();
-        let d_qd = d.pop().unwrap_or_default();
-        let d_q = d.pop().unwrap_or_default();
-        let derivatives = Derivatives {
-            value,
-            d_q,
-            d_qd,
-            d_qdd: Vec::new(),
-            d_u,
-        };
-        finite_derivatives("joint acceleration", &derivatives, &inputs)?;
-        Ok(derivatives)
+        let mut dual_ws = Workspace::new(&dual);
+        let d = derivatives::forward_dynamics_derivatives(
+            model,
+            &dual,
+            q,
+            qd,
+            motor_torques,
+            tendon_tensions,
+            &mut self.ws,
+            &mut dual_ws,
+        );
+        finite_derivatives("joint acceleration", &d, &inputs)?;
+        Ok(d)
     }
 
     /// The motor torques and tendon tensions of inverse dynamics (in that order, as one

@@ -100,19 +100,51 @@ pub fn jacobians<T: Real, E>(
     Ok((value, blocks))
 }
 
-/// `q̈` of forward dynamics with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` by way of inverse dynamics
-/// (the route of Carpentier and Mansard for the derivatives of the articulated-body
-/// algorithm): at the solution `q̈*`, `Q(q, q̇, q̈*) = Σ c_m τ_m + A T`, so differentiating,
-/// `∂Q/∂x + M ∂q̈*/∂x = 0` for `x = q, q̇` and `M ∂q̈*/∂u = [c_m | A]`. One dual pass of
-/// `Q` per joint coordinate and one solve per column, instead of a dual pass of the whole
-/// forward dynamics (mass matrix and factorisation included) per input coordinate.
+/// `Q` with `∂Q/∂q` and `∂Q/∂q̇` (`d_qdd`, `d_u` empty): [`dynamics::generalized_forces`]
+/// on `dual` (the model on dual numbers, [`Model::dual`]), one joint coordinate seeded at a
+/// time. What the runtime, generated code and [`forward_dynamics_derivatives`] all use.
+pub fn generalized_forces_derivatives<T: Real>(
+    dual: &Model<Dual<T>>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    dual_ws: &mut Workspace<Dual<T>>,
+) -> Derivatives<T> {
+    let n = dual.dof();
+    let qdd: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
+    let (value, mut blocks) = jacobians(&[q, qd], |x, out| {
+        out.resize(n, Dual::constant(T::zero()));
+        dynamics::generalized_forces(dual, &x[0], &x[1], &qdd, dual_ws, out);
+        Ok::<(), ()>(())
+    })
+    .unwrap_or_default();
+    let d_qd = blocks.pop().unwrap_or_default();
+    let d_q = blocks.pop().unwrap_or_default();
+    Derivatives {
+        value,
+        d_q,
+        d_qd,
+        d_qdd: Vec::new(),
+        d_u: Vec::new(),
+    }
+}
+
+/// `q̈` of forward dynamics with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` (`u`: motor torques, then
+/// tendon tensions), by the unchecked `L D Lᵀ` solve of generated code (the runtime checks
+/// that `M` is positive definite before).
 ///
-/// Bearing friction differentiates alike on both sides (its viscous part the same, its
-/// Coulomb part piecewise constant). Valid only where `A` does not depend on the state: the
-/// caller takes the direct route for guides with capstan friction. `M` is factorised by
-/// the unchecked `L D Lᵀ` (the runtime checks it is positive definite before).
+/// By way of inverse dynamics (the route of Carpentier and Mansard for the derivatives of
+/// the articulated-body algorithm): at the solution `q̈*`, `Q(q, q̇, q̈*) = Σ c_m τ_m + A T`,
+/// so differentiating, `∂Q/∂x + M ∂q̈*/∂x = 0` for `x = q, q̇` and
+/// `M ∂q̈*/∂u = [c_m | A]`. One dual pass of `Q` per joint coordinate and one substitution
+/// per column, instead of a dual pass of the whole forward dynamics (mass matrix and
+/// factorisation included) per input coordinate. Bearing friction differentiates alike
+/// on both sides (its viscous part the same, its Coulomb part piecewise constant).
+///
+/// Where guides have capstan friction `A` depends on the state, and each input is seeded
+/// through forward dynamics itself instead.
 #[allow(clippy::too_many_arguments)]
-pub fn forward_dynamics_through_inverse<T: Real>(
+pub fn forward_dynamics_derivatives<T: Real>(
     model: &Model<T>,
     dual: &Model<Dual<T>>,
     q: &[T],
@@ -122,35 +154,28 @@ pub fn forward_dynamics_through_inverse<T: Real>(
     ws: &mut Workspace<T>,
     dual_ws: &mut Workspace<Dual<T>>,
 ) -> Derivatives<T> {
+    if model.has_capstan() {
+        return forward_dynamics_seeded(dual, q, qd, motor_torques, tendon_tensions, dual_ws);
+    }
     let n = model.dof();
-    let mass: Vec<T> = dynamics::mass_matrix(model, q, ws).concat();
-    let solve = |b: &mut [T]| linalg::ldlt_solve(&mut mass.clone(), b);
+    let mut factors: Vec<T> = dynamics::mass_matrix(model, q, ws).concat();
+    linalg::ldlt_factor(&mut factors, n);
+    let solve = |b: &mut [T]| linalg::ldlt_substitute(&factors, b);
     let mut qdd = dynamics::forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, ws);
     solve(&mut qdd);
-    let at: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
-    let (_, blocks) = jacobians(&[q, qd], |x, out| {
-        out.resize(n, Dual::constant(T::zero()));
-        dynamics::generalized_forces(dual, &x[0], &x[1], &at, dual_ws, out);
-        Ok::<(), ()>(())
-    })
-    .unwrap_or_default();
+    let at_solution = generalized_forces_derivatives(dual, q, qd, &qdd, dual_ws);
     // The actuators' columns: each motor's, then each tendon's structure column.
-    let actuators: Vec<Vec<T>> = model
+    let actuators: Vec<&[f64]> = model
         .motors()
         .iter()
-        .map(|m| m.column.iter().map(|&c| T::from_f64(c)).collect())
-        .chain(
-            model
-                .tendons()
-                .iter()
-                .map(|k| k.structure.iter().map(|&c| T::from_f64(c)).collect()),
-        )
+        .map(|m| &m.column[..])
+        .chain(model.tendons().iter().map(|k| &k.structure[..]))
         .collect();
     // `M⁻¹` times each column of `sign · block` (row-major, `n` rows), row-major again.
-    let solved = |block: &[T], columns: usize, sign: T| {
+    let solved = |block: &dyn Fn(usize, usize) -> T, columns: usize| {
         let mut out = vec![T::zero(); n * columns];
         for c in 0..columns {
-            let mut b: Vec<T> = (0..n).map(|i| sign * block[i * columns + c]).collect();
+            let mut b: Vec<T> = (0..n).map(|i| block(i, c)).collect();
             solve(&mut b);
             for i in 0..n {
                 out[i * columns + c] = b[i];
@@ -158,17 +183,48 @@ pub fn forward_dynamics_through_inverse<T: Real>(
         }
         out
     };
-    let minus = -T::one();
-    let d_q = blocks
-        .first()
-        .map_or_else(Vec::new, |b| solved(b, n, minus));
-    let d_qd = blocks.get(1).map_or_else(Vec::new, |b| solved(b, n, minus));
-    let u: Vec<T> = (0..n)
-        .flat_map(|i| actuators.iter().map(move |col| col[i]))
-        .collect();
-    let d_u = solved(&u, actuators.len(), T::one());
+    let d_q = solved(&|i, c| -at_solution.d_q[i * n + c], n);
+    let d_qd = solved(&|i, c| -at_solution.d_qd[i * n + c], n);
+    let d_u = solved(&|i, c| T::from_f64(actuators[c][i]), actuators.len());
     Derivatives {
         value: qdd,
+        d_q,
+        d_qd,
+        d_qdd: Vec::new(),
+        d_u,
+    }
+}
+
+/// [`forward_dynamics_derivatives`] with every input seeded through forward dynamics on
+/// dual numbers (right-hand side, mass matrix and `L D Lᵀ`): the route where `A` depends on
+/// the state.
+fn forward_dynamics_seeded<T: Real>(
+    dual: &Model<Dual<T>>,
+    q: &[T],
+    qd: &[T],
+    motor_torques: &[T],
+    tendon_tensions: &[T],
+    dual_ws: &mut Workspace<Dual<T>>,
+) -> Derivatives<T> {
+    let motors = motor_torques.len();
+    let u: Vec<T> = motor_torques
+        .iter()
+        .chain(tendon_tensions)
+        .copied()
+        .collect();
+    let (value, mut blocks) = jacobians(&[q, qd, &u], |x, out| {
+        let (torques, tensions) = x[2].split_at(motors);
+        *out = dynamics::forward_dynamics_rhs(dual, &x[0], &x[1], torques, tensions, dual_ws);
+        let mut mass = dynamics::mass_matrix(dual, &x[0], dual_ws).concat();
+        linalg::ldlt_solve(&mut mass, out);
+        Ok::<(), ()>(())
+    })
+    .unwrap_or_default();
+    let d_u = blocks.pop().unwrap_or_default();
+    let d_qd = blocks.pop().unwrap_or_default();
+    let d_q = blocks.pop().unwrap_or_default();
+    Derivatives {
+        value,
         d_q,
         d_qd,
         d_qdd: Vec::new(),

@@ -208,7 +208,14 @@ pub fn cholesky_solve<T: Numeric>(m: &mut [T], x: &mut [T]) -> bool {
 /// row-major, `n = x.len()`) is overwritten by `L` below its diagonal and `D` on it, `x`
 /// holds `b` on entry and the solution on return. `m` must hold `n²` reals.
 pub fn ldlt_solve<T: Real>(m: &mut [T], x: &mut [T]) {
-    let n = x.len();
+    ldlt_factor(m, x.len());
+    ldlt_substitute(m, x);
+}
+
+/// The `L D Lᵀ` factors of `m` (`n × n`, row-major) in place: `L` below the diagonal, `D`
+/// on it; no pivoting, no checks. Factor once and [`ldlt_substitute`] for each right-hand
+/// side.
+pub fn ldlt_factor<T: Real>(m: &mut [T], n: usize) {
     let m = &mut m[..n * n];
     for j in 0..n {
         let mut dj = m[j * n + j];
@@ -224,6 +231,12 @@ pub fn ldlt_solve<T: Real>(m: &mut [T], x: &mut [T]) {
             m[i * n + j] = s / dj;
         }
     }
+}
+
+/// Solves `L D Lᵀ x = b` with the factors of [`ldlt_factor`]; `x` holds `b` on entry.
+pub fn ldlt_substitute<T: Real>(factors: &[T], x: &mut [T]) {
+    let n = x.len();
+    let m = &factors[..n * n];
     for i in 0..n {
         for k in 0..i {
             x[i] = x[i] - m[i * n + k] * x[k];

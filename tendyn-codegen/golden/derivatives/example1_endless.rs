@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t538 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t545 = T::from_f64(0.03) * s78;
-    let t554 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t538 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t545));
-    let t560 = qdd[0] * t538
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t545));
-    [t554, t560]
+    let t537 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t544 = T::from_f64(0.03) * s78;
+    let t553 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t537 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t544));
+    let t559 = qdd[0] * t537
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t544));
+    [t553, t559]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -45,26 +45,26 @@ pub fn generalized_forces_derivatives<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t532 = c79 * T::from_f64(0.06);
-    let t536 = T::from_f64(0.03) * c79;
-    let t538 = t536 + T::from_f64(0.016696700000000002);
-    let t541 = s78 * T::from_f64(0.06);
-    let t543 = qd[0] * t541;
-    let t545 = T::from_f64(0.03) * s78;
-    let t554 = qdd[0] * (t532 + T::from_f64(0.1247117))
-        + (qdd[1] * t538 - qd[1] * (t543 + qd[1] * t545));
-    let t560 = qdd[0] * t538
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t545));
-    let t578 = -(qdd[0] * t541
-        + (qdd[1] * t545 + qd[1] * (qd[0] * t532 + qd[1] * t536)));
-    let t583 = qd[0] * (qd[0] * t536) - qdd[0] * t545;
-    let t584 = qd[1] * t541;
-    let t585 = -t584;
-    let t587 = -(t543 + t584);
+    let t531 = c79 * T::from_f64(0.06);
+    let t535 = T::from_f64(0.03) * c79;
+    let t537 = t535 + T::from_f64(0.016696700000000002);
+    let t540 = s78 * T::from_f64(0.06);
+    let t542 = qd[0] * t540;
+    let t544 = T::from_f64(0.03) * s78;
+    let t553 = qdd[0] * (t531 + T::from_f64(0.1247117))
+        + (qdd[1] * t537 - qd[1] * (t542 + qd[1] * t544));
+    let t559 = qdd[0] * t537
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t544));
+    let t577 = -(qdd[0] * t540
+        + (qdd[1] * t544 + qd[1] * (qd[0] * t531 + qd[1] * t535)));
+    let t582 = qd[0] * (qd[0] * t535) - qdd[0] * t544;
+    let t583 = qd[1] * t540;
+    let t584 = -t583;
+    let t586 = -(t542 + t583);
     tendyn_core::dual::StateJacobians {
-        value: [t554, t560],
-        d_q: [[T::from_f64(0.0), t578], [T::from_f64(0.0), t583]],
-        d_qd: [[t585, t587], [t543, T::from_f64(0.0)]],
+        value: [t553, t559],
+        d_q: [[T::from_f64(0.0), t577], [T::from_f64(0.0), t582]],
+        d_qd: [[t584, t586], [t542, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -81,15 +81,15 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t534 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t545 = T::from_f64(0.03) * s78;
-    let t588 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t545);
-    let t592 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t534;
+    let t533 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t544 = T::from_f64(0.03) * s78;
+    let t587 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t544);
+    let t591 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t533;
     let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t545) - t588 * t592)
-        / (T::from_f64(0.0166867) - t534 * (t592 * t592));
-    let t705 = t588 / t534 - t592 * t703;
+        - qd[0] * (qd[0] * t544) - t587 * t591)
+        / (T::from_f64(0.0166867) - t533 * (t591 * t591));
+    let t705 = t587 / t533 - t591 * t703;
     [t705, t703]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
@@ -106,41 +106,41 @@ pub fn forward_dynamics_derivatives<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t532 = c79 * T::from_f64(0.06);
-    let t534 = t532 + T::from_f64(0.1247117);
-    let t536 = T::from_f64(0.03) * c79;
-    let t541 = s78 * T::from_f64(0.06);
-    let t543 = qd[0] * t541;
-    let t545 = T::from_f64(0.03) * s78;
-    let t584 = qd[1] * t541;
-    let t589 = (motor_torques[0] + motor_torques[1] + qd[1] * (t543 + qd[1] * t545))
-        / t534;
-    let t592 = (t536 + T::from_f64(0.0166967)) / t534;
-    let t594 = T::from_f64(0.06) * t592;
-    let t596 = s78 * t594;
-    let t598 = qd[1] * t596;
-    let t604 = T::from_f64(0.03) * t592;
-    let t613 = T::from_f64(0.6666666666666667) - t592;
-    let t624 = T::from_f64(0.0166867) + t592 * (t592 * (T::from_f64(-0.1247117) - t532));
-    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t592
-        - qd[1] * (qd[1] * (s78 * t604)) - qd[0] * (qd[0] * t545 + t598)) / t624;
-    let t629 = t589 - t592 * t625;
-    let t632 = T::from_f64(0.06) * t589;
+    let t531 = c79 * T::from_f64(0.06);
+    let t533 = t531 + T::from_f64(0.1247117);
+    let t535 = T::from_f64(0.03) * c79;
+    let t540 = s78 * T::from_f64(0.06);
+    let t542 = qd[0] * t540;
+    let t544 = T::from_f64(0.03) * s78;
+    let t583 = qd[1] * t540;
+    let t588 = (motor_torques[0] + motor_torques[1] + qd[1] * (t542 + qd[1] * t544))
+        / t533;
+    let t591 = (t535 + T::from_f64(0.0166967)) / t533;
+    let t593 = T::from_f64(0.06) * t591;
+    let t595 = s78 * t593;
+    let t597 = qd[1] * t595;
+    let t603 = T::from_f64(0.03) * t591;
+    let t613 = T::from_f64(0.6666666666666667) - t591;
+    let t624 = T::from_f64(0.0166867) + t591 * (t591 * (T::from_f64(-0.1247117) - t531));
+    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t591
+        - qd[1] * (qd[1] * (s78 * t603)) - qd[0] * (qd[0] * t544 + t597)) / t624;
+    let t629 = t588 - t591 * t625;
+    let t632 = T::from_f64(0.06) * t588;
     let t661 = s78
-        * (t592 * (t625 * (T::from_f64(-0.06) + t594) - t632) + T::from_f64(0.03) * t589)
-        - qd[1] * (qd[1] * (c79 * t604)) - qd[0] * (qd[0] * t536 + qd[1] * (c79 * t594));
+        * (t591 * (t625 * (T::from_f64(-0.06) + t593) - t632) + T::from_f64(0.03) * t588)
+        - qd[1] * (qd[1] * (c79 * t603)) - qd[0] * (qd[0] * t535 + qd[1] * (c79 * t593));
     let t662 = t661 / t624;
-    let t666 = -(t543 + t598) / t624;
-    let t672 = -(t598 + qd[0] * t596) / t624;
-    let t673 = T::from_f64(1.0) / t534;
-    let t674 = -t592 / t624;
+    let t666 = -(t542 + t597) / t624;
+    let t672 = -(t597 + qd[0] * t595) / t624;
+    let t673 = T::from_f64(1.0) / t533;
+    let t674 = -t591 / t624;
     let t675 = t613 / t624;
-    let t679 = (qd[1] * (qd[0] * t532 + qd[1] * t536)
-        + s78 * (t625 * (T::from_f64(0.03) - t594) + t632)) / t534 - t592 * t662;
-    let t683 = t584 / t534 - t592 * t666;
-    let t687 = (t543 + t584) / t534 - t592 * t672;
-    let t691 = t673 - t592 * t674;
-    let t695 = t673 - t592 * t675;
+    let t679 = (qd[1] * (qd[0] * t531 + qd[1] * t535)
+        + s78 * (t625 * (T::from_f64(0.03) - t593) + t632)) / t533 - t591 * t662;
+    let t683 = t583 / t533 - t591 * t666;
+    let t687 = (t542 + t583) / t533 - t591 * t672;
+    let t691 = t673 - t591 * t674;
+    let t695 = t673 - t591 * t675;
     tendyn_core::dual::ForwardJacobians {
         value: [t629, t625],
         d_q: [[T::from_f64(0.0), t679], [T::from_f64(0.0), t662]],
@@ -178,63 +178,63 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s78, c79) = q[1].sin_cos();
-    let t532 = c79 * T::from_f64(0.06);
-    let t534 = t532 + T::from_f64(0.1247117);
-    let t536 = T::from_f64(0.03) * c79;
-    let t538 = t536 + T::from_f64(0.016696700000000002);
-    let t541 = s78 * T::from_f64(0.06);
-    let t543 = qd[0] * t541;
-    let t545 = T::from_f64(0.03) * s78;
-    let t551 = qd[1] * (t543 + qd[1] * t545);
-    let t554 = qdd[0] * t534 + (qdd[1] * t538 - t551);
-    let t557 = qd[0] * t545;
-    let t558 = qd[0] * t557;
-    let t560 = qdd[0] * t538 + (qdd[1] * T::from_f64(0.0166867) + t558);
-    let t573 = qd[1] * (qd[0] * t532 + qd[1] * t536);
-    let t578 = -(qdd[0] * t541 + (qdd[1] * t545 + t573));
-    let t581 = qd[0] * t536;
-    let t583 = qd[0] * t581 - qdd[0] * t545;
-    let t584 = qd[1] * t541;
-    let t585 = -t584;
-    let t586 = t543 + t584;
-    let t587 = -t586;
-    let t588 = motor_torques[0] + motor_torques[1] + t551;
-    let t589 = t588 / t534;
-    let t592 = (t536 + T::from_f64(0.0166967)) / t534;
-    let t594 = T::from_f64(0.06) * t592;
-    let t596 = s78 * t594;
-    let t598 = qd[1] * t596;
-    let t604 = T::from_f64(0.03) * t592;
-    let t613 = T::from_f64(0.6666666666666667) - t592;
-    let t624 = T::from_f64(0.0166867) + t592 * (t592 * (T::from_f64(-0.1247117) - t532));
-    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t592
-        - qd[1] * (qd[1] * (s78 * t604)) - qd[0] * (t557 + t598)) / t624;
-    let t629 = t589 - t592 * t625;
-    let t632 = T::from_f64(0.06) * t589;
+    let t531 = c79 * T::from_f64(0.06);
+    let t533 = t531 + T::from_f64(0.1247117);
+    let t535 = T::from_f64(0.03) * c79;
+    let t537 = t535 + T::from_f64(0.016696700000000002);
+    let t540 = s78 * T::from_f64(0.06);
+    let t542 = qd[0] * t540;
+    let t544 = T::from_f64(0.03) * s78;
+    let t550 = qd[1] * (t542 + qd[1] * t544);
+    let t553 = qdd[0] * t533 + (qdd[1] * t537 - t550);
+    let t556 = qd[0] * t544;
+    let t557 = qd[0] * t556;
+    let t559 = qdd[0] * t537 + (qdd[1] * T::from_f64(0.0166867) + t557);
+    let t572 = qd[1] * (qd[0] * t531 + qd[1] * t535);
+    let t577 = -(qdd[0] * t540 + (qdd[1] * t544 + t572));
+    let t580 = qd[0] * t535;
+    let t582 = qd[0] * t580 - qdd[0] * t544;
+    let t583 = qd[1] * t540;
+    let t584 = -t583;
+    let t585 = t542 + t583;
+    let t586 = -t585;
+    let t587 = motor_torques[0] + motor_torques[1] + t550;
+    let t588 = t587 / t533;
+    let t591 = (t535 + T::from_f64(0.0166967)) / t533;
+    let t593 = T::from_f64(0.06) * t591;
+    let t595 = s78 * t593;
+    let t597 = qd[1] * t595;
+    let t603 = T::from_f64(0.03) * t591;
+    let t613 = T::from_f64(0.6666666666666667) - t591;
+    let t624 = T::from_f64(0.0166867) + t591 * (t591 * (T::from_f64(-0.1247117) - t531));
+    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t591
+        - qd[1] * (qd[1] * (s78 * t603)) - qd[0] * (t556 + t597)) / t624;
+    let t629 = t588 - t591 * t625;
+    let t632 = T::from_f64(0.06) * t588;
     let t661 = s78
-        * (t592 * (t625 * (T::from_f64(-0.06) + t594) - t632) + T::from_f64(0.03) * t589)
-        - qd[1] * (qd[1] * (c79 * t604)) - qd[0] * (t581 + qd[1] * (c79 * t594));
+        * (t591 * (t625 * (T::from_f64(-0.06) + t593) - t632) + T::from_f64(0.03) * t588)
+        - qd[1] * (qd[1] * (c79 * t603)) - qd[0] * (t580 + qd[1] * (c79 * t593));
     let t662 = t661 / t624;
-    let t666 = -(t543 + t598) / t624;
-    let t672 = -(t598 + qd[0] * t596) / t624;
-    let t673 = T::from_f64(1.0) / t534;
-    let t674 = -t592 / t624;
+    let t666 = -(t542 + t597) / t624;
+    let t672 = -(t597 + qd[0] * t595) / t624;
+    let t673 = T::from_f64(1.0) / t533;
+    let t674 = -t591 / t624;
     let t675 = t613 / t624;
-    let t679 = (t573 + s78 * (t625 * (T::from_f64(0.03) - t594) + t632)) / t534
-        - t592 * t662;
-    let t683 = t584 / t534 - t592 * t666;
-    let t687 = t586 / t534 - t592 * t672;
-    let t691 = t673 - t592 * t674;
-    let t695 = t673 - t592 * t675;
-    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t558 - t588 * t592)
-        / (T::from_f64(0.0166867) - t534 * (t592 * t592));
-    let t705 = t589 - t592 * t703;
+    let t679 = (t572 + s78 * (t625 * (T::from_f64(0.03) - t593) + t632)) / t533
+        - t591 * t662;
+    let t683 = t583 / t533 - t591 * t666;
+    let t687 = t585 / t533 - t591 * t672;
+    let t691 = t673 - t591 * t674;
+    let t695 = t673 - t591 * t675;
+    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t557 - t587 * t591)
+        / (T::from_f64(0.0166867) - t533 * (t591 * t591));
+    let t705 = t588 - t591 * t703;
     Outputs {
-        generalized_forces: [t554, t560],
+        generalized_forces: [t553, t559],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t554, t560],
-            d_q: [[T::from_f64(0.0), t578], [T::from_f64(0.0), t583]],
-            d_qd: [[t585, t587], [t543, T::from_f64(0.0)]],
+            value: [t553, t559],
+            d_q: [[T::from_f64(0.0), t577], [T::from_f64(0.0), t582]],
+            d_qd: [[t584, t586], [t542, T::from_f64(0.0)]],
         },
         forward_dynamics: [t705, t703],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
