@@ -1688,17 +1688,3 @@ fn more_than_thirty_links_are_refused_naming_the_limit() {
         .replace("        (name: \"m31\", on: Joint(\"l31\")),\n", "");
     parse(&thirty).unwrap();
 }
-
-#[test]
-fn capstan_friction_with_more_than_twelve_unknowns_is_refused_and_without_it_there_is_no_limit() {
-    let text = std::fs::read_to_string("../bench/mechanisms/chain12.ron").unwrap();
-    let model = parse(&text).unwrap();
-    assert_eq!(model.system().unknowns.len(), 13);
-    let capstans = tendyn_spec::guides::idlers_as_capstans(&text, 0.2);
-    assert_invalid(
-        &capstans,
-        "chain12",
-        "name: \"chain12\"",
-        "with capstan friction on guides (`mu > 0`) at most 12 are supported",
-    );
-}

@@ -327,6 +327,8 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             }
             Err(e) => panic!("{}: {e} at {q:?} {qd:?} {qdd:?}", model.name()),
         };
+        let r = r.clone();
+        check_state_matrix(model, &mut solver, [&q, &qd, &qdd]);
         let terms = lagrangian::power_in(model, &q, &qd, &r.tendon_tensions, &r.motor_torques);
         let power: f64 = terms.iter().sum();
         let de = lagrangian::energy_rate(model, &q, &qd, &qdd);
@@ -382,6 +384,41 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         );
     }
     worst
+}
+
+/// The state's `E(σ, q)`, which the solver takes from each segment's share of the
+/// transmission's rates scaled by the capstan factors (`tension::state_matrix`), is what the
+/// recursion's own statics give at that state: minus the coefficients of its balance rows
+/// on the strand tensions (the pull of each segment on the bodies at its two ends).
+fn check_state_matrix(model: &Model<f64>, solver: &mut Data<f64>, [q, qd, qdd]: [&[f64]; 3]) {
+    if model.system().unknowns.len() > tendyn_core::affine::MAX_UNKNOWNS {
+        return;
+    }
+    let rows = solver.balance_rows(model, q, qd, qdd).unwrap();
+    let mut factors: Vec<Vec<f64>> = (model.strands().iter())
+        .map(|s| vec![1.0; s.idlers.len()])
+        .collect();
+    tendyn_core::friction::capstan_factors(model, q, qd, Some(qdd), &mut factors);
+    let e = tendyn_core::tension::state_matrix(model, &factors);
+    let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (r, row) in rows.iter().enumerate() {
+        if matches!(
+            model.system().rows[r],
+            tendyn_core::model::Row::Pretension(_)
+        ) {
+            continue;
+        }
+        for strand in model.strands() {
+            let k = strand.unknown;
+            let recursion = -row.coefficients[k];
+            assert!(
+                (recursion - e[r][k]).abs() <= 1e-13 * size,
+                "{}: E[{r}][{k}] is {} from the transmission but {recursion} from the recursion",
+                model.name(),
+                e[r][k]
+            );
+        }
+    }
 }
 
 #[test]
@@ -441,6 +478,37 @@ fn random_mechanisms_with_capstan_friction_on_every_guide_balance_power_with_dis
     }
     println!("{checked} mechanisms with {guides} guides checked; refused: {refused:?}");
     assert!(checked >= 4, "{checked} checked, {refused:?} refused");
+}
+
+#[test]
+fn capstan_friction_puts_no_limit_on_the_unknowns_and_chain12_gives_back_its_motion() {
+    // The state's `E` comes from the transmission's rates (`tension::state_matrix`), not
+    // from rows affine in the unknowns (at most 12): chain12's 13 unknowns are solved with
+    // its idlers made guides with friction.
+    let text = std::fs::read_to_string("../bench/mechanisms/chain12.ron").unwrap();
+    let model = parse(&tendyn_spec::guides::idlers_as_capstans(&text, 0.2)).unwrap();
+    assert_eq!(model.system().unknowns.len(), 13);
+    assert!(model.has_capstan());
+    // chain12 drives some joints through coupled pulleys, so it reports no segment tensions
+    // and the power balance above cannot be taken: forward dynamics gives back the motion
+    // instead (`E` enters it through the state's structure matrix).
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let mut solver = Data::new(&model);
+    for _ in 0..20 {
+        let [q, qd, qdd] = random_state(&mut rng, 12);
+        let r = solver
+            .inverse_dynamics(&model, &q, &qd, &qdd)
+            .unwrap()
+            .clone();
+        assert!(r.tendon_tensions.iter().all(|t| t.is_finite() && *t > 0.0));
+        let back = solver
+            .forward_dynamics(&model, &q, &qd, &r.motor_torques, &r.tendon_tensions)
+            .unwrap();
+        let size = qdd.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in back.iter().zip(&qdd) {
+            assert!((a - b).abs() <= 1e-9 * size, "q̈ {a} for {b}");
+        }
+    }
 }
 
 /// A routing controllable without friction but not whichever way its tendons slide (seeded

@@ -8,7 +8,6 @@
 
 use crate::closed_form::{Collector, StateRank};
 use crate::expr::{Graph, Id, OpCount, Sym};
-use tendyn_core::affine::Affine;
 use tendyn_core::derivatives;
 use tendyn_core::distribution::Problem;
 use tendyn_core::dual::Dual;
@@ -444,8 +443,8 @@ impl Shared {
             // are distributed by the emitted call (see `Function::distribution`). With
             // guides with friction `E` depends on the state: its solution is traced too
             // (several null directions are refused before tracing).
-            let at_state = |model: &Model<Sym>, rows: &[Affine<Sym>]| {
-                Ok(tension::system_traced(model, rows, lead))
+            let at_state = |model: &Model<Sym>, matrix: Vec<Vec<Sym>>| {
+                Ok(tension::system_traced(model, matrix, lead))
             };
             let distribute = |model: &Model<Sym>, system: &TensionSystem<Sym>, x: &mut [Sym]| {
                 if system.null_space.len() == 1 && !model.tendons().is_empty() {

@@ -2,14 +2,17 @@
 //!
 //! The paper carries tendon tensions as unknowns from the tip down to the base (Section 6):
 //! every force and moment of the backward recursion is `c + Σ_k a_k x_k`, where the `x_k`
-//! are the ground-level tensions, loop-side tensions and motor torques. The coefficients
-//! are stored inline (no heap), so the runtime solver allocates nothing per call and the
-//! symbolic scalar sees exactly this arithmetic.
+//! are the ground-level tensions, loop-side tensions and motor torques. The solver does not
+//! need them (the recursion is linear in the unknowns: it is run with the tensions zero and
+//! with them solved, and `E` comes from the transmission); they are how tests read `E` off
+//! the recursion's own statics ([`crate::Data::balance_rows`]). The coefficients are stored
+//! inline (no heap).
 
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
-/// Most unknowns a mechanism may have (tendon tensions plus motor torques).
+/// Most unknowns an affine form carries (tendon tensions plus motor torques): beyond it,
+/// balance rows are not read off the recursion.
 pub const MAX_UNKNOWNS: usize = 12;
 
 /// A scalar `c + Σ_k a_k x_k` over `n` unknowns.

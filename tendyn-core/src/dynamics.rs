@@ -257,15 +257,13 @@ pub fn structure<T: Real>(
     if !model.has_capstan() {
         return columns;
     }
-    let zeros = vec![T::zero(); model.dof];
-    forward(model, q, qd, &zeros, true, true, &mut ws.motion);
     friction::capstan_factors(model, q, qd, None, &mut ws.capstan);
-    let rows = balance(model, ws);
+    let matrix = tension::state_matrix(model, &ws.capstan);
     for (k, column) in model.tendons.iter().zip(&mut columns) {
         if k.strand.is_some() {
-            // The joints' rows come first; E is minus the balance rows' coefficients.
-            for (j, a) in column.iter_mut().enumerate() {
-                *a = -rows[j].coefficients[k.unknown];
+            // The joints' rows come first.
+            for (a, row) in column.iter_mut().zip(&matrix) {
+                *a = row[k.unknown];
             }
         }
     }
@@ -319,36 +317,26 @@ pub fn forward_dynamics_rhs<T: Real>(
 
 /// The tension system at joint angles `q` with the guides with friction sliding in the
 /// directions `sigma` (`±1` each, `[strand][idler]` as [`Workspace::capstan`], ignored
-/// elsewhere): `E(σ, q)` by the recursion's statics ([`tension::system_at`]). What
+/// elsewhere): `E(σ, q)` ([`tension::state_matrix`], [`tension::system_at`]). What
 /// validation checks for each direction of sliding the routing can take.
 pub fn system_sliding<T: Numeric>(
     model: &Model<T>,
     q: &[T],
     sigma: &[Vec<f64>],
 ) -> Result<TensionSystem<T>> {
-    let nu = model.system.unknowns.len();
-    if nu > crate::affine::MAX_UNKNOWNS {
-        return Err(crate::Error::State(format!(
-            "`{}` has {nu} unknowns; the sliding systems are read off affine rows of at most {}",
-            model.name,
-            crate::affine::MAX_UNKNOWNS
-        )));
-    }
     let mut ws = Workspace::new(model);
-    let zeros = vec![T::zero(); model.dof];
-    forward(model, q, &zeros, &zeros, true, true, &mut ws.motion);
     friction::capstan_factors_sliding(model, q, &mut ws.capstan, |s, k, _| {
         T::from_f64(sigma[s][k])
     });
-    let rows = balance(model, &mut ws);
-    tension::system_at(model, &rows)
+    tension::system_at(model, tension::state_matrix(model, &ws.capstan))
 }
 
 /// The balance rows of `E x = b` as affine forms, at the motion, bearing friction and
 /// capstan factors in `ws`: the segment tensions (Eq. 24b), the backward recursion with
 /// them as unknowns (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).
-/// Needed only where `E` must be read off the recursion (capstan friction on guides, and
-/// the checks of `E`); at most [`crate::affine::MAX_UNKNOWNS`] unknowns.
+/// The solver takes `E` from the transmission (constant, or [`tension::state_matrix`]);
+/// these rows are how tests check it against the recursion's own statics. At most
+/// [`crate::affine::MAX_UNKNOWNS`] unknowns.
 fn balance<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Vec<Affine<T>> {
     let nu = model.system.unknowns.len();
     tension::segment_tensions(
@@ -419,9 +407,8 @@ pub(crate) fn balance_at<T: Real>(
 /// precomputed; `distribute` chooses among the solutions of a redundant routing), and a
 /// pass with the solved tensions gives every segment tension and bearing force. This is
 /// the paper's carrying of the tensions as unknowns to the base (Section 6), by
-/// superposition: the recursion is linear in them. Only with capstan friction on guides,
-/// where `E` depends on the state, are the tensions carried as unknowns (`at_state` reads
-/// the state's `E` off the affine rows).
+/// superposition: the recursion is linear in them. With capstan friction on guides `E`
+/// depends on the state: `at_state` solves the state's `E` ([`tension::state_matrix`]).
 ///
 /// The results are written into `out`, whose buffers are reused (no allocation once they
 /// have the model's sizes; `sticking` is left to the caller).
@@ -432,22 +419,20 @@ pub fn inverse_dynamics<T: Real>(
     qd: &[T],
     qdd: &[T],
     ws: &mut Workspace<T>,
-    at_state: impl FnOnce(&Model<T>, &[Affine<T>]) -> Result<TensionSystem<T>>,
+    at_state: impl FnOnce(&Model<T>, Vec<Vec<T>>) -> Result<TensionSystem<T>>,
     distribute: impl FnOnce(&Model<T>, &TensionSystem<T>, &mut [T]) -> Result<()>,
     out: &mut InverseDynamics<T>,
 ) -> Result<()> {
     forward(model, q, qd, qdd, true, true, &mut ws.motion);
     friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
     friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
+    with_ground_tensions(model, ws, |_| T::zero());
+    tension::balance_rows(model, &ws.tendon_loads, &ws.friction, &mut ws.b);
     let state_system;
     let system = if model.has_capstan() {
-        let rows = balance(model, ws);
-        state_system = at_state(model, &rows)?;
-        refill(&mut ws.b, rows.iter().map(|r| r.constant));
+        state_system = at_state(model, tension::state_matrix(model, &ws.capstan))?;
         &state_system
     } else {
-        with_ground_tensions(model, ws, |_| T::zero());
-        tension::balance_rows(model, &ws.tendon_loads, &ws.friction, &mut ws.b);
         &model.system
     };
     let x = &mut out.unknowns;

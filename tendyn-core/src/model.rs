@@ -210,6 +210,11 @@ pub struct Strand<T> {
     pub idlers: Vec<IdlerStep>,
     /// Index of the unknown (tension of the last segment).
     pub unknown: usize,
+    /// `shares[k]`: segment `k`'s share of the strand's column of `E` (over the system's
+    /// rows; [`crate::transmission::StrandGeometry::segment_rates`]), the shares summing to
+    /// the column. Where guides with friction make the tension differ from segment to
+    /// segment, the state's column is `Σ_k (T_k / T) shares[k]` ([`crate::tension::state_matrix`]).
+    pub shares: Vec<Vec<f64>>,
 }
 
 /// An open-ended tendon.
@@ -329,7 +334,9 @@ pub struct TensionSystem<T> {
     pub rows: Vec<Row>,
     /// `E`, row-major, `rows.len() × unknowns.len()`.
     pub matrix: Vec<Vec<T>>,
-    /// `Eᵀ (E Eᵀ)⁻¹`: maps `b` to the minimal-norm solution.
+    /// `Eᵀ (E Eᵀ)⁻¹`: maps `b` to the minimal-norm solution. Empty in a state's system
+    /// traced for generated code (`tension::system_traced`), which applies it without
+    /// forming it.
     pub pseudo_inverse: Vec<Vec<T>>,
     /// Orthonormal basis of the null space of `E`.
     pub null_space: Vec<Vec<T>>,
@@ -693,6 +700,7 @@ impl<T: Real> Model<T> {
                         })
                         .collect(),
                     idlers: s.idlers.clone(),
+                    shares: s.shares.clone(),
                     unknown: s.unknown,
                 })
                 .collect(),

@@ -15,7 +15,6 @@
 //!   the one implementation; here its data are gathered from the model and a state the
 //!   bounds cannot meet is explained).
 
-use crate::affine::Affine;
 use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
@@ -116,16 +115,12 @@ pub fn balance_rows<T: Real, L: Load<T>>(
     }
 }
 
-/// The tension system at a state where guides with friction make `E` depend on it
-/// (`E(σ, q)`: the capstan factors scale each strand's column). `E` is the model's but on
-/// the strand columns of the joint and driving-pulley rows, which are minus the
-/// coefficients of the state's balance rows (`rows`, [`balance_rows`]: the recursion's own
-/// statics, as for the constant `E`); its pseudo-inverse and null space follow by
+/// The tension system at a state where guides with friction make `E` depend on it:
+/// `matrix` is `E(σ, q)` ([`state_matrix`]); its pseudo-inverse and null space follow by
 /// Householder QR ([`crate::linalg`]). An error where the state leaves `E` without full
 /// row rank or, with one null direction, without a null vector that lifts every tendon.
-pub fn system_at<T: Numeric>(model: &Model<T>, rows: &[Affine<T>]) -> Result<TensionSystem<T>> {
+pub fn system_at<T: Numeric>(model: &Model<T>, matrix: Vec<Vec<T>>) -> Result<TensionSystem<T>> {
     let constant = &model.system;
-    let matrix = state_matrix(model, rows);
     let (pseudo_inverse, null_space) =
         crate::linalg::pseudo_inverse_and_null_space_of_rows(&matrix);
     // Full row rank, checked where it matters: `E E⁺ = I` to round-off of its size.
@@ -221,93 +216,115 @@ fn solved<T>(
     }
 }
 
-/// `E` at a state: the model's, but on the strand columns of the joint and driving-pulley
-/// rows, which are minus the coefficients of the state's balance rows.
-fn state_matrix<T: Real>(model: &Model<T>, rows: &[Affine<T>]) -> Vec<Vec<T>> {
-    let constant = &model.system;
-    let mut matrix = constant.matrix.clone();
-    for (r, (row, balance)) in matrix.iter_mut().zip(rows).enumerate() {
-        if matches!(constant.rows[r], Row::Pretension(_)) {
+/// `E` at a state where guides with friction make it depend on the state, `E(σ, q)`: the
+/// model's, but a strand over such guides has the column `Σ_k f_k shares[k]`, `f_k =
+/// T_k / T` the ratio of segment `k`'s tension to the ground-level one (the product of the
+/// capstan factors `capstan[s][·]` between them, [`crate::friction::capstan_factors`]) and
+/// `shares[k]` segment `k`'s share of the column ([`crate::model::Strand::shares`]; the
+/// tendon's virtual power is `Σ_k T_k (rate of segment k)`). Segments of one ratio are
+/// summed before they are scaled, so a strand over no such guide keeps its constant column.
+pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>> {
+    let mut matrix = model.system.matrix.clone();
+    for (strand, factors) in model.strands.iter().zip(capstan) {
+        let with_friction = |k: usize| strand.idlers[k].guide.as_ref().is_some_and(|g| g.mu > 0.0);
+        if !(0..strand.idlers.len()).any(with_friction) {
             continue;
         }
-        for (u, unknown) in constant.unknowns.iter().enumerate() {
-            if matches!(unknown, Unknown::Strand(_)) {
-                row[u] = -balance.coefficients[u];
+        let mut column = vec![T::zero(); matrix.len()];
+        let mut ratio = T::one();
+        let mut pending = vec![0.0; matrix.len()];
+        // From the ground end towards the anchor, as the tensions are (Eq. 24b).
+        for k in (0..strand.shares.len()).rev() {
+            for (p, x) in pending.iter_mut().zip(&strand.shares[k]) {
+                *p += x;
             }
+            if k == 0 || with_friction(k - 1) {
+                for (c, p) in column.iter_mut().zip(&mut pending) {
+                    *c = *c + ratio * T::from_f64(*p);
+                    *p = 0.0;
+                }
+                if k > 0 {
+                    ratio = ratio * factors[k - 1];
+                }
+            }
+        }
+        for (row, c) in matrix.iter_mut().zip(column) {
+            row[strand.unknown] = c;
         }
     }
     matrix
 }
 
 /// [`system_at`] in straight-line arithmetic, for the code generator to trace (`Real`
-/// only: no pivoting, no comparison), for null spaces of at most one dimension:
-/// - `E⁺ = Eᵀ (E Eᵀ)⁻¹` by `L D Lᵀ` of `E Eᵀ` ([`crate::linalg::ldlt_solve`]; this squares
-///   the condition number of `E`, which is that of the transmission and small where the
-///   routing is sound: `tendyn check` prints it);
-/// - one null direction: `p = (I − E⁺E) e_k`, the projection of the unit vector of the
+/// only: no pivoting, no comparison), for null spaces of at most one dimension. `E⁺` is
+/// not formed: [`minimal_norm`] applies it as `Eᵀ (E Eᵀ)⁻¹ b` ([`through_gram`]), which
+/// costs fewer operations than forming it and then multiplying.
+/// - One null direction: `p = (I − E⁺E) e_k`, the projection of the unit vector of the
 ///   unknown `k = lead` ([`lead_tendon`]: the tendon with the largest component in the
 ///   model's positive null vector, so `p_k = n_k² / |n|²` is far from cancelling and
 ///   positive, and `p` points the way that raises every tendon wherever the routing stays
 ///   controllable), scaled to a smallest tendon component of 1 as the distribution's
-///   tolerance expects. `null_space` holds `p` itself (not normalised).
+///   tolerance for maxima expects (where no tendon has a maximum, left as it is: the
+///   distribution along `p` does not depend on its length). `null_space` holds `p` itself
+///   (not normalised).
 ///
 /// Checks nothing: generated code does not report a state where friction leaves the
 /// routing uncontrollable (the runtime solver does).
 pub fn system_traced<T: Real>(
     model: &Model<T>,
-    rows: &[Affine<T>],
+    matrix: Vec<Vec<T>>,
     lead: usize,
 ) -> TensionSystem<T> {
     let constant = &model.system;
-    let matrix = state_matrix(model, rows);
-    let (r, m) = (matrix.len(), constant.unknowns.len());
-    // G = E Eᵀ, and E⁺ column by column: E⁺ e_j = Eᵀ G⁻¹ e_j.
-    let mut gram = vec![T::zero(); r * r];
-    for i in 0..r {
-        for j in 0..r {
-            gram[i * r + j] = crate::linalg::dot(&matrix[i], &matrix[j]);
-        }
-    }
-    let mut pseudo_inverse = vec![vec![T::zero(); r]; m];
-    for j in 0..r {
-        let mut y: Vec<T> = (0..r)
-            .map(|i| if i == j { T::one() } else { T::zero() })
-            .collect();
-        crate::linalg::ldlt_solve(&mut gram.clone(), &mut y);
-        for (u, row) in pseudo_inverse.iter_mut().enumerate() {
-            row[j] = (0..r).fold(T::zero(), |s, i| s + matrix[i][u] * y[i]);
-        }
-    }
     let (null_space, positive_null) = match &constant.positive_null {
         Some(_) if constant.null_space.len() == 1 => {
             let k = lead;
-            let mut p: Vec<T> = (0..m)
-                .map(|u| {
-                    let projected =
-                        (0..r).fold(T::zero(), |s, i| s + pseudo_inverse[u][i] * matrix[i][k]);
-                    if u == k {
-                        T::one() - projected
-                    } else {
-                        -projected
-                    }
-                })
-                .collect();
-            // The smallest tendon component, as `−max(−p)`.
-            let least = model
-                .tendons
-                .iter()
-                .map(|t| p[t.unknown])
-                .reduce(|a, b| -((-a).max(-b)))
-                .unwrap_or(T::one());
-            let scale = T::one() / least;
-            for x in &mut p {
-                *x = *x * scale;
+            let column: Vec<T> = matrix.iter().map(|row| row[k]).collect();
+            let mut p = through_gram(&matrix, &column);
+            for (u, x) in p.iter_mut().enumerate() {
+                *x = if u == k { T::one() - *x } else { -*x };
+            }
+            // The smallest tendon component, as `−max(−p)`: only the maxima's status
+            // needs it (the tensions along `p` do not depend on its length).
+            if model.tendons.iter().any(|t| t.max_tension.is_some()) {
+                let least = model
+                    .tendons
+                    .iter()
+                    .map(|t| p[t.unknown])
+                    .reduce(|a, b| -((-a).max(-b)))
+                    .unwrap_or(T::one());
+                let scale = T::one() / least;
+                for x in &mut p {
+                    *x = *x * scale;
+                }
             }
             (vec![p.clone()], Some(p))
         }
         _ => (Vec::new(), None),
     };
-    solved(constant, matrix, pseudo_inverse, null_space, positive_null)
+    solved(constant, matrix, Vec::new(), null_space, positive_null)
+}
+
+/// `E⁺ v = Eᵀ (E Eᵀ)⁻¹ v` for `E` of full row rank, by `L D Lᵀ` of the Gram matrix `E Eᵀ`
+/// ([`crate::linalg::ldlt_solve`]; this squares the condition number of `E`, which is that
+/// of the transmission and small where the routing is sound: `tendyn check` prints it).
+/// Straight-line arithmetic: traced, the Gram matrix and its factors are built once however
+/// many vectors go through them (hash-consing merges the repeats).
+fn through_gram<T: Real>(matrix: &[Vec<T>], v: &[T]) -> Vec<T> {
+    let r = matrix.len();
+    // Only the lower triangle is read by the factorisation.
+    let mut gram = vec![T::zero(); r * r];
+    for i in 0..r {
+        for j in 0..=i {
+            gram[i * r + j] = crate::linalg::dot(&matrix[i], &matrix[j]);
+        }
+    }
+    let mut y = v.to_vec();
+    crate::linalg::ldlt_solve(&mut gram, &mut y);
+    let m = matrix.first().map_or(0, Vec::len);
+    (0..m)
+        .map(|u| (0..r).fold(T::zero(), |s, i| s + matrix[i][u] * y[i]))
+        .collect()
 }
 
 /// The unknown of the tendon with the largest component of the positive null vector (the
@@ -332,8 +349,18 @@ pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
 /// so both sides at the pretension solve that part of `b` exactly, and that solution is
 /// orthogonal to the null space. Passing the pretension through the rounded `E⁺` instead
 /// leaves an error of about `u · pretension` in every motor torque.
+///
+/// A state's system that holds no `E⁺` ([`system_traced`]) is solved as `Eᵀ (E Eᵀ)⁻¹ b`.
 pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], out: &mut [T]) {
     let dynamic = |r: usize| !matches!(system.rows[r], Row::Pretension(_));
+    if system.pseudo_inverse.is_empty() {
+        let b: Vec<T> = (b.iter().enumerate())
+            .map(|(r, v)| if dynamic(r) { *v } else { T::zero() })
+            .collect();
+        for (o, x) in out.iter_mut().zip(through_gram(&system.matrix, &b)) {
+            *o = x;
+        }
+    }
     for (o, row) in out.iter_mut().zip(&system.pseudo_inverse) {
         let mut s = T::zero();
         for (r, (p, v)) in row.iter().zip(b).enumerate() {

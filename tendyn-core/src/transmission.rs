@@ -119,6 +119,11 @@ pub struct StrandGeometry {
     pub idlers: Vec<IdlerStep>,
     /// `ẋ` of the strand: joints, plus the driving-pulley angles at its two ends.
     pub pull_rate: Rate,
+    /// `segment_rates[k]`: segment `k`'s share of `pull_rate` (they sum to it), the rate
+    /// at which the rims at its two ends pull it in, relative to the frame it is fixed in.
+    /// Where the tension differs from segment to segment (capstan friction on guides),
+    /// the tendon's virtual power is `Σ_k T_k (segment_rates[k] · q̇)`: the state's `E`.
+    pub segment_rates: Vec<Rate>,
 }
 
 fn norm(v: Vec3<f64>) -> f64 {
@@ -448,14 +453,23 @@ impl Routing<'_> {
             segments.push(self.segment(route, stops[i].0, stops[i].1, to)?);
         }
 
-        // ẋ accumulated along the route with every pulley angle expressed through q.
+        // ẋ accumulated along the route with every pulley angle expressed through q, and
+        // each segment's share of it: a segment of tension `T` fixed in frame `F` takes in
+        // power `T (s r ω_rim/F)` at the rim it leaves and gives `T (s r ω_rim/F)` at the
+        // rim it reaches. A wrap's rate `θ̇(incoming rel outgoing)` is split at the pulley's
+        // carrier, `θ̇(incoming rel carrier) + θ̇(carrier rel outgoing)`: for a guide the
+        // rim is the carrier, so each part is its segment's own; across a turning idler
+        // the two segments carry one tension (friction sits only on guides), so where the
+        // rim's rate is split does not matter.
         let mut pull = Rate::zero(n);
+        let mut segment_rates = vec![Rate::zero(n); segments.len()];
         let s0 = turn_sign(start_turn);
         let r0 = self.pulleys[start].radius;
         pull.add_scaled(
             &self.body_rate(start, &start_coupling, segments[0].frame),
             s0 * r0,
         );
+        segment_rates[0].add_scaled(&pull, 1.0);
         let mut idlers = Vec::new();
         for (i, &(p, turn)) in stops.iter().enumerate().skip(1) {
             let (s, r) = (turn_sign(turn), self.pulleys[p].radius);
@@ -504,30 +518,39 @@ impl Routing<'_> {
                     guide,
                 });
                 pull.add_scaled(&self.relative_rate(incoming, out.frame, p), s * r);
+                let carrier = self.pulleys[p].carrier;
+                segment_rates[i - 1].add_scaled(&self.relative_rate(incoming, carrier, p), s * r);
+                segment_rates[i].add_scaled(&self.relative_rate(carrier, out.frame, p), s * r);
             }
         }
 
         // In the tension system a driving pulley's angle is a coordinate of its own.
+        // The terms at the two ends belong to the first and the last segment.
         let mut expanded = pull;
         if start_is_coordinate {
             let mut c = Rate::zero(n);
             c.add_scaled(&start_coupling, -s0 * r0);
+            c.add_pulley(start, s0 * r0);
             expanded.add_scaled(&c, 1.0);
-            expanded.add_pulley(start, s0 * r0);
+            segment_rates[0].add_scaled(&c, 1.0);
         }
         if let RouteEnd::Pulley(e, t) = &route.end {
             let (s, r) = (turn_sign(*t), self.pulleys[*e].radius);
             let incoming = segments.last().expect("one segment at least").frame;
-            expanded.add_scaled(
-                &self.relative_rate(incoming, self.pulleys[*e].carrier, *e),
-                s * r,
-            );
-            expanded.add_pulley(*e, -s * r);
+            let mut c = self.relative_rate(incoming, self.pulleys[*e].carrier, *e);
+            c.joints.iter_mut().for_each(|x| *x *= s * r);
+            c.add_pulley(*e, -s * r);
+            expanded.add_scaled(&c, 1.0);
+            segment_rates
+                .last_mut()
+                .expect("one segment at least")
+                .add_scaled(&c, 1.0);
         }
         Ok(StrandGeometry {
             segments,
             idlers,
             pull_rate: expanded,
+            segment_rates,
         })
     }
 }

@@ -226,6 +226,17 @@ impl<'a> Validator<'a> {
                     }
                 )
             });
+        let strands = (strands.into_iter().enumerate())
+            .map(|(i, (name, g))| Strand {
+                name,
+                shares: (g.segment_rates.iter())
+                    .map(|rate| tension_system::column_of(f, &bodies, &system.rows, rate))
+                    .collect(),
+                segments: g.segments,
+                idlers: g.idlers,
+                unknown: i,
+            })
+            .collect();
         let parameter_slots = parameter_slots(f);
         let patterns = crate::model::patterns_of(&bodies, &parameter_slots);
         Ok(Model {
@@ -242,16 +253,7 @@ impl<'a> Validator<'a> {
             parameter_slots,
             dof: n,
             bodies,
-            strands: strands
-                .into_iter()
-                .enumerate()
-                .map(|(i, (name, g))| Strand {
-                    name,
-                    segments: g.segments,
-                    idlers: g.idlers,
-                    unknown: i,
-                })
-                .collect(),
+            strands,
             tendons,
             objective: f.distribution,
             friction_smoothing: f.friction_smoothing,

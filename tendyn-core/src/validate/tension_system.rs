@@ -12,8 +12,32 @@ use crate::format::MechanismFile;
 use crate::model::{
     Body, BodyKind, Loop, Model, Motor, MotorKind, PulleyRole, Row, Tendon, TensionSystem, Unknown,
 };
-use crate::transmission::StrandGeometry;
+use crate::transmission::{Rate, StrandGeometry};
 use nalgebra::DMatrix;
+
+/// A strand's rate (`ẋ` over `q̇` and the driving pulleys' angles) as a column of `E`: its
+/// joint coefficients on the joints' rows, a driving pulley's on that pulley's row.
+pub(super) fn column_of(
+    f: &MechanismFile,
+    bodies: &[Body<f64>],
+    rows: &[Row],
+    rate: &Rate,
+) -> Vec<f64> {
+    let mut column = vec![0.0; rows.len()];
+    for (r, row) in rows.iter().enumerate() {
+        if let Row::Joint(j) = row {
+            column[r] = rate.joints[*j];
+        }
+    }
+    for &(p, c) in &rate.pulleys {
+        let b = bodies.iter().position(|b| b.name == f.pulleys[p].name);
+        let row = rows
+            .iter()
+            .position(|r| Some(r) == b.map(Row::Pulley).as_ref());
+        column[row.expect("a driving pulley has its row")] = c;
+    }
+    column
+}
 
 /// What the tension system's unknowns belong to.
 pub(super) struct Actuators {
@@ -55,23 +79,14 @@ impl Validator<'_> {
             .collect();
         rows.extend(driving.iter().map(|&b| Row::Pulley(b)));
         rows.extend((0..loops.len()).map(Row::Pretension));
-        let body_of_pulley = |p: usize| bodies.iter().position(|b| b.name == f.pulleys[p].name);
         let m = unknowns.len();
         let mut e = vec![vec![0.0; m]; rows.len()];
         for (col, u) in unknowns.iter().enumerate() {
             match u {
                 Unknown::Strand(s) => {
-                    let rate = &strands[*s].1.pull_rate;
-                    for (row, &x) in e.iter_mut().zip(&rate.joints[..n]) {
+                    let column = column_of(f, bodies, &rows, &strands[*s].1.pull_rate);
+                    for (row, x) in e.iter_mut().zip(column) {
                         row[col] = x;
-                    }
-                    for &(p, c) in &rate.pulleys {
-                        let b = body_of_pulley(p).expect("pulley body");
-                        let row = rows
-                            .iter()
-                            .position(|r| *r == Row::Pulley(b))
-                            .expect("driving row");
-                        e[row][col] = c;
                     }
                 }
                 Unknown::Explicit(k) => {
@@ -540,19 +555,6 @@ fn reachable(groups: &[Vec<f64>], pattern: &[f64]) -> bool {
 /// slides one way and those with one group flipped (a sufficient condition only at run
 /// time, where every state's system is checked again).
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
-    // The state's `E` is read off the recursion's rows in affine form, which carry a
-    // bounded number of unknowns (without capstan friction there is no bound).
-    let unknowns = model.system.unknowns.len();
-    if model.has_capstan() && unknowns > crate::affine::MAX_UNKNOWNS {
-        return Err(v.invalid(
-            &model.name,
-            format!(
-                "{unknowns} tendon strands and motors: with capstan friction on guides (`mu > 0`) \
-                 at most {} are supported; set `mu: 0` or drive fewer joints by motors",
-                crate::affine::MAX_UNKNOWNS
-            ),
-        ));
-    }
     // The guides with friction, by strand and idler, and the group each belongs to with
     // the sign relating its speed to the group's.
     let mut groups: Vec<Vec<f64>> = Vec::new();
