@@ -37,6 +37,14 @@ class Model:
     @property
     def pulley_names(self) -> list[str]: ...
     @property
+    def friction_bodies(self) -> list[str]:
+        """The bodies whose bearing has friction (joints, then pulleys): the entries of
+        `bearing_friction` and `sticking`."""
+    @property
+    def guides(self) -> list[tuple[str, str]]:
+        """Each fixed guide's pulley and tendon, strand by strand in route order: the
+        entries of the `guide_…` arrays."""
+    @property
     def strands(self) -> list[tuple[str, int]]:
         """Each strand's name and number of segments."""
     @property
@@ -50,8 +58,11 @@ class Model:
     ) -> dict[str, Optional[Array]]:
         """`generalized_forces`, `motor_torques`, `tendon_tensions`,
         `minimal_norm_tensions`, `null_space_tensions`, `loop_sides`, `pulley_moments`,
-        `segment_tensions`, `bearings`, `base_reaction` (the last three `None` where the
-        routing cannot attribute them)."""
+        `bearing_friction` and `sticking` (bool; one entry per `friction_bodies`),
+        `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`,
+        `guide_sticking` (bool) and `guide_dissipated_powers` (one entry per `guides`),
+        `segment_tensions`, `bearings`, `base_reaction` (these three and
+        `guide_dissipated_powers` `None` where the routing cannot attribute them)."""
     def mass_matrix(self, q: ArrayLike) -> Array:
         """`M(q)` (kg·m²), `(n, n)` per state."""
     def bias(self, q: ArrayLike, qd: ArrayLike) -> Array:

@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::error::ImpliedSystem;
 use tendyn_core::identification::Identification;
-use tendyn_core::model::{BodyKind, Guide, Model, PulleyRole, Row, Unknown};
+use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
 use tendyn_core::regressor;
 use tendyn_core::spatial::Vec3;
 use tendyn_core::torque_range::static_torque_ranges;
@@ -34,25 +34,10 @@ fn row_name(m: &Model<f64>, r: &Row) -> String {
     r.label(m.bodies(), m.loops())
 }
 
-/// Every guide of the model: strand, its step (between segments `k` and `k + 1`), the
-/// pulley (body index) and the guide.
-fn guides(m: &Model<f64>) -> Vec<(usize, usize, usize, &Guide)> {
-    m.strands()
-        .iter()
-        .enumerate()
-        .flat_map(|(s, st)| {
-            st.idlers
-                .iter()
-                .enumerate()
-                .filter_map(move |(k, i)| i.guide.as_ref().map(|g| (s, k, i.body, g)))
-        })
-        .collect()
-}
-
 /// A pulley's role as `check` names it.
 fn role_name(m: &Model<f64>, name: &str, role: &PulleyRole) -> String {
     match role {
-        PulleyRole::Fixed if guides(m).iter().any(|g| m.bodies()[g.2].name == name) => {
+        PulleyRole::Fixed if m.guides().any(|g| m.bodies()[g.2].name == name) => {
             "fixed guide".to_string()
         }
         PulleyRole::Fixed => "fixed drum".to_string(),
@@ -148,7 +133,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
         "segments": segments,
         "bearing_friction": friction,
         "friction_smoothing": m.friction_smoothing(),
-        "guides": guides(m).into_iter().map(|(s, _, b, g)| json!({
+        "guides": m.guides().map(|(s, _, b, g)| json!({
             "pulley": m.bodies()[b].name,
             "tendon": m.strands()[s].name,
             "wrap_angle": g.wrap,
@@ -217,7 +202,7 @@ pub fn check_text(m: &Model<f64>) -> String {
             ));
         }
     }
-    let slides = guides(m);
+    let slides: Vec<_> = m.guides().collect();
     if !slides.is_empty() {
         line("guides (fixed pulleys the tendons slide over; wrap angle β, capstan μ):".into());
         for (s, _, b, g) in slides {
@@ -429,28 +414,15 @@ pub fn inverse_json(
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "sticking": r.sticking.iter().map(|b| m.bodies()[*b].name.clone()).collect::<Vec<_>>(),
-        "guides": guides(m).into_iter().map(|(s, k, b, g)| {
-            let v = g.speed(qd);
-            // The tension gained across the guide towards the ground end, times the sliding
-            // speed: the power friction takes from the tendon there (0 when frictionless).
-            let gain = r.segment_tensions.as_ref().map(|t| t[s][k + 1] - t[s][k]);
-            // The direction the capstan law took (friction.rs): of sliding, or at rest of
-            // the impending motion; where friction acts and the exact law finds the tendon
-            // at rest, it sticks.
-            let accel = g.slide.iter().zip(qdd).map(|(c, a)| c * a).sum::<f64>();
-            let direction = tendyn_core::friction::direction(v, Some(accel), m.friction_smoothing());
-            let rest = v.abs() <= tendyn_core::friction::REST;
-            let sticking = g.mu > 0.0 && m.friction_smoothing().is_none() && rest;
-            json!({
-                "pulley": m.bodies()[b].name,
-                "tendon": m.strands()[s].name,
-                "wrap_angle": g.wrap_at(q),
-                "sliding_speed": v,
-                "direction": direction + 0.0,
-                "sticking": sticking,
-                "dissipated_power": gain.map(|d| d * v + 0.0),
-            })
-        }).collect::<Vec<_>>(),
+        "guides": tendyn_core::friction::guide_states(m, [q, qd, qdd], r.segment_tensions.as_deref()).into_iter().map(|g| json!({
+            "pulley": m.bodies()[g.body].name,
+            "tendon": m.strands()[g.strand].name,
+            "wrap_angle": g.wrap_angle,
+            "sliding_speed": g.sliding_speed,
+            "direction": g.direction + 0.0,
+            "sticking": g.sticking,
+            "dissipated_power": g.dissipated_power.map(|p| p + 0.0),
+        })).collect::<Vec<_>>(),
         "mass_matrix": mass,
         "bias": bias,
         "gravity": gravity,

@@ -197,3 +197,55 @@ pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
         .map(|(i, _)| i)
         .collect()
 }
+
+/// What a fixed guide does at a state: the `guides` of `tendyn eval --json` and of the
+/// Python package's inverse dynamics (docs/outputs.md).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuideState {
+    /// The strand that passes the guide, and the guide's place on it
+    /// (`model.strands()[strand].idlers[idler]`).
+    pub strand: usize,
+    /// See `strand`.
+    pub idler: usize,
+    /// The guide's body.
+    pub body: usize,
+    /// `β(q)` (rad), [`Guide::wrap_at`]: negative where the tendon bends away from it.
+    pub wrap_angle: f64,
+    /// The tendon's speed over it (m/s), positive towards the strand's ground end.
+    pub sliding_speed: f64,
+    /// The direction the capstan law takes ([`direction`]): of sliding, or at rest of the
+    /// impending motion (`±1` or `0`; in `(−1, 1)` with `friction_smoothing`).
+    pub direction: f64,
+    /// A guide with friction that the exact law finds within [`REST`] of rest.
+    pub sticking: bool,
+    /// `(T_{k+1} − T_k) v` (W), the tension gained across it towards the ground end times
+    /// the sliding speed: the power friction takes from the tendon there (`0` when
+    /// frictionless). `None` without segment tensions (an incomplete routing).
+    pub dissipated_power: Option<f64>,
+}
+
+/// Every guide of `model` (strand by strand, in route order) at `(q, q̇, q̈)`, its power
+/// from the state's `segment_tensions` (`[strand][segment]`, as inverse dynamics gives
+/// them).
+pub fn guide_states(
+    model: &Model<f64>,
+    [q, qd, qdd]: [&[f64]; 3],
+    segment_tensions: Option<&[Vec<f64>]>,
+) -> Vec<GuideState> {
+    (model.guides())
+        .map(|(s, k, body, g)| {
+            let v = g.speed(qd);
+            let accel = linear(&g.slide, qdd);
+            GuideState {
+                strand: s,
+                idler: k,
+                body,
+                wrap_angle: g.wrap_at(q),
+                sliding_speed: v,
+                direction: direction(v, Some(accel), model.friction_smoothing),
+                sticking: g.mu > 0.0 && model.friction_smoothing.is_none() && v.abs() <= REST,
+                dissipated_power: segment_tensions.map(|t| (t[s][k + 1] - t[s][k]) * v),
+            }
+        })
+        .collect()
+}

@@ -625,6 +625,15 @@ impl<T: Real> Model<T> {
         })
     }
 
+    /// Every fixed guide a tendon slides over, strand by strand in route order: strand
+    /// index, idler index on it (`strands()[s].idlers[k]`), the guide's body, the guide.
+    pub fn guides(&self) -> impl Iterator<Item = (usize, usize, usize, &Guide)> {
+        self.strands.iter().enumerate().flat_map(|(s, strand)| {
+            (strand.idlers.iter().enumerate())
+                .filter_map(move |(k, i)| i.guide.as_ref().map(|g| (s, k, i.body, g)))
+        })
+    }
+
     /// Open-ended tendons whose tensions are unknowns (routed or explicit).
     pub fn tendon_count(&self) -> usize {
         self.tendons.len()

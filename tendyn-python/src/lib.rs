@@ -24,7 +24,7 @@ use rayon::prelude::*;
 use std::sync::Mutex;
 use tendyn_codegen::{available_outputs, Output, Scalar};
 use tendyn_core::base_parameters::BaseParameters;
-use tendyn_core::{Data, InverseDynamics};
+use tendyn_core::{friction, Data, InverseDynamics};
 
 create_exception!(
     tendyn,
@@ -145,7 +145,46 @@ fn stacked<'py>(
 }
 
 /// Writes one field of an inverse-dynamics result onto a state's row.
-type Reader = fn(&InverseDynamics<f64>, &mut Vec<f64>);
+type Reader = fn(&tendyn_core::Model<f64>, [&[f64]; 3], &InverseDynamics<f64>, &mut Vec<f64>);
+
+/// The keys of each guide's quantities in `inverse_dynamics`'s dict, in the order the
+/// `guides` field holds them (one row per quantity); `guide_sticking` is boolean.
+const GUIDE_KEYS: [&str; 5] = [
+    "guide_wrap_angles",
+    "guide_sliding_speeds",
+    "guide_directions",
+    "guide_sticking",
+    "guide_dissipated_powers",
+];
+
+/// The bodies whose bearing has friction, in body order (joints, then pulleys): the
+/// entries of `bearing_friction` and `sticking`.
+fn friction_bodies(model: &tendyn_core::Model<f64>) -> Vec<usize> {
+    (0..model.bodies().len())
+        .filter(|&b| model.bodies()[b].friction.is_some())
+        .collect()
+}
+
+/// Each guide's quantities at a state, [`GUIDE_KEYS`] one after another (a placeholder
+/// NaN for the power where there are no segment tensions; the dict then says `None`).
+fn read_guides(
+    model: &tendyn_core::Model<f64>,
+    state: [&[f64]; 3],
+    r: &InverseDynamics<f64>,
+    row: &mut Vec<f64>,
+) {
+    let guides = friction::guide_states(model, state, r.segment_tensions.as_deref());
+    let flag = |b: bool| if b { 1.0 } else { 0.0 };
+    row.extend(guides.iter().map(|g| g.wrap_angle));
+    row.extend(guides.iter().map(|g| g.sliding_speed));
+    row.extend(guides.iter().map(|g| g.direction));
+    row.extend(guides.iter().map(|g| flag(g.sticking)));
+    row.extend(
+        guides
+            .iter()
+            .map(|g| g.dissipated_power.unwrap_or(f64::NAN)),
+    );
+}
 
 /// The fields of [`Model::inverse_dynamics`]'s dict: key, shape per state, and how a
 /// result is read into a state's row; segment tensions, bearings and the base reaction
@@ -153,28 +192,50 @@ type Reader = fn(&InverseDynamics<f64>, &mut Vec<f64>);
 fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usize>, Reader)> {
     let (n, tendons) = (model.dof(), model.tendons().len());
     let mut fields: Vec<(&'static str, Vec<usize>, Reader)> = vec![
-        ("generalized_forces", vec![n], |r, row| {
+        ("generalized_forces", vec![n], |_, _, r, row| {
             row.extend(&r.generalized_forces)
         }),
-        ("motor_torques", vec![model.motors().len()], |r, row| {
-            row.extend(&r.motor_torques)
-        }),
-        ("tendon_tensions", vec![tendons], |r, row| {
+        (
+            "motor_torques",
+            vec![model.motors().len()],
+            |_, _, r, row| row.extend(&r.motor_torques),
+        ),
+        ("tendon_tensions", vec![tendons], |_, _, r, row| {
             row.extend(&r.tendon_tensions)
         }),
-        ("minimal_norm_tensions", vec![tendons], |r, row| {
+        ("minimal_norm_tensions", vec![tendons], |_, _, r, row| {
             row.extend(&r.minimal_norm_tensions)
         }),
-        ("null_space_tensions", vec![tendons], |r, row| {
+        ("null_space_tensions", vec![tendons], |_, _, r, row| {
             row.extend(&r.null_space_tensions)
         }),
-        ("loop_sides", vec![model.loops().len(), 2], |r, row| {
-            row.extend(r.loop_sides.iter().flatten())
-        }),
+        (
+            "loop_sides",
+            vec![model.loops().len(), 2],
+            |_, _, r, row| row.extend(r.loop_sides.iter().flatten()),
+        ),
         (
             "pulley_moments",
             vec![model.bodies().len() - n],
-            |r, row| row.extend(r.pulley_demands.iter().map(|(_, m)| m)),
+            |_, _, r, row| row.extend(r.pulley_demands.iter().map(|(_, m)| m)),
+        ),
+        (
+            "bearing_friction",
+            vec![friction_bodies(model).len()],
+            |_, _, r, row| row.extend(r.bearing_friction.iter().map(|(_, t)| t)),
+        ),
+        (
+            "sticking",
+            vec![friction_bodies(model).len()],
+            |m, _, r, row| {
+                let at_rest = |b: &usize| if r.sticking.contains(b) { 1.0 } else { 0.0 };
+                row.extend(friction_bodies(m).iter().map(at_rest))
+            },
+        ),
+        (
+            "guides",
+            vec![GUIDE_KEYS.len(), model.guides().count()],
+            read_guides,
         ),
     ];
     if !model.routing_incomplete() {
@@ -183,13 +244,16 @@ fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usi
             (
                 "segment_tensions",
                 vec![segments],
-                (|r, row| row.extend(r.flattened(Output::SegmentTensions).unwrap_or_default()))
-                    as Reader,
+                (|_, _, r, row| {
+                    row.extend(r.flattened(Output::SegmentTensions).unwrap_or_default())
+                }) as Reader,
             ),
-            ("bearings", vec![model.bodies().len(), 2, 3], |r, row| {
-                row.extend(r.flattened(Output::Bearings).unwrap_or_default())
-            }),
-            ("base_reaction", vec![2, 3], |r, row| {
+            (
+                "bearings",
+                vec![model.bodies().len(), 2, 3],
+                |_, _, r, row| row.extend(r.flattened(Output::Bearings).unwrap_or_default()),
+            ),
+            ("base_reaction", vec![2, 3], |_, _, r, row| {
                 row.extend(r.flattened(Output::BaseReaction).unwrap_or_default())
             }),
         ]);
@@ -312,6 +376,27 @@ impl Model {
             .collect()
     }
 
+    /// The bodies whose bearing has friction, in body order (joints, then pulleys): the
+    /// entries of `inverse_dynamics`'s `bearing_friction` and `sticking`.
+    #[getter]
+    fn friction_bodies(&self) -> Vec<String> {
+        (friction_bodies(&self.model).into_iter())
+            .map(|b| self.model.bodies()[b].name.clone())
+            .collect()
+    }
+
+    /// Each guide's pulley and tendon, strand by strand in route order: the entries of
+    /// `inverse_dynamics`'s `guide_…` arrays.
+    #[getter]
+    fn guides(&self) -> Vec<(String, String)> {
+        (self.model.guides())
+            .map(|(s, _, body, _)| {
+                let pulley = self.model.bodies()[body].name.clone();
+                (pulley, self.model.strands()[s].name.clone())
+            })
+            .collect()
+    }
+
     /// Each strand's name and number of segments, in order (`segment_tensions` runs
     /// through them; a loop has two strands, `LOOP/ccw` and `LOOP/cw`).
     #[getter]
@@ -355,8 +440,10 @@ impl Model {
     /// (`pulley_names` order), `segment_tensions` (every segment of every strand, `strands`
     /// order), `bearings` `(bodies, 2, 3)` (force, moment; joints then pulleys),
     /// `base_reaction` `(2, 3)`; the last three `None` where the routing cannot attribute
-    /// them. Units and frames as docs/outputs.md §3; bearing friction, sticking and guides
-    /// are not returned yet.
+    /// them; `bearing_friction` and `sticking` (bool), one entry per `friction_bodies`;
+    /// `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`, `guide_sticking`
+    /// (bool) and `guide_dissipated_powers` (`None` where the routing cannot attribute
+    /// them), one entry per `guides` of the model. Units and frames as docs/outputs.md §3.
     fn inverse_dynamics<'py>(
         &self,
         py: Python<'py>,
@@ -378,21 +465,41 @@ impl Model {
             let r = data.inverse_dynamics(model, s[0], s[1], s[2])?;
             let mut row = Vec::with_capacity(width);
             for (_, _, read) in &fields {
-                read(r, &mut row);
+                read(model, [s[0], s[1], s[2]], r, &mut row);
             }
             debug_assert_eq!(row.len(), width, "a row holds every field");
             Ok(row)
         })?;
         let out = PyDict::new(py);
         let mut offset = 0;
+        // The values of `size` numbers from `at` in every row, as one array of `shape`.
+        let array = |at: usize, size: usize, shape: &[usize]| {
+            let values = (rows.iter())
+                .map(|row| row[at..at + size].to_vec())
+                .collect();
+            stacked(py, values, shape, batched)
+        };
+        let boolean = |a: Bound<'py, PyArrayDyn<f64>>| a.call_method1("astype", ("bool",));
         for (key, shape, _) in &fields {
             let size: usize = shape.iter().product();
-            let values = rows
-                .iter()
-                .map(|row| row[offset..offset + size].to_vec())
-                .collect();
+            match *key {
+                "sticking" => out.set_item(*key, boolean(array(offset, size, shape))?)?,
+                "guides" => {
+                    let count = shape[1];
+                    for (i, quantity) in GUIDE_KEYS.iter().enumerate() {
+                        let a = array(offset + i * count, count, &[count]);
+                        match *quantity {
+                            "guide_sticking" => out.set_item(*quantity, boolean(a)?)?,
+                            "guide_dissipated_powers" if model.routing_incomplete() => {
+                                out.set_item(*quantity, py.None())?
+                            }
+                            _ => out.set_item(*quantity, a)?,
+                        }
+                    }
+                }
+                _ => out.set_item(*key, array(offset, size, shape))?,
+            }
             offset += size;
-            out.set_item(*key, stacked(py, values, shape, batched))?;
         }
         for key in ["segment_tensions", "bearings", "base_reaction"] {
             if !out.contains(key)? {

@@ -17,6 +17,7 @@ import tendyn
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples" / "mechanisms"
 PAPER = ["example1_endless", "example2_open_ended", "example3_stanford_jpl"]
+FRICTION = ["example2_friction", "example2_capstan"]
 
 
 def model(name):
@@ -65,10 +66,11 @@ def test_results_are_the_rust_solvers_to_the_bit(name):
         assert got["base_reaction"][0].tolist() == want["base_reaction"]["force"]
 
 
-@pytest.mark.parametrize("name", PAPER)
+@pytest.mark.parametrize("name", PAPER + FRICTION)
 def test_a_batch_is_each_state_alone(name):
     m = model(name)
     q, qd, qdd = states(m, 20, 3)
+    qd[::4] = 0.0  # some states at rest, where friction sticks
     batch = m.inverse_dynamics(q, qd, qdd)
     forward = m.forward_dynamics(q, qd, batch["motor_torques"], batch["tendon_tensions"])
     for k in range(len(q)):
@@ -83,6 +85,31 @@ def test_a_batch_is_each_state_alone(name):
         assert np.array_equal(m.gravity(q)[k], m.gravity(q[k]))
         alone = m.forward_dynamics(q[k], qd[k], one["motor_torques"], one["tendon_tensions"])
         assert np.array_equal(forward[k], alone)
+
+
+@pytest.mark.parametrize("name", FRICTION)
+def test_friction_and_guides_are_the_command_lines(name):
+    """Bearing friction, what sticks and what each guide does, moving and at rest (where
+    every bearing and guide with friction sticks), as `tendyn eval --json` gives them."""
+    m = model(name)
+    assert m.friction_bodies or m.guides
+    q, qd, qdd = (x[0] for x in states(m, 1, 5))
+    for velocity in (qd, np.zeros_like(qd)):
+        want = cli_eval(name, q, velocity, qdd)
+        got = m.inverse_dynamics(q, velocity, qdd)
+        friction = [want["bearing_friction"][b] for b in m.friction_bodies]
+        assert got["bearing_friction"].tolist() == friction
+        assert got["sticking"].dtype == bool
+        assert [b for b, s in zip(m.friction_bodies, got["sticking"]) if s] == want["sticking"]
+        assert [(g["pulley"], g["tendon"]) for g in want["guides"]] == m.guides
+        for key, plural in [("wrap_angle", "guide_wrap_angles"),
+                            ("sliding_speed", "guide_sliding_speeds"),
+                            ("direction", "guide_directions"), ("sticking", "guide_sticking"),
+                            ("dissipated_power", "guide_dissipated_powers")]:
+            assert got[plural].tolist() == [g[key] for g in want["guides"]], key
+        assert got["guide_sticking"].dtype == bool
+    # At rest every bearing and guide with friction sticks.
+    assert got["sticking"].all() and got["guide_sticking"].all()
 
 
 @pytest.mark.parametrize("name", PAPER)
