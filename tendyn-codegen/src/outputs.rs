@@ -228,7 +228,8 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
                 Some(
                     "a turning idler follows a guide with capstan friction towards the tendon's \
                  exit: its inertia reaches the joints scaled by the guide's friction, which \
-                 the mass matrix of forward dynamics does not carry — use inverse dynamics"
+                 the generated (symmetric) forward dynamics does not carry — use the runtime \
+                 solver's forward dynamics, or inverse dynamics"
                         .to_string(),
                 )
             }

@@ -22,8 +22,8 @@ use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::derivatives::{self, jacobians, Derivatives};
 use crate::dynamics::{
     actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
-    generalized_forces, gravity, inverse_dynamics, mass_matrix, structure, InverseDynamics,
-    Workspace,
+    generalized_forces, gravity, idlers_behind_capstan, inverse_dynamics, mass_matrix, structure,
+    InverseDynamics, Workspace,
 };
 use crate::error::{Error, Result};
 use crate::friction;
@@ -381,10 +381,36 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<&[T]> {
-        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
-        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
+        let mut rhs =
+            forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
-        self.joint_accelerations = self.solve_mass_matrix(model, q, &rhs)?;
+        let behind = idlers_behind_capstan(model, q, qd, &mut self.ws);
+        self.joint_accelerations = if behind.is_empty() {
+            self.solve_mass_matrix(model, q, &rhs)?
+        } else {
+            // Idlers whose inertia reaches the joints through a guide's friction: the
+            // system is no longer symmetric (`dynamics::idlers_behind_capstan`).
+            let mut m = mass_matrix(model, q, &mut self.ws);
+            for idler in &behind {
+                for (j, row) in m.iter_mut().enumerate() {
+                    rhs[j] = rhs[j] - idler.demand * idler.weight[j];
+                    for (x, d) in row.iter_mut().zip(&idler.inertia) {
+                        *x = *x + idler.weight[j] * *d;
+                    }
+                }
+            }
+            finite("mass matrix", m.iter().flatten(), &inputs)?;
+            let mut factor: Vec<T> = m.into_iter().flatten().collect();
+            if !linalg::lu_solve(&mut factor, &mut rhs) {
+                return Err(Error::Singular(
+                    "the mass matrix with the idlers behind guides with friction is singular \
+                     at this state"
+                        .into(),
+                ));
+            }
+            rhs
+        };
         finite("joint acceleration", &self.joint_accelerations, &inputs)?;
         Ok(&self.joint_accelerations)
     }
@@ -407,9 +433,9 @@ impl<T: Numeric> Data<T> {
         Ok(out)
     }
 
-    /// The input checks of forward dynamics: buffers that fit the model, the state, and as
-    /// many finite motor torques and tendon tensions as the mechanism has motors and
-    /// open-ended tendons; the inputs by name, for the errors of the results.
+    /// [`Data::check_forward_states`], and refused where a turning idler follows a guide
+    /// with capstan friction: what builds on forward dynamics' symmetric form (the
+    /// actuators' generalized forces alone, its derivatives, its scale) does not hold there.
     fn check_forward_inputs<'a>(
         &self,
         model: &Model<T>,
@@ -418,16 +444,31 @@ impl<T: Numeric> Data<T> {
         motor_torques: &'a [T],
         tendon_tensions: &'a [T],
     ) -> Result<[(&'static str, &'a [T]); 4]> {
-        self.check_states(model, &[("q", q), ("qd", qd)])?;
         if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
-                "forward dynamics where a turning idler follows a guide with capstan friction \
-                 (`mu > 0`) towards the tendon's exit: the idler's inertia then reaches the \
-                 joints scaled by the guide's friction, which the mass matrix does not carry; \
-                 inverse dynamics handles it"
+                "the actuators' generalized forces, forward dynamics' derivatives and scale \
+                 where a turning idler follows a guide with capstan friction (`mu > 0`) \
+                 towards the tendon's exit: the idler's inertia then reaches the joints \
+                 scaled by the guide's friction, so what the tendons deliver depends on q̈; \
+                 forward and inverse dynamics handle it"
                     .into(),
             ));
         }
+        self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)
+    }
+
+    /// The input checks of forward dynamics: buffers that fit the model, the state, and as
+    /// many finite motor torques and tendon tensions as the mechanism has motors and
+    /// open-ended tendons; the inputs by name, for the errors of the results.
+    fn check_forward_states<'a>(
+        &self,
+        model: &Model<T>,
+        q: &'a [T],
+        qd: &'a [T],
+        motor_torques: &'a [T],
+        tendon_tensions: &'a [T],
+    ) -> Result<[(&'static str, &'a [T]); 4]> {
+        self.check_states(model, &[("q", q), ("qd", qd)])?;
         if motor_torques.len() != model.motors.len() || tendon_tensions.len() != model.tendons.len()
         {
             return Err(Error::State(format!(

@@ -270,6 +270,110 @@ pub fn structure<T: Real>(
     columns
 }
 
+/// A turning idler between a guide with capstan friction and its tendon's ground end, as
+/// forward dynamics needs it ([`idlers_behind_capstan`]).
+pub struct IdlerBehindCapstan<T> {
+    /// `W_i` (one entry per joint): how the idler's net axial moment reaches the joints
+    /// beyond what its coupling carries.
+    pub weight: Vec<T>,
+    /// `N_i − τ_f,i` at `q̈ = 0`: the idler's axial demand (inertia and gravity, about its
+    /// axis) less its bearing's friction (`τ_f` from `q̇` alone, as forward dynamics takes
+    /// it).
+    pub demand: T,
+    /// `∂N_i/∂q̈` (one entry per joint).
+    pub inertia: Vec<T>,
+}
+
+/// The idlers whose axial demand reaches the joints through a guide with capstan friction,
+/// at `(q, q̇)` with `σ` from `q̇` alone (forward dynamics' convention; empty without such
+/// idlers).
+///
+/// An idler `i` (between segments `i` and `i + 1` of its strand) needs the tension step
+/// `T_i − T_{i+1} = −s_i (N_i − τ_f,i) / r_i` (Eq. 24b), and every segment `k ≤ i` on its
+/// anchor side carries that step scaled by `T_k / T_{i+1}` (the capstan factors between
+/// them). Weighted by each segment's share of the strand's column (`Strand::shares`), the
+/// step delivers `−(N_i − τ_f,i) (s_i / r_i) Σ_{k ≤ i} (T_k / T_{i+1}) shares[k]` to the
+/// joints. With every ratio 1 that is `−(N_i − τ_f,i) c_i`, `c_i` the idler's coupling
+/// (the shares up to it sum to `(r_i / s_i) c_i`, [`crate::transmission`]): the mass matrix,
+/// the bias and the bearings' friction of forward dynamics already carry it. What they do
+/// not carry is `W_i = (s_i / r_i) Σ_{k ≤ i} (T_k / T_{i+1} − 1) shares[k]`, nonzero only
+/// where a guide with friction lies on the idler's anchor side: forward dynamics is then
+/// `(M + Σ_i W_i ∂N_iᵀ/∂q̈) q̈ = rhs − Σ_i (N_i − τ_f,i)|_{q̈=0} W_i`, not symmetric.
+pub fn idlers_behind_capstan<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    ws: &mut Workspace<T>,
+) -> Vec<IdlerBehindCapstan<T>> {
+    if !model.capstan_before_an_idler() {
+        return Vec::new();
+    }
+    let n = model.dof;
+    let zeros = vec![T::zero(); n];
+    friction::capstan_factors(model, q, qd, None, &mut ws.capstan);
+    friction::bearing_torques(model, qd, None, &mut ws.friction);
+    forward(model, q, qd, &zeros, true, true, &mut ws.motion);
+    let mut out = Vec::new();
+    for (strand, factors) in model.strands.iter().zip(&ws.capstan) {
+        for (i, idler) in strand.idlers.iter().enumerate() {
+            if idler.guide.is_some() {
+                continue;
+            }
+            // T_k / T_{i+1} for k = i, i − 1, …, 0, and the weight they give.
+            let mut ratio = T::one();
+            let mut weight = zeros.clone();
+            let mut behind = false;
+            for k in (0..=i).rev() {
+                if k < i && strand.idlers[k].guide.as_ref().is_some_and(|g| g.mu > 0.0) {
+                    ratio = ratio * factors[k];
+                    behind = true;
+                }
+                if behind {
+                    let step = T::from_f64(idler.turn / idler.radius);
+                    for (w, share) in weight.iter_mut().zip(&strand.shares[k]) {
+                        *w = *w + step * (ratio - T::one()) * T::from_f64(*share);
+                    }
+                }
+            }
+            if !behind {
+                continue;
+            }
+            let mut demand = tension::axial_demand(model, &ws.motion, idler.body);
+            if model.bodies[idler.body].friction.is_some() {
+                demand = demand - ws.friction[idler.body];
+            }
+            out.push(IdlerBehindCapstan {
+                weight,
+                demand,
+                inertia: Vec::new(),
+            });
+        }
+    }
+    // ∂N_i/∂q̈: the axial demands of a motion from rest with one unit acceleration and no
+    // gravity (N is affine in q̈).
+    let mut unit = zeros.clone();
+    for l in 0..n {
+        unit[l] = T::one();
+        forward(model, q, &zeros, &unit, false, true, &mut ws.motion);
+        unit[l] = T::zero();
+        let mut next = out.iter_mut();
+        for strand in &model.strands {
+            for (i, idler) in strand.idlers.iter().enumerate() {
+                let behind = idler.guide.is_none()
+                    && strand.idlers[..i]
+                        .iter()
+                        .any(|g| g.guide.as_ref().is_some_and(|g| g.mu > 0.0));
+                if behind {
+                    let term = next.next().expect("one term per idler behind a guide");
+                    term.inertia
+                        .push(tension::axial_demand(model, &ws.motion, idler.body));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The generalized forces the actuators deliver: `Σ motor columns · τ + A T`, `A` the
 /// tendons' columns ([`structure`]).
 pub fn actuator_forces<T: Real>(

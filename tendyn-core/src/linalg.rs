@@ -203,6 +203,52 @@ pub fn cholesky_solve<T: Numeric>(m: &mut [T], x: &mut [T]) -> bool {
     true
 }
 
+/// Solves `M x = b` for a general square `M` (`n × n`, row-major, `n = x.len()`,
+/// overwritten) by Gaussian elimination with partial pivoting; `x` holds `b` on entry and
+/// the solution on return. Returns `false` where a pivot is zero or not finite (`M`
+/// singular to working precision), or `m` is too short.
+pub fn lu_solve<T: Numeric>(m: &mut [T], x: &mut [T]) -> bool {
+    let n = x.len();
+    if m.len() < n * n {
+        return false;
+    }
+    for j in 0..n {
+        // The row with the largest entry in column j becomes the pivot row.
+        let p = (j..n).fold(j, |p, i| {
+            if m[i * n + j].abs() > m[p * n + j].abs() {
+                i
+            } else {
+                p
+            }
+        });
+        let pivot = m[p * n + j];
+        if pivot == T::zero() || !pivot.is_finite() {
+            return false;
+        }
+        if p != j {
+            for k in 0..n {
+                m.swap(p * n + k, j * n + k);
+            }
+            x.swap(p, j);
+        }
+        for i in j + 1..n {
+            let f = m[i * n + j] / pivot;
+            for k in j + 1..n {
+                m[i * n + k] = m[i * n + k] - f * m[j * n + k];
+            }
+            x[i] = x[i] - f * x[j];
+        }
+    }
+    for i in (0..n).rev() {
+        let mut s = x[i];
+        for k in i + 1..n {
+            s = s - m[i * n + k] * x[k];
+        }
+        x[i] = s / m[i * n + i];
+    }
+    true
+}
+
 /// Solves `M x = b` by `L D Lᵀ` without pivoting or checks, as generated code does (the
 /// code generator traces it; the runtime solver uses [`cholesky_solve`]): `m` (`n × n`,
 /// row-major, `n = x.len()`) is overwritten by `L` below its diagonal and `D` on it, `x`
@@ -273,6 +319,21 @@ pub fn project_onto<T: Real>(v: &[T], basis: &[T], out: &mut [T]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A matrix whose first pivot is zero (no elimination without exchanging rows) and
+    /// not symmetric: `[[0, 2, 1], [1, 1, 0], [3, 0, 1]] x = (5, 3, 4)` has `x = (1, 2, 1)`
+    /// (by hand); a singular one is refused.
+    #[test]
+    fn lu_exchanges_rows_and_refuses_a_singular_matrix() {
+        let mut m = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let mut x = [5.0, 3.0, 4.0];
+        assert!(lu_solve(&mut m, &mut x));
+        for (got, want) in x.iter().zip([1.0, 2.0, 1.0]) {
+            assert!((got - want).abs() <= 4.0 * f64::EPSILON, "{x:?}");
+        }
+        let mut singular = [1.0, 2.0, 2.0, 4.0];
+        assert!(!lu_solve(&mut singular, &mut [1.0, 1.0]));
+    }
 
     /// `E = [[1, 1, 0], [0, 1, 1]]`: `E E⁺ = I`, the null space `±(1, −1, 1)/√3`, by hand.
     #[test]

@@ -11,15 +11,39 @@ pub fn idlers_as_capstans(text: &str, mu: f64) -> String {
     idlers_as_guides_with(text, Some(mu))
 }
 
+/// `text` with the first idler of every strand made a guide with capstan friction `mu`,
+/// the idlers after it left turning: their inertia then reaches the joints through the
+/// guide's friction.
+pub fn first_idlers_as_capstans(text: &str, mu: f64) -> String {
+    let model = tendyn_core::parse(text).unwrap();
+    let first: Vec<usize> = (model.strands().iter())
+        .filter_map(|s| s.idlers.first().map(|i| i.body))
+        .collect();
+    made_guides(text, &model, |b| first.contains(&b), Some(mu))
+}
+
 fn idlers_as_guides_with(text: &str, mu: Option<f64>) -> String {
     let model = tendyn_core::parse(text).unwrap();
+    made_guides(text, &model, |_| true, mu)
+}
+
+/// `text` with the idlers `pick` chooses (by body index) made fixed guides.
+fn made_guides(
+    text: &str,
+    model: &tendyn_core::Model<f64>,
+    pick: impl Fn(usize) -> bool,
+    mu: Option<f64>,
+) -> String {
     let mut out = text.to_string();
-    for b in model.bodies() {
+    for (i, b) in model.bodies().iter().enumerate() {
         if let tendyn_core::model::BodyKind::Pulley {
             role: tendyn_core::model::PulleyRole::Idler { .. },
             ..
         } = b.kind
         {
+            if !pick(i) {
+                continue;
+            }
             let at = format!("name: \"{}\",", b.name);
             assert_eq!(out.matches(&at).count(), 1, "{at}");
             let friction = mu.map_or(String::new(), |mu| format!(" mu: {mu:?},"));
