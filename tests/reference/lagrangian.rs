@@ -14,7 +14,7 @@
 
 use crate::poses::{body_motions, mat, vec, world_poses, Ad};
 use nalgebra::{DMatrix, DVector, Vector3};
-use num_dual::{Dual, Dual64, HyperDual64};
+use num_dual::{Dual, Dual64, HyperDual, HyperDual64};
 use tendyn_core::model::Model;
 
 /// Kinetic energy `T(q, q̇)` in any AD scalar (so that it can be differentiated further).
@@ -177,6 +177,52 @@ fn lagrange(model: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64], gravity: boo
             0.0
         };
         d_dt_momentum - dt_dq + dv_dq
+    })
+}
+
+/// The derivative of Lagrange's `Q` (as [`lagrange_generalized_forces`]) along the seeds
+/// `dq`, `dqd`: `(∂Q/∂q) dq + (∂Q/∂q̇) dqd`, exact. The same energies, each evaluated with
+/// every number carrying one more dual part (the seed) beneath the hyper-dual parts that
+/// give `Q`: third derivatives of `L`, no finite differences and nothing of the recursion.
+pub fn lagrange_generalized_forces_derivative(
+    model: &Model<f64>,
+    [q, qd, qdd]: [&[f64]; 3],
+    [dq, dqd]: [&[f64]; 2],
+) -> DVector<f64> {
+    let n = model.dof();
+    let seeded = |x: f64, dx: f64| Dual64::new(x, dx);
+    DVector::from_fn(n, |i, _| {
+        let path: Vec<HyperDual<Dual64>> = (0..n)
+            .map(|j| {
+                HyperDual::new(
+                    seeded(q[j], dq[j]),
+                    Dual64::from(0.0),
+                    seeded(qd[j], dqd[j]),
+                    Dual64::from(0.0),
+                )
+            })
+            .collect();
+        let rates: Vec<HyperDual<Dual64>> = (0..n)
+            .map(|j| {
+                let unit = Dual64::from(delta(i, j));
+                HyperDual::new(
+                    seeded(qd[j], dqd[j]),
+                    unit,
+                    Dual64::from(qdd[j]),
+                    Dual64::from(0.0),
+                )
+            })
+            .collect();
+        let d_dt_momentum = kinetic_energy_ad(model, &path, &rates).eps1eps2;
+        let at: Vec<Dual<Dual64>> = (0..n)
+            .map(|j| Dual::new(seeded(q[j], dq[j]), Dual64::from(delta(i, j))))
+            .collect();
+        let rates: Vec<Dual<Dual64>> = (0..n)
+            .map(|j| Dual::from_re(seeded(qd[j], dqd[j])))
+            .collect();
+        let dt_dq = kinetic_energy_ad(model, &at, &rates).eps;
+        let dv_dq = potential_energy_ad(model, &at).eps;
+        (d_dt_momentum - dt_dq + dv_dq).eps
     })
 }
 
