@@ -111,9 +111,25 @@ fn generalized_force_derivatives_match_central_differences_in_double_double() {
     }
 }
 
+/// Seeded random mechanism 23 with each strand's first idler a guide with capstan friction
+/// and the idlers after it turning: forward dynamics' unsymmetric case.
+fn idlers_behind_a_guide() -> Model<f64> {
+    let features = tendyn_spec::random_mechanism::Features {
+        coupled_pulleys: false,
+        endless: false,
+    };
+    let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(23, features);
+    let model =
+        tendyn_core::parse(&tendyn_spec::guides::first_idlers_as_capstans(&text, 0.1)).unwrap();
+    assert!(model.capstan_before_an_idler());
+    model
+}
+
 #[test]
 fn forward_dynamics_derivatives_match_central_differences_in_double_double() {
-    for (i, model) in mechanisms().iter().enumerate() {
+    let mut models = mechanisms();
+    models.push(idlers_behind_a_guide());
+    for (i, model) in models.iter().enumerate() {
         let mut rng = ChaCha8Rng::seed_from_u64(50 + i as u64);
         let reference = model.cast_numeric::<DD>();
         let (mut data, mut dd) = (Data::new(model), Data::new(&reference));

@@ -207,7 +207,7 @@ fn generated_capstan_friction_is_traced_for_one_null_direction_and_refused_for_m
 /// guide's dissipation, the idler's steps included; forward dynamics, whose symmetric mass
 /// matrix cannot carry the idler's inertia scaled by the guide's factor, adds that part
 /// (`dynamics::idlers_behind_capstan`) and gives the motion back; generated forward
-/// dynamics and what builds on the symmetric form are named limitations.
+/// dynamics and the actuators' generalized forces alone are named limitations.
 #[test]
 fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynamics_gives_the_motion_back(
 ) {
@@ -232,7 +232,7 @@ fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynami
     let worst = check_forward_after_inverse(&model, 200, 17);
     println!("pin then idler: forward after inverse worst {worst:.2e}");
     let e = Data::new(&model)
-        .forward_dynamics_derivatives(&model, &[0.1], &[1.0], &[], &[5.0, 5.0])
+        .actuator_forces(&model, &[0.1], &[1.0], &[], &[5.0, 5.0])
         .unwrap_err();
     assert!(matches!(e, Error::NotYet(_)), "{e}");
     let refused =
@@ -454,7 +454,23 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
 /// transmission's rates scaled by the capstan factors (`tension::state_matrix`), is what the
 /// recursion's own statics give at that state: minus the coefficients of its balance rows
 /// on the strand tensions (the pull of each segment on the bodies at its two ends).
+///
+/// For every size (the recursion's affine rows stop at 12 unknowns): the shares up to a
+/// guide, on the joints' rows, are the rate at which the tendon slides over it (the rim
+/// rate an idler there would have), `Guide::slide`.
 fn check_state_matrix(model: &Model<f64>, solver: &mut Data<f64>, [q, qd, qdd]: [&[f64]; 3]) {
+    for (s, k, _, guide) in model.guides() {
+        let shares = &model.strands()[s].shares;
+        for (j, slide) in guide.slide.iter().enumerate() {
+            let sum: f64 = shares[..=k].iter().map(|share| share[j]).sum();
+            let size = 1e-3f64.max(slide.abs());
+            assert!(
+                (sum - slide).abs() <= 1e-12 * size,
+                "{}: strand {s}, guide {k}: shares sum to {sum} on joint {j}, slide {slide}",
+                model.name()
+            );
+        }
+    }
     if model.system().unknowns.len() > tendyn_core::affine::MAX_UNKNOWNS {
         return;
     }
@@ -554,12 +570,13 @@ fn capstan_friction_puts_no_limit_on_the_unknowns_and_chain12_gives_back_its_mot
     assert_eq!(model.system().unknowns.len(), 13);
     assert!(model.has_capstan());
     // chain12 drives some joints through coupled pulleys, so it reports no segment tensions
-    // and the power balance above cannot be taken: forward dynamics gives back the motion
-    // instead (`E` enters it through the state's structure matrix).
+    // and the power balance above cannot be taken: its shares are checked against the
+    // guides' sliding rates, and forward dynamics gives back the motion.
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     let mut solver = Data::new(&model);
     for _ in 0..20 {
         let [q, qd, qdd] = random_state(&mut rng, 12);
+        check_state_matrix(&model, &mut solver, [&q, &qd, &qdd]);
         let r = solver
             .inverse_dynamics(&model, &q, &qd, &qdd)
             .unwrap()

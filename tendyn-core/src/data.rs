@@ -21,9 +21,9 @@
 use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::derivatives::{self, jacobians, Derivatives};
 use crate::dynamics::{
-    actuator_forces, balance_at, bias, expanded_generalized_forces, forward_dynamics_rhs,
-    generalized_forces, gravity, idlers_behind_capstan, inverse_dynamics, mass_matrix, structure,
-    InverseDynamics, Workspace,
+    accelerations, actuator_forces, balance_at, bias, expanded_generalized_forces,
+    forward_dynamics_rhs, generalized_forces, gravity, idlers_behind_capstan, inverse_dynamics,
+    mass_matrix, structure, IdlerBehindCapstan, InverseDynamics, Workspace,
 };
 use crate::error::{Error, Result};
 use crate::friction;
@@ -237,7 +237,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<Derivatives<T>> {
-        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
         self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
         let dual = model.dual();
         let mut dual_ws = Workspace::new(&dual);
@@ -365,7 +365,7 @@ impl<T: Numeric> Data<T> {
             })
             .collect();
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
-        let y = self.solve_mass_matrix(model, q, &rhs)?;
+        let y = self.solve_mass_matrix(model, q, &rhs, &[])?;
         // (`max` would pass over a NaN.)
         finite("forward-dynamics term scale", &y, &inputs)?;
         Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
@@ -382,35 +382,12 @@ impl<T: Numeric> Data<T> {
         tendon_tensions: &[T],
     ) -> Result<&[T]> {
         let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
-        let mut rhs =
-            forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
+        let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
+        // Idlers whose inertia reaches the joints through a guide's friction (none in most
+        // mechanisms) make the system unsymmetric: `dynamics::accelerations`.
         let behind = idlers_behind_capstan(model, q, qd, &mut self.ws);
-        self.joint_accelerations = if behind.is_empty() {
-            self.solve_mass_matrix(model, q, &rhs)?
-        } else {
-            // Idlers whose inertia reaches the joints through a guide's friction: the
-            // system is no longer symmetric (`dynamics::idlers_behind_capstan`).
-            let mut m = mass_matrix(model, q, &mut self.ws);
-            for idler in &behind {
-                for (j, row) in m.iter_mut().enumerate() {
-                    rhs[j] = rhs[j] - idler.demand * idler.weight[j];
-                    for (x, d) in row.iter_mut().zip(&idler.inertia) {
-                        *x = *x + idler.weight[j] * *d;
-                    }
-                }
-            }
-            finite("mass matrix", m.iter().flatten(), &inputs)?;
-            let mut factor: Vec<T> = m.into_iter().flatten().collect();
-            if !linalg::lu_solve(&mut factor, &mut rhs) {
-                return Err(Error::Singular(
-                    "the mass matrix with the idlers behind guides with friction is singular \
-                     at this state"
-                        .into(),
-                ));
-            }
-            rhs
-        };
+        self.joint_accelerations = self.solve_mass_matrix(model, q, &rhs, &behind)?;
         finite("joint acceleration", &self.joint_accelerations, &inputs)?;
         Ok(&self.joint_accelerations)
     }
@@ -434,8 +411,8 @@ impl<T: Numeric> Data<T> {
     }
 
     /// [`Data::check_forward_states`], and refused where a turning idler follows a guide
-    /// with capstan friction: what builds on forward dynamics' symmetric form (the
-    /// actuators' generalized forces alone, its derivatives, its scale) does not hold there.
+    /// with capstan friction: the actuators' generalized forces alone and forward dynamics'
+    /// scale, which take what the tendons deliver as independent of `q̈`, do not hold there.
     fn check_forward_inputs<'a>(
         &self,
         model: &Model<T>,
@@ -446,8 +423,8 @@ impl<T: Numeric> Data<T> {
     ) -> Result<[(&'static str, &'a [T]); 4]> {
         if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
-                "the actuators' generalized forces, forward dynamics' derivatives and scale \
-                 where a turning idler follows a guide with capstan friction (`mu > 0`) \
+                "the actuators' generalized forces and forward dynamics' scale where a \
+                 turning idler follows a guide with capstan friction (`mu > 0`) \
                  towards the tendon's exit: the idler's inertia then reaches the joints \
                  scaled by the guide's friction, so what the tendons deliver depends on q̈; \
                  forward and inverse dynamics handle it"
@@ -499,18 +476,27 @@ impl<T: Numeric> Data<T> {
     }
 
     /// `M(q)⁻¹ rhs` by the checked Cholesky factorisation of forward dynamics.
-    fn solve_mass_matrix(&mut self, model: &Model<T>, q: &[T], rhs: &[T]) -> Result<Vec<T>> {
+    /// With idlers behind guides with friction, the accelerations of
+    /// [`crate::dynamics::accelerations`] over that factor.
+    fn solve_mass_matrix(
+        &mut self,
+        model: &Model<T>,
+        q: &[T],
+        rhs: &[T],
+        behind: &[IdlerBehindCapstan<T>],
+    ) -> Result<Vec<T>> {
         let m = mass_matrix(model, q, &mut self.ws);
         finite("mass matrix", m.iter().flatten(), &[("q", q)])?;
         let mut factor: Vec<T> = m.into_iter().flatten().collect();
-        let mut x = rhs.to_vec();
-        if !linalg::cholesky_solve(&mut factor, &mut x) {
+        if !linalg::cholesky_factor(&mut factor, model.dof()) {
             return Err(Error::Singular(
                 "the mass matrix is not positive definite at this state (a massless chain, or a \
                  link whose motion nothing resists)"
                     .into(),
             ));
         }
+        let mut x = rhs.to_vec();
+        accelerations(behind, |b| linalg::cholesky_substitute(&factor, b), &mut x);
         Ok(x)
     }
 

@@ -196,8 +196,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
 }
 
 /// [`forward_dynamics_derivatives`] with every input seeded through forward dynamics on
-/// dual numbers (right-hand side, mass matrix and `L D Lᵀ`): the route where `A` depends on
-/// the state.
+/// dual numbers (right-hand side, mass matrix and `L D Lᵀ`, idlers behind guides with
+/// friction: [`dynamics::accelerations`]): the route where `A` depends on the state.
 fn forward_dynamics_seeded<T: Real>(
     dual: &Model<Dual<T>>,
     q: &[T],
@@ -215,8 +215,10 @@ fn forward_dynamics_seeded<T: Real>(
     let (value, mut blocks) = jacobians(&[q, qd, &u], |x, out| {
         let (torques, tensions) = x[2].split_at(motors);
         *out = dynamics::forward_dynamics_rhs(dual, &x[0], &x[1], torques, tensions, dual_ws);
+        let behind = dynamics::idlers_behind_capstan(dual, &x[0], &x[1], dual_ws);
         let mut mass = dynamics::mass_matrix(dual, &x[0], dual_ws).concat();
-        linalg::ldlt_solve(&mut mass, out);
+        linalg::ldlt_factor(&mut mass, out.len());
+        dynamics::accelerations(&behind, |b| linalg::ldlt_substitute(&mass, b), out);
         Ok::<(), ()>(())
     })
     .unwrap_or_default();

@@ -273,6 +273,10 @@ pub fn structure<T: Real>(
 /// A turning idler between a guide with capstan friction and its tendon's ground end, as
 /// forward dynamics needs it ([`idlers_behind_capstan`]).
 pub struct IdlerBehindCapstan<T> {
+    /// The idler's strand and its place on it (`model.strands()[strand].idlers[idler]`).
+    pub strand: usize,
+    /// See `strand`.
+    pub idler: usize,
     /// `W_i` (one entry per joint): how the idler's net axial moment reaches the joints
     /// beyond what its coupling carries.
     pub weight: Vec<T>,
@@ -298,7 +302,8 @@ pub struct IdlerBehindCapstan<T> {
 /// the bias and the bearings' friction of forward dynamics already carry it. What they do
 /// not carry is `W_i = (s_i / r_i) Σ_{k ≤ i} (T_k / T_{i+1} − 1) shares[k]`, nonzero only
 /// where a guide with friction lies on the idler's anchor side: forward dynamics is then
-/// `(M + Σ_i W_i ∂N_iᵀ/∂q̈) q̈ = rhs − Σ_i (N_i − τ_f,i)|_{q̈=0} W_i`, not symmetric.
+/// `(M + Σ_i W_i ∂N_iᵀ/∂q̈) q̈ = rhs − Σ_i (N_i − τ_f,i)|_{q̈=0} W_i`, not symmetric
+/// ([`accelerations`]).
 pub fn idlers_behind_capstan<T: Real>(
     model: &Model<T>,
     q: &[T],
@@ -314,7 +319,7 @@ pub fn idlers_behind_capstan<T: Real>(
     friction::bearing_torques(model, qd, None, &mut ws.friction);
     forward(model, q, qd, &zeros, true, true, &mut ws.motion);
     let mut out = Vec::new();
-    for (strand, factors) in model.strands.iter().zip(&ws.capstan) {
+    for (s, (strand, factors)) in model.strands.iter().zip(&ws.capstan).enumerate() {
         for (i, idler) in strand.idlers.iter().enumerate() {
             if idler.guide.is_some() {
                 continue;
@@ -324,7 +329,7 @@ pub fn idlers_behind_capstan<T: Real>(
             let mut weight = zeros.clone();
             let mut behind = false;
             for k in (0..=i).rev() {
-                if k < i && strand.idlers[k].guide.as_ref().is_some_and(|g| g.mu > 0.0) {
+                if k < i && strand.idlers[k].capstan().is_some() {
                     ratio = ratio * factors[k];
                     behind = true;
                 }
@@ -343,6 +348,8 @@ pub fn idlers_behind_capstan<T: Real>(
                 demand = demand - ws.friction[idler.body];
             }
             out.push(IdlerBehindCapstan {
+                strand: s,
+                idler: i,
                 weight,
                 demand,
                 inertia: Vec::new(),
@@ -350,28 +357,67 @@ pub fn idlers_behind_capstan<T: Real>(
         }
     }
     // ∂N_i/∂q̈: the axial demands of a motion from rest with one unit acceleration and no
-    // gravity (N is affine in q̈).
+    // gravity (N is affine in q̈): n more forward passes, only for such mechanisms.
     let mut unit = zeros.clone();
     for l in 0..n {
         unit[l] = T::one();
         forward(model, q, &zeros, &unit, false, true, &mut ws.motion);
         unit[l] = T::zero();
-        let mut next = out.iter_mut();
-        for strand in &model.strands {
-            for (i, idler) in strand.idlers.iter().enumerate() {
-                let behind = idler.guide.is_none()
-                    && strand.idlers[..i]
-                        .iter()
-                        .any(|g| g.guide.as_ref().is_some_and(|g| g.mu > 0.0));
-                if behind {
-                    let term = next.next().expect("one term per idler behind a guide");
-                    term.inertia
-                        .push(tension::axial_demand(model, &ws.motion, idler.body));
-                }
-            }
+        for term in &mut out {
+            let body = model.strands[term.strand].idlers[term.idler].body;
+            term.inertia
+                .push(tension::axial_demand(model, &ws.motion, body));
         }
     }
     out
+}
+
+/// Forward dynamics' joint accelerations from its right-hand side `rhs` (replaced by `q̈`),
+/// `solve` applying `M⁻¹` in place (a factor of the mass matrix): `M⁻¹ rhs`, or, where
+/// idlers sit behind guides with friction ([`idlers_behind_capstan`]), the solution of
+/// `(M + W Jᵀ) q̈ = rhs − Σ_i W_i N_i,0` (`W`, `J` with the columns `W_i`, `∂N_i/∂q̈`) by
+/// the Woodbury identity on `M`'s factor: `q̈ = x − Y (I + Jᵀ Y)⁻¹ Jᵀ x`, `x = M⁻¹ (rhs −
+/// Σ W_i N_i,0)`, `Y = M⁻¹ W`. The small system `I + Jᵀ Y` (one row per idler) is the
+/// identity plus the idlers' inertia relative to the mechanism's, scaled by the guides'
+/// excess factors, and is solved without pivoting (straight-line, for every scalar).
+pub fn accelerations<T: Real>(
+    idlers: &[IdlerBehindCapstan<T>],
+    mut solve: impl FnMut(&mut [T]),
+    rhs: &mut [T],
+) {
+    for idler in idlers {
+        for (r, w) in rhs.iter_mut().zip(&idler.weight) {
+            *r = *r - idler.demand * *w;
+        }
+    }
+    solve(rhs);
+    if idlers.is_empty() {
+        return;
+    }
+    let y: Vec<Vec<T>> = (idlers.iter())
+        .map(|idler| {
+            let mut v = idler.weight.clone();
+            solve(&mut v);
+            v
+        })
+        .collect();
+    let p = idlers.len();
+    let mut small = vec![T::zero(); p * p];
+    for (a, idler) in idlers.iter().enumerate() {
+        for (b, yb) in y.iter().enumerate() {
+            let identity = if a == b { T::one() } else { T::zero() };
+            small[a * p + b] = identity + crate::linalg::dot(&idler.inertia, yb);
+        }
+    }
+    let mut z: Vec<T> = (idlers.iter())
+        .map(|idler| crate::linalg::dot(&idler.inertia, rhs))
+        .collect();
+    crate::linalg::gauss_solve(&mut small, &mut z);
+    for (yk, zk) in y.iter().zip(&z) {
+        for (x, v) in rhs.iter_mut().zip(yk) {
+            *x = *x - *v * *zk;
+        }
+    }
 }
 
 /// The generalized forces the actuators deliver: `Σ motor columns · τ + A T`, `A` the
@@ -428,11 +474,11 @@ pub fn system_sliding<T: Numeric>(
     q: &[T],
     sigma: &[Vec<f64>],
 ) -> Result<TensionSystem<T>> {
-    let mut ws = Workspace::new(model);
-    friction::capstan_factors_sliding(model, q, &mut ws.capstan, |s, k, _| {
-        T::from_f64(sigma[s][k])
-    });
-    tension::system_at(model, tension::state_matrix(model, &ws.capstan))
+    let mut capstan: Vec<Vec<T>> = (model.strands.iter())
+        .map(|s| vec![T::one(); s.idlers.len()])
+        .collect();
+    friction::capstan_factors_sliding(model, q, &mut capstan, |s, k, _| T::from_f64(sigma[s][k]));
+    tension::system_at(model, tension::state_matrix(model, &capstan))
 }
 
 /// The balance rows of `E x = b` as affine forms, at the motion, bearing friction and

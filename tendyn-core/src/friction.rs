@@ -163,7 +163,7 @@ pub fn capstan_factors_sliding<T: Real>(
 ) {
     for (s, (strand, factors)) in model.strands.iter().zip(out.iter_mut()).enumerate() {
         for (k, (idler, factor)) in strand.idlers.iter().zip(factors.iter_mut()).enumerate() {
-            let Some(guide) = idler.guide.as_ref().filter(|g| g.mu > 0.0) else {
+            let Some(guide) = idler.capstan() else {
                 continue;
             };
             let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());

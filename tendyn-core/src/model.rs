@@ -155,6 +155,14 @@ pub struct IdlerStep {
     pub guide: Option<Guide>,
 }
 
+impl IdlerStep {
+    /// The guide, where this is one with capstan friction (`mu > 0`): where the tension
+    /// changes by the capstan law and `E` depends on the state.
+    pub fn capstan(&self) -> Option<&Guide> {
+        self.guide.as_ref().filter(|g| g.mu > 0.0)
+    }
+}
+
 /// A fixed pulley after a route's anchor: the tendon slides over it (format.md §6a).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Guide {
@@ -211,8 +219,9 @@ pub struct Strand<T> {
     /// Index of the unknown (tension of the last segment).
     pub unknown: usize,
     /// `shares[k]`: segment `k`'s share of the strand's column of `E` (over the system's
-    /// rows; [`crate::transmission::StrandGeometry::segment_rates`]), the shares summing to
-    /// the column. Where guides with friction make the tension differ from segment to
+    /// rows, zero on the pretension rows;
+    /// [`crate::transmission::StrandGeometry::segment_rates`]), the shares summing to the
+    /// column on the joint and driving-pulley rows. Where guides with friction make the tension differ from segment to
     /// segment, the state's column is `Σ_k (T_k / T) shares[k]` ([`crate::tension::state_matrix`]).
     pub shares: Vec<Vec<f64>>,
 }
@@ -338,7 +347,8 @@ pub struct TensionSystem<T> {
     /// traced for generated code (`tension::system_traced`), which applies it without
     /// forming it.
     pub pseudo_inverse: Vec<Vec<T>>,
-    /// Orthonormal basis of the null space of `E`.
+    /// Orthonormal basis of the null space of `E` (in a state's system traced for
+    /// generated code, the one null direction as `tension::system_traced` scales it).
     pub null_space: Vec<Vec<T>>,
     /// A null vector whose open-ended-tendon components are all strictly positive, when
     /// the null space is one-dimensional it spans it.
@@ -613,14 +623,11 @@ impl<T: Real> Model<T> {
 
     /// Whether a turning idler lies between a guide with capstan friction and its tendon's
     /// ground end: the idler's inertia, gravity and bearing friction then reach the joints
-    /// scaled by the guide's factor, which the symmetric mass matrix of forward dynamics
-    /// cannot carry (inverse dynamics handles it).
+    /// scaled by the guide's factor, beyond what the symmetric mass matrix carries
+    /// (forward dynamics adds it: `dynamics::idlers_behind_capstan`).
     pub fn capstan_before_an_idler(&self) -> bool {
         self.strands.iter().any(|strand| {
-            let first = strand
-                .idlers
-                .iter()
-                .position(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0));
+            let first = strand.idlers.iter().position(|i| i.capstan().is_some());
             first.is_some_and(|k| strand.idlers[k..].iter().any(|i| i.guide.is_none()))
         })
     }
@@ -1066,8 +1073,5 @@ const MAX_POWER: u8 = 8;
 
 /// Whether one of the strand's guides has capstan friction.
 fn has_capstan<T>(strand: &Strand<T>) -> bool {
-    strand
-        .idlers
-        .iter()
-        .any(|i| i.guide.as_ref().is_some_and(|g| g.mu > 0.0))
+    strand.idlers.iter().any(|i| i.capstan().is_some())
 }

@@ -30,7 +30,7 @@ use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
 
 /// A tension or moment of the recursion: a number when the unknowns are known (or zero),
-/// or affine in them ([`Affine`], where the state's `E` must be read off the recursion).
+/// or affine in them ([`Affine`]: how tests read `E` off the recursion's own statics).
 pub trait LoadScalar<T: Real>: Copy + core::fmt::Debug {
     /// The known value `c`, over `unknowns` unknowns (ignored by a number).
     fn known(c: T, unknowns: usize) -> Self;

@@ -6,7 +6,8 @@
 //!   `s`, `T_in = T_out − s (N_axial − τ_f) / r`, `τ_f` its bearing's friction
 //!   ([`crate::friction`], zero without).
 //! - The rows of `E x = b` are the axial balances of each joint, each driving pulley, and
-//!   each loop's pretension. `E` is constant (it is the transmission's virtual-work map);
+//!   each loop's pretension. `E` is constant (it is the transmission's virtual-work map),
+//!   but where guides with capstan friction make it depend on the state ([`state_matrix`]);
 //!   `b` is what the backward recursion leaves over when every unknown is zero, less what
 //!   the bearings' friction supplies.
 //! - The solution with least norm is `x₀ = E⁺ b`. Redundant open-ended routings add a
@@ -50,8 +51,8 @@ pub fn segment_tensions<T: Real, S: LoadScalar<T>>(
             let idler = &strand.idlers[k];
             // A frictionless guide passes the tension on unchanged (it takes the tendon's
             // pull on its carrier); one with friction by the capstan law.
-            if let Some(guide) = &idler.guide {
-                if guide.mu > 0.0 {
+            if idler.guide.is_some() {
+                if idler.capstan().is_some() {
                     t = t.scale(capstan[s][k]);
                 }
                 out[s][k] = t;
@@ -226,7 +227,7 @@ fn solved<T>(
 pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>> {
     let mut matrix = model.system.matrix.clone();
     for (strand, factors) in model.strands.iter().zip(capstan) {
-        let with_friction = |k: usize| strand.idlers[k].guide.as_ref().is_some_and(|g| g.mu > 0.0);
+        let with_friction = |k: usize| strand.idlers[k].capstan().is_some();
         if !(0..strand.idlers.len()).any(with_friction) {
             continue;
         }
@@ -248,8 +249,12 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
                 }
             }
         }
-        for (row, c) in matrix.iter_mut().zip(column) {
-            row[strand.unknown] = c;
+        // The pretension rows keep the model's entries (strands over guides are never a
+        // loop's sides, whose entries they are).
+        for (r, (row, c)) in matrix.iter_mut().zip(column).enumerate() {
+            if !matches!(model.system.rows[r], Row::Pretension(_)) {
+                row[strand.unknown] = c;
+            }
         }
     }
     matrix
@@ -350,7 +355,8 @@ pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
 /// orthogonal to the null space. Passing the pretension through the rounded `E⁺` instead
 /// leaves an error of about `u · pretension` in every motor torque.
 ///
-/// A state's system that holds no `E⁺` ([`system_traced`]) is solved as `Eᵀ (E Eᵀ)⁻¹ b`.
+/// A state's system that holds no `E⁺` ([`system_traced`]) is solved as `Eᵀ (E Eᵀ)⁻¹ b`
+/// (the model's system has one wherever it has unknowns).
 pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], out: &mut [T]) {
     let dynamic = |r: usize| !matches!(system.rows[r], Row::Pretension(_));
     if system.pseudo_inverse.is_empty() {

@@ -121,8 +121,10 @@ pub struct StrandGeometry {
     pub pull_rate: Rate,
     /// `segment_rates[k]`: segment `k`'s share of `pull_rate` (they sum to it), the rate
     /// at which the rims at its two ends pull it in, relative to the frame it is fixed in.
-    /// Where the tension differs from segment to segment (capstan friction on guides),
-    /// the tendon's virtual power is `Σ_k T_k (segment_rates[k] · q̇)`: the state's `E`.
+    /// Where the tension differs from segment to segment, `Σ_k T_k (segment_rates[k] · q̇)`
+    /// is the tendon's virtual power on the bodies with every turning idler held to its
+    /// carrier (an idler's own spin takes the tension step across it, Eq. 24b): with
+    /// capstan friction on guides, whose rims are their carriers, the state's `E`.
     pub segment_rates: Vec<Rate>,
 }
 

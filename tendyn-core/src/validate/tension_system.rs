@@ -561,7 +561,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     let mut members: Vec<(usize, usize, usize, f64)> = Vec::new();
     for (s, strand) in model.strands.iter().enumerate() {
         for (k, idler) in strand.idlers.iter().enumerate() {
-            let Some(g) = idler.guide.as_ref().filter(|g| g.mu > 0.0) else {
+            let Some(g) = idler.capstan() else {
                 continue;
             };
             let size = g.slide.iter().fold(0.0f64, |m, x| m.max(x.abs()));
