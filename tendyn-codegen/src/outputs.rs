@@ -222,17 +222,6 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             {
                 Some(CAPSTAN_NOT_GENERATED.to_string())
             }
-            Output::ForwardDynamics | Output::ForwardDynamicsDerivatives
-                if model.capstan_before_an_idler() =>
-            {
-                Some(
-                    "a turning idler follows a guide with capstan friction towards the tendon's \
-                 exit: its inertia reaches the joints scaled by the guide's friction, which \
-                 the generated (symmetric) forward dynamics does not carry — use the runtime \
-                 solver's forward dynamics, or inverse dynamics"
-                        .to_string(),
-                )
-            }
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
             Output::SegmentTensions | Output::Bearings if model.system().null_space.len() > 1 => {
@@ -508,12 +497,20 @@ fn trace_one(
                 ws,
             );
             let mut mm: Vec<Sym> = shared.mass(m, i, ws).into_iter().flatten().collect();
-            shared.forward_parts = Some((
-                mm.iter().map(|s| s.0).collect(),
-                rhs.iter().map(|s| s.0).collect(),
-            ));
+            let behind = dynamics::idlers_behind_capstan(m, &i.q, &i.qd, ws);
             let mut x = rhs;
-            linalg::ldlt_solve(&mut mm, &mut x);
+            if behind.is_empty() {
+                shared.forward_parts = Some((
+                    mm.iter().map(|s| s.0).collect(),
+                    x.iter().map(|s| s.0).collect(),
+                ));
+                linalg::ldlt_solve(&mut mm, &mut x);
+            } else {
+                // Idlers behind guides with friction: Woodbury on `M`'s factor, as at run
+                // time (`dynamics::accelerations`).
+                linalg::ldlt_factor(&mut mm, n);
+                dynamics::accelerations(&behind, |b| linalg::ldlt_substitute(&mm, b), &mut x);
+            }
             (Shape::Vector(n), x)
         }
         Output::GeneralizedForcesDerivatives => {

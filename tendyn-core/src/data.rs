@@ -320,7 +320,8 @@ impl<T: Numeric> Data<T> {
 
     /// `‖M⁻¹ (|A| |T| + |B| |τ| + |h + g − Q_ext| + Σ_b |c_b τ_f,b|)‖∞`: the size of the
     /// terms forward dynamics sums (`A`, `B` the tendons' and motors' columns, `τ_f,b` the
-    /// bearings' friction). Tensions that balance each
+    /// bearings' friction; with idlers behind guides with friction also `|W_i N_i,0|`, and
+    /// `M⁻¹` is then that of `M + W Jᵀ`, [`crate::dynamics::accelerations`]). Tensions that balance each
     /// other make `q̈` a small difference of large numbers, so the error of a forward
     /// dynamics result is meaningful relative to this, not to `‖q̈‖`.
     ///
@@ -335,8 +336,9 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<T> {
-        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
         let zero = T::from_f64(0.0);
+        let mut behind = idlers_behind_capstan(model, q, qd, &mut self.ws);
         let a = structure(model, q, qd, &mut self.ws);
         let zeros = vec![zero; model.dof()];
         let mut c = zeros.clone();
@@ -361,11 +363,16 @@ impl<T: Numeric> Data<T> {
                     .iter()
                     .zip(&torques)
                     .fold(zero, |s, (b, &t)| s + (b.coupling[j] * t).abs());
-                motors + tendons + c[j].abs() + friction
+                let idlers = (behind.iter()).fold(zero, |s, i| s + (i.weight[j] * i.demand).abs());
+                motors + tendons + c[j].abs() + friction + idlers
             })
             .collect();
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
-        let y = self.solve_mass_matrix(model, q, &rhs, &[])?;
+        // The magnitudes are the right-hand side: only `(M + W Jᵀ)⁻¹` of the idlers.
+        for idler in &mut behind {
+            idler.demand = zero;
+        }
+        let y = self.solve_mass_matrix(model, q, &rhs, &behind)?;
         // (`max` would pass over a NaN.)
         finite("forward-dynamics term scale", &y, &inputs)?;
         Ok(y.iter().fold(zero, |a, x| a.max(x.abs())))
@@ -411,8 +418,8 @@ impl<T: Numeric> Data<T> {
     }
 
     /// [`Data::check_forward_states`], and refused where a turning idler follows a guide
-    /// with capstan friction: the actuators' generalized forces alone and forward dynamics'
-    /// scale, which take what the tendons deliver as independent of `q̈`, do not hold there.
+    /// with capstan friction: the actuators' generalized forces alone, which take what the
+    /// tendons deliver as independent of `q̈`, do not hold there.
     fn check_forward_inputs<'a>(
         &self,
         model: &Model<T>,
@@ -423,8 +430,8 @@ impl<T: Numeric> Data<T> {
     ) -> Result<[(&'static str, &'a [T]); 4]> {
         if model.capstan_before_an_idler() {
             return Err(Error::NotYet(
-                "the actuators' generalized forces and forward dynamics' scale where a \
-                 turning idler follows a guide with capstan friction (`mu > 0`) \
+                "the actuators' generalized forces alone where a turning idler follows a \
+                 guide with capstan friction (`mu > 0`) \
                  towards the tendon's exit: the idler's inertia then reaches the joints \
                  scaled by the guide's friction, so what the tendons deliver depends on q̈; \
                  forward and inverse dynamics handle it"

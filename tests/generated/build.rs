@@ -84,6 +84,20 @@ fn main() {
             tendyn_spec::guides::idlers_as_guides(&text),
         ));
     }
+    // Each strand's first idler a guide with capstan friction, the later ones turning
+    // (forward dynamics' unsymmetric case): seeded random mechanism 23 (7 joints; its
+    // derivatives, 17,496 operations, are not generated here: see above).
+    let (text, _) = valid_random_mechanism(
+        23,
+        Features {
+            coupled_pulleys: false,
+            endless: false,
+        },
+    );
+    mechanisms.push((
+        "idlers_behind_guides".to_string(),
+        tendyn_spec::guides::first_idlers_as_capstans(&text, 0.02),
+    ));
     // Capstan friction on both guides of Example 2 (the state's system, traced).
     let capstan = root.join("example2_capstan.ron");
     println!("cargo:rerun-if-changed={}", capstan.display());
