@@ -237,7 +237,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<Derivatives<T>> {
-        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
         let dual = model.dual();
         let mut dual_ws = Workspace::new(&dual);
@@ -336,7 +336,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<T> {
-        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let zero = T::from_f64(0.0);
         let mut behind = idlers_behind_capstan(model, q, qd, &mut self.ws);
         let a = structure(model, q, qd, &mut self.ws);
@@ -388,7 +388,7 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<&[T]> {
-        let inputs = self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)?;
+        let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let rhs = forward_dynamics_rhs(model, q, qd, motor_torques, tendon_tensions, &mut self.ws);
         finite("right-hand side of forward dynamics", &rhs, &inputs)?;
         // Idlers whose inertia reaches the joints through a guide's friction (none in most
@@ -402,6 +402,8 @@ impl<T: Numeric> Data<T> {
     /// The generalized forces that motor torques and ground-level tendon tensions deliver
     /// at `(q, q̇)`: `Σ motor columns · τ + A(q, q̇) T` ([`actuator_forces`], `A` the state's
     /// where guides have capstan friction). What identification takes as measured `Q`.
+    /// `Error::NotYet` where a turning idler follows a guide with capstan friction: what
+    /// the tendons deliver then depends on `q̈` (forward dynamics carries it).
     pub fn actuator_forces(
         &mut self,
         model: &Model<T>,
@@ -410,6 +412,15 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<Vec<T>> {
+        if model.capstan_before_an_idler() {
+            return Err(Error::NotYet(
+                "the actuators' generalized forces alone where a turning idler follows a guide \
+                 with capstan friction (`mu > 0`) towards the tendon's exit: the idler's inertia \
+                 then reaches the joints scaled by the guide's friction, so what the tendons \
+                 deliver depends on q̈; forward and inverse dynamics handle it"
+                    .into(),
+            ));
+        }
         let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let a = structure(model, q, qd, &mut self.ws);
         let out = actuator_forces(model, &a, motor_torques, tendon_tensions);
@@ -417,34 +428,10 @@ impl<T: Numeric> Data<T> {
         Ok(out)
     }
 
-    /// [`Data::check_forward_states`], and refused where a turning idler follows a guide
-    /// with capstan friction: the actuators' generalized forces alone, which take what the
-    /// tendons deliver as independent of `q̈`, do not hold there.
-    fn check_forward_inputs<'a>(
-        &self,
-        model: &Model<T>,
-        q: &'a [T],
-        qd: &'a [T],
-        motor_torques: &'a [T],
-        tendon_tensions: &'a [T],
-    ) -> Result<[(&'static str, &'a [T]); 4]> {
-        if model.capstan_before_an_idler() {
-            return Err(Error::NotYet(
-                "the actuators' generalized forces alone where a turning idler follows a \
-                 guide with capstan friction (`mu > 0`) \
-                 towards the tendon's exit: the idler's inertia then reaches the joints \
-                 scaled by the guide's friction, so what the tendons deliver depends on q̈; \
-                 forward and inverse dynamics handle it"
-                    .into(),
-            ));
-        }
-        self.check_forward_states(model, q, qd, motor_torques, tendon_tensions)
-    }
-
     /// The input checks of forward dynamics: buffers that fit the model, the state, and as
     /// many finite motor torques and tendon tensions as the mechanism has motors and
     /// open-ended tendons; the inputs by name, for the errors of the results.
-    fn check_forward_states<'a>(
+    fn check_forward_inputs<'a>(
         &self,
         model: &Model<T>,
         q: &'a [T],
