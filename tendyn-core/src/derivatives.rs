@@ -55,6 +55,21 @@ impl<T: Copy> Derivatives<T> {
         ]
         .concat()
     }
+
+    /// The derivatives from [`jacobians`]' blocks over `q`, `q̇` and, where the function
+    /// takes them, `u`, in that order.
+    fn of_blocks(value: Vec<T>, blocks: Vec<Vec<T>>) -> Self {
+        let mut blocks = blocks.into_iter();
+        let mut next = || blocks.next().unwrap_or_default();
+        let (d_q, d_qd, d_u) = (next(), next(), next());
+        Derivatives {
+            value,
+            d_q,
+            d_qd,
+            d_qdd: Vec::new(),
+            d_u,
+        }
+    }
 }
 
 /// The Jacobians of `f` at `inputs`: `f` is evaluated once per coordinate of every input
@@ -112,21 +127,13 @@ pub fn generalized_forces_derivatives<T: Real>(
 ) -> Derivatives<T> {
     let n = dual.dof();
     let qdd: Vec<Dual<T>> = qdd.iter().map(|&a| Dual::constant(a)).collect();
-    let (value, mut blocks) = jacobians(&[q, qd], |x, out| {
+    let (value, blocks) = jacobians(&[q, qd], |x, out| {
         out.resize(n, Dual::constant(T::zero()));
         dynamics::generalized_forces(dual, &x[0], &x[1], &qdd, dual_ws, out);
         Ok::<(), ()>(())
     })
     .unwrap_or_default();
-    let d_qd = blocks.pop().unwrap_or_default();
-    let d_q = blocks.pop().unwrap_or_default();
-    Derivatives {
-        value,
-        d_q,
-        d_qd,
-        d_qdd: Vec::new(),
-        d_u: Vec::new(),
-    }
+    Derivatives::of_blocks(value, blocks)
 }
 
 /// `q̈` of forward dynamics with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` (`u`: motor torques, then
@@ -212,7 +219,7 @@ fn forward_dynamics_seeded<T: Real>(
         .chain(tendon_tensions)
         .copied()
         .collect();
-    let (value, mut blocks) = jacobians(&[q, qd, &u], |x, out| {
+    let (value, blocks) = jacobians(&[q, qd, &u], |x, out| {
         let (torques, tensions) = x[2].split_at(motors);
         *out = dynamics::forward_dynamics_rhs(dual, &x[0], &x[1], torques, tensions, dual_ws);
         let behind = dynamics::idlers_behind_capstan(dual, &x[0], &x[1], dual_ws);
@@ -222,14 +229,5 @@ fn forward_dynamics_seeded<T: Real>(
         Ok::<(), ()>(())
     })
     .unwrap_or_default();
-    let d_u = blocks.pop().unwrap_or_default();
-    let d_qd = blocks.pop().unwrap_or_default();
-    let d_q = blocks.pop().unwrap_or_default();
-    Derivatives {
-        value,
-        d_q,
-        d_qd,
-        d_qdd: Vec::new(),
-        d_u,
-    }
+    Derivatives::of_blocks(value, blocks)
 }
