@@ -439,9 +439,9 @@ impl Expander<'_, '_> {
                 let v = self.g.max(a, b);
                 self.variable(v, out);
             }
-            Node::SignOutside(a, b) => {
-                let (a, b) = (self.collected(a)?, self.collected(b)?);
-                let v = self.g.sign_outside(a, b);
+            Node::SignOutside(a, b, c) => {
+                let (a, b, c) = (self.collected(a)?, self.collected(b)?, self.collected(c)?);
+                let v = self.g.sign_outside(a, b, c);
                 self.variable(v, out);
             }
         }

@@ -157,7 +157,7 @@ mod ast {
     }
 
     /// `receiver.method(args)`
-    pub fn method(receiver: Expr, method: &str, args: Option<Expr>) -> Expr {
+    pub fn method(receiver: Expr, method: &str, args: impl IntoIterator<Item = Expr>) -> Expr {
         Expr::MethodCall(syn::ExprMethodCall {
             attrs: Vec::new(),
             receiver: Box::new(receiver),
@@ -383,10 +383,14 @@ impl<'g> Body<'g> {
             Node::Tanh(a) => (ast::method(operand(a, 4), "tanh", None), 4),
             Node::Exp(a) => (ast::method(operand(a, 4), "exp", None), 4),
             Node::Max(a, b) => (ast::method(operand(a, 4), "max", Some(self.expr(b))), 4),
-            Node::SignOutside(a, b) => (
+            Node::SignOutside(a, b, c) if self.g.constant_value(c) == Some(0.0) => (
                 ast::method(operand(a, 4), "sign_outside", Some(self.expr(b))),
                 4,
             ),
+            Node::SignOutside(a, b, c) => {
+                let args = [self.expr(b), self.expr(c)];
+                (ast::method(operand(a, 4), "sign_outside_or", args), 4)
+            }
         }
     }
 

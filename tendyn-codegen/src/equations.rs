@@ -131,10 +131,14 @@ fn show(g: &Graph, id: Id, names: &dyn Fn(Id) -> Option<String>) -> (String, u8)
             format!("max({}, {})", show(g, a, names).0, show(g, b, names).0),
             4,
         ),
-        Node::SignOutside(a, b) => (
-            format!("sgn({}; ±{})", show(g, a, names).0, show(g, b, names).0),
-            4,
-        ),
+        Node::SignOutside(a, b, c) => {
+            let within = match g.constant_value(c) {
+                Some(0.0) => String::new(),
+                _ => format!(", else {}", show(g, c, names).0),
+            };
+            let (a, b) = (show(g, a, names).0, show(g, b, names).0);
+            (format!("sgn({a}; ±{b}{within})"), 4)
+        }
     }
 }
 
@@ -1000,7 +1004,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
         }
         if let Some(inverse) = &t.inverse {
             // The exact E⁻¹ replaces the QR-computed one where it is a single term (rows of
-            // pretensions are not used: those enter exactly, `tension::minimal_norm`).
+            // pretensions are not used: those enter exactly, `tension::solution`).
             let radius = |b: usize| radius_of(model, b);
             for (u, row) in inverse.iter().enumerate() {
                 for (r, entry) in row.iter().enumerate() {

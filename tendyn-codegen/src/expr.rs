@@ -58,27 +58,28 @@ pub enum Node {
     /// The larger of `a` and `b` ([`Real::max`]; the tension distribution along one null
     /// direction).
     Max(Id, Id),
-    /// `a.sign_outside(band)`: ±1 beyond the band, 0 within it ([`Real::sign_outside`]).
-    SignOutside(Id, Id),
+    /// `a.sign_outside_or(band, otherwise)`: ±1 beyond the band, `otherwise` within it
+    /// ([`Real::sign_outside_or`]; `a.sign_outside(band)` where `otherwise` is 0).
+    SignOutside(Id, Id, Id),
 }
 
 impl Node {
     /// The operands of the node, without allocating.
     pub fn operands(self) -> impl Iterator<Item = Id> {
         let (ids, n) = match self {
-            Node::Const(_) | Node::Input(_) => ([Id(0); 2], 0),
+            Node::Const(_) | Node::Input(_) => ([Id(0); 3], 0),
             Node::Neg(a)
             | Node::Sin(a)
             | Node::Cos(a)
             | Node::Sqrt(a)
             | Node::Tanh(a)
-            | Node::Exp(a) => ([a, a], 1),
+            | Node::Exp(a) => ([a, a, a], 1),
             Node::Add(a, b)
             | Node::Sub(a, b)
             | Node::Mul(a, b)
             | Node::Div(a, b)
-            | Node::Max(a, b)
-            | Node::SignOutside(a, b) => ([a, b], 2),
+            | Node::Max(a, b) => ([a, b, b], 2),
+            Node::SignOutside(a, b, c) => ([a, b, c], 3),
         };
         ids.into_iter().take(n)
     }
@@ -378,12 +379,24 @@ impl Graph {
         self.intern(Node::Exp(a))
     }
 
-    /// `a.sign_outside(band)` ([`Real::sign_outside`]), folded when both are constants.
-    pub fn sign_outside(&mut self, a: Id, band: Id) -> Id {
+    /// `a.sign_outside_or(band, otherwise)` ([`Real::sign_outside_or`]), folded when `a`
+    /// and `band` are constants, and with a negation of `a` moved out: `sgn(−x) = −sgn(x)`,
+    /// within the band too once `otherwise` is negated, so that a friction direction of a
+    /// negated rate carries its sign to the products it enters (where it meets and cancels
+    /// the capstan law's own `−` in `e^{−σμβ}`).
+    pub fn sign_outside(&mut self, a: Id, band: Id, otherwise: Id) -> Id {
         if let (Some(x), Some(b)) = (self.constant_value(a), self.constant_value(band)) {
-            return self.constant(x.sign_outside(b));
+            return match x.sign_outside(b) {
+                0.0 => otherwise,
+                s => self.constant(s),
+            };
         }
-        self.intern(Node::SignOutside(a, band))
+        if let Node::Neg(x) = self.node(a) {
+            let flipped = self.neg(otherwise);
+            let s = self.sign_outside(x, band, flipped);
+            return self.neg(s);
+        }
+        self.intern(Node::SignOutside(a, band, otherwise))
     }
 
     /// Values of `roots` at the given inputs (by input index), in f64, node by node as the
@@ -407,7 +420,7 @@ impl Graph {
                 Node::Tanh(a) => v(a).tanh(),
                 Node::Exp(a) => v(a).exp(),
                 Node::Max(a, b) => v(a).max(v(b)),
-                Node::SignOutside(a, b) => v(a).sign_outside(v(b)),
+                Node::SignOutside(a, b, c) => v(a).sign_outside_or(v(b), v(c)),
             };
         }
         roots.iter().map(|r| value[r.0 as usize]).collect()
@@ -610,8 +623,8 @@ impl Real for Sym {
     fn exp(self) -> Self {
         Sym(with(|g| g.exp(self.0)))
     }
-    fn sign_outside(self, band: Self) -> Self {
-        Sym(with(|g| g.sign_outside(self.0, band.0)))
+    fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
+        Sym(with(|g| g.sign_outside(self.0, band.0, otherwise.0)))
     }
 }
 

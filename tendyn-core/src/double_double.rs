@@ -538,13 +538,13 @@ impl Real for DoubleDouble {
     fn exp(self) -> Self {
         Self(dd_exp(self.0))
     }
-    fn sign_outside(self, band: Self) -> Self {
+    fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
         if self > band {
             Self::ONE
         } else if self < -band {
             -Self::ONE
         } else {
-            Self::ZERO
+            otherwise
         }
     }
     /// The larger of the two; like `f64::max`, a NaN argument is ignored.

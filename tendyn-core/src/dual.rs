@@ -7,8 +7,9 @@
 //!
 //! The two value-dependent operations differentiate as the branch they take: `max(a, b)`
 //! as `a` where `a > b`, as `b` where `a < b`, and as the mean of both where they are equal
-//! (a subgradient: the derivative does not exist there); `sign_outside` is piecewise
-//! constant, with derivative zero (where it jumps, it has none). `sqrt` at exactly zero
+//! (a subgradient: the derivative does not exist there); `sign_outside_or` is the
+//! constant ±1 outside its band, with derivative zero, and its `otherwise` within it
+//! (where it jumps, it has no derivative). `sqrt` at exactly zero
 //! has no derivative: the tangent comes out infinite or NaN there, and the runtime's
 //! checked evaluators report it as a non-finite result rather than return it.
 
@@ -117,8 +118,13 @@ impl<T: Real> Real for Dual<T> {
         let difference = (self.tangent - other.tangent) * half;
         Dual::new(self.value.max(other.value), mean + s * difference)
     }
-    fn sign_outside(self, band: Self) -> Self {
-        Dual::constant(self.value.sign_outside(band.value))
+    fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
+        // ±1 outside the band (a constant), `otherwise` with its derivative within it.
+        let moving = self.value.sign_outside(band.value);
+        Dual::new(
+            self.value.sign_outside_or(band.value, otherwise.value),
+            (T::one() - moving * moving) * otherwise.tangent,
+        )
     }
     fn tanh(self) -> Self {
         let t = self.value.tanh();

@@ -16,9 +16,9 @@
 //!
 //! - exact law: `sign(ω_b)` beyond [`REST`] of rest; within it (the bearing sticks, or is
 //!   about to slip) the direction of impending motion, `sign(α_b)`, beyond [`REST`] too;
-//!   else 0 (friction taken as zero). Written without branches as
-//!   `s = s_ω + (1 − s_ω²) s_α` over [`Real::sign_outside`], so that generated code
-//!   computes it with two selects;
+//!   else 0 (friction taken as zero). Written as the hook
+//!   [`Real::sign_outside_or`]`(ω_b, REST, sign_outside(α_b, REST))`, so that generated
+//!   code computes it with two selects and no arithmetic;
 //! - smoothed (`friction_smoothing: v` in the file): `s = tanh(ω_b / v)` everywhere, for
 //!   optimisation and derivatives.
 //!
@@ -56,10 +56,9 @@ pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> 
         return (rate / T::from_f64(v)).tanh();
     }
     let band = T::from_f64(REST);
-    let moving = rate.sign_outside(band);
     match accel {
-        Some(a) => moving + (T::one() - moving * moving) * a.sign_outside(band),
-        None => moving,
+        Some(a) => rate.sign_outside_or(band, a.sign_outside(band)),
+        None => rate.sign_outside(band),
     }
 }
 

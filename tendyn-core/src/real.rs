@@ -2,7 +2,7 @@
 //!
 //! [`Real`] asks only for what a symbolic expression can honestly provide as well: field
 //! arithmetic, `sin`/`cos`, `sqrt`, `tanh`, `exp`, constants and two value-dependent hooks,
-//! [`Real::max`] (the tension floor of a redundant routing) and [`Real::sign_outside`]
+//! [`Real::max`] (the tension floor of a redundant routing) and [`Real::sign_outside_or`]
 //! (the direction friction opposes). The code generator runs the very same recursion on
 //! its expression type, so nothing here may compare or branch on values.
 //!
@@ -35,10 +35,15 @@ pub trait Real:
     /// The larger of the two. The only value-dependent operation the recursion uses;
     /// a symbolic scalar maps it to a select node.
     fn max(self, other: Self) -> Self;
-    /// `+1` where `self > band`, `−1` where `self < −band`, `0` in between (a rate within
-    /// `band` of rest): the direction of friction (`crate::friction`). A symbolic scalar
-    /// maps it to a select node.
-    fn sign_outside(self, band: Self) -> Self;
+    /// `+1` where `self > band`, `−1` where `self < −band`, `otherwise` in between (a rate
+    /// within `band` of rest): the direction of friction (`crate::friction`), whose
+    /// `otherwise` is the direction of impending motion. A symbolic scalar maps it to a
+    /// select node.
+    fn sign_outside_or(self, band: Self, otherwise: Self) -> Self;
+    /// [`Real::sign_outside_or`] with `0` in the band.
+    fn sign_outside(self, band: Self) -> Self {
+        self.sign_outside_or(band, Self::zero())
+    }
     /// The hyperbolic tangent: the smoothed friction law.
     fn tanh(self) -> Self;
     /// `e^self`: the capstan law of a guide, `T_high = T_low e^{μβ}`.
@@ -129,13 +134,13 @@ macro_rules! primitive_real {
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
             }
-            fn sign_outside(self, band: Self) -> Self {
+            fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
                 if self > band {
                     1.0
                 } else if self < -band {
                     -1.0
                 } else {
-                    0.0
+                    otherwise
                 }
             }
         }
