@@ -286,7 +286,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
-            lead: tension::lead_tendon(model),
+            elimination: tension::Elimination::of(model),
             ..Shared::default()
         };
         let results = outputs
@@ -402,9 +402,10 @@ fn distribution_constants(model: &Model<f64>) -> Distribution {
 /// forward dynamics). Hash-consing would merge the nodes anyway; this saves the tracing work.
 #[derive(Default)]
 struct Shared {
-    /// The unknown whose direction a state's null vector is projected from where guides
-    /// have friction (`tension::lead_tendon` of the numeric model).
-    lead: usize,
+    /// How a state's tension system is solved where guides have friction (chosen from
+    /// the numeric model; `None` for null spaces of two or more dimensions, which are
+    /// refused before tracing).
+    elimination: Option<tension::Elimination>,
     inverse: Option<dynamics::InverseDynamics<Sym>>,
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
@@ -427,14 +428,17 @@ impl Shared {
         ws: &mut Workspace<Sym>,
     ) -> &dynamics::InverseDynamics<Sym> {
         let excess = &mut self.line_excess;
-        let lead = self.lead;
+        let elimination = &self.elimination;
         self.inverse.get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`). With
             // guides with friction `E` depends on the state: its solution is traced too
             // (several null directions are refused before tracing).
             let at_state = |model: &Model<Sym>, matrix: Vec<Vec<Sym>>| {
-                Ok(tension::system_traced(model, matrix, lead))
+                let order = elimination
+                    .as_ref()
+                    .expect("several null directions are refused");
+                Ok(tension::system_traced(model, matrix, order))
             };
             let distribute = |model: &Model<Sym>, system: &TensionSystem<Sym>, x: &mut [Sym]| {
                 if system.null_space.len() == 1 && !model.tendons().is_empty() {

@@ -587,8 +587,9 @@ pub fn inverse_dynamics<T: Real>(
     };
     let x = &mut out.unknowns;
     refill(x, model.system.unknowns.iter().map(|_| T::zero()));
-    tension::minimal_norm(model, system, &ws.b, x);
+    tension::solution(model, system, &ws.b, x);
     refill(&mut ws.minimal, x.iter().copied());
+    tension::minimal_norm(system, &mut ws.minimal);
     distribute(model, system, x)?;
     let (x, x0) = (&out.unknowns, &ws.minimal);
 

@@ -225,15 +225,35 @@ pub fn cholesky_substitute<T: Real>(factor: &[T], x: &mut [T]) {
 /// with friction, [`crate::dynamics::accelerations`]). Straight-line, so the code generator
 /// can trace it. `m` must hold `n²` reals.
 pub fn gauss_solve<T: Real>(m: &mut [T], x: &mut [T]) {
-    let n = x.len();
+    lu_factor(m, x.len());
+    lu_substitute(m, x);
+}
+
+/// The `L U` factors of `m` (`n × n`, row-major) in place, by Gaussian elimination without
+/// pivoting or checks: `U` on and above the diagonal, the multipliers of the unit lower
+/// `L` below it. Factor once and [`lu_substitute`] for each right-hand side. Where the
+/// leading minors of `m` itself may vanish, order its rows first (as a pivoting
+/// elimination of a nearby matrix would: [`crate::tension::Elimination`]).
+pub fn lu_factor<T: Real>(m: &mut [T], n: usize) {
     let m = &mut m[..n * n];
     for j in 0..n {
         for i in j + 1..n {
             let f = m[i * n + j] / m[j * n + j];
+            m[i * n + j] = f;
             for k in j + 1..n {
                 m[i * n + k] = m[i * n + k] - f * m[j * n + k];
             }
-            x[i] = x[i] - f * x[j];
+        }
+    }
+}
+
+/// Solves `L U x = b` with the factors of [`lu_factor`]; `x` holds `b` on entry.
+pub fn lu_substitute<T: Real>(factors: &[T], x: &mut [T]) {
+    let n = x.len();
+    let m = &factors[..n * n];
+    for i in 0..n {
+        for k in 0..i {
+            x[i] = x[i] - m[i * n + k] * x[k];
         }
     }
     for i in (0..n).rev() {

@@ -344,8 +344,7 @@ pub struct TensionSystem<T> {
     /// `E`, row-major, `rows.len() × unknowns.len()`.
     pub matrix: Vec<Vec<T>>,
     /// `Eᵀ (E Eᵀ)⁻¹`: maps `b` to the minimal-norm solution. Empty in a state's system
-    /// traced for generated code (`tension::system_traced`), which applies it without
-    /// forming it.
+    /// traced for generated code, which solves by [`TensionSystem::eliminated`] instead.
     pub pseudo_inverse: Vec<Vec<T>>,
     /// Orthonormal basis of the null space of `E` (in a state's system traced for
     /// generated code, the one null direction as `tension::system_traced` scales it).
@@ -355,6 +354,19 @@ pub struct TensionSystem<T> {
     pub positive_null: Option<Vec<T>>,
     /// 2-norm condition number of `E` (largest over smallest singular value).
     pub condition: f64,
+    /// Only in a state's system traced for generated code (`tension::system_traced`):
+    /// the factors `tension::solution` solves with in place of `E⁺`.
+    pub eliminated: Option<Eliminated<T>>,
+}
+
+/// The `L U` factors of the square part of a state's `E` that an elimination order
+/// chooses (`tension::Elimination`, `linalg::lu_factor`), row-major in that order.
+#[derive(Clone, Debug)]
+pub struct Eliminated<T> {
+    /// Which rows and columns of `E`, in which order.
+    pub order: crate::tension::Elimination,
+    /// The factors.
+    pub factors: Vec<T>,
 }
 
 /// A constant wrench on one link by its environment (link frame; format.md §9).
@@ -735,6 +747,10 @@ impl<T: Real> Model<T> {
                     .as_ref()
                     .map(|p| p.iter().map(|&x| f(x)).collect()),
                 condition: self.system.condition,
+                eliminated: self.system.eliminated.as_ref().map(|e| Eliminated {
+                    order: e.order.clone(),
+                    factors: e.factors.iter().map(|&x| f(x)).collect(),
+                }),
             },
             objective: self.objective,
             friction_smoothing: self.friction_smoothing,

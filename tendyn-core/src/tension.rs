@@ -19,7 +19,9 @@
 use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::model::{BodyKind, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown};
+use crate::model::{
+    BodyKind, Eliminated, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown,
+};
 use crate::newton_euler::{Load, LoadScalar, Loads};
 use crate::real::{Numeric, Real};
 
@@ -214,6 +216,7 @@ fn solved<T>(
         null_space,
         positive_null,
         condition: f64::NAN,
+        eliminated: None,
     }
 }
 
@@ -260,34 +263,110 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
     matrix
 }
 
+/// How generated code solves a state's tension system where guides with friction make
+/// `E(σ, q)` depend on the state: by elimination on the columns of every unknown but the
+/// free one (the lead tendon, [`lead_tendon`]; none where `E` is square), its rows taken in
+/// the order a partially pivoting elimination of the model's `E` takes them. Chosen once,
+/// from the model, so the traced code does no pivoting: friction scales the columns of
+/// `E` by capstan factors `e^{±μβ}` and leaves its pattern of zeros, so the order that
+/// suits the model suits every state of a controllable routing.
+///
+/// The lead tendon has the largest component of the model's positive null vector `n`, and
+/// `n_k` is proportional to the determinant of `E` without column `k`: of all the square
+/// parts of `E`, the one eliminated here is the farthest from singular.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Elimination {
+    /// The eliminated unknowns, one per row of `E`, in pivot order.
+    pub columns: Vec<usize>,
+    /// The rows of `E` in pivot order.
+    pub rows: Vec<usize>,
+    /// The unknown the null direction is solved for (set to 1), if `E` has one.
+    pub free: Option<usize>,
+}
+
+impl Elimination {
+    /// The order for `model`'s system (the model's `E`, frictionless, at its nominal
+    /// parameters); `None` for a null space of two or more dimensions.
+    pub fn of<T: Numeric>(model: &Model<T>) -> Option<Elimination> {
+        let system = &model.system;
+        let free = match system.null_space.len() {
+            0 => None,
+            1 => Some(lead_tendon(model)),
+            _ => return None,
+        };
+        let columns: Vec<usize> = (0..system.unknowns.len())
+            .filter(|&u| Some(u) != free)
+            .collect();
+        let n = system.rows.len().min(columns.len());
+        let mut e: Vec<Vec<f64>> = system
+            .matrix
+            .iter()
+            .map(|row| columns.iter().map(|&c| row[c].to_f64()).collect())
+            .collect();
+        let mut rows: Vec<usize> = (0..system.rows.len()).collect();
+        for j in 0..n {
+            let pivot = (j..rows.len())
+                .reduce(|a, b| if e[b][j].abs() > e[a][j].abs() { b } else { a })
+                .unwrap_or(j);
+            e.swap(j, pivot);
+            rows.swap(j, pivot);
+            let (above, below) = e.split_at_mut(j + 1);
+            let pivot_row = &above[j];
+            for row in below {
+                let f = row[j] / pivot_row[j];
+                if f.is_finite() {
+                    for (x, p) in row[j..n].iter_mut().zip(&pivot_row[j..n]) {
+                        *x -= f * p;
+                    }
+                }
+            }
+        }
+        Some(Elimination {
+            columns,
+            rows,
+            free,
+        })
+    }
+}
+
 /// [`system_at`] in straight-line arithmetic, for the code generator to trace (`Real`
 /// only: no pivoting, no comparison), for null spaces of at most one dimension. `E⁺` is
-/// not formed: [`minimal_norm`] applies it as `Eᵀ (E Eᵀ)⁻¹ b` ([`through_gram`]), which
-/// costs fewer operations than forming it and then multiplying.
-/// - One null direction: `p = (I − E⁺E) e_k`, the projection of the unit vector of the
-///   unknown `k = lead` ([`lead_tendon`]: the tendon with the largest component in the
-///   model's positive null vector, so `p_k = n_k² / |n|²` is far from cancelling and
-///   positive, and `p` points the way that raises every tendon wherever the routing stays
-///   controllable), scaled to a smallest tendon component of 1 as the distribution's
-///   tolerance for maxima expects (where no tendon has a maximum, left as it is: the
-///   distribution along `p` does not depend on its length). `null_space` holds `p` itself
-///   (not normalised).
+/// not formed: the `L U` factors of the square part of `E` that `order` eliminates are
+/// kept ([`Eliminated`]), and [`solution`] solves with them.
+/// - One null direction: `p` has `p_f = 1` at the free unknown `f` and solves
+///   `E p = 0` for the others (`E_B p_B = −E_f`); where the routing stays controllable
+///   every tendon component is positive. It is scaled to a smallest tendon component of 1,
+///   as the distribution's tolerance for maxima expects (where no tendon has a maximum,
+///   left as it is: the distribution along `p` does not depend on its length).
+///   `null_space` holds `p` itself (not normalised).
 ///
 /// Checks nothing: generated code does not report a state where friction leaves the
 /// routing uncontrollable (the runtime solver does).
 pub fn system_traced<T: Real>(
     model: &Model<T>,
     matrix: Vec<Vec<T>>,
-    lead: usize,
+    order: &Elimination,
 ) -> TensionSystem<T> {
     let constant = &model.system;
-    let (null_space, positive_null) = match &constant.positive_null {
-        Some(_) if constant.null_space.len() == 1 => {
-            let k = lead;
-            let column: Vec<T> = matrix.iter().map(|row| row[k]).collect();
-            let mut p = through_gram(&matrix, &column);
-            for (u, x) in p.iter_mut().enumerate() {
-                *x = if u == k { T::one() - *x } else { -*x };
+    let n = order.rows.len();
+    let mut factors: Vec<T> = (order.rows.iter())
+        .flat_map(|&r| {
+            order
+                .columns
+                .iter()
+                .map(|&c| matrix[r][c])
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    crate::linalg::lu_factor(&mut factors, n);
+    let (null_space, positive_null) = match order.free {
+        Some(f) => {
+            let mut y: Vec<T> = order.rows.iter().map(|&r| -matrix[r][f]).collect();
+            crate::linalg::lu_substitute(&factors, &mut y);
+            let mut p = vec![T::zero(); constant.unknowns.len()];
+            p[f] = T::one();
+            for (&c, y) in order.columns.iter().zip(y) {
+                p[c] = y;
             }
             // The smallest tendon component, as `−max(−p)`: only the maxima's status
             // needs it (the tensions along `p` do not depend on its length).
@@ -305,36 +384,19 @@ pub fn system_traced<T: Real>(
             }
             (vec![p.clone()], Some(p))
         }
-        _ => (Vec::new(), None),
+        None => (Vec::new(), None),
     };
-    solved(constant, matrix, Vec::new(), null_space, positive_null)
-}
-
-/// `E⁺ v = Eᵀ (E Eᵀ)⁻¹ v` for `E` of full row rank, by `L D Lᵀ` of the Gram matrix `E Eᵀ`
-/// ([`crate::linalg::ldlt_solve`]; this squares the condition number of `E`, which is that
-/// of the transmission and small where the routing is sound: `tendyn check` prints it).
-/// Straight-line arithmetic: traced, the Gram matrix and its factors are built once however
-/// many vectors go through them (hash-consing merges the repeats).
-fn through_gram<T: Real>(matrix: &[Vec<T>], v: &[T]) -> Vec<T> {
-    let r = matrix.len();
-    // Only the lower triangle is read by the factorisation.
-    let mut gram = vec![T::zero(); r * r];
-    for i in 0..r {
-        for j in 0..=i {
-            gram[i * r + j] = crate::linalg::dot(&matrix[i], &matrix[j]);
-        }
-    }
-    let mut y = v.to_vec();
-    crate::linalg::ldlt_solve(&mut gram, &mut y);
-    let m = matrix.first().map_or(0, Vec::len);
-    (0..m)
-        .map(|u| (0..r).fold(T::zero(), |s, i| s + matrix[i][u] * y[i]))
-        .collect()
+    let mut system = solved(constant, matrix, Vec::new(), null_space, positive_null);
+    system.eliminated = Some(Eliminated {
+        order: order.clone(),
+        factors,
+    });
+    system
 }
 
 /// The unknown of the tendon with the largest component of the positive null vector (the
-/// first tendon's without one): the direction [`system_traced`] projects.
-pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
+/// first tendon's without one): the free unknown of [`Elimination`].
+fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
     let Some(n) = &model.system.positive_null else {
         return model.tendons.first().map_or(0, |t| t.unknown);
     };
@@ -346,7 +408,11 @@ pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
         .unwrap_or(0)
 }
 
-/// Minimal-norm solution `x₀ = E⁺ b` of `system` (the model's, or a state's).
+/// A solution of `system` (the model's, or a state's): the minimal-norm one `x₀ = E⁺ b`,
+/// but in a state's system traced for generated code ([`system_traced`]), which holds no
+/// `E⁺`: there the one whose free unknown is zero (its part along the null direction is
+/// [`minimal_norm`]'s to remove and [`along_line`]'s to account for: the distribution along
+/// the null direction starts from any solution, and the least-norm one costs more).
 ///
 /// A loop's pretension is added exactly rather than through `E⁺`: the two strand columns
 /// of a loop are negatives of each other in every row but its pretension row (every term
@@ -354,17 +420,18 @@ pub fn lead_tendon<T: Numeric>(model: &Model<T>) -> usize {
 /// so both sides at the pretension solve that part of `b` exactly, and that solution is
 /// orthogonal to the null space. Passing the pretension through the rounded `E⁺` instead
 /// leaves an error of about `u · pretension` in every motor torque.
-///
-/// A state's system that holds no `E⁺` ([`system_traced`]) is solved as `Eᵀ (E Eᵀ)⁻¹ b`
-/// (the model's system has one wherever it has unknowns).
-pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], out: &mut [T]) {
+pub fn solution<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], out: &mut [T]) {
     let dynamic = |r: usize| !matches!(system.rows[r], Row::Pretension(_));
-    if system.pseudo_inverse.is_empty() {
-        let b: Vec<T> = (b.iter().enumerate())
-            .map(|(r, v)| if dynamic(r) { *v } else { T::zero() })
+    if let Some(Eliminated { order, factors }) = &system.eliminated {
+        let mut y: Vec<T> = (order.rows.iter())
+            .map(|&r| if dynamic(r) { b[r] } else { T::zero() })
             .collect();
-        for (o, x) in out.iter_mut().zip(through_gram(&system.matrix, &b)) {
-            *o = x;
+        crate::linalg::lu_substitute(factors, &mut y);
+        for o in out.iter_mut() {
+            *o = T::zero();
+        }
+        for (&c, y) in order.columns.iter().zip(y) {
+            out[c] = y;
         }
     }
     for (o, row) in out.iter_mut().zip(&system.pseudo_inverse) {
@@ -380,6 +447,18 @@ pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T
         for strand in l.strands {
             let k = model.strands[strand].unknown;
             out[k] = out[k] + T::from_f64(l.pretension);
+        }
+    }
+}
+
+/// The minimal-norm solution from a [`solution`] `x` of `system`, in place: `x` itself
+/// where the system holds `E⁺`; in a traced state's system, `x` less its part along the
+/// null direction `p`, `x − (pᵀx / pᵀp) p`.
+pub fn minimal_norm<T: Real>(system: &TensionSystem<T>, x: &mut [T]) {
+    if let (Some(_), Some(p)) = (&system.eliminated, &system.positive_null) {
+        let along = crate::linalg::dot(p, x) / crate::linalg::dot(p, p);
+        for (o, p) in x.iter_mut().zip(p) {
+            *o = *o - along * *p;
         }
     }
 }
@@ -400,8 +479,7 @@ fn max_of(t: &Tendon) -> f64 {
 
 /// The distribution of a one-dimensional null space in closed form
 /// ([`distribution::along_line`] along the positive null vector), applied to the unknowns
-/// `x` (the minimal-norm solution on entry). Generic over [`Real`]: the code generator
-/// traces it.
+/// `x` (a [`solution`] on entry). Generic over [`Real`]: the code generator traces it.
 pub fn along_line<T: Real>(
     model: &Model<T>,
     system: &TensionSystem<T>,
@@ -414,20 +492,25 @@ pub fn along_line<T: Real>(
     let direction: Vec<T> = model.tendons.iter().map(|t| p[t.unknown]).collect();
     let floor: Vec<f64> = model.tendons.iter().map(|t| t.floor).collect();
     let max: Vec<f64> = model.tendons.iter().map(max_of).collect();
-    // μ* = pᵀc / pᵀp (pᵀT₀ = 0): zero, exactly, for the least-norm objective.
-    let target = if model.objective == Objective::LeastNorm {
+    let mut tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
+    // μ* = pᵀ(c − T₀) / pᵀp, where `pᵀT₀ = 0` for the minimal-norm `T₀`: zero, exactly,
+    // for the least-norm objective. A traced state's solution is not the minimal-norm one.
+    let particular = system.eliminated.is_some();
+    let target = if model.objective == Objective::LeastNorm && !particular {
         T::zero()
     } else {
-        let (pc, pp) = model
-            .tendons
-            .iter()
-            .zip(&direction)
-            .fold((T::zero(), T::zero()), |(pc, pp), (t, &pk)| {
-                (pc + pk * T::from_f64(aim(model.objective, t)), pp + pk * pk)
-            });
+        let (pc, pp) = (model.tendons.iter().zip(&direction).zip(&tensions)).fold(
+            (T::zero(), T::zero()),
+            |(pc, pp), ((t, &pk), &tk)| {
+                let mut c = T::from_f64(aim(model.objective, t));
+                if particular {
+                    c = c - tk;
+                }
+                (pc + pk * c, pp + pk * pk)
+            },
+        );
         pc / pp
     };
-    let mut tensions: Vec<T> = model.tendons.iter().map(|t| x[t.unknown]).collect();
     let line = Line {
         direction: &direction,
         floor: &floor,

@@ -95,6 +95,7 @@ impl Model<f64> {
                 null_space: Vec::new(),
                 positive_null: None,
                 condition: 1.0,
+                eliminated: None,
             },
             objective: Default::default(),
             friction_smoothing: None,

@@ -406,6 +406,7 @@ impl Validator<'_> {
                 null_space,
                 positive_null,
                 condition: smax / smin,
+                eliminated: None,
             })
         };
         checked().map_err(|err| match err {
