@@ -169,13 +169,13 @@ fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_wh
     }
 }
 
-/// Generated code traces the state's system for one null direction (the pin: every
-/// output is available; `tests/generated` checks Example 2 with capstan friction against
-/// the runtime solver) but not for several: with a second direct tendon (`d = 2`)
-/// `generate` names the limitation for every output that needs the tensions, and
-/// generates the others as for any mechanism.
+/// Generated code traces the state's system for any null space (the pin, `d = 1`: every
+/// output is available; with a second direct tendon, `d = 2`: `actuation`, `base_reaction`
+/// and forward dynamics, the segments and bearings refused as for any `d ≥ 2`, friction or
+/// none; `tests/generated` checks Example 2 with capstan friction, with and without an
+/// antagonist on drum 1, against the runtime solver).
 #[test]
-fn generated_capstan_friction_is_traced_for_one_null_direction_and_refused_for_more() {
+fn generated_capstan_friction_is_traced_for_any_null_space_and_segments_refused_for_two() {
     use tendyn_codegen::outputs::{check, Output};
     let all = [
         Output::Actuation,
@@ -194,10 +194,15 @@ fn generated_capstan_friction_is_traced_for_one_null_direction_and_refused_for_m
     );
     let model = parse(&two).unwrap();
     assert_eq!(model.system().null_space.len(), 2);
-    for output in &all[..4] {
-        let refused = check(&model, &[*output]).unwrap_err();
-        assert!(refused.reason.contains("capstan friction"), "{refused:?}");
+    for output in [Output::SegmentTensions, Output::Bearings] {
+        let refused = check(&model, &[output]).unwrap_err();
+        assert!(
+            refused.reason.contains("2-dimensional null space"),
+            "{refused:?}"
+        );
     }
+    let available = [Output::Actuation, Output::BaseReaction];
+    check(&model, &available).unwrap();
     check(&model, &all[4..]).unwrap();
 }
 

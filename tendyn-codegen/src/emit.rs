@@ -75,7 +75,7 @@ fn compares(f: &Function) -> bool {
     matches!(
         f.shape,
         Shape::Actuation {
-            status: StatusFrom::Line | StatusFrom::Solve,
+            status: StatusFrom::Line | StatusFrom::Solve | StatusFrom::SolveAtState { .. },
             ..
         }
     )
@@ -495,6 +495,22 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
                     );
                     parse_quote!(#actuation::bounded(#m, #t_, &#core::distribution::Fixed {
                         null: [#(#rows),*],
+                        floor: #floor,
+                        max: #max,
+                        target: #target,
+                        inverse_length: #inverse_length,
+                    }))
+                }
+                // The same over the state's null space (guides with capstan friction): the
+                // basis, target and normals' lengths are traced values.
+                (StatusFrom::SolveAtState { directions }, Some(dist)) => {
+                    let k = *tendons;
+                    let null = ast::array((0..*directions).map(|_| take(k)));
+                    let target = take(*directions);
+                    let inverse_length = take(k);
+                    let (floor, max) = (f64_array(&dist.floor), f64_array(&dist.max));
+                    parse_quote!(#actuation::bounded_at_state(#m, #t_, &#core::distribution::AtState {
+                        null: #null,
                         floor: #floor,
                         max: #max,
                         target: #target,

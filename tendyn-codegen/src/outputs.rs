@@ -90,6 +90,17 @@ pub enum StatusFrom {
     /// the emitted code distributes by `tendyn_core::distribution::solve` with the
     /// constants of [`Function::distribution`].
     Solve,
+    /// Several null directions that depend on the state (guides with capstan friction):
+    /// the tendon results are the minimal-norm tensions, followed by the state's
+    /// orthonormal null basis over the tendons (`directions` rows of one entry per
+    /// tendon), the objective's optimum in its coordinates (`directions`) and each
+    /// tendon's `1 / |n_k|` (one per tendon); the emitted code distributes by
+    /// `tendyn_core::distribution::AtState` with the floors and maxima of
+    /// [`Function::distribution`].
+    SolveAtState {
+        /// Null directions `d`.
+        directions: usize,
+    },
 }
 
 /// A traced function.
@@ -109,9 +120,9 @@ pub struct Function {
     pub form: Form,
     /// Operations of `results`.
     pub ops: OpCount,
-    /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`]):
-    /// the constants of `tendyn_core::distribution::Fixed` the emitted code distributes
-    /// the minimal-norm tensions with.
+    /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`],
+    /// [`StatusFrom::SolveAtState`]): the constants the emitted code distributes the
+    /// minimal-norm tensions with.
     pub distribution: Option<Distribution>,
 }
 
@@ -138,6 +149,8 @@ impl Form {
 }
 
 /// The constants of the fixed-size tension distribution (see [`Function::distribution`]).
+/// Where the null space depends on the state ([`StatusFrom::SolveAtState`]) only the floors
+/// and maxima are constants, and `null`, `target` and `inverse_length` are empty.
 #[derive(Clone, Debug)]
 pub struct Distribution {
     /// Null-space basis restricted to the tendons: `null[d][k]`.
@@ -203,13 +216,6 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
     (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
 }
 
-/// Why a mechanism with capstan friction on guides and a null space of several dimensions
-/// cannot have its tension outputs generated yet.
-const CAPSTAN_NOT_GENERATED: &str = "a guide has capstan friction (`mu > 0`), which makes the \
-     tension system depend on the state, and its null space has several dimensions: generated \
-     code solves the state's system for at most one null direction so far — use the runtime \
-     solver (`tendyn eval`)";
-
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
@@ -218,9 +224,15 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
-                if model.has_capstan() && model.system().null_space.len() > 1 =>
+                if model.has_capstan() && tension::Elimination::of(model).is_none() =>
             {
-                Some(CAPSTAN_NOT_GENERATED.to_string())
+                Some(
+                    "a guide has capstan friction (`mu > 0`), which makes the tension system \
+                     depend on the state, and no order of elimination of its `E` leaves only \
+                     tendons free (the routing is close to uncontrollable) — use the runtime \
+                     solver (`tendyn eval`)"
+                        .to_string(),
+                )
             }
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
@@ -331,7 +343,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             form,
             ops,
             distribution: (output == Output::Actuation && model.system().null_space.len() > 1)
-                .then(|| distribution_constants(model)),
+                .then(|| distribution_constants(model, !model.has_capstan())),
         });
     }
     // Forward dynamics is `L D Lᵀ` over `M` and the right-hand side: solved over each
@@ -382,10 +394,12 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     })
 }
 
-/// The constants of a many-dimensional distribution, from the model's bounds.
-fn distribution_constants(model: &Model<f64>) -> Distribution {
+/// The constants of a many-dimensional distribution, from the model's bounds: with its
+/// null space where that is `constant`, the floors and maxima alone where it is not.
+fn distribution_constants(model: &Model<f64>, constant: bool) -> Distribution {
     let problem = tension::bounds(model, model.system());
     let (k, d) = (problem.tendons(), problem.directions());
+    let d = if constant { d } else { 0 };
     Distribution {
         null: (0..d)
             .map(|i| (0..k).map(|j| problem.null(i, j)).collect())
@@ -393,7 +407,11 @@ fn distribution_constants(model: &Model<f64>) -> Distribution {
         floor: (0..k).map(|j| problem.floor(j)).collect(),
         max: (0..k).map(|j| problem.max(j)).collect(),
         target: (0..d).map(|i| problem.target(i)).collect(),
-        inverse_length: (0..k).map(|j| problem.inverse_length(j)).collect(),
+        inverse_length: if constant {
+            (0..k).map(|j| problem.inverse_length(j)).collect()
+        } else {
+            Vec::new()
+        },
     }
 }
 
@@ -403,12 +421,14 @@ fn distribution_constants(model: &Model<f64>) -> Distribution {
 #[derive(Default)]
 struct Shared {
     /// How a state's tension system is solved where guides have friction (chosen from
-    /// the numeric model; `None` for null spaces of two or more dimensions, which are
-    /// refused before tracing).
+    /// the numeric model; `None` only where `check` refuses capstan friction).
     elimination: Option<tension::Elimination>,
     inverse: Option<dynamics::InverseDynamics<Sym>>,
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
+    /// A state's many-dimensional distribution problem (guides with capstan friction):
+    /// its null basis row by row, target and inverse lengths ([`StatusFrom::SolveAtState`]).
+    state_problem: Option<(usize, Vec<Sym>)>,
     mass: Option<Vec<Vec<Sym>>>,
     /// Forward dynamics' mass matrix (flat) and right-hand side, to solve again over each
     /// one's best form.
@@ -428,21 +448,32 @@ impl Shared {
         ws: &mut Workspace<Sym>,
     ) -> &dynamics::InverseDynamics<Sym> {
         let excess = &mut self.line_excess;
+        let state_problem = &mut self.state_problem;
         let elimination = &self.elimination;
         self.inverse.get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`). With
-            // guides with friction `E` depends on the state: its solution is traced too
-            // (several null directions are refused before tracing).
+            // guides with friction `E` depends on the state: its solution is traced too,
+            // and for several null directions the state's basis is handed to the call.
             let at_state = |model: &Model<Sym>, matrix: Vec<Vec<Sym>>| {
-                let order = elimination
-                    .as_ref()
-                    .expect("several null directions are refused");
+                let order = (elimination.as_ref())
+                    .expect("`check` refuses capstan friction without an elimination order");
                 Ok(tension::system_traced(model, matrix, order))
             };
             let distribute = |model: &Model<Sym>, system: &TensionSystem<Sym>, x: &mut [Sym]| {
-                if system.null_space.len() == 1 && !model.tendons().is_empty() {
+                let (k, d) = (model.tendons().len(), system.null_space.len());
+                if d == 1 && k > 0 {
                     *excess = tension::along_line(model, system, x).excess;
+                } else if d > 1 && k > 0 && system.eliminated.is_some() {
+                    tension::minimal_norm(system, x);
+                    let p = tension::bounds(model, system);
+                    let values = (0..d)
+                        .flat_map(|i| (0..k).map(move |j| (i, j)))
+                        .map(|(i, j)| p.null(i, j))
+                        .chain((0..d).map(|i| p.target(i)))
+                        .chain((0..k).map(|j| p.inverse_length(j)))
+                        .collect();
+                    *state_problem = Some((d, values));
                 }
                 Ok(())
             };
@@ -551,8 +582,13 @@ fn trace_one(
             let flat = r.flattened(o).expect("an output inverse dynamics gives");
             let shape = match o {
                 Output::Actuation => {
-                    let status = match (m.system().null_space.len(), shared.line_excess) {
-                        (d, _) if d > 1 && !m.tendons().is_empty() => StatusFrom::Solve,
+                    let status = match (&shared.state_problem, shared.line_excess) {
+                        (Some((directions, _)), _) => StatusFrom::SolveAtState {
+                            directions: *directions,
+                        },
+                        _ if m.system().null_space.len() > 1 && !m.tendons().is_empty() => {
+                            StatusFrom::Solve
+                        }
                         (_, Some(_)) => StatusFrom::Line,
                         _ => StatusFrom::Exact,
                     };
@@ -566,11 +602,15 @@ fn trace_one(
                 Output::Bearings => Shape::Wrenches(flat.len() / 6),
                 _ => Shape::Wrenches(1),
             };
-            // After the torques and tensions, what a one-dimensional `status` needs.
-            let excess = shared.line_excess.filter(|_| o == Output::Actuation);
+            // After the torques and tensions, what `status` needs: a one-dimensional
+            // distribution's excess and scale, or the state's problem of several directions.
+            let actuation = o == Output::Actuation;
+            let excess = shared.line_excess.filter(|_| actuation);
+            let problem = (shared.state_problem.as_ref()).filter(|_| actuation);
             let results = flat
                 .into_iter()
                 .chain(excess.into_iter().flat_map(|(e, s)| [e, s]))
+                .chain(problem.into_iter().flat_map(|(_, v)| v.iter().copied()))
                 .collect();
             (shape, results)
         }

@@ -148,6 +148,27 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         t0: [T; K],
         problem: &Fixed<K, D>,
     ) -> Self {
+        Self::distributed::<D, _>(motor_torques, t0, problem)
+    }
+
+    /// [`Actuation::bounded`] over a null space computed at the state ([`AtState`]: guides
+    /// with capstan friction).
+    #[inline(always)]
+    pub fn bounded_at_state<const D: usize>(
+        motor_torques: [T; M],
+        t0: [T; K],
+        problem: &AtState<T, K, D>,
+    ) -> Self {
+        Self::distributed::<D, _>(motor_torques, t0, problem)
+    }
+
+    /// `t0` distributed by [`solve`] over `D` directions, with work buffers on the stack.
+    #[inline(always)]
+    fn distributed<const D: usize, P: Problem<T>>(
+        motor_torques: [T; M],
+        t0: [T; K],
+        problem: &P,
+    ) -> Self {
         let mut lambda = [T::zero(); D];
         let mut basis = [[T::zero(); D]; D];
         let mut triangle = [[T::zero(); D]; D];
@@ -317,6 +338,47 @@ impl<T: Real, const K: usize, const D: usize> Problem<T> for Fixed<K, D> {
     }
     fn inverse_length(&self, k: usize) -> T {
         T::from_f64(self.inverse_length[k])
+    }
+}
+
+/// A [`Problem`] whose null space was computed at the state, as generated code holds it
+/// where guides with capstan friction make `E` depend on the state: the bounds are
+/// constants, the basis, the target and the normals' lengths are values of the state.
+#[derive(Clone, Copy, Debug)]
+pub struct AtState<T, const K: usize, const D: usize> {
+    /// `null[d][k]`, orthonormal over the tendons.
+    pub null: [[T; K]; D],
+    /// `floor[k]`, each tendon's floor (N).
+    pub floor: [f64; K],
+    /// Each tendon's maximum (N); `f64::INFINITY` where it has none.
+    pub max: [f64; K],
+    /// `λ*_d = Σₖ null[d][k] c_k`: the objective's optimum in null-space coordinates.
+    pub target: [T; D],
+    /// `1 / |n_k|` of each tendon's normal ([`inverse_length`] of `null[·][k]`).
+    pub inverse_length: [T; K],
+}
+
+impl<T: Real, const K: usize, const D: usize> Problem<T> for AtState<T, K, D> {
+    fn tendons(&self) -> usize {
+        K
+    }
+    fn directions(&self) -> usize {
+        D
+    }
+    fn null(&self, d: usize, k: usize) -> T {
+        self.null[d][k]
+    }
+    fn floor(&self, k: usize) -> f64 {
+        self.floor[k]
+    }
+    fn max(&self, k: usize) -> f64 {
+        self.max[k]
+    }
+    fn target(&self, d: usize) -> T {
+        self.target[d]
+    }
+    fn inverse_length(&self, k: usize) -> T {
+        self.inverse_length[k]
     }
 }
 

@@ -347,7 +347,8 @@ pub struct TensionSystem<T> {
     /// traced for generated code, which solves by [`TensionSystem::eliminated`] instead.
     pub pseudo_inverse: Vec<Vec<T>>,
     /// Orthonormal basis of the null space of `E` (in a state's system traced for
-    /// generated code, the one null direction as `tension::system_traced` scales it).
+    /// generated code, as `tension::system_traced` builds it: one direction scaled to its
+    /// smallest tendon component, several orthonormal over the tendons' components).
     pub null_space: Vec<Vec<T>>,
     /// A null vector whose open-ended-tendon components are all strictly positive, when
     /// the null space is one-dimensional it spans it.

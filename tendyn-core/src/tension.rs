@@ -265,43 +265,52 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
 
 /// How generated code solves a state's tension system where guides with friction make
 /// `E(σ, q)` depend on the state: by elimination on the columns of every unknown but the
-/// free one (the lead tendon, [`lead_tendon`]; none where `E` is square), its rows taken in
-/// the order a partially pivoting elimination of the model's `E` takes them. Chosen once,
+/// free ones (one per null direction, always tendons: motor and loop columns are
+/// independent of all others, or the null space would reach them), its rows taken in the
+/// order a partially pivoting elimination of the model's `E` takes them. Chosen once,
 /// from the model, so the traced code does no pivoting: friction scales the columns of
 /// `E` by capstan factors `e^{±μβ}` and leaves its pattern of zeros, so the order that
 /// suits the model suits every state of a controllable routing.
 ///
-/// The lead tendon has the largest component of the model's positive null vector `n`, and
-/// `n_k` is proportional to the determinant of `E` without column `k`: of all the square
-/// parts of `E`, the one eliminated here is the farthest from singular.
+/// One null direction: the free unknown is the lead tendon, with the largest component of
+/// the model's positive null vector `n`; `n_k` is proportional to the determinant of `E`
+/// without column `k`, so of all the square parts of `E` the one eliminated is the
+/// farthest from singular. Several: the columns a completely pivoting elimination of the
+/// model's `E` leaves without a pivot (the usual rank-revealing choice).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Elimination {
-    /// The eliminated unknowns, one per row of `E`, in pivot order.
+    /// The eliminated unknowns, one per row of `E`.
     pub columns: Vec<usize>,
     /// The rows of `E` in pivot order.
     pub rows: Vec<usize>,
-    /// The unknown the null direction is solved for (set to 1), if `E` has one.
-    pub free: Option<usize>,
+    /// The free unknowns, one per null direction, each giving one null vector with a 1 in
+    /// its place and 0 at the others.
+    pub free: Vec<usize>,
 }
 
 impl Elimination {
     /// The order for `model`'s system (the model's `E`, frictionless, at its nominal
-    /// parameters); `None` for a null space of two or more dimensions.
+    /// parameters); `None` if a free unknown would not be a tendon (which a validated
+    /// model's rank rules out, up to round-off).
     pub fn of<T: Numeric>(model: &Model<T>) -> Option<Elimination> {
         let system = &model.system;
+        let matrix: Vec<Vec<f64>> = (system.matrix.iter())
+            .map(|row| row.iter().map(|x| x.to_f64()).collect())
+            .collect();
         let free = match system.null_space.len() {
-            0 => None,
-            1 => Some(lead_tendon(model)),
-            _ => return None,
+            0 => Vec::new(),
+            1 => vec![lead_tendon(model)],
+            _ => unpivoted_columns(matrix.clone()),
         };
+        if free.iter().any(|&u| !is_tendon_unknown(model, u)) {
+            return None;
+        }
         let columns: Vec<usize> = (0..system.unknowns.len())
-            .filter(|&u| Some(u) != free)
+            .filter(|u| !free.contains(u))
             .collect();
         let n = system.rows.len().min(columns.len());
-        let mut e: Vec<Vec<f64>> = system
-            .matrix
-            .iter()
-            .map(|row| columns.iter().map(|&c| row[c].to_f64()).collect())
+        let mut e: Vec<Vec<f64>> = (matrix.iter())
+            .map(|row| columns.iter().map(|&c| row[c]).collect())
             .collect();
         let mut rows: Vec<usize> = (0..system.rows.len()).collect();
         for j in 0..n {
@@ -310,16 +319,7 @@ impl Elimination {
                 .unwrap_or(j);
             e.swap(j, pivot);
             rows.swap(j, pivot);
-            let (above, below) = e.split_at_mut(j + 1);
-            let pivot_row = &above[j];
-            for row in below {
-                let f = row[j] / pivot_row[j];
-                if f.is_finite() {
-                    for (x, p) in row[j..n].iter_mut().zip(&pivot_row[j..n]) {
-                        *x -= f * p;
-                    }
-                }
-            }
+            eliminate_below(&mut e, j, j..n);
         }
         Some(Elimination {
             columns,
@@ -329,16 +329,64 @@ impl Elimination {
     }
 }
 
+/// The columns of `e` (full row rank) that Gaussian elimination with complete pivoting
+/// leaves without a pivot, in increasing order.
+fn unpivoted_columns(mut e: Vec<Vec<f64>>) -> Vec<usize> {
+    let width = e.first().map_or(0, Vec::len);
+    let mut pivoted = vec![false; width];
+    for j in 0..e.len() {
+        let best = (j..e.len())
+            .flat_map(|i| (0..width).filter(|&c| !pivoted[c]).map(move |c| (i, c)))
+            .reduce(|a, b| {
+                if e[b.0][b.1].abs() > e[a.0][a.1].abs() {
+                    b
+                } else {
+                    a
+                }
+            });
+        let Some((i, c)) = best else { break };
+        e.swap(j, i);
+        pivoted[c] = true;
+        let (above, below) = e.split_at_mut(j + 1);
+        for row in below {
+            let f = row[c] / above[j][c];
+            if f.is_finite() {
+                for (x, p) in row.iter_mut().zip(&above[j]) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    (0..width).filter(|&c| !pivoted[c]).collect()
+}
+
+/// One step of Gaussian elimination: row `j` of `e` (the pivot row) subtracted from every
+/// row below it so that column `j` vanishes there, over the columns `span`.
+fn eliminate_below(e: &mut [Vec<f64>], j: usize, span: core::ops::Range<usize>) {
+    let (above, below) = e.split_at_mut(j + 1);
+    let pivot_row = &above[j];
+    for row in below {
+        let f = row[j] / pivot_row[j];
+        if f.is_finite() {
+            for (x, p) in row[span.clone()].iter_mut().zip(&pivot_row[span.clone()]) {
+                *x -= f * p;
+            }
+        }
+    }
+}
+
 /// [`system_at`] in straight-line arithmetic, for the code generator to trace (`Real`
-/// only: no pivoting, no comparison), for null spaces of at most one dimension. `E⁺` is
-/// not formed: the `L U` factors of the square part of `E` that `order` eliminates are
-/// kept ([`Eliminated`]), and [`solution`] solves with them.
-/// - One null direction: `p` has `p_f = 1` at the free unknown `f` and solves
-///   `E p = 0` for the others (`E_B p_B = −E_f`); where the routing stays controllable
-///   every tendon component is positive. It is scaled to a smallest tendon component of 1,
-///   as the distribution's tolerance for maxima expects (where no tendon has a maximum,
-///   left as it is: the distribution along `p` does not depend on its length).
-///   `null_space` holds `p` itself (not normalised).
+/// only: no pivoting, no comparison). `E⁺` is not formed: the `L U` factors of the square
+/// part of `E` that `order` eliminates are kept ([`Eliminated`]), and [`solution`] solves
+/// with them. Each free unknown `f` gives a null vector `z` with `z_f = 1`, 0 at the other
+/// free unknowns, and `E_B z_B = −E_f` for the others; where the routing stays
+/// controllable every tendon component of the one direction is positive.
+/// - One null direction: `null_space` holds `p = z` itself (not normalised), scaled to a
+///   smallest tendon component of 1, as the distribution's tolerance for maxima expects
+///   (where no tendon has a maximum, left as it is: the distribution along `p` does not
+///   depend on its length).
+/// - Several: `null_space` holds the `z` orthonormalised over the tendons by modified
+///   Gram-Schmidt, as [`distribution::solve`] takes a basis; `positive_null` is `None`.
 ///
 /// Checks nothing: generated code does not report a state where friction leaves the
 /// routing uncontrollable (the runtime solver does).
@@ -359,32 +407,38 @@ pub fn system_traced<T: Real>(
         })
         .collect();
     crate::linalg::lu_factor(&mut factors, n);
-    let (null_space, positive_null) = match order.free {
-        Some(f) => {
+    let mut null_space: Vec<Vec<T>> = (order.free.iter())
+        .map(|&f| {
             let mut y: Vec<T> = order.rows.iter().map(|&r| -matrix[r][f]).collect();
             crate::linalg::lu_substitute(&factors, &mut y);
-            let mut p = vec![T::zero(); constant.unknowns.len()];
-            p[f] = T::one();
+            let mut z = vec![T::zero(); constant.unknowns.len()];
+            z[f] = T::one();
             for (&c, y) in order.columns.iter().zip(y) {
-                p[c] = y;
+                z[c] = y;
             }
+            z
+        })
+        .collect();
+    let positive_null = match &mut null_space[..] {
+        [p] => {
             // The smallest tendon component, as `−max(−p)`: only the maxima's status
             // needs it (the tensions along `p` do not depend on its length).
             if model.tendons.iter().any(|t| t.max_tension.is_some()) {
-                let least = model
-                    .tendons
-                    .iter()
+                let least = (model.tendons.iter())
                     .map(|t| p[t.unknown])
                     .reduce(|a, b| -((-a).max(-b)))
                     .unwrap_or(T::one());
                 let scale = T::one() / least;
-                for x in &mut p {
+                for x in p.iter_mut() {
                     *x = *x * scale;
                 }
             }
-            (vec![p.clone()], Some(p))
+            Some(p.clone())
         }
-        None => (Vec::new(), None),
+        basis => {
+            orthonormalise_over_tendons(model, basis);
+            None
+        }
     };
     let mut system = solved(constant, matrix, Vec::new(), null_space, positive_null);
     system.eliminated = Some(Eliminated {
@@ -392,6 +446,29 @@ pub fn system_traced<T: Real>(
         factors,
     });
     system
+}
+
+/// Modified Gram-Schmidt on `basis`, with inner products over the tendon components
+/// alone (the others vanish in exact arithmetic) and every component carried along, so
+/// that each vector stays in the null space.
+fn orthonormalise_over_tendons<T: Real>(model: &Model<T>, basis: &mut [Vec<T>]) {
+    let dot = |a: &[T], b: &[T]| {
+        (model.tendons.iter()).fold(T::zero(), |s, t| s + a[t.unknown] * b[t.unknown])
+    };
+    for j in 0..basis.len() {
+        let (done, rest) = basis.split_at_mut(j);
+        let v = &mut rest[0];
+        for q in done.iter() {
+            let along = dot(q, v);
+            for (x, q) in v.iter_mut().zip(q) {
+                *x = *x - along * *q;
+            }
+        }
+        let inverse = T::one() / dot(v, v).sqrt();
+        for x in v.iter_mut() {
+            *x = *x * inverse;
+        }
+    }
 }
 
 /// The unknown of the tendon with the largest component of the positive null vector (the
@@ -452,13 +529,21 @@ pub fn solution<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], o
 }
 
 /// The minimal-norm solution from a [`solution`] `x` of `system`, in place: `x` itself
-/// where the system holds `E⁺`; in a traced state's system, `x` less its part along the
-/// null direction `p`, `x − (pᵀx / pᵀp) p`.
+/// where the system holds `E⁺`; in a traced state's system, `x` less its part in the null
+/// space: along the one direction `p`, `x − (pᵀx / pᵀp) p`; along an orthonormal basis,
+/// `x − Σ q (qᵀx)`.
 pub fn minimal_norm<T: Real>(system: &TensionSystem<T>, x: &mut [T]) {
-    if let (Some(_), Some(p)) = (&system.eliminated, &system.positive_null) {
-        let along = crate::linalg::dot(p, x) / crate::linalg::dot(p, p);
-        for (o, p) in x.iter_mut().zip(p) {
-            *o = *o - along * *p;
+    if system.eliminated.is_none() {
+        return;
+    }
+    let dot = crate::linalg::dot;
+    for v in &system.null_space {
+        let along = match &system.positive_null {
+            Some(_) => dot(v, x) / dot(v, v),
+            None => dot(v, x),
+        };
+        for (o, v) in x.iter_mut().zip(v) {
+            *o = *o - along * *v;
         }
     }
 }

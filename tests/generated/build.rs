@@ -1,6 +1,6 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
 //! bearing friction (Example 2 and four random ones), three with fixed guides, Example 2
-//! with capstan friction on its guides, the five mechanisms of the scale benchmarks, and a
+//! with capstan friction on its guides (alone and with a fourth tendon), the five mechanisms of the scale benchmarks, and a
 //! few
 //! mechanisms of the stress
 //! suite into
@@ -98,12 +98,16 @@ fn main() {
         "idlers_behind_guides".to_string(),
         tendyn_spec::guides::first_idlers_as_capstans(&text, 0.02),
     ));
-    // Capstan friction on both guides of Example 2 (the state's system, traced).
+    // Capstan friction on both guides of Example 2 (the state's system, traced), and the
+    // same with an antagonist on drum 1 (a two-dimensional null space, of the state too).
     let capstan = root.join("example2_capstan.ron");
     println!("cargo:rerun-if-changed={}", capstan.display());
+    let capstan = std::fs::read_to_string(capstan).unwrap();
+    let antagonist = tendyn_spec::guides::with_antagonist_on_drum1(&capstan);
+    mechanisms.push(("example2_capstan_friction".to_string(), capstan));
     mechanisms.push((
-        "example2_capstan_friction".to_string(),
-        std::fs::read_to_string(capstan).unwrap(),
+        "example2_capstan_friction_antagonist".to_string(),
+        antagonist,
     ));
     // The scale benchmarks' mechanisms (issue 16): a finger, a random arm with gears, and
     // chains of 7, 8 and 12 links (the last with 13 unknowns).

@@ -52,3 +52,19 @@ fn made_guides(
     }
     out
 }
+
+/// Example 2 with capstan friction on its guides (`example2_capstan.ron`, passed as
+/// `text`) and a fourth tendon on drum 1 that pulls against `T11`: four tendons on two
+/// joints, a two-dimensional null space that the guides' friction makes depend on the
+/// state.
+pub fn with_antagonist_on_drum1(text: &str) -> String {
+    let t11 = r#"(name: "T11", route: [("drum1", Ccw)], exit: (-0.25, 0.10, 0.0)),"#;
+    assert_eq!(text.matches(t11).count(), 1, "{t11}");
+    let t12 = r#"(name: "T12", route: [("drum1", Cw)], exit: (-0.25, -0.10, 0.0)),"#;
+    text.replacen(t11, &format!("{t11}\n        {t12}"), 1)
+        .replacen(
+            "name: \"example2_capstan\"",
+            "name: \"example2_capstan_friction_antagonist\"",
+            1,
+        )
+}
