@@ -1,38 +1,13 @@
 //! Fixed guides: a `fixed: true` pulley after a route's anchor, which the tendon slides over
 //! instead of turning (format.md §6a). Checked by hand on one joint, one pin.
 
-use rand::SeedableRng;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::model::Model;
 use tendyn_core::{parse, Data, Error};
+use tendyn_spec::guides::{pin_with, PIN};
 use tendyn_spec::lagrangian;
 use tendyn_spec::measure::random_state;
-
-/// One joint. A drum of radius 0.02 m on the joint axis; `over_pin` leaves its top
-/// horizontally to the left, meets the top of a pin (radius 0.01 m, centre (−0.1, 0.01) in
-/// the base) tangentially, wraps it a quarter turn counter-clockwise and leaves straight
-/// down to its exit; `direct` leaves the drum's bottom to the left. By hand: both tendons
-/// have a moment arm of 0.02 m, of opposite signs, so `Q = 0.02 (T_over − T_direct)`; the
-/// pin's wrap angle is π/2; turning the drum counter-clockwise pays `over_pin` out towards
-/// its exit at `0.02 q̇`, which is its speed over the pin.
-const PIN: &str = r#"(
-    name: "one_pin",
-    gravity: (0.0, -9.81, 0.0),
-    tension_floor: 2.0,
-    links: [
-        (name: "link1", dh: (a: 0.3, alpha: 0.0, d: 0.0), mass: 0.5, com: (-0.15, 0.0, 0.0),
-            inertia: (xx: 0.0001, yy: 0.004, zz: 0.004)),
-    ],
-    pulleys: [
-        (name: "drum", carrier: "link1", at: Joint(joint: "link1", height: 0.0), radius: 0.02, fixed: true),
-        (name: "pin", carrier: "base", at: Pose(origin: (-0.1, 0.01, 0.0), rpy: (0.0, 0.0, 0.0)), radius: 0.01, fixed: true, mu: 0.0),
-    ],
-    tendons: [
-        (name: "over_pin", route: [("drum", Ccw), ("pin", Ccw)], exit: (-0.11, -0.2, 0.0)),
-        (name: "direct", route: [("drum", Cw)], exit: (-0.2, -0.02, 0.0)),
-    ],
-)
-"#;
 
 #[test]
 fn a_tendon_over_a_frictionless_pin_keeps_its_tension_and_slides_at_its_exit_speed() {
@@ -63,12 +38,6 @@ fn a_tendon_over_a_frictionless_pin_keeps_its_tension_and_slides_at_its_exit_spe
         assert!((q_hand - q_solver).abs() <= 1e-12 * (over + direct) * 0.02);
         assert!((guide.speed(&qd) - 0.02 * qd[0]).abs() <= 1e-15 * qd[0].abs());
     }
-}
-
-/// `PIN` with the pin's line changed.
-fn pin_with(from: &str, to: &str) -> String {
-    assert_eq!(PIN.matches(from).count(), 1, "{from}");
-    PIN.replacen(from, to, 1)
 }
 
 fn invalid(text: &str) -> String {
@@ -216,20 +185,7 @@ fn generated_capstan_friction_is_traced_for_any_null_space_and_segments_refused_
 #[test]
 fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynamics_gives_the_motion_back(
 ) {
-    let text = pin_with("mu: 0.0", "mu: 0.3")
-        .replacen(
-            "fixed: true, mu: 0.3),",
-            "fixed: true, mu: 0.3),\n        (name: \"idl\", carrier: \"base\", at: Pose(origin: \
-             (-0.12, -0.1, 0.0), rpy: (0.0, 0.0, 0.0)), radius: 0.01, mass: 0.005, inertia: \
-             (xx: 0.00001, yy: 0.00001, zz: 0.00002)),",
-            1,
-        )
-        .replacen(
-            "(name: \"over_pin\", route: [(\"drum\", Ccw), (\"pin\", Ccw)], exit: (-0.11, -0.2, 0.0)),",
-            "(name: \"over_pin\", route: [(\"drum\", Ccw), (\"pin\", Ccw), (\"idl\", Cw)], \
-             exit: (-0.3, -0.11, 0.0)),",
-            1,
-        );
+    let text = tendyn_spec::guides::pin_then_idler(0.3);
     let model = parse(&text).unwrap();
     assert!(model.capstan_before_an_idler());
     let worst = check_capstan_power(&model, 200, 17);
@@ -613,7 +569,8 @@ fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_
         shown.starts_with("idler1_1 (line ")
             && shown.contains("whichever way the tendons slide")
             && shown.contains("`t1` over `idler1_1` towards its exit")
-            && shown.contains("`t2` over `idler2_1` towards its anchor"),
+            && shown.contains("`t2` over `idler2_1` towards its anchor")
+            && shown.contains("no longer lifts every tendon together"),
         "{shown}"
     );
 }
@@ -681,4 +638,100 @@ fn capstan_tensions_agree_with_double_double_in_f64_and_f32() {
     );
     assert!(worst64 <= 1e-12, "f64 {worst64:e}");
     assert!(worst32 <= 1024.0 * u32, "f32 {worst32:e}");
+}
+
+/// What validation's check of sliding directions rests on (one null direction,
+/// `validate::tension_system::sliding_directions`): each maximal minor of the state's `E`
+/// (`tension::state_matrix`) is affine in every guide's capstan factor taken alone, so
+/// inside a box of factors it is the multilinear interpolation of its values at the box's
+/// corners, and its sign there is settled by theirs. Checked with minors of its own
+/// (`nalgebra`'s determinants) on Example 3 with a guide on every idler, Example 2 with
+/// capstan friction and the random mechanisms with guides, at random factors in
+/// `[1/2, 2]`: within `1e-11` of the largest corner value.
+#[test]
+fn every_maximal_minor_of_the_state_tension_matrix_is_multilinear_in_the_capstan_factors() {
+    let example3 = std::fs::read_to_string("../examples/mechanisms/example3_stanford_jpl.ron");
+    let example2 = std::fs::read_to_string("../examples/mechanisms/example2_capstan.ron");
+    let mut texts = vec![
+        tendyn_spec::guides::idlers_as_capstans(&example3.unwrap(), 0.1),
+        example2.unwrap(),
+    ];
+    for seed in 0..12u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: false,
+        };
+        let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        texts.push(tendyn_spec::guides::idlers_as_capstans(&text, 0.05));
+    }
+    let minors = |e: &[Vec<f64>]| -> Vec<f64> {
+        let (rows, columns) = (e.len(), e[0].len());
+        (0..columns)
+            .map(|k| {
+                let kept: Vec<usize> = (0..columns).filter(|&c| c != k).collect();
+                nalgebra::DMatrix::from_fn(rows, rows, |i, j| e[i][kept[j]]).determinant()
+            })
+            .collect()
+    };
+    let (mut checked, mut worst) = (0, 0.0f64);
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for text in &texts {
+        let Ok(model) = parse(text) else { continue };
+        let guides: Vec<(usize, usize)> = (model.strands().iter().enumerate())
+            .flat_map(|(s, strand)| {
+                (strand.idlers.iter().enumerate())
+                    .filter(|(_, idler)| idler.capstan().is_some())
+                    .map(move |(k, _)| (s, k))
+            })
+            .collect();
+        let square_plus_one = model.system().matrix.len() + 1 == model.system().unknowns.len();
+        if guides.is_empty() || guides.len() > 8 || !square_plus_one {
+            continue;
+        }
+        let matrix = |w: &[f64]| {
+            let mut capstan: Vec<Vec<f64>> = (model.strands().iter())
+                .map(|s| vec![1.0; s.idlers.len()])
+                .collect();
+            for (&(s, k), &w) in guides.iter().zip(w) {
+                capstan[s][k] = w;
+            }
+            tendyn_core::tension::state_matrix(&model, &capstan)
+        };
+        let corners: Vec<Vec<f64>> = (0..1usize << guides.len())
+            .map(|bits| {
+                let w: Vec<f64> = (0..guides.len())
+                    .map(|g| if bits >> g & 1 == 1 { 2.0 } else { 0.5 })
+                    .collect();
+                minors(&matrix(&w))
+            })
+            .collect();
+        let size = corners.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        for _ in 0..20 {
+            let w: Vec<f64> = (0..guides.len())
+                .map(|_| rng.random_range(0.5..2.0))
+                .collect();
+            let t: Vec<f64> = w.iter().map(|w| (w - 0.5) / 1.5).collect();
+            let mut interpolated = vec![0.0; model.system().unknowns.len()];
+            for (bits, corner) in corners.iter().enumerate() {
+                let weight: f64 = (t.iter().enumerate())
+                    .map(|(g, t)| if bits >> g & 1 == 1 { *t } else { 1.0 - t })
+                    .product();
+                for (i, c) in interpolated.iter_mut().zip(corner) {
+                    *i += weight * c;
+                }
+            }
+            for (got, want) in minors(&matrix(&w)).iter().zip(&interpolated) {
+                let err = (got - want).abs() / size;
+                assert!(
+                    err <= 1e-11,
+                    "{}: minor {got} where corners give {want}",
+                    model.name()
+                );
+                worst = worst.max(err);
+            }
+        }
+        checked += 1;
+    }
+    println!("{checked} mechanisms; worst {worst:.1e} of the largest corner minor");
+    assert!(checked >= 4);
 }

@@ -216,6 +216,12 @@ fn array(name: &str, n: usize) -> Vec<Sym> {
     (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
 }
 
+/// The order in which generated code eliminates a state's tension system where guides
+/// have capstan friction, if one holds at every direction of sliding validation checks.
+fn elimination(model: &Model<f64>) -> Option<tension::Elimination> {
+    tension::Elimination::of(model).filter(|order| order.holds_while_sliding(model))
+}
+
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
@@ -224,13 +230,14 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
-                if model.has_capstan() && tension::Elimination::of(model).is_none() =>
+                if model.has_capstan() && elimination(model).is_none() =>
             {
                 Some(
                     "a guide has capstan friction (`mu > 0`), which makes the tension system \
-                     depend on the state, and no order of elimination of its `E` leaves only \
-                     tendons free (the routing is close to uncontrollable) — use the runtime \
-                     solver (`tendyn eval`)"
+                     depend on the state, and the order of elimination chosen from its `E` \
+                     either leaves a motor or loop side free or meets a zero pivot for some \
+                     direction of sliding (the routing is close to uncontrollable) — use the \
+                     runtime solver (`tendyn eval`)"
                         .to_string(),
                 )
             }
@@ -298,7 +305,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
-            elimination: tension::Elimination::of(model),
+            elimination: elimination(model),
             ..Shared::default()
         };
         let results = outputs
@@ -465,7 +472,7 @@ impl Shared {
                 if d == 1 && k > 0 {
                     *excess = tension::along_line(model, system, x).excess;
                 } else if d > 1 && k > 0 && system.eliminated.is_some() {
-                    tension::minimal_norm(system, x);
+                    tension::minimal_norm(model, system, x);
                     let p = tension::bounds(model, system);
                     let values = (0..d)
                         .flat_map(|i| (0..k).map(move |j| (i, j)))

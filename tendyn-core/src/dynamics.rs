@@ -589,7 +589,7 @@ pub fn inverse_dynamics<T: Real>(
     refill(x, model.system.unknowns.iter().map(|_| T::zero()));
     tension::solution(model, system, &ws.b, x);
     refill(&mut ws.minimal, x.iter().copied());
-    tension::minimal_norm(system, &mut ws.minimal);
+    tension::minimal_norm(model, system, &mut ws.minimal);
     distribute(model, system, x)?;
     let (x, x0) = (&out.unknowns, &ws.minimal);
 

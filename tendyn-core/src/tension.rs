@@ -329,6 +329,37 @@ impl Elimination {
     }
 }
 
+impl Elimination {
+    /// Whether this order keeps every pivot of the elimination away from zero, with the
+    /// sign it has in the model's `E`, at every direction of sliding validation checks
+    /// (`validate::Sliding`, `q = 0`, each pivot beyond `1e-12` of `E`'s largest entry).
+    /// The products of the first pivots are minors of `E`, affine in each capstan factor
+    /// taken alone as the null vector's are (docs/format.md §6a), so where validation's
+    /// points are the corners of the boxes the directions reach, no state in between
+    /// makes the traced code divide by zero.
+    pub fn holds_while_sliding(&self, model: &Model<f64>) -> bool {
+        let sliding = crate::validate::Sliding::of(model);
+        let without = self.pivots(&model.system.matrix);
+        sliding.points(model).into_iter().all(|point| {
+            let sigma = sliding.sigma(model, &point);
+            let e = state_matrix(model, &crate::validate::Sliding::factors(model, &sigma));
+            let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+            let kept = |(p, w): (&f64, &f64)| p.signum() == w.signum() && p.abs() > 1e-12 * size;
+            self.pivots(&e).iter().zip(&without).all(kept) || !sliding.reachable(&point)
+        })
+    }
+
+    /// The pivots of the elimination of `e` in this order, without pivoting.
+    fn pivots(&self, e: &[Vec<f64>]) -> Vec<f64> {
+        let n = self.rows.len();
+        let mut factors: Vec<f64> = (self.rows.iter())
+            .flat_map(|&r| self.columns.iter().map(move |&c| e[r][c]))
+            .collect();
+        crate::linalg::lu_factor(&mut factors, n);
+        (0..n).map(|j| factors[j * n + j]).collect()
+    }
+}
+
 /// The columns of `e` (full row rank) that Gaussian elimination with complete pivoting
 /// leaves without a pivot, in increasing order.
 fn unpivoted_columns(mut e: Vec<Vec<f64>>) -> Vec<usize> {
@@ -452,9 +483,7 @@ pub fn system_traced<T: Real>(
 /// alone (the others vanish in exact arithmetic) and every component carried along, so
 /// that each vector stays in the null space.
 fn orthonormalise_over_tendons<T: Real>(model: &Model<T>, basis: &mut [Vec<T>]) {
-    let dot = |a: &[T], b: &[T]| {
-        (model.tendons.iter()).fold(T::zero(), |s, t| s + a[t.unknown] * b[t.unknown])
-    };
+    let dot = |a: &[T], b: &[T]| dot_over_tendons(model, a, b);
     for j in 0..basis.len() {
         let (done, rest) = basis.split_at_mut(j);
         let v = &mut rest[0];
@@ -469,6 +498,11 @@ fn orthonormalise_over_tendons<T: Real>(model: &Model<T>, basis: &mut [Vec<T>]) 
             *x = *x * inverse;
         }
     }
+}
+
+/// `Σ a_k b_k` over the tendons' unknowns `k`.
+fn dot_over_tendons<T: Real>(model: &Model<T>, a: &[T], b: &[T]) -> T {
+    (model.tendons.iter()).fold(T::zero(), |s, t| s + a[t.unknown] * b[t.unknown])
 }
 
 /// The unknown of the tendon with the largest component of the positive null vector (the
@@ -530,9 +564,11 @@ pub fn solution<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], o
 
 /// The minimal-norm solution from a [`solution`] `x` of `system`, in place: `x` itself
 /// where the system holds `E⁺`; in a traced state's system, `x` less its part in the null
-/// space: along the one direction `p`, `x − (pᵀx / pᵀp) p`; along an orthonormal basis,
-/// `x − Σ q (qᵀx)`.
-pub fn minimal_norm<T: Real>(system: &TensionSystem<T>, x: &mut [T]) {
+/// space: along the one direction `p`, `x − (pᵀx / pᵀp) p`; along a basis orthonormal over
+/// the tendons ([`system_traced`]), `x − Σ q (qᵀx)` with the products over the tendons too
+/// (the other components of a null vector vanish, so rounding in them must not weigh the
+/// motor torques and loop sides in).
+pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]) {
     if system.eliminated.is_none() {
         return;
     }
@@ -540,7 +576,7 @@ pub fn minimal_norm<T: Real>(system: &TensionSystem<T>, x: &mut [T]) {
     for v in &system.null_space {
         let along = match &system.positive_null {
             Some(_) => dot(v, x) / dot(v, v),
-            None => dot(v, x),
+            None => dot_over_tendons(model, v, x),
         };
         for (o, v) in x.iter_mut().zip(v) {
             *o = *o - along * *v;

@@ -1,11 +1,9 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
 //! bearing friction (Example 2 and four random ones), three with fixed guides, Example 2
-//! with capstan friction on its guides (alone and with a fourth tendon), the five mechanisms of the scale benchmarks, and a
-//! few
-//! mechanisms of the stress
-//! suite into
-//! `OUT_DIR`, with every output each mechanism can provide, plus a small adapter per
-//! mechanism that the agreement test calls with slices.
+//! with capstan friction on its guides (alone and with a fourth tendon), two with a turning
+//! idler after a guide with friction, the five mechanisms of the scale benchmarks, and a
+//! few mechanisms of the stress suite into `OUT_DIR`, with every output each mechanism can
+//! provide, plus a small adapter per mechanism that the agreement test calls with slices.
 
 use std::fmt::Write;
 use tendyn_codegen::outputs::flattened_numbers;
@@ -98,6 +96,12 @@ fn main() {
         "idlers_behind_guides".to_string(),
         tendyn_spec::guides::first_idlers_as_capstans(&text, 0.02),
     ));
+    // The same on one joint, small enough for its derivatives: a pin with friction and a
+    // turning idler after it.
+    mechanisms.push((
+        "pin_then_idler_friction".to_string(),
+        tendyn_spec::guides::pin_then_idler(0.3),
+    ));
     // Capstan friction on both guides of Example 2 (the state's system, traced), and the
     // same with an antagonist on drum 1 (a two-dimensional null space, of the state too).
     let capstan = root.join("example2_capstan.ron");
@@ -157,6 +161,7 @@ fn main() {
                 "friction_1",
                 "friction_2",
                 "bench_finger4",
+                "pin_then_idler_friction",
             ]
             .contains(&name.as_str());
         if derived {

@@ -68,3 +68,54 @@ pub fn with_antagonist_on_drum1(text: &str) -> String {
             1,
         )
 }
+
+/// One joint. A drum of radius 0.02 m on the joint axis; `over_pin` leaves its top
+/// horizontally to the left, meets the top of a pin (radius 0.01 m, centre (−0.1, 0.01) in
+/// the base) tangentially, wraps it a quarter turn counter-clockwise and leaves straight
+/// down to its exit; `direct` leaves the drum's bottom to the left. By hand: both tendons
+/// have a moment arm of 0.02 m, of opposite signs, so `Q = 0.02 (T_over − T_direct)`; the
+/// pin's wrap angle is π/2; turning the drum counter-clockwise pays `over_pin` out towards
+/// its exit at `0.02 q̇`, which is its speed over the pin.
+pub const PIN: &str = r#"(
+    name: "one_pin",
+    gravity: (0.0, -9.81, 0.0),
+    tension_floor: 2.0,
+    links: [
+        (name: "link1", dh: (a: 0.3, alpha: 0.0, d: 0.0), mass: 0.5, com: (-0.15, 0.0, 0.0),
+            inertia: (xx: 0.0001, yy: 0.004, zz: 0.004)),
+    ],
+    pulleys: [
+        (name: "drum", carrier: "link1", at: Joint(joint: "link1", height: 0.0), radius: 0.02, fixed: true),
+        (name: "pin", carrier: "base", at: Pose(origin: (-0.1, 0.01, 0.0), rpy: (0.0, 0.0, 0.0)), radius: 0.01, fixed: true, mu: 0.0),
+    ],
+    tendons: [
+        (name: "over_pin", route: [("drum", Ccw), ("pin", Ccw)], exit: (-0.11, -0.2, 0.0)),
+        (name: "direct", route: [("drum", Cw)], exit: (-0.2, -0.02, 0.0)),
+    ],
+)
+"#;
+
+/// `PIN` with the pin's line changed.
+pub fn pin_with(from: &str, to: &str) -> String {
+    assert_eq!(PIN.matches(from).count(), 1, "{from}");
+    PIN.replacen(from, to, 1)
+}
+
+/// `PIN` with capstan friction `mu` on the pin and a turning idler after it on `over_pin`'s
+/// way to its exit (the idler light enough that the segment between pin and idler stays
+/// taut): the idler's inertia reaches the joint scaled by the pin's friction.
+pub fn pin_then_idler(mu: f64) -> String {
+    let pin = format!("fixed: true, mu: {mu:?}),");
+    let idler =
+        "\n        (name: \"idl\", carrier: \"base\", at: Pose(origin: (-0.12, -0.1, 0.0), \
+                 rpy: (0.0, 0.0, 0.0)), radius: 0.01, mass: 0.005, inertia: (xx: 0.00001, \
+                 yy: 0.00001, zz: 0.00002)),";
+    pin_with("mu: 0.0", &format!("mu: {mu:?}"))
+        .replacen(&pin, &format!("{pin}{idler}"), 1)
+        .replacen(
+            "(name: \"over_pin\", route: [(\"drum\", Ccw), (\"pin\", Ccw)], exit: (-0.11, -0.2, 0.0)),",
+            "(name: \"over_pin\", route: [(\"drum\", Ccw), (\"pin\", Ccw), (\"idl\", Cw)], \
+             exit: (-0.3, -0.11, 0.0)),",
+            1,
+        )
+}

@@ -21,6 +21,7 @@ pub use ranges::{
     MAX_LINKS, MAX_MASS, MAX_MOMENT, MAX_RATIO, MAX_SMOOTHING, MAX_VISCOUS, MIN_RADIUS,
     MIN_SMOOTHING,
 };
+pub(crate) use tension_system::Sliding;
 
 use crate::error::{Error, Location, Result};
 use crate::format::{FrictionSpec, MechanismFile};

@@ -529,7 +529,8 @@ fn largest_least_lift(rows: &[Vec<f64>]) -> Option<Vec<f64>> {
 
 /// Whether some joint velocity makes every group of guides slide the way `pattern` says:
 /// the linear program `pattern_g (u_g · q̇) ≥ 1` for every group (`u_g` its sliding speed
-/// per joint velocity) has a solution. Its cone is open, so `≥ 1` loses nothing.
+/// per joint velocity) with a direction; a group at rest (`0`) is left free. The cone is
+/// open, so `≥ 1` loses nothing.
 fn reachable(groups: &[Vec<f64>], pattern: &[f64]) -> bool {
     use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
     let Some(n) = groups.first().map(Vec::len) else {
@@ -539,27 +540,179 @@ fn reachable(groups: &[Vec<f64>], pattern: &[f64]) -> bool {
     let qd: Vec<_> = (0..n)
         .map(|_| lp.add_var(0.0, (f64::NEG_INFINITY, f64::INFINITY)))
         .collect();
-    for (u, sign) in groups.iter().zip(pattern) {
+    for (u, &sign) in groups.iter().zip(pattern).filter(|(_, &s)| s != 0.0) {
         let terms: Vec<_> = qd.iter().zip(u).map(|(&v, &c)| (v, sign * c)).collect();
         lp.add_constraint(terms.as_slice(), ComparisonOp::Ge, 1.0);
     }
     matches!(lp.solve(), Ok(SolveOutcome::Solution(_)))
 }
 
+/// A guide with friction over which something slides: its strand and idler, its group
+/// (guides whose sliding speeds are proportional: they slide together), the sign relating
+/// its speed to the group's, and its class (guides whose speeds are equal or opposite:
+/// they are at rest together too).
+struct Slider {
+    strand: usize,
+    idler: usize,
+    group: usize,
+    class: usize,
+    sign: f64,
+}
+
+/// The most classes of guides for which every combination of directions and rest is
+/// checked (`3⁸ = 6561` systems at most).
+const EVERY_REST_UP_TO: usize = 8;
+
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
 /// every tendon) for every direction it can take. Guides whose sliding speeds are equal or
 /// opposite (`slide` vectors parallel) slide together, so each such group is one sign;
-/// every pattern of up to 12 groups is checked at `q = 0` (the wrap angles at the joints'
-/// offsets), and a failing one refuses the routing if some joint velocity produces it
-/// ([`reachable`]). Beyond 12 groups the patterns checked are the two where every group
-/// slides one way and those with one group flipped (a sufficient condition only at run
-/// time, where every state's system is checked again).
+/// the systems are taken at `q = 0` (the wrap angles at the joints' offsets), and a
+/// failing pattern refuses the routing only if some joint velocity produces it
+/// ([`reachable`]).
+///
+/// One null direction (the usual case): every guide may also be at rest (`σ = 0`, the
+/// exact law's band) independently of its group, and each tendon's component of the null
+/// vector, as the signed maximal minor of `E` without that tendon's column, must keep the
+/// sign it has without friction. That check covers the smoothed law and every state in
+/// between as well: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a product of
+/// distinct guides' capstan factors (`tension::state_matrix`), and a guide lies on one
+/// strand, so every minor is affine in each guide's factor `w_g = e^{−σ_g μ β_g}` taken
+/// alone; such a function on a box of factors takes its extremes at the box's corners,
+/// and the corners of the boxes the directions reach (each guide at rest or sliding its
+/// group's way) are exactly the points checked. The same holds wherever the wrap angles
+/// are no larger than at `q = 0` (a smaller box about `w = 1`); elsewhere the runtime
+/// solver checks every state's system again. Up to [`EVERY_REST_UP_TO`] guides; beyond,
+/// and for null spaces of two or more dimensions, the checked patterns are those where
+/// every guide slides: all of them up to 12 groups, past that the two where every group
+/// slides one way and those with one group flipped.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
-    // The guides with friction, by strand and idler, and the group each belongs to with
-    // the sign relating its speed to the group's.
+    let sliding = Sliding::of(model);
+    let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
+    let frictionless = sliding
+        .at_rest(model)
+        .then(|| Minors::of(&model.system.matrix, &tendons));
+    for point in sliding.points(model) {
+        let sigma = sliding.sigma(model, &point);
+        let failure = match &frictionless {
+            Some(without) => {
+                let e = crate::tension::state_matrix(model, &Sliding::factors(model, &sigma));
+                without.compare(&without.at(&e), &tendons).err()
+            }
+            None => crate::dynamics::system_sliding(model, &vec![0.0; model.dof], &sigma)
+                .err()
+                .map(|e| match e {
+                    Error::Tension(why) => why,
+                    other => other.to_string(),
+                }),
+        };
+        let Some(why) = failure else {
+            continue;
+        };
+        // A pattern no joint velocity produces (groups whose speeds are tied by the
+        // joints they share) cannot fail in use: only a reachable one refuses.
+        if !sliding.reachable(&point) {
+            continue;
+        }
+        let described: Vec<String> = (sliding.sliders.iter())
+            .map(|slider| {
+                let strand = &model.strands[slider.strand];
+                let guide = &model.bodies[strand.idlers[slider.idler].body].name;
+                match sigma[slider.strand][slider.idler] {
+                    0.0 => format!("`{}` at rest on `{guide}`", strand.name),
+                    x if x > 0.0 => format!("`{}` over `{guide}` towards its exit", strand.name),
+                    _ => format!("`{}` over `{guide}` towards its anchor", strand.name),
+                }
+            })
+            .collect();
+        let first = &sliding.sliders[0];
+        let first = model.strands[first.strand].idlers[first.idler].body;
+        return Err(v.routing(
+            &model.bodies[first].name,
+            format!(
+                "with capstan friction the routing must be controllable whichever way the \
+                 tendons slide, but sliding {} (at q = 0) it is not: {why}; lower `mu` or \
+                 route the tendon differently",
+                described.join(", ")
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The directions of sliding that [`sliding_directions`] checks, for it and for the code
+/// generator's order of elimination (`tension::Elimination::holds_while_sliding`).
+pub(crate) struct Sliding {
+    groups: Vec<Vec<f64>>,
+    classes: Vec<usize>,
+    sliders: Vec<Slider>,
+}
+
+impl Sliding {
+    pub(crate) fn of(model: &Model<f64>) -> Sliding {
+        let (groups, classes, sliders) = sliders_by_group(model);
+        Sliding {
+            groups,
+            classes,
+            sliders,
+        }
+    }
+
+    /// Whether each class may also be at rest (one null direction, at most
+    /// [`EVERY_REST_UP_TO`] classes).
+    fn at_rest(&self, model: &Model<f64>) -> bool {
+        model.system.null_space.len() == 1 && self.classes.len() <= EVERY_REST_UP_TO
+    }
+
+    /// The points checked, a direction per class ([`sliding_points`]); none without
+    /// sliding guides.
+    pub(crate) fn points(&self, model: &Model<f64>) -> Vec<Vec<f64>> {
+        if self.sliders.is_empty() {
+            return Vec::new();
+        }
+        sliding_points(self.groups.len(), &self.classes, self.at_rest(model))
+    }
+
+    /// `σ[strand][idler]` at `point` (0 where no guide slides).
+    pub(crate) fn sigma(&self, model: &Model<f64>, point: &[f64]) -> Vec<Vec<f64>> {
+        let mut sigma: Vec<Vec<f64>> = (model.strands.iter())
+            .map(|s| vec![0.0; s.idlers.len()])
+            .collect();
+        for slider in &self.sliders {
+            sigma[slider.strand][slider.idler] = slider.sign * point[slider.class];
+        }
+        sigma
+    }
+
+    /// The capstan factors at `q = 0` with the directions `sigma`.
+    pub(crate) fn factors(model: &Model<f64>, sigma: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
+            .map(|s| vec![1.0; s.idlers.len()])
+            .collect();
+        let q = vec![0.0; model.dof];
+        crate::friction::capstan_factors_sliding(model, &q, &mut capstan, |s, k, _| sigma[s][k]);
+        capstan
+    }
+
+    /// Whether some joint velocity makes the groups slide as `point` says ([`reachable`]).
+    pub(crate) fn reachable(&self, point: &[f64]) -> bool {
+        let mut pattern = vec![0.0; self.groups.len()];
+        for slider in &self.sliders {
+            if point[slider.class] != 0.0 {
+                pattern[slider.group] = point[slider.class];
+            }
+        }
+        reachable(&self.groups, &pattern)
+    }
+}
+
+/// The guides with friction over which something slides; the groups of their sliding
+/// speeds per joint velocity (each normalised to a largest coefficient of 1); and the
+/// classes of equal or opposite speeds, as the group each belongs to.
+fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<usize>, Vec<Slider>) {
     let mut groups: Vec<Vec<f64>> = Vec::new();
-    let mut members: Vec<(usize, usize, usize, f64)> = Vec::new();
+    let mut speeds: Vec<(Vec<f64>, usize)> = Vec::new();
+    let mut sliders = Vec::new();
     for (s, strand) in model.strands.iter().enumerate() {
         for (k, idler) in strand.idlers.iter().enumerate() {
             let Some(g) = idler.capstan() else {
@@ -585,82 +738,211 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
                 groups.push(unit.clone());
                 (groups.len() - 1, 1.0)
             });
-            members.push((s, k, group, sign));
+            let twin = |(speed, _): &(Vec<f64>, usize)| {
+                (speed.iter().zip(&g.slide)).all(|(x, y)| (x.abs() - y.abs()).abs() <= 1e-12 * size)
+            };
+            let class =
+                (speeds.iter().position(|c| c.1 == group && twin(c))).unwrap_or_else(|| {
+                    speeds.push((g.slide.clone(), group));
+                    speeds.len() - 1
+                });
+            sliders.push(Slider {
+                strand: s,
+                idler: k,
+                group,
+                class,
+                sign,
+            });
         }
     }
-    let n = groups.len();
-    if n == 0 {
-        return Ok(());
+    let classes = speeds.into_iter().map(|(_, group)| group).collect();
+    (groups, classes, sliders)
+}
+
+/// The directions [`sliding_directions`] checks, one per class of guides (`classes[c]` its
+/// group) relative to its group (`±1`, or `0` at rest). With `at_rest`: every combination
+/// in which the sliding classes of a group agree, those where every guide slides first;
+/// else every guide slides, in every pattern of up to 12 groups, past that in the two
+/// uniform patterns and those with one group flipped.
+fn sliding_points(groups: usize, classes: &[usize], at_rest: bool) -> Vec<Vec<f64>> {
+    if at_rest {
+        let mut points: Vec<Vec<f64>> = (1..3usize.pow(classes.len() as u32))
+            .map(|mut code| {
+                (0..classes.len())
+                    .map(|_| {
+                        let digit = code % 3;
+                        code /= 3;
+                        [0.0, 1.0, -1.0][digit]
+                    })
+                    .collect::<Vec<f64>>()
+            })
+            .filter(|point| {
+                let mut way = vec![0.0; groups];
+                classes.iter().zip(point).all(|(&group, &d)| {
+                    let w = &mut way[group];
+                    let agrees = d == 0.0 || *w == 0.0 || *w == d;
+                    if d != 0.0 {
+                        *w = d;
+                    }
+                    agrees
+                })
+            })
+            .collect();
+        points.sort_by_key(|p| p.iter().filter(|&&d| d == 0.0).count());
+        return points;
     }
-    let patterns: Vec<Vec<f64>> = if n <= 12 {
-        (0..1usize << n)
+    let patterns: Vec<Vec<f64>> = if groups <= 12 {
+        (0..1usize << groups)
             .map(|bits| {
-                (0..n)
+                (0..groups)
                     .map(|i| if bits >> i & 1 == 1 { -1.0 } else { 1.0 })
                     .collect()
             })
             .collect()
     } else {
-        let mut p = vec![vec![1.0; n], vec![-1.0; n]];
-        for i in 0..n {
+        let mut p = vec![vec![1.0; groups], vec![-1.0; groups]];
+        for i in 0..groups {
             for base in [1.0, -1.0] {
-                let mut one = vec![base; n];
+                let mut one = vec![base; groups];
                 one[i] = -base;
                 p.push(one);
             }
         }
         p
     };
-    let q = vec![0.0; model.dof];
-    for pattern in patterns {
-        let mut sigma: Vec<Vec<f64>> = model
-            .strands
-            .iter()
-            .map(|s| vec![0.0; s.idlers.len()])
-            .collect();
-        for &(s, k, group, sign) in &members {
-            sigma[s][k] = sign * pattern[group];
-        }
-        if let Err(e) = crate::dynamics::system_sliding(model, &q, &sigma) {
-            // A pattern no joint velocity produces (groups whose speeds are tied by the
-            // joints they share) cannot fail in use: only a reachable one refuses.
-            if !reachable(&groups, &pattern) {
-                continue;
+    (patterns.into_iter())
+        .map(|p| classes.iter().map(|&group| p[group]).collect())
+        .collect()
+}
+
+/// The null vector of an `r × (r + 1)` matrix `E` by its signed maximal minors,
+/// `n_k = (−1)^k det(E without column k)` (Cramer): nonzero exactly where `E` has full row
+/// rank, with no normalisation that could flip it. Taken as `n = n_f z` from one `L U` of
+/// `E` without column `f` (a tendon's, chosen where the model's minor is largest) and the
+/// null vector `z` with `z_f = 1`, and by every minor where that one vanishes.
+struct Minors {
+    free: usize,
+    n: Vec<f64>,
+}
+
+impl Minors {
+    /// The model's minors (every one), and the tendon column to free at other states.
+    fn of(e: &[Vec<f64>], tendons: &[usize]) -> Minors {
+        let columns = e.first().map_or(0, Vec::len);
+        let n: Vec<f64> = (0..columns).map(|k| minor(e, k)).collect();
+        let free = (tendons.iter().copied())
+            .reduce(|a, b| if n[b].abs() > n[a].abs() { b } else { a })
+            .unwrap_or(0);
+        Minors { free, n }
+    }
+
+    /// The minors of `e`, a state's matrix of the same shape.
+    fn at(&self, e: &[Vec<f64>]) -> Vec<f64> {
+        let (rows, columns, f) = (e.len(), self.n.len(), self.free);
+        let kept: Vec<usize> = (0..columns).filter(|&c| c != f).collect();
+        let lu = DMatrix::from_fn(rows, rows, |i, j| e[i][kept[j]]).lu();
+        let n_f = alternating(f) * lu.determinant();
+        let rhs = nalgebra::DVector::from_fn(rows, |i, _| -e[i][f]);
+        match lu.solve(&rhs).filter(|_| n_f != 0.0 && n_f.is_finite()) {
+            Some(z) => {
+                let mut n = vec![n_f; columns];
+                for (&c, z) in kept.iter().zip(z.iter()) {
+                    n[c] = n_f * z;
+                }
+                n
             }
-            let why = match e {
-                Error::Tension(why) => why,
-                other => other.to_string(),
-            };
-            let described: Vec<String> = members
-                .iter()
-                .map(|&(s, k, _, _)| {
-                    let body = model.strands[s].idlers[k].body;
-                    format!(
-                        "`{}` over `{}` towards its {}",
-                        model.strands[s].name,
-                        model.bodies[body].name,
-                        if sigma[s][k] > 0.0 { "exit" } else { "anchor" }
-                    )
-                })
-                .collect();
-            let first = model.strands[members[0].0].idlers[members[0].1].body;
-            return Err(v.routing(
-                &model.bodies[first].name,
-                format!(
-                    "with capstan friction the routing must be controllable whichever way the \
-                     tendons slide, but sliding {} (at q = 0) it is not: {why}; lower `mu` or \
-                     route the tendon differently",
-                    described.join(", ")
-                ),
-            ));
+            None => (0..columns).map(|k| minor(e, k)).collect(),
         }
     }
-    Ok(())
+
+    /// Whether the minors `n` lift every tendon as the model's do: each tendon's of the
+    /// same sign and larger than `1e-9` of `|n|` (the margin [`positive_null_vector`] asks
+    /// of a unit null vector), and the others, which vanish in the model (every motor and
+    /// loop side determined), within `1e-9` of `|n|` still.
+    fn compare(&self, n: &[f64], tendons: &[usize]) -> std::result::Result<(), String> {
+        let size = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let way = (tendons.iter()).fold(0.0, |s, &k| s + self.n[k]).signum();
+        if !(size.is_finite() && size > 0.0) {
+            return Err("the tension system loses full rank".into());
+        }
+        if !tendons.iter().all(|&k| way * n[k] > 1e-9 * size) {
+            return Err(
+                "the null vector of the tension system no longer lifts every tendon \
+                        together"
+                    .into(),
+            );
+        }
+        let other = (0..n.len()).filter(|k| !tendons.contains(k));
+        if other.clone().any(|k| n[k].abs() > 1e-9 * size) {
+            return Err(
+                "the tendons' co-contraction would then move a motor torque or a loop \
+                        side, which the routing must determine"
+                    .into(),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// `(−1)^k det(E without column k)`.
+fn minor(e: &[Vec<f64>], k: usize) -> f64 {
+    let rows = e.len();
+    let m = DMatrix::from_fn(rows, rows, |i, j| e[i][if j < k { j } else { j + 1 }]);
+    alternating(k) * m.determinant()
+}
+
+/// `(−1)^k`.
+fn alternating(k: usize) -> f64 {
+    if k.is_multiple_of(2) {
+        1.0
+    } else {
+        -1.0
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::reachable;
+    use super::{reachable, sliding_points, Minors};
+
+    /// Two classes of guides sliding together (proportional speeds) and a third alone:
+    /// each class slides its group's way or rests, two of a group never opposite; those
+    /// where every guide slides come first.
+    #[test]
+    fn the_points_checked_are_every_way_the_groups_slide_with_any_class_at_rest() {
+        let classes = [0, 0, 1];
+        let points = sliding_points(2, &classes, true);
+        // (rest, ±, ±, both +, both −) for the pair times (rest, ±) alone, less all at rest.
+        assert_eq!(points.len(), 7 * 3 - 1);
+        assert!(points.iter().all(|p| p[0] * p[1] >= 0.0));
+        let sliding: Vec<_> = points.iter().take_while(|p| !p.contains(&0.0)).collect();
+        assert_eq!(sliding.len(), 4);
+        assert!(points.contains(&vec![1.0, 0.0, -1.0]));
+        // Without rest: every pattern of the groups, each class its group's way.
+        let patterns = sliding_points(2, &classes, false);
+        assert_eq!(patterns.len(), 4);
+        assert!(patterns.iter().all(|p| p[0] == p[1] && p[2] != 0.0));
+    }
+
+    /// `E = [2 −1 0; 0 0 1]` (one joint and two tendons with opposite moment arms, and a
+    /// motor alone on a driving pulley's row): the minors `(−1, −2, 0)` lift both tendons
+    /// together and leave the motor determined; a state's minors must do the same, by more
+    /// than round-off of their size, whichever column is freed to get them.
+    #[test]
+    fn the_minors_lift_the_tendons_only_with_the_signs_they_have_without_friction() {
+        let e = vec![vec![2.0, -1.0, 0.0], vec![0.0, 0.0, 1.0]];
+        let model = Minors::of(&e, &[0, 1]);
+        assert_eq!(model.n, vec![-1.0, -2.0, 0.0]);
+        assert_eq!(model.at(&e), model.n);
+        assert!(model.compare(&model.n, &[0, 1]).is_ok());
+        let with = |row: Vec<f64>| model.at(&[row, vec![0.0, 0.0, 1.0]]);
+        assert!(model.compare(&with(vec![3.0, -0.5, 0.0]), &[0, 1]).is_ok());
+        assert!(model.compare(&with(vec![3.0, 0.5, 0.0]), &[0, 1]).is_err());
+        assert!(model.compare(&with(vec![0.0, 0.0, 0.0]), &[0, 1]).is_err());
+        assert!(model.compare(&[-1.0, -1e-12, 0.0], &[0, 1]).is_err());
+        let moved = model.at(&[vec![2.0, -1.0, 1.0], vec![0.0, 0.0, 1.0]]);
+        assert_eq!(moved, vec![-1.0, -2.0, 0.0]);
+        assert!(model.compare(&[-1.0, -2.0, 0.5], &[0, 1]).is_err());
+    }
 
     /// Three groups sliding at `q̇₁`, `q̇₂` and `q̇₁ + q̇₂`: the third cannot slide backwards
     /// while the first two slide forwards, but every other sign pattern occurs.
