@@ -2,7 +2,8 @@
 
 With the pulley hinges set from the couplings (`q_full = G q`, `G` the identity on the
 joints and each exported pulley's coupling row), MuJoCo's `Gᵀ M_full G` and `Gᵀ qfrc_bias`
-are tendyn's `M` and `h + g`; a passive simulation keeps every coupling.
+are tendyn's `M` and `h + g`; a passive simulation keeps every coupling. On the paper's
+examples and on seeded random mechanisms.
 """
 
 import pathlib
@@ -17,17 +18,22 @@ mujoco = pytest.importorskip("mujoco")
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples" / "mechanisms"
-PAPER = ["example1_endless", "example2_open_ended", "example3_stanford_jpl"]
+PAPER = [EXAMPLES / f"{name}.ron" for name in
+         ["example1_endless", "example2_open_ended", "example3_stanford_jpl"]]
+# Seeded random mechanisms (tilted, off-axis pulleys with explicit couplings, an endless
+# loop, full inertias, gravity in any direction), written by the Rust test crate's
+# generator and kept equal to it by `cargo test -p tendyn-spec --test random_fixtures`.
+RANDOM = sorted((ROOT / "tests" / "mechanisms" / "random").glob("*.ron"))
 
 
-def exported(name, tmp_path):
-    out = tmp_path / f"{name}.xml"
+def exported(path, tmp_path):
+    out = tmp_path / f"{path.stem}.xml"
     subprocess.run(
         ["cargo", "run", "-q", "-p", "tendyn-cli", "--bin", "tendyn", "--", "export",
-         str(EXAMPLES / f"{name}.ron"), "--mjcf", "-o", str(out)],
+         str(path), "--mjcf", "-o", str(out)],
         cwd=ROOT, check=True, capture_output=True, text=True,
     )
-    return mujoco.MjModel.from_xml_path(str(out)), tendyn.load(str(EXAMPLES / f"{name}.ron"))
+    return mujoco.MjModel.from_xml_path(str(out)), tendyn.load(str(path))
 
 
 def reduction(m, tm):
@@ -43,9 +49,13 @@ def reduction(m, tm):
     return G
 
 
-@pytest.mark.parametrize("name", PAPER)
-def test_mujoco_has_the_mass_matrix_bias_and_gravity_of_tendyn(name, tmp_path):
-    m, tm = exported(name, tmp_path)
+def test_the_random_mechanisms_are_there():
+    assert len(RANDOM) == 3, RANDOM
+
+
+@pytest.mark.parametrize("path", PAPER + RANDOM, ids=lambda p: p.stem)
+def test_mujoco_has_the_mass_matrix_bias_and_gravity_of_tendyn(path, tmp_path):
+    m, tm = exported(path, tmp_path)
     G = reduction(m, tm)
     d = mujoco.MjData(m)
     rng = np.random.default_rng(0)
@@ -60,17 +70,18 @@ def test_mujoco_has_the_mass_matrix_bias_and_gravity_of_tendyn(name, tmp_path):
         assert np.abs(G.T @ d.qfrc_bias - terms).max() <= 1e-10 * np.abs(terms).max()
 
 
-@pytest.mark.parametrize("name", PAPER)
-def test_a_simulation_with_every_tendon_at_its_floor_keeps_the_couplings(name, tmp_path):
+@pytest.mark.parametrize("path", PAPER + RANDOM, ids=lambda p: p.stem)
+def test_a_simulation_with_every_tendon_at_its_floor_keeps_the_couplings(path, tmp_path):
     """With zero controls MuJoCo holds each tendon actuator at the bottom of its force
     range, the tendon's floor: the mechanism moves under gravity and the floors."""
-    m, tm = exported(name, tmp_path)
+    m, tm = exported(path, tmp_path)
     G = reduction(m, tm)
     d = mujoco.MjData(m)
     rng = np.random.default_rng(1)
     q, qd = rng.uniform(-1.0, 1.0, tm.dof), rng.uniform(-1.0, 1.0, tm.dof)
     d.qpos[:], d.qvel[:] = G @ q, G @ qd
     couplings = [k for k in range(m.ntendon) if m.tendon(k).name.startswith("coupling/")]
+    assert couplings, "every mechanism here has pulleys with mass"
     worst = 0.0
     for _ in range(500):  # 1 s at MuJoCo's default 2 ms step
         mujoco.mj_step(m, d)
