@@ -186,24 +186,39 @@ impl<T: Copy> InverseDynamics<T> {
     /// `forward_dynamics`), and for segment tensions, bearings and the base reaction of an
     /// incomplete routing.
     pub fn flattened(&self, output: Output) -> Option<Vec<T>> {
+        let mut out = Vec::new();
+        self.extend_flattened(output, &mut out).then_some(out)
+    }
+
+    /// [`InverseDynamics::flattened`] appended to `out`, without a vector of its own (the
+    /// Python package fills one row per state this way); `false`, appending nothing, where
+    /// that gives `None`.
+    pub fn extend_flattened(&self, output: Output, out: &mut Vec<T>) -> bool {
         let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| [f.x, f.y, f.z, n.x, n.y, n.z];
         match output {
-            Output::GeneralizedForces => Some(self.generalized_forces.clone()),
-            Output::Actuation => Some([&self.motor_torques[..], &self.tendon_tensions].concat()),
-            Output::SegmentTensions => self.segment_tensions.as_ref().map(|s| s.concat()),
-            Output::Bearings => self
-                .bearings
-                .as_ref()
-                .map(|b| b.iter().flat_map(wrench).collect()),
-            Output::BaseReaction => self.base_reaction.as_ref().map(|b| wrench(b).to_vec()),
+            Output::GeneralizedForces => out.extend(&self.generalized_forces),
+            Output::Actuation => out.extend(self.motor_torques.iter().chain(&self.tendon_tensions)),
+            Output::SegmentTensions => match &self.segment_tensions {
+                Some(s) => out.extend(s.iter().flatten()),
+                None => return false,
+            },
+            Output::Bearings => match &self.bearings {
+                Some(b) => out.extend(b.iter().flat_map(wrench)),
+                None => return false,
+            },
+            Output::BaseReaction => match &self.base_reaction {
+                Some(b) => out.extend(wrench(b)),
+                None => return false,
+            },
             Output::MassMatrix
             | Output::Bias
             | Output::Gravity
             | Output::ForwardDynamics
             | Output::GeneralizedForcesDerivatives
             | Output::ForwardDynamicsDerivatives
-            | Output::Regressor => None,
+            | Output::Regressor => return false,
         }
+        true
     }
 }
 

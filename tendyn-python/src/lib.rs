@@ -67,26 +67,35 @@ fn loads(text: &str, name: &str) -> PyResult<Model> {
     Ok(Model::new(model))
 }
 
-/// States of one input: `(n,)` (one state) or `(N, n)`, as rows of `n` numbers.
+/// States of one input: `(n,)` (one state) or `(N, n)`, as `count` rows of `width`
+/// numbers laid end to end.
 struct Batch {
-    rows: Vec<Vec<f64>>,
+    values: Vec<f64>,
+    width: usize,
+    count: usize,
     batched: bool,
 }
 
 impl Batch {
+    /// State `k`'s numbers.
+    fn row(&self, k: usize) -> &[f64] {
+        &self.values[k * self.width..(k + 1) * self.width]
+    }
+
     fn of(what: &str, array: &PyReadonlyArrayDyn<'_, f64>, n: usize) -> PyResult<Batch> {
         let shape = array.shape().to_vec();
         let view = array.as_array();
         match shape.as_slice() {
             [k] if *k == n => Ok(Batch {
-                rows: vec![view.iter().copied().collect()],
+                values: view.iter().copied().collect(),
+                width: n,
+                count: 1,
                 batched: false,
             }),
-            [_, k] if *k == n => Ok(Batch {
-                rows: view
-                    .outer_iter()
-                    .map(|row| row.iter().copied().collect())
-                    .collect(),
+            [count, k] if *k == n => Ok(Batch {
+                values: view.iter().copied().collect(), // logical (row-major) order
+                width: n,
+                count: *count,
                 batched: true,
             }),
             _ => {
@@ -106,10 +115,10 @@ impl Batch {
     /// The batches of several inputs, which must agree on batching and on `N`.
     fn all(inputs: Vec<(&str, Batch)>) -> PyResult<(Vec<Batch>, bool, usize)> {
         let batched = inputs[0].1.batched;
-        let count = inputs[0].1.rows.len();
+        let count = inputs[0].1.count;
         if let Some((what, b)) = inputs
             .iter()
-            .find(|(_, b)| b.batched != batched || b.rows.len() != count)
+            .find(|(_, b)| b.batched != batched || b.count != count)
         {
             let first = inputs[0].0;
             return Err(PyValueError::new_err(if b.batched != batched {
@@ -133,12 +142,29 @@ fn stacked<'py>(
     shape: &[usize],
     batched: bool,
 ) -> Bound<'py, PyArrayDyn<f64>> {
+    let count = values.len();
+    stacked_flat(
+        py,
+        values.into_iter().flatten().collect(),
+        count,
+        shape,
+        batched,
+    )
+}
+
+/// [`stacked`] from the `count` results laid end to end in `flat`.
+fn stacked_flat<'py>(
+    py: Python<'py>,
+    flat: Vec<f64>,
+    count: usize,
+    shape: &[usize],
+    batched: bool,
+) -> Bound<'py, PyArrayDyn<f64>> {
     let mut dims = Vec::with_capacity(shape.len() + 1);
     if batched {
-        dims.push(values.len());
+        dims.push(count);
     }
     dims.extend_from_slice(shape);
-    let flat: Vec<f64> = values.into_iter().flatten().collect();
     let array: ArrayD<f64> =
         Array::from_shape_vec(IxDyn(&dims), flat).expect("each state's result has the shape");
     array.into_pyarray(py)
@@ -245,16 +271,18 @@ fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usi
                 "segment_tensions",
                 vec![segments],
                 (|_, _, r, row| {
-                    row.extend(r.flattened(Output::SegmentTensions).unwrap_or_default())
+                    r.extend_flattened(Output::SegmentTensions, row);
                 }) as Reader,
             ),
             (
                 "bearings",
                 vec![model.bodies().len(), 2, 3],
-                |_, _, r, row| row.extend(r.flattened(Output::Bearings).unwrap_or_default()),
+                |_, _, r, row| {
+                    r.extend_flattened(Output::Bearings, row);
+                },
             ),
             ("base_reaction", vec![2, 3], |_, _, r, row| {
-                row.extend(r.flattened(Output::BaseReaction).unwrap_or_default())
+                r.extend_flattened(Output::BaseReaction, row);
             }),
         ]);
     }
@@ -278,8 +306,10 @@ impl Model {
         count: usize,
         evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<R> + Send + Sync,
     ) -> PyResult<Vec<R>> {
-        let state =
-            |k: usize| -> Vec<&[f64]> { inputs.iter().map(|b| b.rows[k].as_slice()).collect() };
+        // At most four inputs (forward dynamics'), unused ones empty: no allocation.
+        let state = |k: usize| -> [&[f64]; 4] {
+            std::array::from_fn(|i| inputs.get(i).map_or(&[][..], |b| b.row(k)))
+        };
         let results: Vec<tendyn_core::Result<R>> = py.detach(|| {
             if count >= PARALLEL {
                 // One run of consecutive states per thread, each with its own buffers.
@@ -337,6 +367,40 @@ impl Model {
 
 #[pymethods]
 impl Model {
+    /// For `bench/inverse_dynamics_batch.py`: the Rust solver alone on the same states in
+    /// this process, `Data::inverse_dynamics` in a loop on one thread with no Python and no
+    /// copies, best of `repeats` passes; nanoseconds per state. What a batched
+    /// `inverse_dynamics` call is measured against (issue 12's speed goal).
+    fn _rust_loop_ns(
+        &self,
+        py: Python<'_>,
+        q: Input<'_>,
+        qd: Input<'_>,
+        qdd: Input<'_>,
+        repeats: usize,
+    ) -> PyResult<f64> {
+        let n = self.model.dof();
+        let (inputs, _, count) = self.states(vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)])?;
+        let model = &self.model;
+        let best = py.detach(|| {
+            let mut data = Data::new(model);
+            let mut best = f64::INFINITY;
+            for _ in 0..repeats.max(1) {
+                let start = std::time::Instant::now();
+                for k in 0..count {
+                    let (q, qd, qdd) = (inputs[0].row(k), inputs[1].row(k), inputs[2].row(k));
+                    let r = data
+                        .inverse_dynamics(model, q, qd, qdd)
+                        .map_err(tendyn_error)?;
+                    std::hint::black_box(r);
+                }
+                best = best.min(start.elapsed().as_nanos() as f64);
+            }
+            Ok::<f64, PyErr>(best)
+        })?;
+        Ok(best / count.max(1) as f64)
+    }
+
     /// The mechanism's name.
     #[getter]
     fn name(&self) -> &str {
@@ -474,10 +538,11 @@ impl Model {
         let mut offset = 0;
         // The values of `size` numbers from `at` in every row, as one array of `shape`.
         let array = |at: usize, size: usize, shape: &[usize]| {
-            let values = (rows.iter())
-                .map(|row| row[at..at + size].to_vec())
-                .collect();
-            stacked(py, values, shape, batched)
+            let mut flat = Vec::with_capacity(rows.len() * size);
+            for row in &rows {
+                flat.extend_from_slice(&row[at..at + size]);
+            }
+            stacked_flat(py, flat, rows.len(), shape, batched)
         };
         let boolean = |a: Bound<'py, PyArrayDyn<f64>>| a.call_method1("astype", ("bool",));
         for (key, shape, _) in &fields {
