@@ -256,6 +256,11 @@ mod tests {
         assert_eq!(r.flattened(Output::Bearings), Some(run(9, 20)));
         assert_eq!(r.flattened(Output::BaseReaction), Some(run(21, 26)));
         assert_eq!(r.flattened(Output::MassMatrix), None);
+        // Appended after what is there; nothing appended where there is no such output.
+        let mut out = vec![0.0];
+        assert!(r.extend_flattened(Output::BaseReaction, &mut out));
+        assert!(!r.extend_flattened(Output::Gravity, &mut out));
+        assert_eq!(out, [&[0.0][..], &run(21, 26)].concat());
         let incomplete = InverseDynamics {
             segment_tensions: None,
             bearings: None,

@@ -271,18 +271,21 @@ fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usi
                 "segment_tensions",
                 vec![segments],
                 (|_, _, r, row| {
-                    r.extend_flattened(Output::SegmentTensions, row);
+                    let given = r.extend_flattened(Output::SegmentTensions, row);
+                    debug_assert!(given, "a complete routing attributes it");
                 }) as Reader,
             ),
             (
                 "bearings",
                 vec![model.bodies().len(), 2, 3],
                 |_, _, r, row| {
-                    r.extend_flattened(Output::Bearings, row);
+                    let given = r.extend_flattened(Output::Bearings, row);
+                    debug_assert!(given, "a complete routing attributes it");
                 },
             ),
             ("base_reaction", vec![2, 3], |_, _, r, row| {
-                r.extend_flattened(Output::BaseReaction, row);
+                let given = r.extend_flattened(Output::BaseReaction, row);
+                debug_assert!(given, "a complete routing attributes it");
             }),
         ]);
     }
@@ -306,7 +309,12 @@ impl Model {
         count: usize,
         evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<R> + Send + Sync,
     ) -> PyResult<Vec<R>> {
-        // At most four inputs (forward dynamics'), unused ones empty: no allocation.
+        // At most four inputs (forward dynamics'), taken without allocation and passed as
+        // exactly as many slices as there are inputs.
+        assert!(
+            inputs.len() <= 4,
+            "a method takes at most four state inputs"
+        );
         let state = |k: usize| -> [&[f64]; 4] {
             std::array::from_fn(|i| inputs.get(i).map_or(&[][..], |b| b.row(k)))
         };
@@ -320,14 +328,16 @@ impl Model {
                     .map(|run| {
                         let mut data = Data::new(&self.model);
                         run.iter()
-                            .map(|&k| evaluate(&mut data, &state(k)))
+                            .map(|&k| evaluate(&mut data, &state(k)[..inputs.len()]))
                             .collect()
                     })
                     .collect();
                 runs.into_iter().flatten().collect()
             } else {
                 let mut data = self.data.lock().unwrap_or_else(|p| p.into_inner());
-                (0..count).map(|k| evaluate(&mut data, &state(k))).collect()
+                (0..count)
+                    .map(|k| evaluate(&mut data, &state(k)[..inputs.len()]))
+                    .collect()
             }
         });
         results

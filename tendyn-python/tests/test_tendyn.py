@@ -133,6 +133,21 @@ def test_lists_and_integer_arrays_are_states_too():
     assert np.array_equal(m.gravity(np.array([[0, 1]], dtype=np.int32))[0], m.gravity([0.0, 1.0]))
 
 
+def test_any_memory_layout_and_empty_batches_are_states_too():
+    m = model("example3_stanford_jpl")
+    q, qd, qdd = states(m, 8, 7)
+    want = m.inverse_dynamics(q, qd, qdd)["tendon_tensions"]
+    fortran = [np.asfortranarray(x) for x in (q, qd, qdd)]
+    assert np.array_equal(m.inverse_dynamics(*fortran)["tendon_tensions"], want)
+    reversed_rows = [x[::-1] for x in (q, qd, qdd)]
+    assert np.array_equal(m.inverse_dynamics(*reversed_rows)["tendon_tensions"], want[::-1])
+    assert m.inverse_dynamics(q[:0], qd[:0], qdd[:0])["tendon_tensions"].shape == (0, 4)
+    r = m.inverse_dynamics(q, qd, qdd)  # no motors: (N, 0) motor torques
+    assert r["motor_torques"].shape == (8, 0)
+    back = m.forward_dynamics(q, qd, r["motor_torques"], r["tendon_tensions"])
+    assert np.allclose(back, qdd, rtol=1e-9, atol=1e-9)
+
+
 def test_model_describes_the_mechanism():
     m = model("example3_stanford_jpl")
     assert m.dof == 3
