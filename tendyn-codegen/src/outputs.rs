@@ -305,7 +305,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
-            elimination: elimination(model),
+            elimination: model.has_capstan().then(|| elimination(model)).flatten(),
             ..Shared::default()
         };
         let results = outputs

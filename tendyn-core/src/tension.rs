@@ -319,7 +319,7 @@ impl Elimination {
                 .unwrap_or(j);
             e.swap(j, pivot);
             rows.swap(j, pivot);
-            eliminate_below(&mut e, j, j..n);
+            eliminate_below(&mut e, j, j, j..n);
         }
         Some(Elimination {
             columns,
@@ -327,9 +327,7 @@ impl Elimination {
             free,
         })
     }
-}
 
-impl Elimination {
     /// Whether this order keeps every pivot of the elimination away from zero, with the
     /// sign it has in the model's `E`, at every direction of sliding validation checks
     /// (`validate::Sliding`, `q = 0`, each pivot beyond `1e-12` of `E`'s largest entry).
@@ -342,7 +340,7 @@ impl Elimination {
         let without = self.pivots(&model.system.matrix);
         sliding.points(model).into_iter().all(|point| {
             let sigma = sliding.sigma(model, &point);
-            let e = state_matrix(model, &crate::validate::Sliding::factors(model, &sigma));
+            let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
             let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
             let kept = |(p, w): (&f64, &f64)| p.signum() == w.signum() && p.abs() > 1e-12 * size;
             self.pivots(&e).iter().zip(&without).all(kept) || !sliding.reachable(&point)
@@ -378,26 +376,18 @@ fn unpivoted_columns(mut e: Vec<Vec<f64>>) -> Vec<usize> {
         let Some((i, c)) = best else { break };
         e.swap(j, i);
         pivoted[c] = true;
-        let (above, below) = e.split_at_mut(j + 1);
-        for row in below {
-            let f = row[c] / above[j][c];
-            if f.is_finite() {
-                for (x, p) in row.iter_mut().zip(&above[j]) {
-                    *x -= f * p;
-                }
-            }
-        }
+        eliminate_below(&mut e, j, c, 0..width);
     }
     (0..width).filter(|&c| !pivoted[c]).collect()
 }
 
 /// One step of Gaussian elimination: row `j` of `e` (the pivot row) subtracted from every
-/// row below it so that column `j` vanishes there, over the columns `span`.
-fn eliminate_below(e: &mut [Vec<f64>], j: usize, span: core::ops::Range<usize>) {
+/// row below it so that column `c` (the pivot's) vanishes there, over the columns `span`.
+fn eliminate_below(e: &mut [Vec<f64>], j: usize, c: usize, span: core::ops::Range<usize>) {
     let (above, below) = e.split_at_mut(j + 1);
     let pivot_row = &above[j];
     for row in below {
-        let f = row[j] / pivot_row[j];
+        let f = row[c] / pivot_row[c];
         if f.is_finite() {
             for (x, p) in row[span.clone()].iter_mut().zip(&pivot_row[span.clone()]) {
                 *x -= f * p;
@@ -565,18 +555,19 @@ pub fn solution<T: Real>(model: &Model<T>, system: &TensionSystem<T>, b: &[T], o
 /// The minimal-norm solution from a [`solution`] `x` of `system`, in place: `x` itself
 /// where the system holds `E⁺`; in a traced state's system, `x` less its part in the null
 /// space: along the one direction `p`, `x − (pᵀx / pᵀp) p`; along a basis orthonormal over
-/// the tendons ([`system_traced`]), `x − Σ q (qᵀx)` with the products over the tendons too
-/// (the other components of a null vector vanish, so rounding in them must not weigh the
-/// motor torques and loop sides in).
+/// the tendons ([`system_traced`]), `x − Σ q (qᵀx)`. The products are over the tendons:
+/// the other components of a null vector vanish (validation keeps every motor and loop
+/// side determined), so rounding in them must not weigh the motor torques and loop sides
+/// in, nor cost operations in generated code.
 pub fn minimal_norm<T: Real>(model: &Model<T>, system: &TensionSystem<T>, x: &mut [T]) {
     if system.eliminated.is_none() {
         return;
     }
-    let dot = crate::linalg::dot;
+    let dot = |a: &[T], b: &[T]| dot_over_tendons(model, a, b);
     for v in &system.null_space {
         let along = match &system.positive_null {
             Some(_) => dot(v, x) / dot(v, v),
-            None => dot_over_tendons(model, v, x),
+            None => dot(v, x),
         };
         for (o, v) in x.iter_mut().zip(v) {
             *o = *o - along * *v;

@@ -212,6 +212,13 @@ fn read_guides(
     );
 }
 
+/// Appends `output` of `r`, which a complete routing always attributes (the only case in
+/// which [`inverse_fields`] reads it).
+fn attributed(r: &InverseDynamics<f64>, output: Output, row: &mut Vec<f64>) {
+    let given = r.extend_flattened(output, row);
+    debug_assert!(given, "a complete routing attributes {output:?}");
+}
+
 /// The fields of [`Model::inverse_dynamics`]'s dict: key, shape per state, and how a
 /// result is read into a state's row; segment tensions, bearings and the base reaction
 /// only where the routing attributes them (`None` in the dict otherwise).
@@ -270,22 +277,15 @@ fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usi
             (
                 "segment_tensions",
                 vec![segments],
-                (|_, _, r, row| {
-                    let given = r.extend_flattened(Output::SegmentTensions, row);
-                    debug_assert!(given, "a complete routing attributes it");
-                }) as Reader,
+                (|_, _, r, row| attributed(r, Output::SegmentTensions, row)) as Reader,
             ),
             (
                 "bearings",
                 vec![model.bodies().len(), 2, 3],
-                |_, _, r, row| {
-                    let given = r.extend_flattened(Output::Bearings, row);
-                    debug_assert!(given, "a complete routing attributes it");
-                },
+                |_, _, r, row| attributed(r, Output::Bearings, row),
             ),
             ("base_reaction", vec![2, 3], |_, _, r, row| {
-                let given = r.extend_flattened(Output::BaseReaction, row);
-                debug_assert!(given, "a complete routing attributes it");
+                attributed(r, Output::BaseReaction, row)
             }),
         ]);
     }

@@ -571,21 +571,23 @@ const EVERY_REST_UP_TO: usize = 8;
 /// failing pattern refuses the routing only if some joint velocity produces it
 /// ([`reachable`]).
 ///
-/// One null direction (the usual case): every guide may also be at rest (`σ = 0`, the
-/// exact law's band) independently of its group, and each tendon's component of the null
-/// vector, as the signed maximal minor of `E` without that tendon's column, must keep the
-/// sign it has without friction. That check covers the smoothed law and every state in
-/// between as well: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a product of
-/// distinct guides' capstan factors (`tension::state_matrix`), and a guide lies on one
-/// strand, so every minor is affine in each guide's factor `w_g = e^{−σ_g μ β_g}` taken
-/// alone; such a function on a box of factors takes its extremes at the box's corners,
-/// and the corners of the boxes the directions reach (each guide at rest or sliding its
-/// group's way) are exactly the points checked. The same holds wherever the wrap angles
-/// are no larger than at `q = 0` (a smaller box about `w = 1`); elsewhere the runtime
-/// solver checks every state's system again. Up to [`EVERY_REST_UP_TO`] guides; beyond,
-/// and for null spaces of two or more dimensions, the checked patterns are those where
-/// every guide slides: all of them up to 12 groups, past that the two where every group
-/// slides one way and those with one group flipped.
+/// One null direction (the usual case), up to [`EVERY_REST_UP_TO`] classes of guides
+/// (equal or opposite speeds: at rest together): each class may also be at rest (`σ = 0`,
+/// the exact law's band) while the others of its group slide its way or rest, and each
+/// tendon's component of the null vector, as the signed maximal minor of `E` without that
+/// tendon's column, must keep the sign it has without friction while the motors' and loop
+/// sides' stay zero ([`Minors::compare`]). That check covers the smoothed law and every
+/// state in between as well: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a
+/// product of distinct capstan factors (`tension::state_matrix`), and each pass of a
+/// strand over a guide has its own factor, so every minor is affine in each factor
+/// `w = e^{−σμβ}` taken alone; such a function on a box of factors takes its extremes at
+/// the box's corners, which are the points checked. The same holds wherever the wrap
+/// angles are no larger than at `q = 0` (a smaller box about `w = 1`). Not checked: a
+/// slower class of a group taking, within the band, the direction opposite to a faster
+/// one's (docs/format.md §6a); the runtime solver checks every state's system again.
+/// Beyond [`EVERY_REST_UP_TO`] classes, and for null spaces of two or more dimensions,
+/// the checked patterns are those where every guide slides: all of them up to 12 groups,
+/// past that the two where every group slides one way and those with one group flipped.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
     let sliding = Sliding::of(model);
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
@@ -596,7 +598,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         let sigma = sliding.sigma(model, &point);
         let failure = match &frictionless {
             Some(without) => {
-                let e = crate::tension::state_matrix(model, &Sliding::factors(model, &sigma));
+                let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
                 without.compare(&without.at(&e), &tendons).err()
             }
             None => crate::dynamics::system_sliding(model, &vec![0.0; model.dof], &sigma)
@@ -682,16 +684,6 @@ impl Sliding {
             sigma[slider.strand][slider.idler] = slider.sign * point[slider.class];
         }
         sigma
-    }
-
-    /// The capstan factors at `q = 0` with the directions `sigma`.
-    pub(crate) fn factors(model: &Model<f64>, sigma: &[Vec<f64>]) -> Vec<Vec<f64>> {
-        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
-            .map(|s| vec![1.0; s.idlers.len()])
-            .collect();
-        let q = vec![0.0; model.dof];
-        crate::friction::capstan_factors_sliding(model, &q, &mut capstan, |s, k, _| sigma[s][k]);
-        capstan
     }
 
     /// Whether some joint velocity makes the groups slide as `point` says ([`reachable`]).
