@@ -198,12 +198,13 @@ impl<T: Copy> InverseDynamics<T> {
         match output {
             Output::GeneralizedForces => out.extend(&self.generalized_forces),
             Output::Actuation => out.extend(self.motor_torques.iter().chain(&self.tendon_tensions)),
+            // Slice by slice: a flattening iterator appends number by number.
             Output::SegmentTensions => match &self.segment_tensions {
-                Some(s) => out.extend(s.iter().flatten()),
+                Some(s) => s.iter().for_each(|strand| out.extend_from_slice(strand)),
                 None => return false,
             },
             Output::Bearings => match &self.bearings {
-                Some(b) => out.extend(b.iter().flat_map(wrench)),
+                Some(b) => b.iter().for_each(|w| out.extend_from_slice(&wrench(w))),
                 None => return false,
             },
             Output::BaseReaction => match &self.base_reaction {

@@ -76,6 +76,15 @@ struct Batch {
     batched: bool,
 }
 
+/// The numbers of `view` in logical (row-major) order: one copy when they already lie so
+/// in memory, as numpy's arrays usually do.
+fn in_order(view: numpy::ndarray::ArrayViewD<'_, f64>) -> Vec<f64> {
+    match view.as_slice() {
+        Some(values) => values.to_vec(),
+        None => view.iter().copied().collect(),
+    }
+}
+
 impl Batch {
     /// State `k`'s numbers.
     fn row(&self, k: usize) -> &[f64] {
@@ -87,13 +96,13 @@ impl Batch {
         let view = array.as_array();
         match shape.as_slice() {
             [k] if *k == n => Ok(Batch {
-                values: view.iter().copied().collect(),
+                values: in_order(view),
                 width: n,
                 count: 1,
                 batched: false,
             }),
             [count, k] if *k == n => Ok(Batch {
-                values: view.iter().copied().collect(), // logical (row-major) order
+                values: in_order(view),
                 width: n,
                 count: *count,
                 batched: true,
@@ -135,7 +144,7 @@ impl Batch {
 }
 
 /// `values` (one result of `shape` per state) as one array, with the batch axis first when
-/// the call was batched.
+/// `batched`.
 fn stacked<'py>(
     py: Python<'py>,
     values: Vec<Vec<f64>>,
@@ -143,16 +152,11 @@ fn stacked<'py>(
     batched: bool,
 ) -> Bound<'py, PyArrayDyn<f64>> {
     let count = values.len();
-    stacked_flat(
-        py,
-        values.into_iter().flatten().collect(),
-        count,
-        shape,
-        batched,
-    )
+    stacked_flat(py, values.concat(), count, shape, batched)
 }
 
-/// [`stacked`] from the `count` results laid end to end in `flat`.
+/// [`stacked`] from the `count` results laid end to end in `flat`, which the array takes
+/// over without a copy.
 fn stacked_flat<'py>(
     py: Python<'py>,
     flat: Vec<f64>,
@@ -160,21 +164,19 @@ fn stacked_flat<'py>(
     shape: &[usize],
     batched: bool,
 ) -> Bound<'py, PyArrayDyn<f64>> {
-    let mut dims = Vec::with_capacity(shape.len() + 1);
-    if batched {
-        dims.push(count);
-    }
-    dims.extend_from_slice(shape);
+    let batch = batched.then_some(count);
+    let dims: Vec<usize> = batch.into_iter().chain(shape.iter().copied()).collect();
     let array: ArrayD<f64> =
         Array::from_shape_vec(IxDyn(&dims), flat).expect("each state's result has the shape");
     array.into_pyarray(py)
 }
 
-/// Writes one field of an inverse-dynamics result onto a state's row.
-type Reader = fn(&tendyn_core::Model<f64>, [&[f64]; 3], &InverseDynamics<f64>, &mut Vec<f64>);
+/// Appends a state's values of an inverse-dynamics result to `fields[0]`, the field it
+/// reads ([`read_guides`]: to the five fields from there).
+type Reader = fn(&tendyn_core::Model<f64>, [&[f64]; 3], &InverseDynamics<f64>, &mut [Vec<f64>]);
 
-/// The keys of each guide's quantities in `inverse_dynamics`'s dict, in the order the
-/// `guides` field holds them (one row per quantity); `guide_sticking` is boolean.
+/// The keys of each guide's quantities in `inverse_dynamics`'s dict, in the order
+/// [`read_guides`] writes them; `guide_sticking` is boolean.
 const GUIDE_KEYS: [&str; 5] = [
     "guide_wrap_angles",
     "guide_sliding_speeds",
@@ -185,27 +187,26 @@ const GUIDE_KEYS: [&str; 5] = [
 
 /// The bodies whose bearing has friction, in body order (joints, then pulleys): the
 /// entries of `bearing_friction` and `sticking`.
-fn friction_bodies(model: &tendyn_core::Model<f64>) -> Vec<usize> {
-    (0..model.bodies().len())
-        .filter(|&b| model.bodies()[b].friction.is_some())
-        .collect()
+fn friction_bodies(model: &tendyn_core::Model<f64>) -> impl Iterator<Item = usize> + '_ {
+    (0..model.bodies().len()).filter(|&b| model.bodies()[b].friction.is_some())
 }
 
-/// Each guide's quantities at a state, [`GUIDE_KEYS`] one after another (a placeholder
-/// NaN for the power where there are no segment tensions; the dict then says `None`).
+/// Each guide's quantities at a state, in the fields of [`GUIDE_KEYS`] from `fields[0]`
+/// on (a placeholder NaN for the power where there are no segment tensions; the dict then
+/// says `None`).
 fn read_guides(
     model: &tendyn_core::Model<f64>,
     state: [&[f64]; 3],
     r: &InverseDynamics<f64>,
-    row: &mut Vec<f64>,
+    fields: &mut [Vec<f64>],
 ) {
     let guides = friction::guide_states(model, state, r.segment_tensions.as_deref());
     let flag = |b: bool| if b { 1.0 } else { 0.0 };
-    row.extend(guides.iter().map(|g| g.wrap_angle));
-    row.extend(guides.iter().map(|g| g.sliding_speed));
-    row.extend(guides.iter().map(|g| g.direction));
-    row.extend(guides.iter().map(|g| flag(g.sticking)));
-    row.extend(
+    fields[0].extend(guides.iter().map(|g| g.wrap_angle));
+    fields[1].extend(guides.iter().map(|g| g.sliding_speed));
+    fields[2].extend(guides.iter().map(|g| g.direction));
+    fields[3].extend(guides.iter().map(|g| flag(g.sticking)));
+    fields[4].extend(
         guides
             .iter()
             .map(|g| g.dissipated_power.unwrap_or(f64::NAN)),
@@ -214,79 +215,93 @@ fn read_guides(
 
 /// Appends `output` of `r`, which a complete routing always attributes (the only case in
 /// which [`inverse_fields`] reads it).
-fn attributed(r: &InverseDynamics<f64>, output: Output, row: &mut Vec<f64>) {
-    let given = r.extend_flattened(output, row);
+fn attributed(r: &InverseDynamics<f64>, output: Output, field: &mut Vec<f64>) {
+    let given = r.extend_flattened(output, field);
     debug_assert!(given, "a complete routing attributes {output:?}");
 }
 
-/// The fields of [`Model::inverse_dynamics`]'s dict: key, shape per state, and how a
-/// result is read into a state's row; segment tensions, bearings and the base reaction
-/// only where the routing attributes them (`None` in the dict otherwise).
-fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<(&'static str, Vec<usize>, Reader)> {
+/// A field of [`Model::inverse_dynamics`]'s dict: its key, its shape per state, and its
+/// reader (`None` for the guide fields after the first, which [`read_guides`] writes).
+type Field = (&'static str, Vec<usize>, Option<Reader>);
+
+/// The fields of [`Model::inverse_dynamics`]'s dict. Segment tensions, bearings and the
+/// base reaction only where the routing attributes them (`None` in the dict otherwise).
+fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<Field> {
     let (n, tendons) = (model.dof(), model.tendons().len());
-    let mut fields: Vec<(&'static str, Vec<usize>, Reader)> = vec![
-        ("generalized_forces", vec![n], |_, _, r, row| {
-            row.extend(&r.generalized_forces)
-        }),
+    let frictional = friction_bodies(model).count();
+    let mut fields: Vec<Field> = vec![
+        (
+            "generalized_forces",
+            vec![n],
+            Some(|_, _, r, f| f[0].extend(&r.generalized_forces)),
+        ),
         (
             "motor_torques",
             vec![model.motors().len()],
-            |_, _, r, row| row.extend(&r.motor_torques),
+            Some(|_, _, r, f| f[0].extend(&r.motor_torques)),
         ),
-        ("tendon_tensions", vec![tendons], |_, _, r, row| {
-            row.extend(&r.tendon_tensions)
-        }),
-        ("minimal_norm_tensions", vec![tendons], |_, _, r, row| {
-            row.extend(&r.minimal_norm_tensions)
-        }),
-        ("null_space_tensions", vec![tendons], |_, _, r, row| {
-            row.extend(&r.null_space_tensions)
-        }),
+        (
+            "tendon_tensions",
+            vec![tendons],
+            Some(|_, _, r, f| f[0].extend(&r.tendon_tensions)),
+        ),
+        (
+            "minimal_norm_tensions",
+            vec![tendons],
+            Some(|_, _, r, f| f[0].extend(&r.minimal_norm_tensions)),
+        ),
+        (
+            "null_space_tensions",
+            vec![tendons],
+            Some(|_, _, r, f| f[0].extend(&r.null_space_tensions)),
+        ),
         (
             "loop_sides",
             vec![model.loops().len(), 2],
-            |_, _, r, row| row.extend(r.loop_sides.iter().flatten()),
+            Some(|_, _, r, f| f[0].extend(r.loop_sides.iter().flatten())),
         ),
         (
             "pulley_moments",
             vec![model.bodies().len() - n],
-            |_, _, r, row| row.extend(r.pulley_demands.iter().map(|(_, m)| m)),
+            Some(|_, _, r, f| f[0].extend(r.pulley_demands.iter().map(|(_, m)| m))),
         ),
         (
             "bearing_friction",
-            vec![friction_bodies(model).len()],
-            |_, _, r, row| row.extend(r.bearing_friction.iter().map(|(_, t)| t)),
+            vec![frictional],
+            Some(|_, _, r, f| f[0].extend(r.bearing_friction.iter().map(|(_, t)| t))),
         ),
         (
             "sticking",
-            vec![friction_bodies(model).len()],
-            |m, _, r, row| {
-                let at_rest = |b: &usize| if r.sticking.contains(b) { 1.0 } else { 0.0 };
-                row.extend(friction_bodies(m).iter().map(at_rest))
-            },
-        ),
-        (
-            "guides",
-            vec![GUIDE_KEYS.len(), model.guides().count()],
-            read_guides,
+            vec![frictional],
+            Some(|m, _, r, f| {
+                let at_rest = |b: usize| if r.sticking.contains(&b) { 1.0 } else { 0.0 };
+                f[0].extend(friction_bodies(m).map(at_rest))
+            }),
         ),
     ];
+    let guides = model.guides().count();
+    fields.extend(GUIDE_KEYS.iter().enumerate().map(|(i, &key)| {
+        let read: Option<Reader> = (i == 0).then_some(read_guides);
+        (key, vec![guides], read)
+    }));
     if !model.routing_incomplete() {
         let segments = model.strands().iter().map(|s| s.segments.len()).sum();
         fields.extend([
             (
                 "segment_tensions",
                 vec![segments],
-                (|_, _, r, row| attributed(r, Output::SegmentTensions, row)) as Reader,
+                Some((|_, _, r, f| attributed(r, Output::SegmentTensions, &mut f[0])) as Reader),
             ),
             (
                 "bearings",
                 vec![model.bodies().len(), 2, 3],
-                |_, _, r, row| attributed(r, Output::Bearings, row),
+                Some(|_, _, r, f| attributed(r, Output::Bearings, &mut f[0])),
             ),
-            ("base_reaction", vec![2, 3], |_, _, r, row| {
-                attributed(r, Output::BaseReaction, row)
-            }),
+            (
+                "base_reaction",
+                vec![2, 3],
+                Some(|_, _, r, f| attributed(r, Output::BaseReaction, &mut f[0])),
+            ),
         ]);
     }
     fields
@@ -298,17 +313,22 @@ impl Model {
         Model { model, data }
     }
 
-    /// Runs `evaluate` on every state (rows of `inputs`), without the GIL: in order on this
-    /// model's buffers, or from [`PARALLEL`] states on, across threads with buffers of
-    /// their own (each state's result is the same either way). The first failing state
-    /// raises `TendynError` naming its row.
-    fn each<R: Send>(
+    /// One array per field of `shapes` (each a state's shape), from `evaluate` on the
+    /// states of `named`, which appends a state's values to each field's. Without the GIL:
+    /// in order on this model's buffers or, from [`PARALLEL`] states on, one run of
+    /// consecutive states per thread, each with buffers of its own (each state's result is
+    /// the same either way). The arrays take over the values without a copy where one run
+    /// made them. The first failing state raises `TendynError` naming its row.
+    fn fill<'py>(
         &self,
-        py: Python<'_>,
-        inputs: &[Batch],
-        count: usize,
-        evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<R> + Send + Sync,
-    ) -> PyResult<Vec<R>> {
+        py: Python<'py>,
+        named: Vec<(&str, Input<'_>, usize)>,
+        shapes: &[Vec<usize>],
+        evaluate: impl Fn(&mut Data<f64>, &[&[f64]], &mut [Vec<f64>]) -> tendyn_core::Result<()>
+            + Send
+            + Sync,
+    ) -> PyResult<Vec<Bound<'py, PyArrayDyn<f64>>>> {
+        let (inputs, batched, count) = self.states(named)?;
         // At most four inputs (forward dynamics'), taken without allocation and passed as
         // exactly as many slices as there are inputs.
         assert!(
@@ -318,52 +338,76 @@ impl Model {
         let state = |k: usize| -> [&[f64]; 4] {
             std::array::from_fn(|i| inputs.get(i).map_or(&[][..], |b| b.row(k)))
         };
-        let results: Vec<tendyn_core::Result<R>> = py.detach(|| {
-            if count >= PARALLEL {
-                // One run of consecutive states per thread, each with its own buffers.
-                let rows: Vec<usize> = (0..count).collect();
-                let chunk = count.div_ceil(rayon::current_num_threads().max(1));
-                let runs: Vec<Vec<tendyn_core::Result<R>>> = rows
-                    .par_chunks(chunk)
-                    .map(|run| {
-                        let mut data = Data::new(&self.model);
-                        run.iter()
-                            .map(|&k| evaluate(&mut data, &state(k)[..inputs.len()]))
-                            .collect()
-                    })
-                    .collect();
-                runs.into_iter().flatten().collect()
+        let sizes: Vec<usize> = shapes.iter().map(|s| s.iter().product()).collect();
+        let threads = match count >= PARALLEL {
+            true => rayon::current_num_threads().max(1),
+            false => 1,
+        };
+        let chunk = count.div_ceil(threads).max(1);
+        // The values of every field over the run of states from `first`, or its first
+        // failing state.
+        let run = |data: &mut Data<f64>, first: usize| {
+            let states = first..(first + chunk).min(count);
+            let mut fields: Vec<Vec<f64>> = (sizes.iter())
+                .map(|size| Vec::with_capacity(size * states.len()))
+                .collect();
+            for k in states {
+                evaluate(data, &state(k)[..inputs.len()], &mut fields).map_err(|e| (k, e))?;
+                debug_assert!(
+                    (fields.iter().zip(&sizes)).all(|(f, s)| f.len() == (k + 1 - first) * s),
+                    "a state's values fill each field's shape"
+                );
+            }
+            Ok(fields)
+        };
+        let firsts: Vec<usize> = (0..count).step_by(chunk).collect();
+        let runs: Vec<Result<Vec<Vec<f64>>, _>> = py.detach(|| {
+            if threads > 1 {
+                (firsts.par_iter())
+                    .map(|&first| run(&mut Data::new(&self.model), first))
+                    .collect()
             } else {
                 let mut data = self.data.lock().unwrap_or_else(|p| p.into_inner());
-                (0..count)
-                    .map(|k| evaluate(&mut data, &state(k)[..inputs.len()]))
-                    .collect()
+                firsts.iter().map(|&first| run(&mut data, first)).collect()
             }
         });
-        results
-            .into_iter()
-            .enumerate()
-            .map(|(k, r)| {
-                r.map_err(|e| match count {
-                    1 => tendyn_error(e),
-                    _ => tendyn_error(format!("batch row {k}: {e}")),
-                })
+        // Runs are in order of their states, and each stops at its first failure.
+        let mut runs: Vec<Vec<Vec<f64>>> = (runs.into_iter())
+            .collect::<Result<_, (usize, tendyn_core::Error)>>()
+            .map_err(|(k, e)| match count {
+                1 => tendyn_error(e),
+                _ => tendyn_error(format!("batch row {k}: {e}")),
+            })?;
+        Ok((shapes.iter().enumerate())
+            .map(|(f, shape)| {
+                let values = match runs.as_mut_slice() {
+                    [one] => std::mem::take(&mut one[f]),
+                    several => several
+                        .iter()
+                        .map(|run| &run[f][..])
+                        .collect::<Vec<_>>()
+                        .concat(),
+                };
+                stacked_flat(py, values, count, shape, batched)
             })
-            .collect()
+            .collect())
     }
 
-    /// One array per state of `shape`, from `evaluate` on the states of `named`, stacked
-    /// as [`stacked`] does.
+    /// [`fill`](Model::fill) for one field of `shape`.
     fn per_state<'py>(
         &self,
         py: Python<'py>,
         named: Vec<(&str, Input<'_>, usize)>,
         shape: &[usize],
-        evaluate: impl Fn(&mut Data<f64>, &[&[f64]]) -> tendyn_core::Result<Vec<f64>> + Send + Sync,
+        evaluate: impl Fn(&mut Data<f64>, &[&[f64]], &mut Vec<f64>) -> tendyn_core::Result<()>
+            + Send
+            + Sync,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let (inputs, batched, count) = self.states(named)?;
-        let values = self.each(py, &inputs, count, evaluate)?;
-        Ok(stacked(py, values, shape, batched))
+        let evaluate = |data: &mut Data<f64>, s: &[&[f64]], fields: &mut [Vec<f64>]| {
+            evaluate(data, s, &mut fields[0])
+        };
+        let mut arrays = self.fill(py, named, &[shape.to_vec()], evaluate)?;
+        Ok(arrays.remove(0))
     }
 
     fn states(&self, named: Vec<(&str, Input<'_>, usize)>) -> PyResult<(Vec<Batch>, bool, usize)> {
@@ -454,7 +498,7 @@ impl Model {
     /// entries of `inverse_dynamics`'s `bearing_friction` and `sticking`.
     #[getter]
     fn friction_bodies(&self) -> Vec<String> {
-        (friction_bodies(&self.model).into_iter())
+        friction_bodies(&self.model)
             .map(|b| self.model.bodies()[b].name.clone())
             .collect()
     }
@@ -525,56 +569,34 @@ impl Model {
         qd: Input<'py>,
         qdd: Input<'py>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let n = self.model.dof();
-        let (inputs, batched, count) =
-            self.states(vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)])?;
-        let model = &self.model;
+        let (model, n) = (&self.model, self.model.dof());
         let fields = inverse_fields(model);
-        let width: usize = fields
-            .iter()
-            .map(|(_, shape, _)| shape.iter().product::<usize>())
-            .sum();
-        // One row of numbers per state, every field in turn: no copy of the result.
-        let rows = self.each(py, &inputs, count, |data, s| {
+        let shapes: Vec<Vec<usize>> = fields.iter().map(|(_, shape, _)| shape.clone()).collect();
+        // The readers of fields with values (a reader of an empty field reads nothing, and
+        // the look-ups of friction's and the guides' cost as much as their output).
+        let readers: Vec<(usize, Reader)> = (fields.iter().enumerate())
+            .filter(|(_, (_, shape, _))| shape.iter().product::<usize>() > 0)
+            .filter_map(|(f, (_, _, read))| read.map(|read| (f, read)))
+            .collect();
+        let named = vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)];
+        let arrays = self.fill(py, named, &shapes, |data, s, values| {
             let r = data.inverse_dynamics(model, s[0], s[1], s[2])?;
-            let mut row = Vec::with_capacity(width);
-            for (_, _, read) in &fields {
-                read(model, [s[0], s[1], s[2]], r, &mut row);
+            for &(f, read) in &readers {
+                read(model, [s[0], s[1], s[2]], r, &mut values[f..]);
             }
-            debug_assert_eq!(row.len(), width, "a row holds every field");
-            Ok(row)
+            Ok(())
         })?;
         let out = PyDict::new(py);
-        let mut offset = 0;
-        // The values of `size` numbers from `at` in every row, as one array of `shape`.
-        let array = |at: usize, size: usize, shape: &[usize]| {
-            let mut flat = Vec::with_capacity(rows.len() * size);
-            for row in &rows {
-                flat.extend_from_slice(&row[at..at + size]);
-            }
-            stacked_flat(py, flat, rows.len(), shape, batched)
-        };
-        let boolean = |a: Bound<'py, PyArrayDyn<f64>>| a.call_method1("astype", ("bool",));
-        for (key, shape, _) in &fields {
-            let size: usize = shape.iter().product();
+        for ((key, _, _), array) in fields.iter().zip(arrays) {
             match *key {
-                "sticking" => out.set_item(*key, boolean(array(offset, size, shape))?)?,
-                "guides" => {
-                    let count = shape[1];
-                    for (i, quantity) in GUIDE_KEYS.iter().enumerate() {
-                        let a = array(offset + i * count, count, &[count]);
-                        match *quantity {
-                            "guide_sticking" => out.set_item(*quantity, boolean(a)?)?,
-                            "guide_dissipated_powers" if model.routing_incomplete() => {
-                                out.set_item(*quantity, py.None())?
-                            }
-                            _ => out.set_item(*quantity, a)?,
-                        }
-                    }
+                "sticking" | "guide_sticking" => {
+                    out.set_item(key, array.call_method1("astype", ("bool",))?)?
                 }
-                _ => out.set_item(*key, array(offset, size, shape))?,
+                "guide_dissipated_powers" if model.routing_incomplete() => {
+                    out.set_item(key, py.None())?
+                }
+                _ => out.set_item(key, array)?,
             }
-            offset += size;
         }
         for key in ["segment_tensions", "bearings", "base_reaction"] {
             if !out.contains(key)? {
@@ -591,8 +613,9 @@ impl Model {
         q: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
-        self.per_state(py, vec![("q", q, n)], &[n, n], |data, s| {
-            data.mass_matrix(model, s[0]).map(|m| m.concat())
+        self.per_state(py, vec![("q", q, n)], &[n, n], |data, s, row| {
+            row.extend(data.mass_matrix(model, s[0])?.iter().flatten());
+            Ok(())
         })
     }
 
@@ -604,9 +627,15 @@ impl Model {
         qd: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
-        self.per_state(py, vec![("q", q, n), ("qd", qd, n)], &[n], |data, s| {
-            data.bias(model, s[0], s[1]).map(<[f64]>::to_vec)
-        })
+        self.per_state(
+            py,
+            vec![("q", q, n), ("qd", qd, n)],
+            &[n],
+            |data, s, row| {
+                row.extend(data.bias(model, s[0], s[1])?);
+                Ok(())
+            },
+        )
     }
 
     /// Gravity generalized forces `g(q)` (N·m).
@@ -616,8 +645,9 @@ impl Model {
         q: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
-        self.per_state(py, vec![("q", q, n)], &[n], |data, s| {
-            data.gravity(model, s[0]).map(<[f64]>::to_vec)
+        self.per_state(py, vec![("q", q, n)], &[n], |data, s, row| {
+            row.extend(data.gravity(model, s[0])?);
+            Ok(())
         })
     }
 
@@ -640,7 +670,7 @@ impl Model {
         named.extend(tendon_tensions.map(|a| ("tendon_tensions", a, nt)));
         let model = &self.model;
         let (zeros_m, zeros_t) = (vec![0.0; nm], vec![0.0; nt]);
-        self.per_state(py, named, &[n], |data, s| {
+        self.per_state(py, named, &[n], |data, s, row| {
             let mut rest = s[2..].iter();
             let mt = if given_m {
                 rest.next().copied().unwrap_or(&zeros_m)
@@ -652,8 +682,8 @@ impl Model {
             } else {
                 &zeros_t
             };
-            data.forward_dynamics(model, s[0], s[1], mt, tt)
-                .map(<[f64]>::to_vec)
+            row.extend(data.forward_dynamics(model, s[0], s[1], mt, tt)?);
+            Ok(())
         })
     }
 
@@ -668,9 +698,10 @@ impl Model {
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
         let named = vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)];
-        self.per_state(py, named, &[2, n, n], |data, s| {
+        self.per_state(py, named, &[2, n, n], |data, s, row| {
             let d = data.generalized_forces_derivatives(model, s[0], s[1], s[2])?;
-            Ok([d.d_q, d.d_qd].concat())
+            row.extend(d.d_q.iter().chain(&d.d_qd));
+            Ok(())
         })
     }
 
@@ -694,15 +725,15 @@ impl Model {
             ("tendon_tensions", tendon_tensions, nt),
         ];
         let model = &self.model;
-        self.per_state(py, named, &[n, 2 * n + nm + nt], |data, s| {
+        self.per_state(py, named, &[n, 2 * n + nm + nt], |data, s, row| {
             let d = data.forward_dynamics_derivatives(model, s[0], s[1], s[2], s[3])?;
             let (cq, cu) = (n, nm + nt);
-            Ok((0..n)
-                .flat_map(|i| {
-                    let row = |m: &[f64], c: usize| m[i * c..(i + 1) * c].to_vec();
-                    [row(&d.d_q, cq), row(&d.d_qd, cq), row(&d.d_u, cu)].concat()
-                })
-                .collect())
+            for i in 0..n {
+                row.extend(&d.d_q[i * cq..(i + 1) * cq]);
+                row.extend(&d.d_qd[i * cq..(i + 1) * cq]);
+                row.extend(&d.d_u[i * cu..(i + 1) * cu]);
+            }
+            Ok(())
         })
     }
 
@@ -719,8 +750,9 @@ impl Model {
         let (model, n) = (&self.model, self.model.dof());
         let p = tendyn_core::regressor::count(model);
         let named = vec![("q", q, n), ("qd", qd, n), ("qdd", qdd, n)];
-        self.per_state(py, named, &[n, p], |data, s| {
-            Ok(data.regressor(model, s[0], s[1], s[2])?.y.clone())
+        self.per_state(py, named, &[n, p], |data, s, row| {
+            row.extend(&data.regressor(model, s[0], s[1], s[2])?.y);
+            Ok(())
         })
     }
 
@@ -731,9 +763,10 @@ impl Model {
         q: Input<'py>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (model, n) = (&self.model, self.model.dof());
-        self.per_state(py, vec![("q", q, n)], &[n], |data, s| {
+        self.per_state(py, vec![("q", q, n)], &[n], |data, s, row| {
             let zeros = vec![0.0; n];
-            Ok(data.regressor(model, s[0], &zeros, &zeros)?.known.clone())
+            row.extend(&data.regressor(model, s[0], &zeros, &zeros)?.known);
+            Ok(())
         })
     }
 

@@ -205,6 +205,21 @@ def test_a_batch_spread_over_threads_is_the_same_batch_in_order(name):
     bad[599, 0] = np.inf
     with pytest.raises(tendyn.TendynError, match=r"batch row 599: .*qd\[0\] is inf"):
         m.inverse_dynamics(q, bad, qdd)
+    # With failures in both threads' runs, the first row is named.
+    bad[100, 0] = np.nan
+    with pytest.raises(tendyn.TendynError, match=r"batch row 100: .*qd\[0\] is NaN"):
+        m.inverse_dynamics(q, bad, qdd)
+
+
+def test_arrays_laid_out_in_any_order_in_memory_give_the_same_results():
+    """Views with strides (every other state, Fortran order) are read in logical order."""
+    m = model("example3_stanford_jpl")
+    q, qd, qdd = states(m, 40, 6)
+    strided = m.inverse_dynamics(q[::2], qd[::2], np.asfortranarray(qdd[::2]))
+    packed = m.inverse_dynamics(*(np.ascontiguousarray(a[::2]) for a in (q, qd, qdd)))
+    for key, value in packed.items():
+        if value is not None:
+            assert np.array_equal(strided[key], value), key
 
 
 def test_check_is_the_command_lines_report():
