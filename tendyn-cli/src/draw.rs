@@ -185,6 +185,36 @@ fn scale_length(span: f64) -> f64 {
         .unwrap_or(decade)
 }
 
+/// Where names go: each at its place or, where that would cover a name already placed,
+/// moved down line by line until it covers none (pulleys on one axis sit at one point in
+/// a view along it).
+#[derive(Default)]
+struct Labels {
+    /// The boxes taken: left, top, right, bottom (pixels).
+    taken: Vec<(i32, i32, i32, i32)>,
+}
+
+impl Labels {
+    /// The top-left corner for `text` in a font `size` pixels high, from `wanted`.
+    fn place(&mut self, text: &str, wanted: (i32, i32), size: i32) -> (i32, i32) {
+        // Sans-serif letters are about 0.6 of the font's size wide.
+        let width = (0.6 * f64::from(size) * text.chars().count() as f64).ceil() as i32;
+        let (x, mut y) = wanted;
+        let covers = |y: i32, b: &(i32, i32, i32, i32)| {
+            x < b.2 && b.0 < x + width && y < b.3 && b.1 < y + size
+        };
+        // At most one line per name already placed: then it is below them all.
+        for _ in 0..=self.taken.len() {
+            if !self.taken.iter().any(|b| covers(y, b)) {
+                break;
+            }
+            y += size + 1;
+        }
+        self.taken.push((x, y, x + width, y + size));
+        (x, y)
+    }
+}
+
 /// The SVG of `model`'s `scene` seen in `view`.
 pub fn svg(model: &Model<f64>, scene: &Scene, view: View) -> Result<String, String> {
     let mut text = String::new();
@@ -232,15 +262,22 @@ fn draw(
     let (x0, x1) = (lo(|p| p.0 - p.2), hi(|p| p.0 + p.2));
     let (y0, y1) = (lo(|p| p.1 - p.2), hi(|p| p.1 + p.2));
     let span = (x1 - x0).max(y1 - y0).max(1e-6);
-    let scale = ((width - legend - 2.0 * margin) / (x1 - x0).max(1e-6))
-        .min((height - 2.0 * margin) / (y1 - y0).max(1e-6));
+    let (dx, dy) = ((x1 - x0).max(1e-6), (y1 - y0).max(1e-6));
+    let (room_x, room_y) = (width - legend - 2.0 * margin, height - 2.0 * margin);
+    let scale = (room_x / dx).min(room_y / dy);
+    // Centred in the room left of the legend, so a flat mechanism sits mid-page.
+    let (left, bottom) = (
+        margin + (room_x - dx * scale) / 2.0,
+        margin + (room_y - dy * scale) / 2.0,
+    );
     let at = |p: Vec3<f64>| {
         let (x, y) = view.project(p);
         (
-            (margin + (x - x0) * scale) as i32,
-            (height - margin - (y - y0) * scale) as i32,
+            (left + (x - x0) * scale) as i32,
+            (height - bottom - (y - y0) * scale) as i32,
         )
     };
+    let mut labels = Labels::default();
     let root = SVGBackend::with_string(text, (width as u32, height as u32)).into_drawing_area();
     root.fill(&WHITE)?;
     let font = ("sans-serif", 13).into_font();
@@ -251,11 +288,8 @@ fn draw(
         root.draw(&PathElement::new(outline, grey.stroke_width(1)))?;
         let (x, y) = at(*centre);
         let r = (radius * scale).round() as i32;
-        root.draw(&Text::new(
-            name.clone(),
-            (x + r + 2, y - r - 2),
-            small.clone(),
-        ))?;
+        let place = labels.place(name, (x + r + 2, y - r - 2), 11);
+        root.draw(&Text::new(name.clone(), place, small.clone()))?;
     }
     let max_tension = scene
         .segments
@@ -279,7 +313,8 @@ fn draw(
             BLACK.stroke_width(4),
         ))?;
         let (x, y) = at(*b);
-        root.draw(&Text::new(name.clone(), (x + 4, y + 4), font.clone()))?;
+        let place = labels.place(name, (x + 4, y + 4), 13);
+        root.draw(&Text::new(name.clone(), place, font.clone()))?;
     }
     for (point, axis) in &scene.joints {
         let (x, y) = at(*point);
@@ -367,6 +402,18 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Names asked for at one place (pulleys on one axis, seen along it) are stacked line
+    /// by line; a name clear of the others stays where it was asked for.
+    #[test]
+    fn names_at_one_place_are_stacked_not_overprinted() {
+        let mut labels = Labels::default();
+        assert_eq!(labels.place("drum3a", (100, 50), 11), (100, 50));
+        assert_eq!(labels.place("drum3b", (100, 50), 11), (100, 62));
+        // 55 covers the first name (50–61), 67 the second (62–73): 79 is clear.
+        assert_eq!(labels.place("drum3c", (104, 55), 11), (104, 79));
+        assert_eq!(labels.place("far", (300, 50), 11), (300, 50));
     }
 
     /// The drawing puts things where the model has them: segments touch their pulleys'

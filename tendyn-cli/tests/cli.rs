@@ -917,3 +917,104 @@ fn eval_and_forward_give_their_derivatives_on_request() {
     ]);
     assert_eq!(code, Some(2));
 }
+
+/// The drawings as a person sees them: Chromium (Debian's `chromium`, or the browser
+/// `TENDYN_CHROMIUM` names) renders each paper example's SVG headless at the drawing's
+/// size, and the screenshot must show every strand in its colour, the links in black, and
+/// white paper around them. A drawing the browser cannot read renders as an error page
+/// without those colours.
+#[test]
+#[ignore = "needs Chromium (apt-get install chromium): cargo test -p tendyn-cli -- --ignored render"]
+fn drawings_render_in_a_headless_browser() {
+    let browser = std::env::var("TENDYN_CHROMIUM").unwrap_or_else(|_| "chromium".into());
+    let dir = scratch_dir("render");
+    for name in [
+        "example1_endless",
+        "example2_open_ended",
+        "example3_stanford_jpl",
+    ] {
+        let svg = dir.join(format!("{name}.svg"));
+        let file = format!("examples/mechanisms/{name}.ron");
+        let out = svg.to_str().unwrap();
+        // Seen at a slant: seen along a base axis, two strands may run one over the other.
+        let (ok, _, err) = tendyn(&["draw", &file, "--view", "iso", "--tensions", "-o", out]);
+        assert!(ok, "{err}");
+        // Each strand's colour: the strokes wider than the 1-px outlines, black aside.
+        let text = std::fs::read_to_string(&svg).unwrap();
+        let strands: std::collections::BTreeSet<[u8; 3]> = text
+            .split("stroke=\"#")
+            .skip(1)
+            .filter_map(|rest| {
+                let width: f64 = rest
+                    .split("stroke-width=\"")
+                    .nth(1)?
+                    .split('"')
+                    .next()?
+                    .parse()
+                    .ok()?;
+                let hex = |i: usize| u8::from_str_radix(&rest[i..i + 2], 16).unwrap();
+                Some([hex(0), hex(2), hex(4)]).filter(|c| width > 1.0 && *c != [0, 0, 0])
+            })
+            .collect();
+        assert!(!strands.is_empty(), "{name}: no strand drawn");
+
+        let png = dir.join(format!("{name}.png"));
+        let shot = Command::new(&browser)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--hide-scrollbars",
+                "--window-size=800,600",
+                &format!("--screenshot={}", png.display()),
+                &format!("file://{}", svg.display()),
+            ])
+            .output()
+            .unwrap_or_else(|e| panic!("cannot start `{browser}` ({e}); apt-get install chromium"));
+        assert!(
+            shot.status.success(),
+            "{}",
+            String::from_utf8_lossy(&shot.stderr)
+        );
+        let decoder =
+            png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png).unwrap()));
+        let mut reader = decoder.read_info().unwrap();
+        let mut buffer = vec![0; reader.output_buffer_size().unwrap()];
+        let frame = reader.next_frame(&mut buffer).unwrap();
+        assert_eq!((frame.width, frame.height), (800, 600), "{name}");
+        let channels = frame.color_type.samples();
+        let pixels: Vec<[u8; 3]> = buffer[..frame.buffer_size()]
+            .chunks(channels)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect();
+        // Pixels of colour `c`, give or take the browser's blending at a line's edges.
+        let count = |c: [u8; 3]| {
+            let near = |p: &[u8; 3]| (0..3).all(|i| p[i].abs_diff(c[i]) <= 24);
+            pixels.iter().filter(|p| near(p)).count()
+        };
+        for c in &strands {
+            assert!(
+                count(*c) >= 100,
+                "{name}: strand colour {c:?} shows in {} pixels",
+                count(*c)
+            );
+        }
+        assert!(
+            count([0, 0, 0]) >= 100,
+            "{name}: links show in {} pixels",
+            count([0, 0, 0])
+        );
+        let paper = count([255, 255, 255]) as f64 / pixels.len() as f64;
+        assert!(
+            (0.5..0.99).contains(&paper),
+            "{name}: {:.0} % white",
+            100.0 * paper
+        );
+        let shown: Vec<usize> = strands.iter().map(|c| count(*c)).collect();
+        println!(
+            "{name}: strand colours {shown:?} px, black {} px, white {:.1} %",
+            count([0, 0, 0]),
+            100.0 * paper
+        );
+    }
+}
