@@ -186,8 +186,8 @@ fn scale_length(span: f64) -> f64 {
 }
 
 /// Where names go: each at its place or, where that would cover a name already placed,
-/// moved down line by line until it covers none (pulleys on one axis sit at one point in
-/// a view along it).
+/// moved down below it, until it covers none (pulleys on one axis sit at one point in a
+/// view along it).
 #[derive(Default)]
 struct Labels {
     /// The boxes taken: left, top, right, bottom (pixels).
@@ -195,7 +195,9 @@ struct Labels {
 }
 
 impl Labels {
-    /// The top-left corner for `text` in a font `size` pixels high, from `wanted`.
+    /// The top-left corner for `text` in a font of `size` from `wanted`. The box is a
+    /// little larger than the text drawn (plotters draws a font of `size` at `size / 1.24`
+    /// pixels), so that names placed apart never touch.
     fn place(&mut self, text: &str, wanted: (i32, i32), size: i32) -> (i32, i32) {
         // Sans-serif letters are about 0.6 of the font's size wide.
         let width = (0.6 * f64::from(size) * text.chars().count() as f64).ceil() as i32;
@@ -203,12 +205,15 @@ impl Labels {
         let covers = |y: i32, b: &(i32, i32, i32, i32)| {
             x < b.2 && b.0 < x + width && y < b.3 && b.1 < y + size
         };
-        // At most one line per name already placed: then it is below them all.
-        for _ in 0..=self.taken.len() {
-            if !self.taken.iter().any(|b| covers(y, b)) {
-                break;
-            }
-            y += size + 1;
+        // Below the lowest box in the way, until none is: `y` only grows, so a box that
+        // was passed is never in the way again, and there are as many passes at most as
+        // boxes.
+        while let Some(bottom) = (self.taken.iter())
+            .filter(|b| covers(y, b))
+            .map(|b| b.3)
+            .max()
+        {
+            y = bottom + 1;
         }
         self.taken.push((x, y, x + width, y + size));
         (x, y)
@@ -411,9 +416,14 @@ mod tests {
         let mut labels = Labels::default();
         assert_eq!(labels.place("drum3a", (100, 50), 11), (100, 50));
         assert_eq!(labels.place("drum3b", (100, 50), 11), (100, 62));
-        // 55 covers the first name (50–61), 67 the second (62–73): 79 is clear.
-        assert_eq!(labels.place("drum3c", (104, 55), 11), (104, 79));
+        // 55 is in the first name's box (50–61): below it, 62 is in the second's (62–73).
+        assert_eq!(labels.place("drum3c", (104, 55), 11), (104, 74));
         assert_eq!(labels.place("far", (300, 50), 11), (300, 50));
+        // Two boxes apart block one name twice, and it ends below both.
+        let mut apart = Labels::default();
+        apart.place("a", (0, 50), 11);
+        apart.place("b", (0, 70), 11);
+        assert_eq!(apart.place("c", (0, 40), 11), (0, 82));
     }
 
     /// The drawing puts things where the model has them: segments touch their pulleys'

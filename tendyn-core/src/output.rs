@@ -191,8 +191,8 @@ impl<T: Copy> InverseDynamics<T> {
     }
 
     /// [`InverseDynamics::flattened`] appended to `out`, without a vector of its own (the
-    /// Python package fills one row per state this way); `false`, appending nothing, where
-    /// that gives `None`.
+    /// Python package appends each state's to a field's values this way); `false`,
+    /// appending nothing, where that gives `None`.
     pub fn extend_flattened(&self, output: Output, out: &mut Vec<T>) -> bool {
         let wrench = |(f, n): &(Vec3<T>, Vec3<T>)| [f.x, f.y, f.z, n.x, n.y, n.z];
         match output {

@@ -143,8 +143,7 @@ impl Batch {
     }
 }
 
-/// `values` (one result of `shape` per state) as one array, with the batch axis first when
-/// `batched`.
+/// `values` (each of `shape`) as one array, with an axis over them first when `batched`.
 fn stacked<'py>(
     py: Python<'py>,
     values: Vec<Vec<f64>>,
@@ -315,10 +314,12 @@ impl Model {
 
     /// One array per field of `shapes` (each a state's shape), from `evaluate` on the
     /// states of `named`, which appends a state's values to each field's. Without the GIL:
-    /// in order on this model's buffers or, from [`PARALLEL`] states on, one run of
-    /// consecutive states per thread, each with buffers of its own (each state's result is
-    /// the same either way). The arrays take over the values without a copy where one run
-    /// made them. The first failing state raises `TendynError` naming its row.
+    /// on this model's buffers in order, or, from [`PARALLEL`] states on and where rayon
+    /// has more than one thread, one run of consecutive states per thread, each with
+    /// buffers of its own (each state's result is the same either way). The arrays take
+    /// over the values without a copy where one run made them; several runs' are copied
+    /// into the first's. The first failing state raises `TendynError`, naming its row
+    /// (`batch row k:`) when the call has more than one state.
     fn fill<'py>(
         &self,
         py: Python<'py>,
@@ -378,16 +379,17 @@ impl Model {
                 1 => tendyn_error(e),
                 _ => tendyn_error(format!("batch row {k}: {e}")),
             })?;
+        // Each field's values: the first run's, with the later runs' appended (each run's
+        // freed as soon as it is copied).
         Ok((shapes.iter().enumerate())
             .map(|(f, shape)| {
-                let values = match runs.as_mut_slice() {
-                    [one] => std::mem::take(&mut one[f]),
-                    several => several
-                        .iter()
-                        .map(|run| &run[f][..])
-                        .collect::<Vec<_>>()
-                        .concat(),
-                };
+                let mut values = (runs.first_mut())
+                    .map(|run| std::mem::take(&mut run[f]))
+                    .unwrap_or_default();
+                values.reserve((count * sizes[f]).saturating_sub(values.len()));
+                for run in runs.iter_mut().skip(1) {
+                    values.extend_from_slice(&std::mem::take(&mut run[f]));
+                }
                 stacked_flat(py, values, count, shape, batched)
             })
             .collect())
@@ -438,6 +440,12 @@ impl Model {
         let model = &self.model;
         let best = py.detach(|| {
             let mut data = Data::new(model);
+            // Warm buffers, as the batch's (the model's own) are after its first call.
+            if count > 0 {
+                let (q, qd, qdd) = (inputs[0].row(0), inputs[1].row(0), inputs[2].row(0));
+                data.inverse_dynamics(model, q, qd, qdd)
+                    .map_err(tendyn_error)?;
+            }
             let mut best = f64::INFINITY;
             for _ in 0..repeats.max(1) {
                 let start = std::time::Instant::now();

@@ -211,6 +211,23 @@ def test_a_batch_spread_over_threads_is_the_same_batch_in_order(name):
         m.inverse_dynamics(q, bad, qdd)
 
 
+def test_one_state_and_a_batch_of_one_differ_only_by_the_batch_axis():
+    m = model("example3_stanford_jpl")
+    q, qd, qdd = states(m, 1, 7)
+    batch = m.inverse_dynamics(q, qd, qdd)
+    one = m.inverse_dynamics(q[0], qd[0], qdd[0])
+    for key, value in one.items():
+        if value is not None:
+            assert batch[key].shape == (1,) + value.shape, key
+            assert np.array_equal(batch[key][0], value), key
+    bad = qd.copy()
+    bad[0, 0] = np.nan
+    # A call of one state names the input alone, batched or not (rows only from two on).
+    for args in [(q[0], bad[0], qdd[0]), (q, bad, qdd)]:
+        with pytest.raises(tendyn.TendynError, match=r"^(?!batch row).*qd\[0\] is NaN"):
+            m.inverse_dynamics(*args)
+
+
 def test_arrays_laid_out_in_any_order_in_memory_give_the_same_results():
     """Views with strides (every other state, Fortran order) are read in logical order."""
     m = model("example3_stanford_jpl")
