@@ -273,3 +273,36 @@ fn a_drum_massless_at_its_nominal_value_carries_the_mass_set_at_run_time() {
             .unwrap()
     );
 }
+
+/// One `Data` serves a model and the same mechanism with other parameters: its
+/// derivatives are each model's own, as fresh buffers give them (the dual-number copy it
+/// keeps between calls is that of the model passed, never a stale one).
+#[test]
+fn derivatives_follow_the_model_passed_not_the_one_before() {
+    let model = tendyn_core::parse(&parametric_finger()).unwrap();
+    let heavy = model
+        .with_parameters(&[0.07, 0.0000035, -3.7, 0.000000045])
+        .unwrap();
+    let (q, qd, qdd) = ([0.2, 0.7, -0.4], [1.0, -2.0, 0.5], [3.0, -1.0, 4.0]);
+    let fresh = |m: &tendyn_core::Model<f64>| {
+        let mut data = Data::new(m);
+        let d = data
+            .generalized_forces_derivatives(m, &q, &qd, &qdd)
+            .unwrap();
+        let f =
+            (data.forward_dynamics_derivatives(m, &q, &qd, &[], &[20.0, 15.0, 10.0, 5.0])).unwrap();
+        let a = data.actuation_derivatives(m, &q, &qd, &qdd).unwrap();
+        [d.d_q, d.d_qd, f.d_q, f.d_u, a.d_q, a.d_qdd]
+    };
+    let mut shared = Data::new(&model);
+    for m in [&model, &heavy, &model, &model.clone(), &heavy] {
+        let d = shared
+            .generalized_forces_derivatives(m, &q, &qd, &qdd)
+            .unwrap();
+        let f = (shared.forward_dynamics_derivatives(m, &q, &qd, &[], &[20.0, 15.0, 10.0, 5.0]))
+            .unwrap();
+        let a = shared.actuation_derivatives(m, &q, &qd, &qdd).unwrap();
+        assert_eq!([d.d_q, d.d_qd, f.d_q, f.d_u, a.d_q, a.d_qdd], fresh(m));
+    }
+    assert_ne!(fresh(&model), fresh(&heavy), "the parameters must matter");
+}

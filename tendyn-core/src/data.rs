@@ -20,6 +20,7 @@
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
 use crate::derivatives::{self, jacobians, Derivatives};
+use crate::dual::Dual;
 use crate::dynamics::{
     accelerations, actuator_forces, balance_at, bias, expanded_generalized_forces,
     forward_dynamics_rhs, generalized_forces, gravity, idlers_behind_capstan, inverse_dynamics,
@@ -53,6 +54,38 @@ pub struct Data<T: Real> {
     inverse_dynamics: InverseDynamics<T>,
     regressor_work: regressor::Work<T>,
     regressor: Regressor<T>,
+    /// The derivatives' dual-number copy of the model, made on their first call and
+    /// again only for another model (copying the model costs about as much as a few
+    /// evaluations of `Q`).
+    dual: Option<Box<DualCopy<T>>>,
+}
+
+/// A model on dual numbers ([`Model::dual`]) and work buffers for it.
+#[derive(Clone, Debug)]
+struct DualCopy<T: Real> {
+    /// The [`Model::identity`] of the model it was copied from.
+    identity: usize,
+    model: Model<Dual<T>>,
+    ws: Workspace<Dual<T>>,
+}
+
+/// `slot`'s dual copy of `model`, made anew if it holds none or one of another model.
+fn dual_copy<'a, T: Real>(
+    slot: &'a mut Option<Box<DualCopy<T>>>,
+    model: &Model<T>,
+) -> &'a mut DualCopy<T> {
+    if slot.as_ref().is_some_and(|d| d.identity != model.identity) {
+        *slot = None;
+    }
+    slot.get_or_insert_with(|| {
+        let dual = model.dual();
+        let ws = Workspace::new(&dual);
+        Box::new(DualCopy {
+            identity: model.identity,
+            model: dual,
+            ws,
+        })
+    })
 }
 
 /// The identification regressor at one state ([`crate::regressor`]): `Q = Y π + Q₀`.
@@ -129,6 +162,7 @@ impl<T: Numeric> Data<T> {
                 y: Vec::new(),
                 known: Vec::new(),
             },
+            dual: None,
         }
     }
 
@@ -217,9 +251,8 @@ impl<T: Numeric> Data<T> {
         qdd: &[T],
     ) -> Result<Derivatives<T>> {
         self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let dual = model.dual();
-        let mut dual_ws = Workspace::new(&dual);
-        let d = derivatives::generalized_forces_derivatives(&dual, q, qd, qdd, &mut dual_ws);
+        let dual = dual_copy(&mut self.dual, model);
+        let d = derivatives::generalized_forces_derivatives(&dual.model, q, qd, qdd, &mut dual.ws);
         finite_derivatives("generalized forces", &d, &[("q", q), ("qd", qd)])?;
         Ok(d)
     }
@@ -239,17 +272,16 @@ impl<T: Numeric> Data<T> {
     ) -> Result<Derivatives<T>> {
         let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         self.forward_dynamics(model, q, qd, motor_torques, tendon_tensions)?;
-        let dual = model.dual();
-        let mut dual_ws = Workspace::new(&dual);
+        let dual = dual_copy(&mut self.dual, model);
         let d = derivatives::forward_dynamics_derivatives(
             model,
-            &dual,
+            &dual.model,
             q,
             qd,
             motor_torques,
             tendon_tensions,
             &mut self.ws,
-            &mut dual_ws,
+            &mut dual.ws,
         );
         finite_derivatives("joint acceleration", &d, &inputs)?;
         Ok(d)
@@ -267,10 +299,10 @@ impl<T: Numeric> Data<T> {
         qdd: &[T],
     ) -> Result<Derivatives<T>> {
         self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let dual = model.dual();
-        let mut data = Data::new(&dual);
+        let dual = &dual_copy(&mut self.dual, model).model;
+        let mut data = Data::new(dual);
         let (value, mut d) = jacobians(&[q, qd, qdd], |x, out| {
-            let r = data.inverse_dynamics(&dual, &x[0], &x[1], &x[2])?;
+            let r = data.inverse_dynamics(dual, &x[0], &x[1], &x[2])?;
             out.clear();
             out.extend(r.motor_torques.iter().chain(&r.tendon_tensions));
             Ok::<(), Error>(())

@@ -489,6 +489,16 @@ pub struct Model<T> {
     /// What the recursions may skip for each body (derived at validation by
     /// [`patterns_of`]).
     pub(crate) patterns: Vec<BodyPattern>,
+    /// A number no other model made in this process has ([`new_identity`]), renewed
+    /// whenever a copy's numbers change; clones share it, having the same numbers. What
+    /// [`crate::Data`] keys the dual-number copy it keeps for derivatives on.
+    pub(crate) identity: usize,
+}
+
+/// A fresh [`Model::identity`].
+pub(crate) fn new_identity() -> usize {
+    static NEXT: core::sync::atomic::AtomicUsize = core::sync::atomic::AtomicUsize::new(0);
+    NEXT.fetch_add(1, core::sync::atomic::Ordering::Relaxed)
 }
 
 /// What the recursions may skip for one body: facts of the model's structure, derived
@@ -763,6 +773,7 @@ impl<T: Real> Model<T> {
             }),
             routing_incomplete: self.routing_incomplete,
             patterns: self.patterns.clone(),
+            identity: new_identity(),
         }
     }
 }
@@ -772,6 +783,7 @@ impl<T: Real> Model<T> {
     /// check (`with_parameters`) or pass symbols (`symbolic`); both give one value per
     /// parameter. Geometry slots rescale their places (see [`Slot::Geometry`]).
     fn set_parameters(&mut self, values: &[T]) {
+        self.identity = new_identity();
         // Factors `(parameter, power)` of each geometric place, in order of appearance.
         let mut geometry: Vec<(Place, Vec<(usize, i8)>)> = Vec::new();
         for &(slot, k) in &self.parameter_slots {
@@ -947,6 +959,7 @@ impl Model<f64> {
             problem,
         };
         let mut m = self.clone();
+        m.identity = new_identity();
         for (name, value) in named {
             if !value.is_finite() {
                 return Err(invalid(name, format!("value {value} is not finite")));

@@ -264,6 +264,7 @@ impl<'a> Validator<'a> {
             external_wrench,
             routing_incomplete,
             patterns,
+            identity: crate::model::new_identity(),
         })
     }
 
