@@ -284,25 +284,19 @@ fn derivatives_follow_the_model_passed_not_the_one_before() {
         .with_parameters(&[0.07, 0.0000035, -3.7, 0.000000045])
         .unwrap();
     let (q, qd, qdd) = ([0.2, 0.7, -0.4], [1.0, -2.0, 0.5], [3.0, -1.0, 4.0]);
-    let fresh = |m: &tendyn_core::Model<f64>| {
-        let mut data = Data::new(m);
-        let d = data
-            .generalized_forces_derivatives(m, &q, &qd, &qdd)
-            .unwrap();
-        let f =
-            (data.forward_dynamics_derivatives(m, &q, &qd, &[], &[20.0, 15.0, 10.0, 5.0])).unwrap();
-        let a = data.actuation_derivatives(m, &q, &qd, &qdd).unwrap();
+    // Every kind of derivative `data` gives for `m`.
+    let derivatives = |data: &mut Data<f64>, m: &tendyn_core::Model<f64>| {
+        let tensions = [20.0, 15.0, 10.0, 5.0];
+        let d = data.generalized_forces_derivatives(m, &q, &qd, &qdd);
+        let f = data.forward_dynamics_derivatives(m, &q, &qd, &[], &tensions);
+        let a = data.actuation_derivatives(m, &q, &qd, &qdd);
+        let (d, f, a) = (d.unwrap(), f.unwrap(), a.unwrap());
         [d.d_q, d.d_qd, f.d_q, f.d_u, a.d_q, a.d_qdd]
     };
-    let mut shared = Data::new(&model);
-    for m in [&model, &heavy, &model, &model.clone(), &heavy] {
-        let d = shared
-            .generalized_forces_derivatives(m, &q, &qd, &qdd)
-            .unwrap();
-        let f = (shared.forward_dynamics_derivatives(m, &q, &qd, &[], &[20.0, 15.0, 10.0, 5.0]))
-            .unwrap();
-        let a = shared.actuation_derivatives(m, &q, &qd, &qdd).unwrap();
-        assert_eq!([d.d_q, d.d_qd, f.d_q, f.d_u, a.d_q, a.d_qdd], fresh(m));
+    let fresh = |m| derivatives(&mut Data::new(m), m);
+    let (mut shared, copy) = (Data::new(&model), model.clone());
+    for m in [&model, &heavy, &model, &copy, &heavy] {
+        assert_eq!(derivatives(&mut shared, m), fresh(m));
     }
     assert_ne!(fresh(&model), fresh(&heavy), "the parameters must matter");
 }
