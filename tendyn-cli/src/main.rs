@@ -193,7 +193,8 @@ enum Command {
         /// Comma-separated outputs: generalized_forces, actuation, mass_matrix, bias,
         /// gravity, forward_dynamics, segment_tensions, bearings, base_reaction (the
         /// default: each of these the mechanism can provide), and only when named
-        /// generalized_forces_derivatives, forward_dynamics_derivatives, regressor.
+        /// generalized_forces_derivatives, forward_dynamics_derivatives,
+        /// actuation_derivatives, regressor.
         #[arg(long, value_delimiter = ',')]
         outputs: Vec<String>,
         /// generic (over tendyn_core::Real), f64 or f32.

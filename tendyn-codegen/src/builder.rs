@@ -60,7 +60,8 @@ impl Builder {
     /// The functions to generate, by name (`generalized_forces`, `actuation`,
     /// `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`,
     /// `bearings`, `base_reaction`, `generalized_forces_derivatives`,
-    /// `forward_dynamics_derivatives`, `regressor`). Without this call, every one of the
+    /// `forward_dynamics_derivatives`, `actuation_derivatives`, `regressor`). Without this
+    /// call, every one of the
     /// first nine the mechanism can provide.
     pub fn outputs<S: AsRef<str>>(mut self, names: &[S]) -> Builder {
         self.outputs = Some(names.iter().map(|s| s.as_ref().to_string()).collect());

@@ -529,6 +529,12 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             let offset = take(*n);
             parse_quote!(#core::mechanism::Regression { y: #y, offset: #offset })
         }
+        Shape::ActuationJacobians { n, actuators } => {
+            let value = take(*actuators);
+            let mut jacobian = || ast::array((0..*actuators).map(|_| take(*n)));
+            let (d_q, d_qd, d_qdd) = (jacobian(), jacobian(), jacobian());
+            parse_quote!(#core::dual::ActuationJacobians { value: #value, d_q: #d_q, d_qd: #d_qd, d_qdd: #d_qdd })
+        }
         Shape::Jacobians { n, actuators } => {
             let value = take(*n);
             let d_q = ast::array((0..*n).map(|_| take(*n)));
@@ -593,6 +599,11 @@ fn return_type(f: &Function, t: &syn::Type, core: &syn::Path) -> syn::Type {
             let y = array_type(array_type(t.clone(), *columns), *n);
             let v = array_type(t.clone(), *n);
             parse_quote!(#core::mechanism::Regression<#y, #v>)
+        }
+        Shape::ActuationJacobians { n, actuators } => {
+            let v = array_type(t.clone(), *actuators);
+            let j = array_type(array_type(t.clone(), *n), *actuators);
+            parse_quote!(#core::dual::ActuationJacobians<#v, #j>)
         }
         Shape::Jacobians { n, actuators } => {
             let (v, j) = (
@@ -679,6 +690,7 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),
         Output::Regressor => "The identification regressor: `y[j][c]`, the generalized force on joint `j` per unit of parameter `c` (`tendyn regressor --json` lists them: each body's `m`, `mx`, `my`, `mz`, `xx`, `xy`, `xz`, `yy`, `yz`, `zz` about its frame origin, then `coulomb`, `viscous` where its bearing has friction), and `offset`, the external wrench's part: `Q = y · π + offset`".to_string(),
         Output::GeneralizedForcesDerivatives => "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion".to_string(),
+        Output::ActuationDerivatives => "The motor torques and tendon tensions `actuation` computes (`value`, in its order) with their exact derivatives `d_q[i][k] = ∂value_i/∂q_k`, `d_qd[i][k] = ∂value_i/∂q̇_k` and `d_qdd[i][k] = ∂value_i/∂q̈_k`, by dual numbers through the same recursion and distribution: where a tendon's floor or maximum becomes active or inactive, those of the bounds active at the state (one-sided)".to_string(),
         Output::ForwardDynamicsDerivatives => "`q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion".to_string(),
     };
     let joints = labels.join(", ");
@@ -694,6 +706,10 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
                 _ => String::new(),
             }
         }
+        Output::ActuationDerivatives => format!(
+            "`value` and each Jacobian's rows: {}; columns of `d_q`, `d_qd`, `d_qdd`: {joints}",
+            result_labels(model, Output::Actuation).join(", ")
+        ),
         Output::Regressor => format!(
             "rows of `y` and `offset`: {joints}; columns of `y`: {}",
             tendyn_core::regressor::parameters(model)

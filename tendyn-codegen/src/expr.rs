@@ -507,7 +507,8 @@ pub struct OpCount {
     pub sqrt: usize,
     /// `max`es (the tension distribution along one null direction).
     pub max: usize,
-    /// Selects of a friction direction ([`Node::SignOutside`]).
+    /// Sign selects ([`Node::SignOutside`]): friction directions, and the branch a
+    /// derivative of `max` follows.
     #[serde(skip_serializing_if = "is_zero")]
     pub sign: usize,
     /// Hyperbolic tangents (the smoothed friction law).
@@ -523,8 +524,9 @@ fn is_zero(n: &usize) -> bool {
 }
 
 impl OpCount {
-    /// Arithmetic operations (add, sub, mul, div, neg, max, friction-direction selects):
-    /// what the peers' op counts count.
+    /// Arithmetic operations (add, sub, mul, div, neg, max, sign selects: friction's
+    /// directions and the branch a derivative of `max` follows): what the peers' op counts
+    /// count.
     pub fn arithmetic(&self) -> usize {
         self.add + self.mul + self.div + self.neg + self.max + self.sign
     }
@@ -546,9 +548,10 @@ impl std::fmt::Display for OpCount {
             self.cos,
             self.sqrt
         )?;
-        // Friction terms only where the file has them: a frictionless count reads as before.
+        // Selects and friction's terms only where there are any: a count without them
+        // reads as before.
         if self.sign > 0 {
-            write!(f, ", {} friction-direction selects", self.sign)?;
+            write!(f, ", {} sign selects", self.sign)?;
         }
         if self.tanh > 0 {
             write!(f, ", {} tanh", self.tanh)?;

@@ -30,6 +30,9 @@ pub fn flattened_numbers(output: Output, value: &str) -> String {
         Output::GeneralizedForcesDerivatives => format!(
             "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten())"
         ),
+        Output::ActuationDerivatives => format!(
+            "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten()).chain({value}.d_qdd.iter().flatten())"
+        ),
         Output::Regressor => format!("{value}.y.iter().flatten().chain({value}.offset.iter())"),
         Output::ForwardDynamicsDerivatives => format!(
             "{value}.value.iter().chain({value}.d_q.iter().flatten()).chain({value}.d_qd.iter().flatten()).chain({value}.d_u.iter().flatten())"
@@ -66,6 +69,15 @@ pub enum Shape {
         n: usize,
         /// Motors and tendons `m`, for forward dynamics' `∂q̈/∂u`.
         actuators: Option<usize>,
+    },
+    /// `tendyn_core::dual::ActuationJacobians<[T; actuators], [[T; n]; actuators]>`: the
+    /// flat results are the value (motor torques, then tendon tensions), then its
+    /// Jacobians `∂/∂q`, `∂/∂q̇`, `∂/∂q̈` row by row.
+    ActuationJacobians {
+        /// Joints `n`.
+        n: usize,
+        /// Motors and tendons.
+        actuators: usize,
     },
     /// `tendyn_core::mechanism::Regression<[[T; columns]; n], [T; n]>`: the flat results
     /// are `Y` row by row, then the offset `Q₀`.
@@ -226,7 +238,20 @@ fn elimination(model: &Model<f64>) -> Option<tension::Elimination> {
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
+            // Its derivatives are those of the traced distribution: a closed form along one
+            // null direction, not the numeric routine of two or more.
+            Output::ActuationDerivatives
+                if model.system().null_space.len() > 1 && !model.tendons().is_empty() =>
+            {
+                Some(format!(
+                    "the tension system has a {}-dimensional null space: generated code \
+                     distributes the tensions through a numeric routine, whose derivatives are \
+                     not generated — use the runtime solver (`Data::actuation_derivatives`)",
+                    model.system().null_space.len()
+                ))
+            }
             Output::Actuation
+            | Output::ActuationDerivatives
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
@@ -251,7 +276,9 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
                     model.system().null_space.len()
                 ))
             }
-            Output::Actuation if model.motors().is_empty() && model.tendons().is_empty() => {
+            Output::Actuation | Output::ActuationDerivatives
+                if model.motors().is_empty() && model.tendons().is_empty() =>
+            {
                 Some("the mechanism has neither motors nor tendons".to_string())
             }
             Output::ForwardDynamics | Output::ForwardDynamicsDerivatives
@@ -554,6 +581,36 @@ fn trace_one(
                 dynamics::accelerations(&behind, |b| linalg::ldlt_substitute(&mm, b), &mut x);
             }
             (Shape::Vector(n), x)
+        }
+        Output::ActuationDerivatives => {
+            let order = shared.elimination.clone();
+            let (dual, dual_ws) = shared.dual(m);
+            // As `Shared::inverse` traces `actuation`: the state's system (capstan
+            // friction) by the fixed order of elimination, one null direction in closed
+            // form (`check` refuses more).
+            let at_state = |model: &Model<Dual<Sym>>, matrix: Vec<Vec<Dual<Sym>>>| {
+                let order = (order.as_ref())
+                    .expect("`check` refuses capstan friction without an elimination order");
+                Ok(tension::system_traced(model, matrix, order))
+            };
+            let distribute = |model: &Model<Dual<Sym>>,
+                              system: &TensionSystem<Dual<Sym>>,
+                              x: &mut [Dual<Sym>]| {
+                if system.null_space.len() == 1 && !model.tendons().is_empty() {
+                    tension::along_line(model, system, x);
+                }
+                Ok(())
+            };
+            let d = derivatives::actuation_derivatives(
+                dual,
+                [&i.q, &i.qd, &i.qdd],
+                dual_ws,
+                at_state,
+                distribute,
+            )
+            .expect("tracing the distribution cannot fail");
+            let actuators = m.motors().len() + m.tendons().len();
+            (Shape::ActuationJacobians { n, actuators }, d.flattened())
         }
         Output::GeneralizedForcesDerivatives => {
             let (dual, dual_ws) = shared.dual(m);

@@ -19,7 +19,7 @@
 //! ```
 
 use crate::affine::{Affine, MAX_UNKNOWNS};
-use crate::derivatives::{self, jacobians, Derivatives};
+use crate::derivatives::{self, Derivatives};
 use crate::dual::Dual;
 use crate::dynamics::{
     accelerations, actuator_forces, balance_at, bias, expanded_generalized_forces,
@@ -298,26 +298,29 @@ impl<T: Numeric> Data<T> {
         qd: &[T],
         qdd: &[T],
     ) -> Result<Derivatives<T>> {
-        self.check_states(model, &[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let dual = &dual_copy(&mut self.dual, model).model;
-        let mut data = Data::new(dual);
-        let (value, mut d) = jacobians(&[q, qd, qdd], |x, out| {
-            let r = data.inverse_dynamics(dual, &x[0], &x[1], &x[2])?;
-            out.clear();
-            out.extend(r.motor_torques.iter().chain(&r.tendon_tensions));
-            Ok::<(), Error>(())
-        })?;
-        let d_qdd = d.pop().unwrap_or_default();
-        let d_qd = d.pop().unwrap_or_default();
-        let d_q = d.pop().unwrap_or_default();
-        let derivatives = Derivatives {
-            value,
-            d_q,
-            d_qd,
-            d_qdd,
-            d_u: Vec::new(),
-        };
+        self.check_model(model)?;
+        solvable(model)?;
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
+        self.check_states(model, &inputs)?;
+        // As inverse dynamics: tensions that overflowed are reported before the
+        // distribution sees them.
+        let distribute =
+            |model: &Model<Dual<T>>, system: &TensionSystem<Dual<T>>, x: &mut [Dual<T>]| {
+                finite(
+                    "tension or motor torque",
+                    x.iter().map(|d| d.value),
+                    &inputs,
+                )?;
+                tension::distribute(model, system, x)
+            };
+        let dual = dual_copy(&mut self.dual, model);
+        let derivatives = derivatives::actuation_derivatives(
+            &dual.model,
+            [q, qd, qdd],
+            &mut dual.ws,
+            tension::system_at,
+            distribute,
+        )?;
         finite_derivatives("actuation", &derivatives, &inputs)?;
         Ok(derivatives)
     }
@@ -537,13 +540,7 @@ impl<T: Numeric> Data<T> {
         qdd: &[T],
     ) -> Result<&InverseDynamics<T>> {
         self.check_model(model)?;
-        if model.system().unknowns.is_empty() {
-            return Err(Error::State(format!(
-                "`{}` has no tendons or motors to solve for (a rigid tree): its generalized \
-                 forces are `Data::generalized_forces`",
-                model.name()
-            )));
-        }
+        solvable(model)?;
         let inputs = [("q", q), ("qd", qd), ("qdd", qdd)];
         self.check_states(model, &inputs)?;
         // Tensions that overflowed are reported before the distribution sees them, with the
@@ -616,6 +613,9 @@ impl<T: Numeric> Data<T> {
             Output::ForwardDynamicsDerivatives => self
                 .forward_dynamics_derivatives(model, q, qd, motor_torques, tendon_tensions)?
                 .flattened(),
+            Output::ActuationDerivatives => {
+                self.actuation_derivatives(model, q, qd, qdd)?.flattened()
+            }
             Output::Regressor => {
                 let r = self.regressor(model, q, qd, qdd)?;
                 [&r.y[..], &r.known].concat()
@@ -681,6 +681,19 @@ impl<T: Numeric> Model<T> {
 }
 
 /// [`finite`] over a value and every derivative.
+/// `Err` for a model without tendons or motors, whose inverse dynamics has nothing to
+/// solve for.
+fn solvable<T: Real>(model: &Model<T>) -> Result<()> {
+    if model.system().unknowns.is_empty() {
+        return Err(Error::State(format!(
+            "`{}` has no tendons or motors to solve for (a rigid tree): its generalized \
+             forces are `Data::generalized_forces`",
+            model.name()
+        )));
+    }
+    Ok(())
+}
+
 fn finite_derivatives<T: Numeric>(
     what: &str,
     d: &Derivatives<T>,

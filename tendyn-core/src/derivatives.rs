@@ -19,8 +19,9 @@
 
 use crate::dual::Dual;
 use crate::dynamics::{self, Workspace};
+use crate::error::Error;
 use crate::linalg;
-use crate::model::Model;
+use crate::model::{Model, TensionSystem};
 use crate::real::Real;
 
 /// A function's value at a state and its derivatives with respect to each input, each
@@ -113,6 +114,46 @@ pub fn jacobians<T: Real, E>(
         value = out.iter().map(|d| d.value).collect();
     }
     Ok((value, blocks))
+}
+
+/// The motor torques and tendon tensions of [`dynamics::inverse_dynamics`] on `dual` (the
+/// model on dual numbers), with their derivatives with respect to `q`, `q̇` and `q̈` (`d_u`
+/// empty), one coordinate seeded at a time: the runtime and generated code alike, each
+/// with its own tension system at the state (`at_state`, for guides with capstan
+/// friction) and distribution (`distribute`) as its inverse dynamics has them.
+pub fn actuation_derivatives<T: Real>(
+    dual: &Model<Dual<T>>,
+    [q, qd, qdd]: [&[T]; 3],
+    dual_ws: &mut Workspace<Dual<T>>,
+    at_state: impl Fn(&Model<Dual<T>>, Vec<Vec<Dual<T>>>) -> Result<TensionSystem<Dual<T>>, Error>,
+    distribute: impl Fn(&Model<Dual<T>>, &TensionSystem<Dual<T>>, &mut [Dual<T>]) -> Result<(), Error>,
+) -> Result<Derivatives<T>, Error> {
+    let mut r = dynamics::InverseDynamics::empty();
+    let (value, blocks) = jacobians(&[q, qd, qdd], |x, out| {
+        dynamics::inverse_dynamics(
+            dual,
+            &x[0],
+            &x[1],
+            &x[2],
+            dual_ws,
+            &at_state,
+            &distribute,
+            &mut r,
+        )?;
+        out.clear();
+        out.extend(r.motor_torques.iter().chain(&r.tendon_tensions));
+        Ok(())
+    })?;
+    let mut blocks = blocks.into_iter();
+    let mut next = || blocks.next().unwrap_or_default();
+    let (d_q, d_qd, d_qdd) = (next(), next(), next());
+    Ok(Derivatives {
+        value,
+        d_q,
+        d_qd,
+        d_qdd,
+        d_u: Vec::new(),
+    })
 }
 
 /// `Q` with `∂Q/∂q` and `∂Q/∂q̇` (`d_qdd`, `d_u` empty): [`dynamics::generalized_forces`]

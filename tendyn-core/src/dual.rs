@@ -194,3 +194,18 @@ pub struct ForwardJacobians<V, J, U> {
     /// `∂q̈/∂u`, row by row.
     pub d_u: U,
 }
+
+/// What a generated `actuation_derivatives` returns: `value` (`[T; m]`, the motor torques
+/// then the tendon tensions that `actuation` returns) and its Jacobians `d_q`, `d_qd`,
+/// `d_qdd` (`[[T; n]; m]`, `d_q[i][k] = ∂value_i/∂q_k`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ActuationJacobians<V, J> {
+    /// The motor torques, then the tendon tensions.
+    pub value: V,
+    /// `∂value/∂q`, row by row.
+    pub d_q: J,
+    /// `∂value/∂q̇`, row by row.
+    pub d_qd: J,
+    /// `∂value/∂q̈`, row by row.
+    pub d_qdd: J,
+}

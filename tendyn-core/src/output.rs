@@ -36,6 +36,10 @@ pub enum Output {
     /// `q̈` with `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` (`u`: motor torques, then tendon
     /// tensions), flattened value first, then each Jacobian row by row.
     ForwardDynamicsDerivatives,
+    /// The motor torques and tendon tensions of [`Actuation`](Output::Actuation) with
+    /// their derivatives `∂/∂q`, `∂/∂q̇`, `∂/∂q̈` (`crate::derivatives`), flattened value
+    /// first, then each Jacobian row by row.
+    ActuationDerivatives,
     /// The identification regressor `Y(q, q̇, q̈)` (`crate::regressor`, every parameter's
     /// column) and the offset `Q₀`: `Q = Y π + Q₀`; flattened `Y` row by row, then `Q₀`.
     Regressor,
@@ -44,7 +48,7 @@ pub enum Output {
 impl Output {
     /// Every output: the [`DEFAULT`](Output::DEFAULT) ones, then the derivatives and the
     /// regressor, which are generated only when asked for.
-    pub const ALL: [Output; 12] = [
+    pub const ALL: [Output; 13] = [
         Output::GeneralizedForces,
         Output::Actuation,
         Output::MassMatrix,
@@ -56,6 +60,7 @@ impl Output {
         Output::BaseReaction,
         Output::GeneralizedForcesDerivatives,
         Output::ForwardDynamicsDerivatives,
+        Output::ActuationDerivatives,
         Output::Regressor,
     ];
 
@@ -78,6 +83,7 @@ impl Output {
             Output::BaseReaction => "base_reaction",
             Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
             Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Output::ActuationDerivatives => "actuation_derivatives",
             Output::Regressor => "regressor",
         }
     }
@@ -98,6 +104,7 @@ impl Output {
             Output::ForwardDynamics => "forward_dynamics",
             Output::GeneralizedForcesDerivatives => "generalized_forces_derivatives",
             Output::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Output::ActuationDerivatives => "actuation_derivatives",
             Output::Regressor => "regressor",
             Output::Actuation
             | Output::SegmentTensions
@@ -217,6 +224,7 @@ impl<T: Copy> InverseDynamics<T> {
             | Output::ForwardDynamics
             | Output::GeneralizedForcesDerivatives
             | Output::ForwardDynamicsDerivatives
+            | Output::ActuationDerivatives
             | Output::Regressor => return false,
         }
         true

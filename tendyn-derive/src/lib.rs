@@ -434,6 +434,8 @@ fn expand(input: &DeriveInput) -> syn::Result<TokenStream> {
         let params = params_value.iter();
         let unnamed = Unnamed {
             actuated: quote!(()),
+            actuators: quote!(()),
+            actuation_jacobian: quote!(()),
             regression: quote!(()),
         };
         let (signature, args, ret) = signature(*o, krate, &|t| quote!(Self::#t), &unnamed);
@@ -526,6 +528,8 @@ fn signature(
 ) -> (TokenStream, TokenStream, TokenStream) {
     let Unnamed {
         actuated,
+        actuators,
+        actuation_jacobian,
         regression,
     } = unnamed;
     let t = |name: &str| ty(format_ident!("{name}"));
@@ -559,15 +563,21 @@ fn signature(
             let mass = t("MassMatrix");
             quote!(#krate::core::dual::ForwardJacobians<#joints, #mass, #actuated>)
         }
+        Output::ActuationDerivatives => {
+            quote!(#krate::core::dual::ActuationJacobians<#actuators, #actuation_jacobian>)
+        }
         Output::Regressor => quote!(#krate::core::mechanism::Regression<#regression, #joints>),
     };
     (signature, args, ret)
 }
 
 /// Types of outputs the trait has no associated type for: `∂q̈/∂u`,
-/// `[[T; motors + tendons]; n]`, and the regressor's `[[T; parameters]; n]`.
+/// `[[T; motors + tendons]; n]`, the actuators' `[T; motors + tendons]` and their
+/// Jacobian `[[T; n]; motors + tendons]`, and the regressor's `[[T; parameters]; n]`.
 struct Unnamed {
     actuated: TokenStream,
+    actuators: TokenStream,
+    actuation_jacobian: TokenStream,
     regression: TokenStream,
 }
 
@@ -615,6 +625,8 @@ fn stand_in(input: &DeriveInput) -> Option<TokenStream> {
     let (u, p) = (m + t, 10 * bodies + 2 * frictional);
     let unnamed = Unnamed {
         actuated: quote!([[#scalar; #u]; #n]),
+        actuators: quote!([#scalar; #u]),
+        actuation_jacobian: quote!([[#scalar; #n]; #u]),
         regression: quote!([[#scalar; #p]; #n]),
     };
     let methods = outputs.iter().map(|o| {

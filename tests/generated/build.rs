@@ -168,6 +168,7 @@ fn main() {
             for o in [
                 Output::GeneralizedForcesDerivatives,
                 Output::ForwardDynamicsDerivatives,
+                Output::ActuationDerivatives,
                 Output::Regressor,
             ] {
                 if tendyn_codegen::outputs::check(&model, &[o]).is_ok() {

@@ -35,7 +35,12 @@ pub mod derived {
     #[derive(TendonMechanism)]
     #[tendyn(
         file = "../../examples/mechanisms/example3_stanford_jpl.ron",
-        outputs(generalized_forces_derivatives, forward_dynamics_derivatives, regressor),
+        outputs(
+            generalized_forces_derivatives,
+            forward_dynamics_derivatives,
+            actuation_derivatives,
+            regressor
+        ),
         scalar = f64
     )]
     pub struct Example3Derivatives;

@@ -180,6 +180,12 @@ fn example3_derived_derivatives_agree_with_the_runtime_solver() {
     close(g.d_q.as_flattened(), &r.d_q);
     close(g.d_qd.as_flattened(), &r.d_qd);
     close(g.d_u.as_flattened(), &r.d_u);
+    let g = Example3Derivatives.actuation_derivatives(&q, &qd, &qdd);
+    let r = data.actuation_derivatives(&model, &q, &qd, &qdd).unwrap();
+    close(&g.value, &r.value);
+    close(g.d_q.as_flattened(), &r.d_q);
+    close(g.d_qd.as_flattened(), &r.d_qd);
+    close(g.d_qdd.as_flattened(), &r.d_qdd);
 }
 
 /// The derive's regressor times the file's parameters is the generalized force.

@@ -72,6 +72,10 @@ fn generated_code_matches_the_runtime_solver_on_every_output() {
                     "forward_dynamics_derivatives" => {
                         vec![n, n * n, n * n, n * (mt.len() + tt.len())]
                     }
+                    "actuation_derivatives" => {
+                        let a = mt.len() + tt.len();
+                        vec![a, a * n, a * n, a * n]
+                    }
                     _ => vec![want.len()],
                 };
                 let mut err = 0.0f64;
