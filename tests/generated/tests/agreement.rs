@@ -216,6 +216,15 @@ fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
             }
             let (mt, tt) = (id.motor_torques.clone(), id.tendon_tensions.clone());
             for (output, got) in (mech.evaluate)(&q, &qd, &qdd, &mt, &tt, &[]) {
+                // With q̇ = q̈ = 0 friction is exactly zero and the one-direction
+                // distribution sits where two of its `max`'s arguments are equal: a kink,
+                // whose derivative is one-sided. The runtime takes the mean of the two
+                // sides there (an exact tie), generated code one side, as its round-off of
+                // the tie falls (measured: they differ by half the jump). Compared at
+                // rest with q̈ ≠ 0.
+                if output == "actuation_derivatives" && qdd.iter().all(|&a| a == 0.0) {
+                    continue;
+                }
                 let want = runtime((&model, &mut s64), output, &q, &qd, &qdd, &mt, &tt);
                 let mut scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
                 if output == "forward_dynamics" {
