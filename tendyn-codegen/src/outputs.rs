@@ -234,6 +234,18 @@ fn elimination(model: &Model<f64>) -> Option<tension::Elimination> {
     tension::Elimination::of(model).filter(|order| order.holds_while_sliding(model))
 }
 
+/// A state's tension system with capstan friction as generated code solves it: by the
+/// fixed order of elimination (`check` refuses such a mechanism without one).
+fn traced_system<T: Real>(
+    order: &Option<tension::Elimination>,
+    model: &Model<T>,
+    matrix: Vec<Vec<T>>,
+) -> tendyn_core::Result<TensionSystem<T>> {
+    let order =
+        (order.as_ref()).expect("`check` refuses capstan friction without an elimination order");
+    Ok(tension::system_traced(model, matrix, order))
+}
+
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     for &o in outputs {
@@ -489,11 +501,7 @@ impl Shared {
             // are distributed by the emitted call (see `Function::distribution`). With
             // guides with friction `E` depends on the state: its solution is traced too,
             // and for several null directions the state's basis is handed to the call.
-            let at_state = |model: &Model<Sym>, matrix: Vec<Vec<Sym>>| {
-                let order = (elimination.as_ref())
-                    .expect("`check` refuses capstan friction without an elimination order");
-                Ok(tension::system_traced(model, matrix, order))
-            };
+            let at_state = |model: &Model<Sym>, matrix| traced_system(elimination, model, matrix);
             let distribute = |model: &Model<Sym>, system: &TensionSystem<Sym>, x: &mut [Sym]| {
                 let (k, d) = (model.tendons().len(), system.null_space.len());
                 if d == 1 && k > 0 {
@@ -588,11 +596,7 @@ fn trace_one(
             // As `Shared::inverse` traces `actuation`: the state's system (capstan
             // friction) by the fixed order of elimination, one null direction in closed
             // form (`check` refuses more).
-            let at_state = |model: &Model<Dual<Sym>>, matrix: Vec<Vec<Dual<Sym>>>| {
-                let order = (order.as_ref())
-                    .expect("`check` refuses capstan friction without an elimination order");
-                Ok(tension::system_traced(model, matrix, order))
-            };
+            let at_state = |model: &Model<Dual<Sym>>, matrix| traced_system(&order, model, matrix);
             let distribute = |model: &Model<Dual<Sym>>,
                               system: &TensionSystem<Dual<Sym>>,
                               x: &mut [Dual<Sym>]| {
