@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t482 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t489 = T::from_f64(0.03) * s78;
-    let t498 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t482 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t489));
-    let t504 = qdd[0] * t482
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t489));
-    [t498, t504]
+    let t652 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t659 = T::from_f64(0.03) * s78;
+    let t668 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t652 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t659));
+    let t674 = qdd[0] * t652
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t659));
+    [t668, t674]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -45,19 +45,19 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s78, c79) = q[1].sin_cos();
-    let t529 = qdd[1] * (T::from_f64(0.03) * c79 + T::from_f64(-0.00833334999999993))
+    let t699 = qdd[1] * (T::from_f64(0.03) * c79 + T::from_f64(-0.00833334999999993))
         - (qd[0]
             * (qd[0] * (s78 * T::from_f64(0.04499999999999987))
                 + qd[1] * (s78 * T::from_f64(0.06)))
             + qd[1] * (qd[1] * (T::from_f64(0.03) * s78)));
-    let t530 = qdd[0]
+    let t700 = qdd[0]
         * (c79 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t529;
-    let t542 = qdd[0]
+        + t699;
+    let t712 = qdd[0]
         * (c79 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
             + qd[0] * (qd[0] * (s78 * T::from_f64(0.045000000000000005))));
-    tendyn_core::distribution::Actuation::exact([t530, t542], [])
+    tendyn_core::distribution::Actuation::exact([t700, t712], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -68,9 +68,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t79 = q[1].cos();
-    let t478 = t79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t544 = T::from_f64(0.03) * t79 + T::from_f64(0.0166967);
-    [[t478, t544], [t544, T::from_f64(0.0166867)]]
+    let t649 = t79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t714 = T::from_f64(0.03) * t79 + T::from_f64(0.0166967);
+    [[t649, t714], [t714, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -81,10 +81,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t78 = q[1].sin();
-    let t489 = T::from_f64(0.03) * t78;
-    let t496 = -(qd[1] * (qd[0] * (t78 * T::from_f64(0.06)) + qd[1] * t489));
-    let t502 = qd[0] * (qd[0] * t489);
-    [t496, t502]
+    let t659 = T::from_f64(0.03) * t78;
+    let t666 = -(qd[1] * (qd[0] * (t78 * T::from_f64(0.06)) + qd[1] * t659));
+    let t672 = qd[0] * (qd[0] * t659);
+    [t666, t672]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -110,16 +110,16 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t478 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t489 = T::from_f64(0.03) * s78;
-    let t545 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t489);
-    let t547 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t478;
-    let t697 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t489) - t545 * t547)
-        / (T::from_f64(0.0166867) - t478 * (t547 * t547));
-    let t699 = t545 / t478 - t547 * t697;
-    [t699, t697]
+    let t649 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t659 = T::from_f64(0.03) * s78;
+    let t715 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t659);
+    let t717 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t649;
+    let t867 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t659) - t715 * t717)
+        / (T::from_f64(0.0166867) - t649 * (t717 * t717));
+    let t869 = t715 / t649 - t717 * t867;
+    [t869, t867]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -130,110 +130,114 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t598 = qdd[0] * (c79 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let t768 = qdd[0] * (c79 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
             + (T::from_f64(20.0) + qd[0] * (qd[0] * (s78 * T::from_f64(0.75)))));
-    let t617 = qdd[0]
+    let t787 = qdd[0]
         * (T::from_f64(-0.4166675000000001) - c79 * T::from_f64(0.7500000000000001))
         + (T::from_f64(20.0) - qd[0] * (qd[0] * (s78 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
-    [t598, t617]
+    [t768, t787]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, pulley3, drum2.
 ///
-/// Operations (traced recursion): 166 arithmetic (72 add/sub, 90 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 164 arithmetic (72 add/sub, 88 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
-    let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t77 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69;
+    let t62 = t55 - qdd[0] * T::from_f64(0.15);
+    let t69 = T::from_f64(1.2) * t62;
     let (s78, c79) = q[1].sin_cos();
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
-    let t105 = T::from_f64(0.8)
-        * (t55 * s78 - t57 * c79 - t81 * (T::from_f64(0.25) * t81)
-            + t81 * (t81 * T::from_f64(0.125)));
-    let t106 = T::from_f64(0.8)
-        * (t57 * s78 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
-    let t114 = T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106;
     let t120 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t126 = t114 + T::from_f64(0.25) * t106;
-    let t153 = t77 + t126 + T::from_f64(0.3) * (t69 + (s78 * t105 + c79 * t106));
     let t183 = T::from_f64(0.019988885800753267) * s78;
     let t187 = T::from_f64(0.019988885800753267) * c79;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
-    let t231 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t126
-            - t153 * T::from_f64(0.000000000000000009071958584846753));
-    let t232 = T::from_f64(20.0)
-        - (t153 * T::from_f64(0.00000000000000003335808724852205)
-            + t126 * T::from_f64(25.000000000000004));
-    let t234 = t231 * T::from_f64(0.9994442900376633);
-    let t236 = T::from_f64(0.03333333333333362) * t231;
-    let t241 = s78 * t236 - c79 * t234;
-    let t244 = s78 * t234 + c79 * t236;
-    let t250 = c53 * t234 + s52 * t236;
-    let t254 = s52 * t234 - c53 * t236;
-    let t258 = t232 * T::from_f64(0.9994442900376633);
-    let t261 = t232 * T::from_f64(0.03333333333333337);
-    let t267 = c79 * t258 + s78 * t261;
-    let t272 = s78 * t258 - c79 * t261;
-    let t273 = t241 - t267;
-    let t274 = t244 + t272;
-    let t278 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t244
-        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t241
-        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t272
-            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t267);
-    let t282 = c53 * t258 - s52 * t261;
-    let t285 = s52 * t258 + c53 * t261;
-    let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
-        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t250
-        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t285
-            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t282);
-    let t292 = t267 - t241;
-    let t293 = -t274;
-    let t294 = -t278;
-    let t295 = T::from_f64(0.02) * t274;
-    let t301 = -(t250 + t282);
-    let t302 = -(t254 + t285);
-    let t309 = t105 - t273;
-    let t310 = t106 - t274;
-    let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
+    let t475 = qd[0] * qd[0];
+    let t476 = T::from_f64(0.3) * t475;
+    let t482 = T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18);
+    let t488 = t81 * t81;
+    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + s78 * t476)
+        - t82 * T::from_f64(0.125);
+    let t494 = T::from_f64(0.8)
+        * (t55 * s78 - c79 * t476 - T::from_f64(0.25) * t488
+            + T::from_f64(0.125) * t488);
+    let t495 = T::from_f64(0.8) * t491;
+    let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
+    let t499 = t497 + T::from_f64(0.2) * t491;
+    let t510 = t482 + t499 + T::from_f64(0.3) * (t69 + (s78 * t494 + c79 * t495));
+    let t532 = T::from_f64(20.0)
+        + (T::from_f64(25.0) * t499
+            - T::from_f64(0.000000000000000009071958584846753) * t510);
+    let t533 = T::from_f64(20.0)
+        - (T::from_f64(0.00000000000000003335808724852205) * t510
+            + T::from_f64(25.000000000000004) * t499);
+    let t534 = T::from_f64(0.9994442900376633) * t532;
+    let t535 = T::from_f64(0.03333333333333362) * t532;
+    let t538 = s78 * t535 - c79 * t534;
+    let t541 = s78 * t534 + c79 * t535;
+    let t547 = c53 * t534 + s52 * t535;
+    let t550 = s52 * t534 - c53 * t535;
+    let t554 = T::from_f64(0.9994442900376633) * t533;
+    let t555 = T::from_f64(0.03333333333333337) * t533;
+    let t558 = c79 * t554 + s78 * t555;
+    let t561 = s78 * t554 - c79 * t555;
+    let t562 = t538 - t558;
+    let t563 = t541 + t561;
+    let t567 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t541
+        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t538
+        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t561
+            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t558);
+    let t570 = c53 * t554 - s52 * t555;
+    let t573 = s52 * t554 + c53 * t555;
+    let t579 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t550
+        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t547
+        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t573
+            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t570);
+    let t580 = t558 - t538;
+    let t581 = -t563;
+    let t582 = -t567;
+    let t583 = T::from_f64(0.02) * t563;
+    let t587 = -(t547 + t570);
+    let t588 = -(t550 + t573);
+    let t590 = t494 - t562;
+    let t591 = t495 - t563;
+    let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
         - T::from_f64(1.9620000000000002);
-    let t316 = t114 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
-    let t329 = c79 * t295 - s78 * t315;
-    let t336 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s78 * t310 - c79 * t309);
-    let t337 = t69 + (s78 * t309 + c79 * t310);
-    let t342 = T::from_f64(1.7658) + (s78 * t295 + c79 * t315) - T::from_f64(5.886);
-    let t369 = t77 + t316 + T::from_f64(0.3) * t337
-        - (t153 - t126 * T::from_f64(1.4999999999999958));
-    let t370 = t120 - t291
+    let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
+    let t605 = c79 * t583 - s78 * t595;
+    let t609 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
+        - (s78 * t591 - c79 * t590);
+    let t610 = t69 + (s78 * t590 + c79 * t591);
+    let t614 = T::from_f64(1.7658) + (s78 * t583 + c79 * t595) - T::from_f64(5.886);
+    let t616 = t482 + t596 + T::from_f64(0.3) * t610
+        - (t510 - T::from_f64(1.4999999999999958) * t499);
+    let t617 = t120 - t579
         - (t120
-            + (T::from_f64(0.0000000000000000047704895589362195) * t153
-                + T::from_f64(1.5000000000000002) * t126));
+            + (T::from_f64(0.0000000000000000047704895589362195) * t510
+                + T::from_f64(1.5000000000000002) * t499));
     [
-        [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
-        [[t309, t310, T::from_f64(7.848000000000001)], [t295, t315, t316]],
+        [[t609, t610, T::from_f64(19.62)], [t605, t614, t616]],
+        [[t590, t591, T::from_f64(7.848000000000001)], [t583, t595, t596]],
         [
-            [t301, t302, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t370],
+            [t587, t588, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t617],
         ],
-        [[t292, t293, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t294]],
+        [[t580, t581, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t582]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 69 arithmetic (27 add/sub, 42 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 67 arithmetic (27 add/sub, 40 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -243,32 +247,35 @@ pub fn base_reaction<T: Real>(
 ) -> [[[T; 3]; 2]; 1] {
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
-    let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
+    let t62 = t55 - qdd[0] * T::from_f64(0.15);
     let (s78, c79) = q[1].sin_cos();
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
-    let t105 = T::from_f64(0.8)
-        * (t55 * s78 - t57 * c79 - t81 * (T::from_f64(0.25) * t81)
-            + t81 * (t81 * T::from_f64(0.125)));
-    let t106 = T::from_f64(0.8)
-        * (t57 * s78 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
     let t137 = s78 * T::from_f64(0.9810000000000001);
-    let t143 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57)
-        - (s78 * t106 - c79 * t105);
-    let t144 = t69 + (s78 * t105 + c79 * t106);
     let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t157 = c53 * t143 - s52 * t144;
-    let t160 = s52 * t143 + c53 * t144;
     let t167 = c53 * t137 - s52 * t152;
     let t170 = s52 * t137 + c53 * t152;
-    let t175 = T::from_f64(0.000045)
+    let t475 = qd[0] * qd[0];
+    let t476 = T::from_f64(0.3) * t475;
+    let t488 = t81 * t81;
+    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + s78 * t476)
+        - t82 * T::from_f64(0.125);
+    let t494 = T::from_f64(0.8)
+        * (t55 * s78 - c79 * t476 - T::from_f64(0.25) * t488
+            + T::from_f64(0.125) * t488);
+    let t495 = T::from_f64(0.8) * t491;
+    let t506 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
+        - (s78 * t495 - c79 * t494);
+    let t507 = T::from_f64(1.2) * t62 + (s78 * t494 + c79 * t495);
+    let t513 = c53 * t506 - s52 * t507;
+    let t516 = s52 * t506 + c53 * t507;
+    let t517 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
-        + (T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69
-            + (T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106
-                + T::from_f64(0.25) * t106) + T::from_f64(0.3) * t144);
-    [[[t157, t160, T::from_f64(20.601000000000003)], [t167, t170, t175]]]
+        + (T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18)
+            + (T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491
+                + T::from_f64(0.2) * t491) + T::from_f64(0.3) * t507);
+    [[[t513, t516, T::from_f64(20.601000000000003)], [t167, t170, t517]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -292,7 +299,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 225 arithmetic (100 add/sub, 118 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 223 arithmetic (100 add/sub, 116 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -304,125 +311,127 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s52, c53) = q[0].sin_cos();
     let t55 = T::from_f64(0.3) * qdd[0];
-    let t57 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let t68 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t57);
-    let t69 = T::from_f64(1.2) * (t55 - qdd[0] * T::from_f64(0.15));
-    let t77 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t69;
+    let t62 = t55 - qdd[0] * T::from_f64(0.15);
+    let t69 = T::from_f64(1.2) * t62;
     let (s78, c79) = q[1].sin_cos();
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
-    let t83 = t57 * c79;
-    let t87 = t57 * s78;
-    let t93 = t81 * (T::from_f64(0.25) * t81);
-    let t102 = t81 * (t81 * T::from_f64(0.125));
-    let t105 = T::from_f64(0.8) * (t55 * s78 - t83 - t93 + t102);
-    let t106 = T::from_f64(0.8)
-        * (t87 + t55 * c79 + T::from_f64(0.25) * t82 - t82 * T::from_f64(0.125));
-    let t114 = T::from_f64(0.0041667) * t82 - T::from_f64(0.125) * t106;
-    let t120 = T::from_f64(0.000045)
-        * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t126 = t114 + T::from_f64(0.25) * t106;
+    let t118 = qdd[0] + T::from_f64(0.6666666666666667) * qdd[1];
+    let t120 = T::from_f64(0.000045) * t118;
     let t137 = s78 * T::from_f64(0.9810000000000001);
-    let t143 = t68 - (s78 * t106 - c79 * t105);
-    let t144 = t69 + (s78 * t105 + c79 * t106);
     let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t153 = t77 + t126 + T::from_f64(0.3) * t144;
-    let t157 = c53 * t143 - s52 * t144;
-    let t160 = s52 * t143 + c53 * t144;
     let t167 = c53 * t137 - s52 * t152;
     let t170 = s52 * t137 + c53 * t152;
-    let t175 = t120 + t153;
-    let t177 = t126 + T::from_f64(0.6666666666666667) * t120;
     let t183 = T::from_f64(0.019988885800753267) * s78;
     let t187 = T::from_f64(0.019988885800753267) * c79;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
-    let t226 = t153 - t126 * T::from_f64(1.4999999999999958);
-    let t230 = t120
-        + (T::from_f64(0.0000000000000000047704895589362195) * t153
-            + T::from_f64(1.5000000000000002) * t126);
-    let t231 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t126
-            - t153 * T::from_f64(0.000000000000000009071958584846753));
-    let t232 = T::from_f64(20.0)
-        - (t153 * T::from_f64(0.00000000000000003335808724852205)
-            + t126 * T::from_f64(25.000000000000004));
-    let t234 = t231 * T::from_f64(0.9994442900376633);
-    let t236 = T::from_f64(0.03333333333333362) * t231;
-    let t241 = s78 * t236 - c79 * t234;
-    let t244 = s78 * t234 + c79 * t236;
-    let t250 = c53 * t234 + s52 * t236;
-    let t254 = s52 * t234 - c53 * t236;
-    let t258 = t232 * T::from_f64(0.9994442900376633);
-    let t261 = t232 * T::from_f64(0.03333333333333337);
-    let t267 = c79 * t258 + s78 * t261;
-    let t272 = s78 * t258 - c79 * t261;
-    let t273 = t241 - t267;
-    let t274 = t244 + t272;
-    let t278 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t244
-        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t241
-        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t272
-            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t267);
-    let t282 = c53 * t258 - s52 * t261;
-    let t285 = s52 * t258 + c53 * t261;
-    let t291 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t254
-        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t250
-        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t285
-            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t282);
-    let t292 = t267 - t241;
-    let t293 = -t274;
-    let t294 = -t278;
-    let t295 = T::from_f64(0.02) * t274;
-    let t301 = -(t250 + t282);
-    let t302 = -(t254 + t285);
-    let t309 = t105 - t273;
-    let t310 = t106 - t274;
-    let t315 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t273
-        - T::from_f64(1.9620000000000002);
-    let t316 = t114 - (t278 - T::from_f64(0.25) * t274) + T::from_f64(0.25) * t310;
-    let t329 = c79 * t295 - s78 * t315;
-    let t336 = t68 - (s78 * t310 - c79 * t309);
-    let t337 = t69 + (s78 * t309 + c79 * t310);
-    let t342 = T::from_f64(1.7658) + (s78 * t295 + c79 * t315) - T::from_f64(5.886);
-    let t369 = t77 + t316 + T::from_f64(0.3) * t337 - t226;
-    let t370 = t120 - t291 - t230;
-    let t386 = T::from_f64(0.1) * c79;
-    let t407 = T::from_f64(-0.18) + t386;
+    let t407 = T::from_f64(-0.18) + T::from_f64(0.1) * c79;
     let t425 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
             + T::from_f64(0.3) * (t407 + (t407 + T::from_f64(0.6))));
-    let t426 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.3) * t386);
-    let t431 = T::from_f64(0.8) * t87;
-    let t436 = T::from_f64(0.25) * t431 - T::from_f64(0.125) * t431;
-    let t450 = t436
+    let t475 = qd[0] * qd[0];
+    let t476 = T::from_f64(0.3) * t475;
+    let t479 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476);
+    let t482 = T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18);
+    let t483 = c79 * t476;
+    let t485 = s78 * t476;
+    let t488 = t81 * t81;
+    let t489 = T::from_f64(0.25) * t488;
+    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + t485) - t82 * T::from_f64(0.125);
+    let t492 = T::from_f64(0.125) * t488;
+    let t494 = T::from_f64(0.8) * (t55 * s78 - t483 - t489 + t492);
+    let t495 = T::from_f64(0.8) * t491;
+    let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
+    let t499 = t497 + T::from_f64(0.2) * t491;
+    let t506 = t479 - (s78 * t495 - c79 * t494);
+    let t507 = t69 + (s78 * t494 + c79 * t495);
+    let t510 = t482 + t499 + T::from_f64(0.3) * t507;
+    let t513 = c53 * t506 - s52 * t507;
+    let t516 = s52 * t506 + c53 * t507;
+    let t517 = t120 + t510;
+    let t519 = t499 + t118 * T::from_f64(0.000030000000000000004);
+    let t527 = t510 - T::from_f64(1.4999999999999958) * t499;
+    let t531 = t120
+        + (T::from_f64(0.0000000000000000047704895589362195) * t510
+            + T::from_f64(1.5000000000000002) * t499);
+    let t532 = T::from_f64(20.0)
+        + (T::from_f64(25.0) * t499
+            - T::from_f64(0.000000000000000009071958584846753) * t510);
+    let t533 = T::from_f64(20.0)
+        - (T::from_f64(0.00000000000000003335808724852205) * t510
+            + T::from_f64(25.000000000000004) * t499);
+    let t534 = T::from_f64(0.9994442900376633) * t532;
+    let t535 = T::from_f64(0.03333333333333362) * t532;
+    let t538 = s78 * t535 - c79 * t534;
+    let t541 = s78 * t534 + c79 * t535;
+    let t547 = c53 * t534 + s52 * t535;
+    let t550 = s52 * t534 - c53 * t535;
+    let t554 = T::from_f64(0.9994442900376633) * t533;
+    let t555 = T::from_f64(0.03333333333333337) * t533;
+    let t558 = c79 * t554 + s78 * t555;
+    let t561 = s78 * t554 - c79 * t555;
+    let t562 = t538 - t558;
+    let t563 = t541 + t561;
+    let t567 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t541
+        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t538
+        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t561
+            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t558);
+    let t570 = c53 * t554 - s52 * t555;
+    let t573 = s52 * t554 + c53 * t555;
+    let t579 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t550
+        - (T::from_f64(0.0010000000000000085) * s52 + t194) * t547
+        + ((t190 + T::from_f64(0.0010000000000000009) * c53) * t573
+            - (T::from_f64(0.0010000000000000009) * s52 - t194) * t570);
+    let t580 = t558 - t538;
+    let t581 = -t563;
+    let t582 = -t567;
+    let t583 = T::from_f64(0.02) * t563;
+    let t587 = -(t547 + t570);
+    let t588 = -(t550 + t573);
+    let t590 = t494 - t562;
+    let t591 = t495 - t563;
+    let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
+        - T::from_f64(1.9620000000000002);
+    let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
+    let t605 = c79 * t583 - s78 * t595;
+    let t609 = t479 - (s78 * t591 - c79 * t590);
+    let t610 = t69 + (s78 * t590 + c79 * t591);
+    let t614 = T::from_f64(1.7658) + (s78 * t583 + c79 * t595) - T::from_f64(5.886);
+    let t616 = t482 + t596 + T::from_f64(0.3) * t610 - t527;
+    let t617 = t120 - t579 - t531;
+    let t620 = T::from_f64(0.000030000000000000004)
+        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c79);
+    let t627 = T::from_f64(0.2) * t485 - T::from_f64(0.1) * t485;
+    let t633 = t627
         + T::from_f64(0.3)
-            * (s78 * (T::from_f64(0.8) * (t102 - (t83 + t93))) + c79 * t431);
-    let t463 = motor_torques[0] + motor_torques[1] - t450;
-    let t465 = t426 / t425;
-    let t472 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t436 - t463 * t465)
-        / (T::from_f64(0.0166867) - t425 * (t465 * t465));
-    let t474 = t463 / t425 - t465 * t472;
+            * (T::from_f64(0.8) * (s78 * (t492 - (t483 + t489)))
+                + c79 * (T::from_f64(0.8) * t485));
+    let t634 = motor_torques[0] + motor_torques[1] - t633;
+    let t636 = t620 / t425;
+    let t643 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t627 - t634 * t636)
+        / (T::from_f64(0.0166867) - t425 * (t636 * t636));
+    let t645 = t634 / t425 - t636 * t643;
     Outputs {
-        generalized_forces: [t175, t177],
-        actuation: tendyn_core::distribution::Actuation::exact([t226, t230], []),
-        mass_matrix: [[t425, t426], [t426, T::from_f64(0.0166867)]],
-        bias: [t450, t436],
+        generalized_forces: [t517, t519],
+        actuation: tendyn_core::distribution::Actuation::exact([t527, t531], []),
+        mass_matrix: [[t425, t620], [t620, T::from_f64(0.0166867)]],
+        bias: [t633, t627],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t474, t472],
-        segment_tensions: [t231, t232],
+        forward_dynamics: [t645, t643],
+        segment_tensions: [t532, t533],
         bearings: [
-            [[t336, t337, T::from_f64(19.62)], [t329, t342, t369]],
-            [[t309, t310, T::from_f64(7.848000000000001)], [t295, t315, t316]],
+            [[t609, t610, T::from_f64(19.62)], [t605, t614, t616]],
+            [[t590, t591, T::from_f64(7.848000000000001)], [t583, t595, t596]],
             [
-                [t301, t302, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t370],
+                [t587, t588, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t617],
             ],
-            [[t292, t293, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t294]],
+            [[t580, t581, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t582]],
         ],
         base_reaction: [
-            [[t157, t160, T::from_f64(20.601000000000003)], [t167, t170, t175]],
+            [[t513, t516, T::from_f64(20.601000000000003)], [t167, t170, t517]],
         ],
     }
 }

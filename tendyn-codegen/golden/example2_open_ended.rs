@@ -27,13 +27,13 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s99, c100) = q[1].sin_cos();
-    let t850 = T::from_f64(0.0166667) + c100 * T::from_f64(0.03);
-    let t857 = s99 * T::from_f64(0.03);
-    let t866 = qdd[0] * (c100 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t850 - qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t857));
-    let t872 = qdd[0] * t850
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t857));
-    [t866, t872]
+    let t1089 = T::from_f64(0.0166667) + c100 * T::from_f64(0.03);
+    let t1126 = s99 * T::from_f64(0.03);
+    let t1135 = qdd[0] * (c100 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t1089 - qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t1126));
+    let t1141 = qdd[0] * t1089
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t1126));
+    [t1135, t1141]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -48,29 +48,29 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s99, c100) = q[1].sin_cos();
-    let t875 = c100 * T::from_f64(0.22058823529411686);
-    let t881 = c100 * T::from_f64(0.2647058823529412);
-    let t899 = qd[0]
+    let t1144 = c100 * T::from_f64(0.22058823529411686);
+    let t1150 = c100 * T::from_f64(0.2647058823529412);
+    let t1168 = qd[0]
         * (qd[0] * (s99 * T::from_f64(0.7499999999999992))
             + qd[1] * (s99 * T::from_f64(0.5294117647058824)));
-    let t906 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
-    let t914 = c100 * T::from_f64(1.279411764705882);
-    let t919 = c100 * T::from_f64(0.2647058823529411);
-    let t925 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
-    let t930 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
-    let t939 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
-    let t945 = T::from_f64(0.0)
+    let t1175 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
+    let t1183 = c100 * T::from_f64(1.279411764705882);
+    let t1188 = c100 * T::from_f64(0.2647058823529411);
+    let t1194 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
+    let t1199 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
+    let t1208 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
+    let t1214 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t875)
-                + (qdd[1] * (t881 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t906 - t899)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t1144)
+                + (qdd[1] * (t1150 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t1175 - t1168)),
         )
         .max(
-            qdd[0] * (t914 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t919 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t925 - t930) + (T::from_f64(5.0) - t939))),
+            qdd[0] * (t1183 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t1188 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t1194 - t1199) + (T::from_f64(5.0) - t1208))),
         );
-    let t970 = qdd[0]
+    let t1239 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c100 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454)
@@ -79,22 +79,23 @@ pub fn actuation<T: Real>(
                 * (qd[0] * (s99 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s99 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t971 = t945.max(t970);
-    let t982 = qdd[0] * (t875 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t881) + (t899 + (t906 + t971)));
-    let t1000 = qdd[0] * (T::from_f64(-1.517064852941176) - t914)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t919)
-            + (qd[0] * (t930 - t925) + (t939 + t971)));
-    let t1029 = qdd[0]
+    let t1240 = t1214.max(t1239);
+    let t1251 = qdd[0] * (t1144 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1150)
+            + (t1168 + (t1175 + t1240)));
+    let t1269 = qdd[0] * (T::from_f64(-1.517064852941176) - t1183)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1188)
+            + (qd[0] * (t1199 - t1194) + (t1208 + t1240)));
+    let t1298 = qdd[0]
         * (c100 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c100 * T::from_f64(0.35294117647058826)
                 + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t971
+            + (T::from_f64(1.5000000000000002) * t1240
                 - qd[1]
                     * (qd[0] * (s99 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s99 * T::from_f64(0.35294117647058826)))));
-    tendyn_core::distribution::Actuation::exact([], [t982, t1000, t1029])
+    tendyn_core::distribution::Actuation::exact([], [t1251, t1269, t1298])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -105,9 +106,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t100 = q[1].cos();
-    let t847 = t100 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t850 = T::from_f64(0.0166667) + t100 * T::from_f64(0.03);
-    [[t847, t850], [t850, T::from_f64(0.0166867)]]
+    let t1089 = T::from_f64(0.0166667) + t100 * T::from_f64(0.03);
+    let t1118 = t100 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    [[t1118, t1089], [t1089, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -118,10 +119,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t99 = q[1].sin();
-    let t857 = t99 * T::from_f64(0.03);
-    let t864 = -(qd[1] * (qd[0] * (t99 * T::from_f64(0.06)) + qd[1] * t857));
-    let t870 = qd[0] * (qd[0] * t857);
-    [t864, t870]
+    let t1126 = t99 * T::from_f64(0.03);
+    let t1133 = -(qd[1] * (qd[0] * (t99 * T::from_f64(0.06)) + qd[1] * t1126));
+    let t1139 = qd[0] * (qd[0] * t1126);
+    [t1133, t1139]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -147,18 +148,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s99, c100) = q[1].sin_cos();
-    let t847 = c100 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t857 = s99 * T::from_f64(0.03);
-    let t1032 = qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t857)
+    let t1118 = c100 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1126 = s99 * T::from_f64(0.03);
+    let t1301 = qd[1] * (qd[0] * (s99 * T::from_f64(0.06)) + qd[1] * t1126)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1034 = (T::from_f64(0.0166667) + c100 * T::from_f64(0.03)) / t847;
-    let t1174 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t857)
-        - t1032 * t1034) / (T::from_f64(0.0166867) - t847 * (t1034 * t1034));
-    let t1176 = t1032 / t847 - t1034 * t1174;
-    [t1176, t1174]
+    let t1303 = (T::from_f64(0.0166667) + c100 * T::from_f64(0.03)) / t1118;
+    let t1443 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t1126)
+        - t1301 * t1303) / (T::from_f64(0.0166867) - t1118 * (t1303 * t1303));
+    let t1445 = t1301 / t1118 - t1303 * t1443;
+    [t1445, t1443]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -169,29 +170,29 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s99, c100) = q[1].sin_cos();
-    let t875 = c100 * T::from_f64(0.22058823529411686);
-    let t881 = c100 * T::from_f64(0.2647058823529412);
-    let t899 = qd[0]
+    let t1144 = c100 * T::from_f64(0.22058823529411686);
+    let t1150 = c100 * T::from_f64(0.2647058823529412);
+    let t1168 = qd[0]
         * (qd[0] * (s99 * T::from_f64(0.7499999999999992))
             + qd[1] * (s99 * T::from_f64(0.5294117647058824)));
-    let t906 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
-    let t914 = c100 * T::from_f64(1.279411764705882);
-    let t919 = c100 * T::from_f64(0.2647058823529411);
-    let t925 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
-    let t930 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
-    let t939 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
-    let t945 = T::from_f64(0.0)
+    let t1175 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529412)));
+    let t1183 = c100 * T::from_f64(1.279411764705882);
+    let t1188 = c100 * T::from_f64(0.2647058823529411);
+    let t1194 = qd[0] * (s99 * T::from_f64(0.7499999999999998));
+    let t1199 = qd[1] * (s99 * T::from_f64(0.5294117647058822));
+    let t1208 = qd[1] * (qd[1] * (s99 * T::from_f64(0.2647058823529411)));
+    let t1214 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t875)
-                + (qdd[1] * (t881 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t906 - t899)),
+            qdd[0] * (T::from_f64(0.6837298529411769) - t1144)
+                + (qdd[1] * (t1150 + T::from_f64(-0.27010838235294077))
+                    + (T::from_f64(5.0) - t1175 - t1168)),
         )
         .max(
-            qdd[0] * (t914 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t919 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t925 - t930) + (T::from_f64(5.0) - t939))),
+            qdd[0] * (t1183 + T::from_f64(1.517064852941176))
+                + (qdd[1] * (t1188 + T::from_f64(0.5642266176470587))
+                    + (qd[0] * (t1194 - t1199) + (T::from_f64(5.0) - t1208))),
         );
-    let t970 = qdd[0]
+    let t1239 = qdd[0]
         * (T::from_f64(-0.9781309803921567) - c100 * T::from_f64(0.47058823529411764))
         + (qdd[1]
             * (T::from_f64(-0.13071921568627454)
@@ -200,181 +201,178 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
                 * (qd[0] * (s99 * T::from_f64(0.4705882352941176))
                     + qd[1] * (s99 * T::from_f64(0.2352941176470588)))
                 + T::from_f64(3.3333333333333326)));
-    let t971 = t945.max(t970);
-    let t980 = t899 + (t906 + t971);
-    let t982 = qdd[0] * (t875 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t881) + t980);
-    let t998 = qd[0] * (t930 - t925) + (t939 + t971);
-    let t1000 = qdd[0] * (T::from_f64(-1.517064852941176) - t914)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t919) + t998);
-    let t1029 = qdd[0]
+    let t1240 = t1214.max(t1239);
+    let t1249 = t1168 + (t1175 + t1240);
+    let t1251 = qdd[0] * (t1144 + T::from_f64(-0.6837298529411769))
+        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1150) + t1249);
+    let t1267 = qd[0] * (t1199 - t1194) + (t1208 + t1240);
+    let t1269 = qdd[0] * (T::from_f64(-1.517064852941176) - t1183)
+        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1188) + t1267);
+    let t1298 = qdd[0]
         * (c100 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
         + (qdd[1]
             * (c100 * T::from_f64(0.35294117647058826)
                 + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t971
+            + (T::from_f64(1.5000000000000002) * t1240
                 - qd[1]
                     * (qd[0] * (s99 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s99 * T::from_f64(0.35294117647058826)))));
-    let t1086 = qdd[0] * (t875 + T::from_f64(-0.6829798529411769))
-        + (t980 + qdd[1] * (T::from_f64(0.26960838235294077) - t881));
-    let t1094 = qdd[0] * (T::from_f64(-1.516314852941176) - t914)
-        + (t998 + qdd[1] * (T::from_f64(-0.5637266176470587) - t919));
-    [t1086, t982, t1094, t1000, t1029]
+    let t1355 = qdd[0] * (t1144 + T::from_f64(-0.6829798529411769))
+        + (t1249 + qdd[1] * (T::from_f64(0.26960838235294077) - t1150));
+    let t1363 = qdd[0] * (T::from_f64(-1.516314852941176) - t1183)
+        + (t1267 + qdd[1] * (T::from_f64(-0.5637266176470587) - t1188));
+    [t1355, t1251, t1363, t1269, t1298]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 257 arithmetic (111 add/sub, 140 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 255 arithmetic (111 add/sub, 138 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
     let (s73, c74) = q[0].sin_cos();
     let t76 = T::from_f64(0.3) * qdd[0];
-    let t78 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let t90 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
-    let t98 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t90;
+    let t83 = t76 - qdd[0] * T::from_f64(0.15);
+    let t90 = T::from_f64(1.2) * t83;
     let (s99, c100) = q[1].sin_cos();
     let t102 = qd[0] + qd[1];
     let t103 = qdd[0] + qdd[1];
-    let t126 = T::from_f64(0.8)
-        * (t76 * s99 - t78 * c100 - t102 * (T::from_f64(0.25) * t102)
-            + t102 * (t102 * T::from_f64(0.125)));
-    let t127 = T::from_f64(0.8)
-        * (t78 * s99 + t76 * c100 + T::from_f64(0.25) * t103
-            - t103 * T::from_f64(0.125));
-    let t135 = T::from_f64(0.0041667) * t103 - T::from_f64(0.125) * t127;
     let t139 = T::from_f64(0.6666666666666667) * qdd[1];
-    let t144 = T::from_f64(0.0000225) * (qdd[0] - t139);
-    let t148 = T::from_f64(0.0000225) * (qdd[0] + t139);
-    let t221 = t144 * T::from_f64(33.333333333333336);
-    let t223 = t148 * T::from_f64(33.333333333333336);
-    let t226 = t221 * T::from_f64(0.9860132971832694);
-    let t229 = t221 * T::from_f64(0.16666666666666652);
-    let t235 = c100 * t226 + s99 * t229;
-    let t240 = s99 * t226 - c100 * t229;
+    let t141 = qdd[0] - t139;
+    let t146 = qdd[0] + t139;
     let t245 = T::from_f64(0.019720265943665386) * s99
         - c100 * T::from_f64(0.0033333333333333305);
     let t249 = s99 * T::from_f64(0.0033333333333333305)
         + T::from_f64(0.019720265943665386) * c100;
-    let t274 = t223 * T::from_f64(0.9994442900376633);
-    let t277 = t223 * T::from_f64(0.03333333333333337);
-    let t283 = c100 * t274 + s99 * t277;
-    let t288 = s99 * t274 - c100 * t277;
     let t293 = T::from_f64(0.0006666666666666674) * c100
         - s99 * T::from_f64(0.019988885800753267);
     let t298 = T::from_f64(0.0006666666666666674) * s99
         + c100 * T::from_f64(0.019988885800753267);
-    let t375 = t127 - (t240 + t288);
-    let t382 = t135
-        - (t288 * t293 - t283 * t298 - T::from_f64(0.25) * t288
-            + (t240 * t245 + t235 * t249 - T::from_f64(0.25) * t240))
-        + T::from_f64(0.25) * t375;
-    let t409 = t98 + t382
-        + T::from_f64(0.3) * (t90 + (s99 * (t126 + (t235 + t283)) + c100 * t375));
-    let t438 = T::from_f64(24.999999999999975) * t382
-        - t409 * T::from_f64(8.823529411764707);
-    let t445 = t409 * T::from_f64(8.823529411764705)
-        + t382 * T::from_f64(24.999999999999993);
-    let t449 = T::from_f64(11.764705882352942) * t409
-        + T::from_f64(0.000000000000002943923360032077) * t382;
-    let t459 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t438)
-        .max(t445 + T::from_f64(5.0))
-        .max((T::from_f64(5.0) - t449) * T::from_f64(0.6666666666666665));
-    let t460 = t438 + t459;
-    let t461 = t459 - t445;
-    let t463 = t449 + T::from_f64(1.5000000000000002) * t459;
-    let t467 = t221 + t460;
-    let t468 = t223 + t461;
-    let t469 = T::from_f64(0.9860132971832694) * t467;
-    let t471 = T::from_f64(0.16666666666666652) * t467;
-    let t477 = c100 * t469 + s99 * t471;
-    let t479 = s99 * t469;
-    let t480 = c100 * t471;
-    let t482 = t479 - t480;
-    let t486 = t245 * t482 + t249 * t477;
-    let t490 = c74 * t469 - s73 * t471;
-    let t493 = s73 * t469 + c74 * t471;
-    let t498 = t460 * T::from_f64(0.9506914539363203);
-    let t500 = T::from_f64(0.31013829078726374) * t460;
-    let t512 = (T::from_f64(0.004999999999999996) * c74
-        + s73 * T::from_f64(0.02958039891549808)) * t493
+    let t844 = qd[0] * qd[0];
+    let t845 = T::from_f64(0.3) * t844;
+    let t851 = T::from_f64(0.009) * qdd[0] - t83 * T::from_f64(0.18);
+    let t857 = t102 * t102;
+    let t860 = T::from_f64(0.25) * t103 + (t76 * c100 + s99 * t845)
+        - t103 * T::from_f64(0.125);
+    let t863 = T::from_f64(0.8)
+        * (t76 * s99 - c100 * t845 - T::from_f64(0.25) * t857
+            + T::from_f64(0.125) * t857);
+    let t864 = T::from_f64(0.8) * t860;
+    let t866 = T::from_f64(0.0041667) * t103 - T::from_f64(0.1) * t860;
+    let t897 = t141 * T::from_f64(0.0007395099728874521);
+    let t899 = t141 * T::from_f64(0.00012499999999999992);
+    let t902 = c100 * t897 + s99 * t899;
+    let t905 = s99 * t897 - c100 * t899;
+    let t910 = t146 * T::from_f64(0.0007495832175282476);
+    let t912 = t146 * T::from_f64(0.000025000000000000028);
+    let t915 = c100 * t910 + s99 * t912;
+    let t918 = s99 * t910 - c100 * t912;
+    let t930 = t864 - (t905 + t918);
+    let t933 = t866
+        - (t293 * t918 - t298 * t915 - T::from_f64(0.25) * t918
+            + (t245 * t905 + t249 * t902 - T::from_f64(0.25) * t905))
+        + T::from_f64(0.25) * t930;
+    let t940 = t851 + t933
+        + T::from_f64(0.3) * (t90 + (s99 * (t863 + (t902 + t915)) + c100 * t930));
+    let t943 = T::from_f64(24.999999999999975) * t933
+        - T::from_f64(8.823529411764707) * t940;
+    let t946 = T::from_f64(8.823529411764705) * t940
+        + T::from_f64(24.999999999999993) * t933;
+    let t949 = T::from_f64(11.764705882352942) * t940
+        + T::from_f64(0.000000000000002943923360032077) * t933;
+    let t956 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t943)
+        .max(T::from_f64(5.0) + t946)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t949));
+    let t957 = t943 + t956;
+    let t958 = t956 - t946;
+    let t960 = t949 + T::from_f64(1.5000000000000002) * t956;
+    let t961 = t141 * T::from_f64(0.0007500000000000001) + t957;
+    let t962 = t146 * T::from_f64(0.0007500000000000001) + t958;
+    let t963 = T::from_f64(0.9860132971832694) * t961;
+    let t964 = T::from_f64(0.16666666666666652) * t961;
+    let t967 = c100 * t963 + s99 * t964;
+    let t968 = s99 * t963;
+    let t969 = c100 * t964;
+    let t970 = t968 - t969;
+    let t973 = t245 * t970 + t249 * t967;
+    let t976 = c74 * t963 - s73 * t964;
+    let t979 = s73 * t963 + c74 * t964;
+    let t991 = (T::from_f64(0.004999999999999996) * c74
+        + s73 * T::from_f64(0.02958039891549808)) * t979
         - (T::from_f64(0.004999999999999996) * s73
-            - c74 * T::from_f64(0.02958039891549808)) * t490
-        - (t500 * T::from_f64(0.009304148723617912)
-            + t498 * T::from_f64(0.02852074361808961));
-    let t522 = T::from_f64(0.9994442900376633) * t468;
-    let t524 = T::from_f64(0.03333333333333337) * t468;
-    let t530 = c100 * t522 + s99 * t524;
-    let t532 = s99 * t522;
-    let t533 = c100 * t524;
-    let t535 = t532 - t533;
-    let t536 = t293 * t535;
-    let t537 = t298 * t530;
-    let t542 = c74 * t522 - s73 * t524;
-    let t545 = s73 * t522 + c74 * t524;
-    let t550 = t461 * T::from_f64(0.9968453000901664);
-    let t553 = t461 * T::from_f64(0.0793690600180332);
-    let t564 = (T::from_f64(0.0010000000000000009) * c74
-        + s73 * T::from_f64(0.029983328701129897)) * t545
+            - c74 * T::from_f64(0.02958039891549808)) * t976
+        - (t957 * T::from_f64(0.002885572782373361)
+            + t957 * T::from_f64(0.027114427217626635));
+    let t992 = T::from_f64(0.9994442900376633) * t962;
+    let t993 = T::from_f64(0.03333333333333337) * t962;
+    let t996 = c100 * t992 + s99 * t993;
+    let t997 = s99 * t992;
+    let t998 = c100 * t993;
+    let t999 = t997 - t998;
+    let t1000 = t293 * t999;
+    let t1001 = t298 * t996;
+    let t1005 = c74 * t992 - s73 * t993;
+    let t1008 = s73 * t992 + c74 * t993;
+    let t1019 = (T::from_f64(0.0010000000000000009) * c74
+        + s73 * T::from_f64(0.029983328701129897)) * t1008
         - (T::from_f64(0.0010000000000000009) * s73
-            - c74 * T::from_f64(0.029983328701129897)) * t542
-        - (T::from_f64(0.002381071800540996) * t553
-            + t550 * T::from_f64(0.02990535900270499));
-    let t582 = t463 * T::from_f64(0.9733466865996102);
-    let t584 = T::from_f64(0.22933867463984403) * t463;
-    let t586 = c74 * t582;
-    let t588 = s73 * t584;
-    let t589 = t588 - t586;
-    let t592 = s73 * t582 + c74 * t584;
-    let t593 = (T::from_f64(0.009173546985593762) * c74
-        + T::from_f64(0.03893386746398441) * s73) * t592;
-    let t594 = (T::from_f64(0.03893386746398441) * c74
-        - T::from_f64(0.009173546985593762) * s73) * t589;
-    let t605 = t550 - t542;
-    let t606 = t553 - t545;
-    let t607 = t148 - t564;
-    let t620 = t498 - t490;
-    let t621 = -(t493 + t500);
-    let t622 = t144 - t512;
-    let t633 = t586 - t588;
-    let t634 = -t592;
-    let t635 = t594 - t593;
-    let t639 = t533 - t532;
-    let t640 = t537 - t536;
-    let t648 = t480 - t479;
-    let t649 = -t486;
-    let t663 = t126 + (t477 + t530);
-    let t664 = t127 - (t482 + t535);
-    let t665 = T::from_f64(0.01) * t482 - T::from_f64(0.01) * t535;
-    let t670 = T::from_f64(0.9810000000000001)
-        - (T::from_f64(0.01) * t530 - T::from_f64(0.01) * t477)
+            - c74 * T::from_f64(0.029983328701129897)) * t1005
+        - (t958 * T::from_f64(0.0001889834306443847)
+            + t958 * T::from_f64(0.029811016569355614));
+    let t1020 = T::from_f64(0.9733466865996102) * t960;
+    let t1021 = T::from_f64(0.22933867463984403) * t960;
+    let t1022 = c74 * t1020;
+    let t1023 = s73 * t1021;
+    let t1024 = t1023 - t1022;
+    let t1027 = s73 * t1020 + c74 * t1021;
+    let t1028 = (T::from_f64(0.009173546985593762) * c74
+        + T::from_f64(0.03893386746398441) * s73) * t1027;
+    let t1029 = (T::from_f64(0.03893386746398441) * c74
+        - T::from_f64(0.009173546985593762) * s73) * t1024;
+    let t1031 = T::from_f64(0.9968453000901664) * t958 - t1005;
+    let t1032 = T::from_f64(0.0793690600180332) * t958 - t1008;
+    let t1033 = T::from_f64(0.0000225) * t146 - t1019;
+    let t1034 = T::from_f64(0.9506914539363203) * t957 - t976;
+    let t1035 = -(t979 + T::from_f64(0.31013829078726374) * t957);
+    let t1036 = T::from_f64(0.0000225) * t141 - t991;
+    let t1037 = t1022 - t1023;
+    let t1038 = -t1027;
+    let t1039 = t1029 - t1028;
+    let t1042 = t998 - t997;
+    let t1043 = t1001 - t1000;
+    let t1048 = t969 - t968;
+    let t1049 = -t973;
+    let t1058 = t863 + (t967 + t996);
+    let t1059 = t864 - (t970 + t999);
+    let t1060 = T::from_f64(0.01) * t970 - T::from_f64(0.01) * t999;
+    let t1064 = T::from_f64(0.9810000000000001)
+        - (T::from_f64(0.01) * t996 - T::from_f64(0.01) * t967)
         - T::from_f64(1.9620000000000002);
-    let t671 = t135
-        - (t536 - t537 - T::from_f64(0.25) * t535 + (t486 - T::from_f64(0.25) * t482))
-        + T::from_f64(0.25) * t664;
-    let t684 = c100 * t665 - s99 * t670;
-    let t694 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78)
-        - (t589 + (s99 * t664 - c100 * t663));
-    let t695 = t90 - (t592 - (s99 * t663 + c100 * t664));
-    let t700 = T::from_f64(1.7658) + (s99 * t665 + c100 * t670) - T::from_f64(5.886);
-    let t701 = t98 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
-        + T::from_f64(0.3) * t695;
+    let t1065 = t866
+        - (t1000 - t1001 - T::from_f64(0.25) * t999 + (t973 - T::from_f64(0.25) * t970))
+        + T::from_f64(0.25) * t1059;
+    let t1074 = c100 * t1060 - s99 * t1064;
+    let t1081 = T::from_f64(1.2) * (T::from_f64(0.15) * t844 - t845)
+        - (t1024 + (s99 * t1059 - c100 * t1058));
+    let t1082 = t90 - (t1027 - (s99 * t1058 + c100 * t1059));
+    let t1086 = T::from_f64(1.7658) + (s99 * t1060 + c100 * t1064) - T::from_f64(5.886);
+    let t1087 = t851 - (t1028 - t1029 - T::from_f64(0.3) * t1027 - t1065)
+        + T::from_f64(0.3) * t1082;
     [
-        [[t694, t695, T::from_f64(19.62)], [t684, t700, t701]],
-        [[t663, t664, T::from_f64(7.848000000000001)], [t665, t670, t671]],
-        [[t477, t648, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t649]],
-        [[t530, t639, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t640]],
-        [[t633, t634, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t635]],
+        [[t1081, t1082, T::from_f64(19.62)], [t1074, t1086, t1087]],
+        [[t1058, t1059, T::from_f64(7.848000000000001)], [t1060, t1064, t1065]],
+        [[t967, t1048, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1049]],
+        [[t996, t1042, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1043]],
+        [[t1037, t1038, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1039]],
         [
-            [t620, t621, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t622],
+            [t1034, t1035, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1036],
         ],
         [
-            [t605, t606, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t607],
+            [t1031, t1032, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1033],
         ],
     ]
 }
@@ -382,7 +380,7 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (closed form): 71 arithmetic (27 add/sub, 44 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 70 arithmetic (29 add/sub, 41 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -391,35 +389,37 @@ pub fn base_reaction<T: Real>(
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
     let (s73, c74) = q[0].sin_cos();
+    let t76 = T::from_f64(0.3) * qdd[0];
+    let t83 = t76 - qdd[0] * T::from_f64(0.15);
     let (s99, c100) = q[1].sin_cos();
+    let t102 = qd[0] + qd[1];
+    let t103 = qdd[0] + qdd[1];
+    let t139 = T::from_f64(0.6666666666666667) * qdd[1];
     let t168 = s99 * T::from_f64(0.9810000000000001);
-    let t170 = c100 * T::from_f64(0.9810000000000001);
-    let t743 = T::from_f64(0.1) * s99;
-    let t745 = T::from_f64(0.1) * c100;
-    let t866 = qdd[0] * (c100 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * (T::from_f64(0.0166667) + c100 * T::from_f64(0.03))
-            - qd[1]
-                * (qd[0] * (s99 * T::from_f64(0.06))
-                    + qd[1] * (s99 * T::from_f64(0.03))));
-    let t1097 = T::from_f64(-0.42) - t745;
-    let t1099 = c74 * t743;
-    let t1101 = s73 * t1097 - t1099;
-    let t1105 = t1099 + s73 * t745;
-    let t1110 = s73 * t743;
-    let t1113 = s99 * T::from_f64(0.2);
-    let t1116 = c100 * T::from_f64(0.2);
-    let t1124 = c74 * t745;
-    let t1129 = qd[0]
-        * (qd[0] * (c74 * t1097 + t1110) + qd[1] * (s73 * t1113 - c74 * t1116))
-        + qd[1] * (qd[1] * (t1110 - t1124));
-    let t1131 = qdd[0] * t1101 + (t1129 - qdd[1] * t1105);
-    let t1157 = qdd[1] * (t1124 - t1110)
-        + (qd[0] * (qd[0] * t1101 - qd[1] * (s73 * t1116 + c74 * t1113))
-            - qd[1] * (qd[1] * t1105));
-    let t1158 = qdd[0] * (c74 * (t745 + T::from_f64(0.42)) - t1110) + t1157;
-    let t1162 = c74 * t168 + s73 * (t170 + T::from_f64(4.1202000000000005));
-    let t1166 = s73 * t168 + c74 * (T::from_f64(-4.1202000000000005) - t170);
-    [[[t1131, t1158, T::from_f64(20.601000000000003)], [t1162, t1166, t866]]]
+    let t182 = T::from_f64(1.7658) - c100 * T::from_f64(0.9810000000000001)
+        - T::from_f64(5.886);
+    let t197 = c74 * t168 - s73 * t182;
+    let t200 = s73 * t168 + c74 * t182;
+    let t844 = qd[0] * qd[0];
+    let t845 = T::from_f64(0.3) * t844;
+    let t857 = t102 * t102;
+    let t860 = T::from_f64(0.25) * t103 + (t76 * c100 + s99 * t845)
+        - t103 * T::from_f64(0.125);
+    let t863 = T::from_f64(0.8)
+        * (t76 * s99 - c100 * t845 - T::from_f64(0.25) * t857
+            + T::from_f64(0.125) * t857);
+    let t864 = T::from_f64(0.8) * t860;
+    let t875 = T::from_f64(1.2) * (T::from_f64(0.15) * t844 - t845)
+        - (s99 * t864 - c100 * t863);
+    let t876 = T::from_f64(1.2) * t83 + (s99 * t863 + c100 * t864);
+    let t882 = c74 * t875 - s73 * t876;
+    let t885 = s73 * t875 + c74 * t876;
+    let t886 = T::from_f64(0.0000225) * (qdd[0] - t139)
+        + T::from_f64(0.0000225) * (qdd[0] + t139)
+        + (T::from_f64(0.009) * qdd[0] - t83 * T::from_f64(0.18)
+            + (T::from_f64(0.0041667) * t103 - T::from_f64(0.1) * t860
+                + T::from_f64(0.2) * t860) + T::from_f64(0.3) * t876);
+    [[[t882, t885, T::from_f64(20.601000000000003)], [t197, t200, t886]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -443,7 +443,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 335 arithmetic (149 add/sub, 177 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 333 arithmetic (149 add/sub, 175 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -455,196 +455,204 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s73, c74) = q[0].sin_cos();
     let t76 = T::from_f64(0.3) * qdd[0];
-    let t78 = qd[0] * (T::from_f64(0.3) * qd[0]);
-    let t89 = T::from_f64(1.2) * (qd[0] * (qd[0] * T::from_f64(0.15)) - t78);
-    let t90 = T::from_f64(1.2) * (t76 - qdd[0] * T::from_f64(0.15));
-    let t98 = T::from_f64(0.009) * qdd[0] - T::from_f64(0.15) * t90;
+    let t83 = t76 - qdd[0] * T::from_f64(0.15);
+    let t90 = T::from_f64(1.2) * t83;
     let (s99, c100) = q[1].sin_cos();
     let t102 = qd[0] + qd[1];
     let t103 = qdd[0] + qdd[1];
-    let t104 = t78 * c100;
-    let t108 = t78 * s99;
-    let t114 = t102 * (T::from_f64(0.25) * t102);
-    let t123 = t102 * (t102 * T::from_f64(0.125));
-    let t126 = T::from_f64(0.8) * (t76 * s99 - t104 - t114 + t123);
-    let t127 = T::from_f64(0.8)
-        * (t108 + t76 * c100 + T::from_f64(0.25) * t103 - t103 * T::from_f64(0.125));
-    let t135 = T::from_f64(0.0041667) * t103 - T::from_f64(0.125) * t127;
     let t139 = T::from_f64(0.6666666666666667) * qdd[1];
-    let t144 = T::from_f64(0.0000225) * (qdd[0] - t139);
-    let t148 = T::from_f64(0.0000225) * (qdd[0] + t139);
-    let t157 = t135 + T::from_f64(0.25) * t127;
+    let t141 = qdd[0] - t139;
+    let t144 = T::from_f64(0.0000225) * t141;
+    let t146 = qdd[0] + t139;
+    let t148 = T::from_f64(0.0000225) * t146;
     let t168 = s99 * T::from_f64(0.9810000000000001);
-    let t173 = t89 - (s99 * t127 - c100 * t126);
-    let t174 = t90 + (s99 * t126 + c100 * t127);
     let t182 = T::from_f64(1.7658) - c100 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t183 = t98 + t157 + T::from_f64(0.3) * t174;
-    let t187 = c74 * t173 - s73 * t174;
-    let t190 = s73 * t173 + c74 * t174;
     let t197 = c74 * t168 - s73 * t182;
     let t200 = s73 * t168 + c74 * t182;
-    let t205 = t144 + t148 + t183;
-    let t210 = t148 + (t144 + t183);
-    let t212 = t157 - T::from_f64(0.6666666666666667) * t144
-        + T::from_f64(0.6666666666666667) * t148;
-    let t221 = t144 * T::from_f64(33.333333333333336);
-    let t223 = t148 * T::from_f64(33.333333333333336);
-    let t226 = t221 * T::from_f64(0.9860132971832694);
-    let t229 = t221 * T::from_f64(0.16666666666666652);
-    let t235 = c100 * t226 + s99 * t229;
-    let t240 = s99 * t226 - c100 * t229;
     let t245 = T::from_f64(0.019720265943665386) * s99
         - c100 * T::from_f64(0.0033333333333333305);
     let t249 = s99 * T::from_f64(0.0033333333333333305)
         + T::from_f64(0.019720265943665386) * c100;
-    let t274 = t223 * T::from_f64(0.9994442900376633);
-    let t277 = t223 * T::from_f64(0.03333333333333337);
-    let t283 = c100 * t274 + s99 * t277;
-    let t288 = s99 * t274 - c100 * t277;
     let t293 = T::from_f64(0.0006666666666666674) * c100
         - s99 * T::from_f64(0.019988885800753267);
     let t298 = T::from_f64(0.0006666666666666674) * s99
         + c100 * T::from_f64(0.019988885800753267);
-    let t375 = t127 - (t240 + t288);
-    let t382 = t135
-        - (t288 * t293 - t283 * t298 - T::from_f64(0.25) * t288
-            + (t240 * t245 + t235 * t249 - T::from_f64(0.25) * t240))
-        + T::from_f64(0.25) * t375;
-    let t409 = t98 + t382
-        + T::from_f64(0.3) * (t90 + (s99 * (t126 + (t235 + t283)) + c100 * t375));
-    let t438 = T::from_f64(24.999999999999975) * t382
-        - t409 * T::from_f64(8.823529411764707);
-    let t445 = t409 * T::from_f64(8.823529411764705)
-        + t382 * T::from_f64(24.999999999999993);
-    let t449 = T::from_f64(11.764705882352942) * t409
-        + T::from_f64(0.000000000000002943923360032077) * t382;
-    let t459 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t438)
-        .max(t445 + T::from_f64(5.0))
-        .max((T::from_f64(5.0) - t449) * T::from_f64(0.6666666666666665));
-    let t460 = t438 + t459;
-    let t461 = t459 - t445;
-    let t463 = t449 + T::from_f64(1.5000000000000002) * t459;
-    let t467 = t221 + t460;
-    let t468 = t223 + t461;
-    let t469 = T::from_f64(0.9860132971832694) * t467;
-    let t471 = T::from_f64(0.16666666666666652) * t467;
-    let t477 = c100 * t469 + s99 * t471;
-    let t479 = s99 * t469;
-    let t480 = c100 * t471;
-    let t482 = t479 - t480;
-    let t486 = t245 * t482 + t249 * t477;
-    let t490 = c74 * t469 - s73 * t471;
-    let t493 = s73 * t469 + c74 * t471;
-    let t498 = t460 * T::from_f64(0.9506914539363203);
-    let t500 = T::from_f64(0.31013829078726374) * t460;
-    let t512 = (T::from_f64(0.004999999999999996) * c74
-        + s73 * T::from_f64(0.02958039891549808)) * t493
-        - (T::from_f64(0.004999999999999996) * s73
-            - c74 * T::from_f64(0.02958039891549808)) * t490
-        - (t500 * T::from_f64(0.009304148723617912)
-            + t498 * T::from_f64(0.02852074361808961));
-    let t522 = T::from_f64(0.9994442900376633) * t468;
-    let t524 = T::from_f64(0.03333333333333337) * t468;
-    let t530 = c100 * t522 + s99 * t524;
-    let t532 = s99 * t522;
-    let t533 = c100 * t524;
-    let t535 = t532 - t533;
-    let t536 = t293 * t535;
-    let t537 = t298 * t530;
-    let t542 = c74 * t522 - s73 * t524;
-    let t545 = s73 * t522 + c74 * t524;
-    let t550 = t461 * T::from_f64(0.9968453000901664);
-    let t553 = t461 * T::from_f64(0.0793690600180332);
-    let t564 = (T::from_f64(0.0010000000000000009) * c74
-        + s73 * T::from_f64(0.029983328701129897)) * t545
-        - (T::from_f64(0.0010000000000000009) * s73
-            - c74 * T::from_f64(0.029983328701129897)) * t542
-        - (T::from_f64(0.002381071800540996) * t553
-            + t550 * T::from_f64(0.02990535900270499));
-    let t582 = t463 * T::from_f64(0.9733466865996102);
-    let t584 = T::from_f64(0.22933867463984403) * t463;
-    let t586 = c74 * t582;
-    let t588 = s73 * t584;
-    let t589 = t588 - t586;
-    let t592 = s73 * t582 + c74 * t584;
-    let t593 = (T::from_f64(0.009173546985593762) * c74
-        + T::from_f64(0.03893386746398441) * s73) * t592;
-    let t594 = (T::from_f64(0.03893386746398441) * c74
-        - T::from_f64(0.009173546985593762) * s73) * t589;
-    let t605 = t550 - t542;
-    let t606 = t553 - t545;
-    let t607 = t148 - t564;
-    let t620 = t498 - t490;
-    let t621 = -(t493 + t500);
-    let t622 = t144 - t512;
-    let t633 = t586 - t588;
-    let t634 = -t592;
-    let t635 = t594 - t593;
-    let t639 = t533 - t532;
-    let t640 = t537 - t536;
-    let t648 = t480 - t479;
-    let t649 = -t486;
-    let t663 = t126 + (t477 + t530);
-    let t664 = t127 - (t482 + t535);
-    let t665 = T::from_f64(0.01) * t482 - T::from_f64(0.01) * t535;
-    let t670 = T::from_f64(0.9810000000000001)
-        - (T::from_f64(0.01) * t530 - T::from_f64(0.01) * t477)
-        - T::from_f64(1.9620000000000002);
-    let t671 = t135
-        - (t536 - t537 - T::from_f64(0.25) * t535 + (t486 - T::from_f64(0.25) * t482))
-        + T::from_f64(0.25) * t664;
-    let t684 = c100 * t665 - s99 * t670;
-    let t694 = t89 - (t589 + (s99 * t664 - c100 * t663));
-    let t695 = t90 - (t592 - (s99 * t663 + c100 * t664));
-    let t700 = T::from_f64(1.7658) + (s99 * t665 + c100 * t670) - T::from_f64(5.886);
-    let t701 = t98 - (t593 - t594 - T::from_f64(0.3) * t592 - t671)
-        + T::from_f64(0.3) * t695;
-    let t745 = T::from_f64(0.1) * c100;
-    let t747 = T::from_f64(0.0166667) + T::from_f64(0.3) * t745;
-    let t766 = T::from_f64(-0.18) + t745;
+    let t766 = T::from_f64(-0.18) + T::from_f64(0.1) * c100;
     let t784 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
             + T::from_f64(0.3) * (t766 + (t766 + T::from_f64(0.6))));
-    let t789 = T::from_f64(0.8) * t108;
-    let t794 = T::from_f64(0.25) * t789 - T::from_f64(0.125) * t789;
-    let t808 = t794
+    let t844 = qd[0] * qd[0];
+    let t845 = T::from_f64(0.3) * t844;
+    let t848 = T::from_f64(1.2) * (T::from_f64(0.15) * t844 - t845);
+    let t851 = T::from_f64(0.009) * qdd[0] - t83 * T::from_f64(0.18);
+    let t852 = c100 * t845;
+    let t854 = s99 * t845;
+    let t857 = t102 * t102;
+    let t858 = T::from_f64(0.25) * t857;
+    let t860 = T::from_f64(0.25) * t103 + (t76 * c100 + t854)
+        - t103 * T::from_f64(0.125);
+    let t861 = T::from_f64(0.125) * t857;
+    let t863 = T::from_f64(0.8) * (t76 * s99 - t852 - t858 + t861);
+    let t864 = T::from_f64(0.8) * t860;
+    let t866 = T::from_f64(0.0041667) * t103 - T::from_f64(0.1) * t860;
+    let t868 = t866 + T::from_f64(0.2) * t860;
+    let t875 = t848 - (s99 * t864 - c100 * t863);
+    let t876 = t90 + (s99 * t863 + c100 * t864);
+    let t879 = t851 + t868 + T::from_f64(0.3) * t876;
+    let t882 = c74 * t875 - s73 * t876;
+    let t885 = s73 * t875 + c74 * t876;
+    let t886 = t144 + t148 + t879;
+    let t890 = t148 + (t144 + t879);
+    let t892 = t868 - t141 * T::from_f64(0.000015000000000000002)
+        + t146 * T::from_f64(0.000015000000000000002);
+    let t897 = t141 * T::from_f64(0.0007395099728874521);
+    let t899 = t141 * T::from_f64(0.00012499999999999992);
+    let t902 = c100 * t897 + s99 * t899;
+    let t905 = s99 * t897 - c100 * t899;
+    let t910 = t146 * T::from_f64(0.0007495832175282476);
+    let t912 = t146 * T::from_f64(0.000025000000000000028);
+    let t915 = c100 * t910 + s99 * t912;
+    let t918 = s99 * t910 - c100 * t912;
+    let t930 = t864 - (t905 + t918);
+    let t933 = t866
+        - (t293 * t918 - t298 * t915 - T::from_f64(0.25) * t918
+            + (t245 * t905 + t249 * t902 - T::from_f64(0.25) * t905))
+        + T::from_f64(0.25) * t930;
+    let t940 = t851 + t933
+        + T::from_f64(0.3) * (t90 + (s99 * (t863 + (t902 + t915)) + c100 * t930));
+    let t943 = T::from_f64(24.999999999999975) * t933
+        - T::from_f64(8.823529411764707) * t940;
+    let t946 = T::from_f64(8.823529411764705) * t940
+        + T::from_f64(24.999999999999993) * t933;
+    let t949 = T::from_f64(11.764705882352942) * t940
+        + T::from_f64(0.000000000000002943923360032077) * t933;
+    let t956 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t943)
+        .max(T::from_f64(5.0) + t946)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t949));
+    let t957 = t943 + t956;
+    let t958 = t956 - t946;
+    let t960 = t949 + T::from_f64(1.5000000000000002) * t956;
+    let t961 = t141 * T::from_f64(0.0007500000000000001) + t957;
+    let t962 = t146 * T::from_f64(0.0007500000000000001) + t958;
+    let t963 = T::from_f64(0.9860132971832694) * t961;
+    let t964 = T::from_f64(0.16666666666666652) * t961;
+    let t967 = c100 * t963 + s99 * t964;
+    let t968 = s99 * t963;
+    let t969 = c100 * t964;
+    let t970 = t968 - t969;
+    let t973 = t245 * t970 + t249 * t967;
+    let t976 = c74 * t963 - s73 * t964;
+    let t979 = s73 * t963 + c74 * t964;
+    let t991 = (T::from_f64(0.004999999999999996) * c74
+        + s73 * T::from_f64(0.02958039891549808)) * t979
+        - (T::from_f64(0.004999999999999996) * s73
+            - c74 * T::from_f64(0.02958039891549808)) * t976
+        - (t957 * T::from_f64(0.002885572782373361)
+            + t957 * T::from_f64(0.027114427217626635));
+    let t992 = T::from_f64(0.9994442900376633) * t962;
+    let t993 = T::from_f64(0.03333333333333337) * t962;
+    let t996 = c100 * t992 + s99 * t993;
+    let t997 = s99 * t992;
+    let t998 = c100 * t993;
+    let t999 = t997 - t998;
+    let t1000 = t293 * t999;
+    let t1001 = t298 * t996;
+    let t1005 = c74 * t992 - s73 * t993;
+    let t1008 = s73 * t992 + c74 * t993;
+    let t1019 = (T::from_f64(0.0010000000000000009) * c74
+        + s73 * T::from_f64(0.029983328701129897)) * t1008
+        - (T::from_f64(0.0010000000000000009) * s73
+            - c74 * T::from_f64(0.029983328701129897)) * t1005
+        - (t958 * T::from_f64(0.0001889834306443847)
+            + t958 * T::from_f64(0.029811016569355614));
+    let t1020 = T::from_f64(0.9733466865996102) * t960;
+    let t1021 = T::from_f64(0.22933867463984403) * t960;
+    let t1022 = c74 * t1020;
+    let t1023 = s73 * t1021;
+    let t1024 = t1023 - t1022;
+    let t1027 = s73 * t1020 + c74 * t1021;
+    let t1028 = (T::from_f64(0.009173546985593762) * c74
+        + T::from_f64(0.03893386746398441) * s73) * t1027;
+    let t1029 = (T::from_f64(0.03893386746398441) * c74
+        - T::from_f64(0.009173546985593762) * s73) * t1024;
+    let t1031 = T::from_f64(0.9968453000901664) * t958 - t1005;
+    let t1032 = T::from_f64(0.0793690600180332) * t958 - t1008;
+    let t1033 = t148 - t1019;
+    let t1034 = T::from_f64(0.9506914539363203) * t957 - t976;
+    let t1035 = -(t979 + T::from_f64(0.31013829078726374) * t957);
+    let t1036 = t144 - t991;
+    let t1037 = t1022 - t1023;
+    let t1038 = -t1027;
+    let t1039 = t1029 - t1028;
+    let t1042 = t998 - t997;
+    let t1043 = t1001 - t1000;
+    let t1048 = t969 - t968;
+    let t1049 = -t973;
+    let t1058 = t863 + (t967 + t996);
+    let t1059 = t864 - (t970 + t999);
+    let t1060 = T::from_f64(0.01) * t970 - T::from_f64(0.01) * t999;
+    let t1064 = T::from_f64(0.9810000000000001)
+        - (T::from_f64(0.01) * t996 - T::from_f64(0.01) * t967)
+        - T::from_f64(1.9620000000000002);
+    let t1065 = t866
+        - (t1000 - t1001 - T::from_f64(0.25) * t999 + (t973 - T::from_f64(0.25) * t970))
+        + T::from_f64(0.25) * t1059;
+    let t1074 = c100 * t1060 - s99 * t1064;
+    let t1081 = t848 - (t1024 + (s99 * t1059 - c100 * t1058));
+    let t1082 = t90 - (t1027 - (s99 * t1058 + c100 * t1059));
+    let t1086 = T::from_f64(1.7658) + (s99 * t1060 + c100 * t1064) - T::from_f64(5.886);
+    let t1087 = t851 - (t1028 - t1029 - T::from_f64(0.3) * t1027 - t1065)
+        + T::from_f64(0.3) * t1082;
+    let t1089 = T::from_f64(0.0166667) + c100 * T::from_f64(0.03);
+    let t1096 = T::from_f64(0.2) * t854 - T::from_f64(0.1) * t854;
+    let t1102 = t1096
         + T::from_f64(0.3)
-            * (s99 * (T::from_f64(0.8) * (t123 - (t104 + t114))) + c100 * t789);
-    let t832 = T::from_f64(0.04) * tendon_tensions[2]
+            * (T::from_f64(0.8) * (s99 * (t861 - (t852 + t858)))
+                + c100 * (T::from_f64(0.8) * t854));
+    let t1103 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t808;
-    let t834 = t747 / t784;
-    let t841 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - t794 - t832 * t834)
-        / (T::from_f64(0.0166867) - t784 * (t834 * t834));
-    let t843 = t832 / t784 - t834 * t841;
+            + tendon_tensions[1] * T::from_f64(0.03)) - t1102;
+    let t1105 = t1089 / t784;
+    let t1112 = (T::from_f64(0.02) * tendon_tensions[0]
+        - T::from_f64(0.02) * tendon_tensions[1] - t1096 - t1103 * t1105)
+        / (T::from_f64(0.0166867) - t784 * (t1105 * t1105));
+    let t1114 = t1103 / t784 - t1105 * t1112;
     Outputs {
-        generalized_forces: [t210, t212],
-        actuation: tendyn_core::distribution::Actuation::exact([], [t460, t461, t463]),
-        mass_matrix: [[t784, t747], [t747, T::from_f64(0.0166867)]],
-        bias: [t808, t794],
+        generalized_forces: [t890, t892],
+        actuation: tendyn_core::distribution::Actuation::exact([], [t957, t958, t960]),
+        mass_matrix: [[t784, t1089], [t1089, T::from_f64(0.0166867)]],
+        bias: [t1102, t1096],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t843, t841],
-        segment_tensions: [t467, t460, t468, t461, t463],
+        forward_dynamics: [t1114, t1112],
+        segment_tensions: [t961, t957, t962, t958, t960],
         bearings: [
-            [[t694, t695, T::from_f64(19.62)], [t684, t700, t701]],
-            [[t663, t664, T::from_f64(7.848000000000001)], [t665, t670, t671]],
-            [[t477, t648, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t649]],
-            [[t530, t639, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t640]],
-            [[t633, t634, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t635]],
+            [[t1081, t1082, T::from_f64(19.62)], [t1074, t1086, t1087]],
+            [[t1058, t1059, T::from_f64(7.848000000000001)], [t1060, t1064, t1065]],
             [
-                [t620, t621, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t622],
+                [t967, t1048, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1049],
             ],
             [
-                [t605, t606, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t607],
+                [t996, t1042, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1043],
+            ],
+            [
+                [t1037, t1038, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1039],
+            ],
+            [
+                [t1034, t1035, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1036],
+            ],
+            [
+                [t1031, t1032, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1033],
             ],
         ],
         base_reaction: [
-            [[t187, t190, T::from_f64(20.601000000000003)], [t197, t200, t205]],
+            [[t882, t885, T::from_f64(20.601000000000003)], [t197, t200, t886]],
         ],
     }
 }

@@ -281,6 +281,16 @@ impl Graph {
         }
     }
 
+    /// `(k, y)` if node `x` is `k · y` with `k` a number (a product's operands are stored
+    /// in id order: the number may be either).
+    fn scaled(&self, x: Id) -> Option<(Id, Id)> {
+        match self.node(x) {
+            Node::Mul(p, y) if self.constant_value(p).is_some() => Some((p, y)),
+            Node::Mul(y, p) if self.constant_value(p).is_some() => Some((p, y)),
+            _ => None,
+        }
+    }
+
     /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `x / x = 1`, and a
     /// division by a number as a multiplication by its reciprocal.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
@@ -397,6 +407,79 @@ impl Graph {
             return self.neg(s);
         }
         self.intern(Node::SignOutside(a, band, otherwise))
+    }
+
+    /// `roots` rebuilt with their numbers gathered in products: `k · (k' · y) = (k k') · y`,
+    /// and `x · (k · y) = k · (x · y)` wherever `k · y` has no other use among the nodes the
+    /// roots depend on. Never more multiplications, and products that differ only in
+    /// their numbers (`q̇₀ (0.3 q̇₀)` and `q̇₀ (q̇₀ 0.15)`) then share `x · y`. A pass over
+    /// finished functions: use counts are not known while the graph is built, and the
+    /// closed form must expand the products as traced (a product of two numbers folded
+    /// in f64 is rounded where the expansion's double-double one is not, and equal
+    /// coefficients of two outputs would then differ in their last bit and not be shared).
+    pub fn shared_products(&mut self, roots: &[Id]) -> Vec<Id> {
+        let live = self.live(roots);
+        let mut uses = vec![0u32; self.nodes.len()];
+        for &id in &live {
+            for a in self.node(id).operands() {
+                uses[a.0 as usize] += 1;
+            }
+        }
+        for r in roots {
+            uses[r.0 as usize] += 1;
+        }
+        let mut map: Vec<Id> = (0..self.nodes.len() as u32).map(Id).collect();
+        for id in live {
+            let node = self.node(id);
+            let operands: Vec<Id> = node.operands().map(|x| map[x.0 as usize]).collect();
+            map[id.0 as usize] = match node {
+                Node::Mul(a, b) => self.gathered_product([a, b], &operands, &uses),
+                _ => self.apply(node, &operands),
+            };
+        }
+        roots.iter().map(|r| map[r.0 as usize]).collect()
+    }
+
+    /// The product of `rebuilt` (the new nodes of `original`'s two factors) with its
+    /// numbers gathered (see [`Graph::shared_products`]).
+    fn gathered_product(&mut self, original: [Id; 2], rebuilt: &[Id], uses: &[u32]) -> Id {
+        let (a, b) = (rebuilt[0], rebuilt[1]);
+        for (i, (x, s)) in [(a, b), (b, a)].into_iter().enumerate() {
+            let Some((k, y)) = self.scaled(s) else {
+                continue;
+            };
+            if self.constant_value(x).is_some() {
+                let kk = self.mul(x, k);
+                return self.mul(kk, y);
+            }
+            if uses[original[1 - i].0 as usize] == 1 {
+                let xy = self.mul(x, y);
+                return self.mul(k, xy);
+            }
+        }
+        self.mul(a, b)
+    }
+
+    /// The operation of `node` applied to `operands` (as many as it has), folded by the
+    /// smart constructors.
+    pub fn apply(&mut self, node: Node, operands: &[Id]) -> Id {
+        let x = |i: usize| operands[i];
+        match node {
+            Node::Const(bits) => self.constant(f64::from_bits(bits)),
+            Node::Input(_) => self.intern(node),
+            Node::Add(..) => self.add(x(0), x(1)),
+            Node::Sub(..) => self.sub(x(0), x(1)),
+            Node::Mul(..) => self.mul(x(0), x(1)),
+            Node::Div(..) => self.div(x(0), x(1)),
+            Node::Neg(_) => self.neg(x(0)),
+            Node::Sin(_) => self.sin(x(0)),
+            Node::Cos(_) => self.cos(x(0)),
+            Node::Sqrt(_) => self.sqrt(x(0)),
+            Node::Tanh(_) => self.tanh(x(0)),
+            Node::Exp(_) => self.exp(x(0)),
+            Node::Max(..) => self.max(x(0), x(1)),
+            Node::SignOutside(..) => self.sign_outside(x(0), x(1), x(2)),
+        }
     }
 
     /// Values of `roots` at the given inputs (by input index), in f64, node by node as the
@@ -644,5 +727,46 @@ mod tests {
         // Without the guard this second scope panicked with "does not nest".
         let (g, _) = Graph::default().scope(|| Sym::input("x"));
         assert_eq!(g.input_names, ["x"]);
+    }
+
+    /// Builds `f` of inputs `x`, `y` and gathers its numbers: the operation counts before
+    /// and after, and both values at `(x, y) = (0.7, -1.3)`.
+    fn gathered(f: impl FnOnce(Sym, Sym) -> Sym) -> (OpCount, OpCount, f64, f64) {
+        let (mut g, root) = Graph::default().scope(|| f(Sym::input("x"), Sym::input("y")));
+        let before = g.count(&[root.0]);
+        let after = g.shared_products(&[root.0])[0];
+        let inputs = [0.7, -1.3];
+        let values = (g.eval(&[root.0], &inputs)[0], g.eval(&[after], &inputs)[0]);
+        (before, g.count(&[after]), values.0, values.1)
+    }
+
+    #[test]
+    fn products_that_differ_only_in_their_numbers_share_the_product_of_their_variables() {
+        let k = Sym::from_f64;
+        // x (0.3 x) + x (x 0.15) + y: x·x once, then each number.
+        let (before, after, v0, v1) = gathered(|x, y| x * (k(0.3) * x) + x * (x * k(0.15)) + y);
+        assert_eq!((before.mul, after.mul), (4, 3));
+        assert_eq!(before.add, after.add);
+        assert!((v0 - v1).abs() <= 4.0 * f64::EPSILON * v0.abs());
+    }
+
+    #[test]
+    fn a_number_times_a_scaled_variable_is_one_multiplication() {
+        let k = Sym::from_f64;
+        // 2 (3 x) + y: 6 x + y.
+        let (before, after, v0, v1) = gathered(|x, y| k(2.0) * (k(3.0) * x) + y);
+        assert_eq!((before.mul, after.mul), (2, 1));
+        assert_eq!(v0, v1);
+    }
+
+    #[test]
+    fn a_scaled_variable_used_elsewhere_keeps_its_number() {
+        let k = Sym::from_f64;
+        // (0.3 y) is used twice: moving 0.3 out of x (0.3 y) would add a multiplication.
+        let (before, after, ..) = gathered(|x, y| {
+            let s = k(0.3) * y;
+            x * s + s
+        });
+        assert_eq!(before, after);
     }
 }

@@ -124,7 +124,8 @@ pub struct Function {
     pub shape: Shape,
     /// Results, flattened in row-major order, in the form chosen for this function.
     pub results: Vec<Id>,
-    /// The same results as traced (before any closed form).
+    /// The same results as traced (before any closed form), numbers gathered in products
+    /// (`Graph::shared_products`).
     pub traced: Vec<Id>,
     /// Operations of the traced form.
     pub traced_ops: OpCount,
@@ -355,36 +356,60 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     });
     let (results, forward_parts) = results;
     let mut functions = Vec::new();
+    let traced: Vec<(Output, Shape, Vec<Id>)> = results
+        .into_iter()
+        .map(|(o, (shape, r))| (o, shape, r.iter().map(|s| s.0).collect()))
+        .collect();
+    // The traced form with its numbers gathered, over every function at once so that what
+    // they share stays shared (`all`); the closed form expands the roots as traced (see
+    // `Graph::shared_products`).
+    let every: Vec<Id> = traced.iter().flat_map(|t| t.2.iter().copied()).collect();
+    let mut gathered = graph.shared_products(&every).into_iter();
+    /// One function as traced: its roots, and those with numbers gathered with their count.
+    struct Trace {
+        output: Output,
+        shape: Shape,
+        roots: Vec<Id>,
+        gathered: Vec<Id>,
+        ops: OpCount,
+    }
+    let traced: Vec<Trace> = traced
+        .into_iter()
+        .map(|(output, shape, roots)| {
+            let gathered: Vec<Id> = gathered.by_ref().take(roots.len()).collect();
+            let ops = graph.count(&gathered);
+            Trace {
+                output,
+                shape,
+                roots,
+                gathered,
+                ops,
+            }
+        })
+        .collect();
     // One collector for all functions, so that shared subexpressions are expanded once;
     // its limit is the largest function's budget.
     let budget_of = |ops: OpCount| ops.arithmetic() + 32;
-    let traced: Vec<(Output, Shape, Vec<Id>, OpCount)> = results
-        .into_iter()
-        .map(|(o, (shape, r))| {
-            let roots: Vec<Id> = r.iter().map(|s| s.0).collect();
-            let ops = graph.count(&roots);
-            (o, shape, roots, ops)
-        })
-        .collect();
-    let largest = traced.iter().map(|t| budget_of(t.3)).max().unwrap_or(0);
+    let largest = traced.iter().map(|t| budget_of(t.ops)).max().unwrap_or(0);
     let mut collector = Collector::new(largest);
     // A closed form with more terms than the trace has operations cannot win.
-    let mut choose = |graph: &mut Graph, roots: &[Id], traced_ops: OpCount| {
+    let mut choose = |graph: &mut Graph, roots: &[Id], traced: &[Id], traced_ops: OpCount| {
         let closed = collector.collect(graph, roots, &StateRank, budget_of(traced_ops));
         match closed.map(|c| (graph.count(&c), c)) {
             Some((ops, c)) if ops.arithmetic() < traced_ops.arithmetic() => {
                 (c, Form::ClosedForm, ops)
             }
-            _ => (roots.to_vec(), Form::Traced, traced_ops),
+            _ => (traced.to_vec(), Form::Traced, traced_ops),
         }
     };
-    for (output, shape, roots, traced_ops) in traced {
-        let (results, form, ops) = choose(&mut graph, &roots, traced_ops);
+    for t in traced {
+        let (results, form, ops) = choose(&mut graph, &t.roots, &t.gathered, t.ops);
+        let (output, traced_ops) = (t.output, t.ops);
         functions.push(Function {
             output,
-            shape,
+            shape: t.shape,
             results,
-            traced: roots,
+            traced: t.gathered,
             traced_ops,
             form,
             ops,
@@ -397,9 +422,9 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     // (whose divisions stop the expansion at the solve).
     if let Some((mass, rhs)) = forward_parts {
         let ops = graph.count(&mass);
-        let (mass, ..) = choose(&mut graph, &mass, ops);
+        let (mass, ..) = choose(&mut graph, &mass, &mass, ops);
         let ops = graph.count(&rhs);
-        let (rhs, ..) = choose(&mut graph, &rhs, ops);
+        let (rhs, ..) = choose(&mut graph, &rhs, &rhs, ops);
         let (g, composed) = graph.scope(|| {
             let mut m: Vec<Sym> = mass.into_iter().map(Sym).collect();
             let mut x: Vec<Sym> = rhs.into_iter().map(Sym).collect();

@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t537 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t544 = T::from_f64(0.03) * s78;
-    let t553 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t537 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t544));
-    let t559 = qdd[0] * t537
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t544));
-    [t553, t559]
+    let t654 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t661 = T::from_f64(0.03) * s78;
+    let t670 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t654 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t661));
+    let t676 = qdd[0] * t654
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t661));
+    [t670, t676]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -45,26 +45,26 @@ pub fn generalized_forces_derivatives<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t531 = c79 * T::from_f64(0.06);
-    let t535 = T::from_f64(0.03) * c79;
-    let t537 = t535 + T::from_f64(0.016696700000000002);
-    let t540 = s78 * T::from_f64(0.06);
-    let t542 = qd[0] * t540;
-    let t544 = T::from_f64(0.03) * s78;
-    let t553 = qdd[0] * (t531 + T::from_f64(0.1247117))
-        + (qdd[1] * t537 - qd[1] * (t542 + qd[1] * t544));
-    let t559 = qdd[0] * t537
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t544));
-    let t577 = -(qdd[0] * t540
-        + (qdd[1] * t544 + qd[1] * (qd[0] * t531 + qd[1] * t535)));
-    let t582 = qd[0] * (qd[0] * t535) - qdd[0] * t544;
-    let t583 = qd[1] * t540;
-    let t584 = -t583;
-    let t586 = -(t542 + t583);
+    let t576 = T::from_f64(0.03) * c79;
+    let t649 = c79 * T::from_f64(0.06);
+    let t654 = t576 + T::from_f64(0.016696700000000002);
+    let t657 = s78 * T::from_f64(0.06);
+    let t659 = qd[0] * t657;
+    let t661 = T::from_f64(0.03) * s78;
+    let t670 = qdd[0] * (t649 + T::from_f64(0.1247117))
+        + (qdd[1] * t654 - qd[1] * (t659 + qd[1] * t661));
+    let t676 = qdd[0] * t654
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t661));
+    let t694 = -(qdd[0] * t657
+        + (qdd[1] * t661 + qd[1] * (qd[0] * t649 + qd[1] * t576)));
+    let t699 = qd[0] * (qd[0] * t576) - qdd[0] * t661;
+    let t700 = qd[1] * t657;
+    let t701 = -t700;
+    let t703 = -(t659 + t700);
     tendyn_core::dual::StateJacobians {
-        value: [t553, t559],
-        d_q: [[T::from_f64(0.0), t577], [T::from_f64(0.0), t582]],
-        d_qd: [[t584, t586], [t542, T::from_f64(0.0)]],
+        value: [t670, t676],
+        d_q: [[T::from_f64(0.0), t694], [T::from_f64(0.0), t699]],
+        d_qd: [[t701, t703], [t659, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -81,16 +81,16 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t533 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t544 = T::from_f64(0.03) * s78;
-    let t587 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t544);
-    let t591 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t533;
-    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t544) - t587 * t591)
-        / (T::from_f64(0.0166867) - t533 * (t591 * t591));
-    let t705 = t587 / t533 - t591 * t703;
-    [t705, t703]
+    let t651 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t661 = T::from_f64(0.03) * s78;
+    let t704 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t661);
+    let t708 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t651;
+    let t820 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t661) - t704 * t708)
+        / (T::from_f64(0.0166867) - t651 * (t708 * t708));
+    let t822 = t704 / t651 - t708 * t820;
+    [t822, t820]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
@@ -106,46 +106,46 @@ pub fn forward_dynamics_derivatives<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t531 = c79 * T::from_f64(0.06);
-    let t533 = t531 + T::from_f64(0.1247117);
-    let t535 = T::from_f64(0.03) * c79;
-    let t540 = s78 * T::from_f64(0.06);
-    let t542 = qd[0] * t540;
-    let t544 = T::from_f64(0.03) * s78;
-    let t583 = qd[1] * t540;
-    let t588 = (motor_torques[0] + motor_torques[1] + qd[1] * (t542 + qd[1] * t544))
-        / t533;
-    let t591 = (t535 + T::from_f64(0.0166967)) / t533;
-    let t593 = T::from_f64(0.06) * t591;
-    let t595 = s78 * t593;
-    let t597 = qd[1] * t595;
-    let t603 = T::from_f64(0.03) * t591;
-    let t613 = T::from_f64(0.6666666666666667) - t591;
-    let t624 = T::from_f64(0.0166867) + t591 * (t591 * (T::from_f64(-0.1247117) - t531));
-    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t591
-        - qd[1] * (qd[1] * (s78 * t603)) - qd[0] * (qd[0] * t544 + t597)) / t624;
-    let t629 = t588 - t591 * t625;
-    let t632 = T::from_f64(0.06) * t588;
-    let t661 = s78
-        * (t591 * (t625 * (T::from_f64(-0.06) + t593) - t632) + T::from_f64(0.03) * t588)
-        - qd[1] * (qd[1] * (c79 * t603)) - qd[0] * (qd[0] * t535 + qd[1] * (c79 * t593));
-    let t662 = t661 / t624;
-    let t666 = -(t542 + t597) / t624;
-    let t672 = -(t597 + qd[0] * t595) / t624;
-    let t673 = T::from_f64(1.0) / t533;
-    let t674 = -t591 / t624;
-    let t675 = t613 / t624;
-    let t679 = (qd[1] * (qd[0] * t531 + qd[1] * t535)
-        + s78 * (t625 * (T::from_f64(0.03) - t593) + t632)) / t533 - t591 * t662;
-    let t683 = t583 / t533 - t591 * t666;
-    let t687 = (t542 + t583) / t533 - t591 * t672;
-    let t691 = t673 - t591 * t674;
-    let t695 = t673 - t591 * t675;
+    let t576 = T::from_f64(0.03) * c79;
+    let t649 = c79 * T::from_f64(0.06);
+    let t651 = t649 + T::from_f64(0.1247117);
+    let t657 = s78 * T::from_f64(0.06);
+    let t659 = qd[0] * t657;
+    let t661 = T::from_f64(0.03) * s78;
+    let t700 = qd[1] * t657;
+    let t705 = (motor_torques[0] + motor_torques[1] + qd[1] * (t659 + qd[1] * t661))
+        / t651;
+    let t708 = (t576 + T::from_f64(0.0166967)) / t651;
+    let t710 = T::from_f64(0.06) * t708;
+    let t712 = s78 * t710;
+    let t714 = qd[1] * t712;
+    let t720 = T::from_f64(0.03) * t708;
+    let t730 = T::from_f64(0.6666666666666667) - t708;
+    let t741 = T::from_f64(0.0166867) + t708 * (t708 * (T::from_f64(-0.1247117) - t649));
+    let t742 = (motor_torques[1] * t730 - motor_torques[0] * t708
+        - qd[1] * (qd[1] * (s78 * t720)) - qd[0] * (qd[0] * t661 + t714)) / t741;
+    let t746 = t705 - t708 * t742;
+    let t749 = T::from_f64(0.06) * t705;
+    let t778 = s78
+        * (t708 * (t742 * (T::from_f64(-0.06) + t710) - t749) + T::from_f64(0.03) * t705)
+        - qd[1] * (qd[1] * (c79 * t720)) - qd[0] * (qd[0] * t576 + qd[1] * (c79 * t710));
+    let t779 = t778 / t741;
+    let t783 = -(t659 + t714) / t741;
+    let t789 = -(t714 + qd[0] * t712) / t741;
+    let t790 = T::from_f64(1.0) / t651;
+    let t791 = -t708 / t741;
+    let t792 = t730 / t741;
+    let t796 = (qd[1] * (qd[0] * t649 + qd[1] * t576)
+        + s78 * (t742 * (T::from_f64(0.03) - t710) + t749)) / t651 - t708 * t779;
+    let t800 = t700 / t651 - t708 * t783;
+    let t804 = (t659 + t700) / t651 - t708 * t789;
+    let t808 = t790 - t708 * t791;
+    let t812 = t790 - t708 * t792;
     tendyn_core::dual::ForwardJacobians {
-        value: [t629, t625],
-        d_q: [[T::from_f64(0.0), t679], [T::from_f64(0.0), t662]],
-        d_qd: [[t683, t687], [t666, t672]],
-        d_u: [[t691, t695], [t674, t675]],
+        value: [t746, t742],
+        d_q: [[T::from_f64(0.0), t796], [T::from_f64(0.0), t779]],
+        d_qd: [[t800, t804], [t783, t789]],
+        d_u: [[t808, t812], [t791, t792]],
     }
 }
 /// Every requested output of [`all`].
@@ -178,70 +178,70 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s78, c79) = q[1].sin_cos();
-    let t531 = c79 * T::from_f64(0.06);
-    let t533 = t531 + T::from_f64(0.1247117);
-    let t535 = T::from_f64(0.03) * c79;
-    let t537 = t535 + T::from_f64(0.016696700000000002);
-    let t540 = s78 * T::from_f64(0.06);
-    let t542 = qd[0] * t540;
-    let t544 = T::from_f64(0.03) * s78;
-    let t550 = qd[1] * (t542 + qd[1] * t544);
-    let t553 = qdd[0] * t533 + (qdd[1] * t537 - t550);
-    let t556 = qd[0] * t544;
-    let t557 = qd[0] * t556;
-    let t559 = qdd[0] * t537 + (qdd[1] * T::from_f64(0.0166867) + t557);
-    let t572 = qd[1] * (qd[0] * t531 + qd[1] * t535);
-    let t577 = -(qdd[0] * t540 + (qdd[1] * t544 + t572));
-    let t580 = qd[0] * t535;
-    let t582 = qd[0] * t580 - qdd[0] * t544;
-    let t583 = qd[1] * t540;
-    let t584 = -t583;
-    let t585 = t542 + t583;
-    let t586 = -t585;
-    let t587 = motor_torques[0] + motor_torques[1] + t550;
-    let t588 = t587 / t533;
-    let t591 = (t535 + T::from_f64(0.0166967)) / t533;
-    let t593 = T::from_f64(0.06) * t591;
-    let t595 = s78 * t593;
-    let t597 = qd[1] * t595;
-    let t603 = T::from_f64(0.03) * t591;
-    let t613 = T::from_f64(0.6666666666666667) - t591;
-    let t624 = T::from_f64(0.0166867) + t591 * (t591 * (T::from_f64(-0.1247117) - t531));
-    let t625 = (motor_torques[1] * t613 - motor_torques[0] * t591
-        - qd[1] * (qd[1] * (s78 * t603)) - qd[0] * (t556 + t597)) / t624;
-    let t629 = t588 - t591 * t625;
-    let t632 = T::from_f64(0.06) * t588;
-    let t661 = s78
-        * (t591 * (t625 * (T::from_f64(-0.06) + t593) - t632) + T::from_f64(0.03) * t588)
-        - qd[1] * (qd[1] * (c79 * t603)) - qd[0] * (t580 + qd[1] * (c79 * t593));
-    let t662 = t661 / t624;
-    let t666 = -(t542 + t597) / t624;
-    let t672 = -(t597 + qd[0] * t595) / t624;
-    let t673 = T::from_f64(1.0) / t533;
-    let t674 = -t591 / t624;
-    let t675 = t613 / t624;
-    let t679 = (t572 + s78 * (t625 * (T::from_f64(0.03) - t593) + t632)) / t533
-        - t591 * t662;
-    let t683 = t583 / t533 - t591 * t666;
-    let t687 = t585 / t533 - t591 * t672;
-    let t691 = t673 - t591 * t674;
-    let t695 = t673 - t591 * t675;
-    let t703 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t557 - t587 * t591)
-        / (T::from_f64(0.0166867) - t533 * (t591 * t591));
-    let t705 = t588 - t591 * t703;
+    let t576 = T::from_f64(0.03) * c79;
+    let t649 = c79 * T::from_f64(0.06);
+    let t651 = t649 + T::from_f64(0.1247117);
+    let t654 = t576 + T::from_f64(0.016696700000000002);
+    let t657 = s78 * T::from_f64(0.06);
+    let t659 = qd[0] * t657;
+    let t661 = T::from_f64(0.03) * s78;
+    let t667 = qd[1] * (t659 + qd[1] * t661);
+    let t670 = qdd[0] * t651 + (qdd[1] * t654 - t667);
+    let t673 = qd[0] * t661;
+    let t674 = qd[0] * t673;
+    let t676 = qdd[0] * t654 + (qdd[1] * T::from_f64(0.0166867) + t674);
+    let t689 = qd[1] * (qd[0] * t649 + qd[1] * t576);
+    let t694 = -(qdd[0] * t657 + (qdd[1] * t661 + t689));
+    let t697 = qd[0] * t576;
+    let t699 = qd[0] * t697 - qdd[0] * t661;
+    let t700 = qd[1] * t657;
+    let t701 = -t700;
+    let t702 = t659 + t700;
+    let t703 = -t702;
+    let t704 = motor_torques[0] + motor_torques[1] + t667;
+    let t705 = t704 / t651;
+    let t708 = (t576 + T::from_f64(0.0166967)) / t651;
+    let t710 = T::from_f64(0.06) * t708;
+    let t712 = s78 * t710;
+    let t714 = qd[1] * t712;
+    let t720 = T::from_f64(0.03) * t708;
+    let t730 = T::from_f64(0.6666666666666667) - t708;
+    let t741 = T::from_f64(0.0166867) + t708 * (t708 * (T::from_f64(-0.1247117) - t649));
+    let t742 = (motor_torques[1] * t730 - motor_torques[0] * t708
+        - qd[1] * (qd[1] * (s78 * t720)) - qd[0] * (t673 + t714)) / t741;
+    let t746 = t705 - t708 * t742;
+    let t749 = T::from_f64(0.06) * t705;
+    let t778 = s78
+        * (t708 * (t742 * (T::from_f64(-0.06) + t710) - t749) + T::from_f64(0.03) * t705)
+        - qd[1] * (qd[1] * (c79 * t720)) - qd[0] * (t697 + qd[1] * (c79 * t710));
+    let t779 = t778 / t741;
+    let t783 = -(t659 + t714) / t741;
+    let t789 = -(t714 + qd[0] * t712) / t741;
+    let t790 = T::from_f64(1.0) / t651;
+    let t791 = -t708 / t741;
+    let t792 = t730 / t741;
+    let t796 = (t689 + s78 * (t742 * (T::from_f64(0.03) - t710) + t749)) / t651
+        - t708 * t779;
+    let t800 = t700 / t651 - t708 * t783;
+    let t804 = t702 / t651 - t708 * t789;
+    let t808 = t790 - t708 * t791;
+    let t812 = t790 - t708 * t792;
+    let t820 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t674 - t704 * t708)
+        / (T::from_f64(0.0166867) - t651 * (t708 * t708));
+    let t822 = t705 - t708 * t820;
     Outputs {
-        generalized_forces: [t553, t559],
+        generalized_forces: [t670, t676],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t553, t559],
-            d_q: [[T::from_f64(0.0), t577], [T::from_f64(0.0), t582]],
-            d_qd: [[t584, t586], [t542, T::from_f64(0.0)]],
+            value: [t670, t676],
+            d_q: [[T::from_f64(0.0), t694], [T::from_f64(0.0), t699]],
+            d_qd: [[t701, t703], [t659, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t705, t703],
+        forward_dynamics: [t822, t820],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t629, t625],
-            d_q: [[T::from_f64(0.0), t679], [T::from_f64(0.0), t662]],
-            d_qd: [[t683, t687], [t666, t672]],
-            d_u: [[t691, t695], [t674, t675]],
+            value: [t746, t742],
+            d_q: [[T::from_f64(0.0), t796], [T::from_f64(0.0), t779]],
+            d_qd: [[t800, t804], [t783, t789]],
+            d_u: [[t808, t812], [t791, t792]],
         },
     }
 }

@@ -30,15 +30,15 @@ pub fn actuation<T: Numeric>(
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let t29 = q[0].cos();
-    let t83 = -(qdd[0] * T::from_f64(0.24148052699609443)
+    let t93 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + t29 * T::from_f64(15.489503534923216));
-    let t88 = qdd[0] * T::from_f64(0.023733660538548376)
+    let t98 = qdd[0] * T::from_f64(0.023733660538548376)
         + t29 * T::from_f64(1.5223696228493755);
-    let t93 = qdd[0] * T::from_f64(0.10944622077137119)
+    let t103 = qdd[0] * T::from_f64(0.10944622077137119)
         + t29 * T::from_f64(7.0203077846917195);
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t83, t88, t93],
+        [t93, t98, t103],
         &tendyn_core::distribution::Fixed {
             null: [
                 [0.08916218038101588f64, 0.9958316182311895f64, -0.01922221945441637f64],
@@ -66,16 +66,16 @@ pub struct Outputs<T> {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
     let t29 = q[0].cos();
-    let t83 = -(qdd[0] * T::from_f64(0.24148052699609443)
+    let t93 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + t29 * T::from_f64(15.489503534923216));
-    let t88 = qdd[0] * T::from_f64(0.023733660538548376)
+    let t98 = qdd[0] * T::from_f64(0.023733660538548376)
         + t29 * T::from_f64(1.5223696228493755);
-    let t93 = qdd[0] * T::from_f64(0.10944622077137119)
+    let t103 = qdd[0] * T::from_f64(0.10944622077137119)
         + t29 * T::from_f64(7.0203077846917195);
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],
-            [t83, t88, t93],
+            [t93, t98, t103],
             &tendyn_core::distribution::Fixed {
                 null: [
                     [
