@@ -140,11 +140,15 @@ fn main() {
         let name = format!("stress_{}", tendyn_spec::stress::ident(&case.name));
         mechanisms.push((name, case.text));
     }
-    let mut registry = String::from("pub const MECHANISMS: &[Mechanism] = &[\n");
+    // Statics, not consts: a const's function pointers are instantiated anew in every
+    // test binary that reads it, and each then compiled all the generated code again
+    // (3.7 min each for `agreement` and `stress` from a cold start); a static's are
+    // compiled once, in this library.
+    let mut registry = String::from("pub static MECHANISMS: &[Mechanism] = &[\n");
     let mut modules = String::new();
     for (index, (name, text)) in mechanisms.iter().enumerate() {
         if index == first_stress {
-            registry.push_str("];\npub const STRESS: &[Mechanism] = &[\n");
+            registry.push_str("];\npub static STRESS: &[Mechanism] = &[\n");
         }
         let model = tendyn_core::parse(text).unwrap();
         let mut outputs = available_outputs(&model);
@@ -227,7 +231,7 @@ fn main() {
     // Seeded random systems of the bounded tension distribution (structure-only tendons
     // with floors and maxima, null spaces of one to four dimensions): `actuation` alone,
     // with its status, in f64 and f32 (`tests/bounded.rs`).
-    registry.push_str("pub const BOUNDED: &[Bounded] = &[\n");
+    registry.push_str("pub static BOUNDED: &[Bounded] = &[\n");
     for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
         let name = format!("bounded_{n}x{m}");
         let seed = tendyn_spec::bounded::seed(n, m);
