@@ -262,6 +262,14 @@ fn a_drum_massless_at_its_nominal_value_carries_the_mass_set_at_run_time() {
         a.mass_matrix(&set, &q).unwrap(),
         b.mass_matrix(&typed, &q).unwrap()
     );
+    // The drum carries nothing, so the mass matrix derives its share once per model and
+    // keeps it: one Data used with the massless model first must not keep its numbers.
+    let mut reused = Data::new(&model);
+    reused.mass_matrix(&model, &q).unwrap();
+    assert_eq!(
+        reused.mass_matrix(&set, &q).unwrap(),
+        b.mass_matrix(&typed, &q).unwrap()
+    );
     // And the nominal (massless) drum changes nothing.
     let nominal = tendyn_core::parse(&example("example1_endless")).unwrap();
     assert_eq!(

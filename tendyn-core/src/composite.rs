@@ -77,6 +77,11 @@ pub struct Work<T> {
     /// Per body, whether it walks to the base on its own rather than joining its
     /// carrier's columns (a fact of the model's structure).
     walks: Vec<bool>,
+    /// Per body that carries nothing, its transfer to its parent in harmonics of its angle
+    /// ([`Turned`]): numbers of the model, kept for the model they were made from.
+    turned: Vec<Option<Turned<T>>>,
+    /// The [`Model::identity`] `turned` was made for.
+    turned_for: Option<usize>,
 }
 
 impl<T: Real> Work<T> {
@@ -122,8 +127,152 @@ impl<T: Real> Work<T> {
             columns: vec![(zero, zero); nb * n],
             present: vec![false; nb * n],
             walks,
+            turned: vec![None; nb],
+            turned_for: None,
         }
     }
+}
+
+/// What a body that carries nothing gives its parent, as functions of its own angle `θ`:
+/// its first moment in the parent's axes `h₀ + h_c cos θ + h_s sin θ`, its rotational
+/// inertia about the parent's origin `I₀ + I_c cos θ + I_s sin θ + I_c2 cos 2θ + I_s2 sin
+/// 2θ`, and its own unit-turn wrench `(a × h, I a)` carried to the parent's joint point in
+/// the same harmonics of `θ`. A turn about z moves a vector by harmonics of `θ` and a
+/// symmetric tensor by those of `θ` and `2θ` only, and everything else here is a constant
+/// of the body. So traced code evaluates a few scaled constants per entry, zeros skipped
+/// (an axisymmetric, on-axis pulley's harmonics vanish), instead of two congruences and a
+/// point shift, and the runtime computes them once per model (kept in [`Work`]).
+#[derive(Clone, Copy, Debug)]
+struct Turned<T> {
+    first_moment: [Vec3<T>; 3],
+    inertia: [Mat3<T>; 5],
+    /// The unit-turn wrench's force and moment (about the parent's joint point).
+    wrench: [Wrench<T>; 3],
+    /// Whether the angle turns the body's frame at all (else only the constant terms).
+    spins: bool,
+}
+
+impl<T: Real> Turned<T> {
+    /// Of body `b`, which carries nothing, on a parent whose origin is `parent_origin`
+    /// from its joint point: its mass, first moment and inertia about its joint point as
+    /// [`mass_matrix`] forms them, then turned.
+    fn of(b: &Body<T>, pattern: &BodyPattern, parent_origin: Vec3<T>) -> Self {
+        let (m, p, zero) = (b.mass, b.joint_to_origin, T::zero());
+        let own = add(&b.inertia, &point_shift(b.com, m, Vec3::zero()));
+        let i = add(&own, &point_shift(p, m, b.com.scale(m)));
+        let h = b.com.scale(m) + p.scale(m);
+        let turned = |v: Vec3<T>| harmonics(b, pattern, v);
+        let first_moment = turned(h);
+        let (f, moment) = (turned(b.axis.cross(h)), turned(i.mul_vec(b.axis)));
+        // The moment about the parent's joint point: `pre`'s translation, then the
+        // parent's `p` (as `carry`).
+        let arm = b.pre.translation + parent_origin;
+        let wrench = core::array::from_fn(|k| (f[k], moment[k] + arm.cross(f[k])));
+        // The tensor: `post` first, then the turn's harmonics, each part through `pre`.
+        let j = if pattern.plain_post {
+            i
+        } else {
+            congruence(&b.post.rotation, &i)
+        }
+        .rows;
+        let matrix = |rows: [[T; 3]; 3]| Mat3 { rows };
+        let parts: [Mat3<T>; 5] = if b.spins {
+            let half = T::from_f64(0.5);
+            let (mean, diff) = ((j[0][0] + j[1][1]) * half, (j[0][0] - j[1][1]) * half);
+            let (xy, xz, yz) = (j[0][1], j[0][2], j[1][2]);
+            [
+                matrix([
+                    [mean, zero, zero],
+                    [zero, mean, zero],
+                    [zero, zero, j[2][2]],
+                ]),
+                matrix([[zero, zero, xz], [zero, zero, yz], [xz, yz, zero]]),
+                matrix([[zero, zero, -yz], [zero, zero, xz], [-yz, xz, zero]]),
+                matrix([[diff, xy, zero], [xy, -diff, zero], [zero, zero, zero]]),
+                matrix([[-xy, diff, zero], [diff, xy, zero], [zero, zero, zero]]),
+            ]
+        } else {
+            let z = matrix([[zero; 3]; 3]);
+            [matrix(j), z, z, z, z]
+        };
+        // About the parent's origin: the point shift is affine in the first moment.
+        let r = b.pre.translation;
+        let inertia = core::array::from_fn(|k| {
+            let part = if pattern.plain_pre {
+                parts[k]
+            } else {
+                congruence(&b.pre.rotation, &parts[k])
+            };
+            match k {
+                0 => add(&part, &point_shift(r, m, first_moment[0])),
+                1 | 2 => add(&part, &point_shift(r, zero, first_moment[k])),
+                _ => part,
+            }
+        });
+        Turned {
+            first_moment,
+            inertia,
+            wrench,
+            spins: b.spins,
+        }
+    }
+
+    /// The first moment and inertia at the angle whose sine and cosine are `spin`.
+    fn at(&self, (s, c): (T, T)) -> (Vec3<T>, Mat3<T>) {
+        let [h0, hc, hs] = self.first_moment;
+        if !self.spins {
+            return (h0, self.inertia[0]);
+        }
+        let h = h0 + hc.scale(c) + hs.scale(s);
+        let (c2, s2) = ((c - s) * (c + s), (s + s) * c);
+        let [i0, ic, is, ic2, is2] = &self.inertia;
+        let inertia = symmetric(|a, b| {
+            i0.rows[a][b]
+                + ic.rows[a][b] * c
+                + is.rows[a][b] * s
+                + ic2.rows[a][b] * c2
+                + is2.rows[a][b] * s2
+        });
+        (h, inertia)
+    }
+
+    /// The unit-turn wrench carried to the parent, at the angle whose sine and cosine are
+    /// `spin` (what [`carry`] gives of `(a × h, I a)`).
+    fn wrench_at(&self, (s, c): (T, T)) -> Wrench<T> {
+        let [w0, wc, ws] = self.wrench;
+        if !self.spins {
+            return w0;
+        }
+        let sum = |v0: Vec3<T>, vc: Vec3<T>, vs: Vec3<T>| v0 + vc.scale(c) + vs.scale(s);
+        (sum(w0.0, wc.0, ws.0), sum(w0.1, wc.1, ws.1))
+    }
+}
+
+/// A vector of body `b`'s frame in its parent's axes as `v₀ + v_c cos θ + v_s sin θ` (see
+/// [`to_parent`]): `post`, the turn about z, then `pre`.
+fn harmonics<T: Real>(b: &Body<T>, pattern: &BodyPattern, v: Vec3<T>) -> [Vec3<T>; 3] {
+    let u = if pattern.plain_post {
+        v
+    } else {
+        b.post.rotation.mul_vec(v)
+    };
+    let zero = T::zero();
+    let parts = if b.spins {
+        [
+            Vec3::new(zero, zero, u.z),
+            Vec3::new(u.x, u.y, zero),
+            Vec3::new(-u.y, u.x, zero),
+        ]
+    } else {
+        [u, Vec3::zero(), Vec3::zero()]
+    };
+    parts.map(|x| {
+        if pattern.plain_pre {
+            x
+        } else {
+            b.pre.rotation.mul_vec(x)
+        }
+    })
 }
 
 /// A symmetric matrix from its upper triangle `upper(i, j)`, `i ≤ j`.
@@ -243,11 +392,25 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
     let bodies = model.bodies();
     let n = model.dof();
     let patterns = model.patterns();
+    if work.turned_for != Some(model.identity) {
+        let carries = |k: usize| bodies.iter().any(|c| c.parent == Some(k));
+        for (k, (b, pattern)) in bodies.iter().zip(patterns).enumerate() {
+            work.turned[k] = match b.parent {
+                Some(parent) if !carries(k) => {
+                    Some(Turned::of(b, pattern, bodies[parent].joint_to_origin))
+                }
+                _ => None,
+            };
+        }
+        work.turned_for = Some(model.identity);
+    }
     let Work {
         composite,
         columns,
         present,
         walks,
+        turned,
+        ..
     } = work;
     // Each body's own inertia about its origin.
     for ((b, c), pattern) in bodies.iter().zip(composite.iter_mut()).zip(patterns) {
@@ -263,6 +426,7 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
     }
     present.fill(false);
     out.fill(T::zero());
+
     // From the tips to the base (parents come before children): when body k is reached,
     // its composite and its columns hold everything it carries.
     for k in (0..bodies.len()).rev() {
@@ -288,8 +452,12 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         if walks[k] && !pattern.is_empty() {
             // M_θ[at][k] at each ancestor `at`, weighted by both couplings.
             let (mut wrench, mut at) = (own, k);
+            let mut first = turned[k].map(|t| t.wrench_at(c.spin));
             while bodies[at].parent.is_some() {
-                wrench = carry(model, at, composite[at].spin, wrench);
+                wrench = match first.take() {
+                    Some(w) => w,
+                    None => carry(model, at, composite[at].spin, wrench),
+                };
                 at = bodies[at].parent.expect("checked");
                 let e = bodies[at].axis.dot(wrench.1);
                 for &j in pattern {
@@ -310,20 +478,31 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
                 join(columns, present, k * n + j, term);
             }
         }
+        // A body that carries nothing holds only its own turns, `c_k[j]` times its wrench.
+        let turned_wrench = turned[k].map(|t| t.wrench_at(c.spin));
         for j in 0..n {
             if !present[k * n + j] {
                 continue;
             }
-            let carried = carry(model, k, c.spin, columns[k * n + j]);
+            let carried = match turned_wrench {
+                Some((f, m)) => (f.scale(ck[j]), m.scale(ck[j])),
+                None => carry(model, k, c.spin, columns[k * n + j]),
+            };
             join(columns, present, parent * n + j, carried);
         }
         // The composite moves to the parent: its axes, then about its origin.
         let r = b.pre.translation;
-        let h = to_parent(b, &patterns[k], c.spin, c.first_moment);
-        let inertia = add(
-            &tensor_to_parent(b, &patterns[k], c.spin, &c.inertia),
-            &point_shift(r, c.mass, h),
-        );
+        let (h, inertia) = match &turned[k] {
+            Some(t) => t.at(c.spin),
+            None => {
+                let h = to_parent(b, &patterns[k], c.spin, c.first_moment);
+                let inertia = add(
+                    &tensor_to_parent(b, &patterns[k], c.spin, &c.inertia),
+                    &point_shift(r, c.mass, h),
+                );
+                (h, inertia)
+            }
+        };
         let to = &mut composite[parent];
         to.mass = to.mass + c.mass;
         to.first_moment = to.first_moment + h + r.scale(c.mass);
