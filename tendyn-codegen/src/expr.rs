@@ -448,9 +448,15 @@ impl Graph {
             let Some((k, y)) = self.scaled(s) else {
                 continue;
             };
-            if self.constant_value(x).is_some() {
-                let kk = self.mul(x, k);
-                return self.mul(kk, y);
+            if let (Some(a), Some(b)) = (self.constant_value(x), self.constant_value(k)) {
+                // Not where the product of the numbers would leave f32's normal range
+                // (generated code may be asked for in f32, which must hold each number).
+                let p = (a * b).abs();
+                if (f64::from(f32::MIN_POSITIVE)..=f64::from(f32::MAX)).contains(&p) {
+                    let kk = self.mul(x, k);
+                    return self.mul(kk, y);
+                }
+                continue;
             }
             if uses[original[1 - i].0 as usize] == 1 {
                 let xy = self.mul(x, y);

@@ -363,7 +363,17 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     // The traced form with its numbers gathered, over every function at once so that what
     // they share stays shared (`all`); the closed form expands the roots as traced (see
     // `Graph::shared_products`).
-    let every: Vec<Id> = traced.iter().flat_map(|t| t.2.iter().copied()).collect();
+    // Forward dynamics' parts (`M` and the right-hand side) too: solved over, they join
+    // the others in `all`.
+    let parts: Vec<Id> = forward_parts
+        .iter()
+        .flat_map(|(mass, rhs)| mass.iter().chain(rhs).copied())
+        .collect();
+    let every: Vec<Id> = traced
+        .iter()
+        .flat_map(|t| t.2.iter().copied())
+        .chain(parts)
+        .collect();
     let mut gathered = graph.shared_products(&every).into_iter();
     /// One function as traced: its roots, and those with numbers gathered with their count.
     struct Trace {
@@ -421,10 +431,12 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     // part's own best form, it can beat both its trace and its closed form as a whole
     // (whose divisions stop the expansion at the solve).
     if let Some((mass, rhs)) = forward_parts {
-        let ops = graph.count(&mass);
-        let (mass, ..) = choose(&mut graph, &mass, &mass, ops);
-        let ops = graph.count(&rhs);
-        let (rhs, ..) = choose(&mut graph, &rhs, &rhs, ops);
+        let gathered_mass: Vec<Id> = gathered.by_ref().take(mass.len()).collect();
+        let gathered_rhs: Vec<Id> = gathered.by_ref().take(rhs.len()).collect();
+        let ops = graph.count(&gathered_mass);
+        let (mass, ..) = choose(&mut graph, &mass, &gathered_mass, ops);
+        let ops = graph.count(&gathered_rhs);
+        let (rhs, ..) = choose(&mut graph, &rhs, &gathered_rhs, ops);
         let (g, composed) = graph.scope(|| {
             let mut m: Vec<Sym> = mass.into_iter().map(Sym).collect();
             let mut x: Vec<Sym> = rhs.into_iter().map(Sym).collect();

@@ -452,7 +452,7 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         if walks[k] && !pattern.is_empty() {
             // M_θ[at][k] at each ancestor `at`, weighted by both couplings.
             let (mut wrench, mut at) = (own, k);
-            let mut first = turned[k].map(|t| t.wrench_at(c.spin));
+            let mut first = turned[k].as_ref().map(|t| t.wrench_at(c.spin));
             while bodies[at].parent.is_some() {
                 wrench = match first.take() {
                     Some(w) => w,
@@ -478,14 +478,18 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
                 join(columns, present, k * n + j, term);
             }
         }
-        // A body that carries nothing holds only its own turns, `c_k[j]` times its wrench.
-        let turned_wrench = turned[k].map(|t| t.wrench_at(c.spin));
+        // A body that carries nothing holds only its own turns, `c_k[j]` times its wrench
+        // (carried once, and only if it has a column: a walking body has none).
+        let mut turned_wrench = None;
         for j in 0..n {
             if !present[k * n + j] {
                 continue;
             }
-            let carried = match turned_wrench {
-                Some((f, m)) => (f.scale(ck[j]), m.scale(ck[j])),
+            let carried = match &turned[k] {
+                Some(t) => {
+                    let (f, m) = *turned_wrench.get_or_insert_with(|| t.wrench_at(c.spin));
+                    (f.scale(ck[j]), m.scale(ck[j]))
+                }
                 None => carry(model, k, c.spin, columns[k * n + j]),
             };
             join(columns, present, parent * n + j, carried);
