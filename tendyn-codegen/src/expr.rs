@@ -468,7 +468,7 @@ impl Graph {
 
     /// The operation of `node` applied to `operands` (as many as it has), folded by the
     /// smart constructors.
-    pub fn apply(&mut self, node: Node, operands: &[Id]) -> Id {
+    fn apply(&mut self, node: Node, operands: &[Id]) -> Id {
         let x = |i: usize| operands[i];
         match node {
             Node::Const(bits) => self.constant(f64::from_bits(bits)),
