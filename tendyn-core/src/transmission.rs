@@ -20,11 +20,17 @@
 //! function of `q` (Eqs. 9-10, 26, 31, 34); a loop's driving pulley follows from the
 //! loop's length staying constant.
 //!
-//! All of this is computed once, in `f64`, at validation.
+//! Validation computes all of this once, in `f64`. The rates and contact points are also
+//! generic over the scalar ([`Routing::traced`]): `tendyn equations` traces them again with
+//! the pitch radii as symbols ([`crate::Model::symbolic_geometry`]), so that what it prints
+//! is this derivation, not a copy of it. Decisions (the frame a segment is fixed in, its
+//! tangent direction, which frames turn relative to which) are taken in `f64` both times.
 
 use crate::error::{Error, Location, Result};
 use crate::format::Turn;
-use crate::model::{Body, Contact, Guide, IdlerStep, Segment, Via};
+use crate::model::{Body, Contact, Guide, IdlerStep, Loop, Motor, MotorKind, Row, Segment, Tendon};
+use crate::model::{Unknown, Via};
+use crate::real::Real;
 use crate::spatial::{Mat3, Transform, Vec3};
 
 /// A frame a segment can be fixed in: `None` is the base, `Some(i)` link body `i`.
@@ -78,34 +84,41 @@ pub enum RouteEnd {
 /// A rate `θ̇` as a linear function of `q̇`, plus the rates of named pulley angles that are
 /// coordinates of their own in the tension system (driving pulleys).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Rate {
+pub struct Rate<T = f64> {
     /// Coefficient of each `q̇_j`, in joint order (rad/rad for an angle, m/rad for a pull
     /// rate).
-    pub joints: Vec<f64>,
+    pub joints: Vec<T>,
     /// Coefficients of the angles of driving pulleys relative to their carriers, each with
     /// its pulley index (into the `PulleyInfo` list).
-    pub pulleys: Vec<(usize, f64)>,
+    pub pulleys: Vec<(usize, T)>,
 }
 
-impl Rate {
+impl<T: Real> Rate<T> {
     fn zero(n: usize) -> Self {
         Rate {
-            joints: vec![0.0; n],
+            joints: vec![T::zero(); n],
             pulleys: Vec::new(),
         }
     }
-    fn add_scaled(&mut self, o: &Rate, s: f64) {
-        for (a, b) in self.joints.iter_mut().zip(&o.joints) {
-            *a += s * b;
+    fn add_scaled(&mut self, o: &Rate<T>, s: T) {
+        for (a, &b) in self.joints.iter_mut().zip(&o.joints) {
+            *a = *a + s * b;
         }
         for &(p, c) in &o.pulleys {
             self.add_pulley(p, s * c);
         }
     }
-    fn add_pulley(&mut self, p: usize, c: f64) {
+    fn add_pulley(&mut self, p: usize, c: T) {
         match self.pulleys.iter_mut().find(|(q, _)| *q == p) {
-            Some((_, v)) => *v += c,
+            Some((_, v)) => *v = *v + c,
             None => self.pulleys.push((p, c)),
+        }
+    }
+    /// The rate in another scalar.
+    pub fn cast<U: Real>(&self, f: impl Fn(T) -> U) -> Rate<U> {
+        Rate {
+            joints: self.joints.iter().map(|&x| f(x)).collect(),
+            pulleys: self.pulleys.iter().map(|&(p, x)| (p, f(x))).collect(),
         }
     }
 }
@@ -192,7 +205,7 @@ impl Routing<'_> {
 
     /// `θ̇` of frame (or pulley body) `a` relative to frame `b`, about the axis of pulley
     /// `p`; both must be among the frames `p`'s circle is fixed in.
-    fn relative_rate(&self, a: Frame, b: Frame, p: usize) -> Rate {
+    fn relative_rate<T: Real>(&self, a: Frame, b: Frame, p: usize) -> Rate<T> {
         let mut r = Rate::zero(self.dof);
         if a == b {
             return r;
@@ -200,14 +213,17 @@ impl Routing<'_> {
         let (j, _) = self.pulleys[p]
             .coaxial
             .expect("distinct frames of one circle come from a coaxial joint");
-        r.joints[j] = if a == Some(j) { 1.0 } else { -1.0 };
+        r.joints[j] = T::from_f64(if a == Some(j) { 1.0 } else { -1.0 });
         r
     }
 
     /// `θ̇` of pulley `s`'s own body relative to `frame`, given its coupling `c_s`.
-    fn body_rate(&self, s: usize, coupling: &Rate, frame: Frame) -> Rate {
+    fn body_rate<T: Real>(&self, s: usize, coupling: &Rate<T>, frame: Frame) -> Rate<T> {
         let mut r = coupling.clone();
-        r.add_scaled(&self.relative_rate(self.pulleys[s].carrier, frame, s), 1.0);
+        r.add_scaled(
+            &self.relative_rate(self.pulleys[s].carrier, frame, s),
+            T::one(),
+        );
         r
     }
 
@@ -282,7 +298,17 @@ impl Routing<'_> {
     }
 
     /// The segment from pulley `p` (turn `sp`) to pulley `q` (turn `sq`) or to the exit.
-    fn segment(&self, route: &Route, p: usize, sp: Turn, to: SegmentEnd) -> Result<Segment<f64>> {
+    ///
+    /// Its direction is decided in `f64`; its contact points are `r` times a unit vector
+    /// (Eq. 17), `radius(p)` being pulley `p`'s pitch radius in the scalar `T`.
+    fn segment<T: Real>(
+        &self,
+        route: &Route,
+        p: usize,
+        sp: Turn,
+        to: SegmentEnd,
+        radius: &dyn Fn(usize) -> T,
+    ) -> Result<Segment<T>> {
         let q = match to {
             SegmentEnd::Pulley(q, _) => Some(q),
             SegmentEnd::Exit(_) => None,
@@ -380,23 +406,27 @@ impl Routing<'_> {
             }
             d
         };
-        let from_rel = dir.cross(np).scale(tp * rp);
-        let to_rel = dir.cross(nq).scale(tq * rq);
+        // The contact points, `turn · r (dir × n)` (Eq. 17): a unit vector that the
+        // tangent fixes, times the radius.
+        let from_unit = dir.cross(np).scale(tp);
+        let to_unit = dir.cross(nq).scale(tq);
+        let (from_rel, to_rel) = (from_unit.scale(rp), to_unit.scale(rq));
         let length = (cq + to_rel - cp - from_rel).dot(dir);
         let numbers = [dir, from_rel, to_rel].map(Vec3::to_array);
         if !length.is_finite() || numbers.iter().flatten().any(|x| !x.is_finite()) {
             return Err(too_large());
         }
+        let scalar = |v: Vec3<f64>| v.map(T::from_f64);
         let from = Contact {
             body: Some(self.pulleys[p].body),
-            rel: from_rel,
+            rel: scalar(from_unit).scale(radius(p)),
             via: self.via(p, frame),
         };
         let (to, to_angle) = match to {
             SegmentEnd::Pulley(q, _) => (
                 Contact {
                     body: Some(self.pulleys[q].body),
-                    rel: to_rel,
+                    rel: scalar(to_unit).scale(radius(q)),
                     via: self.via(q, frame),
                 },
                 self.acting_angle(q, frame, to_rel),
@@ -404,7 +434,7 @@ impl Routing<'_> {
             SegmentEnd::Exit(x) => (
                 Contact {
                     body: None,
-                    rel: Vec3::from_array(x),
+                    rel: scalar(Vec3::from_array(x)),
                     via: Via::Carrier,
                 },
                 f64::NAN,
@@ -415,14 +445,15 @@ impl Routing<'_> {
             from,
             to,
             frame,
-            dir,
+            dir: scalar(dir),
             length,
         })
     }
 
-    /// Geometry of a route and the rates it implies. `couplings[p]` must already hold the
-    /// coupling of the route's first pulley; the couplings of the idlers it passes and of a
-    /// driving pulley it ends on are derived and stored.
+    /// Geometry of a route and the rates it implies, in `f64`: [`Routing::traced`] with the
+    /// file's radii, the guides it passes, and the couplings it derives checked and stored.
+    /// `couplings[p]` must already hold the coupling of the route's first pulley; the
+    /// couplings of the idlers it passes and of a driving pulley it ends on are stored.
     ///
     /// `start_is_coordinate`: the first pulley is itself a driving pulley (a multi-stage
     /// drive), whose angle is a coordinate of the tension system.
@@ -432,57 +463,22 @@ impl Routing<'_> {
         couplings: &mut [Option<Rate>],
         start_is_coordinate: bool,
     ) -> Result<StrandGeometry> {
-        let n = self.dof;
-        let (start, start_turn) = route.wraps[0];
-        let start_coupling = couplings[start].clone().expect("start coupling known");
-        let mut stops: Vec<(usize, Turn)> = route.wraps.clone();
-        let ends_on_pulley = match &route.end {
-            RouteEnd::Exit(_) => false,
-            RouteEnd::Pulley(e, t) => {
-                stops.push((*e, *t));
-                true
-            }
-        };
-        let mut segments = Vec::new();
-        for i in 0..stops.len() - usize::from(ends_on_pulley) {
-            let to = match stops.get(i + 1) {
-                Some(&(q, t)) => SegmentEnd::Pulley(q, t),
-                None => match &route.end {
-                    RouteEnd::Exit(x) => SegmentEnd::Exit(*x),
-                    RouteEnd::Pulley(..) => unreachable!("the last stop has no outgoing segment"),
-                },
-            };
-            segments.push(self.segment(route, stops[i].0, stops[i].1, to)?);
-        }
-
-        // ẋ accumulated along the route with every pulley angle expressed through q, and
-        // each segment's share of it: a segment of tension `T` fixed in frame `F` takes in
-        // power `T (s r ω_rim/F)` at the rim it leaves and gives `T (s r ω_rim/F)` at the
-        // rim it reaches. A wrap's rate `θ̇(incoming rel outgoing)` is split at the pulley's
-        // carrier, `θ̇(incoming rel carrier) + θ̇(carrier rel outgoing)`: for a guide the
-        // rim is the carrier, so each part is its segment's own; across a turning idler
-        // the two segments carry one tension (friction sits only on guides), so where the
-        // rim's rate is split does not matter.
-        let mut pull = Rate::zero(n);
-        let mut segment_rates = vec![Rate::zero(n); segments.len()];
-        let s0 = turn_sign(start_turn);
-        let r0 = self.pulleys[start].radius;
-        pull.add_scaled(
-            &self.body_rate(start, &start_coupling, segments[0].frame),
-            s0 * r0,
-        );
-        segment_rates[0].add_scaled(&pull, 1.0);
+        let start_coupling = couplings[route.wraps[0].0]
+            .clone()
+            .expect("start coupling known");
+        let traced = self.traced(route, &start_coupling, start_is_coordinate, &|p| {
+            self.pulleys[p].radius
+        })?;
+        let Traced {
+            segments,
+            rims,
+            pull_rate,
+            segment_rates,
+        } = traced;
         let mut idlers = Vec::new();
-        for (i, &(p, turn)) in stops.iter().enumerate().skip(1) {
+        for (i, (&(p, turn), c)) in self.stops(route).iter().zip(&rims).enumerate().skip(1) {
             let (s, r) = (turn_sign(turn), self.pulleys[p].radius);
             let incoming = segments[i - 1].frame;
-            // The rim moves with the tendon (Eqs. 9-10): coupling of this pulley.
-            let mut c = Rate::zero(n);
-            c.add_scaled(&pull, s / r);
-            c.add_scaled(
-                &self.relative_rate(incoming, self.pulleys[p].carrier, p),
-                1.0,
-            );
             // A fixed pulley here is a guide: it does not turn, so the rim rate the tendon
             // would give it is the tendon's sliding over it, `v = s r c q̇`.
             let outgoing = segments.get(i);
@@ -501,7 +497,7 @@ impl Routing<'_> {
                     // The departure point turns with the outgoing frame, the arrival point
                     // with the incoming one.
                     wrap_rate: self
-                        .relative_rate(outgoing.frame, incoming, p)
+                        .relative_rate::<f64>(outgoing.frame, incoming, p)
                         .joints
                         .iter()
                         .map(|x| s * x)
@@ -510,15 +506,92 @@ impl Routing<'_> {
                 }
             });
             if guide.is_none() {
-                store_coupling(self, route, couplings, p, c)?;
+                store_coupling(self, route, couplings, p, c.clone())?;
             }
-            if let Some(out) = outgoing {
+            if outgoing.is_some() {
                 idlers.push(IdlerStep {
                     body: self.pulleys[p].body,
                     turn: s,
                     radius: r,
                     guide,
                 });
+            }
+        }
+        Ok(StrandGeometry {
+            segments,
+            idlers,
+            pull_rate,
+            segment_rates,
+        })
+    }
+
+    /// The pulleys a route touches, with its turn round each: its wraps, then the driving
+    /// pulley it ends on.
+    fn stops(&self, route: &Route) -> Vec<(usize, Turn)> {
+        let mut stops: Vec<(usize, Turn)> = route.wraps.clone();
+        if let RouteEnd::Pulley(e, t) = &route.end {
+            stops.push((*e, *t));
+        }
+        stops
+    }
+
+    /// A route's segments and rates in the scalar `T`, with `radius(p)` the pitch radius of
+    /// pulley `p` and `start_coupling` that of its first pulley (see [`Routing::trace`]).
+    /// Directions and frames are decided in `f64` from the file's radii.
+    pub fn traced<T: Real>(
+        &self,
+        route: &Route,
+        start_coupling: &Rate<T>,
+        start_is_coordinate: bool,
+        radius: &dyn Fn(usize) -> T,
+    ) -> Result<Traced<T>> {
+        let n = self.dof;
+        let stops = self.stops(route);
+        let (start, start_turn) = stops[0];
+        let ends_on_pulley = matches!(route.end, RouteEnd::Pulley(..));
+        let mut segments = Vec::new();
+        for i in 0..stops.len() - usize::from(ends_on_pulley) {
+            let to = match stops.get(i + 1) {
+                Some(&(q, t)) => SegmentEnd::Pulley(q, t),
+                None => match &route.end {
+                    RouteEnd::Exit(x) => SegmentEnd::Exit(*x),
+                    RouteEnd::Pulley(..) => unreachable!("the last stop has no outgoing segment"),
+                },
+            };
+            segments.push(self.segment(route, stops[i].0, stops[i].1, to, radius)?);
+        }
+
+        // ẋ accumulated along the route with every pulley angle expressed through q, and
+        // each segment's share of it: a segment of tension `T` fixed in frame `F` takes in
+        // power `T (s r ω_rim/F)` at the rim it leaves and gives `T (s r ω_rim/F)` at the
+        // rim it reaches. A wrap's rate `θ̇(incoming rel outgoing)` is split at the pulley's
+        // carrier, `θ̇(incoming rel carrier) + θ̇(carrier rel outgoing)`: for a guide the
+        // rim is the carrier, so each part is its segment's own; across a turning idler
+        // the two segments carry one tension (friction sits only on guides), so where the
+        // rim's rate is split does not matter.
+        let sign = |t: Turn| T::from_f64(turn_sign(t));
+        let mut pull = Rate::zero(n);
+        let mut segment_rates = vec![Rate::zero(n); segments.len()];
+        let s0 = sign(start_turn);
+        let r0 = radius(start);
+        pull.add_scaled(
+            &self.body_rate(start, start_coupling, segments[0].frame),
+            s0 * r0,
+        );
+        segment_rates[0].add_scaled(&pull, T::one());
+        let mut rims = vec![start_coupling.clone()];
+        for (i, &(p, turn)) in stops.iter().enumerate().skip(1) {
+            let (s, r) = (sign(turn), radius(p));
+            let incoming = segments[i - 1].frame;
+            // The rim moves with the tendon (Eqs. 9-10): coupling of this pulley.
+            let mut c = Rate::zero(n);
+            c.add_scaled(&pull, s / r);
+            c.add_scaled(
+                &self.relative_rate(incoming, self.pulleys[p].carrier, p),
+                T::one(),
+            );
+            rims.push(c);
+            if let Some(out) = segments.get(i) {
                 pull.add_scaled(&self.relative_rate(incoming, out.frame, p), s * r);
                 let carrier = self.pulleys[p].carrier;
                 segment_rates[i - 1].add_scaled(&self.relative_rate(incoming, carrier, p), s * r);
@@ -531,30 +604,116 @@ impl Routing<'_> {
         let mut expanded = pull;
         if start_is_coordinate {
             let mut c = Rate::zero(n);
-            c.add_scaled(&start_coupling, -s0 * r0);
+            c.add_scaled(start_coupling, -s0 * r0);
             c.add_pulley(start, s0 * r0);
-            expanded.add_scaled(&c, 1.0);
-            segment_rates[0].add_scaled(&c, 1.0);
+            expanded.add_scaled(&c, T::one());
+            segment_rates[0].add_scaled(&c, T::one());
         }
         if let RouteEnd::Pulley(e, t) = &route.end {
-            let (s, r) = (turn_sign(*t), self.pulleys[*e].radius);
+            let (s, r) = (sign(*t), radius(*e));
             let incoming = segments.last().expect("one segment at least").frame;
             let mut c = self.relative_rate(incoming, self.pulleys[*e].carrier, *e);
-            c.joints.iter_mut().for_each(|x| *x *= s * r);
+            c.joints.iter_mut().for_each(|x| *x = *x * (s * r));
             c.add_pulley(*e, -s * r);
-            expanded.add_scaled(&c, 1.0);
+            expanded.add_scaled(&c, T::one());
             segment_rates
                 .last_mut()
                 .expect("one segment at least")
-                .add_scaled(&c, 1.0);
+                .add_scaled(&c, T::one());
         }
-        Ok(StrandGeometry {
+        Ok(Traced {
             segments,
-            idlers,
+            rims,
             pull_rate: expanded,
             segment_rates,
         })
     }
+}
+
+/// A route as [`Routing::traced`] derives it, in a scalar `T`.
+#[derive(Clone, Debug)]
+pub struct Traced<T> {
+    /// Its straight segments, from the anchored (or driven-pulley) end on.
+    pub segments: Vec<Segment<T>>,
+    /// `rims[k]`: the rate of stop `k`'s rim relative to its carrier (its wraps, then the
+    /// driving pulley it ends on), per `q̇`: the coupling of an idler or driving pulley, the
+    /// sliding of a guide over its pin, over its radius; `rims[0]` is the start coupling.
+    pub rims: Vec<Rate<T>>,
+    /// `ẋ` of the strand (see [`StrandGeometry::pull_rate`]).
+    pub pull_rate: Rate<T>,
+    /// Each segment's share of it (see [`StrandGeometry::segment_rates`]).
+    pub segment_rates: Vec<Rate<T>>,
+}
+
+/// A strand's rate (`ẋ` over `q̇` and the driving pulleys' angles) as a column of `E`: its
+/// joint coefficients on the joints' rows, a driving pulley's on that pulley's row.
+pub fn column_of<T: Real>(rows: &[Row], rate: &Rate<T>, pulleys: &[PulleyInfo]) -> Vec<T> {
+    let mut column = vec![T::zero(); rows.len()];
+    for (r, row) in rows.iter().enumerate() {
+        if let Row::Joint(j) = row {
+            column[r] = rate.joints[*j];
+        }
+    }
+    for &(p, c) in &rate.pulleys {
+        let row = rows.iter().position(|r| *r == Row::Pulley(pulleys[p].body));
+        column[row.expect("a driving pulley has its row")] = c;
+    }
+    column
+}
+
+/// What the columns of the tension system belong to.
+pub struct Columns<'a, T> {
+    /// Each strand's `ẋ` ([`StrandGeometry::pull_rate`]), in strand order.
+    pub pull_rates: &'a [Rate<T>],
+    /// Every pulley, in file order.
+    pub pulleys: &'a [PulleyInfo],
+    /// The bodies, with their couplings (a pulley motor's column, where its pulley has no
+    /// row).
+    pub bodies: &'a [Body<T>],
+    /// The open-ended tendons.
+    pub tendons: &'a [Tendon],
+    /// The loops.
+    pub loops: &'a [Loop],
+    /// The motors.
+    pub motors: &'a [Motor],
+}
+
+/// `E` of the tension system `E x = b` (paper Eqs. 33, 35): the balances of the joints,
+/// the driving pulleys and the loops' pretensions (`rows`) against the unknowns (columns).
+pub fn tension_matrix<T: Real>(rows: &[Row], unknowns: &[Unknown], of: &Columns<T>) -> Vec<Vec<T>> {
+    let n = rows.iter().filter(|r| matches!(r, Row::Joint(_))).count();
+    let mut e = vec![vec![T::zero(); unknowns.len()]; rows.len()];
+    for (col, u) in unknowns.iter().enumerate() {
+        let column = match u {
+            Unknown::Strand(s) => column_of(rows, &of.pull_rates[*s], of.pulleys),
+            Unknown::Explicit(k) => (of.tendons[*k].structure[..n].iter())
+                .map(|&x| T::from_f64(x))
+                .collect(),
+            Unknown::Motor(k) => {
+                let mut column = vec![T::zero(); rows.len()];
+                match of.motors[*k].kind {
+                    MotorKind::Joint(j) => column[j] = T::one(),
+                    MotorKind::Pulley(b) => match rows.iter().position(|r| *r == Row::Pulley(b)) {
+                        Some(row) => column[row] = T::one(),
+                        None => column[..n].copy_from_slice(&of.bodies[b].coupling),
+                    },
+                }
+                column
+            }
+        };
+        for (row, x) in e.iter_mut().zip(column) {
+            row[col] = x;
+        }
+    }
+    for (k, l) in of.loops.iter().enumerate() {
+        let row = rows.iter().position(|r| *r == Row::Pretension(k));
+        for s in l.strands {
+            let col = unknowns.iter().position(|u| *u == Unknown::Strand(s));
+            e[row.expect("a loop has its row")][col.expect("a loop's strands are unknowns")] =
+                T::from_f64(0.5);
+        }
+    }
+    e
 }
 
 #[derive(Clone, Debug)]

@@ -27,6 +27,7 @@ use crate::error::{Error, Location, Result};
 use crate::format::{FrictionSpec, MechanismFile};
 use crate::model::{BearingFriction, BodyKind, Model, Parameter, PulleyRole, Strand, Wrench};
 use crate::spatial::{Mat3, Vec3};
+use crate::transmission::column_of;
 use bodies::MassProperties;
 use locate::{candidates, syntax_error, NameIndex};
 use parameters::parameter_slots;
@@ -210,7 +211,7 @@ impl<'a> Validator<'a> {
             loops,
             motors,
         };
-        let system = self.tension_system(f, &bodies, &actuators, strands.unknowns)?;
+        let system = self.tension_system(f, &bodies, &pulleys, &actuators, strands.unknowns)?;
         let Actuators {
             strands,
             tendons,
@@ -231,7 +232,7 @@ impl<'a> Validator<'a> {
             .map(|(i, (name, g))| Strand {
                 name,
                 shares: (g.segment_rates.iter())
-                    .map(|rate| tension_system::column_of(f, &bodies, &system.rows, rate))
+                    .map(|rate| column_of(&system.rows, rate, &pulleys))
                     .collect(),
                 segments: g.segments,
                 idlers: g.idlers,

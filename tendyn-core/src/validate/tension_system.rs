@@ -10,34 +10,10 @@ use super::Validator;
 use crate::error::{Error, ImpliedSystem, Result};
 use crate::format::MechanismFile;
 use crate::model::{
-    Body, BodyKind, Loop, Model, Motor, MotorKind, PulleyRole, Row, Tendon, TensionSystem, Unknown,
+    Body, BodyKind, Loop, Model, Motor, PulleyRole, Row, Tendon, TensionSystem, Unknown,
 };
-use crate::transmission::{Rate, StrandGeometry};
+use crate::transmission::{tension_matrix, Columns, PulleyInfo, Rate, StrandGeometry};
 use nalgebra::DMatrix;
-
-/// A strand's rate (`ẋ` over `q̇` and the driving pulleys' angles) as a column of `E`: its
-/// joint coefficients on the joints' rows, a driving pulley's on that pulley's row.
-pub(super) fn column_of(
-    f: &MechanismFile,
-    bodies: &[Body<f64>],
-    rows: &[Row],
-    rate: &Rate,
-) -> Vec<f64> {
-    let mut column = vec![0.0; rows.len()];
-    for (r, row) in rows.iter().enumerate() {
-        if let Row::Joint(j) = row {
-            column[r] = rate.joints[*j];
-        }
-    }
-    for &(p, c) in &rate.pulleys {
-        let b = bodies.iter().position(|b| b.name == f.pulleys[p].name);
-        let row = rows
-            .iter()
-            .position(|r| Some(r) == b.map(Row::Pulley).as_ref());
-        column[row.expect("a driving pulley has its row")] = c;
-    }
-    column
-}
 
 /// What the tension system's unknowns belong to.
 pub(super) struct Actuators {
@@ -55,6 +31,7 @@ impl Validator<'_> {
         &self,
         f: &MechanismFile,
         bodies: &[Body<f64>],
+        pulleys: &[PulleyInfo],
         actuators: &Actuators,
         unknowns: Vec<Unknown>,
     ) -> Result<TensionSystem<f64>> {
@@ -80,44 +57,16 @@ impl Validator<'_> {
         rows.extend(driving.iter().map(|&b| Row::Pulley(b)));
         rows.extend((0..loops.len()).map(Row::Pretension));
         let m = unknowns.len();
-        let mut e = vec![vec![0.0; m]; rows.len()];
-        for (col, u) in unknowns.iter().enumerate() {
-            match u {
-                Unknown::Strand(s) => {
-                    let column = column_of(f, bodies, &rows, &strands[*s].1.pull_rate);
-                    for (row, x) in e.iter_mut().zip(column) {
-                        row[col] = x;
-                    }
-                }
-                Unknown::Explicit(k) => {
-                    for (row, &x) in e.iter_mut().zip(&tendons[*k].structure[..n]) {
-                        row[col] = x;
-                    }
-                }
-                Unknown::Motor(k) => match motors[*k].kind {
-                    MotorKind::Joint(j) => e[j][col] = 1.0,
-                    MotorKind::Pulley(b) => {
-                        if let Some(row) = rows.iter().position(|r| *r == Row::Pulley(b)) {
-                            e[row][col] = 1.0;
-                        } else {
-                            for (row, &x) in e.iter_mut().zip(&motors[*k].column[..n]) {
-                                row[col] = x;
-                            }
-                        }
-                    }
-                },
-            }
-        }
-        for (k, l) in loops.iter().enumerate() {
-            let row = n + driving.len() + k;
-            for s in l.strands {
-                let col = unknowns
-                    .iter()
-                    .position(|u| *u == Unknown::Strand(s))
-                    .expect("strand");
-                e[row][col] = 0.5;
-            }
-        }
+        let pull_rates: Vec<Rate> = strands.iter().map(|(_, g)| g.pull_rate.clone()).collect();
+        let columns = Columns {
+            pull_rates: &pull_rates,
+            pulleys,
+            bodies,
+            tendons,
+            loops,
+            motors,
+        };
+        let e = tension_matrix(&rows, &unknowns, &columns);
         // A routing that fails the checks below is reported with the system it implies, so
         // that `check` can show what the routing does (the closure holds the checks).
         let strand_names: Vec<&str> = strands.iter().map(|(name, _)| name.as_str()).collect();
