@@ -152,12 +152,12 @@ fn a_rigid_tree_built_in_code_gives_the_joint_space_terms_of_its_bodies() {
 /// checked: no clash with a parameter, finite values, every index in range.
 #[test]
 fn numbers_named_for_printing_are_checked() {
-    use tendyn_core::model::{Place, Slot};
+    use tendyn_core::model::Slot;
     let model = tendyn_core::parse(&parametric_finger()).unwrap();
     let mass = model.bodies()[0].mass;
     let named = |names: &[(&str, f64)], slots: &[(Slot, usize)]| {
         let names: Vec<(String, f64)> = names.iter().map(|&(n, v)| (n.to_string(), v)).collect();
-        model.with_named_numbers(&names, slots, &[])
+        model.with_named_numbers(&names, slots)
     };
     let m = named(&[("m1", mass)], &[(Slot::Mass(0), 0), (Slot::Com(0, 0), 0)]).unwrap();
     assert_eq!(m.parameters().len(), model.parameters().len() + 1);
@@ -193,25 +193,17 @@ fn numbers_named_for_printing_are_checked() {
         let err = named(&names, &slots).unwrap_err().to_string();
         assert!(err.contains(said), "{err}");
     }
-    let err = model
-        .with_named_numbers(&[], &[], &[((99, 0), 1.0)])
-        .unwrap_err()
-        .to_string();
+    // Entries of an exact inverse given out of range are named.
+    let (_, err) = tendyn_codegen::expr::Graph::default().scope(|| {
+        let symbolic = model.symbolic(|_| tendyn_codegen::expr::Sym::input("p"));
+        let one = <tendyn_codegen::expr::Sym as tendyn_core::Real>::one();
+        let entries = [((99, 0), one)];
+        symbolic
+            .with_exact_inverse(&entries)
+            .unwrap_err()
+            .to_string()
+    });
     assert!(err.contains("out of range"), "{err}");
-    // A model named for printing is not one to set parameters on or generate from: its
-    // lengths would become runtime parameters the routing cannot follow.
-    let a1 = vec![("a1".to_string(), 0.012)];
-    let named = model
-        .with_named_numbers(&a1, &[(Slot::Geometry(Place::Post(0, 0), 1), 0)], &[])
-        .unwrap();
-    let values: Vec<f64> = named.parameters().iter().map(|p| p.value).collect();
-    let err = named.with_parameters(&values).unwrap_err().to_string();
-    assert!(err.contains("named for printing"), "{err}");
-    let outputs = [tendyn_codegen::Output::Gravity];
-    let err = tendyn_codegen::generate(&named, &outputs, tendyn_codegen::Scalar::F64, "t.ron")
-        .unwrap_err()
-        .to_string();
-    assert!(err.contains("named for printing"), "{err}");
 }
 
 /// Gravity and the external wrench set at run time are checked as the file's are.

@@ -4,56 +4,51 @@
 //!
 //! # What is named
 //!
-//! The equations are the traced (or collected, [`crate::closed_form`]) functions of a copy
-//! of the model in which these numbers are parameters, i.e. symbols of the graph:
-//!
 //! - joint variables `th1, th1d, th1dd`, with `S2 = sin th2`, `C2 = cos th2`; runtime
 //!   parameters by their own names;
 //! - every non-zero mass, centre-of-mass component, inertia entry and gravity component:
-//!   `m2`, `c2x`, `I2zz`, `gy` (pulleys after their names: `m_idler3`, `I_pulley3zz`);
-//! - the non-zero DH lengths and offsets of the links, `a1`, `d2` (paper Eqs. 1 and 7): in the
-//!   link transform, in `P = (a, d sin α, d cos α)` and, as `−a_j`, in the placement of a
-//!   pulley that link `j` carries on its own joint axis;
-//! - pulley pitch radii, `r` followed by the pulley's name from its first digit on
+//!   `m2`, `c2x`, `I2zz`, `gy` (pulleys after their names: `m_idler3`, `I_pulley3zz`), as
+//!   parameters of a copy of the model ([`Model::with_named_numbers`]);
+//! - the non-zero DH lengths and offsets of the links, `a1`, `d2` (paper Eqs. 1 and 7), and
+//!   pulley pitch radii, `r` followed by the pulley's name from its first digit on
 //!   (`pulley3` → `r3`, `drum2a` → `r2a`: the paper's numbering in the shipped examples), or
-//!   `r_NAME` when the name has no digit or two pulleys would share a name. A radius enters
-//!   by name (a) in every tendon contact point, which is exactly `r` times a unit vector
-//!   (Eq. 17); (b) in the couplings of pulley angles to the joints (Eqs. 9-10, 26, 31, 34),
-//!   re-derived here as products of radius ratios (`r2/r3`) from the routing the model
-//!   records, wherever an entry is a single such product; (c) when the tension system
-//!   `E x = b` is square (no redundant tendons, as in Example 1), in its exact inverse,
-//!   wherever an entry is a single product of radii (`r3/r2`: Eqs. 28-30). The couplings
-//!   and the structure matrix `A` (Eqs. 33, 35) are also printed by name.
+//!   `r_NAME` when the name has no digit or two pulleys would share a name. These are inputs
+//!   `lengths[k]` of their own.
 //!
-//! Every name is checked numerically before it is used: a re-derived coupling, entry of `E`
-//! or of its inverse must equal the validated model's number (to `1e-12` relative; `E⁻¹` to
-//! its conditioning), or that part stays numeric. So the printed equations, evaluated with
-//! every name at its file value, are what the runtime solver computes (to rounding; the
-//! exact `E⁻¹` differs from the solver's QR-computed `E⁺` by rounding only).
+//! The equations are traced from [`Model::symbolic_geometry`]: the model with its geometry
+//! derived again from the lengths and radii as symbols, by the functions validation derives
+//! it with (link frames, the placements of pulleys on their own link's joint axis, the
+//! routing's contact points, couplings and pull rates, and `E`). So a name appears wherever
+//! the derivation puts that quantity, and nowhere by a match of numbers: in the link
+//! transforms and `P` (Eq. 7), in every tendon contact point (`r` times a unit vector,
+//! Eq. 17), in the couplings (Eqs. 9-10, 26, 31, 34) and in `E` (Eqs. 33, 35). The couplings
+//! and the structure matrix `A` print in the legend as polynomials in the radii read back
+//! from the graph. When `E` is square (no redundant tendons, as in Example 1), its inverse is
+//! computed by name from those polynomials, checked against the solver's QR-computed `E⁺` to
+//! the conditioning of `E`, and its single-term entries replace the numbers (`r3/r2`: Eqs.
+//! 28-30).
 //!
 //! # What stays a number
 //!
-//! Geometry that is not a product or ratio of named quantities: tendon segment directions
-//! (common tangents; their angles depend on centre distances and radii together), exit
-//! points, pulley heights along joint axes and `Pose` placements, the `(h − d_j)` part of a
-//! pulley carried on its own link's joint axis, twist and angle offsets (`sin`/`cos` of
-//! them); the pseudo-inverse and null space of a non-square `E` (redundant open-ended
-//! routings, Examples 2 and 3) and the positive null vector; coupling entries that are sums of
-//! ratios; the idler step `turn / r` of Eq. 24b (kept by `tension::segment_tensions` as a
-//! number of the model's `IdlerStep`), and, in `forward_dynamics`, the structure matrix and
-//! motor columns (numbers of the model's `Tendon` and `Motor`).
+//! What validation decides from numbers: tendon segment directions (common tangents; their
+//! angles depend on centre distances and radii together), exit points, pulley heights along
+//! joint axes and `Pose` placements, twist and angle offsets (`sin`/`cos` of them); the
+//! pseudo-inverse and null space of a non-square `E` (redundant open-ended routings,
+//! Examples 2 and 3) and the positive null vector; the idler step `turn / r` of Eq. 24b
+//! (kept by `tension::segment_tensions` as a number of the model's `IdlerStep`), and, in
+//! `forward_dynamics`, the structure matrix and motor columns (numbers of the model's
+//! `Tendon` and `Motor`).
 
-use crate::expr::{Graph, Id, Node};
-use crate::outputs::{result_labels, trace, Output, Traced};
-use tendyn_core::model::{
-    BodyKind, Contact, Model, MotorKind, Place, PulleyRole, Row, Segment, Slot, Unknown, Via,
-};
-use tendyn_core::spatial::Vec3;
-use tendyn_core::transmission::{joint_parent, Frame};
+use crate::expr::{Graph, Id, Node, Sym};
+use crate::outputs::{self, result_labels, Output, Traced};
+use tendyn_core::model::{BodyKind, Lengths, Model, Row, Slot};
+use tendyn_core::Real;
 
 thread_local! {
     /// Names of the runtime parameters of the mechanism being printed.
     static PARAMETERS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// Names of its lengths and radii.
+    static LENGTHS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 fn input_name(g: &Graph, i: u32) -> String {
@@ -62,6 +57,7 @@ fn input_name(g: &Graph, i: u32) -> String {
     let k: usize = index.trim_end_matches(']').parse::<usize>().expect("index") + 1;
     match array {
         "params" => PARAMETERS.with(|p| p.borrow()[k - 1].clone()),
+        "lengths" => LENGTHS.with(|l| l.borrow()[k - 1].clone()),
         "q" => format!("th{k}"),
         "qd" => format!("th{k}d"),
         "qdd" => format!("th{k}dd"),
@@ -375,164 +371,138 @@ fn linear_text(
     }
 }
 
-/// A rate as linear functions of `q̇` (and of driving-pulley angles), by name.
-#[derive(Clone, Debug)]
-struct Rate {
-    joints: Vec<Poly>,
-    pulleys: Vec<(usize, Poly)>,
-}
-
-impl Rate {
-    fn zero(n: usize) -> Rate {
-        Rate {
-            joints: vec![Poly::zero(); n],
-            pulleys: Vec::new(),
-        }
-    }
-
-    fn add_scaled(&mut self, o: &Rate, by: &Term) {
-        for (a, b) in self.joints.iter_mut().zip(&o.joints) {
-            *a = a.plus(&b.times_term(by));
-        }
-        for (p, c) in &o.pulleys {
-            self.add_pulley(*p, c.times_term(by));
-        }
-    }
-
-    fn add_pulley(&mut self, p: usize, c: Poly) {
-        match self.pulleys.iter_mut().find(|(q, _)| *q == p) {
-            Some((_, v)) => *v = v.plus(&c),
-            None => self.pulleys.push((p, c)),
-        }
-    }
-
-    fn pulley(&self, p: usize) -> Poly {
-        self.pulleys
-            .iter()
-            .find(|(q, _)| *q == p)
-            .map_or(Poly::zero(), |(_, c)| c.clone())
-    }
-}
-
-/// `θ̇` of frame `a` relative to frame `b` when both are bodies of one joint (a pulley's
-/// circle on that joint's axis is fixed in both); `None` when they are not.
-fn relative_rate(n: usize, a: Frame, b: Frame) -> Option<Rate> {
-    let mut r = Rate::zero(n);
-    if a == b {
-        return Some(r);
-    }
-    let (j, sign) = match (a, b) {
-        (Some(x), _) if joint_parent(x) == b => (x, 1.0),
-        (_, Some(y)) if joint_parent(y) == a => (y, -1.0),
+/// What the graph holds at `id` as a polynomial in the radii (negative powers allowed):
+/// `radius(id)` names the inputs that are radii (by pulley body), numbers are constants;
+/// `None` where it is anything else, or divides by a sum.
+fn poly_of(g: &Graph, id: Id, radius: &dyn Fn(Id) -> Option<usize>) -> Option<Poly> {
+    let of = |x: Id| poly_of(g, x, radius);
+    let minus = |p: Poly| p.times_term(&Term::constant(-1.0));
+    Some(match g.node(id) {
+        Node::Const(bits) => Poly::constant(f64::from_bits(bits)),
+        Node::Input(_) => Poly::zero().plus_term(&Term::radius(radius(id)?, 1.0, 1)),
+        Node::Add(a, b) => of(a)?.plus(&of(b)?),
+        Node::Sub(a, b) => of(a)?.plus(&minus(of(b)?)),
+        Node::Mul(a, b) => of(a)?.times(&of(b)?),
+        Node::Div(a, b) => of(a)?.times_term(&of(b)?.single()?.inverse()),
+        Node::Neg(a) => minus(of(a)?),
         _ => return None,
-    };
-    *r.joints.get_mut(j)? = Poly::constant(sign);
-    Some(r)
+    })
 }
 
-/// The turn (`+1` counter-clockwise) of a tendon at a pulley contact, read from the
-/// segment's geometry: the contact point is `turn · r (dir × z)` (Eq. 17), `z` the pulley's
-/// axis in the segment's frame.
-fn turn_at(
-    model: &Model<f64>,
-    segment: &Segment<f64>,
-    contact: &Contact<f64>,
-) -> Option<(usize, f64)> {
-    let b = contact.body?;
-    let body = model.bodies().get(b)?;
-    let BodyKind::Pulley { radius, .. } = body.kind else {
-        return None;
+/// `coef · Π r^e` as a symbol: `r2/r3`, `-r3`, `0.5/r2` (the number leads; a divisor
+/// divides, so that `1/r` is not a product).
+fn term_sym(t: &Term, radius: &dyn Fn(usize) -> Sym) -> Sym {
+    let mut numerator: Option<Sym> = None;
+    for &(b, e) in t.powers.iter().filter(|(_, e)| *e > 0) {
+        for _ in 0..e {
+            numerator = Some(numerator.map_or(radius(b), |y| y * radius(b)));
+        }
+    }
+    let divide = |mut y: Sym| {
+        for &(b, e) in t.powers.iter().filter(|(_, e)| *e < 0) {
+            for _ in 0..-e {
+                y = y / radius(b);
+            }
+        }
+        y
     };
-    let axis = match contact.via {
-        Via::Carrier => body.pre.rotation.column(2),
-        Via::CarrierParent => Vec3::unit_z(),
-        Via::CarrierChild(l) => model.bodies().get(l)?.axis,
-    };
-    let s = segment.dir.cross(axis).dot(contact.rel) / radius;
-    ((s.abs() - 1.0).abs() <= 1e-9).then_some((b, s.signum()))
+    let coef = Sym::from_f64(t.coef);
+    match numerator {
+        Some(q) => coef * divide(q),
+        None => divide(coef),
+    }
 }
 
-/// The transmission by name: what validation derived in numbers, re-derived as polynomials
-/// in the radii from the routing the model records, and checked against those numbers.
+/// The transmission by name: the couplings and `E` as the symbolic model derived them,
+/// read back as polynomials in the radii.
 #[derive(Clone, Debug)]
 struct Transmission {
     /// Per body, its coupling (a link's is its unit row).
     couplings: Vec<Vec<Poly>>,
     /// Per tendon, its column of the structure matrix `A`.
     structure: Vec<Vec<Poly>>,
-    /// `E⁻¹` (unknowns × rows) when `E` is square with a one-term determinant.
-    inverse: Option<Vec<Vec<Poly>>>,
 }
 
-/// Mirrors `transmission::Routing::trace` by name: the couplings of the pulleys a strand
-/// passes (and ends on), and its pull rate `ẋ` with driving-pulley angles as coordinates.
-fn walk(
-    model: &Model<f64>,
-    stops: &[(usize, f64)],
-    frames: &[Frame],
-    ends_on_pulley: bool,
-    couplings: &mut [Option<Vec<Poly>>],
-) -> Option<Rate> {
-    let n = model.dof();
-    let carrier = |b: usize| model.bodies()[b].parent;
-    let (start, s0) = stops[0];
-    let start_coupling = Rate {
-        joints: couplings[start].clone()?,
-        pulleys: Vec::new(),
-    };
-    let mut pull = Rate::zero(n);
-    let mut body_rate = start_coupling.clone();
-    body_rate.add_scaled(
-        &relative_rate(n, carrier(start), frames[0])?,
-        &Term::constant(1.0),
-    );
-    pull.add_scaled(&body_rate, &Term::radius(start, s0, 1));
-    for (i, &(p, s)) in stops.iter().enumerate().skip(1) {
-        let incoming = frames[i - 1];
-        // The rim moves with the tendon (Eqs. 9-10, 26): this pulley's coupling.
-        let mut c = Rate::zero(n);
-        c.add_scaled(&pull, &Term::radius(p, s, -1));
-        c.add_scaled(
-            &relative_rate(n, incoming, carrier(p))?,
-            &Term::constant(1.0),
-        );
-        if couplings[p].is_none() {
-            couplings[p] = Some(c.joints);
-        }
-        if let Some(&out) = frames.get(i) {
-            pull.add_scaled(&relative_rate(n, incoming, out)?, &Term::radius(p, s, 1));
+/// What the symbolic model holds where the transmission prints by name: its couplings and
+/// `E`, as nodes of the graph.
+struct ByName {
+    couplings: Vec<Vec<Id>>,
+    matrix: Vec<Vec<Id>>,
+    /// The inputs that are radii, with their pulley bodies.
+    radii: Vec<(Id, usize)>,
+}
+
+impl ByName {
+    /// Each node as a polynomial in the radii, or else the number the f64 model holds there.
+    fn polys(&self, g: &Graph, ids: &[Id], numbers: &[f64]) -> Vec<Poly> {
+        let radius = |id: Id| self.radii.iter().find(|(r, _)| *r == id).map(|&(_, b)| b);
+        ids.iter()
+            .zip(numbers)
+            .map(|(&id, &x)| poly_of(g, id, &radius).unwrap_or_else(|| Poly::constant(x)))
+            .collect()
+    }
+
+    /// `E` by name (`model` the f64 model, for what does not read as a polynomial).
+    fn matrix(&self, g: &Graph, model: &Model<f64>) -> Vec<Vec<Poly>> {
+        (self.matrix.iter().zip(&model.system().matrix))
+            .map(|(ids, numbers)| self.polys(g, ids, numbers))
+            .collect()
+    }
+
+    fn transmission(&self, g: &Graph, model: &Model<f64>) -> Transmission {
+        let couplings = (self.couplings.iter().zip(model.bodies()))
+            .map(|(ids, body)| self.polys(g, ids, &body.coupling))
+            .collect();
+        let e = self.matrix(g, model);
+        let structure = (model.tendons().iter())
+            .map(|t| match t.strand {
+                Some(_) => (0..model.dof()).map(|j| e[j][t.unknown].clone()).collect(),
+                None => t.structure.iter().map(|&x| Poly::constant(x)).collect(),
+            })
+            .collect();
+        Transmission {
+            couplings,
+            structure,
         }
     }
-    let mut expanded = pull;
-    let driving = |b: usize| {
-        matches!(
-            model.bodies()[b].kind,
-            BodyKind::Pulley {
-                role: PulleyRole::Driving,
-                ..
+}
+
+/// Where a square `E`'s exact inverse by name is a single term or zero, that entry
+/// `(unknown, row)` (rows of pretensions are left out: those enter exactly,
+/// `tension::solution`), checked against the solver's QR-computed `E⁺` to the conditioning
+/// of `E`.
+fn exact_inverse_entries(e: &[Vec<Poly>], model: &Model<f64>) -> Vec<((usize, usize), Term)> {
+    let Some(inverse) = exact_inverse(e) else {
+        return Vec::new();
+    };
+    let system = model.system();
+    let radius = |b: usize| radius_of(model, b);
+    let pinv = &system.pseudo_inverse;
+    let scale = pinv.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    let tol = 1e-10 * system.condition.max(1.0) * scale;
+    let agrees = (inverse.iter().zip(pinv)).all(|(derived, numbers)| {
+        (derived.iter().zip(numbers)).all(|(d, &x)| {
+            let v = d.eval(&radius);
+            v.is_finite() && (v - x).abs() <= tol
+        })
+    });
+    if !agrees {
+        return Vec::new();
+    }
+    let mut entries = Vec::new();
+    for (u, row) in inverse.iter().enumerate() {
+        for (r, entry) in row.iter().enumerate() {
+            if matches!(system.rows[r], Row::Pretension(_)) {
+                continue;
             }
-        )
-    };
-    if driving(start) {
-        expanded.add_scaled(&start_coupling, &Term::radius(start, -s0, 1));
-        expanded.add_pulley(start, Poly::zero().plus_term(&Term::radius(start, s0, 1)));
+            match (entry.is_zero(), entry.single()) {
+                (true, _) => entries.push(((u, r), Term::constant(0.0))),
+                (false, Some(term)) => entries.push(((u, r), term.clone())),
+                (false, None) => {}
+            }
+        }
     }
-    if ends_on_pulley {
-        let &(e, t) = stops.last()?;
-        let incoming = *frames.last()?;
-        expanded.add_scaled(
-            &relative_rate(n, incoming, carrier(e))?,
-            &Term::radius(e, t, 1),
-        );
-        expanded.add_pulley(e, Poly::zero().plus_term(&Term::radius(e, -t, 1)));
-    }
-    Some(expanded)
-}
-
-/// Whether `derived` (evaluated at the file's radii) equals `x` to `tol`.
-fn agrees(derived: &Poly, radius: &dyn Fn(usize) -> f64, x: f64, tol: f64) -> bool {
-    let v = derived.eval(radius);
-    v.is_finite() && (v - x).abs() <= tol
+    entries
 }
 
 fn radius_of(model: &Model<f64>, b: usize) -> f64 {
@@ -540,171 +510,6 @@ fn radius_of(model: &Model<f64>, b: usize) -> f64 {
         BodyKind::Pulley { radius, .. } => radius,
         BodyKind::Link { .. } => f64::NAN,
     }
-}
-
-/// The transmission by name, or `None` where the routing is not what this derivation
-/// covers or any re-derived number disagrees with validation's.
-fn derive(model: &Model<f64>) -> Option<Transmission> {
-    let radius = |b: usize| radius_of(model, b);
-    let mut couplings: Vec<Option<Vec<Poly>>> = model
-        .bodies()
-        .iter()
-        .map(|b| match b.kind {
-            // Links, fixed drums and explicitly coupled pulleys: the model's numbers.
-            BodyKind::Link { .. }
-            | BodyKind::Pulley {
-                role: PulleyRole::Fixed | PulleyRole::Coupled,
-                ..
-            } => Some(b.coupling.iter().map(|&c| Poly::constant(c)).collect()),
-            _ => None,
-        })
-        .collect();
-
-    // Each strand: the pulleys it touches with their turns, and its segments' frames.
-    struct Walk {
-        stops: Vec<(usize, f64)>,
-        frames: Vec<Frame>,
-        ends_on_pulley: bool,
-    }
-    let mut walks = Vec::new();
-    for strand in model.strands() {
-        let segments = &strand.segments;
-        let first = segments.first()?;
-        let mut stops = vec![turn_at(model, first, &first.from)?];
-        for (k, seg) in segments.iter().enumerate() {
-            match seg.to.body {
-                Some(_) => stops.push(turn_at(model, seg, &seg.to)?),
-                None if k + 1 == segments.len() => {}
-                None => return None,
-            }
-        }
-        let ends_on_pulley = segments.last()?.to.body.is_some();
-        if stops.len() != segments.len() + usize::from(ends_on_pulley)
-            || strand.idlers.len() + 1 != segments.len()
-            || strand
-                .idlers
-                .iter()
-                .zip(&stops[1..])
-                .any(|(idler, &(b, s))| idler.body != b || idler.turn != s)
-        {
-            return None;
-        }
-        walks.push(Walk {
-            stops,
-            frames: segments.iter().map(|s| s.frame).collect(),
-            ends_on_pulley,
-        });
-    }
-    // Each strand once the coupling of the body it starts from is known.
-    let mut rates: Vec<Option<Rate>> = vec![None; walks.len()];
-    loop {
-        let mut progressed = false;
-        for (s, w) in walks.iter().enumerate() {
-            if rates[s].is_none() && couplings[w.stops[0].0].is_some() {
-                rates[s] = Some(walk(
-                    model,
-                    &w.stops,
-                    &w.frames,
-                    w.ends_on_pulley,
-                    &mut couplings,
-                )?);
-                progressed = true;
-            }
-        }
-        if !progressed {
-            break;
-        }
-    }
-    let rates: Vec<Rate> = rates.into_iter().collect::<Option<_>>()?;
-    let couplings: Vec<Vec<Poly>> = couplings.into_iter().collect::<Option<_>>()?;
-
-    // E, column by column, as validation builds it (`validate::tension_system`).
-    let system = model.system();
-    let mut e = vec![vec![Poly::zero(); system.unknowns.len()]; system.rows.len()];
-    for (col, u) in system.unknowns.iter().enumerate() {
-        for (r, row) in system.rows.iter().enumerate() {
-            e[r][col] = match (u, row) {
-                (Unknown::Strand(s), Row::Joint(j)) => rates.get(*s)?.joints[*j].clone(),
-                (Unknown::Strand(s), Row::Pulley(b)) => rates.get(*s)?.pulley(*b),
-                (Unknown::Strand(s), Row::Pretension(l)) => {
-                    let on_loop = model.loops().get(*l)?.strands.contains(s);
-                    Poly::constant(if on_loop { 0.5 } else { 0.0 })
-                }
-                (Unknown::Explicit(k), Row::Joint(j)) => {
-                    Poly::constant(model.tendons().get(*k)?.structure[*j])
-                }
-                (Unknown::Motor(k), row) => match (model.motors().get(*k)?.kind.clone(), row) {
-                    (MotorKind::Joint(j), Row::Joint(i)) => {
-                        Poly::constant(if j == *i { 1.0 } else { 0.0 })
-                    }
-                    (MotorKind::Pulley(b), Row::Pulley(c)) => {
-                        Poly::constant(if b == *c { 1.0 } else { 0.0 })
-                    }
-                    (MotorKind::Pulley(b), Row::Joint(i))
-                        if !system.rows.contains(&Row::Pulley(b)) =>
-                    {
-                        couplings[b][*i].clone()
-                    }
-                    _ => Poly::zero(),
-                },
-                _ => Poly::zero(),
-            };
-        }
-    }
-    let structure: Vec<Vec<Poly>> = model
-        .tendons()
-        .iter()
-        .map(|t| match t.strand {
-            Some(s) => rates[s].joints.clone(),
-            None => t.structure.iter().map(|&x| Poly::constant(x)).collect(),
-        })
-        .collect();
-
-    // Everything must be validation's numbers, by name.
-    const TOL: f64 = 1e-12;
-    for (b, body) in model.bodies().iter().enumerate() {
-        for (c, &x) in couplings[b].iter().zip(&body.coupling) {
-            if !agrees(c, &radius, x, TOL * (1.0 + x.abs())) {
-                return None;
-            }
-        }
-    }
-    let scale = system
-        .matrix
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    for (derived, numbers) in e.iter().zip(&system.matrix) {
-        for (d, &x) in derived.iter().zip(numbers) {
-            if !agrees(d, &radius, x, TOL * scale) {
-                return None;
-            }
-        }
-    }
-    for (t, column) in model.tendons().iter().zip(&structure) {
-        for (d, &x) in column.iter().zip(&t.structure) {
-            if !agrees(d, &radius, x, TOL * scale) {
-                return None;
-            }
-        }
-    }
-    let inverse = exact_inverse(&e).filter(|inv| {
-        // The solver's E⁺ is QR-computed: it agrees to the conditioning of E.
-        let pinv = &system.pseudo_inverse;
-        let scale = pinv.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-        let tol = 1e-10 * system.condition.max(1.0) * scale;
-        inv.iter().zip(pinv).all(|(derived, numbers)| {
-            derived
-                .iter()
-                .zip(numbers)
-                .all(|(d, &x)| agrees(d, &radius, x, tol))
-        })
-    });
-    Some(Transmission {
-        couplings,
-        structure,
-        inverse,
-    })
 }
 
 /// Largest square `E` inverted by name (cofactors by Laplace expansion over column subsets).
@@ -770,16 +575,18 @@ fn determinant(
 
 /// A mechanism with its quantities named, traced: what `tendyn equations` prints.
 pub struct Named {
-    /// The model the equations were traced from: the mechanism's, with the named quantities
-    /// as parameters (`parameters[k].value` is each one's file value) and, when `E` is square,
-    /// the exact `E⁻¹` in place of the QR-computed one.
+    /// The model the equations were traced from: the mechanism's, with its masses, centres
+    /// of mass, inertias and gravity named as parameters (`parameters[k].value` is each
+    /// one's file value; graph inputs `params[k]`).
     pub model: Model<f64>,
-    /// The requested outputs, traced from [`Named::model`]: what is printed.
+    /// The requested outputs, traced from [`Named::model`] with its geometry derived again
+    /// from [`Named::lengths`] ([`Model::symbolic_geometry`]): what is printed.
     pub traced: Traced,
-    transmission: Option<Transmission>,
+    transmission: Transmission,
     /// Per body: the name of its radius (pulleys).
     radius_names: Vec<Option<String>>,
-    /// The lengths and radii that print by name, in the order of the legend.
+    /// The lengths and radii that print by name, in the order of the legend: graph inputs
+    /// `lengths[k]`.
     pub lengths: Vec<NamedLength>,
 }
 
@@ -815,8 +622,9 @@ impl Quantity {
     }
 }
 
-/// Names numbers of the model as new parameters, each name unique among all parameters
-/// (what [`Model::with_named_numbers`] then adds).
+/// Names numbers of the model, each name unique among all parameters and lengths: masses
+/// and the like as new parameters (what [`Model::with_named_numbers`] then adds), lengths
+/// and radii as inputs of their own.
 struct Namer<'m> {
     model: &'m Model<f64>,
     /// Slots the file's own runtime parameters already set.
@@ -825,6 +633,8 @@ struct Namer<'m> {
     added: Vec<(String, f64)>,
     /// Every number named, `(where, index into added)`.
     slots: Vec<(Slot, usize)>,
+    /// The lengths and radii named.
+    lengths: Vec<NamedLength>,
 }
 
 impl Namer<'_> {
@@ -834,6 +644,7 @@ impl Namer<'_> {
         while file
             .clone()
             .chain(self.added.iter().map(|(n, _)| n))
+            .chain(self.lengths.iter().map(|l| &l.name))
             .any(|n| *n == name)
         {
             name.push('\'');
@@ -841,22 +652,27 @@ impl Namer<'_> {
         name
     }
 
-    /// A parameter `name` with file value `value` setting `slots`; `None` (nothing added)
-    /// when the value is zero or a runtime parameter already sets one of the slots.
-    fn add(&mut self, name: String, value: f64, slots: &[Slot]) -> Option<usize> {
-        if value == 0.0 || slots.iter().any(|s| self.taken.contains(s)) {
-            return None;
+    /// A parameter `name` with file value `value` setting `slot`; nothing when the value is
+    /// zero or a runtime parameter already sets the slot.
+    fn add(&mut self, name: String, value: f64, slot: Slot) {
+        if value == 0.0 || self.taken.contains(&slot) {
+            return;
         }
         let name = self.unique(name);
-        let i = self.added.len();
+        self.slots.push((slot, self.added.len()));
         self.added.push((name, value));
-        self.slots.extend(slots.iter().map(|&s| (s, i)));
-        Some(self.model.parameters().len() + i)
     }
 
-    /// One more number that the added parameter `k` sets.
-    fn also(&mut self, k: usize, slot: Slot) {
-        self.slots.push((slot, k - self.model.parameters().len()));
+    /// A length or radius `name` of file value `value`, unless it is zero.
+    fn length(&mut self, name: String, value: f64, quantity: Quantity) {
+        if value != 0.0 {
+            let name = self.unique(name);
+            self.lengths.push(NamedLength {
+                name,
+                value,
+                quantity,
+            });
+        }
     }
 }
 
@@ -896,6 +712,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
         taken: model.parameter_slots().iter().map(|(s, _)| *s).collect(),
         added: Vec::new(),
         slots: Vec::new(),
+        lengths: Vec::new(),
     };
     let axes = ["x", "y", "z"];
     let dof = model.dof();
@@ -906,19 +723,19 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
         } else {
             format!("_{}", body.name)
         };
-        namer.add(format!("m{tag}"), body.mass, &[Slot::Mass(b)]);
+        namer.add(format!("m{tag}"), body.mass, Slot::Mass(b));
         for (c, axis) in axes.iter().enumerate() {
             namer.add(
                 format!("c{tag}{axis}"),
                 body.com.to_array()[c],
-                &[Slot::Com(b, c)],
+                Slot::Com(b, c),
             );
         }
         for (r, c) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)] {
             namer.add(
                 format!("I{tag}{}{}", axes[r], axes[c]),
                 body.inertia.rows[r][c],
-                &[Slot::Inertia(b, r, c)],
+                Slot::Inertia(b, r, c),
             );
         }
     }
@@ -926,115 +743,65 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
         namer.add(
             format!("g{axis}"),
             model.gravity().to_array()[c],
-            &[Slot::Gravity(c)],
+            Slot::Gravity(c),
         );
     }
-
-    // DH lengths and offsets (Eqs. 1, 7): `post = TransZ(d)·TransX(a)·RotX(α)`, so
-    // `post` translates by (a, 0, d) and `P = postᵀ(a, 0, d) = (a, d sin α, d cos α)`.
-    let geometry = |place: Place| Slot::Geometry(place, 1);
-    let mut legend = Vec::new();
-    for j in 0..dof {
-        let link = &model.bodies()[j];
+    // DH lengths and offsets (Eq. 1: `post` translates by (a, 0, d)), then pitch radii.
+    for (j, link) in model.bodies()[..dof].iter().enumerate() {
         let (a, d) = (link.post.translation.x, link.post.translation.z);
-        let mut a_slots = vec![
-            geometry(Place::Post(j, 0)),
-            geometry(Place::JointToOrigin(j, 0)),
-        ];
-        // A pulley link j carries on its own joint's axis is placed by
-        // `post⁻¹ · TransZ(h)`, whose x translation is exactly −a.
-        for (b, body) in model.bodies().iter().enumerate().skip(dof) {
-            if body.parent == Some(j)
-                && body.pre.rotation == link.post.rotation.transpose()
-                && body.pre.translation.x == -a
-            {
-                a_slots.push(geometry(Place::Pre(b, 0)));
-            }
-        }
-        let d_slots = [
-            geometry(Place::Post(j, 2)),
-            geometry(Place::JointToOrigin(j, 1)),
-            geometry(Place::JointToOrigin(j, 2)),
-        ];
-        if let Some(k) = namer.add(format!("a{}", j + 1), a, &a_slots) {
-            legend.push((k, Quantity::DhA(j)));
-        }
-        if let Some(k) = namer.add(format!("d{}", j + 1), d, &d_slots) {
-            legend.push((k, Quantity::DhD(j)));
-        }
+        namer.length(format!("a{}", j + 1), a, Quantity::DhA(j));
+        namer.length(format!("d{}", j + 1), d, Quantity::DhD(j));
     }
-
-    // Pitch radii: contact points (Eq. 17) always; couplings and E⁻¹ where re-derived.
-    let transmission = derive(model);
     let names = radius_names(model);
-    let mut radius_parameter = vec![None; model.bodies().len()];
     for (b, name) in names.iter().enumerate() {
-        let Some(name) = name else { continue };
-        let r = radius_of(model, b);
-        let mut slots = Vec::new();
-        for (s, strand) in model.strands().iter().enumerate() {
-            for (k, seg) in strand.segments.iter().enumerate() {
-                for (end, c) in [&seg.from, &seg.to].into_iter().enumerate() {
-                    let exact = c.rel.dot(c.rel).sqrt();
-                    if c.body == Some(b) && (exact - r).abs() <= 1e-12 * r {
-                        slots.push(geometry(Place::Contact(s, k, end)));
-                    }
-                }
-            }
-        }
-        radius_parameter[b] = namer.add(name.clone(), r, &slots);
-        if let Some(k) = radius_parameter[b] {
-            legend.push((k, Quantity::Radius(b)));
+        if let Some(name) = name {
+            namer.length(name.clone(), radius_of(model, b), Quantity::Radius(b));
         }
     }
-    let monomial = |namer: &mut Namer, place: Place, t: &Term| {
-        for &(b, e) in &t.powers {
-            let k = radius_parameter[b].expect("every pulley's radius is named");
-            namer.also(k, Slot::Geometry(place, e as i8));
-        }
-    };
-    let mut exact_inverse = Vec::new();
-    if let Some(t) = &transmission {
-        for (b, coupling) in t.couplings.iter().enumerate().skip(dof) {
-            for (j, c) in coupling.iter().enumerate() {
-                if let Some(term) = c.single().filter(|t| !t.powers.is_empty()) {
-                    monomial(&mut namer, Place::Coupling(b, j), term);
+    let m = model.with_named_numbers(&namer.added, &namer.slots)?;
+    let lengths = namer.lengths;
+
+    // Traced with the lengths and radii as symbols; a square E's exact inverse by name.
+    let mut by_name = None;
+    let traced = outputs::trace_with(&m, outputs, |m, params| {
+        let symbols = outputs::array("lengths", lengths.len());
+        let mut given = Lengths {
+            a: vec![None; dof],
+            d: vec![None; dof],
+            radius: vec![None; m.bodies().len()],
+        };
+        let mut radii = Vec::new();
+        for (l, &x) in lengths.iter().zip(&symbols) {
+            match l.quantity {
+                Quantity::DhA(j) => given.a[j] = Some(x),
+                Quantity::DhD(j) => given.d[j] = Some(x),
+                Quantity::Radius(b) => {
+                    given.radius[b] = Some(x);
+                    radii.push((x.0, b));
                 }
             }
         }
-        if let Some(inverse) = &t.inverse {
-            // The exact E⁻¹ replaces the QR-computed one where it is a single term (rows of
-            // pretensions are not used: those enter exactly, `tension::solution`).
-            let radius = |b: usize| radius_of(model, b);
-            for (u, row) in inverse.iter().enumerate() {
-                for (r, entry) in row.iter().enumerate() {
-                    if matches!(model.system().rows[r], Row::Pretension(_)) {
-                        continue;
-                    }
-                    match (entry.is_zero(), entry.single()) {
-                        (true, _) => exact_inverse.push(((u, r), 0.0)),
-                        (false, Some(term)) => {
-                            exact_inverse.push(((u, r), term.eval(&radius)));
-                            monomial(&mut namer, Place::PseudoInverse(u, r), term);
-                        }
-                        (false, None) => {}
-                    }
-                }
-            }
-        }
-    }
-    let m = model.with_named_numbers(&namer.added, &namer.slots, &exact_inverse)?;
-    let traced = trace(&m, outputs)?;
-    let lengths = legend
-        .into_iter()
-        .map(|(k, quantity)| NamedLength {
-            name: m.parameters()[k].name.clone(),
-            value: m.parameters()[k].value,
-            quantity,
-        })
-        .collect();
+        let s = m.symbolic_geometry(|k| params[k], &given)?;
+        let ids = |row: &[Sym]| row.iter().map(|x| x.0).collect::<Vec<Id>>();
+        let names = ByName {
+            couplings: s.bodies().iter().map(|b| ids(&b.coupling)).collect(),
+            matrix: s.system().matrix.iter().map(|row| ids(row)).collect(),
+            radii,
+        };
+        let entries = Sym::inspect(|g| exact_inverse_entries(&names.matrix(g, m), m));
+        let radius = |b: usize| given.radius[b].expect("every pulley's radius is named");
+        let entries: Vec<((usize, usize), Sym)> = (entries.iter())
+            .map(|(at, term)| (*at, term_sym(term, &radius)))
+            .collect();
+        by_name = Some(names);
+        Ok::<_, crate::Error>(s.with_exact_inverse(&entries)?)
+    })?;
+    let transmission = by_name.expect("traced").transmission(&traced.graph, &m);
     let radius_names = (0..m.bodies().len())
-        .map(|b| radius_parameter[b].map(|k| m.parameters()[k].name.clone()))
+        .map(|b| {
+            let is = |l: &&NamedLength| l.quantity == Quantity::Radius(b);
+            lengths.iter().find(is).map(|l| l.name.clone())
+        })
         .collect();
     Ok(Named {
         model: m,
@@ -1057,6 +824,7 @@ fn render(named: &Named) -> String {
     let traced = &named.traced;
     PARAMETERS
         .with(|p| *p.borrow_mut() = model.parameters().iter().map(|p| p.name.clone()).collect());
+    LENGTHS.with(|l| *l.borrow_mut() = named.lengths.iter().map(|l| l.name.clone()).collect());
     let g = &traced.graph;
     let radius_name = |b: usize| {
         named.radius_names[b]
@@ -1085,18 +853,11 @@ fn render(named: &Named) -> String {
     if !pulleys.is_empty() {
         out.push_str("\nPulley angles relative to their carriers (Eqs. 9-10, 26, 31, 34):\n");
         for b in pulleys {
-            let coupling: Vec<Poly> = match &named.transmission {
-                Some(t) => t.couplings[b].clone(),
-                None => model.bodies()[b]
-                    .coupling
-                    .iter()
-                    .map(|&c| Poly::constant(c))
-                    .collect(),
-            };
+            let coupling = &named.transmission.couplings[b];
             out.push_str(&format!(
                 "  {:<10} {}\n",
                 model.bodies()[b].name,
-                linear_text(&coupling, &radius_name, &|j| format!("th{}", j + 1))
+                linear_text(coupling, &radius_name, &|j| format!("th{}", j + 1))
             ));
         }
     }
@@ -1107,10 +868,7 @@ fn render(named: &Named) -> String {
                 .tendons()
                 .iter()
                 .enumerate()
-                .map(|(k, t)| match &named.transmission {
-                    Some(tr) => tr.structure[k][j].text(&radius_name),
-                    None => number(t.structure[j]),
-                })
+                .map(|(k, _)| named.transmission.structure[k][j].text(&radius_name))
                 .collect();
             out.push_str(&format!(
                 "  {:<10} [{}]\n",

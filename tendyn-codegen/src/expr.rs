@@ -291,8 +291,9 @@ impl Graph {
         }
     }
 
-    /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `x / x = 1`, and a
-    /// division by a number as a multiplication by its reciprocal.
+    /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `x / x = 1`, a
+    /// division by a number as a multiplication by its reciprocal, and a negated dividend's
+    /// sign moved out.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => return self.constant(x / y),
@@ -307,6 +308,11 @@ impl Graph {
         }
         if a == b {
             return self.constant(1.0);
+        }
+        // (−x)/y = −(x/y) exactly: the sign joins the others outside.
+        if let Node::Neg(x) = self.node(a) {
+            let q = self.div(x, b);
+            return self.neg(q);
         }
         self.intern(Node::Div(a, b))
     }
@@ -665,6 +671,15 @@ impl Sym {
     pub fn input(name: impl Into<String>) -> Sym {
         let name = name.into();
         Sym(with(|g| g.input(name)))
+    }
+
+    /// `f` of the current graph, read only: what a symbol built so far is.
+    ///
+    /// # Panics
+    ///
+    /// Outside [`Graph::scope`].
+    pub fn inspect<R>(f: impl FnOnce(&Graph) -> R) -> R {
+        with(|g| f(g))
     }
 }
 

@@ -67,14 +67,6 @@ pub enum Error {
         /// The number, the scalar's limit and what to do about it.
         problem: String,
     },
-    /// The model has its lengths and radii named for printing
-    /// ([`Model::with_named_numbers`](tendyn_core::Model::with_named_numbers), as
-    /// `tendyn equations` does): generating from it would make them runtime parameters,
-    /// which the routing derived from them cannot follow. Generate from the file's model.
-    NamedGeometry {
-        /// The mechanism's name.
-        mechanism: String,
-    },
 }
 
 impl std::fmt::Display for Error {
@@ -96,11 +88,6 @@ impl std::fmt::Display for Error {
             ),
             Error::Build(problem) => write!(f, "{problem}"),
             Error::Constant { item, problem } => write!(f, "{item}: {problem}"),
-            Error::NamedGeometry { mechanism } => write!(
-                f,
-                "{mechanism}: its lengths and radii are named for printing; generate from the \
-                 file's model, whose geometry is fixed"
-            ),
             Error::CorePath { path } => write!(
                 f,
                 "`{path}` is not a Rust path to tendyn-core (write `tendyn_core` or `::tendyn::core`)"
@@ -203,17 +190,6 @@ pub fn generate_with(
     let core: syn::Path = syn::parse_str(&options.core_path).map_err(|_| Error::CorePath {
         path: options.core_path.clone(),
     })?;
-    // A model whose lengths are named for printing (`tendyn equations`) would make them
-    // runtime parameters of the generated code, and the routing derived from them stale.
-    if model
-        .parameter_slots()
-        .iter()
-        .any(|(slot, _)| matches!(slot, tendyn_core::model::Slot::Geometry(..)))
-    {
-        return Err(Error::NamedGeometry {
-            mechanism: model.name().to_string(),
-        });
-    }
     let traced = outputs::trace(model, outputs)?;
     check_constants(model, &traced, options.scalar)?;
     let functions = traced

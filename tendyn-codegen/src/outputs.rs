@@ -225,7 +225,7 @@ struct Inputs {
     tendon_tensions: Vec<Sym>,
 }
 
-fn array(name: &str, n: usize) -> Vec<Sym> {
+pub(crate) fn array(name: &str, n: usize) -> Vec<Sym> {
     (0..n).map(|i| Sym::input(format!("{name}[{i}]"))).collect()
 }
 
@@ -322,6 +322,18 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
 
 /// Traces the requested outputs of `model` (see [`check`] for which are available).
 pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailable> {
+    trace_with(model, outputs, |model, params| {
+        Ok(model.symbolic(|k| params[k]))
+    })
+}
+
+/// [`trace`] of the symbolic model `symbolic` makes of `model` and its parameters' symbols
+/// (`tendyn equations` makes lengths and radii symbols too), within the graph's scope.
+pub(crate) fn trace_with<E: From<Unavailable>>(
+    model: &Model<f64>,
+    outputs: &[Output],
+    symbolic: impl FnOnce(&Model<f64>, &[Sym]) -> Result<Model<Sym>, E>,
+) -> Result<Traced, E> {
     check(model, outputs)?;
     // Each output once, in the order asked for.
     let mut unique: Vec<Output> = Vec::new();
@@ -332,10 +344,10 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
     }
     let outputs = &unique[..];
     let n = model.dof();
-    let (mut graph, results) = Graph::default().scope(|| {
+    let (mut graph, results) = Graph::default().scope(|| -> Result<_, E> {
         // Runtime parameters stay symbols: inputs of every function.
         let params = array("params", model.parameters().len());
-        let m = model.symbolic(|k| params[k]);
+        let m = symbolic(model, &params)?;
         let inputs = Inputs {
             q: array("q", n),
             qd: array("qd", n),
@@ -352,9 +364,9 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
             .iter()
             .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws, &mut shared)))
             .collect::<Vec<_>>();
-        (results, shared.forward_parts)
+        Ok((results, shared.forward_parts))
     });
-    let (results, forward_parts) = results;
+    let (results, forward_parts) = results?;
     let mut functions = Vec::new();
     let traced: Vec<(Output, Shape, Vec<Id>)> = results
         .into_iter()

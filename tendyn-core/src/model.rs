@@ -394,13 +394,12 @@ pub struct Parameter {
 
 /// A number of the model that a parameter sets.
 ///
-/// Validation creates only the mass-property, gravity and wrench slots: the numbers a
-/// mechanism file may name as runtime parameters (`docs/format.md` §9a).
-/// [`Slot::Geometry`] is for `tendyn equations` alone ([`Model::with_named_numbers`]), which makes lengths and radii named
-/// symbols of a traced model so that they print by name. Geometry must never become a
-/// runtime parameter: validation derives the routing from it once, in `f64` (segment
-/// directions, couplings, `E`, its pseudo-inverse and null space), and a length or radius
-/// changed at run time would leave all of that stale.
+/// Validation creates the mass-property, gravity and wrench slots: the numbers a mechanism
+/// file may name as runtime parameters (`docs/format.md` §9a). Lengths and radii are never
+/// slots: validation derives the routing from them once, in `f64` (segment directions,
+/// couplings, `E`, its pseudo-inverse and null space), and a length or radius changed at run
+/// time would leave all of that stale. `tendyn equations` prints them by name by deriving
+/// the geometry again with them as symbols ([`Model::symbolic_geometry`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Slot {
     /// The mass of a body (body index).
@@ -417,31 +416,18 @@ pub enum Slot {
     WrenchForce(usize),
     /// Component `c` of the external wrench's moment.
     WrenchMoment(usize),
-    /// The number(s) at a [`Place`] are proportional to the parameter's quantity raised to
-    /// the given power (a DH length in a translation, a radius in a contact point, a ratio
-    /// of radii in a coupling). Setting the parameters rescales them by
-    /// `(value / nominal)^power`, all factors of one place at once with their constant part
-    /// folded into one number, so that on a symbolic scalar a factor that is one disappears
-    /// (`r2/r3`, not `33.3*r2*0.03/r3`). Never created by validation (see above).
-    Geometry(Place, i8),
 }
 
-/// Where the numbers of a [`Slot::Geometry`] sit in the model.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Place {
-    /// Component `(body, axis)` of the translation of a body's `pre` transform.
-    Pre(usize, usize),
-    /// Component `(body, axis)` of the translation of a body's `post` transform.
-    Post(usize, usize),
-    /// Component `(body, axis)` of a body's `joint_to_origin`.
-    JointToOrigin(usize, usize),
-    /// Entry `(body, joint)` of a body's coupling.
-    Coupling(usize, usize),
-    /// The contact point `rel` (all three components) of end `end` (0: `from`, 1: `to`) of
-    /// segment `segment` of strand `strand`: `(strand, segment, end)`.
-    Contact(usize, usize, usize),
-    /// Entry `(unknown, row)` of the tension system's pseudo-inverse.
-    PseudoInverse(usize, usize),
+/// Lengths and radii in another scalar: what [`Model::symbolic_geometry`] derives the
+/// geometry from. `None` keeps the file's number.
+#[derive(Clone, Debug)]
+pub struct Lengths<U> {
+    /// Per link, its DH length `a` (Eq. 1).
+    pub a: Vec<Option<U>>,
+    /// Per link, its DH offset `d` (Eq. 1).
+    pub d: Vec<Option<U>>,
+    /// Per body, a pulley's pitch radius (a link's entry is not read).
+    pub radius: Vec<Option<U>>,
 }
 
 /// A validated mechanism in scalar `T`.
@@ -486,6 +472,8 @@ pub struct Model<T> {
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
     pub(crate) routing_incomplete: bool,
+    /// What the routing was derived from ([`Model::symbolic_geometry`] derives it again).
+    pub(crate) derivation: crate::transmission::Derivation,
     /// What the recursions may skip for each body (derived at validation by
     /// [`patterns_of`]).
     pub(crate) patterns: Vec<BodyPattern>,
@@ -772,6 +760,7 @@ impl<T: Real> Model<T> {
                 moment: v(w.moment),
             }),
             routing_incomplete: self.routing_incomplete,
+            derivation: self.derivation.clone(),
             patterns: self.patterns.clone(),
             identity: new_identity(),
         }
@@ -781,20 +770,12 @@ impl<T: Real> Model<T> {
 impl<T: Real> Model<T> {
     /// Sets every number a parameter names to `values[parameter]`, unchecked: callers
     /// check (`with_parameters`) or pass symbols (`symbolic`); both give one value per
-    /// parameter. Geometry slots rescale their places (see [`Slot::Geometry`]).
+    /// parameter.
     fn set_parameters(&mut self, values: &[T]) {
         self.identity = new_identity();
-        // Factors `(parameter, power)` of each geometric place, in order of appearance.
-        let mut geometry: Vec<(Place, Vec<(usize, i8)>)> = Vec::new();
         for &(slot, k) in &self.parameter_slots {
             let v = values[k];
             match slot {
-                Slot::Geometry(place, power) => {
-                    match geometry.iter_mut().find(|(p, _)| *p == place) {
-                        Some((_, factors)) => factors.push((k, power)),
-                        None => geometry.push((place, vec![(k, power)])),
-                    }
-                }
                 Slot::Mass(b) => self.bodies[b].mass = v,
                 Slot::Com(b, c) => set3(&mut self.bodies[b].com, c, v),
                 Slot::Inertia(b, r, c) => {
@@ -820,64 +801,28 @@ impl<T: Real> Model<T> {
                 }
             }
         }
-        for (place, factors) in geometry {
-            // x ↦ (x · Π nominal^−power) · (Π value^power): the constant part folds into one
-            // number, which a symbolic scalar drops when it is ±1 (the sign then leads).
-            let nominal: f64 = factors
-                .iter()
-                .map(|&(k, p)| self.parameters[k].value.powi(-i32::from(p)))
-                .product();
-            let mut numerator: Option<T> = None;
-            for &(k, p) in factors.iter().filter(|(_, p)| *p > 0) {
-                for _ in 0..p {
-                    numerator = Some(numerator.map_or(values[k], |y| y * values[k]));
-                }
-            }
-            let divide = |mut y: T| {
-                for &(k, p) in factors.iter().filter(|(_, p)| *p < 0) {
-                    for _ in 0..-p {
-                        y = y / values[k];
-                    }
-                }
-                y
-            };
-            let quantity = numerator.map(divide);
-            self.map_place(place, |x| {
-                let constant = x * T::from_f64(nominal);
-                match quantity {
-                    Some(q) => constant * q,
-                    // Only divisors: `c / r` rather than `c · (1 / r)`.
-                    None => divide(constant),
-                }
-            });
-        }
     }
+}
 
-    /// Applies `f` to the number(s) at `place`.
-    fn map_place(&mut self, place: Place, f: impl Fn(T) -> T) {
-        let in3 = |v: &mut Vec3<T>, c: usize| set3(v, c, f(v.to_array()[c]));
-        match place {
-            Place::Pre(b, c) => in3(&mut self.bodies[b].pre.translation, c),
-            Place::Post(b, c) => in3(&mut self.bodies[b].post.translation, c),
-            Place::JointToOrigin(b, c) => in3(&mut self.bodies[b].joint_to_origin, c),
-            Place::Coupling(b, j) => {
-                let x = &mut self.bodies[b].coupling[j];
-                *x = f(*x);
-            }
-            Place::Contact(s, k, end) => {
-                let segment = &mut self.strands[s].segments[k];
-                let contact = if end == 0 {
-                    &mut segment.from
-                } else {
-                    &mut segment.to
-                };
-                contact.rel = Vec3::new(f(contact.rel.x), f(contact.rel.y), f(contact.rel.z));
-            }
-            Place::PseudoInverse(u, r) => {
-                let x = &mut self.system.pseudo_inverse[u][r];
-                *x = f(*x);
-            }
+impl<U: Symbolic> Model<U> {
+    /// The model with entries `(unknown, row)` of `E`'s pseudo-inverse replaced by `entries`:
+    /// for `tendyn equations`, which gives a square `E`'s exact inverse by name (paper Eqs.
+    /// 28-30) where the solver's is computed by QR. An entry out of range is an
+    /// [`Error::Invalid`](crate::Error::Invalid) naming it.
+    pub fn with_exact_inverse(mut self, entries: &[((usize, usize), U)]) -> crate::Result<Self> {
+        for &((u, r), value) in entries {
+            let entry = (self.system.pseudo_inverse.get_mut(u)).and_then(|row| row.get_mut(r));
+            let Some(x) = entry else {
+                return Err(crate::Error::Invalid {
+                    item: self.name.clone(),
+                    at: crate::error::Location::default(),
+                    problem: format!("pseudo-inverse entry ({u}, {r}) is out of range"),
+                });
+            };
+            *x = value;
         }
+        self.identity = new_identity();
+        Ok(self)
     }
 }
 
@@ -911,13 +856,6 @@ impl Model<f64> {
                 p.name
             )));
         }
-        if self.names_geometry() {
-            return Err(crate::Error::State(format!(
-                "`{}` has its lengths and radii named for printing (`with_named_numbers`): \
-                 set parameters on the file's model, whose geometry is fixed",
-                self.name
-            )));
-        }
         let mut m = self.clone();
         m.set_parameters(values);
         for b in &m.bodies {
@@ -937,21 +875,115 @@ impl Model<f64> {
         m
     }
 
+    /// The model in a symbolic scalar, as [`Model::symbolic`], with its geometry derived
+    /// again from `lengths`: the link frames (Eq. 1, 7), the placements of pulleys on their
+    /// own link's joint axis (Eq. 8), and the routing (contact points, couplings and `E`;
+    /// Eqs. 9-10, 17, 26, 31, 33-35) by the very functions validation derived them with
+    /// ([`crate::transmission::Routing::traced`]). What validation decides from numbers stays
+    /// a number: tangent directions, which frame a segment is fixed in, the pseudo-inverse,
+    /// null space and idler steps. For `tendyn equations`, which prints lengths and radii by
+    /// name; never for generated code, whose routing cannot follow other lengths.
+    pub fn symbolic_geometry<U: Symbolic>(
+        &self,
+        input: impl Fn(usize) -> U,
+        lengths: &Lengths<U>,
+    ) -> crate::Result<Model<U>> {
+        use crate::transmission::{tension_matrix, Columns, Rate, Routing};
+        use crate::validate::{axis_and_origin, dh_post, on_own_joint_axis};
+        let mut m = self.symbolic(input);
+        let given = |of: &[Option<U>], i: usize, x: f64| {
+            of.get(i)
+                .copied()
+                .flatten()
+                .unwrap_or_else(|| U::from_f64(x))
+        };
+        for (j, body) in self.bodies[..self.dof].iter().enumerate() {
+            let (a, d) = (body.post.translation.x, body.post.translation.z);
+            let post = dh_post(
+                given(&lengths.a, j, a),
+                given(&lengths.d, j, d),
+                &body.post.rotation,
+            );
+            let (axis, joint_to_origin) = axis_and_origin(&post);
+            let link = &mut m.bodies[j];
+            (link.post, link.axis, link.joint_to_origin) = (post, axis, joint_to_origin);
+        }
+        let derivation = &self.derivation;
+        for info in &derivation.pulleys {
+            if let Some((j, height)) = info.coaxial.filter(|&(j, _)| info.carrier == Some(j)) {
+                m.bodies[info.body].pre = on_own_joint_axis(&m.bodies[j].post, U::from_f64(height));
+            }
+        }
+
+        // The routing, traced again in the order validation traced it.
+        let routing = Routing {
+            bodies: &self.bodies,
+            pulleys: &derivation.pulleys,
+            dof: self.dof,
+        };
+        let radius = |p: usize| {
+            let info = &derivation.pulleys[p];
+            given(&lengths.radius, info.body, info.radius)
+        };
+        let mut couplings: Vec<Option<Rate<U>>> = (derivation.pulleys.iter().enumerate())
+            .map(|(p, info)| {
+                (!derivation.derives(p)).then(|| Rate {
+                    joints: m.bodies[info.body].coupling.clone(),
+                    pulleys: Vec::new(),
+                })
+            })
+            .collect();
+        let mut pull_rates = vec![None; self.strands.len()];
+        for (route, strand, start_is_coordinate) in &derivation.routes {
+            let start = couplings[route.wraps[0].0].clone();
+            let start =
+                start.expect("validation traced each route once its start's coupling was known");
+            let traced = routing.traced(route, &start, *start_is_coordinate, &radius)?;
+            let ends = match route.end {
+                crate::transmission::RouteEnd::Pulley(e, _) => Some(e),
+                crate::transmission::RouteEnd::Exit(_) => None,
+            };
+            let stops = route.wraps.iter().map(|&(p, _)| p).chain(ends);
+            for (p, rim) in stops.zip(&traced.rims).skip(1) {
+                if derivation.derives(p) {
+                    couplings[p] = Some(rim.clone());
+                }
+            }
+            m.strands[*strand].segments = traced.segments;
+            pull_rates[*strand] = Some(traced.pull_rate);
+        }
+        for (info, c) in derivation.pulleys.iter().zip(couplings) {
+            if let Some(c) = c {
+                m.bodies[info.body].coupling = c.joints;
+            }
+        }
+        let pull_rates: Vec<Rate<U>> = pull_rates
+            .into_iter()
+            .map(|r| r.expect("every strand is a traced route"))
+            .collect();
+        let columns = Columns {
+            pull_rates: &pull_rates,
+            pulleys: &derivation.pulleys,
+            bodies: &m.bodies,
+            tendons: &self.tendons,
+            loops: &self.loops,
+            motors: &self.motors,
+        };
+        m.system.matrix = tension_matrix(&self.system.rows, &self.system.unknowns, &columns);
+        Ok(m)
+    }
+
     /// The same mechanism with more of its numbers named, for `tendyn equations` (crate
-    /// `tendyn-codegen`), which prints every mass, length and radius by name: `named[i]`
-    /// `(name, value)` becomes parameter `i` after the file's, and each `(slot, i)` of
-    /// `slots` makes the number at `slot` one it sets; `exact_inverse` replaces entries
-    /// `(unknown, row)` of `E`'s pseudo-inverse by the exact values the routing's closed
-    /// form gives. Geometry slots ([`Slot::Geometry`]) are allowed here alone: the result is
-    /// for tracing by name, never for setting lengths at run time.
+    /// `tendyn-codegen`), which prints every mass by name: `named[i]` `(name, value)`
+    /// becomes parameter `i` after the file's, and each `(slot, i)` of `slots` makes the
+    /// number at `slot` one it sets.
     ///
-    /// A name that is taken, a value that is not finite, or a slot or entry out of range is
-    /// an [`Error::Invalid`](crate::Error::Invalid) naming it.
+    /// A name that is taken, a value that is not finite, or a slot out of range is an
+    /// [`Error::Invalid`](crate::Error::Invalid) naming it.
     pub fn with_named_numbers(
         &self,
         named: &[(String, f64)],
         slots: &[(Slot, usize)],
-        exact_inverse: &[((usize, usize), f64)],
     ) -> crate::Result<Model<f64>> {
         let invalid = |item: &str, problem: String| crate::Error::Invalid {
             item: item.to_string(),
@@ -985,51 +1017,11 @@ impl Model<f64> {
                     format!("{slot:?} is not a number of the model"),
                 ));
             }
-            if let Slot::Geometry(_, power) = slot {
-                // Rescaling divides by the nominal value (a DH length may be negative, never
-                // zero here); a place holds it to a small power.
-                let value = named[i].1;
-                if !(1..=MAX_POWER).contains(&power.unsigned_abs()) || value == 0.0 {
-                    return Err(invalid(
-                        name,
-                        format!(
-                            "{slot:?} needs a value other than 0 and a power of size 1 to \
-                             {MAX_POWER}, not {value} and {power}"
-                        ),
-                    ));
-                }
-            }
             m.parameter_slots.push((slot, self.parameters.len() + i));
-        }
-        for &((u, r), value) in exact_inverse {
-            let entry = m
-                .system
-                .pseudo_inverse
-                .get_mut(u)
-                .and_then(|row| row.get_mut(r));
-            match entry {
-                Some(x) if value.is_finite() => *x = value,
-                _ => {
-                    return Err(invalid(
-                        &self.name,
-                        format!(
-                        "pseudo-inverse entry ({u}, {r}) = {value} is out of range or not finite"
-                    ),
-                    ))
-                }
-            }
         }
         // A named mass makes its body no longer inert.
         m.patterns = patterns_of(&m.bodies, &m.parameter_slots);
         Ok(m)
-    }
-
-    /// Whether some parameter sets a length or radius ([`Slot::Geometry`]): a model named
-    /// for printing.
-    fn names_geometry(&self) -> bool {
-        self.parameter_slots
-            .iter()
-            .any(|(slot, _)| matches!(slot, Slot::Geometry(..)))
     }
 
     /// `Err` unless `given` is the number of parameters.
@@ -1054,20 +1046,6 @@ impl Model<f64> {
             Slot::WrenchPoint(c) | Slot::WrenchForce(c) | Slot::WrenchMoment(c) => {
                 self.external_wrench.is_some() && c < 3
             }
-            Slot::Geometry(place, _) => match place {
-                Place::Pre(b, c) | Place::Post(b, c) | Place::JointToOrigin(b, c) => {
-                    body(b) && c < 3
-                }
-                Place::Coupling(b, j) => body(b) && j < self.dof,
-                Place::Contact(s, k, end) => {
-                    self.strands.get(s).is_some_and(|s| k < s.segments.len()) && end < 2
-                }
-                Place::PseudoInverse(u, r) => self
-                    .system
-                    .pseudo_inverse
-                    .get(u)
-                    .is_some_and(|row| r < row.len()),
-            },
         }
     }
 
@@ -1096,10 +1074,6 @@ impl Model<f64> {
         m
     }
 }
-
-/// The largest power of a [`Slot::Geometry`] (a coupling or an entry of `E⁺` is a ratio of
-/// a few radii).
-const MAX_POWER: u8 = 8;
 
 /// Whether one of the strand's guides has capstan friction.
 fn has_capstan<T>(strand: &Strand<T>) -> bool {

@@ -108,6 +108,16 @@ impl<T: Real> Rate<T> {
             self.add_pulley(p, s * c);
         }
     }
+    /// `self += (s · o) / r`: one rounding per entry where `s` is a sign, and `±x/r` by
+    /// name where `r` is a symbol.
+    fn add_divided(&mut self, o: &Rate<T>, s: T, r: T) {
+        for (a, &b) in self.joints.iter_mut().zip(&o.joints) {
+            *a = *a + s * b / r;
+        }
+        for &(p, c) in &o.pulleys {
+            self.add_pulley(p, s * c / r);
+        }
+    }
     fn add_pulley(&mut self, p: usize, c: T) {
         match self.pulleys.iter_mut().find(|(q, _)| *q == p) {
             Some((_, v)) => *v = *v + c,
@@ -585,7 +595,7 @@ impl Routing<'_> {
             let incoming = segments[i - 1].frame;
             // The rim moves with the tendon (Eqs. 9-10): coupling of this pulley.
             let mut c = Rate::zero(n);
-            c.add_scaled(&pull, s / r);
+            c.add_divided(&pull, s, r);
             c.add_scaled(
                 &self.relative_rate(incoming, self.pulleys[p].carrier, p),
                 T::one(),
@@ -627,6 +637,29 @@ impl Routing<'_> {
             pull_rate: expanded,
             segment_rates,
         })
+    }
+}
+
+/// What validation derived the routing from, in the order it derived it: enough to trace it
+/// again in another scalar ([`crate::Model::symbolic_geometry`]).
+#[derive(Clone, Debug, Default)]
+pub struct Derivation {
+    /// Every pulley, in file order.
+    pub pulleys: Vec<PulleyInfo>,
+    /// Each route in the order traced, with the strand it became and whether its first
+    /// pulley's angle is a coordinate of the tension system (`start_is_coordinate`).
+    pub routes: Vec<(Route, usize, bool)>,
+}
+
+impl Derivation {
+    /// Whether pulley `p` turns as some route derives (an idler or a driving pulley); else
+    /// its coupling is given (a fixed drum or guide, an explicit coupling).
+    pub fn derives(&self, p: usize) -> bool {
+        !self.pulleys[p].fixed
+            && self.routes.iter().any(|(route, _, _)| {
+                route.wraps[1..].iter().any(|&(q, _)| q == p)
+                    || matches!(route.end, RouteEnd::Pulley(e, _) if e == p)
+            })
     }
 }
 

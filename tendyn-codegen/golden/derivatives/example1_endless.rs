@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t654 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t661 = T::from_f64(0.03) * s78;
-    let t670 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t654 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t661));
-    let t676 = qdd[0] * t654
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t661));
-    [t670, t676]
+    let t662 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
+    let t669 = T::from_f64(0.03) * s78;
+    let t678 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t662 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t669));
+    let t684 = qdd[0] * t662
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t669));
+    [t678, t684]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -45,26 +45,26 @@ pub fn generalized_forces_derivatives<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t576 = T::from_f64(0.03) * c79;
-    let t649 = c79 * T::from_f64(0.06);
-    let t654 = t576 + T::from_f64(0.016696700000000002);
-    let t657 = s78 * T::from_f64(0.06);
-    let t659 = qd[0] * t657;
-    let t661 = T::from_f64(0.03) * s78;
-    let t670 = qdd[0] * (t649 + T::from_f64(0.1247117))
-        + (qdd[1] * t654 - qd[1] * (t659 + qd[1] * t661));
-    let t676 = qdd[0] * t654
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t661));
-    let t694 = -(qdd[0] * t657
-        + (qdd[1] * t661 + qd[1] * (qd[0] * t649 + qd[1] * t576)));
-    let t699 = qd[0] * (qd[0] * t576) - qdd[0] * t661;
-    let t700 = qd[1] * t657;
-    let t701 = -t700;
-    let t703 = -(t659 + t700);
+    let t582 = T::from_f64(0.03) * c79;
+    let t657 = c79 * T::from_f64(0.06);
+    let t662 = t582 + T::from_f64(0.016696700000000002);
+    let t665 = s78 * T::from_f64(0.06);
+    let t667 = qd[0] * t665;
+    let t669 = T::from_f64(0.03) * s78;
+    let t678 = qdd[0] * (t657 + T::from_f64(0.1247117))
+        + (qdd[1] * t662 - qd[1] * (t667 + qd[1] * t669));
+    let t684 = qdd[0] * t662
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t669));
+    let t702 = -(qdd[0] * t665
+        + (qdd[1] * t669 + qd[1] * (qd[0] * t657 + qd[1] * t582)));
+    let t707 = qd[0] * (qd[0] * t582) - qdd[0] * t669;
+    let t708 = qd[1] * t665;
+    let t709 = -t708;
+    let t711 = -(t667 + t708);
     tendyn_core::dual::StateJacobians {
-        value: [t670, t676],
-        d_q: [[T::from_f64(0.0), t694], [T::from_f64(0.0), t699]],
-        d_qd: [[t701, t703], [t659, T::from_f64(0.0)]],
+        value: [t678, t684],
+        d_q: [[T::from_f64(0.0), t702], [T::from_f64(0.0), t707]],
+        d_qd: [[t709, t711], [t667, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -81,22 +81,22 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s78, c79) = q[1].sin_cos();
-    let t651 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t661 = T::from_f64(0.03) * s78;
-    let t704 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t661);
-    let t708 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t651;
-    let t820 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t661) - t704 * t708)
-        / (T::from_f64(0.0166867) - t651 * (t708 * t708));
-    let t822 = t704 / t651 - t708 * t820;
-    [t822, t820]
+    let t659 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t669 = T::from_f64(0.03) * s78;
+    let t712 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t669);
+    let t716 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t659;
+    let t829 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t669) - t712 * t716)
+        / (T::from_f64(0.0166867) - t659 * (t716 * t716));
+    let t831 = t712 / t659 - t716 * t829;
+    [t831, t829]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
 /// Entries: `value` and each Jacobian's rows: link1, link2; columns of `d_q`, `d_qd`: link1, link2; of `d_u`: motor motor1, motor motor3.
 ///
-/// Operations (closed form): 91 arithmetic (31 add/sub, 45 mul, 12 div, 3 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (closed form): 92 arithmetic (31 add/sub, 45 mul, 12 div, 4 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics_derivatives<T: Real>(
@@ -106,46 +106,49 @@ pub fn forward_dynamics_derivatives<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s78, c79) = q[1].sin_cos();
-    let t576 = T::from_f64(0.03) * c79;
-    let t649 = c79 * T::from_f64(0.06);
-    let t651 = t649 + T::from_f64(0.1247117);
-    let t657 = s78 * T::from_f64(0.06);
-    let t659 = qd[0] * t657;
-    let t661 = T::from_f64(0.03) * s78;
-    let t700 = qd[1] * t657;
-    let t705 = (motor_torques[0] + motor_torques[1] + qd[1] * (t659 + qd[1] * t661))
-        / t651;
-    let t708 = (t576 + T::from_f64(0.0166967)) / t651;
-    let t710 = T::from_f64(0.06) * t708;
-    let t712 = s78 * t710;
-    let t714 = qd[1] * t712;
-    let t720 = T::from_f64(0.03) * t708;
-    let t730 = T::from_f64(0.6666666666666667) - t708;
-    let t741 = T::from_f64(0.0166867) + t708 * (t708 * (T::from_f64(-0.1247117) - t649));
-    let t742 = (motor_torques[1] * t730 - motor_torques[0] * t708
-        - qd[1] * (qd[1] * (s78 * t720)) - qd[0] * (qd[0] * t661 + t714)) / t741;
-    let t746 = t705 - t708 * t742;
-    let t749 = T::from_f64(0.06) * t705;
-    let t778 = s78
-        * (t708 * (t742 * (T::from_f64(-0.06) + t710) - t749) + T::from_f64(0.03) * t705)
-        - qd[1] * (qd[1] * (c79 * t720)) - qd[0] * (qd[0] * t576 + qd[1] * (c79 * t710));
-    let t779 = t778 / t741;
-    let t783 = -(t659 + t714) / t741;
-    let t789 = -(t714 + qd[0] * t712) / t741;
-    let t790 = T::from_f64(1.0) / t651;
-    let t791 = -t708 / t741;
-    let t792 = t730 / t741;
-    let t796 = (qd[1] * (qd[0] * t649 + qd[1] * t576)
-        + s78 * (t742 * (T::from_f64(0.03) - t710) + t749)) / t651 - t708 * t779;
-    let t800 = t700 / t651 - t708 * t783;
-    let t804 = (t659 + t700) / t651 - t708 * t789;
-    let t808 = t790 - t708 * t791;
-    let t812 = t790 - t708 * t792;
+    let t582 = T::from_f64(0.03) * c79;
+    let t657 = c79 * T::from_f64(0.06);
+    let t659 = t657 + T::from_f64(0.1247117);
+    let t665 = s78 * T::from_f64(0.06);
+    let t667 = qd[0] * t665;
+    let t669 = T::from_f64(0.03) * s78;
+    let t708 = qd[1] * t665;
+    let t713 = (motor_torques[0] + motor_torques[1] + qd[1] * (t667 + qd[1] * t669))
+        / t659;
+    let t716 = (t582 + T::from_f64(0.0166967)) / t659;
+    let t718 = T::from_f64(0.06) * t716;
+    let t720 = s78 * t718;
+    let t722 = qd[1] * t720;
+    let t728 = T::from_f64(0.03) * t716;
+    let t738 = T::from_f64(0.6666666666666667) - t716;
+    let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
+    let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
+        - qd[1] * (qd[1] * (s78 * t728)) - qd[0] * (qd[0] * t669 + t722)) / t749;
+    let t754 = t713 - t716 * t750;
+    let t757 = T::from_f64(0.06) * t713;
+    let t786 = s78
+        * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
+        - qd[1] * (qd[1] * (c79 * t728)) - qd[0] * (qd[0] * t582 + qd[1] * (c79 * t718));
+    let t787 = t786 / t749;
+    let t792 = (t667 + t722) / t749;
+    let t793 = -t792;
+    let t800 = (t722 + qd[0] * t720) / t749;
+    let t801 = -t800;
+    let t802 = T::from_f64(1.0) / t659;
+    let t803 = t716 / t749;
+    let t804 = t738 / t749;
+    let t810 = -((s78 * (t750 * (T::from_f64(-0.03) + t718) - t757)
+        - qd[1] * (qd[0] * t657 + qd[1] * t582)) / t659 + t716 * t787);
+    let t812 = t708 / t659 + t716 * t792;
+    let t814 = (t667 + t708) / t659 + t716 * t800;
+    let t816 = t802 + t716 * t803;
+    let t820 = t802 - t716 * t804;
+    let t821 = -t803;
     tendyn_core::dual::ForwardJacobians {
-        value: [t746, t742],
-        d_q: [[T::from_f64(0.0), t796], [T::from_f64(0.0), t779]],
-        d_qd: [[t800, t804], [t783, t789]],
-        d_u: [[t808, t812], [t791, t792]],
+        value: [t754, t750],
+        d_q: [[T::from_f64(0.0), t810], [T::from_f64(0.0), t787]],
+        d_qd: [[t812, t814], [t793, t801]],
+        d_u: [[t816, t820], [t821, t804]],
     }
 }
 /// Every requested output of [`all`].
@@ -167,7 +170,7 @@ pub struct Outputs<T> {
         [[T; 2]; 2],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 121 arithmetic (43 add/sub, 59 mul, 13 div, 6 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 122 arithmetic (43 add/sub, 59 mul, 13 div, 7 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -178,70 +181,73 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s78, c79) = q[1].sin_cos();
-    let t576 = T::from_f64(0.03) * c79;
-    let t649 = c79 * T::from_f64(0.06);
-    let t651 = t649 + T::from_f64(0.1247117);
-    let t654 = t576 + T::from_f64(0.016696700000000002);
-    let t657 = s78 * T::from_f64(0.06);
-    let t659 = qd[0] * t657;
-    let t661 = T::from_f64(0.03) * s78;
-    let t667 = qd[1] * (t659 + qd[1] * t661);
-    let t670 = qdd[0] * t651 + (qdd[1] * t654 - t667);
-    let t673 = qd[0] * t661;
-    let t674 = qd[0] * t673;
-    let t676 = qdd[0] * t654 + (qdd[1] * T::from_f64(0.0166867) + t674);
-    let t689 = qd[1] * (qd[0] * t649 + qd[1] * t576);
-    let t694 = -(qdd[0] * t657 + (qdd[1] * t661 + t689));
-    let t697 = qd[0] * t576;
-    let t699 = qd[0] * t697 - qdd[0] * t661;
-    let t700 = qd[1] * t657;
-    let t701 = -t700;
-    let t702 = t659 + t700;
-    let t703 = -t702;
-    let t704 = motor_torques[0] + motor_torques[1] + t667;
-    let t705 = t704 / t651;
-    let t708 = (t576 + T::from_f64(0.0166967)) / t651;
-    let t710 = T::from_f64(0.06) * t708;
-    let t712 = s78 * t710;
-    let t714 = qd[1] * t712;
-    let t720 = T::from_f64(0.03) * t708;
-    let t730 = T::from_f64(0.6666666666666667) - t708;
-    let t741 = T::from_f64(0.0166867) + t708 * (t708 * (T::from_f64(-0.1247117) - t649));
-    let t742 = (motor_torques[1] * t730 - motor_torques[0] * t708
-        - qd[1] * (qd[1] * (s78 * t720)) - qd[0] * (t673 + t714)) / t741;
-    let t746 = t705 - t708 * t742;
-    let t749 = T::from_f64(0.06) * t705;
-    let t778 = s78
-        * (t708 * (t742 * (T::from_f64(-0.06) + t710) - t749) + T::from_f64(0.03) * t705)
-        - qd[1] * (qd[1] * (c79 * t720)) - qd[0] * (t697 + qd[1] * (c79 * t710));
-    let t779 = t778 / t741;
-    let t783 = -(t659 + t714) / t741;
-    let t789 = -(t714 + qd[0] * t712) / t741;
-    let t790 = T::from_f64(1.0) / t651;
-    let t791 = -t708 / t741;
-    let t792 = t730 / t741;
-    let t796 = (t689 + s78 * (t742 * (T::from_f64(0.03) - t710) + t749)) / t651
-        - t708 * t779;
-    let t800 = t700 / t651 - t708 * t783;
-    let t804 = t702 / t651 - t708 * t789;
-    let t808 = t790 - t708 * t791;
-    let t812 = t790 - t708 * t792;
-    let t820 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t674 - t704 * t708)
-        / (T::from_f64(0.0166867) - t651 * (t708 * t708));
-    let t822 = t705 - t708 * t820;
+    let t582 = T::from_f64(0.03) * c79;
+    let t657 = c79 * T::from_f64(0.06);
+    let t659 = t657 + T::from_f64(0.1247117);
+    let t662 = t582 + T::from_f64(0.016696700000000002);
+    let t665 = s78 * T::from_f64(0.06);
+    let t667 = qd[0] * t665;
+    let t669 = T::from_f64(0.03) * s78;
+    let t675 = qd[1] * (t667 + qd[1] * t669);
+    let t678 = qdd[0] * t659 + (qdd[1] * t662 - t675);
+    let t681 = qd[0] * t669;
+    let t682 = qd[0] * t681;
+    let t684 = qdd[0] * t662 + (qdd[1] * T::from_f64(0.0166867) + t682);
+    let t697 = qd[1] * (qd[0] * t657 + qd[1] * t582);
+    let t702 = -(qdd[0] * t665 + (qdd[1] * t669 + t697));
+    let t705 = qd[0] * t582;
+    let t707 = qd[0] * t705 - qdd[0] * t669;
+    let t708 = qd[1] * t665;
+    let t709 = -t708;
+    let t710 = t667 + t708;
+    let t711 = -t710;
+    let t712 = motor_torques[0] + motor_torques[1] + t675;
+    let t713 = t712 / t659;
+    let t716 = (t582 + T::from_f64(0.0166967)) / t659;
+    let t718 = T::from_f64(0.06) * t716;
+    let t720 = s78 * t718;
+    let t722 = qd[1] * t720;
+    let t728 = T::from_f64(0.03) * t716;
+    let t738 = T::from_f64(0.6666666666666667) - t716;
+    let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
+    let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
+        - qd[1] * (qd[1] * (s78 * t728)) - qd[0] * (t681 + t722)) / t749;
+    let t754 = t713 - t716 * t750;
+    let t757 = T::from_f64(0.06) * t713;
+    let t786 = s78
+        * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
+        - qd[1] * (qd[1] * (c79 * t728)) - qd[0] * (t705 + qd[1] * (c79 * t718));
+    let t787 = t786 / t749;
+    let t792 = (t667 + t722) / t749;
+    let t793 = -t792;
+    let t800 = (t722 + qd[0] * t720) / t749;
+    let t801 = -t800;
+    let t802 = T::from_f64(1.0) / t659;
+    let t803 = t716 / t749;
+    let t804 = t738 / t749;
+    let t810 = -((s78 * (t750 * (T::from_f64(-0.03) + t718) - t757) - t697) / t659
+        + t716 * t787);
+    let t812 = t708 / t659 + t716 * t792;
+    let t814 = t710 / t659 + t716 * t800;
+    let t816 = t802 + t716 * t803;
+    let t820 = t802 - t716 * t804;
+    let t821 = -t803;
+    let t829 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t682 - t712 * t716)
+        / (T::from_f64(0.0166867) - t659 * (t716 * t716));
+    let t831 = t713 - t716 * t829;
     Outputs {
-        generalized_forces: [t670, t676],
+        generalized_forces: [t678, t684],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t670, t676],
-            d_q: [[T::from_f64(0.0), t694], [T::from_f64(0.0), t699]],
-            d_qd: [[t701, t703], [t659, T::from_f64(0.0)]],
+            value: [t678, t684],
+            d_q: [[T::from_f64(0.0), t702], [T::from_f64(0.0), t707]],
+            d_qd: [[t709, t711], [t667, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t822, t820],
+        forward_dynamics: [t831, t829],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t746, t742],
-            d_q: [[T::from_f64(0.0), t796], [T::from_f64(0.0), t779]],
-            d_qd: [[t800, t804], [t783, t789]],
-            d_u: [[t808, t812], [t791, t792]],
+            value: [t754, t750],
+            d_q: [[T::from_f64(0.0), t810], [T::from_f64(0.0), t787]],
+            d_qd: [[t812, t814], [t793, t801]],
+            d_u: [[t816, t820], [t821, t804]],
         },
     }
 }

@@ -6,8 +6,9 @@ use super::locate::candidates;
 use super::ranges::{shown, Range, MAX_MU, MIN_RADIUS};
 use super::Validator;
 use crate::error::Result;
-use crate::format::{Dh, InertiaSpec, LinkSpec, MechanismFile, Num, Placement, PulleySpec};
+use crate::format::{InertiaSpec, LinkSpec, MechanismFile, Num, Placement, PulleySpec};
 use crate::model::{Body, BodyKind, PulleyRole};
+use crate::real::Real;
 use crate::spatial::{Mat3, Transform, Vec3};
 use crate::transmission::{joint_parent, PulleyInfo};
 use nalgebra::Matrix3;
@@ -51,12 +52,35 @@ fn snapped_rot(axis: usize, angle: f64) -> Mat3<f64> {
     }
 }
 
-/// `TransZ(d) · TransX(a) · RotX(alpha)` of a DH link.
-pub fn dh_post(dh: &Dh) -> Transform<f64> {
+/// `TransZ(d) · TransX(a) · RotX(α)` of a DH link (Eq. 1), `twist` being `RotX(α)`. Generic
+/// in the lengths, so that `tendyn equations` builds the link frames with `a` and `d` as
+/// symbols ([`crate::Model::symbolic_geometry`]).
+pub fn dh_post<T: Real>(a: T, d: T, twist: &Mat3<f64>) -> Transform<T> {
     Transform {
-        rotation: snapped_rot(0, dh.alpha),
-        translation: Vec3::new(dh.a, 0.0, dh.d),
+        rotation: twist.map(T::from_f64),
+        translation: Vec3::new(a, T::zero(), d),
     }
+}
+
+/// A link's joint axis and the vector `P` from its joint point to its frame's origin (Eq. 7),
+/// both in the link frame, from its `post` transform: `postᵀ z` and `postᵀ (a, 0, d) = (a,
+/// d sin α, d cos α)`.
+pub fn axis_and_origin<T: Real>(post: &Transform<T>) -> (Vec3<T>, Vec3<T>) {
+    let z = Vec3::new(T::zero(), T::zero(), T::one());
+    (
+        post.rotation.tr_mul_vec(z),
+        post.rotation.tr_mul_vec(post.translation),
+    )
+}
+
+/// The housing frame of a pulley on the axis of joint `j` at `height`, carried by link `j`
+/// itself: `post_j⁻¹ · TransZ(height)` (Eq. 8), whose origin is `−a_j` along x.
+pub fn on_own_joint_axis<T: Real>(link_post: &Transform<T>, height: T) -> Transform<T> {
+    let lift = Transform {
+        rotation: Mat3::identity(),
+        translation: Vec3::new(T::zero(), T::zero(), height),
+    };
+    link_post.inverse().compose(&lift)
 }
 
 struct InertiaValues {
@@ -182,7 +206,8 @@ impl Validator<'_> {
         let mp = self.mass_of(&l.mass, &l.com, &l.inertia);
         self.mass_properties(&l.name, &mp)?;
         let friction = self.friction(&l.name, l.friction.as_ref())?;
-        let post = dh_post(d);
+        let post = dh_post(d.a, d.d, &snapped_rot(0, d.alpha));
+        let (axis, joint_to_origin) = axis_and_origin(&post);
         let mut coupling = vec![0.0; n];
         coupling[j] = 1.0;
         Ok(Body {
@@ -197,8 +222,8 @@ impl Validator<'_> {
             mass: mp.mass,
             com: Vec3::from_array(mp.com),
             inertia: inertia_matrix(mp.inertia),
-            axis: post.rotation.tr_mul_vec(Vec3::unit_z()),
-            joint_to_origin: post.rotation.tr_mul_vec(post.translation),
+            axis,
+            joint_to_origin,
             friction,
         })
     }
@@ -301,14 +326,13 @@ impl Validator<'_> {
                             ),
                         )
                     })?;
-                let lift = Transform {
-                    rotation: Mat3::identity(),
-                    translation: Vec3::new(0.0, 0.0, *height),
-                };
                 let pre = if carrier == joint_parent(j) {
-                    lift
+                    Transform {
+                        rotation: Mat3::identity(),
+                        translation: Vec3::new(0.0, 0.0, *height),
+                    }
                 } else if carrier == Some(j) {
-                    links[j].post.inverse().compose(&lift)
+                    on_own_joint_axis(&links[j].post, *height)
                 } else {
                     let proximal = j
                         .checked_sub(1)

@@ -15,7 +15,7 @@ mod rigid_tree;
 mod routing;
 mod tension_system;
 
-pub use bodies::dh_post;
+pub use bodies::{axis_and_origin, dh_post, on_own_joint_axis};
 pub use ranges::{
     MAX_ACCELERATION, MAX_ANGLE, MAX_FORCE, MAX_FRICTION_TORQUE, MAX_INERTIA, MAX_LENGTH,
     MAX_LINKS, MAX_MASS, MAX_MOMENT, MAX_RATIO, MAX_SMOOTHING, MAX_VISCOUS, MIN_RADIUS,
@@ -27,7 +27,7 @@ use crate::error::{Error, Location, Result};
 use crate::format::{FrictionSpec, MechanismFile};
 use crate::model::{BearingFriction, BodyKind, Model, Parameter, PulleyRole, Strand, Wrench};
 use crate::spatial::{Mat3, Vec3};
-use crate::transmission::column_of;
+use crate::transmission::{column_of, Derivation};
 use bodies::MassProperties;
 use locate::{candidates, syntax_error, NameIndex};
 use parameters::parameter_slots;
@@ -205,6 +205,7 @@ impl<'a> Validator<'a> {
         );
         let motors = self.motors(f, &bodies, &pulleys, &mut strands.unknowns)?;
         let external_wrench = self.external_wrench(f)?;
+        let strands_of_route = strands.of_route.clone();
         let actuators = Actuators {
             strands: strands.list,
             tendons,
@@ -239,6 +240,17 @@ impl<'a> Validator<'a> {
                 unknown: i,
             })
             .collect();
+        let derivation = Derivation {
+            routes: (couplings.order.iter())
+                .map(|&i| {
+                    let route = &routes[i].0;
+                    let start = route.wraps[0].0;
+                    let strand = strands_of_route[i];
+                    (route.clone(), strand, couplings.routed_end[start])
+                })
+                .collect(),
+            pulleys,
+        };
         let parameter_slots = parameter_slots(f);
         let patterns = crate::model::patterns_of(&bodies, &parameter_slots);
         Ok(Model {
@@ -264,6 +276,7 @@ impl<'a> Validator<'a> {
             system,
             external_wrench,
             routing_incomplete,
+            derivation,
             patterns,
             identity: crate::model::new_identity(),
         })

@@ -29,6 +29,8 @@ pub(super) struct Couplings {
     pub(super) routed_through: Vec<usize>,
     /// Each route's geometry, taken by the strand it becomes.
     pub(super) geometry: Vec<Option<StrandGeometry>>,
+    /// The routes in the order they were traced (a route once its start's coupling is known).
+    pub(super) order: Vec<usize>,
 }
 
 /// The strands with the unknowns of the tension system, which the tendons and motors
@@ -268,6 +270,7 @@ impl Validator<'_> {
             }
         }
         let mut geometry: Vec<Option<StrandGeometry>> = vec![None; routes.len()];
+        let mut order = Vec::new();
         loop {
             let mut progressed = false;
             for (i, (route, _)) in routes.iter().enumerate() {
@@ -276,6 +279,7 @@ impl Validator<'_> {
                     continue;
                 }
                 geometry[i] = Some(routing.trace(route, &mut couplings, routed_end[start])?);
+                order.push(i);
                 progressed = true;
             }
             if !progressed {
@@ -363,6 +367,7 @@ impl Validator<'_> {
             routed_end,
             routed_through,
             geometry,
+            order,
         })
     }
 
