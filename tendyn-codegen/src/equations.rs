@@ -34,14 +34,15 @@
 //! angles depend on centre distances and radii together), exit points, pulley heights along
 //! joint axes and `Pose` placements, twist and angle offsets (`sin`/`cos` of them); the
 //! pseudo-inverse and null space of a non-square `E` (redundant open-ended routings,
-//! Examples 2 and 3) and the positive null vector; the idler step `turn / r` of Eq. 24b
+//! Examples 2 and 3) and the positive null vector; a guide's sliding rate and wrap angle;
+//! the idler step `turn / r` of Eq. 24b
 //! (kept by `tension::segment_tensions` as a number of the model's `IdlerStep`), and, in
 //! `forward_dynamics`, the structure matrix and motor columns (numbers of the model's
 //! `Tendon` and `Motor`).
 
 use crate::expr::{Graph, Id, Node, Sym};
 use crate::outputs::{self, result_labels, Output, Traced};
-use tendyn_core::model::{BodyKind, Lengths, Model, Row, Slot};
+use tendyn_core::model::{BodyKind, Dimensions, Model, Row, Slot};
 use tendyn_core::Real;
 
 thread_local! {
@@ -161,7 +162,7 @@ fn trig(g: &Graph, f: &str, a: Id, names: &dyn Fn(Id) -> Option<String>) -> Stri
 }
 
 // ---------------------------------------------------------------------------------------
-// Polynomials in the pulley radii: the transmission re-derived by name.
+// Polynomials in the pulley radii: the transmission read back from the graph by name.
 // ---------------------------------------------------------------------------------------
 
 /// `coef · Π r_b^e`: radius powers by pulley body, sorted by body, no zero powers.
@@ -765,7 +766,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     let mut by_name = None;
     let traced = outputs::trace_with(&m, outputs, |m, params| {
         let symbols = outputs::array("lengths", lengths.len());
-        let mut given = Lengths {
+        let mut given = Dimensions {
             a: vec![None; dof],
             d: vec![None; dof],
             radius: vec![None; m.bodies().len()],

@@ -530,3 +530,40 @@ fn no_dh_length_of_the_examples_is_left_as_a_number() {
         }
     }
 }
+
+/// A mechanism file of the repository, by its path from this crate.
+fn file(path: &str) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+#[test]
+fn guides_with_friction_bearing_friction_and_many_idlers_print_what_the_solver_computes() {
+    // Capstan friction makes `E` depend on the state through each segment's share of its
+    // strand's column, traced by name too; finger4 has fourteen drums and idlers, some on
+    // their own link's joint axis.
+    for path in [
+        "../examples/mechanisms/example2_capstan.ron",
+        "../examples/mechanisms/example2_friction.ron",
+        "../bench/mechanisms/finger4.ron",
+    ] {
+        let text = file(path);
+        let m = parse(&text);
+        let outputs = tendyn_codegen::available_outputs(&m);
+        let worst = worst_errors(&text, &outputs, &m, &HashMap::new(), 50, 3);
+        assert_agree(path, &worst);
+    }
+}
+
+#[test]
+fn a_tendon_along_an_axis_leaves_no_rounding_leftover_in_the_equations() {
+    // finger4's tendons run along the links' x axes between idlers: the tangent's angle is
+    // the f64 nearest π, whose sine (1.2e-16) printed as `r2_2*1.224647e-16` terms until the
+    // direction was taken exactly.
+    let m = parse(&file("../bench/mechanisms/finger4.ron"));
+    let printed = equations(&m, &[Output::GeneralizedForces, Output::Actuation]).unwrap();
+    let tiny: Vec<String> = numbers(&printed)
+        .into_iter()
+        .filter(|x| x.parse::<f64>().is_ok_and(|v| v != 0.0 && v.abs() < 1e-12))
+        .collect();
+    assert!(tiny.is_empty(), "{tiny:?} in\n{printed}");
+}

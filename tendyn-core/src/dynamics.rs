@@ -336,7 +336,7 @@ pub fn idlers_behind_capstan<T: Real>(
                 if behind {
                     let step = T::from_f64(idler.turn / idler.radius);
                     for (w, share) in weight.iter_mut().zip(&strand.shares[k]) {
-                        *w = *w + step * (ratio - T::one()) * T::from_f64(*share);
+                        *w = *w + step * (ratio - T::one()) * *share;
                     }
                 }
             }

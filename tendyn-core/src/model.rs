@@ -223,7 +223,7 @@ pub struct Strand<T> {
     /// [`crate::transmission::StrandGeometry::segment_rates`]), the shares summing to the
     /// column on the joint and driving-pulley rows. Where guides with friction make the tension differ from segment to
     /// segment, the state's column is `Σ_k (T_k / T) shares[k]` ([`crate::tension::state_matrix`]).
-    pub shares: Vec<Vec<f64>>,
+    pub shares: Vec<Vec<T>>,
 }
 
 /// An open-ended tendon.
@@ -421,7 +421,7 @@ pub enum Slot {
 /// Lengths and radii in another scalar: what [`Model::symbolic_geometry`] derives the
 /// geometry from. `None` keeps the file's number.
 #[derive(Clone, Debug)]
-pub struct Lengths<U> {
+pub struct Dimensions<U> {
     /// Per link, its DH length `a` (Eq. 1).
     pub a: Vec<Option<U>>,
     /// Per link, its DH offset `d` (Eq. 1).
@@ -472,8 +472,8 @@ pub struct Model<T> {
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
     pub(crate) routing_incomplete: bool,
-    /// What the routing was derived from ([`Model::symbolic_geometry`] derives it again).
-    pub(crate) derivation: crate::transmission::Derivation,
+    /// What the routing was traced from ([`Model::symbolic_geometry`] traces it again).
+    pub(crate) trace_record: crate::transmission::TraceRecord,
     /// What the recursions may skip for each body (derived at validation by
     /// [`patterns_of`]).
     pub(crate) patterns: Vec<BodyPattern>,
@@ -494,7 +494,8 @@ pub(crate) fn new_identity() -> usize {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BodyPattern {
     /// The joints its angle moves with: the nonzero entries of its coupling, increasing
-    /// (parameters rescale nonzero ratios and never make one zero).
+    /// (no parameter sets a coupling; those of `Model::symbolic_geometry` are the same
+    /// ratios by name).
     pub joints: Vec<usize>,
     /// A pulley without mass or inertia that carries nothing (and whose mass no parameter
     /// sets): the tension-free recursion (`Q`, `M`, `h`, `g`) neither moves nor loads it.
@@ -727,7 +728,7 @@ impl<T: Real> Model<T> {
                         })
                         .collect(),
                     idlers: s.idlers.clone(),
-                    shares: s.shares.clone(),
+                    shares: map2(&s.shares, f),
                     unknown: s.unknown,
                 })
                 .collect(),
@@ -760,7 +761,7 @@ impl<T: Real> Model<T> {
                 moment: v(w.moment),
             }),
             routing_incomplete: self.routing_incomplete,
-            derivation: self.derivation.clone(),
+            trace_record: self.trace_record.clone(),
             patterns: self.patterns.clone(),
             identity: new_identity(),
         }
@@ -876,19 +877,20 @@ impl Model<f64> {
     }
 
     /// The model in a symbolic scalar, as [`Model::symbolic`], with its geometry derived
-    /// again from `lengths`: the link frames (Eq. 1, 7), the placements of pulleys on their
+    /// again from `dimensions`: the link frames (Eq. 1, 7), the placements of pulleys on their
     /// own link's joint axis (Eq. 8), and the routing (contact points, couplings and `E`;
     /// Eqs. 9-10, 17, 26, 31, 33-35) by the very functions validation derived them with
-    /// ([`crate::transmission::Routing::traced`]). What validation decides from numbers stays
+    /// (`transmission::Routing::geometry_and_rates`). What validation decides from numbers stays
     /// a number: tangent directions, which frame a segment is fixed in, the pseudo-inverse,
-    /// null space and idler steps. For `tendyn equations`, which prints lengths and radii by
+    /// null space, idler steps, and guides' sliding rates and wrap angles. For `tendyn equations`, which prints lengths and radii by
     /// name; never for generated code, whose routing cannot follow other lengths.
     pub fn symbolic_geometry<U: Symbolic>(
         &self,
         input: impl Fn(usize) -> U,
-        lengths: &Lengths<U>,
+        dimensions: &Dimensions<U>,
     ) -> crate::Result<Model<U>> {
-        use crate::transmission::{tension_matrix, Columns, Rate, Routing};
+        use crate::transmission::{column_of, derived_couplings, tension_matrix, Columns};
+        use crate::transmission::{Rate, Routing};
         use crate::validate::{axis_and_origin, dh_post, on_own_joint_axis};
         let mut m = self.symbolic(input);
         let given = |of: &[Option<U>], i: usize, x: f64| {
@@ -898,19 +900,21 @@ impl Model<f64> {
                 .unwrap_or_else(|| U::from_f64(x))
         };
         for (j, body) in self.bodies[..self.dof].iter().enumerate() {
-            let (a, d) = (body.post.translation.x, body.post.translation.z);
-            let post = dh_post(
-                given(&lengths.a, j, a),
-                given(&lengths.d, j, d),
+            let t = body.post.translation;
+            let mut post = dh_post(
+                given(&dimensions.a, j, t.x),
+                given(&dimensions.d, j, t.z),
                 &body.post.rotation,
             );
+            // Zero for a DH link; a body of `Model::rigid_tree` may have one.
+            post.translation.y = U::from_f64(t.y);
             let (axis, joint_to_origin) = axis_and_origin(&post);
             let link = &mut m.bodies[j];
             (link.post, link.axis, link.joint_to_origin) = (post, axis, joint_to_origin);
         }
-        let derivation = &self.derivation;
-        for info in &derivation.pulleys {
-            if let Some((j, height)) = info.coaxial.filter(|&(j, _)| info.carrier == Some(j)) {
+        let record = &self.trace_record;
+        for info in &record.pulleys {
+            if let Some((j, height)) = info.on_own_joint_axis() {
                 m.bodies[info.body].pre = on_own_joint_axis(&m.bodies[j].post, U::from_f64(height));
             }
         }
@@ -918,41 +922,40 @@ impl Model<f64> {
         // The routing, traced again in the order validation traced it.
         let routing = Routing {
             bodies: &self.bodies,
-            pulleys: &derivation.pulleys,
+            pulleys: &record.pulleys,
             dof: self.dof,
         };
         let radius = |p: usize| {
-            let info = &derivation.pulleys[p];
-            given(&lengths.radius, info.body, info.radius)
+            let info = &record.pulleys[p];
+            given(&dimensions.radius, info.body, info.radius)
         };
-        let mut couplings: Vec<Option<Rate<U>>> = (derivation.pulleys.iter().enumerate())
+        let mut couplings: Vec<Option<Rate<U>>> = (record.pulleys.iter().enumerate())
             .map(|(p, info)| {
-                (!derivation.derives(p)).then(|| Rate {
+                (!record.derives(p)).then(|| Rate {
                     joints: m.bodies[info.body].coupling.clone(),
                     pulleys: Vec::new(),
                 })
             })
             .collect();
         let mut pull_rates = vec![None; self.strands.len()];
-        for (route, strand, start_is_coordinate) in &derivation.routes {
-            let start = couplings[route.wraps[0].0].clone();
-            let start =
-                start.expect("validation traced each route once its start's coupling was known");
-            let traced = routing.traced(route, &start, *start_is_coordinate, &radius)?;
-            let ends = match route.end {
-                crate::transmission::RouteEnd::Pulley(e, _) => Some(e),
-                crate::transmission::RouteEnd::Exit(_) => None,
-            };
-            let stops = route.wraps.iter().map(|&(p, _)| p).chain(ends);
-            for (p, rim) in stops.zip(&traced.rims).skip(1) {
-                if derivation.derives(p) {
-                    couplings[p] = Some(rim.clone());
-                }
+        for traced in &record.routes {
+            let route = &traced.route;
+            let start = couplings[route.wraps[0].0]
+                .clone()
+                .expect("validation traced each route once the coupling of its start was known");
+            let g =
+                routing.geometry_and_rates(route, &start, traced.start_is_coordinate, &radius)?;
+            for (p, rim) in derived_couplings(&record.pulleys, route, &g.rims) {
+                couplings[p] = Some(rim.clone());
             }
-            m.strands[*strand].segments = traced.segments;
-            pull_rates[*strand] = Some(traced.pull_rate);
+            let strand = &mut m.strands[traced.strand];
+            strand.segments = g.segments;
+            strand.shares = (g.segment_rates.iter())
+                .map(|rate| column_of(&self.system.rows, rate, &record.pulleys))
+                .collect();
+            pull_rates[traced.strand] = Some(g.pull_rate);
         }
-        for (info, c) in derivation.pulleys.iter().zip(couplings) {
+        for (info, c) in record.pulleys.iter().zip(couplings) {
             if let Some(c) = c {
                 m.bodies[info.body].coupling = c.joints;
             }
@@ -963,7 +966,7 @@ impl Model<f64> {
             .collect();
         let columns = Columns {
             pull_rates: &pull_rates,
-            pulleys: &derivation.pulleys,
+            pulleys: &record.pulleys,
             bodies: &m.bodies,
             tendons: &self.tendons,
             loops: &self.loops,

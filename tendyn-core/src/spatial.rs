@@ -213,6 +213,24 @@ impl<T: Real> Transform<T> {
     }
 }
 
+/// `sin` and `cos` of `angle`, exactly `0` and `±1` where it is within `within` of a
+/// multiple of π/2: an angle that is one in exact arithmetic (a twist written as a decimal,
+/// a tangent along an axis) then gives no `cos(π/2) ≈ 6e-17` leftovers, which generated code
+/// and printed equations would carry as terms.
+pub fn sin_cos_snapped(angle: f64, within: f64) -> (f64, f64) {
+    let quarter = (angle / core::f64::consts::FRAC_PI_2).round();
+    if (angle - quarter * core::f64::consts::FRAC_PI_2).abs() <= within {
+        match (quarter as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        angle.sin_cos()
+    }
+}
+
 /// Rotation matrix of `RotX(angle)` for a number known at validation time.
 pub fn rot_x(angle: f64) -> Mat3<f64> {
     let (s, c) = angle.sin_cos();

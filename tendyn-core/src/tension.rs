@@ -236,16 +236,16 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
         }
         let mut column = vec![T::zero(); matrix.len()];
         let mut ratio = T::one();
-        let mut pending = vec![0.0; matrix.len()];
+        let mut pending = vec![T::zero(); matrix.len()];
         // From the ground end towards the anchor, as the tensions are (Eq. 24b).
         for k in (0..strand.shares.len()).rev() {
-            for (p, x) in pending.iter_mut().zip(&strand.shares[k]) {
-                *p += x;
+            for (p, &x) in pending.iter_mut().zip(&strand.shares[k]) {
+                *p = *p + x;
             }
             if k == 0 || with_friction(k - 1) {
                 for (c, p) in column.iter_mut().zip(&mut pending) {
-                    *c = *c + ratio * T::from_f64(*p);
-                    *p = 0.0;
+                    *c = *c + ratio * *p;
+                    *p = T::zero();
                 }
                 if k > 0 {
                     ratio = ratio * factors[k - 1];

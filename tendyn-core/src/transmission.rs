@@ -21,7 +21,7 @@
 //! loop's length staying constant.
 //!
 //! Validation computes all of this once, in `f64`. The rates and contact points are also
-//! generic over the scalar ([`Routing::traced`]): `tendyn equations` traces them again with
+//! generic over the scalar ([`Routing::geometry_and_rates`]): `tendyn equations` traces them again with
 //! the pitch radii as symbols ([`crate::Model::symbolic_geometry`]), so that what it prints
 //! is this derivation, not a copy of it. Decisions (the frame a segment is fixed in, its
 //! tangent direction, which frames turn relative to which) are taken in `f64` both times.
@@ -31,7 +31,7 @@ use crate::format::Turn;
 use crate::model::{Body, Contact, Guide, IdlerStep, Loop, Motor, MotorKind, Row, Segment, Tendon};
 use crate::model::{Unknown, Via};
 use crate::real::Real;
-use crate::spatial::{Mat3, Transform, Vec3};
+use crate::spatial::{sin_cos_snapped, Mat3, Transform, Vec3};
 
 /// A frame a segment can be fixed in: `None` is the base, `Some(i)` link body `i`.
 pub type Frame = Option<usize>;
@@ -55,6 +55,14 @@ pub struct PulleyInfo {
     pub fixed: bool,
     /// The capstan coefficient of a fixed pulley a tendon slides over (0 without).
     pub mu: f64,
+}
+
+impl PulleyInfo {
+    /// Joint and height of a pulley on the axis of the joint that moves its own carrier
+    /// (placed by `post⁻¹ · TransZ(height)`, `validate::on_own_joint_axis`).
+    pub fn on_own_joint_axis(&self) -> Option<(usize, f64)> {
+        self.coaxial.filter(|&(j, _)| self.carrier == Some(j))
+    }
 }
 
 /// A route as validation resolved it: pulley indices (into the `PulleyInfo` list) with
@@ -124,13 +132,6 @@ impl<T: Real> Rate<T> {
             None => self.pulleys.push((p, c)),
         }
     }
-    /// The rate in another scalar.
-    pub fn cast<U: Real>(&self, f: impl Fn(T) -> U) -> Rate<U> {
-        Rate {
-            joints: self.joints.iter().map(|&x| f(x)).collect(),
-            pulleys: self.pulleys.iter().map(|&(p, x)| (p, f(x))).collect(),
-        }
-    }
 }
 
 /// One strand with its geometry and the rates the tension system needs.
@@ -169,12 +170,12 @@ pub fn joint_parent(j: usize) -> Frame {
 }
 
 /// What [`Routing::trace`] derives a route's geometry and rates from: the bodies and
-/// pulleys as validation built them.
+/// pulleys as validation built them (it reads their placements, not their couplings).
 pub struct Routing<'a> {
-    /// Every body of the model, couplings not yet derived.
-    pub bodies: &'a [Body<f64>],
+    /// Every body of the model (only their placements are read).
+    pub(crate) bodies: &'a [Body<f64>],
     /// Every pulley, in file order.
-    pub pulleys: &'a [PulleyInfo],
+    pub(crate) pulleys: &'a [PulleyInfo],
     /// Number of joints `n`.
     pub dof: usize,
 }
@@ -384,8 +385,14 @@ impl Routing<'_> {
                 )));
             }
             let psi = dy.atan2(dx);
-            let delta_angle = psi + (rho / dist).asin();
-            ex.scale(delta_angle.cos()) + ey.scale(delta_angle.sin())
+            // A tangent along an axis of the plane is computed as the f64 nearest a multiple
+            // of π/2, whose sine or cosine is a rounding leftover (1.2e-16), not zero.
+            let asin = (rho / dist).asin();
+            let delta_angle = psi + asin;
+            // (Within the rounding of the sum, which may cancel to nearly zero.)
+            let within = 4.0 * f64::EPSILON * (psi.abs() + asin.abs());
+            let (sin, cos) = sin_cos_snapped(delta_angle, within);
+            ex.scale(cos) + ey.scale(sin)
         } else {
             // Non-parallel axes: the tangent is along the intersection of the two planes,
             // and the circles must be placed so that it touches both.
@@ -460,7 +467,7 @@ impl Routing<'_> {
         })
     }
 
-    /// Geometry of a route and the rates it implies, in `f64`: [`Routing::traced`] with the
+    /// Geometry of a route and the rates it implies, in `f64`: [`Routing::geometry_and_rates`] with the
     /// file's radii, the guides it passes, and the couplings it derives checked and stored.
     /// `couplings[p]` must already hold the coupling of the route's first pulley; the
     /// couplings of the idlers it passes and of a driving pulley it ends on are stored.
@@ -476,17 +483,18 @@ impl Routing<'_> {
         let start_coupling = couplings[route.wraps[0].0]
             .clone()
             .expect("start coupling known");
-        let traced = self.traced(route, &start_coupling, start_is_coordinate, &|p| {
-            self.pulleys[p].radius
-        })?;
-        let Traced {
+        let traced =
+            self.geometry_and_rates(route, &start_coupling, start_is_coordinate, &|p| {
+                self.pulleys[p].radius
+            })?;
+        let RouteGeometry {
             segments,
             rims,
             pull_rate,
             segment_rates,
         } = traced;
         let mut idlers = Vec::new();
-        for (i, (&(p, turn), c)) in self.stops(route).iter().zip(&rims).enumerate().skip(1) {
+        for (i, (&(p, turn), c)) in stops(route).iter().zip(&rims).enumerate().skip(1) {
             let (s, r) = (turn_sign(turn), self.pulleys[p].radius);
             let incoming = segments[i - 1].frame;
             // A fixed pulley here is a guide: it does not turn, so the rim rate the tendon
@@ -515,9 +523,6 @@ impl Routing<'_> {
                     mu: self.pulleys[p].mu,
                 }
             });
-            if guide.is_none() {
-                store_coupling(self, route, couplings, p, c.clone())?;
-            }
             if outgoing.is_some() {
                 idlers.push(IdlerStep {
                     body: self.pulleys[p].body,
@@ -527,6 +532,9 @@ impl Routing<'_> {
                 });
             }
         }
+        for (p, c) in derived_couplings(self.pulleys, route, &rims) {
+            store_coupling(self, route, couplings, p, c.clone())?;
+        }
         Ok(StrandGeometry {
             segments,
             idlers,
@@ -535,28 +543,18 @@ impl Routing<'_> {
         })
     }
 
-    /// The pulleys a route touches, with its turn round each: its wraps, then the driving
-    /// pulley it ends on.
-    fn stops(&self, route: &Route) -> Vec<(usize, Turn)> {
-        let mut stops: Vec<(usize, Turn)> = route.wraps.clone();
-        if let RouteEnd::Pulley(e, t) = &route.end {
-            stops.push((*e, *t));
-        }
-        stops
-    }
-
     /// A route's segments and rates in the scalar `T`, with `radius(p)` the pitch radius of
     /// pulley `p` and `start_coupling` that of its first pulley (see [`Routing::trace`]).
     /// Directions and frames are decided in `f64` from the file's radii.
-    pub fn traced<T: Real>(
+    pub(crate) fn geometry_and_rates<T: Real>(
         &self,
         route: &Route,
         start_coupling: &Rate<T>,
         start_is_coordinate: bool,
         radius: &dyn Fn(usize) -> T,
-    ) -> Result<Traced<T>> {
+    ) -> Result<RouteGeometry<T>> {
         let n = self.dof;
-        let stops = self.stops(route);
+        let stops = stops(route);
         let (start, start_turn) = stops[0];
         let ends_on_pulley = matches!(route.end, RouteEnd::Pulley(..));
         let mut segments = Vec::new();
@@ -631,7 +629,7 @@ impl Routing<'_> {
                 .expect("one segment at least")
                 .add_scaled(&c, T::one());
         }
-        Ok(Traced {
+        Ok(RouteGeometry {
             segments,
             rims,
             pull_rate: expanded,
@@ -640,32 +638,62 @@ impl Routing<'_> {
     }
 }
 
-/// What validation derived the routing from, in the order it derived it: enough to trace it
-/// again in another scalar ([`crate::Model::symbolic_geometry`]).
-#[derive(Clone, Debug, Default)]
-pub struct Derivation {
-    /// Every pulley, in file order.
-    pub pulleys: Vec<PulleyInfo>,
-    /// Each route in the order traced, with the strand it became and whether its first
-    /// pulley's angle is a coordinate of the tension system (`start_is_coordinate`).
-    pub routes: Vec<(Route, usize, bool)>,
+/// The pulleys a route touches, with its turn round each: its wraps, then the driving
+/// pulley it ends on.
+fn stops(route: &Route) -> Vec<(usize, Turn)> {
+    let mut stops: Vec<(usize, Turn)> = route.wraps.clone();
+    if let RouteEnd::Pulley(e, t) = &route.end {
+        stops.push((*e, *t));
+    }
+    stops
 }
 
-impl Derivation {
-    /// Whether pulley `p` turns as some route derives (an idler or a driving pulley); else
-    /// its coupling is given (a fixed drum or guide, an explicit coupling).
-    pub fn derives(&self, p: usize) -> bool {
+/// The couplings a traced route derives: each turning pulley after its anchor, with its
+/// rim's rate (`RouteGeometry::rims`). A guide's rim rate is its sliding, not a coupling.
+pub(crate) fn derived_couplings<'a, T>(
+    pulleys: &'a [PulleyInfo],
+    route: &Route,
+    rims: &'a [Rate<T>],
+) -> impl Iterator<Item = (usize, &'a Rate<T>)> {
+    (stops(route).into_iter().zip(rims).skip(1))
+        .filter(move |((p, _), _)| !pulleys[*p].fixed)
+        .map(|((p, _), rim)| (p, rim))
+}
+
+/// What validation traced the routing from, in the order it traced it: enough to trace it
+/// again in another scalar (`Model::symbolic_geometry`).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TraceRecord {
+    /// Every pulley, in file order.
+    pub(crate) pulleys: Vec<PulleyInfo>,
+    /// Each route in the order traced.
+    pub(crate) routes: Vec<TracedRoute>,
+}
+
+/// A route validation traced, and what became of it.
+#[derive(Clone, Debug)]
+pub(crate) struct TracedRoute {
+    pub(crate) route: Route,
+    /// The strand it became (index into `Model::strands`).
+    pub(crate) strand: usize,
+    /// Whether its first pulley's angle is a coordinate of the tension system (see
+    /// [`Routing::trace`]).
+    pub(crate) start_is_coordinate: bool,
+}
+
+impl TraceRecord {
+    /// Whether pulley `p` turns as some route derives (an idler or a driving pulley): a
+    /// turning pulley that a route reaches after its anchor. Else its coupling is given
+    /// (a fixed drum or guide, an explicit coupling of a pulley no route passes).
+    pub(crate) fn derives(&self, p: usize) -> bool {
         !self.pulleys[p].fixed
-            && self.routes.iter().any(|(route, _, _)| {
-                route.wraps[1..].iter().any(|&(q, _)| q == p)
-                    || matches!(route.end, RouteEnd::Pulley(e, _) if e == p)
-            })
+            && (self.routes.iter()).any(|r| stops(&r.route).iter().skip(1).any(|&(q, _)| q == p))
     }
 }
 
-/// A route as [`Routing::traced`] derives it, in a scalar `T`.
+/// A route as `Routing::geometry_and_rates` derives it, in a scalar `T`.
 #[derive(Clone, Debug)]
-pub struct Traced<T> {
+pub(crate) struct RouteGeometry<T> {
     /// Its straight segments, from the anchored (or driven-pulley) end on.
     pub segments: Vec<Segment<T>>,
     /// `rims[k]`: the rate of stop `k`'s rim relative to its carrier (its wraps, then the
@@ -680,7 +708,7 @@ pub struct Traced<T> {
 
 /// A strand's rate (`ẋ` over `q̇` and the driving pulleys' angles) as a column of `E`: its
 /// joint coefficients on the joints' rows, a driving pulley's on that pulley's row.
-pub fn column_of<T: Real>(rows: &[Row], rate: &Rate<T>, pulleys: &[PulleyInfo]) -> Vec<T> {
+pub(crate) fn column_of<T: Real>(rows: &[Row], rate: &Rate<T>, pulleys: &[PulleyInfo]) -> Vec<T> {
     let mut column = vec![T::zero(); rows.len()];
     for (r, row) in rows.iter().enumerate() {
         if let Row::Joint(j) = row {
@@ -695,25 +723,29 @@ pub fn column_of<T: Real>(rows: &[Row], rate: &Rate<T>, pulleys: &[PulleyInfo]) 
 }
 
 /// What the columns of the tension system belong to.
-pub struct Columns<'a, T> {
+pub(crate) struct Columns<'a, T> {
     /// Each strand's `ẋ` ([`StrandGeometry::pull_rate`]), in strand order.
-    pub pull_rates: &'a [Rate<T>],
+    pub(crate) pull_rates: &'a [Rate<T>],
     /// Every pulley, in file order.
-    pub pulleys: &'a [PulleyInfo],
+    pub(crate) pulleys: &'a [PulleyInfo],
     /// The bodies, with their couplings (a pulley motor's column, where its pulley has no
     /// row).
-    pub bodies: &'a [Body<T>],
+    pub(crate) bodies: &'a [Body<T>],
     /// The open-ended tendons.
-    pub tendons: &'a [Tendon],
+    pub(crate) tendons: &'a [Tendon],
     /// The loops.
-    pub loops: &'a [Loop],
+    pub(crate) loops: &'a [Loop],
     /// The motors.
-    pub motors: &'a [Motor],
+    pub(crate) motors: &'a [Motor],
 }
 
 /// `E` of the tension system `E x = b` (paper Eqs. 33, 35): the balances of the joints,
 /// the driving pulleys and the loops' pretensions (`rows`) against the unknowns (columns).
-pub fn tension_matrix<T: Real>(rows: &[Row], unknowns: &[Unknown], of: &Columns<T>) -> Vec<Vec<T>> {
+pub(crate) fn tension_matrix<T: Real>(
+    rows: &[Row],
+    unknowns: &[Unknown],
+    of: &Columns<T>,
+) -> Vec<Vec<T>> {
     let n = rows.iter().filter(|r| matches!(r, Row::Joint(_))).count();
     let mut e = vec![vec![T::zero(); unknowns.len()]; rows.len()];
     for (col, u) in unknowns.iter().enumerate() {

@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::format::{InertiaSpec, LinkSpec, MechanismFile, Num, Placement, PulleySpec};
 use crate::model::{Body, BodyKind, PulleyRole};
 use crate::real::Real;
-use crate::spatial::{Mat3, Transform, Vec3};
+use crate::spatial::{sin_cos_snapped, Mat3, Transform, Vec3};
 use crate::transmission::{joint_parent, PulleyInfo};
 use nalgebra::Matrix3;
 
@@ -28,17 +28,7 @@ const RIGHT_ANGLE_SNAP: f64 = 1e-12;
 
 /// `sin` and `cos` of `angle`, exact at multiples of π/2 (within `RIGHT_ANGLE_SNAP`).
 fn snapped_sin_cos(angle: f64) -> (f64, f64) {
-    let quarter = (angle / std::f64::consts::FRAC_PI_2).round();
-    if (angle - quarter * std::f64::consts::FRAC_PI_2).abs() <= RIGHT_ANGLE_SNAP {
-        match (quarter as i64).rem_euclid(4) {
-            0 => (0.0, 1.0),
-            1 => (1.0, 0.0),
-            2 => (0.0, -1.0),
-            _ => (-1.0, 0.0),
-        }
-    } else {
-        angle.sin_cos()
-    }
+    sin_cos_snapped(angle, RIGHT_ANGLE_SNAP)
 }
 
 /// The rotation by `angle` about the x, y or z axis (`axis` 0, 1, 2), exact at right

@@ -27,7 +27,7 @@ use crate::error::{Error, Location, Result};
 use crate::format::{FrictionSpec, MechanismFile};
 use crate::model::{BearingFriction, BodyKind, Model, Parameter, PulleyRole, Strand, Wrench};
 use crate::spatial::{Mat3, Vec3};
-use crate::transmission::{column_of, Derivation};
+use crate::transmission::{column_of, TraceRecord, TracedRoute};
 use bodies::MassProperties;
 use locate::{candidates, syntax_error, NameIndex};
 use parameters::parameter_slots;
@@ -240,13 +240,16 @@ impl<'a> Validator<'a> {
                 unknown: i,
             })
             .collect();
-        let derivation = Derivation {
+        let trace_record = TraceRecord {
             routes: (couplings.order.iter())
                 .map(|&i| {
-                    let route = &routes[i].0;
-                    let start = route.wraps[0].0;
-                    let strand = strands_of_route[i];
-                    (route.clone(), strand, couplings.routed_end[start])
+                    let route = routes[i].0.clone();
+                    let start_is_coordinate = couplings.routed_end[route.wraps[0].0];
+                    TracedRoute {
+                        route,
+                        strand: strands_of_route[i],
+                        start_is_coordinate,
+                    }
                 })
                 .collect(),
             pulleys,
@@ -276,7 +279,7 @@ impl<'a> Validator<'a> {
             system,
             external_wrench,
             routing_incomplete,
-            derivation,
+            trace_record,
             patterns,
             identity: crate::model::new_identity(),
         })

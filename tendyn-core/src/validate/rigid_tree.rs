@@ -102,7 +102,7 @@ impl Model<f64> {
             external_wrench,
             routing_incomplete: false,
             patterns,
-            derivation: Default::default(),
+            trace_record: Default::default(),
             identity: crate::model::new_identity(),
         })
     }
