@@ -467,7 +467,7 @@ pub fn forward_dynamics_rhs<T: Real>(
 
 /// The tension system at joint angles `q` with the guides with friction sliding in the
 /// directions `sigma` (`±1` each, or `0` at rest, `[strand][idler]` as
-/// [`Workspace::capstan`], ignored elsewhere): `E(σ, q)` ([`matrix_sliding`],
+/// `Workspace::capstan`, ignored elsewhere): `E(σ, q)` ([`matrix_sliding`],
 /// [`tension::system_at`]). What validation checks for each direction of sliding the
 /// routing can take.
 pub fn system_sliding<T: Numeric>(

@@ -21,9 +21,9 @@
 //! loop's length staying constant.
 //!
 //! Validation computes all of this once, in `f64`. The rates and contact points are also
-//! generic over the scalar ([`Routing::geometry_and_rates`]): `tendyn equations` traces them again with
-//! the pitch radii as symbols ([`crate::Model::symbolic_geometry`]), so that what it prints
-//! is this derivation, not a copy of it. Decisions (the frame a segment is fixed in, its
+//! generic over the scalar (`Routing::geometry_and_rates`): `tendyn equations` traces them
+//! again with the pitch radii as symbols ([`crate::Model::symbolic_geometry`]), so that what
+//! it prints is this derivation, not a copy of it. Decisions (the frame a segment is fixed in, its
 //! tangent direction, which frames turn relative to which) are taken in `f64` both times.
 
 use crate::error::{Error, Location, Result};
@@ -173,9 +173,9 @@ pub fn joint_parent(j: usize) -> Frame {
 /// pulleys as validation built them (it reads their placements, not their couplings).
 pub struct Routing<'a> {
     /// Every body of the model (only their placements are read).
-    pub(crate) bodies: &'a [Body<f64>],
+    pub bodies: &'a [Body<f64>],
     /// Every pulley, in file order.
-    pub(crate) pulleys: &'a [PulleyInfo],
+    pub pulleys: &'a [PulleyInfo],
     /// Number of joints `n`.
     pub dof: usize,
 }
@@ -467,8 +467,9 @@ impl Routing<'_> {
         })
     }
 
-    /// Geometry of a route and the rates it implies, in `f64`: [`Routing::geometry_and_rates`] with the
-    /// file's radii, the guides it passes, and the couplings it derives checked and stored.
+    /// Geometry of a route and the rates it implies, in `f64`: `Routing::geometry_and_rates`
+    /// with the file's radii, the guides it passes, and the couplings it derives checked and
+    /// stored.
     /// `couplings[p]` must already hold the coupling of the route's first pulley; the
     /// couplings of the idlers it passes and of a driving pulley it ends on are stored.
     ///
@@ -483,16 +484,14 @@ impl Routing<'_> {
         let start_coupling = couplings[route.wraps[0].0]
             .clone()
             .expect("start coupling known");
-        let traced =
-            self.geometry_and_rates(route, &start_coupling, start_is_coordinate, &|p| {
-                self.pulleys[p].radius
-            })?;
         let RouteGeometry {
             segments,
             rims,
             pull_rate,
             segment_rates,
-        } = traced;
+        } = self.geometry_and_rates(route, &start_coupling, start_is_coordinate, &|p| {
+            self.pulleys[p].radius
+        })?;
         let mut idlers = Vec::new();
         for (i, (&(p, turn), c)) in stops(route).iter().zip(&rims).enumerate().skip(1) {
             let (s, r) = (turn_sign(turn), self.pulleys[p].radius);

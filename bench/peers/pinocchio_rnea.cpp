@@ -1,0 +1,140 @@
+// Pinocchio's RNEA on tendyn's expanded tree, timed with the benchmark protocol of
+// docs/references.md: every link and pulley a body on a revolute joint about its z axis,
+// the joint angles C q + offset, and Q = Cᵀ τ (virtual work: a body's angle moves with the
+// joints through its coupling row of C). Reads the file `expanded_tree` writes
+// (bench/examples/expanded_tree.rs), checks Q against tendyn's at every state, then prints
+// the median ns per call of 51 samples, each a pass over the 1,024 states.
+#include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/multibody.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <vector>
+
+using pinocchio::SE3;
+
+static Eigen::Matrix3d read_matrix(std::istream& in) {
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) in >> m(r, c);
+  return m;
+}
+
+static SE3 read_transform(std::istream& in) {
+  Eigen::Matrix3d r = read_matrix(in);
+  Eigen::Vector3d t;
+  in >> t(0) >> t(1) >> t(2);
+  return SE3(r, t);
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: pinocchio_rnea FILE.tree\n";
+    return 2;
+  }
+  std::ifstream in(argv[1]);
+  double nd, bd;
+  Eigen::Vector3d g;
+  in >> nd >> bd >> g(0) >> g(1) >> g(2);
+  const int n = int(nd), bodies = int(bd);
+  double wrench_link;
+  Eigen::Vector3d point, force, moment;
+  in >> wrench_link;
+  if (wrench_link >= 0) {
+    in >> point(0) >> point(1) >> point(2) >> force(0) >> force(1) >> force(2) >> moment(0) >>
+        moment(1) >> moment(2);
+  }
+  pinocchio::Model model;
+  model.gravity.linear(g);
+  Eigen::MatrixXd coupling(bodies, n);
+  Eigen::VectorXd offset(bodies);
+  std::vector<SE3> post(bodies);
+  std::vector<pinocchio::JointIndex> joint(bodies);
+  for (int b = 0; b < bodies; ++b) {
+    double parent;
+    in >> parent >> offset(b);
+    SE3 pre = read_transform(in);
+    post[b] = read_transform(in);
+    for (int j = 0; j < n; ++j) in >> coupling(b, j);
+    double mass;
+    Eigen::Vector3d com;
+    in >> mass >> com(0) >> com(1) >> com(2);
+    Eigen::Matrix3d inertia = read_matrix(in);
+    // The joint frame is the body frame before `post`: the parent's body frame (its joint
+    // frame times its post) times `pre`.
+    const int p = int(parent);
+    const pinocchio::JointIndex parent_joint = p < 0 ? 0 : joint[p];
+    const SE3 placement = p < 0 ? pre : post[p] * pre;
+    joint[b] = model.addJoint(parent_joint, pinocchio::JointModelRZ(), placement,
+                              "j" + std::to_string(b));
+    // Mass properties given in the body frame, moved to the joint frame by `post`.
+    const Eigen::Matrix3d& r = post[b].rotation();
+    model.appendBodyToJoint(joint[b],
+                            pinocchio::Inertia(mass, post[b].act(com), r * inertia * r.transpose()),
+                            SE3::Identity());
+  }
+  pinocchio::Data data(model);
+  // The wrench acts on the link, given in its body frame about the point: in the joint
+  // frame (the body frame before `post`), about the joint frame's origin.
+  std::vector<pinocchio::Force> fext(model.njoints, pinocchio::Force::Zero());
+  if (wrench_link >= 0) {
+    const SE3& m = post[int(wrench_link)];
+    const Eigen::Vector3d f = m.rotation() * force, p = m.act(point);
+    fext[joint[int(wrench_link)]] = pinocchio::Force(f, m.rotation() * moment + p.cross(f));
+  }
+  struct State {
+    Eigen::VectorXd q, v, a, tendyn;
+  };
+  std::vector<State> states;
+  for (;;) {
+    Eigen::VectorXd x(4 * n);
+    for (int i = 0; i < 4 * n; ++i) in >> x(i);
+    if (!in) break;
+    State s;
+    s.q = coupling * x.segment(0, n) + offset;
+    s.v = coupling * x.segment(n, n);
+    s.a = coupling * x.segment(2 * n, n);
+    s.tendyn = x.segment(3 * n, n);
+    states.push_back(s);
+  }
+  // Agreement: max-norm relative error of Q = Cᵀ τ against tendyn's generalized forces.
+  double worst = 0;
+  for (const State& s : states) {
+    Eigen::VectorXd q = coupling.transpose() * pinocchio::rnea(model, data, s.q, s.v, s.a, fext);
+    worst = std::max(worst, (q - s.tendyn).lpNorm<Eigen::Infinity>() /
+                                std::max(1e-300, s.tendyn.lpNorm<Eigen::Infinity>()));
+  }
+  // Timing: warm-up, then 51 samples of R passes (R so that a sample lasts >= 2 ms).
+  Eigen::VectorXd out(n);
+  double sink = 0;
+  auto pass = [&]() {
+    for (const State& s : states) {
+      out.noalias() = coupling.transpose() * pinocchio::rnea(model, data, s.q, s.v, s.a, fext);
+      sink += out(0);
+    }
+  };
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  int r = 0;
+  while (std::chrono::duration<double>(clock::now() - t0).count() < 0.3) {
+    pass();
+    ++r;
+  }
+  const double per_pass = 0.3 / r;
+  const int reps = std::max(1, int(std::ceil(2e-3 / per_pass)));
+  std::vector<double> ns;
+  for (int k = 0; k < 51; ++k) {
+    auto a = clock::now();
+    for (int i = 0; i < reps; ++i) pass();
+    auto b = clock::now();
+    ns.push_back(std::chrono::duration<double, std::nano>(b - a).count() / (reps * states.size()));
+  }
+  std::nth_element(ns.begin(), ns.begin() + 25, ns.end());
+  std::cout << argv[1] << ": Pinocchio rnea, Q = C^T tau: " << ns[25] << " ns per call (median of 51), "
+            << states.size() << " states, max relative error against tendyn " << worst
+            << " (checksum " << sink << ")\n";
+  return 0;
+}
