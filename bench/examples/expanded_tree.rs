@@ -1,6 +1,7 @@
 //! Writes a mechanism's expanded tree (every link and pulley a body on a revolute joint,
 //! paper Eq. 8: `pre · RotZ(coupling · q + offset) · post` in its parent's frame), the
-//! benchmark's 1,024 seeded states and tendyn's `Q` at each, as whitespace-separated numbers,
+//! benchmark's 1,024 seeded states and tendyn's `Q`, `∂Q/∂q` and `∂Q/∂q̇` at each, as
+//! whitespace-separated numbers,
 //! for the Pinocchio harness of `bench/peers/` (`bench/peers/README.md`).
 //!
 //! `cargo run --release -p tendyn-bench --example expanded_tree -- bench/mechanisms/arm6.ron > arm6.tree`
@@ -74,10 +75,12 @@ fn main() {
             .generalized_forces(&model, &q, &qd, &qdd)
             .unwrap()
             .to_vec();
-        numbers(
-            &mut out,
-            q.iter().chain(&qd).chain(&qdd).chain(&tau).copied(),
-        );
+        // ∂Q/∂q and ∂Q/∂q̇, row-major n × n.
+        let d = data
+            .generalized_forces_derivatives(&model, &q, &qd, &qdd)
+            .unwrap();
+        let state = q.iter().chain(&qd).chain(&qdd).chain(&tau);
+        numbers(&mut out, state.chain(&d.d_q).chain(&d.d_qd).copied());
     }
     print!("{out}");
 }
