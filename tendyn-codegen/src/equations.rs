@@ -424,48 +424,38 @@ struct Transmission {
     structure: Vec<Vec<Poly>>,
 }
 
-/// What the symbolic model holds where the transmission prints by name: its couplings and
-/// `E`, as nodes of the graph.
-struct ByName {
-    couplings: Vec<Vec<Id>>,
-    matrix: Vec<Vec<Id>>,
-    /// The inputs that are radii, with their pulley bodies.
-    radii: Vec<(Id, usize)>,
-}
-
-impl ByName {
-    /// Each node as a polynomial in the radii, or else the number the f64 model holds there.
-    fn polys(&self, g: &Graph, ids: &[Id], numbers: &[f64]) -> Vec<Poly> {
-        let radius = |id: Id| self.radii.iter().find(|(r, _)| *r == id).map(|&(_, b)| b);
-        ids.iter()
-            .zip(numbers)
-            .map(|(&id, &x)| poly_of(g, id, &radius).unwrap_or_else(|| Poly::constant(x)))
+/// The symbolic model `s`'s couplings and `E` read back as polynomials in the radii
+/// (`radii`: the inputs that are radii, with their pulley bodies), each entry that does not
+/// read as one being the f64 `model`'s number: the transmission to print, and `E`.
+fn by_name(
+    g: &Graph,
+    s: &Model<Sym>,
+    model: &Model<f64>,
+    radii: &[(Id, usize)],
+) -> (Transmission, Vec<Vec<Poly>>) {
+    let radius = |id: Id| radii.iter().find(|(r, _)| *r == id).map(|&(_, b)| b);
+    let polys = |syms: &[Sym], numbers: &[f64]| -> Vec<Poly> {
+        (syms.iter().zip(numbers))
+            .map(|(x, &n)| poly_of(g, x.0, &radius).unwrap_or_else(|| Poly::constant(n)))
             .collect()
-    }
-
-    /// `E` by name (`model` the f64 model, for what does not read as a polynomial).
-    fn matrix(&self, g: &Graph, model: &Model<f64>) -> Vec<Vec<Poly>> {
-        (self.matrix.iter().zip(&model.system().matrix))
-            .map(|(ids, numbers)| self.polys(g, ids, numbers))
-            .collect()
-    }
-
-    fn transmission(&self, g: &Graph, model: &Model<f64>) -> Transmission {
-        let couplings = (self.couplings.iter().zip(model.bodies()))
-            .map(|(ids, body)| self.polys(g, ids, &body.coupling))
-            .collect();
-        let e = self.matrix(g, model);
-        let structure = (model.tendons().iter())
-            .map(|t| match t.strand {
-                Some(_) => (0..model.dof()).map(|j| e[j][t.unknown].clone()).collect(),
-                None => t.structure.iter().map(|&x| Poly::constant(x)).collect(),
-            })
-            .collect();
-        Transmission {
-            couplings,
-            structure,
-        }
-    }
+    };
+    let couplings = (s.bodies().iter().zip(model.bodies()))
+        .map(|(b, numbers)| polys(&b.coupling, &numbers.coupling))
+        .collect();
+    let e: Vec<Vec<Poly>> = (s.system().matrix.iter().zip(&model.system().matrix))
+        .map(|(row, numbers)| polys(row, numbers))
+        .collect();
+    let structure = (model.tendons().iter())
+        .map(|t| match t.strand {
+            Some(_) => (0..model.dof()).map(|j| e[j][t.unknown].clone()).collect(),
+            None => t.structure.iter().map(|&x| Poly::constant(x)).collect(),
+        })
+        .collect();
+    let transmission = Transmission {
+        couplings,
+        structure,
+    };
+    (transmission, e)
 }
 
 /// Where a square `E`'s exact inverse by name is a single term or zero, that entry
@@ -763,7 +753,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
     let lengths = namer.lengths;
 
     // Traced with the lengths and radii as symbols; a square E's exact inverse by name.
-    let mut by_name = None;
+    let mut transmission = None;
     let traced = outputs::trace_with(&m, outputs, |m, params| {
         let symbols = outputs::array("lengths", lengths.len());
         let mut given = Dimensions {
@@ -783,21 +773,16 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
             }
         }
         let s = m.symbolic_geometry(|k| params[k], &given)?;
-        let ids = |row: &[Sym]| row.iter().map(|x| x.0).collect::<Vec<Id>>();
-        let names = ByName {
-            couplings: s.bodies().iter().map(|b| ids(&b.coupling)).collect(),
-            matrix: s.system().matrix.iter().map(|row| ids(row)).collect(),
-            radii,
-        };
-        let entries = Sym::inspect(|g| exact_inverse_entries(&names.matrix(g, m), m));
+        let (read, e) = Sym::inspect(|g| by_name(g, &s, m, &radii));
+        let entries = exact_inverse_entries(&e, m);
         let radius = |b: usize| given.radius[b].expect("every pulley's radius is named");
         let entries: Vec<((usize, usize), Sym)> = (entries.iter())
             .map(|(at, term)| (*at, term_sym(term, &radius)))
             .collect();
-        by_name = Some(names);
+        transmission = Some(read);
         Ok::<_, crate::Error>(s.with_exact_inverse(&entries)?)
     })?;
-    let transmission = by_name.expect("traced").transmission(&traced.graph, &m);
+    let transmission = transmission.expect("traced");
     let radius_names = (0..m.bodies().len())
         .map(|b| {
             let is = |l: &&NamedLength| l.quantity == Quantity::Radius(b);
