@@ -735,3 +735,56 @@ fn every_maximal_minor_of_the_state_tension_matrix_is_multilinear_in_the_capstan
     println!("{checked} mechanisms; worst {worst:.1e} of the largest corner minor");
     assert!(checked >= 4);
 }
+
+/// What validation accepts, the runtime solver meets: on seeded random mechanisms with
+/// their idlers made guides with friction (`μ` up to 2), at `q = 0` (the wrap angles
+/// validation takes) and at joint velocities so small that some guides slide and others
+/// are within the `1e-6` m/s band of rest, where they take the way of `q̈`, maybe against
+/// the others' (docs/format.md §6a), no state is uncontrollable.
+#[test]
+fn a_routing_validation_accepts_is_controllable_however_the_exact_law_sets_its_guides() {
+    let mut rng = ChaCha8Rng::seed_from_u64(66);
+    let (mut accepted, mut mixed, mut states) = (0, 0, 0);
+    for seed in 0..80u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: seed % 3 == 1,
+        };
+        let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        for mu in [0.2, 1.0, 2.0] {
+            let Ok(model) = parse(&tendyn_spec::guides::idlers_as_capstans(&text, mu)) else {
+                continue;
+            };
+            if !model.has_capstan() {
+                continue;
+            }
+            accepted += 1;
+            let n = model.dof();
+            let mut solver = Data::new(&model);
+            for _ in 0..200 {
+                let [_, dir, acc] = random_state(&mut rng, n);
+                let speed = 10f64.powf(rng.random_range(-6.0..-3.0));
+                let qd: Vec<f64> = dir.iter().map(|x| x * speed).collect();
+                let scale = 10f64.powf(rng.random_range(-5.0..0.0));
+                let qdd: Vec<f64> = acc.iter().map(|x| x * scale).collect();
+                let q = vec![0.0; n];
+                if let Err(e) = solver.inverse_dynamics(&model, &q, &qd, &qdd) {
+                    panic!("random_{seed} with mu {mu}: {e} at {qd:?} {qdd:?}");
+                }
+                let guides = tendyn_core::friction::guide_states(&model, [&q, &qd, &qdd], None);
+                let sticking = guides.iter().filter(|g| g.sticking).count();
+                if sticking > 0 && sticking < guides.len() {
+                    mixed += 1;
+                }
+                states += 1;
+            }
+        }
+    }
+    println!(
+        "{accepted} mechanisms, {states} states, {mixed} with guides both sliding and in the band"
+    );
+    assert!(
+        accepted >= 10 && mixed >= 100,
+        "{accepted} mechanisms, {mixed} mixed states"
+    );
+}

@@ -338,7 +338,7 @@ impl Elimination {
     pub fn holds_while_sliding(&self, model: &Model<f64>) -> bool {
         let sliding = crate::validate::Sliding::of(model);
         let without = self.pivots(&model.system.matrix);
-        sliding.points(model).into_iter().all(|point| {
+        sliding.points().into_iter().all(|point| {
             let sigma = sliding.sigma(model, &point);
             let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
             let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));

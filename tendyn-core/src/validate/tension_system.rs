@@ -476,74 +476,80 @@ fn largest_least_lift(rows: &[Vec<f64>]) -> Option<Vec<f64>> {
     }
 }
 
-/// Whether some joint velocity makes every group of guides slide the way `pattern` says:
-/// the linear program `pattern_g (u_g · q̇) ≥ 1` for every group (`u_g` its sliding speed
-/// per joint velocity) with a direction; a group at rest (`0`) is left free. The cone is
-/// open, so `≥ 1` loses nothing.
-fn reachable(groups: &[Vec<f64>], pattern: &[f64]) -> bool {
+/// Whether some `x` meets `lower ≤ a · x ≤ upper` for every row `(a, lower, upper)` (a
+/// linear program, `microlp`); true without rows.
+fn feasible(rows: &[(Vec<f64>, f64, f64)]) -> bool {
     use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
-    let Some(n) = groups.first().map(Vec::len) else {
+    let Some(n) = rows.first().map(|r| r.0.len()) else {
         return true;
     };
     let mut lp = Problem::new(OptimizationDirection::Minimize);
-    let qd: Vec<_> = (0..n)
+    let x: Vec<_> = (0..n)
         .map(|_| lp.add_var(0.0, (f64::NEG_INFINITY, f64::INFINITY)))
         .collect();
-    for (u, &sign) in groups.iter().zip(pattern).filter(|(_, &s)| s != 0.0) {
-        let terms: Vec<_> = qd.iter().zip(u).map(|(&v, &c)| (v, sign * c)).collect();
-        lp.add_constraint(terms.as_slice(), ComparisonOp::Ge, 1.0);
+    for (a, lower, upper) in rows {
+        let terms: Vec<_> = x.iter().zip(a).map(|(&v, &c)| (v, c)).collect();
+        if lower.is_finite() {
+            lp.add_constraint(terms.as_slice(), ComparisonOp::Ge, *lower);
+        }
+        if upper.is_finite() {
+            lp.add_constraint(terms.as_slice(), ComparisonOp::Le, *upper);
+        }
     }
     matches!(lp.solve(), Ok(SolveOutcome::Solution(_)))
 }
 
-/// A guide with friction over which something slides: its strand and idler, its group
-/// (guides whose sliding speeds are proportional: they slide together), the sign relating
-/// its speed to the group's, and its class (guides whose speeds are equal or opposite:
-/// they are at rest together too).
+/// A guide with friction over which something slides: its strand and idler, its class
+/// (guides whose speeds are equal or opposite: they slide and rest together), and the sign
+/// relating its speed to its group's.
 struct Slider {
     strand: usize,
     idler: usize,
-    group: usize,
     class: usize,
     sign: f64,
 }
 
-/// The most classes of guides for which every combination of directions and rest is
+/// Guides whose sliding speeds are equal or opposite: `|v| = speed |u_g · q̇|`, `u_g` the
+/// speed of their group (guides whose speeds are proportional) per joint velocity.
+struct Class {
+    group: usize,
+    speed: f64,
+}
+
+/// The most guides with friction for which every combination of directions and rest is
 /// checked (`3⁸ = 6561` systems at most).
 const EVERY_REST_UP_TO: usize = 8;
 
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
-/// every tendon) for every direction it can take. Guides whose sliding speeds are equal or
-/// opposite (`slide` vectors parallel) slide together, so each such group is one sign;
-/// the systems are taken at `q = 0` (the wrap angles at the joints' offsets), and a
-/// failing pattern refuses the routing only if some joint velocity produces it
-/// ([`reachable`]).
+/// every tendon, motors and loop sides determined) for every direction it can take. The
+/// systems are taken at `q = 0` (the wrap angles at the joints' offsets), at the points
+/// [`Sliding::points`] gives, and a failing point refuses the routing only if some motion
+/// produces it ([`Sliding::reachable`]).
 ///
-/// One null direction (the usual case), up to [`EVERY_REST_UP_TO`] classes of guides
-/// (equal or opposite speeds: at rest together): each class may also be at rest (`σ = 0`,
-/// the exact law's band) while the others of its group slide its way or rest, and each
-/// tendon's component of the null vector, as the signed maximal minor of `E` without that
-/// tendon's column, must keep the sign it has without friction while the motors' and loop
-/// sides' stay zero ([`Minors::compare`]). That check covers the smoothed law and every
-/// state in between as well: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a
-/// product of distinct capstan factors (`tension::state_matrix`), and each pass of a
-/// strand over a guide has its own factor, so every minor is affine in each factor
-/// `w = e^{−σμβ}` taken alone; such a function on a box of factors takes its extremes at
-/// the box's corners, which are the points checked. The same holds wherever the wrap
-/// angles are no larger than at `q = 0` (a smaller box about `w = 1`). Not checked: a
-/// slower class of a group taking, within the band, the direction opposite to a faster
-/// one's (docs/format.md §6a); the runtime solver checks every state's system again.
-/// Beyond [`EVERY_REST_UP_TO`] classes, and for null spaces of two or more dimensions,
-/// the checked patterns are those where every guide slides: all of them up to 12 groups,
-/// past that the two where every group slides one way and those with one group flipped.
+/// With one null direction each tendon's component of the null vector, as the signed
+/// maximal minor of `E` without that tendon's column, must keep the sign it has without
+/// friction while the motors' and loop sides' stay zero ([`Minors::compare`]); with more,
+/// the state's system is solved and checked as the model's was.
+///
+/// Up to [`EVERY_REST_UP_TO`] guides, the points are every direction or rest of each guide
+/// that the exact law can produce, and that covers every state in between as well, for
+/// one null direction: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a product
+/// of distinct capstan factors (`tension::state_matrix`), and each pass of a strand over
+/// a guide has its own factor, so every minor is affine in each factor `w = e^{−σμβ}`
+/// taken alone. On the box of factors between rest (`w = 1`) and the directions of a
+/// pattern, such a function is a convex combination of its values at the box's corners,
+/// which are the points where any subset of the pattern's guides is at rest: the smoothed
+/// law's `|σ| < 1`, and every state whose wrap angles are no larger than at `q = 0`, lie
+/// in such boxes. Beyond [`EVERY_REST_UP_TO`] guides the points are those where every
+/// guide slides: each group one way, all the ways of up to 12 groups, past that the two
+/// where every group slides one way and those with one group flipped.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
     let sliding = Sliding::of(model);
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
-    let frictionless = sliding
-        .at_rest(model)
-        .then(|| Minors::of(&model.system.matrix, &tendons));
-    for point in sliding.points(model) {
+    let frictionless =
+        (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
+    for point in sliding.points() {
         let sigma = sliding.sigma(model, &point);
         let failure = match &frictionless {
             Some(without) => {
@@ -560,8 +566,8 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         let Some(why) = failure else {
             continue;
         };
-        // A pattern no joint velocity produces (groups whose speeds are tied by the
-        // joints they share) cannot fail in use: only a reachable one refuses.
+        // A point no motion produces (groups whose speeds are tied by the joints they
+        // share) cannot fail in use: only a reachable one refuses.
         if !sliding.reachable(&point) {
             continue;
         }
@@ -594,9 +600,13 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
 /// The directions of sliding that [`sliding_directions`] checks, for it and for the code
 /// generator's order of elimination (`tension::Elimination::holds_while_sliding`).
 pub(crate) struct Sliding {
+    /// Each group's sliding speed per joint velocity, its largest coefficient 1.
     groups: Vec<Vec<f64>>,
-    classes: Vec<usize>,
+    classes: Vec<Class>,
     sliders: Vec<Slider>,
+    /// With `friction_smoothing` there is no band of rest: a guide slides the way its
+    /// speed says, or is at rest where that is zero.
+    smoothed: bool,
 }
 
 impl Sliding {
@@ -606,22 +616,63 @@ impl Sliding {
             groups,
             classes,
             sliders,
+            smoothed: model.friction_smoothing.is_some(),
         }
     }
 
-    /// Whether each class may also be at rest (one null direction, at most
-    /// [`EVERY_REST_UP_TO`] classes).
-    fn at_rest(&self, model: &Model<f64>) -> bool {
-        model.system.null_space.len() == 1 && self.classes.len() <= EVERY_REST_UP_TO
-    }
-
-    /// The points checked, a direction per class ([`sliding_points`]); none without
-    /// sliding guides.
-    pub(crate) fn points(&self, model: &Model<f64>) -> Vec<Vec<f64>> {
-        if self.sliders.is_empty() {
+    /// The points checked, a direction per guide with friction relative to its group's
+    /// (`±1`, or `0` at rest); none without such guides. Up to [`EVERY_REST_UP_TO`]
+    /// guides: every combination [`Sliding::ways`] allows, those where every guide slides
+    /// first. Beyond: every guide slides, each group one way, in every pattern of up to 12
+    /// groups, past that in the two uniform patterns and those with one group flipped.
+    pub(crate) fn points(&self) -> Vec<Vec<f64>> {
+        let guides = self.sliders.len();
+        if guides == 0 {
             return Vec::new();
         }
-        sliding_points(self.groups.len(), &self.classes, self.at_rest(model))
+        if guides <= EVERY_REST_UP_TO {
+            let mut points: Vec<Vec<f64>> = (1..3usize.pow(guides as u32))
+                .map(|mut code| {
+                    (0..guides)
+                        .map(|_| {
+                            let digit = code % 3;
+                            code /= 3;
+                            [0.0, 1.0, -1.0][digit]
+                        })
+                        .collect::<Vec<f64>>()
+                })
+                .filter(|point| self.ways(point).is_some())
+                .collect();
+            points.sort_by_key(|p| p.iter().filter(|&&d| d == 0.0).count());
+            return points;
+        }
+        let groups = self.groups.len();
+        let patterns: Vec<Vec<f64>> = if groups <= 12 {
+            (0..1usize << groups)
+                .map(|bits| {
+                    (0..groups)
+                        .map(|i| if bits >> i & 1 == 1 { -1.0 } else { 1.0 })
+                        .collect()
+                })
+                .collect()
+        } else {
+            let mut p = vec![vec![1.0; groups], vec![-1.0; groups]];
+            for i in 0..groups {
+                for base in [1.0, -1.0] {
+                    let mut one = vec![base; groups];
+                    one[i] = -base;
+                    p.push(one);
+                }
+            }
+            p
+        };
+        (patterns.into_iter())
+            .map(|p| {
+                (self.sliders.iter())
+                    .map(|s| p[self.classes[s.class].group])
+                    .collect()
+            })
+            .collect()
     }
 
     /// `σ[strand][idler]` at `point` (0 where no guide slides).
@@ -629,30 +680,116 @@ impl Sliding {
         let mut sigma: Vec<Vec<f64>> = (model.strands.iter())
             .map(|s| vec![0.0; s.idlers.len()])
             .collect();
-        for slider in &self.sliders {
-            sigma[slider.strand][slider.idler] = slider.sign * point[slider.class];
+        for (slider, &way) in self.sliders.iter().zip(point) {
+            sigma[slider.strand][slider.idler] = slider.sign * way;
         }
         sigma
     }
 
-    /// Whether some joint velocity makes the groups slide as `point` says ([`reachable`]).
-    pub(crate) fn reachable(&self, point: &[f64]) -> bool {
-        let mut pattern = vec![0.0; self.groups.len()];
-        for slider in &self.sliders {
-            if point[slider.class] != 0.0 {
-                pattern[slider.group] = point[slider.class];
+    /// Each group's classes that move at `point`, as `(speed, direction)`, fastest first;
+    /// `None` where the exact law cannot produce it: two guides of a class (equal speeds)
+    /// moving different ways, or a group whose directions switch more than once (with the
+    /// smoothed law, at all). A group's faster classes slide the way `q̇` moves it; where
+    /// that is within the band of rest (`friction::REST`) for its slower ones, those take
+    /// the way `q̈` moves it, which may be the other.
+    fn ways(&self, point: &[f64]) -> Option<Vec<Vec<(f64, f64)>>> {
+        let mut by_class = vec![0.0; self.classes.len()];
+        for (slider, &way) in self.sliders.iter().zip(point) {
+            let w = &mut by_class[slider.class];
+            if way != 0.0 && *w != 0.0 && *w != way {
+                return None;
+            }
+            if way != 0.0 {
+                *w = way;
             }
         }
-        reachable(&self.groups, &pattern)
+        let mut ways = vec![Vec::new(); self.groups.len()];
+        for (class, &way) in self.classes.iter().zip(&by_class) {
+            if way != 0.0 {
+                ways[class.group].push((class.speed, way));
+            }
+        }
+        let most = if self.smoothed { 0 } else { 1 };
+        for w in &mut ways {
+            w.sort_by(|a: &(f64, f64), b| b.0.total_cmp(&a.0));
+            if w.windows(2).filter(|p| p[0].1 != p[1].1).count() > most {
+                return None;
+            }
+        }
+        Some(ways)
+    }
+
+    /// Whether some motion makes the guides take the directions of `point` (a guide at
+    /// rest there is left free: it stands for the corner of a box, [`sliding_directions`]).
+    /// With the smoothed law: some `q̇` with `way_g (u_g · q̇) > 0` for every group that
+    /// moves. With the exact law each group is split where its directions switch (or, where
+    /// they do not, anywhere): its classes before the split slide, `|v| > REST`, the way
+    /// `q̇` moves the group; those after are within the band, `|v| ≤ REST`, and take the
+    /// way `q̈` moves it. Some split of every group must be met by one `q̇` and one `q̈`
+    /// (two linear programs; a group whose classes are all within the band is a `q̇` that
+    /// nearly stops it, so the band's width matters and is kept).
+    pub(crate) fn reachable(&self, point: &[f64]) -> bool {
+        let Some(ways) = self.ways(point) else {
+            return false;
+        };
+        let scaled = |u: &[f64], k: f64| u.iter().map(|x| k * x).collect::<Vec<f64>>();
+        if self.smoothed {
+            let rows: Vec<_> = (ways.iter().zip(&self.groups))
+                .filter_map(|(w, u)| {
+                    w.first()
+                        .map(|&(_, way)| (scaled(u, way), 1.0, f64::INFINITY))
+                })
+                .collect();
+            return feasible(&rows);
+        }
+        let splits: Vec<Vec<usize>> = (ways.iter())
+            .map(|w| match w.windows(2).position(|p| p[0].1 != p[1].1) {
+                Some(i) => vec![i + 1],
+                None => (0..=w.len()).collect(),
+            })
+            .collect();
+        // Every combination of splits, as an odometer over the groups.
+        let mut at = vec![0usize; splits.len()];
+        loop {
+            // `q̇` in units of the band: sliding is `≥ 1`, within the band `|·| ≤ 1`.
+            let (mut velocity, mut acceleration) = (Vec::new(), Vec::new());
+            for (g, (w, u)) in ways.iter().zip(&self.groups).enumerate() {
+                let k = splits[g][at[g]];
+                if k > 0 {
+                    let (speed, way) = w[k - 1];
+                    velocity.push((scaled(u, way * speed), 1.0, f64::INFINITY));
+                }
+                if k < w.len() {
+                    let (speed, way) = w[k];
+                    velocity.push((scaled(u, speed), -1.0, 1.0));
+                    acceleration.push((scaled(u, way), 1.0, f64::INFINITY));
+                }
+            }
+            if feasible(&velocity) && feasible(&acceleration) {
+                return true;
+            }
+            let mut g = 0;
+            loop {
+                if g == at.len() {
+                    return false;
+                }
+                at[g] += 1;
+                if at[g] < splits[g].len() {
+                    break;
+                }
+                at[g] = 0;
+                g += 1;
+            }
+        }
     }
 }
 
 /// The guides with friction over which something slides; the groups of their sliding
 /// speeds per joint velocity (each normalised to a largest coefficient of 1); and the
-/// classes of equal or opposite speeds, as the group each belongs to.
-fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<usize>, Vec<Slider>) {
+/// classes of equal or opposite speeds.
+fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<Class>, Vec<Slider>) {
     let mut groups: Vec<Vec<f64>> = Vec::new();
-    let mut speeds: Vec<(Vec<f64>, usize)> = Vec::new();
+    let mut speeds: Vec<(Vec<f64>, Class)> = Vec::new();
     let mut sliders = Vec::new();
     for (s, strand) in model.strands.iter().enumerate() {
         for (k, idler) in strand.idlers.iter().enumerate() {
@@ -679,81 +816,25 @@ fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<usize>, Vec<Slide
                 groups.push(unit.clone());
                 (groups.len() - 1, 1.0)
             });
-            let twin = |(speed, _): &(Vec<f64>, usize)| {
-                (speed.iter().zip(&g.slide)).all(|(x, y)| (x.abs() - y.abs()).abs() <= 1e-12 * size)
+            let twin = |(speed, class): &(Vec<f64>, Class)| {
+                class.group == group
+                    && (speed.iter().zip(&g.slide))
+                        .all(|(x, y)| (x.abs() - y.abs()).abs() <= 1e-12 * size)
             };
-            let class =
-                (speeds.iter().position(|c| c.1 == group && twin(c))).unwrap_or_else(|| {
-                    speeds.push((g.slide.clone(), group));
-                    speeds.len() - 1
-                });
+            let class = speeds.iter().position(twin).unwrap_or_else(|| {
+                speeds.push((g.slide.clone(), Class { group, speed: size }));
+                speeds.len() - 1
+            });
             sliders.push(Slider {
                 strand: s,
                 idler: k,
-                group,
                 class,
                 sign,
             });
         }
     }
-    let classes = speeds.into_iter().map(|(_, group)| group).collect();
+    let classes = speeds.into_iter().map(|(_, class)| class).collect();
     (groups, classes, sliders)
-}
-
-/// The directions [`sliding_directions`] checks, one per class of guides (`classes[c]` its
-/// group) relative to its group (`±1`, or `0` at rest). With `at_rest`: every combination
-/// in which the sliding classes of a group agree, those where every guide slides first;
-/// else every guide slides, in every pattern of up to 12 groups, past that in the two
-/// uniform patterns and those with one group flipped.
-fn sliding_points(groups: usize, classes: &[usize], at_rest: bool) -> Vec<Vec<f64>> {
-    if at_rest {
-        let mut points: Vec<Vec<f64>> = (1..3usize.pow(classes.len() as u32))
-            .map(|mut code| {
-                (0..classes.len())
-                    .map(|_| {
-                        let digit = code % 3;
-                        code /= 3;
-                        [0.0, 1.0, -1.0][digit]
-                    })
-                    .collect::<Vec<f64>>()
-            })
-            .filter(|point| {
-                let mut way = vec![0.0; groups];
-                classes.iter().zip(point).all(|(&group, &d)| {
-                    let w = &mut way[group];
-                    let agrees = d == 0.0 || *w == 0.0 || *w == d;
-                    if d != 0.0 {
-                        *w = d;
-                    }
-                    agrees
-                })
-            })
-            .collect();
-        points.sort_by_key(|p| p.iter().filter(|&&d| d == 0.0).count());
-        return points;
-    }
-    let patterns: Vec<Vec<f64>> = if groups <= 12 {
-        (0..1usize << groups)
-            .map(|bits| {
-                (0..groups)
-                    .map(|i| if bits >> i & 1 == 1 { -1.0 } else { 1.0 })
-                    .collect()
-            })
-            .collect()
-    } else {
-        let mut p = vec![vec![1.0; groups], vec![-1.0; groups]];
-        for i in 0..groups {
-            for base in [1.0, -1.0] {
-                let mut one = vec![base; groups];
-                one[i] = -base;
-                p.push(one);
-            }
-        }
-        p
-    };
-    (patterns.into_iter())
-        .map(|p| classes.iter().map(|&group| p[group]).collect())
-        .collect()
 }
 
 /// The null vector of an `r × (r + 1)` matrix `E` by its signed maximal minors,
@@ -843,25 +924,110 @@ fn alternating(k: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{reachable, sliding_points, Minors};
+    use super::{Class, Minors, Slider, Sliding};
 
-    /// Two classes of guides sliding together (proportional speeds) and a third alone:
-    /// each class slides its group's way or rests, two of a group never opposite; those
-    /// where every guide slides come first.
+    /// Guides with friction by `(group, speed)` of their class, each on its own strand;
+    /// `groups` the groups' speeds per joint velocity.
+    fn sliding(
+        groups: Vec<Vec<f64>>,
+        classes: &[(usize, f64)],
+        of: &[usize],
+        smoothed: bool,
+    ) -> Sliding {
+        Sliding {
+            groups,
+            classes: (classes.iter())
+                .map(|&(group, speed)| Class { group, speed })
+                .collect(),
+            sliders: (of.iter().enumerate())
+                .map(|(strand, &class)| Slider {
+                    strand,
+                    idler: 0,
+                    class,
+                    sign: 1.0,
+                })
+                .collect(),
+            smoothed,
+        }
+    }
+
+    /// Two guides of one class (equal speeds), a slower class of the same group and a
+    /// guide alone in a second group. Every guide may be at rest alone (the corners of the
+    /// box of capstan factors, guide by guide); the two of a class never move opposite
+    /// ways; with the exact law the slower class may move against the faster one (within
+    /// the band of rest it takes `q̈`'s way), with the smoothed law it may not; those where
+    /// every guide slides come first.
     #[test]
-    fn the_points_checked_are_every_way_the_groups_slide_with_any_class_at_rest() {
-        let classes = [0, 0, 1];
-        let points = sliding_points(2, &classes, true);
-        // (rest, ±, ±, both +, both −) for the pair times (rest, ±) alone, less all at rest.
-        assert_eq!(points.len(), 7 * 3 - 1);
-        assert!(points.iter().all(|p| p[0] * p[1] >= 0.0));
-        let sliding: Vec<_> = points.iter().take_while(|p| !p.contains(&0.0)).collect();
-        assert_eq!(sliding.len(), 4);
-        assert!(points.contains(&vec![1.0, 0.0, -1.0]));
-        // Without rest: every pattern of the groups, each class its group's way.
-        let patterns = sliding_points(2, &classes, false);
-        assert_eq!(patterns.len(), 4);
-        assert!(patterns.iter().all(|p| p[0] == p[1] && p[2] != 0.0));
+    fn the_points_checked_are_every_way_the_exact_law_lets_each_guide_move_or_rest() {
+        let groups = vec![vec![1.0, 0.0], vec![0.0, 1.0]];
+        let classes = [(0, 2.0), (0, 1.0), (1, 1.0)];
+        let exact = sliding(groups.clone(), &classes, &[0, 0, 1, 2], false).points();
+        // The class of two: both at rest, either alone, or both, one way or the other (7);
+        // each other guide: rest or either way (3); less all at rest.
+        assert_eq!(exact.len(), 7 * 3 * 3 - 1);
+        assert!(exact.iter().all(|p| p[0] * p[1] >= 0.0));
+        assert!(exact.contains(&vec![1.0, 0.0, -1.0, 0.0]));
+        assert!(exact.contains(&vec![0.0, 1.0, 0.0, 0.0]));
+        let sliding_first: Vec<_> = exact.iter().take_while(|p| !p.contains(&0.0)).collect();
+        assert_eq!(sliding_first.len(), 2 * 2 * 2);
+        let smoothed = sliding(groups, &classes, &[0, 0, 1, 2], true).points();
+        // The slower class rests or follows the faster one's way where that moves (six
+        // ways the class of two moves, then two each; three where it rests).
+        assert_eq!(smoothed.len(), (6 * 2 + 3) * 3 - 1);
+        assert!(!smoothed.contains(&vec![1.0, 0.0, -1.0, 0.0]));
+        // Three classes in one group: the directions, fastest first, switch at most once.
+        let three = sliding(
+            vec![vec![1.0]],
+            &[(0, 3.0), (0, 2.0), (0, 1.0)],
+            &[0, 1, 2],
+            false,
+        );
+        let points = three.points();
+        assert!(points.contains(&vec![1.0, 1.0, -1.0]));
+        assert!(points.contains(&vec![1.0, -1.0, -1.0]));
+        assert!(!points.contains(&vec![1.0, -1.0, 1.0]));
+    }
+
+    /// Three groups sliding at `q̇₁`, `q̇₂` and `q̇₁ + q̇₂`, at 0.03 m/s per rad/s each. By
+    /// `q̇` alone (the smoothed law) the third cannot slide backwards while the first two
+    /// slide forwards. By the exact law it can: at `q̇ = −(2, 2)·10⁻⁵` rad/s the first two
+    /// move 0.6 µm/s, within the band of rest, and take the way of `q̈ = (1, 1)`, while the
+    /// third slides back at 1.2 µm/s. Within one group, a slower class moves against a
+    /// faster one only by the band too.
+    #[test]
+    fn a_pattern_of_sliding_directions_is_reachable_only_where_some_motion_gives_it() {
+        let groups = vec![vec![1.0, 0.0], vec![0.0, 1.0], vec![1.0, 1.0]];
+        let with = |smoothed: bool| {
+            sliding(
+                groups.clone(),
+                &[(0, 0.03), (1, 0.03), (2, 0.03)],
+                &[0, 1, 2],
+                smoothed,
+            )
+        };
+        let smoothed = with(true);
+        assert!(!smoothed.reachable(&[1.0, 1.0, -1.0]));
+        assert!(!smoothed.reachable(&[-1.0, -1.0, 1.0]));
+        for point in [
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [1.0, 1.0, 0.0],
+        ] {
+            assert!(smoothed.reachable(&point) && with(false).reachable(&point));
+        }
+        assert!(with(false).reachable(&[1.0, 1.0, -1.0]));
+        let two = |smoothed| sliding(vec![vec![1.0]], &[(0, 2.0), (0, 1.0)], &[0, 1], smoothed);
+        assert!(two(false).reachable(&[1.0, -1.0]) && two(false).reachable(&[-1.0, 1.0]));
+        assert!(!two(true).reachable(&[1.0, -1.0]));
+        // Switching twice (fastest first) is no motion's: the band holds only slower classes.
+        let three = sliding(
+            vec![vec![1.0]],
+            &[(0, 3.0), (0, 2.0), (0, 1.0)],
+            &[0, 1, 2],
+            false,
+        );
+        assert!(three.reachable(&[1.0, 1.0, -1.0]) && !three.reachable(&[1.0, -1.0, 1.0]));
     }
 
     /// `E = [2 −1 0; 0 0 1]` (one joint and two tendons with opposite moment arms, and a
@@ -883,17 +1049,5 @@ mod tests {
         let moved = model.at(&[vec![2.0, -1.0, 1.0], vec![0.0, 0.0, 1.0]]);
         assert_eq!(moved, vec![-1.0, -2.0, 0.0]);
         assert!(model.compare(&[-1.0, -2.0, 0.5], &[0, 1]).is_err());
-    }
-
-    /// Three groups sliding at `q̇₁`, `q̇₂` and `q̇₁ + q̇₂`: the third cannot slide backwards
-    /// while the first two slide forwards, but every other sign pattern occurs.
-    #[test]
-    fn a_pattern_of_sliding_directions_is_reachable_only_where_some_joint_velocity_gives_it() {
-        let groups = vec![vec![1.0, 0.0], vec![0.0, 1.0], vec![1.0, 1.0]];
-        assert!(!reachable(&groups, &[1.0, 1.0, -1.0]));
-        assert!(!reachable(&groups, &[-1.0, -1.0, 1.0]));
-        assert!(reachable(&groups, &[1.0, 1.0, 1.0]));
-        assert!(reachable(&groups, &[1.0, -1.0, 1.0]));
-        assert!(reachable(&groups, &[1.0, -1.0, -1.0]));
     }
 }
