@@ -788,3 +788,38 @@ fn a_routing_validation_accepts_is_controllable_however_the_exact_law_sets_its_g
         "{accepted} mechanisms, {mixed} mixed states"
     );
 }
+
+/// Two null directions (a second tendon beside `direct`) and the smoothed law: states
+/// between rest and sliding occur (`|σ| < 1`), which the points alone do not settle.
+/// Validation accepts the routing by a fixed proportion of two free tendons
+/// (docs/format.md §6a); at random states, with every `σ` the smoothed law gives, inverse
+/// dynamics keeps every tendon at or above its floor.
+#[test]
+fn with_two_null_directions_validation_covers_the_states_between_rest_and_sliding() {
+    let two = pin_with("mu: 0.0", "mu: 0.5")
+        .replacen(
+            "(name: \"direct\", route: [(\"drum\", Cw)], exit: (-0.2, -0.02, 0.0)),",
+            "(name: \"direct\", route: [(\"drum\", Cw)], exit: (-0.2, -0.02, 0.0)),\n        \
+             (name: \"direct2\", route: [(\"drum\", Cw)], exit: (-0.3, -0.02, 0.0)),",
+            1,
+        )
+        .replacen(
+            "tension_floor: 2.0,",
+            "tension_floor: 2.0,\n    friction_smoothing: 0.01,",
+            1,
+        );
+    let model = parse(&two).unwrap();
+    assert_eq!(model.system().null_space.len(), 2);
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mut solver = Data::new(&model);
+    for _ in 0..500 {
+        let [q, qd, qdd] = random_state(&mut rng, 1);
+        let qd = [qd[0] * 10f64.powf(rng.random_range(-4.0..0.0))];
+        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
+        assert!(
+            r.tendon_tensions.iter().all(|&t| t >= 2.0 - 1e-9),
+            "{:?}",
+            r.tendon_tensions
+        );
+    }
+}

@@ -541,16 +541,20 @@ const EVERY_REST_UP_TO: usize = 8;
 /// pattern, such a function is a convex combination of its values at the box's corners,
 /// which are the points where any subset of the pattern's guides is at rest: the smoothed
 /// law's `|σ| < 1`, and every state whose wrap angles are no larger than at `q = 0`, lie
-/// in such boxes. Beyond [`EVERY_REST_UP_TO`] guides the points are those where every
-/// guide slides: each group one way, all the ways of up to 12 groups, past that the two
-/// where every group slides one way and those with one group flipped.
+/// in such boxes. With no null direction or two or more, where such states occur, a fixed
+/// basis carries the points' systems between them ([`held_between`]).
+///
+/// Beyond [`EVERY_REST_UP_TO`] guides the points are those where every guide slides: each
+/// group one way, all the ways of up to 12 groups, past that the two where every group
+/// slides one way and those with one group flipped.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
     let sliding = Sliding::of(model);
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
     let frictionless =
         (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
-    for point in sliding.points() {
-        let sigma = sliding.sigma(model, &point);
+    let points = sliding.points();
+    for point in &points {
+        let sigma = sliding.sigma(model, point);
         let failure = match &frictionless {
             Some(without) => {
                 let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
@@ -568,33 +572,212 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         };
         // A point no motion produces (groups whose speeds are tied by the joints they
         // share) cannot fail in use: only a reachable one refuses.
-        if !sliding.reachable(&point) {
+        if !sliding.reachable(point) {
             continue;
         }
-        let described: Vec<String> = (sliding.sliders.iter())
-            .map(|slider| {
-                let strand = &model.strands[slider.strand];
-                let guide = &model.bodies[strand.idlers[slider.idler].body].name;
-                match sigma[slider.strand][slider.idler] {
-                    0.0 => format!("`{}` at rest on `{guide}`", strand.name),
-                    x if x > 0.0 => format!("`{}` over `{guide}` towards its exit", strand.name),
-                    _ => format!("`{}` over `{guide}` towards its anchor", strand.name),
-                }
-            })
-            .collect();
-        let first = &sliding.sliders[0];
-        let first = model.strands[first.strand].idlers[first.idler].body;
         return Err(v.routing(
-            &model.bodies[first].name,
+            &sliding.first_guide(model),
             format!(
                 "with capstan friction the routing must be controllable whichever way the \
                  tendons slide, but sliding {} (at q = 0) it is not: {why}; lower `mu` or \
                  route the tendon differently",
-                described.join(", ")
+                sliding.described(model, &sigma)
             ),
         ));
     }
+    // Between the points: with one null direction the minors settle it; with none or
+    // more, a fixed basis does where some state lies between them.
+    let between = sliding.smoothed
+        || (sliding.sliders.iter()).any(|s| {
+            let guide = model.strands[s.strand].idlers[s.idler].guide.as_ref();
+            guide.is_some_and(|g| !g.wrap_is_constant())
+        });
+    let d = model.system.null_space.len();
+    if d != 1 && between && sliding.sliders.len() <= EVERY_REST_UP_TO {
+        if let Err(point) = held_between(model, &sliding, &points, &tendons) {
+            let blocked = match point {
+                Some(point) => format!(
+                    "up to sliding {} (at q = 0)",
+                    sliding.described(model, &sliding.sigma(model, &point))
+                ),
+                None => "in one proportion for every direction of sliding".into(),
+            };
+            return Err(v.routing(
+                &sliding.first_guide(model),
+                format!(
+                    "with capstan friction and {}, the routing must stay controllable between \
+                     rest and every direction of sliding; with a {d}-dimensional null space \
+                     validation shows that by {d} tendons whose tensions, in one proportion \
+                     for every state, keep the others taut and the motors and loop sides \
+                     determined, and no {d} tendons do {blocked}; lower `mu` or route the \
+                     tendons differently",
+                    if sliding.smoothed {
+                        "`friction_smoothing`"
+                    } else {
+                        "wrap angles that change with the joints"
+                    },
+                ),
+            ));
+        }
+    }
     Ok(())
+}
+
+/// With no null direction or two or more, the state's system is checked at the points
+/// alone, and the minors of one null direction do not settle the states between them (the
+/// smoothed law's `|σ| < 1`, wrap angles smaller than at `q = 0`). A fixed basis does: `d`
+/// tendons `N` whose tensions `x_N > 0` are held in one proportion, the other columns `B`
+/// (every motor and loop side among them) solved from `E_B x_B = −E_N x_N`. By Cramer,
+/// `det E_B` and `det E_B · x_B` are minors of `E`, affine in each capstan factor taken
+/// alone like the null vector's ([`sliding_directions`]): where `det E_B` keeps its sign,
+/// the motors' and loop sides' components of `E_B⁻¹ E_N` vanish and every tendon stays
+/// above `1e-9 Σ x_N` at every point ([`proportion`]), so they do on every box between
+/// rest and a point, and the state's `E` has full rank, determines its motors and loop
+/// sides and lifts every tendon (with no null direction, `det E_B` alone).
+///
+/// Every choice of `N` is tried, over every point, then over the reachable ones. `Err`
+/// where no choice holds, with a reachable point where the last choice that held at rest
+/// fails, `None` where each fails only for want of one proportion.
+fn held_between(
+    model: &Model<f64>,
+    sliding: &Sliding,
+    points: &[Vec<f64>],
+    tendons: &[usize],
+) -> std::result::Result<(), Option<Vec<f64>>> {
+    let d = model.system.null_space.len();
+    let columns = model.system.matrix.first().map_or(0, Vec::len);
+    let q = vec![0.0; model.dof];
+    let matrices: Vec<Vec<Vec<f64>>> = (points.iter())
+        .map(|p| crate::dynamics::matrix_sliding(model, &q, &sliding.sigma(model, p)))
+        .collect();
+    let choices = combinations(tendons, d);
+    let holds = |free: &[usize], taken: &dyn Fn(usize) -> bool| -> std::result::Result<(), usize> {
+        let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
+        // Rest (the frictionless `E`) is a corner of every box.
+        let (sign, mut rows) =
+            basis(&model.system.matrix, &basic, free, tendons, None).ok_or(usize::MAX)?;
+        for (i, e) in matrices.iter().enumerate().filter(|&(i, _)| taken(i)) {
+            rows.extend(basis(e, &basic, free, tendons, Some(sign)).ok_or(i)?.1);
+        }
+        if d == 0 {
+            return Ok(());
+        }
+        proportion(&rows, d).map(|_| ()).ok_or(usize::MAX)
+    };
+    let all = |_: usize| true;
+    if choices.iter().any(|free| holds(free, &all).is_ok()) {
+        return Ok(());
+    }
+    let reachable: Vec<bool> = points.iter().map(|p| sliding.reachable(p)).collect();
+    let mut failing = None;
+    for free in &choices {
+        match holds(free, &|i| reachable[i]) {
+            Ok(()) => return Ok(()),
+            Err(i) if i != usize::MAX => failing = Some(i),
+            Err(_) => {}
+        }
+    }
+    Err(failing.map(|i| points[i].clone()))
+}
+
+/// `E_B` and `E_B⁻¹ E_N` at one point ([`held_between`]): `det E_B`'s sign (`None` where
+/// `E_B` is singular within `1e-12` of its rows' sizes, or where the sign is not `sign`)
+/// and, for each tendon of `B`, the row `a = −(E_B⁻¹ E_N)_i` giving its tension `a · x_N`;
+/// `None` too where a motor's or loop side's component of
+/// `E_B⁻¹ E_N` exceeds `1e-9` of the largest.
+fn basis(
+    e: &[Vec<f64>],
+    basic: &[usize],
+    free: &[usize],
+    tendons: &[usize],
+    sign: Option<f64>,
+) -> Option<(f64, Vec<Vec<f64>>)> {
+    let r = e.len();
+    let square = DMatrix::from_fn(r, r, |i, j| e[i][basic[j]]);
+    let hadamard: f64 = (square.row_iter()).map(|row| row.norm()).product();
+    let lu = square.lu();
+    let det = lu.determinant();
+    let singular = det.is_nan() || det.abs() <= 1e-12 * hadamard;
+    if singular || sign.is_some_and(|s| s != det.signum()) {
+        return None;
+    }
+    let z = lu.solve(&DMatrix::from_fn(r, free.len(), |i, j| e[i][free[j]]))?;
+    let size = z.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let mut rows = Vec::new();
+    for (i, &c) in basic.iter().enumerate() {
+        let row: Vec<f64> = z.row(i).iter().copied().collect();
+        if tendons.contains(&c) {
+            rows.push(row.iter().map(|z| -z).collect());
+        } else if row.iter().any(|z| z.abs() > 1e-9 * size) {
+            return None;
+        }
+    }
+    Some((det.signum(), rows))
+}
+
+/// A proportion `x` (`Σ x = 1`) whose least of `x_j` and `a · x` over the rows `a` is
+/// largest, if that exceeds `1e-9`: a linear program in `(x, t)`, `max t` with `x_j ≥ t`
+/// and `a · x ≥ t`, over the rows the current optimum falls short of, added round by
+/// round until none is (finite: each round adds one). The margin is then taken over every
+/// row, not from the program.
+fn proportion(rows: &[Vec<f64>], d: usize) -> Option<Vec<f64>> {
+    use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
+    let mut active = vec![false; rows.len()];
+    loop {
+        let mut lp = Problem::new(OptimizationDirection::Maximize);
+        let x: Vec<_> = (0..d).map(|_| lp.add_var(0.0, (0.0, 1.0))).collect();
+        let t = lp.add_var(1.0, (-1.0, 1.0));
+        let sum: Vec<_> = x.iter().map(|&v| (v, 1.0)).collect();
+        lp.add_constraint(sum.as_slice(), ComparisonOp::Eq, 1.0);
+        for &v in &x {
+            lp.add_constraint([(v, 1.0), (t, -1.0)], ComparisonOp::Ge, 0.0);
+        }
+        for (a, _) in rows.iter().zip(&active).filter(|(_, &on)| on) {
+            let mut terms: Vec<_> = x.iter().zip(a).map(|(&v, &c)| (v, c)).collect();
+            terms.push((t, -1.0));
+            lp.add_constraint(terms.as_slice(), ComparisonOp::Ge, 0.0);
+        }
+        let (x, t) = match lp.solve() {
+            Ok(SolveOutcome::Solution(s)) => (
+                x.iter().map(|&v| s.var_value(v)).collect::<Vec<f64>>(),
+                s.var_value(t),
+            ),
+            _ => return None,
+        };
+        let value = |a: &Vec<f64>| a.iter().zip(&x).map(|(a, x)| a * x).sum::<f64>();
+        let mut added = false;
+        for (a, on) in rows.iter().zip(active.iter_mut()) {
+            if !*on && value(a) < t - 1e-12 {
+                *on = true;
+                added = true;
+            }
+        }
+        if !added {
+            let least = rows
+                .iter()
+                .map(value)
+                .chain(x.iter().copied())
+                .fold(f64::INFINITY, f64::min);
+            return (least > 1e-9).then_some(x);
+        }
+    }
+}
+
+/// Every set of `k` of `items`, in increasing order of position.
+fn combinations(items: &[usize], k: usize) -> Vec<Vec<usize>> {
+    if k == 0 {
+        return vec![Vec::new()];
+    }
+    (0..items.len())
+        .flat_map(|i| {
+            combinations(&items[i + 1..], k - 1)
+                .into_iter()
+                .map(move |mut rest| {
+                    rest.insert(0, items[i]);
+                    rest
+                })
+        })
+        .collect()
 }
 
 /// The directions of sliding that [`sliding_directions`] checks, for it and for the code
@@ -673,6 +856,30 @@ impl Sliding {
                     .collect()
             })
             .collect()
+    }
+
+    /// Each guide with friction, its tendon and the way `sigma` moves it, for a message.
+    fn described(&self, model: &Model<f64>, sigma: &[Vec<f64>]) -> String {
+        let described: Vec<String> = (self.sliders.iter())
+            .map(|slider| {
+                let strand = &model.strands[slider.strand];
+                let guide = &model.bodies[strand.idlers[slider.idler].body].name;
+                match sigma[slider.strand][slider.idler] {
+                    0.0 => format!("`{}` at rest on `{guide}`", strand.name),
+                    x if x > 0.0 => format!("`{}` over `{guide}` towards its exit", strand.name),
+                    _ => format!("`{}` over `{guide}` towards its anchor", strand.name),
+                }
+            })
+            .collect();
+        described.join(", ")
+    }
+
+    /// The first guide with friction's name, where a refusal is reported.
+    fn first_guide(&self, model: &Model<f64>) -> String {
+        let first = &self.sliders[0];
+        model.bodies[model.strands[first.strand].idlers[first.idler].body]
+            .name
+            .clone()
     }
 
     /// `σ[strand][idler]` at `point` (0 where no guide slides).
@@ -924,7 +1131,7 @@ fn alternating(k: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Class, Minors, Slider, Sliding};
+    use super::{basis, proportion, Class, Minors, Slider, Sliding};
 
     /// Guides with friction by `(group, speed)` of their class, each on its own strand;
     /// `groups` the groups' speeds per joint velocity.
@@ -1028,6 +1235,42 @@ mod tests {
             false,
         );
         assert!(three.reachable(&[1.0, 1.0, -1.0]) && !three.reachable(&[1.0, -1.0, 1.0]));
+    }
+
+    /// `E = [a, −1, 1]` (one joint; a tendon whose moment arm friction turns from 2 to −1
+    /// N·m/N, against two fixed ones): controllable wherever `a` is, as the other two
+    /// pull opposite ways, but no one null direction lifts every tendon throughout (the
+    /// first tendon's minor changes sign). Freeing the first and the third (`B` the second)
+    /// holds them in one proportion that keeps the second, `a x₁ + x₃`, taut at every `a`.
+    /// A motor's column that the free tendons would move refuses the basis.
+    #[test]
+    fn a_fixed_proportion_of_free_tendons_keeps_the_others_taut_at_every_point() {
+        let e = |a: f64| vec![vec![a, -1.0, 1.0]];
+        let tendons = [0, 1, 2];
+        let rows: Vec<Vec<f64>> = [2.0, 0.5, -1.0]
+            .iter()
+            .flat_map(|&a| basis(&e(a), &[1], &[0, 2], &tendons, Some(-1.0)).unwrap().1)
+            .collect();
+        let x = proportion(&rows, 2).unwrap();
+        assert!((x[0] + x[1] - 1.0).abs() < 1e-12 && x[0] > 1e-9 && x[1] > 1e-9);
+        for a in [2.0, 0.5, -1.0] {
+            // The second tendon, solved from the balance: `x₂ = a x₁ + x₃`.
+            assert!(a * x[0] + x[1] > 1e-9, "{x:?} at a = {a}");
+        }
+        // The sign of `det E_B` must be the frictionless one.
+        assert!(basis(&e(2.0), &[1], &[0, 2], &tendons, Some(1.0)).is_none());
+        // `x₁ ≥ x₂` and `x₁ ≤ x₂ / 2` hold for no positive `x`.
+        assert!(proportion(&[vec![1.0, -1.0], vec![-1.0, 0.5]], 2).is_none());
+        // The least of `x₁`, `x₂` and `2x₁ − x₂` is largest, 1/2, at `x = (1/2, 1/2)`.
+        let x = proportion(&[vec![2.0, -1.0]], 2).unwrap();
+        assert!(
+            (x[0] - 0.5).abs() < 1e-9 && (x[1] - 0.5).abs() < 1e-9,
+            "{x:?}"
+        );
+        // A motor (column 1 not a tendon) that the free tendons would move.
+        assert!(basis(&e(1.0), &[1], &[0, 2], &[0, 2], None).is_none());
+        let still = vec![vec![1.0, 0.0, -1.0], vec![0.0, 1.0, 0.0]];
+        assert!(basis(&still, &[1, 2], &[0], &[0, 2], None).is_some());
     }
 
     /// `E = [2 −1 0; 0 0 1]` (one joint and two tendons with opposite moment arms, and a
