@@ -1581,6 +1581,38 @@ fn a_friction_smoothing_speed_outside_its_range_is_rejected_at_its_line() {
     }
 }
 
+/// A joint's `range` must be two finite angles within their range of magnitude, the
+/// lower below the upper: each is an `Invalid` error at the link's line that names the
+/// field; a good one is accepted and kept.
+#[test]
+fn a_joint_range_that_is_empty_reversed_or_absurd_is_rejected_at_its_link() {
+    let good = with(
+        OPEN_ENDED,
+        "dh: (a: 0.30, alpha: 0.0, d: 0.0),",
+        "dh: (a: 0.30, alpha: 0.0, d: 0.0),\n            range: (-1.5, 2.0),",
+    );
+    assert_eq!(parse(&good).unwrap().joint_range(0), Some([-1.5, 2.0]));
+    for (range, says) in [
+        ("(1.0, 1.0)", "lower end must be below its upper"),
+        ("(2.0, -2.0)", "lower end must be below its upper"),
+        ("(-1e4, 1.0)", "`range`"),
+        ("(0.0, inf)", "must be finite"),
+    ] {
+        let text = with(
+            OPEN_ENDED,
+            "dh: (a: 0.30, alpha: 0.0, d: 0.0),",
+            &format!("dh: (a: 0.30, alpha: 0.0, d: 0.0),\n            range: {range},"),
+        );
+        let err = rejected(&text);
+        assert_eq!(err.item(), Some("link1"), "{err}");
+        let Error::Invalid { at, .. } = &err else {
+            panic!("{err:?}")
+        };
+        assert_eq!(at.line, line_of(&text, "name: \"link1\""), "{err}");
+        assert!(err.to_string().contains(says), "{range}: {err}");
+    }
+}
+
 #[test]
 fn a_name_holding_a_comment_marker_is_still_located_at_its_definition() {
     // `//` inside a string is not a comment: the locator reads string literals first.

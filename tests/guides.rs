@@ -823,3 +823,66 @@ fn with_two_null_directions_validation_covers_the_states_between_rest_and_slidin
         );
     }
 }
+
+/// With every joint given a `range` of ±1 rad, validation covers the wrap angles the
+/// ranges reach, not only those at `q = 0` (docs/format.md §6a), on seeded random
+/// mechanisms whose guides wrap more as the joints turn (their idlers made guides with
+/// friction). A routing it accepts, the runtime solver finds controllable at random states
+/// within the ranges; one it refuses (accepted without ranges: at `q = 0` it holds), the
+/// runtime solver finds uncontrollable at some such state, in the direction the refusal
+/// names.
+#[test]
+fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let (mut accepted, mut refused) = (0, 0);
+    for seed in 0..40u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: false,
+        };
+        let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        for mu in [0.2, 1.0] {
+            let unranged = tendyn_spec::guides::idlers_as_capstans(&text, mu);
+            let Ok(model) = parse(&unranged) else {
+                continue;
+            };
+            if model.guides().all(|(.., g)| g.wrap_is_constant()) {
+                continue;
+            }
+            let ranged = unranged.replace("dh: (", "range: (-1.0, 1.0), dh: (");
+            let verdict = parse(&ranged);
+            let n = model.dof();
+            let mut solver = Data::new(&model);
+            let mut uncontrollable = 0;
+            for _ in 0..2000 {
+                let [_, qd, qdd] = random_state(&mut rng, n);
+                let q: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+                match solver.inverse_dynamics(&model, &q, &qd, &qdd) {
+                    Ok(_) => {}
+                    Err(Error::Tension(e)) if e.contains("not controllable in this direction") => {
+                        uncontrollable += 1
+                    }
+                    Err(e) => panic!("random_{seed}: {e}"),
+                }
+            }
+            match verdict {
+                Ok(_) => {
+                    assert_eq!(uncontrollable, 0, "random_{seed} with mu {mu}");
+                    accepted += 1;
+                }
+                Err(e) => {
+                    let shown = e.to_string();
+                    assert!(shown.contains("whichever way the tendons slide"), "{shown}");
+                    assert!(shown.contains(" rad)"), "{shown}");
+                    assert!(uncontrollable > 0, "random_{seed} with mu {mu}: {shown}");
+                    refused += 1;
+                }
+            }
+        }
+    }
+    println!("{accepted} accepted, {refused} refused with ranges");
+    assert!(
+        accepted >= 3 && refused >= 1,
+        "{accepted} accepted, {refused} refused"
+    );
+}

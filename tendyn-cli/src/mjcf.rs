@@ -21,7 +21,7 @@
 
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
-use tendyn_core::model::MotorKind;
+use tendyn_core::model::{BodyKind, MotorKind};
 use tendyn_core::spatial::{Mat3, Vec3};
 use tendyn_core::transmission::body_transform;
 use tendyn_core::Model;
@@ -120,14 +120,24 @@ fn body(w: &mut Writer<Vec<u8>>, model: &Model<f64>, b: usize) -> Result<()> {
                     .write_empty()?;
             }
             if turns(model, b) {
-                // The joint point is −joint_to_origin in the body's frame, the axis postᵀ z.
+                // The joint point is −joint_to_origin in the body's frame, the axis postᵀ z;
+                // a link's `range` is its hinge's (MuJoCo's `autolimits` makes it a limit).
+                let range = match body.kind {
+                    BodyKind::Link { joint } => model.joint_range(joint).map(|r| numbers(&r)),
+                    _ => None,
+                };
+                let (name, pos, axis) = (hinge(model, b), v(-body.joint_to_origin), v(body.axis));
+                let mut attributes = vec![
+                    ("name", name.as_str()),
+                    ("type", "hinge"),
+                    ("pos", pos.as_str()),
+                    ("axis", axis.as_str()),
+                ];
+                if let Some(range) = &range {
+                    attributes.push(("range", range.as_str()));
+                }
                 w.create_element("joint")
-                    .with_attributes([
-                        ("name", hinge(model, b).as_str()),
-                        ("type", "hinge"),
-                        ("pos", v(-body.joint_to_origin).as_str()),
-                        ("axis", v(body.axis).as_str()),
-                    ])
+                    .with_attributes(attributes)
                     .write_empty()?;
             }
             let children = (0..model.bodies().len())
@@ -288,6 +298,26 @@ mod tests {
                 _ => {}
             }
         }
+    }
+
+    /// A link's `range` becomes its hinge's, in radians (the compiler's `angle`); a link
+    /// without one has no `range`.
+    #[test]
+    fn a_joint_range_is_exported_as_its_hinge_range() {
+        let text = tendyn_codegen::report::BUILT_IN[0].1;
+        let first_dh = text.find("dh: (").unwrap();
+        let ranged = format!(
+            "{}range: (-1.5, 2.0), {}",
+            &text[..first_dh],
+            &text[first_dh..]
+        );
+        let model = tendyn_core::parse(&ranged).unwrap();
+        let xml = mjcf(&model).unwrap();
+        assert_eq!(xml.matches("range=").count(), 1, "{xml}");
+        let joint = format!("<joint name=\"{}\"", model.bodies()[0].name);
+        let hinge = xml.find(&joint).unwrap();
+        let line = &xml[hinge..hinge + xml[hinge..].find("/>").unwrap()];
+        assert!(line.contains("range=\"-1.5e0 2e0\""), "{line}");
     }
 
     /// What the module documentation promises, counted for the paper's examples: a body

@@ -206,10 +206,17 @@ pub fn check_text(m: &Model<f64>) -> String {
     if !slides.is_empty() {
         line("guides (fixed pulleys the tendons slide over; wrap angle β, capstan μ):".into());
         for (s, _, b, g) in slides {
+            let [low, high] = g.wrap_over(&m.range_box());
             let at = if g.wrap_is_constant() {
-                ""
+                String::new()
+            } else if high > low {
+                format!(
+                    " (at q = 0; {:.3}° to {:.3}° over the joints' ranges)",
+                    low.to_degrees(),
+                    high.to_degrees()
+                )
             } else {
-                " (at q = 0)"
+                " (at q = 0)".into()
             };
             let away = if g.wrap < 0.0 {
                 " (negative: the tendon bends away from it here; a real one would lift off)"

@@ -465,29 +465,6 @@ pub fn forward_dynamics_rhs<T: Real>(
     rhs
 }
 
-/// The tension system at joint angles `q` with the guides with friction sliding in the
-/// directions `sigma` (`±1` each, or `0` at rest, `[strand][idler]` as
-/// `Workspace::capstan`, ignored elsewhere): `E(σ, q)` ([`matrix_sliding`],
-/// [`tension::system_at`]). What validation checks for each direction of sliding the
-/// routing can take.
-pub fn system_sliding<T: Numeric>(
-    model: &Model<T>,
-    q: &[T],
-    sigma: &[Vec<f64>],
-) -> Result<TensionSystem<T>> {
-    tension::system_at(model, matrix_sliding(model, q, sigma))
-}
-
-/// `E(σ, q)` alone ([`tension::state_matrix`] at the capstan factors of `sigma`), for
-/// validation's minors and the code generator's check of its elimination order.
-pub fn matrix_sliding<T: Real>(model: &Model<T>, q: &[T], sigma: &[Vec<f64>]) -> Vec<Vec<T>> {
-    let mut capstan: Vec<Vec<T>> = (model.strands.iter())
-        .map(|s| vec![T::one(); s.idlers.len()])
-        .collect();
-    friction::capstan_factors_sliding(model, q, &mut capstan, |s, k, _| T::from_f64(sigma[s][k]));
-    tension::state_matrix(model, &capstan)
-}
-
 /// The balance rows of `E x = b` as affine forms, at the motion, bearing friction and
 /// capstan factors in `ws`: the segment tensions (Eq. 24b), the backward recursion with
 /// them as unknowns (Eqs. 19-24) and the axial balances it leaves (`tension::balance_rows`).

@@ -200,6 +200,11 @@ pub struct LinkSpec {
     /// Friction in the joint's bearing.
     #[serde(default)]
     pub friction: Option<FrictionSpec>,
+    /// Range of the joint variable `q` (rad), `(lower, upper)`: where a guide's wrap angle
+    /// changes with this joint, validation covers the wrap angles it reaches over the range
+    /// (format.md §6a). The dynamics does not enforce it.
+    #[serde(default)]
+    pub range: Option<[f64; 2]>,
 }
 
 /// Where a pulley sits on its carrier.

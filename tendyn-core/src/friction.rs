@@ -36,7 +36,7 @@
 //! idler's tension step (Eq. 24b with the bearing's moment, `tension::segment_tensions`).
 
 use crate::kinematics::coupled;
-use crate::model::{Guide, Model};
+use crate::model::Model;
 use crate::real::{Numeric, Real};
 
 /// The band of rest (rad/s, and rad/s² for the direction of impending motion): a bearing
@@ -143,30 +143,19 @@ pub fn capstan_factors<T: Real>(
     qdd: Option<&[T]>,
     out: &mut [Vec<T>],
 ) {
-    capstan_factors_sliding(model, q, out, |_, _, guide| {
-        direction(
-            linear(&guide.slide, qd),
-            qdd.map(|a| linear(&guide.slide, a)),
-            model.friction_smoothing,
-        )
-    });
-}
-
-/// [`capstan_factors`] with the directions given: `sigma(strand, idler, guide)` for each
-/// guide with friction (validation checks every pattern of them this way).
-pub fn capstan_factors_sliding<T: Real>(
-    model: &Model<T>,
-    q: &[T],
-    out: &mut [Vec<T>],
-    sigma: impl Fn(usize, usize, &Guide) -> T,
-) {
-    for (s, (strand, factors)) in model.strands.iter().zip(out.iter_mut()).enumerate() {
-        for (k, (idler, factor)) in strand.idlers.iter().zip(factors.iter_mut()).enumerate() {
+    for (strand, factors) in model.strands.iter().zip(out.iter_mut()) {
+        for (idler, factor) in strand.idlers.iter().zip(factors.iter_mut()) {
             let Some(guide) = idler.capstan() else {
                 continue;
             };
+            // The wrap angle first, then the direction: the order generated code is traced in.
             let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());
-            *factor = (-(sigma(s, k, guide) * T::from_f64(guide.mu) * wrap)).exp();
+            let sigma = direction(
+                linear(&guide.slide, qd),
+                qdd.map(|a| linear(&guide.slide, a)),
+                model.friction_smoothing,
+            );
+            *factor = (-(sigma * T::from_f64(guide.mu) * wrap)).exp();
         }
     }
 }
@@ -208,7 +197,7 @@ pub struct GuideState {
     pub idler: usize,
     /// The guide's body.
     pub body: usize,
-    /// `β(q)` (rad), [`Guide::wrap_at`]: negative where the tendon bends away from it.
+    /// `β(q)` (rad), [`crate::model::Guide::wrap_at`]: negative where the tendon bends away from it.
     pub wrap_angle: f64,
     /// The tendon's speed over it (m/s), positive towards the strand's ground end.
     pub sliding_speed: f64,

@@ -199,6 +199,19 @@ impl Guide {
                 .sum::<f64>()
     }
 
+    /// The interval of the wrap angle over a box of joint angles (`[lower, upper]` per
+    /// joint, as [`Model::range_box`] gives), each end at least 0: a tendon bending away
+    /// does not touch the guide.
+    pub fn wrap_over(&self, joints: &[[f64; 2]]) -> [f64; 2] {
+        let (mut low, mut high) = (self.wrap, self.wrap);
+        for (&rate, r) in self.wrap_rate.iter().zip(joints) {
+            let (x, y) = (rate * r[0], rate * r[1]);
+            low += x.min(y);
+            high += x.max(y);
+        }
+        [low.max(0.0), high.max(0.0)]
+    }
+
     /// Whether the wrap angle is the same at every state.
     pub fn wrap_is_constant(&self) -> bool {
         self.wrap_rate.iter().all(|&k| k == 0.0)
@@ -467,6 +480,8 @@ pub struct Model<T> {
     pub(crate) objective: Objective,
     /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
     pub(crate) friction_smoothing: Option<f64>,
+    /// Each joint's `range` of `q` (rad), where the file gives one (format.md §3).
+    pub(crate) joint_ranges: Vec<Option<[f64; 2]>>,
     /// The file's `external_wrench`, if any.
     pub(crate) external_wrench: Option<Wrench<T>>,
     /// Explicit couplings or structure columns are present: segment tensions and bearing
@@ -597,6 +612,21 @@ impl<T> Model<T> {
     /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
     pub fn friction_smoothing(&self) -> Option<f64> {
         self.friction_smoothing
+    }
+
+    /// Joint `j`'s range of `q` (rad), `[lower, upper]`, where the file gives one: what
+    /// validation covers of the wrap angles that change with it (format.md §6a); not
+    /// enforced by the dynamics.
+    pub fn joint_range(&self, j: usize) -> Option<[f64; 2]> {
+        self.joint_ranges.get(j).copied().flatten()
+    }
+
+    /// Every joint's range, `[0, 0]` for a joint without one: the box of joint angles
+    /// validation covers where wrap angles change with them (format.md §6a).
+    pub fn range_box(&self) -> Vec<[f64; 2]> {
+        (0..self.dof)
+            .map(|j| self.joint_range(j).unwrap_or([0.0, 0.0]))
+            .collect()
     }
 
     /// The file's `external_wrench`, if any.
@@ -754,6 +784,7 @@ impl<T: Real> Model<T> {
             },
             objective: self.objective,
             friction_smoothing: self.friction_smoothing,
+            joint_ranges: self.joint_ranges.clone(),
             external_wrench: self.external_wrench.as_ref().map(|w| Wrench {
                 link: w.link,
                 point: v(w.point),

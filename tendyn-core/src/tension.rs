@@ -339,8 +339,7 @@ impl Elimination {
         let sliding = crate::validate::Sliding::of(model);
         let without = self.pivots(&model.system.matrix);
         sliding.points().into_iter().all(|point| {
-            let sigma = sliding.sigma(model, &point);
-            let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
+            let e = sliding.matrix(model, &point);
             let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
             let kept = |(p, w): (&f64, &f64)| p.signum() == w.signum() && p.abs() > 1e-12 * size;
             self.pivots(&e).iter().zip(&without).all(kept) || !sliding.reachable(&point)

@@ -185,6 +185,25 @@ impl Validator<'_> {
         Ok(())
     }
 
+    /// A link's `range`: finite angles within their range of magnitude, lower below upper.
+    fn joint_range(&self, l: &LinkSpec) -> Result<()> {
+        let Some(range) = l.range else {
+            return Ok(());
+        };
+        self.finite(&l.name, "range", &range)?;
+        self.within(&l.name, "range", &range, Range::Angle)?;
+        if range[0] >= range[1] {
+            return Err(self.invalid(
+                &l.name,
+                format!(
+                    "`range` is ({}, {}); its lower end must be below its upper one",
+                    range[0], range[1]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The body of link `j`, turned by joint `j` (its DH parameters checked).
     fn link_body(&self, j: usize, l: &LinkSpec, n: usize) -> Result<Body<f64>> {
         let d = &l.dh;
@@ -196,6 +215,7 @@ impl Validator<'_> {
         let mp = self.mass_of(&l.mass, &l.com, &l.inertia);
         self.mass_properties(&l.name, &mp)?;
         let friction = self.friction(&l.name, l.friction.as_ref())?;
+        self.joint_range(l)?;
         let post = dh_post(d.a, d.d, &snapped_rot(0, d.alpha));
         let (axis, joint_to_origin) = axis_and_origin(&post);
         let mut coupling = vec![0.0; n];

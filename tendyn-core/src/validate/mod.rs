@@ -274,6 +274,7 @@ impl<'a> Validator<'a> {
             tendons,
             objective: f.distribution,
             friction_smoothing: f.friction_smoothing,
+            joint_ranges: f.links.iter().map(|l| l.range).collect(),
             loops,
             motors,
             system,

@@ -99,6 +99,7 @@ impl Model<f64> {
             },
             objective: Default::default(),
             friction_smoothing: None,
+            joint_ranges: vec![None; dof],
             external_wrench,
             routing_incomplete: false,
             patterns,

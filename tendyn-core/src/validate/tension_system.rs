@@ -500,13 +500,15 @@ fn feasible(rows: &[(Vec<f64>, f64, f64)]) -> bool {
 }
 
 /// A guide with friction over which something slides: its strand and idler, its class
-/// (guides whose speeds are equal or opposite: they slide and rest together), and the sign
-/// relating its speed to its group's.
+/// (guides whose speeds are equal or opposite: they slide and rest together), the sign
+/// relating its speed to its group's, and its largest wrap angle over the joints' ranges
+/// ([`crate::model::Guide::wrap_over`]).
 struct Slider {
     strand: usize,
     idler: usize,
     class: usize,
     sign: f64,
+    wrap: f64,
 }
 
 /// Guides whose sliding speeds are equal or opposite: `|v| = speed |u_g · q̇|`, `u_g` the
@@ -519,6 +521,10 @@ struct Class {
 /// The most guides with friction for which every combination of directions and rest is
 /// checked (`3⁸ = 6561` systems at most).
 const EVERY_REST_UP_TO: usize = 8;
+
+/// The most boxes of joint angles [`Sliding::state_that_fails`] searches before it gives
+/// up finding the state where a routing fails, and refuses it all the same.
+const UNSETTLED_AFTER: usize = 4096;
 
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
@@ -553,21 +559,26 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     let frictionless =
         (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
     let points = sliding.points();
+    let fails = |e: Vec<Vec<f64>>| -> Option<String> {
+        match &frictionless {
+            Some(without) => without.compare(&without.at(&e), &tendons).err(),
+            None => crate::tension::system_at(model, e).err().map(|e| match e {
+                Error::Tension(why) => why,
+                other => other.to_string(),
+            }),
+        }
+    };
+    let ranged = sliding.ranged(model);
     for point in &points {
-        let sigma = sliding.sigma(model, point);
-        let failure = match &frictionless {
-            Some(without) => {
-                let e = crate::dynamics::matrix_sliding(model, &vec![0.0; model.dof], &sigma);
-                without.compare(&without.at(&e), &tendons).err()
-            }
-            None => crate::dynamics::system_sliding(model, &vec![0.0; model.dof], &sigma)
-                .err()
-                .map(|e| match e {
-                    Error::Tension(why) => why,
-                    other => other.to_string(),
-                }),
+        // Over the joints' ranges each guide's wrap angle lies in an interval, which guides
+        // on one joint may not span together: the boxes of joint angles are searched for a
+        // state ([`Sliding::state_that_fails`]).
+        let failure = if ranged {
+            sliding.state_that_fails(model, point, &fails)
+        } else {
+            fails(sliding.matrix(model, point)).map(|why| (Some(vec![0.0; model.dof]), why))
         };
-        let Some(why) = failure else {
+        let Some((state, why)) = failure else {
             continue;
         };
         // A point no motion produces (groups whose speeds are tied by the joints they
@@ -575,15 +586,27 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         if !sliding.reachable(point) {
             continue;
         }
-        return Err(v.routing(
-            &sliding.first_guide(model),
-            format!(
+        let described = sliding.described(model, &sliding.sigma(model, point));
+        let problem = match state {
+            Some(q) => format!(
                 "with capstan friction the routing must be controllable whichever way the \
-                 tendons slide, but sliding {} (at q = 0) it is not: {why}; lower `mu` or \
-                 route the tendon differently",
-                sliding.described(model, &sigma)
+                 tendons slide, but sliding {described} (at q = {}) it is not: {why}; lower \
+                 `mu` or route the tendon differently",
+                if q.iter().all(|&x| x == 0.0) {
+                    "0".to_string()
+                } else {
+                    format!("{q:?} rad")
+                }
             ),
-        ));
+            None => format!(
+                "with capstan friction the routing must be controllable whichever way the \
+                 tendons slide, and validation could not show it is sliding {described} \
+                 within the joints' ranges ({UNSETTLED_AFTER} boxes of joint angles searched; \
+                 where it failed: {why}); narrow the ranges, lower `mu` or route the tendon \
+                 differently"
+            ),
+        };
+        return Err(v.routing(&sliding.first_guide(model), problem));
     }
     // Between the points: with one null direction the minors settle it; with none or
     // more, a fixed basis does where some state lies between them.
@@ -597,8 +620,9 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         if let Err(point) = held_between(model, &sliding, &points, &tendons) {
             let blocked = match point {
                 Some(point) => format!(
-                    "up to sliding {} (at q = 0)",
-                    sliding.described(model, &sliding.sigma(model, &point))
+                    "up to sliding {} ({})",
+                    sliding.described(model, &sliding.sigma(model, &point)),
+                    sliding.wraps_checked(model)
                 ),
                 None => "in one proportion for every direction of sliding".into(),
             };
@@ -646,10 +670,7 @@ fn held_between(
 ) -> std::result::Result<(), Option<Vec<f64>>> {
     let d = model.system.null_space.len();
     let columns = model.system.matrix.first().map_or(0, Vec::len);
-    let q = vec![0.0; model.dof];
-    let matrices: Vec<Vec<Vec<f64>>> = (points.iter())
-        .map(|p| crate::dynamics::matrix_sliding(model, &q, &sliding.sigma(model, p)))
-        .collect();
+    let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
     let choices = combinations(tendons, d);
     let holds = |free: &[usize], taken: &dyn Fn(usize) -> bool| -> std::result::Result<(), usize> {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
@@ -874,12 +895,191 @@ impl Sliding {
         described.join(", ")
     }
 
+    /// Where the systems were taken, for a message: `at q = 0`, or the wrap angles the
+    /// joints' ranges reach where they are larger ([`crate::model::Guide::wrap_over`]).
+    fn wraps_checked(&self, model: &Model<f64>) -> String {
+        let larger: Vec<String> = (self.sliders.iter())
+            .filter_map(|slider| {
+                let idler = &model.strands[slider.strand].idlers[slider.idler];
+                let at_rest = idler.guide.as_ref().map_or(0.0, |g| g.wrap.max(0.0));
+                (slider.wrap > at_rest).then(|| {
+                    let name = &model.bodies[idler.body].name;
+                    format!("`{name}` {:.1}°", slider.wrap.to_degrees())
+                })
+            })
+            .collect();
+        if larger.is_empty() {
+            return "at q = 0".into();
+        }
+        format!(
+            "with the wrap angles the joints' ranges reach: {}",
+            larger.join(", ")
+        )
+    }
+
     /// The first guide with friction's name, where a refusal is reported.
     fn first_guide(&self, model: &Model<f64>) -> String {
         let first = &self.sliders[0];
         model.bodies[model.strands[first.strand].idlers[first.idler].body]
             .name
             .clone()
+    }
+
+    /// `E` at `point`: each guide with friction at its largest wrap angle over the joints'
+    /// ranges ([`crate::model::Guide::wrap_over`]), its capstan factor `e^{−σμβ}`
+    /// (`tension::state_matrix`).
+    pub(crate) fn matrix(&self, model: &Model<f64>, point: &[f64]) -> Vec<Vec<f64>> {
+        let wraps: Vec<f64> = self.sliders.iter().map(|s| s.wrap).collect();
+        self.matrix_at(model, point, &wraps)
+    }
+
+    /// `E` at `point` with each guide with friction at the wrap angle `wraps` gives it.
+    fn matrix_at(&self, model: &Model<f64>, point: &[f64], wraps: &[f64]) -> Vec<Vec<f64>> {
+        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
+            .map(|s| vec![1.0; s.idlers.len()])
+            .collect();
+        for ((slider, &way), &wrap) in self.sliders.iter().zip(point).zip(wraps) {
+            let mu = self.guide(model, slider).mu;
+            capstan[slider.strand][slider.idler] = (-(slider.sign * way) * mu * wrap).exp();
+        }
+        crate::tension::state_matrix(model, &capstan)
+    }
+
+    fn guide<'m>(&self, model: &'m Model<f64>, slider: &Slider) -> &'m crate::model::Guide {
+        let idler = &model.strands[slider.strand].idlers[slider.idler];
+        idler.capstan().expect("a slider is a guide with friction")
+    }
+
+    /// Whether some guide's wrap angle changes over the joints' ranges.
+    fn ranged(&self, model: &Model<f64>) -> bool {
+        let joints = model.range_box();
+        (self.sliders.iter()).any(|s| {
+            let rates = &self.guide(model, s).wrap_rate;
+            (rates.iter().zip(&joints)).any(|(&k, r)| k != 0.0 && r[1] > r[0])
+        })
+    }
+
+    /// A state within the joints' ranges where the system fails at `point`, found by
+    /// bisecting the ranges. On a box of joint angles each guide's wrap angle lies in an
+    /// interval, and the system's minors, affine in each capstan factor, pass on the whole
+    /// box where they pass at the intervals' ends taken every way (with the smoothed law,
+    /// whose `|σ| < 1` reaches every factor between rest and these, also with any of the
+    /// moving guides at rest). A failing combination of ends that one corner of the box
+    /// gives every guide is a state, `Some(q)`; one that no corner does splits the box at
+    /// its widest joint. `None` where every box passes; past [`UNSETTLED_AFTER`] boxes, or
+    /// a box narrower than `1e-9` rad, the state is not settled (`Some(None)`).
+    fn state_that_fails(
+        &self,
+        model: &Model<f64>,
+        point: &[f64],
+        fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
+    ) -> Option<(Option<Vec<f64>>, String)> {
+        let moving: Vec<usize> = (0..self.sliders.len())
+            .filter(|&i| point[i] != 0.0)
+            .collect();
+        // The patterns a box must pass: `point`, and with the smoothed law every one with
+        // some of its moving guides at rest.
+        let subsets = if self.smoothed {
+            1usize << moving.len()
+        } else {
+            1
+        };
+        let patterns: Vec<Vec<f64>> = (0..subsets)
+            .map(|rest| {
+                let mut p = point.to_vec();
+                for (k, &i) in moving.iter().enumerate() {
+                    if rest >> k & 1 == 1 {
+                        p[i] = 0.0;
+                    }
+                }
+                p
+            })
+            .collect();
+        let mut boxes = vec![model.range_box()];
+        let mut explored = 0;
+        while let Some(b) = boxes.pop() {
+            explored += 1;
+            let ends: Vec<[f64; 2]> = (self.sliders.iter())
+                .map(|s| self.guide(model, s).wrap_over(&b))
+                .collect();
+            let mut failing = None;
+            for pattern in &patterns {
+                let varying: Vec<usize> = (0..self.sliders.len())
+                    .filter(|&i| pattern[i] != 0.0 && ends[i][1] > ends[i][0])
+                    .collect();
+                let mut wraps: Vec<f64> = ends.iter().map(|e| e[1]).collect();
+                failing = (0..1usize << varying.len()).find_map(|bits| {
+                    for (k, &i) in varying.iter().enumerate() {
+                        wraps[i] = ends[i][bits >> k & 1];
+                    }
+                    let why = fails(self.matrix_at(model, pattern, &wraps))?;
+                    Some((varying.clone(), bits, why))
+                });
+                if failing.is_some() {
+                    break;
+                }
+            }
+            let Some((varying, bits, why)) = failing else {
+                continue;
+            };
+            // The corner of `b` where each varying guide has the end it was taken at.
+            let mut corner: Vec<Option<f64>> = vec![None; b.len()];
+            let mut one_corner = true;
+            for (k, &i) in varying.iter().enumerate() {
+                let upper = bits >> k & 1 == 1;
+                let rates = &self.guide(model, &self.sliders[i]).wrap_rate;
+                for (j, &rate) in rates.iter().enumerate() {
+                    if rate == 0.0 || b[j][1] == b[j][0] {
+                        continue;
+                    }
+                    let want = if (rate > 0.0) == upper {
+                        b[j][1]
+                    } else {
+                        b[j][0]
+                    };
+                    one_corner &= corner[j].is_none_or(|q| q == want);
+                    corner[j] = Some(want);
+                }
+            }
+            if one_corner {
+                let q = (corner.iter().zip(&b))
+                    .map(|(c, r)| c.unwrap_or(0.0f64.clamp(r[0], r[1])))
+                    .collect();
+                return Some((Some(q), why));
+            }
+            // No corner gives every guide its end; a state of the box may fail all the
+            // same: its vertices in the joints that move these guides' wraps.
+            let joints: Vec<usize> = (0..b.len()).filter(|&j| corner[j].is_some()).collect();
+            for code in 0..1usize << joints.len().min(8) {
+                let mut q: Vec<f64> = b.iter().map(|r| 0.0f64.clamp(r[0], r[1])).collect();
+                for (k, &j) in joints.iter().enumerate().take(8) {
+                    q[j] = b[j][code >> k & 1];
+                }
+                let at: Vec<[f64; 2]> = q.iter().map(|&x| [x, x]).collect();
+                let wraps: Vec<f64> = (self.sliders.iter())
+                    .map(|s| self.guide(model, s).wrap_over(&at)[1])
+                    .collect();
+                for pattern in &patterns {
+                    if let Some(why) = fails(self.matrix_at(model, pattern, &wraps)) {
+                        return Some((Some(q), why));
+                    }
+                }
+            }
+            let width = |j: &usize| b[*j][1] - b[*j][0];
+            let widest = (0..b.len()).max_by(|x, y| width(x).total_cmp(&width(y)));
+            match widest.filter(|j| width(j) > 1e-9) {
+                Some(j) if explored < UNSETTLED_AFTER => {
+                    let middle = 0.5 * (b[j][0] + b[j][1]);
+                    let (mut lower, mut upper) = (b.clone(), b);
+                    lower[j][1] = middle;
+                    upper[j][0] = middle;
+                    boxes.push(lower);
+                    boxes.push(upper);
+                }
+                _ => return Some((None, why)),
+            }
+        }
+        None
     }
 
     /// `σ[strand][idler]` at `point` (0 where no guide slides).
@@ -1037,6 +1237,7 @@ fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<Class>, Vec<Slide
                 idler: k,
                 class,
                 sign,
+                wrap: g.wrap_over(&model.range_box())[1],
             });
         }
     }
@@ -1152,6 +1353,7 @@ mod tests {
                     idler: 0,
                     class,
                     sign: 1.0,
+                    wrap: 0.0,
                 })
                 .collect(),
             smoothed,
