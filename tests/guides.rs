@@ -568,8 +568,9 @@ fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_
     assert!(
         shown.starts_with("idler1_1 (line ")
             && shown.contains("whichever way the tendons slide")
-            && shown.contains("`t1` over `idler1_1` towards its exit")
+            && shown.contains("`t1` over `idler1_1` towards its anchor")
             && shown.contains("`t2` over `idler2_1` towards its anchor")
+            && shown.contains("(at q = 0)")
             && shown.contains("no longer lifts every tendon together"),
         "{shown}"
     );
@@ -828,9 +829,9 @@ fn with_two_null_directions_validation_covers_the_states_between_rest_and_slidin
 /// ranges reach, not only those at `q = 0` (docs/format.md §6a), on seeded random
 /// mechanisms whose guides wrap more as the joints turn (their idlers made guides with
 /// friction). A routing it accepts, the runtime solver finds controllable at random states
-/// within the ranges; one it refuses (accepted without ranges: at `q = 0` it holds), the
-/// runtime solver finds uncontrollable at some such state, in the direction the refusal
-/// names.
+/// within the ranges; one it refuses (accepted without ranges: at `q = 0` it holds) names
+/// a state within the ranges where the runtime solver finds it uncontrollable for some
+/// motion.
 #[test]
 fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
     let mut rng = ChaCha8Rng::seed_from_u64(9);
@@ -873,8 +874,27 @@ fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
                 Err(e) => {
                     let shown = e.to_string();
                     assert!(shown.contains("whichever way the tendons slide"), "{shown}");
-                    assert!(shown.contains(" rad)"), "{shown}");
-                    assert!(uncontrollable > 0, "random_{seed} with mu {mu}: {shown}");
+                    // The state it names: at that `q`, some motion leaves the routing
+                    // uncontrollable.
+                    let named = shown
+                        .split("at q = [")
+                        .nth(1)
+                        .and_then(|r| r.split("] rad").next());
+                    let q: Vec<f64> = (named.expect(&shown).split(", "))
+                        .map(|x| x.parse().unwrap())
+                        .collect();
+                    assert!(q.iter().all(|x| x.abs() <= 1.0), "{shown}");
+                    let fails_there = (0..4000).any(|_| {
+                        let [_, qd, qdd] = random_state(&mut rng, n);
+                        matches!(
+                            solver.inverse_dynamics(&model, &q, &qd, &qdd),
+                            Err(Error::Tension(e)) if e.contains("not controllable in this direction")
+                        )
+                    });
+                    assert!(
+                        fails_there && uncontrollable > 0,
+                        "random_{seed}, mu {mu}: {shown}"
+                    );
                     refused += 1;
                 }
             }

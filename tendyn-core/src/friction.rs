@@ -148,16 +148,22 @@ pub fn capstan_factors<T: Real>(
             let Some(guide) = idler.capstan() else {
                 continue;
             };
-            // The wrap angle first, then the direction: the order generated code is traced in.
-            let wrap = (T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q)).max(T::zero());
+            let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
             let sigma = direction(
                 linear(&guide.slide, qd),
                 qdd.map(|a| linear(&guide.slide, a)),
                 model.friction_smoothing,
             );
-            *factor = (-(sigma * T::from_f64(guide.mu) * wrap)).exp();
+            *factor = capstan_factor(sigma, T::from_f64(guide.mu), wrap);
         }
     }
+}
+
+/// A guide's capstan law, the ratio `T_k / T_{k+1} = e^{−σ μ β}` of the tensions on its
+/// anchor and ground sides, with `β` taken as 0 where it turns negative: a tendon bending
+/// away from a guide does not touch it.
+pub fn capstan_factor<T: Real>(sigma: T, mu: T, wrap: T) -> T {
+    (-(sigma * mu * wrap.max(T::zero()))).exp()
 }
 
 /// `Σ_j c_j x_j` of constant coefficients.

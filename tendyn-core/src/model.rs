@@ -480,7 +480,7 @@ pub struct Model<T> {
     pub(crate) objective: Objective,
     /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
     pub(crate) friction_smoothing: Option<f64>,
-    /// Each joint's `range` of `q` (rad), where the file gives one (format.md §3).
+    /// Each joint's `range` of `q` (rad), where the file gives one (format.md §4).
     pub(crate) joint_ranges: Vec<Option<[f64; 2]>>,
     /// The file's `external_wrench`, if any.
     pub(crate) external_wrench: Option<Wrench<T>>,

@@ -330,7 +330,8 @@ impl Elimination {
 
     /// Whether this order keeps every pivot of the elimination away from zero, with the
     /// sign it has in the model's `E`, at every direction of sliding validation checks
-    /// (`validate::Sliding`, `q = 0`, each pivot beyond `1e-12` of `E`'s largest entry).
+    /// (`validate::Sliding`, each guide at its largest wrap angle over the joints' ranges, `q = 0`
+    /// where a joint has none; each pivot beyond `1e-12` of `E`'s largest entry).
     /// The products of the first pivots are minors of `E`, affine in each capstan factor
     /// taken alone as the null vector's are (docs/format.md §6a), so where validation's
     /// points are the corners of the boxes the directions reach, no state in between

@@ -509,6 +509,9 @@ struct Slider {
     class: usize,
     sign: f64,
     wrap: f64,
+    /// Its capstan factor takes values between rest and sliding: with the smoothed law, or
+    /// with a wrap angle that changes with `q`.
+    variable: bool,
 }
 
 /// Guides whose sliding speeds are equal or opposite: `|v| = speed |u_g · q̇|`, `u_g` the
@@ -518,9 +521,14 @@ struct Class {
     speed: f64,
 }
 
-/// The most guides with friction for which every combination of directions and rest is
-/// checked (`3⁸ = 6561` systems at most).
-const EVERY_REST_UP_TO: usize = 8;
+/// The most systems for which every way the guides can move is checked (`3⁸ · 2²`: eight
+/// classes, or four with two guides whose factor varies, …); beyond, those where every
+/// guide slides.
+const EVERY_WAY_UP_TO: usize = 26_244;
+
+/// The most guides whose wrap angle varies over a box of joint angles that
+/// [`Sliding::state_that_fails`] takes at every combination of their ends (`2¹⁰`).
+const ENDS_UP_TO: usize = 10;
 
 /// The most boxes of joint angles [`Sliding::state_that_fails`] searches before it gives
 /// up finding the state where a routing fails, and refuses it all the same.
@@ -529,30 +537,31 @@ const UNSETTLED_AFTER: usize = 4096;
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
 /// every tendon, motors and loop sides determined) for every direction it can take. The
-/// systems are taken at `q = 0` (the wrap angles at the joints' offsets), at the points
-/// [`Sliding::points`] gives, and a failing point refuses the routing only if some motion
-/// produces it ([`Sliding::reachable`]).
+/// systems are taken at the points [`Sliding::points`] gives, each guide at its largest
+/// wrap angle over the joints' ranges (at `q = 0` where a joint has none), and a failing
+/// point refuses the routing only if some motion produces it ([`Sliding::reachable`]) and,
+/// over ranges, at a state ([`Sliding::state_that_fails`]).
 ///
 /// With one null direction each tendon's component of the null vector, as the signed
 /// maximal minor of `E` without that tendon's column, must keep the sign it has without
 /// friction while the motors' and loop sides' stay zero ([`Minors::compare`]); with more,
 /// the state's system is solved and checked as the model's was.
 ///
-/// Up to [`EVERY_REST_UP_TO`] guides, the points are every direction or rest of each guide
-/// that the exact law can produce, and that covers every state in between as well, for
-/// one null direction: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a product
+/// Up to [`EVERY_WAY_UP_TO`] points, they are every way the exact law moves the guides,
+/// and, for guides whose capstan factor varies, each also at rest. That covers every state
+/// in between as well: a strand's column is `Σ_k f_k shares[k]` with each `f_k` a product
 /// of distinct capstan factors (`tension::state_matrix`), and each pass of a strand over
 /// a guide has its own factor, so every minor is affine in each factor `w = e^{−σμβ}`
-/// taken alone. On the box of factors between rest (`w = 1`) and the directions of a
-/// pattern, such a function is a convex combination of its values at the box's corners,
-/// which are the points where any subset of the pattern's guides is at rest: the smoothed
-/// law's `|σ| < 1`, and every state whose wrap angles are no larger than at `q = 0`, lie
-/// in such boxes. With no null direction or two or more, where such states occur, a fixed
+/// taken alone. On the box of factors between rest (`w = 1`) and a pattern's directions,
+/// such a function is a convex combination of its values at the box's corners, which are
+/// the points where any subset of the varying guides is at rest: the smoothed law's
+/// `|σ| < 1`, and every state whose wrap angles are no larger than those taken, lie in
+/// such boxes. With no null direction or two or more, where such states occur, a fixed
 /// basis carries the points' systems between them ([`held_between`]).
 ///
-/// Beyond [`EVERY_REST_UP_TO`] guides the points are those where every guide slides: each
-/// group one way, all the ways of up to 12 groups, past that the two where every group
-/// slides one way and those with one group flipped.
+/// Beyond, the points are those where every guide slides: each group one way, all the
+/// ways of up to 12 groups, past that the two where every group slides one way and those
+/// with one group flipped.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
     let sliding = Sliding::of(model);
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
@@ -601,22 +610,17 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
             None => format!(
                 "with capstan friction the routing must be controllable whichever way the \
                  tendons slide, and validation could not show it is sliding {described} \
-                 within the joints' ranges ({UNSETTLED_AFTER} boxes of joint angles searched; \
-                 where it failed: {why}); narrow the ranges, lower `mu` or route the tendon \
-                 differently"
+                 within the joints' ranges: {why}; narrow the ranges, lower `mu` or route \
+                 the tendon differently"
             ),
         };
         return Err(v.routing(&sliding.first_guide(model), problem));
     }
     // Between the points: with one null direction the minors settle it; with none or
     // more, a fixed basis does where some state lies between them.
-    let between = sliding.smoothed
-        || (sliding.sliders.iter()).any(|s| {
-            let guide = model.strands[s.strand].idlers[s.idler].guide.as_ref();
-            guide.is_some_and(|g| !g.wrap_is_constant())
-        });
+    let between = sliding.sliders.iter().any(|s| s.variable);
     let d = model.system.null_space.len();
-    if d != 1 && between && sliding.sliders.len() <= EVERY_REST_UP_TO {
+    if d != 1 && between && sliding.every_way().is_some() {
         if let Err(point) = held_between(model, &sliding, &points, &tendons) {
             let blocked = match point {
                 Some(point) => format!(
@@ -649,7 +653,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
 
 /// With no null direction or two or more, the state's system is checked at the points
 /// alone, and the minors of one null direction do not settle the states between them (the
-/// smoothed law's `|σ| < 1`, wrap angles smaller than at `q = 0`). A fixed basis does: `d`
+/// smoothed law's `|σ| < 1`, wrap angles smaller than those taken). A fixed basis does: `d`
 /// tendons `N` whose tensions `x_N > 0` are held in one proportion, the other columns `B`
 /// (every motor and loop side among them) solved from `E_B x_B = −E_N x_N`. By Cramer,
 /// `det E_B` and `det E_B · x_B` are minors of `E`, affine in each capstan factor taken
@@ -825,29 +829,18 @@ impl Sliding {
     }
 
     /// The points checked, a direction per guide with friction relative to its group's
-    /// (`±1`, or `0` at rest); none without such guides. Up to [`EVERY_REST_UP_TO`]
-    /// guides: every combination [`Sliding::ways`] allows, those where every guide slides
-    /// first. Beyond: every guide slides, each group one way, in every pattern of up to 12
-    /// groups, past that in the two uniform patterns and those with one group flipped.
+    /// (`±1`, or `0` at rest); none without such guides. Where there are at most
+    /// [`EVERY_WAY_UP_TO`]: every way the exact law moves the classes
+    /// ([`Sliding::law_moves`]), and, where a guide's factor varies (`Slider::variable`),
+    /// each such guide of a moving class also at rest (the corners of the box of factors
+    /// between rest and sliding); those where every guide slides first. Beyond: every
+    /// guide slides, each group one way, in every pattern of up to 12 groups, past that in
+    /// the two uniform patterns and those with one group flipped.
     pub(crate) fn points(&self) -> Vec<Vec<f64>> {
-        let guides = self.sliders.len();
-        if guides == 0 {
+        if self.sliders.is_empty() {
             return Vec::new();
         }
-        if guides <= EVERY_REST_UP_TO {
-            let mut points: Vec<Vec<f64>> = (1..3usize.pow(guides as u32))
-                .map(|mut code| {
-                    (0..guides)
-                        .map(|_| {
-                            let digit = code % 3;
-                            code /= 3;
-                            [0.0, 1.0, -1.0][digit]
-                        })
-                        .collect::<Vec<f64>>()
-                })
-                .filter(|point| self.ways(point).is_some())
-                .collect();
-            points.sort_by_key(|p| p.iter().filter(|&&d| d == 0.0).count());
+        if let Some(points) = self.every_way() {
             return points;
         }
         let groups = self.groups.len();
@@ -877,6 +870,79 @@ impl Sliding {
                     .collect()
             })
             .collect()
+    }
+
+    /// [`Sliding::points`] where they are at most [`EVERY_WAY_UP_TO`].
+    fn every_way(&self) -> Option<Vec<Vec<f64>>> {
+        let classes = self.classes.len();
+        if 3f64.powi(classes as i32) > EVERY_WAY_UP_TO as f64 {
+            return None;
+        }
+        let mut points = Vec::new();
+        for mut code in 1..3usize.pow(classes as u32) {
+            let by_class: Vec<f64> = (0..classes)
+                .map(|_| {
+                    let digit = code % 3;
+                    code /= 3;
+                    [0.0, 1.0, -1.0][digit]
+                })
+                .collect();
+            if !self.law_moves(&by_class) {
+                continue;
+            }
+            let point: Vec<f64> = self.sliders.iter().map(|s| by_class[s.class]).collect();
+            let free: Vec<usize> = (0..point.len())
+                .filter(|&i| point[i] != 0.0 && self.sliders[i].variable)
+                .collect();
+            for rest in 0..1usize << free.len().min(usize::BITS as usize - 1) {
+                let mut corner = point.clone();
+                for (k, &i) in free.iter().enumerate() {
+                    if rest >> k & 1 == 1 {
+                        corner[i] = 0.0;
+                    }
+                }
+                if corner.iter().any(|&d| d != 0.0) {
+                    points.push(corner);
+                }
+                if points.len() > EVERY_WAY_UP_TO {
+                    return None;
+                }
+            }
+        }
+        let zeros = |p: &Vec<f64>| p.iter().filter(|&&d| d == 0.0).count();
+        points.sort_by(|a, b| {
+            zeros(a)
+                .cmp(&zeros(b))
+                .then(a.partial_cmp(b).expect("±1 or 0"))
+        });
+        points.dedup();
+        Some(points)
+    }
+
+    /// Whether the exact law moves the classes as `by_class` says (`±1` relative to the
+    /// group, `0` at rest), from one group to the next: within a group, fastest first, the
+    /// classes at rest come last (a class within the band for both `q̇` and `q̈` leaves every
+    /// slower one there too) and the directions of the others switch at most once (within
+    /// the band, slower classes take `q̈`'s way, [`Sliding::ways`]). With the smoothed law,
+    /// a group moves one way or rests.
+    fn law_moves(&self, by_class: &[f64]) -> bool {
+        (0..self.groups.len()).all(|g| {
+            let mut ways: Vec<(f64, f64)> = (self.classes.iter().zip(by_class))
+                .filter(|(c, _)| c.group == g)
+                .map(|(c, &d)| (c.speed, d))
+                .collect();
+            ways.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let rest_last = ways.windows(2).all(|p| p[0].1 != 0.0 || p[1].1 == 0.0);
+            let switches = ways
+                .windows(2)
+                .filter(|p| p[1].1 != 0.0 && p[0].1 != p[1].1)
+                .count();
+            if self.smoothed {
+                ways.iter().all(|w| w.1 == ways[0].1)
+            } else {
+                rest_last && switches <= 1
+            }
+        })
     }
 
     /// Each guide with friction, its tendon and the way `sigma` moves it, for a message.
@@ -940,7 +1006,8 @@ impl Sliding {
             .collect();
         for ((slider, &way), &wrap) in self.sliders.iter().zip(point).zip(wraps) {
             let mu = self.guide(model, slider).mu;
-            capstan[slider.strand][slider.idler] = (-(slider.sign * way) * mu * wrap).exp();
+            capstan[slider.strand][slider.idler] =
+                crate::friction::capstan_factor(slider.sign * way, mu, wrap);
         }
         crate::tension::state_matrix(model, &capstan)
     }
@@ -979,10 +1046,13 @@ impl Sliding {
             .collect();
         // The patterns a box must pass: `point`, and with the smoothed law every one with
         // some of its moving guides at rest.
-        let subsets = if self.smoothed {
-            1usize << moving.len()
-        } else {
-            1
+        let subsets = match self.smoothed {
+            true if moving.len() > ENDS_UP_TO => {
+                let why = format!("{} guides move, more than {ENDS_UP_TO}", moving.len());
+                return Some((None, why));
+            }
+            true => 1usize << moving.len(),
+            false => 1,
         };
         let patterns: Vec<Vec<f64>> = (0..subsets)
             .map(|rest| {
@@ -1007,6 +1077,13 @@ impl Sliding {
                 let varying: Vec<usize> = (0..self.sliders.len())
                     .filter(|&i| pattern[i] != 0.0 && ends[i][1] > ends[i][0])
                     .collect();
+                if varying.len() > ENDS_UP_TO {
+                    let why = format!(
+                        "{} guides wrap differently across the ranges, more than {ENDS_UP_TO}",
+                        varying.len()
+                    );
+                    return Some((None, why));
+                }
                 let mut wraps: Vec<f64> = ends.iter().map(|e| e[1]).collect();
                 failing = (0..1usize << varying.len()).find_map(|bits| {
                     for (k, &i) in varying.iter().enumerate() {
@@ -1022,6 +1099,11 @@ impl Sliding {
             let Some((varying, bits, why)) = failing else {
                 continue;
             };
+            // Only a point some motion produces can fail in use (checked once, and only
+            // here: it takes linear programs).
+            if explored == 1 && !self.reachable(point) {
+                return None;
+            }
             // The corner of `b` where each varying guide has the end it was taken at.
             let mut corner: Vec<Option<f64>> = vec![None; b.len()];
             let mut one_corner = true;
@@ -1055,9 +1137,8 @@ impl Sliding {
                 for (k, &j) in joints.iter().enumerate().take(8) {
                     q[j] = b[j][code >> k & 1];
                 }
-                let at: Vec<[f64; 2]> = q.iter().map(|&x| [x, x]).collect();
                 let wraps: Vec<f64> = (self.sliders.iter())
-                    .map(|s| self.guide(model, s).wrap_over(&at)[1])
+                    .map(|s| self.guide(model, s).wrap_at(&q).max(0.0))
                     .collect();
                 for pattern in &patterns {
                     if let Some(why) = fails(self.matrix_at(model, pattern, &wraps)) {
@@ -1065,8 +1146,10 @@ impl Sliding {
                     }
                 }
             }
+            // Split the widest joint among those that move the failing guides' wraps (the
+            // others would split it into two boxes that fail alike).
             let width = |j: &usize| b[*j][1] - b[*j][0];
-            let widest = (0..b.len()).max_by(|x, y| width(x).total_cmp(&width(y)));
+            let widest = (joints.iter().copied()).max_by(|x, y| width(x).total_cmp(&width(y)));
             match widest.filter(|j| width(j) > 1e-9) {
                 Some(j) if explored < UNSETTLED_AFTER => {
                     let middle = 0.5 * (b[j][0] + b[j][1]);
@@ -1076,7 +1159,14 @@ impl Sliding {
                     boxes.push(lower);
                     boxes.push(upper);
                 }
-                _ => return Some((None, why)),
+                _ => {
+                    let why = format!(
+                        "after {explored} boxes of joint angles (at most {UNSETTLED_AFTER}, \
+                         none narrower than 1e-9 rad) the system still failed where no state \
+                         was found ({why})"
+                    );
+                    return Some((None, why));
+                }
             }
         }
         None
@@ -1195,6 +1285,7 @@ impl Sliding {
 /// speeds per joint velocity (each normalised to a largest coefficient of 1); and the
 /// classes of equal or opposite speeds.
 fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<Class>, Vec<Slider>) {
+    let joints = model.range_box();
     let mut groups: Vec<Vec<f64>> = Vec::new();
     let mut speeds: Vec<(Vec<f64>, Class)> = Vec::new();
     let mut sliders = Vec::new();
@@ -1237,7 +1328,8 @@ fn sliders_by_group(model: &Model<f64>) -> (Vec<Vec<f64>>, Vec<Class>, Vec<Slide
                 idler: k,
                 class,
                 sign,
-                wrap: g.wrap_over(&model.range_box())[1],
+                wrap: g.wrap_over(&joints)[1],
+                variable: model.friction_smoothing.is_some() || !g.wrap_is_constant(),
             });
         }
     }
@@ -1335,12 +1427,14 @@ mod tests {
     use super::{basis, proportion, Class, Minors, Slider, Sliding};
 
     /// Guides with friction by `(group, speed)` of their class, each on its own strand;
-    /// `groups` the groups' speeds per joint velocity.
+    /// `groups` the groups' speeds per joint velocity; `variable` the guides whose capstan
+    /// factor varies (all of them with the smoothed law).
     fn sliding(
         groups: Vec<Vec<f64>>,
         classes: &[(usize, f64)],
         of: &[usize],
         smoothed: bool,
+        variable: &[usize],
     ) -> Sliding {
         Sliding {
             groups,
@@ -1354,6 +1448,7 @@ mod tests {
                     class,
                     sign: 1.0,
                     wrap: 0.0,
+                    variable: smoothed || variable.contains(&strand),
                 })
                 .collect(),
             smoothed,
@@ -1361,40 +1456,48 @@ mod tests {
     }
 
     /// Two guides of one class (equal speeds), a slower class of the same group and a
-    /// guide alone in a second group. Every guide may be at rest alone (the corners of the
-    /// box of capstan factors, guide by guide); the two of a class never move opposite
-    /// ways; with the exact law the slower class may move against the faster one (within
-    /// the band of rest it takes `q̈`'s way), with the smoothed law it may not; those where
-    /// every guide slides come first.
+    /// guide alone in a second group. By the exact law the guides of a class move
+    /// together, a group's classes at rest are its slowest, and a slower class may move
+    /// against the faster one (within the band of rest it takes `q̈`'s way); those where
+    /// every guide slides come first. A guide whose factor varies is also taken at rest
+    /// alone (a corner of the box of factors); with the smoothed law every guide's does,
+    /// and a group moves one way or rests.
     #[test]
-    fn the_points_checked_are_every_way_the_exact_law_lets_each_guide_move_or_rest() {
+    fn the_points_checked_are_every_way_the_law_moves_the_guides_and_the_boxes_corners() {
         let groups = vec![vec![1.0, 0.0], vec![0.0, 1.0]];
         let classes = [(0, 2.0), (0, 1.0), (1, 1.0)];
-        let exact = sliding(groups.clone(), &classes, &[0, 0, 1, 2], false).points();
-        // The class of two: both at rest, either alone, or both, one way or the other (7);
-        // each other guide: rest or either way (3); less all at rest.
-        assert_eq!(exact.len(), 7 * 3 * 3 - 1);
-        assert!(exact.iter().all(|p| p[0] * p[1] >= 0.0));
-        assert!(exact.contains(&vec![1.0, 0.0, -1.0, 0.0]));
-        assert!(exact.contains(&vec![0.0, 1.0, 0.0, 0.0]));
+        let exact = sliding(groups.clone(), &classes, &[0, 0, 1, 2], false, &[]).points();
+        // The first group: at rest, or the faster class either way and the slower at rest
+        // or either way (7); the second: at rest or either way (3); less all at rest.
+        assert_eq!(exact.len(), 7 * 3 - 1);
+        assert!(exact.iter().all(|p| p[0] == p[1]));
+        assert!(exact.contains(&vec![1.0, 1.0, -1.0, 0.0]));
+        assert!(!exact.contains(&vec![0.0, 0.0, 1.0, 0.0]));
         let sliding_first: Vec<_> = exact.iter().take_while(|p| !p.contains(&0.0)).collect();
-        assert_eq!(sliding_first.len(), 2 * 2 * 2);
-        let smoothed = sliding(groups, &classes, &[0, 0, 1, 2], true).points();
-        // The slower class rests or follows the faster one's way where that moves (six
-        // ways the class of two moves, then two each; three where it rests).
-        assert_eq!(smoothed.len(), (6 * 2 + 3) * 3 - 1);
-        assert!(!smoothed.contains(&vec![1.0, 0.0, -1.0, 0.0]));
+        assert_eq!(sliding_first.len(), 4 * 2);
+        // The first guide's wrap angle varies: it may also rest while its twin slides.
+        let varying = sliding(groups.clone(), &classes, &[0, 0, 1, 2], false, &[0]).points();
+        assert!(varying.contains(&vec![0.0, 1.0, -1.0, 0.0]));
+        assert!(!varying.contains(&vec![1.0, 0.0, -1.0, 0.0]));
+        let smoothed = sliding(groups, &classes, &[0, 0, 1, 2], true, &[]).points();
+        // The first group at rest, or one way with any of its three guides moving (2 × 7);
+        // the second at rest or either way (3); less all at rest.
+        assert_eq!(smoothed.len(), (1 + 2 * 7) * 3 - 1);
+        assert!(!smoothed.contains(&vec![1.0, 1.0, -1.0, 0.0]));
+        assert!(smoothed.contains(&vec![0.0, 1.0, 0.0, -1.0]));
         // Three classes in one group: the directions, fastest first, switch at most once.
-        let three = sliding(
-            vec![vec![1.0]],
-            &[(0, 3.0), (0, 2.0), (0, 1.0)],
-            &[0, 1, 2],
-            false,
-        );
-        let points = three.points();
-        assert!(points.contains(&vec![1.0, 1.0, -1.0]));
-        assert!(points.contains(&vec![1.0, -1.0, -1.0]));
-        assert!(!points.contains(&vec![1.0, -1.0, 1.0]));
+        let three = |p: &[f64]| {
+            let s = sliding(
+                vec![vec![1.0]],
+                &[(0, 3.0), (0, 2.0), (0, 1.0)],
+                &[0, 1, 2],
+                false,
+                &[],
+            );
+            s.points().contains(&p.to_vec())
+        };
+        assert!(three(&[1.0, 1.0, -1.0]) && three(&[1.0, -1.0, -1.0]));
+        assert!(!three(&[1.0, -1.0, 1.0]) && !three(&[0.0, 1.0, 1.0]));
     }
 
     /// Three groups sliding at `q̇₁`, `q̇₂` and `q̇₁ + q̇₂`, at 0.03 m/s per rad/s each. By
@@ -1412,6 +1515,7 @@ mod tests {
                 &[(0, 0.03), (1, 0.03), (2, 0.03)],
                 &[0, 1, 2],
                 smoothed,
+                &[],
             )
         };
         let smoothed = with(true);
@@ -1426,7 +1530,15 @@ mod tests {
             assert!(smoothed.reachable(&point) && with(false).reachable(&point));
         }
         assert!(with(false).reachable(&[1.0, 1.0, -1.0]));
-        let two = |smoothed| sliding(vec![vec![1.0]], &[(0, 2.0), (0, 1.0)], &[0, 1], smoothed);
+        let two = |smoothed| {
+            sliding(
+                vec![vec![1.0]],
+                &[(0, 2.0), (0, 1.0)],
+                &[0, 1],
+                smoothed,
+                &[],
+            )
+        };
         assert!(two(false).reachable(&[1.0, -1.0]) && two(false).reachable(&[-1.0, 1.0]));
         assert!(!two(true).reachable(&[1.0, -1.0]));
         // Switching twice (fastest first) is no motion's: the band holds only slower classes.
@@ -1435,6 +1547,7 @@ mod tests {
             &[(0, 3.0), (0, 2.0), (0, 1.0)],
             &[0, 1, 2],
             false,
+            &[],
         );
         assert!(three.reachable(&[1.0, 1.0, -1.0]) && !three.reachable(&[1.0, -1.0, 1.0]));
     }
