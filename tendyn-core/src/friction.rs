@@ -203,7 +203,8 @@ pub struct GuideState {
     pub idler: usize,
     /// The guide's body.
     pub body: usize,
-    /// `β(q)` (rad), [`crate::model::Guide::wrap_at`]: negative where the tendon bends away from it.
+    /// `β(q)` (rad), [`crate::model::Guide::wrap_at`]: negative where the tendon bends away
+    /// from it.
     pub wrap_angle: f64,
     /// The tendon's speed over it (m/s), positive towards the strand's ground end.
     pub sliding_speed: f64,
