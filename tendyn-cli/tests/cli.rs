@@ -343,6 +343,11 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
         serde_json::Value::Null
     );
     assert_eq!(v["bearing_friction"]["link1"]["coulomb"], 0.05);
+    // No joint has a range in this file.
+    assert_eq!(
+        v["joint_ranges"],
+        serde_json::json!({"link1": null, "link2": null})
+    );
     // Without open-ended tendons there is no structure matrix and no range.
     let (_, out, _) = tendyn(&[
         "check",
@@ -351,6 +356,46 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
     ]);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!(v["structure_matrix"].is_null() && v["static_torque_range"].is_null());
+}
+
+/// A joint's `range` reaches `check`: the JSON gives it, and each guide whose wrap angle
+/// changes with the joint gets the interval the range spans, `wrap + rate·q` at the ends
+/// (Example 2 with capstan friction, link1 within `[−0.5, 0.8]` rad); the text prints it.
+#[test]
+fn check_gives_the_joint_ranges_and_the_wrap_angles_they_span() {
+    let dir = scratch_dir("tendyn_cli_ranges");
+    let file = dir.join("ranged.ron");
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_capstan.ron"
+    ))
+    .unwrap()
+    .replacen("dh: (a: 0.30,", "range: (-0.5, 0.8), dh: (a: 0.30,", 1);
+    std::fs::write(&file, text).unwrap();
+    let (ok, out, err) = tendyn(&["check", file.to_str().unwrap(), "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        v["joint_ranges"],
+        serde_json::json!({"link1": [-0.5, 0.8], "link2": null})
+    );
+    for guide in v["guides"].as_array().unwrap() {
+        let wrap = guide["wrap_angle"].as_f64().unwrap();
+        let rate = guide["wrap_angle_rate"][0].as_f64().unwrap();
+        let ends = [wrap - 0.5 * rate, wrap + 0.8 * rate];
+        let want = [ends[0].min(ends[1]).max(0.0), ends[0].max(ends[1]).max(0.0)];
+        assert_ne!(rate, 0.0, "{guide}");
+        assert_eq!(
+            guide["wrap_angle_over_ranges"],
+            serde_json::json!(want),
+            "{guide}"
+        );
+    }
+    let (ok, text, err) = tendyn(&["check", file.to_str().unwrap()]);
+    assert!(
+        ok && text.contains("over the joints' ranges"),
+        "{err}{text}"
+    );
 }
 
 #[test]

@@ -118,6 +118,9 @@ pub fn check_json(m: &Model<f64>) -> Value {
     json!({
         "mechanism": m.name(),
         "joints": names(&mut m.bodies()[..m.dof()].iter().map(|b| b.name.clone())),
+        "joint_ranges": (0..m.dof())
+            .map(|j| (m.bodies()[j].name.clone(), json!(m.joint_range(j))))
+            .collect::<serde_json::Map<_, _>>(),
         "couplings": pulleys,
         "tendons": names(&mut m.tendons().iter().map(|t| t.name.clone())),
         "structure_matrix": if m.tendons().is_empty() { Value::Null } else { json!(m.structure_matrix()) },
@@ -138,6 +141,7 @@ pub fn check_json(m: &Model<f64>) -> Value {
             "tendon": m.strands()[s].name,
             "wrap_angle": g.wrap,
             "wrap_angle_rate": g.wrap_rate,
+            "wrap_angle_over_ranges": g.wrap_over(&m.range_box()),
             "mu": g.mu,
             "sliding_rate": g.slide,
         })).collect::<Vec<_>>(),
@@ -411,6 +415,9 @@ pub fn inverse_json(
     let mut out = json!({
         "mechanism": m.name(),
         "joints": names(&mut m.bodies()[..m.dof()].iter().map(|b| b.name.clone())),
+        "joint_ranges": (0..m.dof())
+            .map(|j| (m.bodies()[j].name.clone(), json!(m.joint_range(j))))
+            .collect::<serde_json::Map<_, _>>(),
         "q": q, "qd": qd, "qdd": qdd,
         "generalized_forces": r.generalized_forces,
         "motor_torques": m.motors().iter().zip(&r.motor_torques).map(|(mo, t)| (mo.name.clone(), json!(t))).collect::<serde_json::Map<_, _>>(),
