@@ -567,7 +567,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
     let frictionless =
         (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
-    let points = sliding.points();
+    let (points, every_way) = sliding.points_and_whether_every_way();
     let fails = |e: Vec<Vec<f64>>| -> Option<String> {
         match &frictionless {
             Some(without) => without.compare(&without.at(&e), &tendons).err(),
@@ -591,8 +591,9 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
             continue;
         };
         // A point no motion produces (groups whose speeds are tied by the joints they
-        // share) cannot fail in use: only a reachable one refuses.
-        if !sliding.reachable(point) {
+        // share) cannot fail in use: only a reachable one refuses (over ranges, the
+        // search has asked already).
+        if !ranged && !sliding.reachable(point) {
             continue;
         }
         let described = sliding.described(model, &sliding.sigma(model, point));
@@ -620,7 +621,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     // more, a fixed basis does where some state lies between them.
     let between = sliding.sliders.iter().any(|s| s.variable);
     let d = model.system.null_space.len();
-    if d != 1 && between && sliding.every_way().is_some() {
+    if d != 1 && between && every_way {
         if let Err(point) = held_between(model, &sliding, &points, &tendons) {
             let blocked = match point {
                 Some(point) => format!(
@@ -837,11 +838,16 @@ impl Sliding {
     /// guide slides, each group one way, in every pattern of up to 12 groups, past that in
     /// the two uniform patterns and those with one group flipped.
     pub(crate) fn points(&self) -> Vec<Vec<f64>> {
+        self.points_and_whether_every_way().0
+    }
+
+    /// [`Sliding::points`], and whether they are every way ([`Sliding::every_way`]).
+    fn points_and_whether_every_way(&self) -> (Vec<Vec<f64>>, bool) {
         if self.sliders.is_empty() {
-            return Vec::new();
+            return (Vec::new(), true);
         }
         if let Some(points) = self.every_way() {
-            return points;
+            return (points, true);
         }
         let groups = self.groups.len();
         let patterns: Vec<Vec<f64>> = if groups <= 12 {
@@ -863,13 +869,14 @@ impl Sliding {
             }
             p
         };
-        (patterns.into_iter())
+        let points = (patterns.into_iter())
             .map(|p| {
                 (self.sliders.iter())
                     .map(|s| p[self.classes[s.class].group])
                     .collect()
             })
-            .collect()
+            .collect();
+        (points, false)
     }
 
     /// [`Sliding::points`] where they are at most [`EVERY_WAY_UP_TO`].
@@ -926,12 +933,7 @@ impl Sliding {
     /// the band, slower classes take `q̈`'s way, [`Sliding::ways`]). With the smoothed law,
     /// a group moves one way or rests.
     fn law_moves(&self, by_class: &[f64]) -> bool {
-        (0..self.groups.len()).all(|g| {
-            let mut ways: Vec<(f64, f64)> = (self.classes.iter().zip(by_class))
-                .filter(|(c, _)| c.group == g)
-                .map(|(c, &d)| (c.speed, d))
-                .collect();
-            ways.sort_by(|a, b| b.0.total_cmp(&a.0));
+        self.by_group(by_class).iter().all(|ways| {
             let rest_last = ways.windows(2).all(|p| p[0].1 != 0.0 || p[1].1 == 0.0);
             let switches = ways
                 .windows(2)
@@ -943,6 +945,18 @@ impl Sliding {
                 rest_last && switches <= 1
             }
         })
+    }
+
+    /// Each group's classes as `(speed, direction)` of `by_class`, fastest first.
+    fn by_group(&self, by_class: &[f64]) -> Vec<Vec<(f64, f64)>> {
+        let mut groups = vec![Vec::new(); self.groups.len()];
+        for (class, &way) in self.classes.iter().zip(by_class) {
+            groups[class.group].push((class.speed, way));
+        }
+        for g in &mut groups {
+            g.sort_by(|a: &(f64, f64), b| b.0.total_cmp(&a.0));
+        }
+        groups
     }
 
     /// Each guide with friction, its tendon and the way `sigma` moves it, for a message.
@@ -1200,15 +1214,10 @@ impl Sliding {
                 *w = way;
             }
         }
-        let mut ways = vec![Vec::new(); self.groups.len()];
-        for (class, &way) in self.classes.iter().zip(&by_class) {
-            if way != 0.0 {
-                ways[class.group].push((class.speed, way));
-            }
-        }
+        let mut ways = self.by_group(&by_class);
         let most = if self.smoothed { 0 } else { 1 };
         for w in &mut ways {
-            w.sort_by(|a: &(f64, f64), b| b.0.total_cmp(&a.0));
+            w.retain(|c| c.1 != 0.0);
             if w.windows(2).filter(|p| p[0].1 != p[1].1).count() > most {
                 return None;
             }
