@@ -332,6 +332,7 @@ mod identification {
     use rand::Rng;
     use tendyn_core::base_parameters::BaseParameters;
     use tendyn_core::identification::{identify, Sample};
+    use tendyn_core::physical_consistency::identify_consistent;
 
     /// `count` samples of a seeded random excitation: per joint a sum of three harmonics of
     /// 0.5 Hz with random amplitudes and phases (so every joint reverses, and the bearings'
@@ -497,5 +498,271 @@ mod identification {
                 id.relative_residual
             );
         }
+    }
+
+    /// Whether `pi` (regressor order) is a body's mass properties, checked as a textbook
+    /// does, not through the pseudo-inertia the estimator uses: a non-negative mass; an
+    /// inertia about the origin whose principal moments are non-negative and satisfy the
+    /// triangle inequalities; a first moment within Cauchy-Schwarz, `|h|² ≤ m ∫|r|² dm =
+    /// m tr(I_o) / 2`; and for a body of more than 1e-9 of the largest mass, the same of the
+    /// inertia about its centre of mass. Slack is 1e-9 of the largest mass `m_max` and
+    /// inertia entry `i_max` of the mechanism.
+    fn physical_body(pi: &[f64], m_max: f64, i_max: f64) -> Result<(), String> {
+        let (m, h) = (pi[0], nalgebra::Vector3::new(pi[1], pi[2], pi[3]));
+        let origin = nalgebra::Matrix3::new(
+            pi[4], pi[5], pi[6], pi[5], pi[7], pi[8], pi[6], pi[8], pi[9],
+        );
+        let slack = 1e-9 * i_max;
+        let triangle = |moments: nalgebra::Vector3<f64>, about: &str| {
+            for i in 0..3 {
+                let (a, b, d) = (moments[i], moments[(i + 1) % 3], moments[(i + 2) % 3]);
+                if a < -slack || a > b + d + slack {
+                    return Err(format!("principal moments {moments} about the {about}"));
+                }
+            }
+            Ok(())
+        };
+        if m < -1e-9 * m_max {
+            return Err(format!("mass {m}"));
+        }
+        triangle(origin.symmetric_eigenvalues(), "origin")?;
+        if h.norm_squared() > m * 0.5 * origin.trace() + 1e-9 * m_max * i_max {
+            return Err(format!(
+                "first moment {h} beyond mass {m} and inertia {origin}"
+            ));
+        }
+        if m > 1e-9 * m_max {
+            let c = h / m;
+            // Parallel axes back to the centre of mass: I_c = I_o − m (|c|² 1 − c cᵀ).
+            let shift = nalgebra::Matrix3::identity() * c.norm_squared() - c * c.transpose();
+            triangle(
+                (origin - shift * m).symmetric_eigenvalues(),
+                "centre of mass",
+            )?;
+        }
+        Ok(())
+    }
+
+    /// `½ ‖Y_base β − (Q − Q₀)‖²` over `samples`, from the regressor at each sample.
+    fn misfit(model: &Model<f64>, pi: &[f64], samples: &[Sample]) -> f64 {
+        let mut data = Data::new(model);
+        let mut sum = 0.0;
+        for s in samples {
+            let r = data.regressor(model, &s.q, &s.qd, &s.qdd).unwrap().clone();
+            for (k, row) in r.y.chunks_exact(r.columns).enumerate() {
+                let q: f64 = row.iter().zip(pi).map(|(y, p)| y * p).sum::<f64>() + r.known[k];
+                sum += 0.5 * (q - s.forces[k]).powi(2);
+            }
+        }
+        sum
+    }
+
+    /// Where the file's values explain the data exactly (no noise), the consistent estimate
+    /// is the least-squares one and every body is physical. To 1e-9 of the largest base
+    /// parameter, not to round-off: the barrier method's estimate stays strictly inside the
+    /// physical set, and the file's massless drums and flat idlers lie on its boundary.
+    #[test]
+    fn the_consistent_estimate_of_physical_noise_free_data_is_the_least_squares_one() {
+        let mut models: Vec<Model<f64>> = [
+            "example1_endless",
+            "example3_stanford_jpl",
+            "example2_friction",
+        ]
+        .iter()
+        .map(|name| tendyn_core::parse(&tendyn_spec::examples::text(name)).unwrap())
+        .collect();
+        // Fourteen drums and idlers, each a flat disk: on the boundary.
+        models.push(tendyn_core::load("../bench/mechanisms/finger4.ron").unwrap());
+        for model in &models {
+            let name = model.name();
+            let base = BaseParameters::of(model).unwrap();
+            let truth = base.values(&values(model));
+            let samples = synthetic(model, 1000, f64::INFINITY, 5);
+            let c = identify_consistent(model, &base, &samples).unwrap();
+            let size = truth.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let mut worst = 0.0f64;
+            for ((e, t), ls) in c
+                .estimates
+                .iter()
+                .zip(&truth)
+                .zip(&c.least_squares.estimates)
+            {
+                assert!((e - t).abs() <= 1e-9 * size, "{name}: {e} for {t}");
+                assert!((e - ls).abs() <= 1e-9 * size, "{name}: {e} against {ls}");
+                worst = worst.max((e - t).abs() / size);
+            }
+            check_physical(model, &c.parameters);
+            every_body_in_the_file_s_terms_gives_back_its_parameters(model, &c);
+            println!(
+                "{name}: worst error {worst:.1e} of the largest base parameter, {} Newton \
+                 steps, relative residual {:.1e}",
+                c.newton_steps, c.relative_residual
+            );
+            assert!(
+                c.relative_residual < 1e-9,
+                "{name}: {}",
+                c.relative_residual
+            );
+        }
+    }
+
+    /// `BodyEstimate` is the file's terms (mass, centre of mass, inertia about it) of the
+    /// estimate's parameters: from them, `h = m c` and `I_o = I_c + m (|c|² 1 − c cᵀ)` give
+    /// the parameters back.
+    fn every_body_in_the_file_s_terms_gives_back_its_parameters(
+        model: &Model<f64>,
+        c: &tendyn_core::physical_consistency::Consistent,
+    ) {
+        let parameters = parameters(model);
+        for (b, e) in c.bodies.iter().enumerate() {
+            let at = parameters
+                .iter()
+                .position(|p| p.body == b && p.quantity == Quantity::Inertial(0))
+                .unwrap();
+            let com = nalgebra::Vector3::from(e.com);
+            let centre = nalgebra::Matrix3::from_fn(|i, j| e.inertia[i][j]);
+            let shift = nalgebra::Matrix3::identity() * com.norm_squared() - com * com.transpose();
+            let origin = centre + shift * e.mass;
+            let h = com * e.mass;
+            let back = [
+                e.mass,
+                h.x,
+                h.y,
+                h.z,
+                origin[(0, 0)],
+                origin[(0, 1)],
+                origin[(0, 2)],
+                origin[(1, 1)],
+                origin[(1, 2)],
+                origin[(2, 2)],
+            ];
+            let pi = &c.parameters[at..at + 10];
+            let size = pi.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+            for (x, y) in back.iter().zip(pi) {
+                assert!(
+                    (x - y).abs() <= 1e-9 * size,
+                    "{}: {back:?} vs {pi:?}",
+                    model.name()
+                );
+            }
+        }
+    }
+
+    /// Every body's parameters in `pi` are physical (see [`physical_body`]), and friction
+    /// non-negative.
+    fn check_physical(model: &Model<f64>, pi: &[f64]) {
+        let parameters = parameters(model);
+        let firsts: Vec<usize> = (0..parameters.len())
+            .filter(|&c| parameters[c].quantity == Quantity::Inertial(0))
+            .collect();
+        let m_max = firsts.iter().fold(0.0f64, |m, &c| m.max(pi[c]));
+        let i_max = firsts
+            .iter()
+            .flat_map(|&c| &pi[c + 4..c + 10])
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        for &c in &firsts {
+            if let Err(e) = physical_body(&pi[c..c + 10], m_max, i_max) {
+                let body = &model.bodies()[parameters[c].body].name;
+                panic!("{}: body {body}: {e}", model.name());
+            }
+        }
+        for (p, v) in parameters.iter().zip(pi) {
+            if matches!(p.quantity, Quantity::Coulomb | Quantity::Viscous) {
+                assert!(*v >= 0.0, "{}: {} = {v}", model.name(), p.name(model));
+            }
+        }
+    }
+
+    /// Data no mechanism can produce: the generalized forces of the file's parameters with
+    /// every sign flipped (a negative mass matrix). Least squares fits them exactly with
+    /// unphysical values; the consistent estimate is physical, and no physical parameters do
+    /// better: moving from it towards any of a hundred random physical bodies' values, or
+    /// the file's, never lowers the misfit (the problem is convex, so this is its optimum).
+    #[test]
+    fn the_consistent_estimate_of_unphysical_data_is_the_best_physical_fit() {
+        let model = tendyn_core::parse(&tendyn_spec::examples::text("example2_friction")).unwrap();
+        let base = BaseParameters::of(&model).unwrap();
+        let pi = values(&model);
+        let mut data = Data::new(&model);
+        let samples: Vec<Sample> = synthetic(&model, 300, f64::INFINITY, 11)
+            .into_iter()
+            .map(|s| {
+                let r = data.regressor(&model, &s.q, &s.qd, &s.qdd).unwrap().clone();
+                let forces =
+                    r.y.chunks_exact(r.columns)
+                        .zip(&r.known)
+                        .map(|(row, k)| k - row.iter().zip(&pi).map(|(y, p)| y * p).sum::<f64>())
+                        .collect();
+                Sample { forces, ..s }
+            })
+            .collect();
+        let c = identify_consistent(&model, &base, &samples).unwrap();
+        assert!(c.least_squares.relative_residual < 1e-10);
+        assert!(c.relative_residual > 0.1, "{}", c.relative_residual);
+        check_physical(&model, &c.parameters);
+        let best = misfit(&model, &c.parameters, &samples);
+        let mut rng = ChaCha8Rng::seed_from_u64(19);
+        let mut others = vec![pi.clone()];
+        for _ in 0..100 {
+            others.push(random_physical(&model, &mut rng));
+        }
+        for other in &others {
+            for s in [1e-3, 1e-2, 0.1, 1.0] {
+                let mixed: Vec<f64> = c
+                    .parameters
+                    .iter()
+                    .zip(other)
+                    .map(|(a, b)| a + s * (b - a))
+                    .collect();
+                let m = misfit(&model, &mixed, &samples);
+                assert!(m >= best * (1.0 - 1e-9), "step {s}: {m} below {best}");
+            }
+        }
+        println!(
+            "{}: relative residual {:.3} (least squares {:.1e}), {} Newton steps, {} bodies \
+             on the boundary",
+            model.name(),
+            c.relative_residual,
+            c.least_squares.relative_residual,
+            c.newton_steps,
+            c.bodies.iter().filter(|b| b.on_boundary).count()
+        );
+    }
+
+    /// Random physical parameters for every body: a mass of up to 1 kg at a centre within
+    /// 0.2 m, principal moments that satisfy the triangle inequality, turned at random;
+    /// friction up to 0.1.
+    fn random_physical(model: &Model<f64>, rng: &mut ChaCha8Rng) -> Vec<f64> {
+        let mut out = Vec::new();
+        for p in parameters(model) {
+            if p.quantity == Quantity::Inertial(0) {
+                let m: f64 = rng.random_range(0.0..1.0);
+                let c = nalgebra::Vector3::from_fn(|_, _| rng.random_range(-0.2..0.2));
+                let (a, b): (f64, f64) = (rng.random_range(0.0..1e-2), rng.random_range(0.0..1e-2));
+                let d = rng.random_range((a - b).abs()..(a + b).max((a - b).abs() + 1e-12));
+                let turn =
+                    nalgebra::Rotation3::from_scaled_axis(nalgebra::Vector3::from_fn(|_, _| {
+                        rng.random_range(-3.0..3.0)
+                    }));
+                let centre = turn.matrix()
+                    * nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(a, b, d))
+                    * turn.matrix().transpose();
+                let origin = centre
+                    + (nalgebra::Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
+                let h = c * m;
+                out.extend([m, h.x, h.y, h.z]);
+                out.extend([
+                    origin[(0, 0)],
+                    origin[(0, 1)],
+                    origin[(0, 2)],
+                    origin[(1, 1)],
+                    origin[(1, 2)],
+                    origin[(2, 2)],
+                ]);
+            } else if matches!(p.quantity, Quantity::Coulomb | Quantity::Viscous) {
+                out.push(rng.random_range(0.0..0.1));
+            }
+        }
+        out
     }
 }

@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use tendyn_codegen::report::{self, JointSpace};
 use tendyn_core::base_parameters::BaseParameters;
+use tendyn_core::physical_consistency::identify_consistent;
 use tendyn_core::{Data, InverseDynamics, Model};
 
 #[derive(Parser)]
@@ -118,6 +119,10 @@ enum Command {
         /// The measured columns are generalized forces, one per joint.
         #[arg(long)]
         forces: bool,
+        /// Also estimate every body's mass properties, constrained to be physically
+        /// consistent (positive mass, a valid inertia), and the base parameters they give.
+        #[arg(long)]
+        consistent: bool,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -438,11 +443,22 @@ fn run(cli: Cli) -> Result<(), String> {
             file,
             data,
             forces,
+            consistent,
             json,
         } => {
             let m = load(&file)?;
             let samples = identification_samples(&m, &data, forces)?;
             let base = BaseParameters::of(&m).map_err(|e| e.to_string())?;
+            if consistent {
+                let c =
+                    identify_consistent(&m, &base, &samples).map_err(|e| format!("{data}: {e}"))?;
+                if json {
+                    say!("{}", report::consistent_json(&m, &base, &c));
+                } else {
+                    emit(&report::consistent_text(&m, &base, &c));
+                }
+                return Ok(());
+            }
             let id = tendyn_core::identification::identify(&m, &base, &samples)
                 .map_err(|e| format!("{data}: {e}"))?;
             if json {

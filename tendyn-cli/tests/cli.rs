@@ -856,6 +856,50 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
         }
         assert!(v["relative_residual"].as_f64().unwrap() < 1e-12);
     }
+    // --consistent: every body's mass properties, the file's where the data are the file's
+    // own forces (to 1e-6 of the heaviest: the barrier method stays strictly inside the
+    // physical set, and a massless drum is on its boundary).
+    let (ok, out, err) = tendyn(&[
+        "identify",
+        file,
+        "--data",
+        forces.to_str().unwrap(),
+        "--forces",
+        "--consistent",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let m = tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_open_ended.ron"
+    ))
+    .unwrap();
+    let bodies = v["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), m.bodies().len());
+    let heaviest = m.bodies().iter().fold(0.0f64, |x, b| x.max(b.mass));
+    for (b, body) in m.bodies().iter().zip(bodies) {
+        assert_eq!(body["name"], b.name.as_str());
+        let mass = body["mass"].as_f64().unwrap();
+        assert!(
+            (mass - b.mass).abs() <= 1e-6 * heaviest,
+            "{}: {mass}",
+            b.name
+        );
+        assert!(body["on_boundary"].is_boolean());
+    }
+    for b in v["base_parameters"].as_array().unwrap() {
+        let (e, ls) = (
+            b["estimate"].as_f64().unwrap(),
+            b["least_squares"].as_f64().unwrap(),
+        );
+        assert!(
+            (e - ls).abs() <= 1e-6 * ls.abs() + 1e-9,
+            "{}: {e} vs {ls}",
+            b["name"]
+        );
+    }
+    assert!(v["relative_residual"].as_f64().unwrap() < 1e-9);
     // A short line is named with what it should hold.
     std::fs::write(&forces, "0.1,0.2,0,0,0,0,1\n").unwrap();
     let (ok, _, err) = tendyn(&[

@@ -6,6 +6,7 @@ use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::error::ImpliedSystem;
 use tendyn_core::identification::Identification;
 use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
+use tendyn_core::physical_consistency::Consistent;
 use tendyn_core::regressor;
 use tendyn_core::spatial::Vec3;
 use tendyn_core::torque_range::static_torque_ranges;
@@ -743,6 +744,108 @@ pub fn identification_text(m: &Model<f64>, base: &BaseParameters, id: &Identific
             number(id.standard_deviations[k]),
             number(file[k])
         ));
+    }
+    s
+}
+
+/// What `tendyn identify --consistent --json` prints: the physically consistent estimate
+/// (every body's mass properties and the base parameters they give) beside least squares.
+pub fn consistent_json(m: &Model<f64>, base: &BaseParameters, c: &Consistent) -> Value {
+    let file = base.values(&regressor::values(m));
+    let ls = &c.least_squares;
+    json!({
+        "mechanism": m.name(),
+        "samples": ls.samples,
+        "base_parameters": base.names(m).iter().enumerate().map(|(k, name)| json!({
+            "name": name,
+            "estimate": c.estimates[k],
+            "least_squares": ls.estimates[k],
+            "standard_deviation": ls.standard_deviations[k],
+            "file_value": file[k],
+        })).collect::<Vec<_>>(),
+        "bodies": m.bodies().iter().zip(&c.bodies).map(|(b, e)| {
+            let i = &e.inertia;
+            let mut body = json!({
+                "name": b.name,
+                "mass": e.mass,
+                "com": e.com,
+                "inertia": {
+                    "xx": i[0][0], "yy": i[1][1], "zz": i[2][2],
+                    "xy": i[0][1], "xz": i[0][2], "yz": i[1][2],
+                },
+                "on_boundary": e.on_boundary,
+            });
+            if let Some((coulomb, viscous)) = e.friction {
+                body["friction"] = json!({ "coulomb": coulomb, "viscous": viscous });
+            }
+            body
+        }).collect::<Vec<_>>(),
+        "residual_rms": c.residual_rms,
+        "relative_residual": c.relative_residual,
+        "least_squares_residual_rms": ls.residual_rms,
+        "least_squares_relative_residual": ls.relative_residual,
+        "condition": ls.condition,
+        "newton_steps": c.newton_steps,
+    })
+}
+
+/// What `tendyn identify --consistent` prints.
+pub fn consistent_text(m: &Model<f64>, base: &BaseParameters, c: &Consistent) -> String {
+    let file = base.values(&regressor::values(m));
+    let ls = &c.least_squares;
+    let mut s = format!(
+        "{}: physically consistent estimate from {} samples; residual {} N·m rms ({:.2} % of \
+         the forces; least squares {} N·m, {:.2} %), condition number {:.1e}\n\n  {:>12}  \
+         {:>12}  {:>12}  {:>12}  base parameter\n",
+        m.name(),
+        ls.samples,
+        number(c.residual_rms),
+        100.0 * c.relative_residual,
+        number(ls.residual_rms),
+        100.0 * ls.relative_residual,
+        ls.condition,
+        "consistent",
+        "least sq.",
+        "std. dev.",
+        "file value"
+    );
+    for (k, name) in base.names(m).iter().enumerate() {
+        s.push_str(&format!(
+            "  {:>12}  {:>12}  {:>12}  {:>12}  {name}\n",
+            number(c.estimates[k]),
+            number(ls.estimates[k]),
+            number(ls.standard_deviations[k]),
+            number(file[k])
+        ));
+    }
+    s.push_str("\nbodies (own frame; inertia about the centre of mass):\n");
+    for (b, e) in m.bodies().iter().zip(&c.bodies) {
+        let i = &e.inertia;
+        s.push_str(&format!(
+            "  {}: mass {}, com ({}, {}, {}), inertia xx {} yy {} zz {} xy {} xz {} yz {}",
+            b.name,
+            number(e.mass),
+            number(e.com[0]),
+            number(e.com[1]),
+            number(e.com[2]),
+            number(i[0][0]),
+            number(i[1][1]),
+            number(i[2][2]),
+            number(i[0][1]),
+            number(i[0][2]),
+            number(i[1][2])
+        ));
+        if let Some((coulomb, viscous)) = e.friction {
+            s.push_str(&format!(
+                ", friction coulomb {} viscous {}",
+                number(coulomb),
+                number(viscous)
+            ));
+        }
+        if e.on_boundary {
+            s.push_str(" (on the boundary of physical consistency)");
+        }
+        s.push('\n');
     }
     s
 }

@@ -259,7 +259,7 @@ fn significant(x: f64) -> String {
 
 /// The largest distance of a body origin from the base at `q = 0` (at least 1 mm): the
 /// length that makes the regressor's columns commensurable.
-fn characteristic_length(model: &Model<f64>) -> f64 {
+pub(crate) fn characteristic_length(model: &Model<f64>) -> f64 {
     let bodies = model.bodies();
     let mut origin: Vec<nalgebra::Vector3<f64>> = Vec::with_capacity(bodies.len());
     let mut rotation: Vec<nalgebra::Matrix3<f64>> = Vec::with_capacity(bodies.len());

@@ -58,6 +58,16 @@ pub fn identify(
     base: &BaseParameters,
     samples: &[Sample],
 ) -> Result<Identification> {
+    let (y, target) = stack(model, base, samples)?;
+    least_squares(model, base, y, &target, samples.len())
+}
+
+/// The base regressor and `Q − Q₀` of every sample, stacked: `samples × n` rows.
+pub(crate) fn stack(
+    model: &Model<f64>,
+    base: &BaseParameters,
+    samples: &[Sample],
+) -> Result<(DMatrix<f64>, DVector<f64>)> {
     let (n, r) = (model.dof(), base.groups.len());
     if base.parameters != regressor::parameters(model) {
         return Err(Error::State(format!(
@@ -98,6 +108,19 @@ pub fn identify(
             target[s * n + k] = sample.forces[k] - reg.known[k];
         }
     }
+    Ok((y, target))
+}
+
+/// Least squares on the stack, columns scaled to unit norm; an error when the samples do
+/// not excite every base parameter.
+pub(crate) fn least_squares(
+    model: &Model<f64>,
+    base: &BaseParameters,
+    mut y: DMatrix<f64>,
+    target: &DVector<f64>,
+    samples: usize,
+) -> Result<Identification> {
+    let (rows, r) = y.shape();
     let norms: Vec<f64> = (0..r).map(|c| y.column(c).norm()).collect();
     if let Some(c) = norms.iter().position(|&x| x == 0.0) {
         let names = base.names(model);
@@ -120,9 +143,9 @@ pub fn identify(
         )));
     }
     let solution = svd
-        .solve(&target, 0.0)
+        .solve(target, 0.0)
         .map_err(|e| Error::State(format!("least squares: {e}")))?;
-    let residual = &target - &y * &solution;
+    let residual = target - &y * &solution;
     let rss = residual.norm_squared();
     let variance = rss / (rows - r) as f64;
     // (SᵀS)⁻¹ = V Σ⁻² Vᵀ for the scaled columns; unscaled, divide by the norms twice.
@@ -139,7 +162,7 @@ pub fn identify(
     Ok(Identification {
         estimates,
         standard_deviations,
-        samples: samples.len(),
+        samples,
         residual_rms: (rss / rows as f64).sqrt(),
         relative_residual: rss.sqrt() / target.norm().max(f64::MIN_POSITIVE),
         condition,

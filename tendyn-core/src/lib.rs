@@ -26,6 +26,9 @@
 //!   with the grouping of each (what identification can estimate);
 //! - [`identification`]: least-squares estimates of the base parameters from measured
 //!   motion and actuator forces, with standard deviations;
+//! - [`physical_consistency`]: the same fit constrained to mass properties bodies can have
+//!   (every pseudo-inertia positive semidefinite, friction non-negative), by a barrier
+//!   method, which gives every body's mass, centre of mass and inertia;
 //! - [`dynamics`]: inverse dynamics outputs, `M`, `h`, `g` and forward dynamics, generic;
 //! - [`data`](mod@data): the runtime front end, [`Data`] (work and result buffers) and its
 //!   checked evaluators on numbers;
@@ -104,6 +107,8 @@ pub mod model;
 pub mod newton_euler;
 #[cfg(feature = "std")]
 pub mod output;
+#[cfg(feature = "std")]
+pub mod physical_consistency;
 #[cfg(feature = "std")]
 pub mod regressor;
 #[cfg(feature = "std")]

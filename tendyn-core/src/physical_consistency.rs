@@ -1,0 +1,545 @@
+//! Physically consistent identification: the least-squares fit of
+//! [`crate::identification`], constrained to mass properties that bodies can have.
+//!
+//! Base parameters are combinations, and least squares may return values that no
+//! mechanism has (a negative combined inertia where a light pulley's is drowned in noise).
+//! Here every body's ten inertial parameters `π_b = (m, h, I_o)` (the regressor's, about
+//! the body-frame origin) are estimated, constrained so that a non-negative mass density
+//! realises them: its **pseudo-inertia**
+//!
+//! ```text
+//! J_b = [ Σ   h ]      Σ = ∫ r rᵀ dm = ½ tr(I_o) 1 − I_o
+//!       [ hᵀ  m ]
+//! ```
+//!
+//! positive semidefinite (Wensing, Kim & Slotine, IEEE RA-L 2018: necessary and sufficient;
+//! it implies `m ≥ 0`, an inertia about the centre of mass with non-negative principal
+//! moments, and their triangle inequalities). Bearing friction parameters stay `≥ 0`.
+//!
+//! The estimate minimises, over `π` in that set,
+//!
+//! ```text
+//! f(π) = ½ ‖Y_base K π − (Q − Q₀)‖²  +  ½ λ ‖P S (π − π_file)‖²
+//! ```
+//!
+//! where `K π` are the base parameters ([`BaseParameters::values`]). The forces say nothing
+//! of `π`'s component in the kernel of `K`; the second term takes it from the file (`P` the
+//! orthogonal projector onto that kernel, in the units `S` of [`crate::base_parameters`]
+//! that make every parameter an inertia). It does not touch the base parameters, so where
+//! the least-squares estimate is physical the two agree; `λ` is 1e-6 of the data term's
+//! mean curvature, so that where they differ the data decide and the file only breaks ties.
+//!
+//! The problem is convex (a quadratic over a product of cones) and is solved by the barrier
+//! method (Boyd & Vandenberghe, *Convex Optimization*, §11.3): Newton's method on
+//! `t f(π) − Σ_b log det J_b − Σ log(friction)`, `t` growing tenfold per round, until the
+//! duality gap `ν / t` (`ν` = 4 per body and 1 per friction parameter) is below
+//! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles (round-off of `t f`'s
+//! gradient outgrows the barrier's), whichever comes first. The iterates stay strictly
+//! inside the set: where the optimum is on its boundary (a flat disk, a massless drum) the
+//! estimate is a hair inside, by about the square root of the gap. Hand-written: the least-squares crates built on nalgebra
+//! (levenberg-marquardt 0.15) pull a second nalgebra, and Clarabel's semidefinite cones need
+//! a system BLAS and LAPACK.
+
+use crate::base_parameters::{characteristic_length, BaseParameters};
+use crate::error::{Error, Result};
+use crate::identification::{least_squares, stack, Identification, Sample};
+use crate::model::Model;
+use crate::regressor::{self, Quantity};
+use nalgebra::{DMatrix, DVector, Matrix4};
+
+/// The barrier method stops when the duality gap is below this fraction of `½ ‖Q − Q₀‖²`.
+pub const GAP: f64 = 1e-20;
+
+/// A body is reported on the boundary of physical consistency when its pseudo-inertia's
+/// smallest eigenvalue is below this fraction of its largest (a mass on a plane, a line or
+/// a point, or no mass at all).
+pub const BOUNDARY: f64 = 1e-6;
+
+/// Newton steps the barrier method may take in all; far more than it needs (about ten per
+/// round of `t`).
+const NEWTON_STEPS: usize = 2_000;
+
+/// Newton steps in one round of `t` after which the round is taken as settled to round-off.
+const ROUND_STEPS: usize = 60;
+
+/// The physically consistent estimate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Consistent {
+    /// Every parameter of the regressor (`regressor::parameters` order): each body's mass,
+    /// first moment and inertia about its origin, and bearing friction.
+    pub parameters: Vec<f64>,
+    /// The base parameters they give (`BaseParameters::values`), in the order of
+    /// [`BaseParameters::groups`].
+    pub estimates: Vec<f64>,
+    /// The unconstrained least-squares fit of the same samples, for comparison.
+    pub least_squares: Identification,
+    /// `√(‖e‖² / N)` (N·m) of the consistent estimate.
+    pub residual_rms: f64,
+    /// `‖e‖ / ‖Q − Q₀‖` of the consistent estimate.
+    pub relative_residual: f64,
+    /// Every body's estimate (model order), as the file gives mass properties.
+    pub bodies: Vec<BodyEstimate>,
+    /// Newton steps taken.
+    pub newton_steps: usize,
+}
+
+/// One body's estimate, in its own frame, as the file gives mass properties.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyEstimate {
+    /// Mass (kg).
+    pub mass: f64,
+    /// Centre of mass (m); zero for a massless body.
+    pub com: [f64; 3],
+    /// Inertia about the centre of mass (kg·m²).
+    pub inertia: [[f64; 3]; 3],
+    /// Bearing friction `(coulomb, viscous)` (N·m, N·m·s/rad), where the file gives the
+    /// body a `friction`.
+    pub friction: Option<(f64, f64)>,
+    /// On the boundary of physical consistency ([`BOUNDARY`]): the data, or the file's
+    /// values where the data say nothing, ask for a mass on a plane, a line, a point, or
+    /// none at all (a flat disk is one: its inertia about its axis is the sum of the
+    /// other two).
+    pub on_boundary: bool,
+}
+
+/// Estimates every body's mass properties (and bearing friction) of `model` from
+/// `samples`, constrained to be physically consistent (see the module documentation).
+pub fn identify_consistent(
+    model: &Model<f64>,
+    base: &BaseParameters,
+    samples: &[Sample],
+) -> Result<Consistent> {
+    let (y, target) = stack(model, base, samples)?;
+    let fit = least_squares(model, base, y.clone(), &target, samples.len())?;
+    let problem = Problem::new(model, base, &y, &target);
+    let (theta, newton_steps) = problem.solve()?;
+    let parameters = problem.parameters(&theta);
+    let estimates = base.values(&parameters);
+    let residual = &target - &y * DVector::from_column_slice(&estimates);
+    let rss = residual.norm_squared();
+    let bodies = (0..model.bodies().len())
+        .map(|b| {
+            let e = problem.pseudo_inertia(b, &theta).symmetric_eigenvalues();
+            let at = problem.first[b];
+            let x = &parameters[at..at + 10];
+            let (m, h) = (x[0], [x[1], x[2], x[3]]);
+            let origin = [[x[4], x[5], x[6]], [x[5], x[7], x[8]], [x[6], x[8], x[9]]];
+            // Parallel axes to the centre of mass: I_c = I_o − (|h|² 1 − h hᵀ) / m.
+            let com = if m > 0.0 { h.map(|v| v / m) } else { [0.0; 3] };
+            let h2 = h.iter().map(|v| v * v).sum::<f64>();
+            let inertia = core::array::from_fn(|i| {
+                core::array::from_fn(|j| {
+                    let shift = if m > 0.0 {
+                        (if i == j { h2 } else { 0.0 } - h[i] * h[j]) / m
+                    } else {
+                        0.0
+                    };
+                    origin[i][j] - shift
+                })
+            });
+            let friction = problem
+                .friction
+                .iter()
+                .find(|&&c| base.parameters[c].body == b)
+                .map(|&c| (parameters[c], parameters[c + 1]));
+            BodyEstimate {
+                mass: m,
+                com,
+                inertia,
+                friction,
+                on_boundary: e.min() <= BOUNDARY * e.max().max(0.0),
+            }
+        })
+        .collect();
+    Ok(Consistent {
+        parameters,
+        estimates,
+        least_squares: fit,
+        residual_rms: (rss / target.len() as f64).sqrt(),
+        relative_residual: rss.sqrt() / target.norm().max(f64::MIN_POSITIVE),
+        bodies,
+        newton_steps,
+    })
+}
+
+/// The problem in the variables `θ`: per body the ten entries of `J̃ = D J D`
+/// (`D = diag(1, 1, 1, L)`, so that every entry is an inertia), in the order of
+/// [`SYMMETRIC_BASIS`], in the slots of its ten parameters; friction parameters as they
+/// are. In `θ` a body near the boundary is near it in its own entries (a planar body's
+/// `Σ_zz`), where in `π` it would be the difference `½ (xx + yy − zz)` of entries a
+/// thousand times larger, lost to round-off.
+struct Problem {
+    /// `f(θ) = ½ θᵀ H θ − gᵀ θ + const`.
+    h: DMatrix<f64>,
+    g: DVector<f64>,
+    /// `½ ‖Q − Q₀‖²`: the scale of `f`.
+    scale: f64,
+    /// `π = T θ`.
+    to_parameters: DMatrix<f64>,
+    /// The file's values, `π_file`.
+    prior: Vec<f64>,
+    /// Per body, the index of its first slot.
+    first: Vec<usize>,
+    /// The slots of the friction parameters.
+    friction: Vec<usize>,
+    /// `L` of `D`: the mechanism's length ([`crate::base_parameters`]).
+    length: f64,
+}
+
+impl Problem {
+    fn new(model: &Model<f64>, base: &BaseParameters, y: &DMatrix<f64>, t: &DVector<f64>) -> Self {
+        let p = base.parameters.len();
+        let r = base.groups.len();
+        let mut first = Vec::new();
+        let mut friction = Vec::new();
+        for (c, x) in base.parameters.iter().enumerate() {
+            match x.quantity {
+                Quantity::Inertial(0) => first.push(c),
+                Quantity::Inertial(_) => {}
+                Quantity::Coulomb | Quantity::Viscous => friction.push(c),
+            }
+        }
+        let length = characteristic_length(model);
+        // K (r × p): column c is what parameter c adds to each base parameter.
+        let mut k = DMatrix::<f64>::zeros(r, p);
+        for (i, group) in base.groups.iter().enumerate() {
+            k[(i, group.column)] = 1.0;
+            for &(c, coefficient) in &group.merged {
+                k[(i, c)] += coefficient;
+            }
+        }
+        let units: Vec<f64> = base
+            .parameters
+            .iter()
+            .map(|x| match x.quantity {
+                Quantity::Inertial(0) => length * length,
+                Quantity::Inertial(1..=3) => length,
+                _ => 1.0,
+            })
+            .collect();
+        // Data term in π: H_d = Kᵀ (YᵀY) K, g_d = Kᵀ Yᵀ t.
+        let yk = y * &k;
+        let mut h = yk.transpose() * &yk;
+        let mut g = yk.transpose() * t;
+        // Prior term on the kernel of K, in the units S: P = 1 − K̃ᵀ (K̃ K̃ᵀ)⁻¹ K̃ with
+        // K̃ = K S⁻¹; its quadratic form in π is λ S P S. K has the identity on its kept
+        // columns, so K̃ K̃ᵀ is invertible.
+        let mut k_units = k.clone();
+        for (c, u) in units.iter().enumerate() {
+            k_units.column_mut(c).scale_mut(1.0 / u);
+        }
+        let along = (&k_units * k_units.transpose())
+            .cholesky()
+            .map(|c| c.solve(&k_units))
+            .unwrap_or_else(|| DMatrix::zeros(r, p));
+        let mut projector = DMatrix::<f64>::identity(p, p) - k_units.transpose() * along;
+        for i in 0..p {
+            for j in 0..p {
+                projector[(i, j)] *= units[i] * units[j];
+            }
+        }
+        let curvature = (0..p)
+            .map(|i| h[(i, i)] / (units[i] * units[i]))
+            .sum::<f64>()
+            / p as f64;
+        let lambda = 1e-6 * curvature.max(f64::MIN_POSITIVE);
+        let prior = regressor::values(model);
+        h += &projector * lambda;
+        g += &projector * DVector::from_column_slice(&prior) * lambda;
+        // To θ: π = T θ, so H_θ = Tᵀ H T and g_θ = Tᵀ g.
+        let mut problem = Problem {
+            h: DMatrix::zeros(0, 0),
+            g: DVector::zeros(0),
+            scale: 0.5 * t.norm_squared(),
+            to_parameters: DMatrix::identity(p, p),
+            prior,
+            first,
+            friction,
+            length,
+        };
+        for &at in &problem.first {
+            for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
+                let mut unit = Matrix4::zeros();
+                unit[(row, column)] = 1.0;
+                unit[(column, row)] = 1.0;
+                let column_of_t = problem.parameters_of(&unit);
+                for (i, x) in column_of_t.iter().enumerate() {
+                    problem.to_parameters[(at + i, at + k)] = *x;
+                }
+            }
+        }
+        let t_matrix = &problem.to_parameters;
+        problem.h = t_matrix.transpose() * h * t_matrix;
+        problem.g = t_matrix.transpose() * g;
+        problem
+    }
+
+    /// `π = T θ`.
+    fn parameters(&self, theta: &DVector<f64>) -> Vec<f64> {
+        (&self.to_parameters * theta).as_slice().to_vec()
+    }
+
+    /// Body `b`'s `J̃` at `theta`.
+    fn pseudo_inertia(&self, b: usize, theta: &DVector<f64>) -> Matrix4<f64> {
+        let at = self.first[b];
+        let mut j = Matrix4::zeros();
+        for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
+            j[(row, column)] = theta[at + k];
+            j[(column, row)] = theta[at + k];
+        }
+        j
+    }
+
+    /// `J̃` of a body's parameters `(m, h, I_o)` (regressor order).
+    fn pseudo_inertia_of(&self, x: &[f64]) -> Matrix4<f64> {
+        let l = self.length;
+        let inertia = [[x[4], x[5], x[6]], [x[5], x[7], x[8]], [x[6], x[8], x[9]]];
+        let half_trace = 0.5 * (x[4] + x[7] + x[9]);
+        let mut j = Matrix4::zeros();
+        for r in 0..3 {
+            for c in 0..3 {
+                // Σ = ½ tr(I_o) 1 − I_o.
+                j[(r, c)] = if r == c { half_trace } else { 0.0 } - inertia[r][c];
+            }
+            j[(r, 3)] = l * x[1 + r];
+            j[(3, r)] = l * x[1 + r];
+        }
+        j[(3, 3)] = l * l * x[0];
+        j
+    }
+
+    /// The parameters `(m, h, I_o)` of a body whose `J̃` is `j` (the inverse of
+    /// [`Problem::pseudo_inertia_of`], linear).
+    fn parameters_of(&self, j: &Matrix4<f64>) -> [f64; 10] {
+        let l = self.length;
+        let trace = j[(0, 0)] + j[(1, 1)] + j[(2, 2)];
+        // I_o = tr(Σ) 1 − Σ.
+        let inertia = |r: usize, c: usize| if r == c { trace } else { 0.0 } - j[(r, c)];
+        [
+            j[(3, 3)] / (l * l),
+            j[(0, 3)] / l,
+            j[(1, 3)] / l,
+            j[(2, 3)] / l,
+            inertia(0, 0),
+            inertia(0, 1),
+            inertia(0, 2),
+            inertia(1, 1),
+            inertia(1, 2),
+            inertia(2, 2),
+        ]
+    }
+
+    /// A strictly feasible start: the file's values, each `J̃` lifted by a small multiple of
+    /// the identity (a thin uniform shell of mass), friction by a little.
+    fn start(&self) -> DVector<f64> {
+        let bodies = self.first.len();
+        let priors: Vec<Matrix4<f64>> = (0..bodies)
+            .map(|b| self.pseudo_inertia_of(&self.prior[self.first[b]..self.first[b] + 10]))
+            .collect();
+        let typical = priors
+            .iter()
+            .map(|j| j.trace() / 4.0)
+            .fold(0.0f64, f64::max);
+        let typical = if typical > 0.0 { typical } else { 1e-6 };
+        let mut theta = DVector::from_column_slice(&self.prior);
+        for (b, j) in priors.iter().enumerate() {
+            let smallest = j.symmetric_eigenvalues().min();
+            let lifted = j + Matrix4::identity() * ((-smallest).max(0.0) + 1e-3 * typical);
+            for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
+                theta[self.first[b] + k] = lifted[(row, column)];
+            }
+        }
+        let friction_scale = self
+            .friction
+            .iter()
+            .map(|&c| self.prior[c].abs())
+            .fold(0.0f64, f64::max)
+            .max((2.0 * self.scale).sqrt() * 1e-6)
+            .max(f64::MIN_POSITIVE);
+        for &c in &self.friction {
+            theta[c] = self.prior[c].max(0.0) + 1e-3 * friction_scale;
+        }
+        theta
+    }
+
+    /// The barrier method; returns `θ` and the Newton steps taken.
+    fn solve(&self) -> Result<(DVector<f64>, usize)> {
+        let nu = (4 * self.first.len() + self.friction.len()) as f64;
+        let scale = self.scale.max(f64::MIN_POSITIVE);
+        let mut theta = self.start();
+        // Start where the gap is 1e-3 of the scale, then ten times tighter each round.
+        let mut t = nu / (1e-3 * scale);
+        let mut steps = 0;
+        loop {
+            let mut last = f64::INFINITY;
+            let mut round = 0;
+            loop {
+                if steps == NEWTON_STEPS {
+                    return Err(Error::State(format!(
+                        "physically consistent identification did not converge in \
+                         {NEWTON_STEPS} Newton steps"
+                    )));
+                }
+                steps += 1;
+                round += 1;
+                let (step, phi, decrement) = self.newton_step(t, &theta).ok_or_else(|| {
+                    Error::State(
+                        "physically consistent identification: the Newton system is singular"
+                            .into(),
+                    )
+                })?;
+                if decrement <= 1e-12 {
+                    break;
+                }
+                // Past the damped phase the decrement falls quadratically; once it stops
+                // falling it is round-off, and this `t` is done.
+                if decrement < 1e-2 && decrement >= last {
+                    break;
+                }
+                last = decrement;
+                theta = self.line_search(t, &theta, &step, &phi, decrement)?;
+                // A round that cannot settle has reached what round-off allows: the
+                // estimate is as good as f64 makes it.
+                if round == ROUND_STEPS {
+                    return Ok((theta, steps));
+                }
+            }
+            if nu / t <= GAP * scale {
+                return Ok((theta, steps));
+            }
+            t *= 10.0;
+        }
+    }
+
+    /// Newton's step `H⁻¹ ∇` of `t f + barrier` at `theta` (inside the set), the same in
+    /// the scaled coordinates `φ`, and the Newton decrement `λ² = ∇ᵀ H⁻¹ ∇` (about twice
+    /// the suboptimality of the self-concordant `t f + barrier`).
+    ///
+    /// Near the boundary the barrier's curvature is `1/σ²` along a body's thin direction
+    /// (`σ` the smallest eigenvalue of its `J̃`) and of order one along the others, and in
+    /// the entries of `J̃` both mix: the Hessian is singular to round-off. So the step is
+    /// computed in scaled coordinates, per body `ΔJ̃ = C Φ Cᵀ` with `C` the Cholesky factor
+    /// of `J̃` and `Φ` symmetric (in the orthonormal basis of symmetric matrices), per
+    /// friction parameter `Δc = c φ`: there the barrier's Hessian is the identity and its
+    /// gradient `−tr Φ`, so the system is `(1 + t Mᵀ H M) φ = −∇_φ`, `M` the map from `φ`
+    /// to `Δθ`, whose eigenvalues are at least one.
+    fn newton_step(
+        &self,
+        t: f64,
+        theta: &DVector<f64>,
+    ) -> Option<(DVector<f64>, DVector<f64>, f64)> {
+        let p = theta.len();
+        let mut m = DMatrix::<f64>::zeros(p, p);
+        let mut barrier_gradient = DVector::<f64>::zeros(p);
+        for b in 0..self.first.len() {
+            let at = self.first[b];
+            let c = self.pseudo_inertia(b, theta).cholesky()?.l();
+            for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
+                let mut unit = Matrix4::zeros();
+                if row == column {
+                    unit[(row, column)] = 1.0;
+                    barrier_gradient[at + k] = -1.0;
+                } else {
+                    unit[(row, column)] = core::f64::consts::FRAC_1_SQRT_2;
+                    unit[(column, row)] = core::f64::consts::FRAC_1_SQRT_2;
+                }
+                let change = c * unit * c.transpose();
+                for (i, &(r, s)) in SYMMETRIC_BASIS.iter().enumerate() {
+                    m[(at + i, at + k)] = change[(r, s)];
+                }
+            }
+        }
+        for &c in &self.friction {
+            if theta[c] <= 0.0 {
+                return None;
+            }
+            m[(c, c)] = theta[c];
+            barrier_gradient[c] = -1.0;
+        }
+        let mut system = m.transpose() * &self.h * &m * t;
+        for i in 0..p {
+            system[(i, i)] += 1.0;
+        }
+        let gradient = m.transpose() * (&self.h * theta - &self.g) * t + barrier_gradient;
+        let phi = system.cholesky()?.solve(&gradient);
+        let decrement = gradient.dot(&phi);
+        Some((&m * &phi, phi, decrement))
+    }
+
+    /// Backtracking along the Newton direction `−step` (`−φ` in the scaled coordinates of
+    /// [`Problem::newton_step`]): the full step when it stays inside the set and decreases
+    /// `t f + barrier` enough (Armijo, 1/4 of the predicted), else halves. With a decrement
+    /// below 1e-2 the full step stays inside (it is within the Dikin ellipsoid of the
+    /// self-concordant `t f + barrier`) and is taken.
+    ///
+    /// Both changes are computed from their own terms, not as differences of values: `t f`
+    /// is large where the gap is small, and `log det J̃` of a body near the boundary has the
+    /// round-off of `J̃`'s condition number. Along `ΔJ̃ = −α C Φ Cᵀ` the barrier changes by
+    /// `−Σ log(1 − α μ_i)` over the eigenvalues `μ_i` of `Φ` (and of `φ_c` for friction).
+    fn line_search(
+        &self,
+        t: f64,
+        theta: &DVector<f64>,
+        step: &DVector<f64>,
+        phi: &DVector<f64>,
+        decrement: f64,
+    ) -> Result<DVector<f64>> {
+        let slope = step.dot(&(&self.h * theta - &self.g));
+        let curvature = step.dot(&(&self.h * step));
+        let mut mu: Vec<f64> = Vec::new();
+        for &at in &self.first {
+            let mut scaled = Matrix4::zeros();
+            for (k, &(r, c)) in SYMMETRIC_BASIS.iter().enumerate() {
+                let x = if r == c {
+                    phi[at + k]
+                } else {
+                    phi[at + k] * core::f64::consts::FRAC_1_SQRT_2
+                };
+                scaled[(r, c)] = x;
+                scaled[(c, r)] = x;
+            }
+            mu.extend(scaled.symmetric_eigenvalues().iter());
+        }
+        mu.extend(self.friction.iter().map(|&c| phi[c]));
+        let mut alpha = 1.0;
+        for _ in 0..60 {
+            let next = theta - step * alpha;
+            if mu.iter().all(|&m| 1.0 - alpha * m > 0.0) && self.inside(&next) {
+                let barrier: f64 = mu.iter().map(|&m| -(-alpha * m).ln_1p()).sum();
+                let change = t * alpha * (0.5 * alpha * curvature - slope) + barrier;
+                if decrement < 1e-2 || change <= -0.25 * alpha * decrement {
+                    return Ok(next);
+                }
+            }
+            alpha *= 0.5;
+        }
+        Err(Error::State(
+            "physically consistent identification: no step along Newton's direction \
+             decreases the objective"
+                .into(),
+        ))
+    }
+
+    /// Whether `theta` is inside the set: every `J̃` positive definite (its Cholesky factor
+    /// exists, as [`Problem::newton_step`] needs), friction positive.
+    fn inside(&self, theta: &DVector<f64>) -> bool {
+        self.friction.iter().all(|&c| theta[c] > 0.0)
+            && (0..self.first.len()).all(|b| self.pseudo_inertia(b, theta).cholesky().is_some())
+    }
+}
+
+/// The entries `(row, column)`, `row ≤ column`, of a symmetric 4 × 4 matrix, in the order
+/// of a body's slots in `θ`, and of the orthonormal basis of symmetric matrices (`e_r e_rᵀ`
+/// on the diagonal, `(e_r e_cᵀ + e_c e_rᵀ)/√2` off it).
+const SYMMETRIC_BASIS: [(usize, usize); 10] = [
+    (0, 0),
+    (1, 1),
+    (2, 2),
+    (3, 3),
+    (0, 1),
+    (0, 2),
+    (0, 3),
+    (1, 2),
+    (1, 3),
+    (2, 3),
+];
