@@ -2,6 +2,7 @@
 //! generate code, and measure error against run time (`report`, through cargo).
 
 mod draw;
+mod identified;
 mod mjcf;
 
 use clap::{Parser, Subcommand};
@@ -123,6 +124,10 @@ enum Command {
         /// consistent (positive mass, a valid inertia), and the base parameters they give.
         #[arg(long)]
         consistent: bool,
+        /// With --consistent: write the mechanism's file with every body's mass properties
+        /// (and friction) replaced by the estimate here, the rest as written.
+        #[arg(long, requires = "consistent")]
+        write: Option<String>,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -444,6 +449,7 @@ fn run(cli: Cli) -> Result<(), String> {
             data,
             forces,
             consistent,
+            write,
             json,
         } => {
             let m = load(&file)?;
@@ -452,6 +458,18 @@ fn run(cli: Cli) -> Result<(), String> {
             if consistent {
                 let c =
                     identify_consistent(&m, &base, &samples).map_err(|e| format!("{data}: {e}"))?;
+                if let Some(out) = &write {
+                    let text =
+                        std::fs::read_to_string(&file).map_err(|e| format!("{file}: {e}"))?;
+                    let identified = identified::with_estimate(&text, &m, &c)
+                        .map_err(|e| format!("{out}: {e}"))?;
+                    tendyn_codegen::builder::write_atomically(out.as_ref(), &identified)
+                        .map_err(|e| format!("{out}: {e}"))?;
+                    eprintln!(
+                        "wrote `{}` with the identified mass properties to {out}",
+                        m.name()
+                    );
+                }
                 if json {
                     say!("{}", report::consistent_json(&m, &base, &c));
                 } else {

@@ -900,6 +900,70 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
         );
     }
     assert!(v["relative_residual"].as_f64().unwrap() < 1e-9);
+    // --write: the file with the estimate, which loads and gives the same masses; the rest
+    // of the text (comments, the routing) as written.
+    let written = dir.join("identified.ron");
+    let (ok, _, err) = tendyn(&[
+        "identify",
+        file,
+        "--data",
+        forces.to_str().unwrap(),
+        "--forces",
+        "--consistent",
+        "--write",
+        written.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let identified = tendyn_core::load(&written).unwrap();
+    for (b, body) in identified.bodies().iter().zip(bodies) {
+        let mass = body["mass"].as_f64().unwrap();
+        assert!((b.mass - mass).abs() <= 1e-15 * mass, "{}", b.name);
+    }
+    let (before, after) = (
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../examples/mechanisms/example2_open_ended.ron"
+        ))
+        .unwrap(),
+        std::fs::read_to_string(&written).unwrap(),
+    );
+    let head = |t: &str| t[..t.find("links: [").unwrap()].to_string();
+    let tail = |t: &str| t[t.find("tendons: [").unwrap()..].to_string();
+    assert_eq!(head(&before), head(&after));
+    assert_eq!(tail(&before), tail(&after));
+    // A mass given as a runtime parameter keeps it; the parameter takes the estimate.
+    let with_parameter = dir.join("payload.ron");
+    std::fs::write(
+        &with_parameter,
+        before
+            .replace(
+                "    tension_floor: 5.0,",
+                "    tension_floor: 5.0,\n    parameters: [(name: \"payload\", value: 0.8)],",
+            )
+            .replace("mass: 0.8,", "mass: \"payload\","),
+    )
+    .unwrap();
+    let (ok, _, err) = tendyn(&[
+        "identify",
+        with_parameter.to_str().unwrap(),
+        "--data",
+        forces.to_str().unwrap(),
+        "--forces",
+        "--consistent",
+        "--write",
+        written.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let after = std::fs::read_to_string(&written).unwrap();
+    assert!(after.contains("mass: \"payload\""), "{after}");
+    let identified = tendyn_core::load(&written).unwrap();
+    let link2 = identified
+        .bodies()
+        .iter()
+        .find(|b| b.name == "link2")
+        .unwrap();
+    let estimate = bodies[1]["mass"].as_f64().unwrap();
+    assert!((link2.mass - estimate).abs() <= 1e-15 * estimate);
     // A short line is named with what it should hold.
     std::fs::write(&forces, "0.1,0.2,0,0,0,0,1\n").unwrap();
     let (ok, _, err) = tendyn(&[
