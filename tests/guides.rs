@@ -867,8 +867,15 @@ fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
                 }
             }
             match verdict {
-                Ok(_) => {
+                Ok(ranged) => {
                     assert_eq!(uncontrollable, 0, "random_{seed} with mu {mu}");
+                    // What validation accepts, code generation can solve: its fixed order
+                    // of elimination holds over the same ranges.
+                    let outputs = tendyn_codegen::available_outputs(&ranged);
+                    assert!(
+                        outputs.contains(&tendyn_codegen::Output::Actuation),
+                        "random_{seed} with mu {mu}: {outputs:?}"
+                    );
                     accepted += 1;
                 }
                 Err(e) => {
@@ -904,5 +911,76 @@ fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
     assert!(
         accepted >= 3 && refused >= 1,
         "{accepted} accepted, {refused} refused"
+    );
+}
+
+/// A routing (random mechanism 563, its idlers made guides with `mu = 0.5`, joints within
+/// ±1 rad) where the order of elimination that leaves the lead tendon free meets a zero
+/// pivot for some direction of sliding within the ranges: code generation takes the next
+/// tendon instead, and the generated `actuation` agrees with the runtime solver (1e-9 of
+/// the largest tension) at random states within the ranges.
+#[test]
+fn where_the_lead_tendon_s_elimination_fails_generated_code_frees_another_tendon() {
+    use tendyn_codegen::outputs::{trace, Output};
+    use tendyn_core::tension::Elimination;
+    let features = tendyn_spec::random_mechanism::Features {
+        coupled_pulleys: false,
+        endless: false,
+    };
+    let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(563, features);
+    let text = tendyn_spec::guides::idlers_as_capstans(&text, 0.5)
+        .replace("dh: (", "range: (-1.0, 1.0), dh: (");
+    let model = parse(&text).unwrap();
+    let lead = Elimination::of(&model).unwrap();
+    assert!(!lead.holds_while_sliding(&model));
+    let chosen = Elimination::candidates(&model)
+        .into_iter()
+        .find(|o| o.holds_while_sliding(&model))
+        .unwrap();
+    assert_ne!(chosen.free, lead.free);
+    let traced = trace(&model, &[Output::Actuation]).unwrap();
+    let results = &traced.functions[0].results;
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut solver = Data::new(&model);
+    let n = model.dof();
+    let (mut worst, mut compared) = (0.0f64, 0);
+    for _ in 0..200 {
+        let [_, qd, qdd] = random_state(&mut rng, n);
+        let q: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+        let Ok(r) = solver.inverse_dynamics(&model, &q, &qd, &qdd) else {
+            continue;
+        };
+        let expected: Vec<f64> = r
+            .motor_torques
+            .iter()
+            .chain(&r.tendon_tensions)
+            .copied()
+            .collect();
+        let inputs: Vec<f64> = (traced.graph.input_names.iter())
+            .map(|name| {
+                let (array, index) = name.split_once('[').unwrap();
+                let k: usize = index.trim_end_matches(']').parse().unwrap();
+                match array {
+                    "q" => q[k],
+                    "qd" => qd[k],
+                    "qdd" => qdd[k],
+                    // Inputs of other functions, which `actuation` does not read.
+                    _ => f64::NAN,
+                }
+            })
+            .collect();
+        let generated = traced.graph.eval(results, &inputs);
+        let size = expected.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+        let e = (generated.iter().zip(&expected)).fold(0.0f64, |m, (g, x)| m.max((g - x).abs()));
+        worst = worst.max(e / size);
+        compared += 1;
+    }
+    println!(
+        "lead tendon {:?}, freed {:?}: {compared} states, worst {worst:.1e}",
+        lead.free, chosen.free
+    );
+    assert!(
+        compared >= 100 && worst < 1e-9,
+        "{compared} states, worst {worst:e}"
     );
 }

@@ -230,9 +230,12 @@ pub(crate) fn array(name: &str, n: usize) -> Vec<Sym> {
 }
 
 /// The order in which generated code eliminates a state's tension system where guides
-/// have capstan friction, if one holds at every direction of sliding validation checks.
+/// have capstan friction: the first of `Elimination::candidates` that holds at every
+/// direction of sliding validation checks, if one does.
 fn elimination(model: &Model<f64>) -> Option<tension::Elimination> {
-    tension::Elimination::of(model).filter(|order| order.holds_while_sliding(model))
+    tension::Elimination::candidates(model)
+        .into_iter()
+        .find(|order| order.holds_while_sliding(model))
 }
 
 /// A state's tension system with capstan friction as generated code solves it: by the

@@ -293,15 +293,41 @@ impl Elimination {
     /// parameters); `None` if a free unknown would not be a tendon (which a validated
     /// model's rank rules out, up to round-off).
     pub fn of<T: Numeric>(model: &Model<T>) -> Option<Elimination> {
-        let system = &model.system;
-        let matrix: Vec<Vec<f64>> = (system.matrix.iter())
-            .map(|row| row.iter().map(|x| x.to_f64()).collect())
-            .collect();
-        let free = match system.null_space.len() {
+        let free = match model.system.null_space.len() {
             0 => Vec::new(),
             1 => vec![lead_tendon(model)],
-            _ => unpivoted_columns(matrix.clone()),
+            _ => unpivoted_columns(numbers(&model.system.matrix)),
         };
+        Elimination::with_free(model, free)
+    }
+
+    /// Every order worth trying, the best first: [`Elimination::of`]'s, then, with one
+    /// null direction, each other tendon free, by falling component of the positive null
+    /// vector (a tendon whose component is larger leaves a square part farther from
+    /// singular). Where the lead tendon's order meets a zero pivot for some direction of
+    /// sliding, another tendon's may not.
+    pub fn candidates<T: Numeric>(model: &Model<T>) -> Vec<Elimination> {
+        let mut out: Vec<Elimination> = Elimination::of(model).into_iter().collect();
+        if let (1, Some(n)) = (model.system.null_space.len(), &model.system.positive_null) {
+            let mut others: Vec<usize> = (model.tendons.iter())
+                .map(|t| t.unknown)
+                .filter(|&u| u != lead_tendon(model))
+                .collect();
+            others.sort_by(|&a, &b| n[b].to_f64().total_cmp(&n[a].to_f64()));
+            out.extend(
+                others
+                    .into_iter()
+                    .filter_map(|u| Elimination::with_free(model, vec![u])),
+            );
+        }
+        out
+    }
+
+    /// The order with the unknowns `free` left free and the rest eliminated in a partially
+    /// pivoting elimination of the model's `E`; `None` if a free unknown is not a tendon.
+    fn with_free<T: Numeric>(model: &Model<T>, free: Vec<usize>) -> Option<Elimination> {
+        let system = &model.system;
+        let matrix = numbers(&system.matrix);
         if free.iter().any(|&u| !is_tendon_unknown(model, u)) {
             return None;
         }
@@ -330,20 +356,31 @@ impl Elimination {
 
     /// Whether this order keeps every pivot of the elimination away from zero, with the
     /// sign it has in the model's `E`, at every direction of sliding validation checks
-    /// (`validate::Sliding`, each guide at its largest wrap angle over the joints' ranges, `q = 0`
-    /// where a joint has none; each pivot beyond `1e-12` of `E`'s largest entry).
-    /// The products of the first pivots are minors of `E`, affine in each capstan factor
-    /// taken alone as the null vector's are (docs/format.md §6a), so where validation's
-    /// points are the corners of the boxes the directions reach, no state in between
-    /// makes the traced code divide by zero.
+    /// (`validate::Sliding`; each pivot beyond `1e-12` of `E`'s largest entry) and over the
+    /// joints' ranges as validation covers them: where a guide's wrap angle varies over the
+    /// ranges, by the same search of boxes of joint angles (`Sliding::state_that_fails`),
+    /// so that a routing validation accepts is refused here only where some state within
+    /// the ranges breaks a pivot, or the search does not settle. The products of the first
+    /// pivots are minors of `E`, affine in each capstan factor taken alone as the null
+    /// vector's are (docs/format.md §6a), so where validation's points are the corners of
+    /// the boxes the directions reach, no state in between makes the traced code divide by
+    /// zero.
     pub fn holds_while_sliding(&self, model: &Model<f64>) -> bool {
         let sliding = crate::validate::Sliding::of(model);
         let without = self.pivots(&model.system.matrix);
-        sliding.points().into_iter().all(|point| {
-            let e = sliding.matrix(model, &point);
+        let fails = |e: Vec<Vec<f64>>| -> Option<String> {
             let size = e.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
             let kept = |(p, w): (&f64, &f64)| p.signum() == w.signum() && p.abs() > 1e-12 * size;
-            self.pivots(&e).iter().zip(&without).all(kept) || !sliding.reachable(&point)
+            let holds = self.pivots(&e).iter().zip(&without).all(kept);
+            (!holds).then(|| "a pivot of the elimination vanishes or turns".to_string())
+        };
+        let ranged = sliding.ranged(model);
+        sliding.points().into_iter().all(|point| {
+            if ranged {
+                sliding.state_that_fails(model, &point, &fails).is_none()
+            } else {
+                fails(sliding.matrix(model, &point)).is_none() || !sliding.reachable(&point)
+            }
         })
     }
 
@@ -356,6 +393,13 @@ impl Elimination {
         crate::linalg::lu_factor(&mut factors, n);
         (0..n).map(|j| factors[j * n + j]).collect()
     }
+}
+
+/// `E` in f64.
+fn numbers<T: Numeric>(matrix: &[Vec<T>]) -> Vec<Vec<f64>> {
+    (matrix.iter())
+        .map(|row| row.iter().map(|x| x.to_f64()).collect())
+        .collect()
 }
 
 /// The columns of `e` (full row rank) that Gaussian elimination with complete pivoting

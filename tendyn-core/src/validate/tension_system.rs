@@ -1032,7 +1032,7 @@ impl Sliding {
     }
 
     /// Whether some guide's wrap angle changes over the joints' ranges.
-    fn ranged(&self, model: &Model<f64>) -> bool {
+    pub(crate) fn ranged(&self, model: &Model<f64>) -> bool {
         let joints = model.range_box();
         (self.sliders.iter()).any(|s| {
             let rates = &self.guide(model, s).wrap_rate;
@@ -1049,7 +1049,7 @@ impl Sliding {
     /// gives every guide is a state, `Some(q)`; one that no corner does splits the box at
     /// its widest joint. `None` where every box passes; past [`UNSETTLED_AFTER`] boxes, or
     /// a box narrower than `1e-9` rad, the state is not settled (`Some(None)`).
-    fn state_that_fails(
+    pub(crate) fn state_that_fails(
         &self,
         model: &Model<f64>,
         point: &[f64],
