@@ -235,7 +235,7 @@ fn scan_order(parameters: &[Parameter]) -> Vec<usize> {
 
 /// What a parameter's column is multiplied by to be in the inertia's units: `L²` for a
 /// mass, `L` for a first moment.
-fn dimension(parameter: &Parameter, length: f64) -> f64 {
+pub(crate) fn dimension(parameter: &Parameter, length: f64) -> f64 {
     match parameter.quantity {
         Quantity::Inertial(0) => length * length,
         Quantity::Inertial(1..=3) => length,

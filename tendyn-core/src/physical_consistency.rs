@@ -36,11 +36,11 @@
 //! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles (round-off of `t f`'s
 //! gradient outgrows the barrier's), whichever comes first. The iterates stay strictly
 //! inside the set: where the optimum is on its boundary (a flat disk, a massless drum) the
-//! estimate is a hair inside, by about the square root of the gap. Hand-written: the least-squares crates built on nalgebra
-//! (levenberg-marquardt 0.15) pull a second nalgebra, and Clarabel's semidefinite cones need
-//! a system BLAS and LAPACK.
+//! estimate is a hair inside, by about the square root of the gap. Hand-written: the
+//! least-squares crates built on nalgebra (levenberg-marquardt 0.15) pull a second nalgebra,
+//! and Clarabel's semidefinite cones need a system BLAS and LAPACK.
 
-use crate::base_parameters::{characteristic_length, BaseParameters};
+use crate::base_parameters::{characteristic_length, dimension, BaseParameters};
 use crate::error::{Error, Result};
 use crate::identification::{least_squares, stack, Identification, Sample};
 use crate::model::Model;
@@ -187,7 +187,12 @@ struct Problem {
 }
 
 impl Problem {
-    fn new(model: &Model<f64>, base: &BaseParameters, y: &DMatrix<f64>, t: &DVector<f64>) -> Self {
+    fn new(
+        model: &Model<f64>,
+        base: &BaseParameters,
+        y: &DMatrix<f64>,
+        target: &DVector<f64>,
+    ) -> Self {
         let p = base.parameters.len();
         let r = base.groups.len();
         let mut first = Vec::new();
@@ -208,19 +213,13 @@ impl Problem {
                 k[(i, c)] += coefficient;
             }
         }
-        let units: Vec<f64> = base
-            .parameters
-            .iter()
-            .map(|x| match x.quantity {
-                Quantity::Inertial(0) => length * length,
-                Quantity::Inertial(1..=3) => length,
-                _ => 1.0,
-            })
+        let units: Vec<f64> = (base.parameters.iter())
+            .map(|x| dimension(x, length))
             .collect();
         // Data term in π: H_d = Kᵀ (YᵀY) K, g_d = Kᵀ Yᵀ t.
         let yk = y * &k;
         let mut h = yk.transpose() * &yk;
-        let mut g = yk.transpose() * t;
+        let mut g = yk.transpose() * target;
         // Prior term on the kernel of K, in the units S: P = 1 − K̃ᵀ (K̃ K̃ᵀ)⁻¹ K̃ with
         // K̃ = K S⁻¹; its quadratic form in π is λ S P S. K has the identity on its kept
         // columns, so K̃ K̃ᵀ is invertible.
@@ -250,7 +249,7 @@ impl Problem {
         let mut problem = Problem {
             h: DMatrix::zeros(0, 0),
             g: DVector::zeros(0),
-            scale: 0.5 * t.norm_squared(),
+            scale: 0.5 * target.norm_squared(),
             to_parameters: DMatrix::identity(p, p),
             prior,
             first,
@@ -429,11 +428,13 @@ impl Problem {
         theta: &DVector<f64>,
     ) -> Option<(DVector<f64>, DVector<f64>, f64)> {
         let p = theta.len();
-        let mut m = DMatrix::<f64>::zeros(p, p);
+        // M is block diagonal: ten by ten per body, one by one per friction parameter.
+        let mut blocks: Vec<(usize, DMatrix<f64>)> = Vec::new();
         let mut barrier_gradient = DVector::<f64>::zeros(p);
         for b in 0..self.first.len() {
             let at = self.first[b];
             let c = self.pseudo_inertia(b, theta).cholesky()?.l();
+            let mut block = DMatrix::<f64>::zeros(10, 10);
             for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
                 let mut unit = Matrix4::zeros();
                 if row == column {
@@ -445,25 +446,44 @@ impl Problem {
                 }
                 let change = c * unit * c.transpose();
                 for (i, &(r, s)) in SYMMETRIC_BASIS.iter().enumerate() {
-                    m[(at + i, at + k)] = change[(r, s)];
+                    block[(i, k)] = change[(r, s)];
                 }
             }
+            blocks.push((at, block));
         }
         for &c in &self.friction {
             if theta[c] <= 0.0 {
                 return None;
             }
-            m[(c, c)] = theta[c];
+            blocks.push((c, DMatrix::from_element(1, 1, theta[c])));
             barrier_gradient[c] = -1.0;
         }
-        let mut system = m.transpose() * &self.h * &m * t;
-        for i in 0..p {
-            system[(i, i)] += 1.0;
+        // 1 + t Mᵀ H M and the gradient, block by block (O(p²) per block row, not O(p³)).
+        let mut hm = DMatrix::<f64>::zeros(p, p);
+        for (at, block) in &blocks {
+            let k = block.nrows();
+            hm.columns_mut(*at, k)
+                .copy_from(&(self.h.columns(*at, k) * block));
         }
-        let gradient = m.transpose() * (&self.h * theta - &self.g) * t + barrier_gradient;
+        let mut system = DMatrix::<f64>::identity(p, p);
+        let slope = (&self.h * theta - &self.g) * t;
+        let mut gradient = barrier_gradient;
+        for (at, block) in &blocks {
+            let k = block.nrows();
+            let rows = block.transpose() * hm.rows(*at, k) * t;
+            let mut target = system.rows_mut(*at, k);
+            target += rows;
+            let mut g = gradient.rows_mut(*at, k);
+            g += block.transpose() * slope.rows(*at, k);
+        }
         let phi = system.cholesky()?.solve(&gradient);
         let decrement = gradient.dot(&phi);
-        Some((&m * &phi, phi, decrement))
+        let mut step = DVector::<f64>::zeros(p);
+        for (at, block) in &blocks {
+            let k = block.nrows();
+            step.rows_mut(*at, k).copy_from(&(block * phi.rows(*at, k)));
+        }
+        Some((step, phi, decrement))
     }
 
     /// Backtracking along the Newton direction `−step` (`−φ` in the scaled coordinates of
