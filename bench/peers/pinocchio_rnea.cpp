@@ -50,32 +50,62 @@ int main(int argc, char** argv) {
   }
   pinocchio::Model model;
   model.gravity.linear(g);
-  Eigen::MatrixXd coupling(bodies, n);
-  Eigen::VectorXd offset(bodies);
-  std::vector<SE3> post(bodies);
-  std::vector<pinocchio::JointIndex> joint(bodies);
-  for (int b = 0; b < bodies; ++b) {
-    double parent;
-    in >> parent >> offset(b);
-    SE3 pre = read_transform(in);
-    post[b] = read_transform(in);
-    for (int j = 0; j < n; ++j) in >> coupling(b, j);
+  struct Body {
+    int parent;
+    SE3 pre;
     double mass;
     Eigen::Vector3d com;
-    in >> mass >> com(0) >> com(1) >> com(2);
-    Eigen::Matrix3d inertia = read_matrix(in);
+    Eigen::Matrix3d inertia;
+  };
+  std::vector<Body> body(bodies);
+  Eigen::MatrixXd coupling_read(bodies, n);
+  Eigen::VectorXd offset_read(bodies);
+  std::vector<SE3> post(bodies);
+  for (int b = 0; b < bodies; ++b) {
+    double parent;
+    in >> parent >> offset_read(b);
+    body[b].parent = int(parent);
+    body[b].pre = read_transform(in);
+    post[b] = read_transform(in);
+    for (int j = 0; j < n; ++j) in >> coupling_read(b, j);
+    in >> body[b].mass >> body[b].com(0) >> body[b].com(1) >> body[b].com(2);
+    body[b].inertia = read_matrix(in);
+  }
+  // Joints are added depth first: Pinocchio's derivative algorithms take a joint's subtree
+  // to be the joints that follow it up to its last descendant, and tendyn's body order
+  // (links, then pulleys) is not depth first. (RNEA itself does not care; its derivatives
+  // disagreed with central differences of it by 1e-3 in the other order.) Joint k is body
+  // order[k], so the rows of C and the offsets are taken in that order.
+  std::vector<int> order;
+  std::vector<std::vector<int>> children(bodies + 1);
+  for (int b = 0; b < bodies; ++b) children[body[b].parent + 1].push_back(b);
+  std::vector<int> stack(children[0].rbegin(), children[0].rend());
+  while (!stack.empty()) {
+    const int b = stack.back();
+    stack.pop_back();
+    order.push_back(b);
+    stack.insert(stack.end(), children[b + 1].rbegin(), children[b + 1].rend());
+  }
+  Eigen::MatrixXd coupling(bodies, n);
+  Eigen::VectorXd offset(bodies);
+  std::vector<pinocchio::JointIndex> joint(bodies);
+  for (int k = 0; k < bodies; ++k) {
+    const int b = order[k];
+    coupling.row(k) = coupling_read.row(b);
+    offset(k) = offset_read(b);
     // The joint frame is the body frame before `post`: the parent's body frame (its joint
     // frame times its post) times `pre`.
-    const int p = int(parent);
+    const int p = body[b].parent;
     const pinocchio::JointIndex parent_joint = p < 0 ? 0 : joint[p];
-    const SE3 placement = p < 0 ? pre : post[p] * pre;
+    const SE3 placement = p < 0 ? body[b].pre : post[p] * body[b].pre;
     joint[b] = model.addJoint(parent_joint, pinocchio::JointModelRZ(), placement,
                               "j" + std::to_string(b));
     // Mass properties given in the body frame, moved to the joint frame by `post`.
     const Eigen::Matrix3d& r = post[b].rotation();
-    model.appendBodyToJoint(joint[b],
-                            pinocchio::Inertia(mass, post[b].act(com), r * inertia * r.transpose()),
-                            SE3::Identity());
+    model.appendBodyToJoint(
+        joint[b],
+        pinocchio::Inertia(body[b].mass, post[b].act(body[b].com), r * body[b].inertia * r.transpose()),
+        SE3::Identity());
   }
   pinocchio::Data data(model);
   // The wrench acts on the link, given in its body frame about the point: in the joint

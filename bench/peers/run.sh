@@ -27,5 +27,15 @@ for m in finger4 arm6 chain8 chain12; do
   ./target/release/examples/expanded_tree "bench/mechanisms/$m.ron" > "$dir/$m.tree"
   taskset -c 0 "$dir/pinocchio_rnea" "$dir/$m.tree"
 done
+# The generated derivatives of arm6, in a crate of their own outside the workspace.
+crate="$dir/generated_derivatives"
+mkdir -p "$crate/src"
+printf '[package]\nname = "generated_derivatives"\nversion = "0.1.0"\nedition = "2021"\n[dependencies]\ntendyn-core = { path = "%s/tendyn-core" }\n[profile.release]\ncodegen-units = 1\n[workspace]\n' "$root" > "$crate/Cargo.toml"
+cp bench/peers/generated_derivatives.rs "$crate/src/main.rs"
+cargo run --release -q -p tendyn-cli -- generate bench/mechanisms/arm6.ron --scalar f64 \
+  --outputs generalized_forces_derivatives,generalized_forces -o "$crate/src/arm6d.rs"
+RUST_MIN_STACK=268435456 CARGO_TARGET_DIR="$dir/target" cargo build --release -q \
+  --manifest-path "$crate/Cargo.toml"
+taskset -c 0 "$dir/target/release/generated_derivatives" "$dir/arm6.tree"
 taskset -c 0 cargo bench -q -p tendyn-bench --bench scale -- --noplot \
   "runtime Q|runtime inverse dynamics|generated Q" 2>&1 | grep -E "^[a-z0-9]+/|time:"
