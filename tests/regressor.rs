@@ -619,23 +619,8 @@ mod identification {
                 .iter()
                 .position(|p| p.body == b && p.quantity == Quantity::Inertial(0))
                 .unwrap();
-            let com = nalgebra::Vector3::from(e.com);
             let centre = nalgebra::Matrix3::from_fn(|i, j| e.inertia[i][j]);
-            let shift = nalgebra::Matrix3::identity() * com.norm_squared() - com * com.transpose();
-            let origin = centre + shift * e.mass;
-            let h = com * e.mass;
-            let back = [
-                e.mass,
-                h.x,
-                h.y,
-                h.z,
-                origin[(0, 0)],
-                origin[(0, 1)],
-                origin[(0, 2)],
-                origin[(1, 1)],
-                origin[(1, 2)],
-                origin[(2, 2)],
-            ];
+            let back = regressor_order(e.mass, nalgebra::Vector3::from(e.com), centre);
             let pi = &c.parameters[at..at + 10];
             let size = pi.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
             for (x, y) in back.iter().zip(pi) {
@@ -773,6 +758,30 @@ mod identification {
         assert!(consistent <= least_squares * (1.0 + 1e-6));
     }
 
+    /// A body's ten parameters in the regressor's order from its mass, centre of mass and
+    /// inertia about it: `h = m c`, `I_o = I_c + m (|c|² 1 − c cᵀ)`.
+    fn regressor_order(
+        m: f64,
+        c: nalgebra::Vector3<f64>,
+        centre: nalgebra::Matrix3<f64>,
+    ) -> [f64; 10] {
+        let origin =
+            centre + (nalgebra::Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
+        let h = c * m;
+        [
+            m,
+            h.x,
+            h.y,
+            h.z,
+            origin[(0, 0)],
+            origin[(0, 1)],
+            origin[(0, 2)],
+            origin[(1, 1)],
+            origin[(1, 2)],
+            origin[(2, 2)],
+        ]
+    }
+
     /// Random physical parameters for every body: a mass of up to 1 kg at a centre within
     /// 0.2 m, principal moments that satisfy the triangle inequality, turned at random;
     /// friction up to 0.1.
@@ -791,18 +800,7 @@ mod identification {
                 let centre = turn.matrix()
                     * nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(a, b, d))
                     * turn.matrix().transpose();
-                let origin = centre
-                    + (nalgebra::Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
-                let h = c * m;
-                out.extend([m, h.x, h.y, h.z]);
-                out.extend([
-                    origin[(0, 0)],
-                    origin[(0, 1)],
-                    origin[(0, 2)],
-                    origin[(1, 1)],
-                    origin[(1, 2)],
-                    origin[(2, 2)],
-                ]);
+                out.extend(regressor_order(m, c, centre));
             } else if matches!(p.quantity, Quantity::Coulomb | Quantity::Viscous) {
                 out.push(rng.random_range(0.0..0.1));
             }

@@ -859,15 +859,20 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     // --consistent: every body's mass properties, the file's where the data are the file's
     // own forces (to 1e-6 of the heaviest: the barrier method stays strictly inside the
     // physical set, and a massless drum is on its boundary).
-    let (ok, out, err) = tendyn(&[
-        "identify",
-        file,
-        "--data",
-        forces.to_str().unwrap(),
-        "--forces",
-        "--consistent",
-        "--json",
-    ]);
+    let forces_path = forces.to_str().unwrap().to_string();
+    let consistent = |file: &str, last: &[&str]| {
+        let mut args = vec![
+            "identify",
+            file,
+            "--data",
+            &forces_path,
+            "--forces",
+            "--consistent",
+        ];
+        args.extend(last);
+        tendyn(&args)
+    };
+    let (ok, out, err) = consistent(file, &["--json"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let m = tendyn_core::load(concat!(
@@ -903,16 +908,7 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     // --write: the file with the estimate, which loads and gives the same masses; the rest
     // of the text (comments, the routing) as written.
     let written = dir.join("identified.ron");
-    let (ok, _, err) = tendyn(&[
-        "identify",
-        file,
-        "--data",
-        forces.to_str().unwrap(),
-        "--forces",
-        "--consistent",
-        "--write",
-        written.to_str().unwrap(),
-    ]);
+    let (ok, _, err) = consistent(file, &["--write", written.to_str().unwrap()]);
     assert!(ok, "{err}");
     let identified = tendyn_core::load(&written).unwrap();
     for (b, body) in identified.bodies().iter().zip(bodies) {
@@ -943,16 +939,10 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
             .replace("mass: 0.8,", "mass: \"payload\","),
     )
     .unwrap();
-    let (ok, _, err) = tendyn(&[
-        "identify",
+    let (ok, _, err) = consistent(
         with_parameter.to_str().unwrap(),
-        "--data",
-        forces.to_str().unwrap(),
-        "--forces",
-        "--consistent",
-        "--write",
-        written.to_str().unwrap(),
-    ]);
+        &["--write", written.to_str().unwrap()],
+    );
     assert!(ok, "{err}");
     let after = std::fs::read_to_string(&written).unwrap();
     assert!(after.contains("mass: \"payload\""), "{after}");
