@@ -5,7 +5,7 @@
 //! The text is edited, not re-serialised: a scanner that knows RON's strings and comments
 //! finds each body's entry by its `name: "…"` field in the `links` and `pulleys` lists,
 //! and the four fields among the entry's own (depth one); a field the entry lacks is
-//! added before its closing parenthesis; a `mass` given as a runtime parameter's name keeps
+//! added right after its opening parenthesis; a `mass` given as a runtime parameter's name keeps
 //! it, and the parameter's declared value becomes the estimate. The result is parsed and
 //! validated again, and its
 //! parameters compared with the estimate's, before it is written: a file that would not
@@ -60,6 +60,17 @@ pub fn with_estimate(text: &str, model: &Model<f64>, c: &Consistent) -> Result<S
             }
         }
     }
+    // A parameter that also sets something else (gravity, another field) would change it.
+    for (p, _, field) in &parameters {
+        let uses = text.matches(&format!("\"{p}\"")).count();
+        let masses = parameters.iter().filter(|x| &x.0 == p).count();
+        if uses != masses + 1 {
+            return Err(format!(
+                "the runtime parameter `{p}` that `{field}` names also sets other numbers, \
+                 which the estimate would change with it; give `{field}` a parameter of its own"
+            ));
+        }
+    }
     if let Some((start, end)) = top_level_list(text, "parameters") {
         for (entry_start, entry_end) in entries(text, start, end) {
             let entry = &text[entry_start..entry_end];
@@ -78,14 +89,17 @@ pub fn with_estimate(text: &str, model: &Model<f64>, c: &Consistent) -> Result<S
     // The written file must load and hold the estimate.
     let written = tendyn_core::parse(&out)
         .map_err(|e| format!("the file with the estimate does not load ({e}); nothing written"))?;
+    // Each body's parameters against the estimate's, to 1e-9 of that body's largest.
     let (values, estimate) = (regressor::values(&written), &c.parameters);
-    let size = estimate.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if values.len() != estimate.len()
-        || values
-            .iter()
-            .zip(estimate)
-            .any(|(v, e)| (v - e).abs() > 1e-9 * size)
-    {
+    let of = regressor::parameters(&written);
+    let mut largest = vec![0.0f64; written.bodies().len()];
+    for (p, x) in of.iter().zip(estimate) {
+        largest[p.body] = largest[p.body].max(x.abs());
+    }
+    let holds = values.len() == estimate.len()
+        && (of.iter().zip(values.iter().zip(estimate)))
+            .all(|(p, (v, e))| (v - e).abs() <= 1e-9 * largest[p.body]);
+    if !holds {
         return Err(
             "the file with the estimate does not hold it (a body's mass properties could not \
              be found in the text); nothing written"
@@ -143,19 +157,13 @@ fn entry_edits(entry: &str, e: &BodyEstimate) -> Vec<Edit> {
                     edits.push(Edit::Text(s, end, value));
                 }
             }
-            None => missing.push_str(&format!(", {key}: {value}")),
+            None => missing.push_str(&format!("{key}: {value}, ")),
         }
     }
     if !missing.is_empty() {
-        // Before the closing parenthesis, after the last field's value (a trailing comma
-        // stays where it was, after the new fields).
-        let close = entry.len() - 1;
-        let body = entry[..close].trim_end();
-        let (at, text) = match body.strip_suffix(',') {
-            Some(before) => (before.len(), missing),
-            None => (body.len(), missing),
-        };
-        edits.push(Edit::Text(at, at, text));
+        // First, right after the opening parenthesis (fields may come in any order): the
+        // end of the entry may be inside a comment.
+        edits.push(Edit::Text(1, 1, missing));
     }
     edits
 }

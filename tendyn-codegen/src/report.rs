@@ -786,6 +786,7 @@ pub fn consistent_json(m: &Model<f64>, base: &BaseParameters, c: &Consistent) ->
         "least_squares_relative_residual": ls.relative_residual,
         "condition": ls.condition,
         "newton_steps": c.newton_steps,
+        "gap": c.gap,
     })
 }
 

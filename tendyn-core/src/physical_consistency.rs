@@ -25,16 +25,21 @@
 //! where `K π` are the base parameters ([`BaseParameters::values`]). The forces say nothing
 //! of `π`'s component in the kernel of `K`; the second term takes it from the file (`P` the
 //! orthogonal projector onto that kernel, in the units `S` of [`crate::base_parameters`]
-//! that make every parameter an inertia). It does not touch the base parameters, so where
-//! the least-squares estimate is physical the two agree; `λ` is 1e-6 of the data term's
-//! mean curvature, so that where they differ the data decide and the file only breaks ties.
+//! that make every parameter an inertia). It does not act on the base parameters, so where
+//! the least-squares estimate completed by the file's values is physical the two agree;
+//! otherwise it moves them by about `λ`, 1e-6 of the data term's mean curvature, so that
+//! the data decide and the file only breaks ties. A pulley whose frame does not spin (its
+//! mass axisymmetric in the file) stays axisymmetric: the model's dynamics of it hold for
+//! no other mass.
 //!
 //! The problem is convex (a quadratic over a product of cones) and is solved by the barrier
 //! method (Boyd & Vandenberghe, *Convex Optimization*, §11.3): Newton's method on
 //! `t f(π) − Σ_b log det J_b − Σ log(friction)`, `t` growing tenfold per round, until the
 //! duality gap `ν / t` (`ν` = 4 per body and 1 per friction parameter) is below
-//! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles (round-off of `t f`'s
-//! gradient outgrows the barrier's), whichever comes first. The iterates stay strictly
+//! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles in [`ROUND_STEPS`] Newton
+//! steps where the gap is already below [`ROUND_OFF_GAP`] (round-off of `t f`'s gradient
+//! outgrows the barrier's), whichever comes first; a round that does not settle above that
+//! gap is an error. The iterates stay strictly
 //! inside the set: where the optimum is on its boundary (a flat disk, a massless drum) the
 //! estimate is a hair inside, by about the square root of the gap. Hand-written: the
 //! least-squares crates built on nalgebra (levenberg-marquardt 0.15) pull a second nalgebra,
@@ -43,7 +48,7 @@
 use crate::base_parameters::{characteristic_length, dimension, BaseParameters};
 use crate::error::{Error, Result};
 use crate::identification::{least_squares, stack, Identification, Sample};
-use crate::model::Model;
+use crate::model::{BodyKind, Model, PulleyRole};
 use crate::regressor::{self, Quantity};
 use nalgebra::{DMatrix, DVector, Matrix4};
 
@@ -52,15 +57,22 @@ pub const GAP: f64 = 1e-20;
 
 /// A body is reported on the boundary of physical consistency when its pseudo-inertia's
 /// smallest eigenvalue is below this fraction of its largest (a mass on a plane, a line or
-/// a point, or no mass at all).
+/// a point), or its largest below this fraction of the largest of any body's (no mass to
+/// speak of), in the units that make every entry an inertia (`J̃ = D J D`).
 pub const BOUNDARY: f64 = 1e-6;
 
 /// Newton steps the barrier method may take in all; far more than it needs (about ten per
 /// round of `t`).
 const NEWTON_STEPS: usize = 2_000;
 
-/// Newton steps in one round of `t` after which the round is taken as settled to round-off.
+/// Newton steps in one round of `t` after which the round is taken as settled to round-off
+/// (where the gap is below [`ROUND_OFF_GAP`]) or as failing.
 const ROUND_STEPS: usize = 60;
+
+/// Below this duality gap (a fraction of `½ ‖Q − Q₀‖²`) a round that does not settle is
+/// limited by round-off, not failing: measured, rounds settle in 6-10 steps down to gaps of
+/// 1e-13 to 1e-21 depending on the data, and then wander.
+const ROUND_OFF_GAP: f64 = 1e-10;
 
 /// The physically consistent estimate.
 #[derive(Clone, Debug, PartialEq)]
@@ -81,6 +93,9 @@ pub struct Consistent {
     pub bodies: Vec<BodyEstimate>,
     /// Newton steps taken.
     pub newton_steps: usize,
+    /// The duality gap the barrier method reached, as a fraction of `½ ‖Q − Q₀‖²`: how far
+    /// the estimate's misfit may be above the best physical one's.
+    pub gap: f64,
 }
 
 /// One body's estimate, in its own frame, as the file gives mass properties.
@@ -111,15 +126,19 @@ pub fn identify_consistent(
 ) -> Result<Consistent> {
     let (y, target) = stack(model, base, samples)?;
     let fit = least_squares(model, base, y.clone(), &target, samples.len())?;
-    let problem = Problem::new(model, base, &y, &target);
-    let (theta, newton_steps) = problem.solve()?;
+    let problem = Problem::new(model, base, &y, &target)?;
+    let (theta, newton_steps, gap) = problem.solve()?;
     let parameters = problem.parameters(&theta);
     let estimates = base.values(&parameters);
     let residual = &target - &y * DVector::from_column_slice(&estimates);
     let rss = residual.norm_squared();
+    let eigenvalues: Vec<_> = (0..model.bodies().len())
+        .map(|b| problem.pseudo_inertia(b, &theta).symmetric_eigenvalues())
+        .collect();
+    let largest = eigenvalues.iter().fold(0.0f64, |m, e| m.max(e.max()));
     let bodies = (0..model.bodies().len())
         .map(|b| {
-            let e = problem.pseudo_inertia(b, &theta).symmetric_eigenvalues();
+            let e = &eigenvalues[b];
             let at = problem.first[b];
             let x = &parameters[at..at + 10];
             let (m, h) = (x[0], [x[1], x[2], x[3]]);
@@ -147,7 +166,7 @@ pub fn identify_consistent(
                 com,
                 inertia,
                 friction,
-                on_boundary: e.min() <= BOUNDARY * e.max().max(0.0),
+                on_boundary: e.min() <= BOUNDARY * e.max() || e.max() <= BOUNDARY * largest,
             }
         })
         .collect();
@@ -159,6 +178,7 @@ pub fn identify_consistent(
         relative_residual: rss.sqrt() / target.norm().max(f64::MIN_POSITIVE),
         bodies,
         newton_steps,
+        gap,
     })
 }
 
@@ -180,6 +200,10 @@ struct Problem {
     prior: Vec<f64>,
     /// Per body, the index of its first slot.
     first: Vec<usize>,
+    /// Per body, whether it is a pulley that turns but whose frame does not spin (the file
+    /// gives it an axisymmetric mass, and the model counts on it): its estimate stays
+    /// axisymmetric about its axis, or the model would no longer describe it.
+    axisymmetric: Vec<bool>,
     /// The slots of the friction parameters.
     friction: Vec<usize>,
     /// `L` of `D`: the mechanism's length ([`crate::base_parameters`]).
@@ -192,7 +216,7 @@ impl Problem {
         base: &BaseParameters,
         y: &DMatrix<f64>,
         target: &DVector<f64>,
-    ) -> Self {
+    ) -> Result<Self> {
         let p = base.parameters.len();
         let r = base.groups.len();
         let mut first = Vec::new();
@@ -205,6 +229,12 @@ impl Problem {
             }
         }
         let length = characteristic_length(model);
+        let axisymmetric = (model.bodies().iter())
+            .map(|b| {
+                !b.spins
+                    && matches!(&b.kind, BodyKind::Pulley { role, .. } if *role != PulleyRole::Fixed)
+            })
+            .collect();
         // K (r × p): column c is what parameter c adds to each base parameter.
         let mut k = DMatrix::<f64>::zeros(r, p);
         for (i, group) in base.groups.iter().enumerate() {
@@ -230,7 +260,13 @@ impl Problem {
         let along = (&k_units * k_units.transpose())
             .cholesky()
             .map(|c| c.solve(&k_units))
-            .unwrap_or_else(|| DMatrix::zeros(r, p));
+            .ok_or_else(|| {
+                Error::State(
+                    "physically consistent identification: the base parameters' grouping is \
+                     singular"
+                        .into(),
+                )
+            })?;
         let mut projector = DMatrix::<f64>::identity(p, p) - k_units.transpose() * along;
         for i in 0..p {
             for j in 0..p {
@@ -253,6 +289,7 @@ impl Problem {
             to_parameters: DMatrix::identity(p, p),
             prior,
             first,
+            axisymmetric,
             friction,
             length,
         };
@@ -270,7 +307,7 @@ impl Problem {
         let t_matrix = &problem.to_parameters;
         problem.h = t_matrix.transpose() * h * t_matrix;
         problem.g = t_matrix.transpose() * g;
-        problem
+        Ok(problem)
     }
 
     /// `π = T θ`.
@@ -361,8 +398,9 @@ impl Problem {
         theta
     }
 
-    /// The barrier method; returns `θ` and the Newton steps taken.
-    fn solve(&self) -> Result<(DVector<f64>, usize)> {
+    /// The barrier method; returns `θ`, the Newton steps taken and the duality gap reached
+    /// (a fraction of `½ ‖Q − Q₀‖²`).
+    fn solve(&self) -> Result<(DVector<f64>, usize, f64)> {
         let nu = (4 * self.first.len() + self.friction.len()) as f64;
         let scale = self.scale.max(f64::MIN_POSITIVE);
         let mut theta = self.start();
@@ -381,7 +419,7 @@ impl Problem {
                 }
                 steps += 1;
                 round += 1;
-                let (step, phi, decrement) = self.newton_step(t, &theta).ok_or_else(|| {
+                let (step, mu, decrement) = self.newton_step(t, &theta).ok_or_else(|| {
                     Error::State(
                         "physically consistent identification: the Newton system is singular"
                             .into(),
@@ -396,15 +434,25 @@ impl Problem {
                     break;
                 }
                 last = decrement;
-                theta = self.line_search(t, &theta, &step, &phi, decrement)?;
-                // A round that cannot settle has reached what round-off allows: the
-                // estimate is as good as f64 makes it.
+                theta = self.line_search(t, &theta, &step, &mu, decrement)?;
+                // A round that cannot settle once the gap is below [`ROUND_OFF_GAP`] has
+                // reached what round-off allows (`t f`'s gradient, of size `t`, then cancels
+                // the barrier's to a few digits): the estimate is as good as f64 makes it.
+                // Before that, it is not converging.
                 if round == ROUND_STEPS {
-                    return Ok((theta, steps));
+                    if nu / t <= ROUND_OFF_GAP * scale {
+                        return Ok((theta, steps, nu / t / scale));
+                    }
+                    return Err(Error::State(format!(
+                        "physically consistent identification did not converge: Newton's \
+                         method took {ROUND_STEPS} steps at a duality gap of {:.1e} of the \
+                         forces' scale without settling",
+                        nu / t / scale
+                    )));
                 }
             }
             if nu / t <= GAP * scale {
-                return Ok((theta, steps));
+                return Ok((theta, steps, nu / t / scale));
             }
             t *= 10.0;
         }
@@ -422,34 +470,31 @@ impl Problem {
     /// friction parameter `Δc = c φ`: there the barrier's Hessian is the identity and its
     /// gradient `−tr Φ`, so the system is `(1 + t Mᵀ H M) φ = −∇_φ`, `M` the map from `φ`
     /// to `Δθ`, whose eigenvalues are at least one.
-    fn newton_step(
-        &self,
-        t: f64,
-        theta: &DVector<f64>,
-    ) -> Option<(DVector<f64>, DVector<f64>, f64)> {
+    fn newton_step(&self, t: f64, theta: &DVector<f64>) -> Option<(DVector<f64>, Vec<f64>, f64)> {
         let p = theta.len();
         // M is block diagonal: ten by ten per body, one by one per friction parameter.
         let mut blocks: Vec<(usize, DMatrix<f64>)> = Vec::new();
         let mut barrier_gradient = DVector::<f64>::zeros(p);
+        let mut units: Vec<(usize, Vec<Matrix4<f64>>)> = Vec::new();
         for b in 0..self.first.len() {
             let at = self.first[b];
             let c = self.pseudo_inertia(b, theta).cholesky()?.l();
+            let basis = if self.axisymmetric[b] {
+                axisymmetric_basis()
+            } else {
+                symmetric_basis()
+            };
             let mut block = DMatrix::<f64>::zeros(10, 10);
-            for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
-                let mut unit = Matrix4::zeros();
-                if row == column {
-                    unit[(row, column)] = 1.0;
-                    barrier_gradient[at + k] = -1.0;
-                } else {
-                    unit[(row, column)] = core::f64::consts::FRAC_1_SQRT_2;
-                    unit[(column, row)] = core::f64::consts::FRAC_1_SQRT_2;
-                }
+            for (k, unit) in basis.iter().enumerate() {
+                // −log det: gradient −tr U, Hessian the identity (the basis is orthonormal).
+                barrier_gradient[at + k] = -unit.trace();
                 let change = c * unit * c.transpose();
                 for (i, &(r, s)) in SYMMETRIC_BASIS.iter().enumerate() {
                     block[(i, k)] = change[(r, s)];
                 }
             }
             blocks.push((at, block));
+            units.push((at, basis));
         }
         for &c in &self.friction {
             if theta[c] <= 0.0 {
@@ -483,7 +528,16 @@ impl Problem {
             let k = block.nrows();
             step.rows_mut(*at, k).copy_from(&(block * phi.rows(*at, k)));
         }
-        Some((step, phi, decrement))
+        // The eigenvalues of each `Φ` (and each friction `φ`): what the line search needs.
+        let mut mu: Vec<f64> = Vec::new();
+        for (at, basis) in &units {
+            let scaled: Matrix4<f64> = (basis.iter().enumerate())
+                .map(|(k, unit)| unit * phi[at + k])
+                .sum();
+            mu.extend(scaled.symmetric_eigenvalues().iter());
+        }
+        mu.extend(self.friction.iter().map(|&c| phi[c]));
+        Some((step, mu, decrement))
     }
 
     /// Backtracking along the Newton direction `−step` (`−φ` in the scaled coordinates of
@@ -501,26 +555,11 @@ impl Problem {
         t: f64,
         theta: &DVector<f64>,
         step: &DVector<f64>,
-        phi: &DVector<f64>,
+        mu: &[f64],
         decrement: f64,
     ) -> Result<DVector<f64>> {
         let slope = step.dot(&(&self.h * theta - &self.g));
         let curvature = step.dot(&(&self.h * step));
-        let mut mu: Vec<f64> = Vec::new();
-        for &at in &self.first {
-            let mut scaled = Matrix4::zeros();
-            for (k, &(r, c)) in SYMMETRIC_BASIS.iter().enumerate() {
-                let x = if r == c {
-                    phi[at + k]
-                } else {
-                    phi[at + k] * core::f64::consts::FRAC_1_SQRT_2
-                };
-                scaled[(r, c)] = x;
-                scaled[(c, r)] = x;
-            }
-            mu.extend(scaled.symmetric_eigenvalues().iter());
-        }
-        mu.extend(self.friction.iter().map(|&c| phi[c]));
         let mut alpha = 1.0;
         for _ in 0..60 {
             let next = theta - step * alpha;
@@ -546,6 +585,41 @@ impl Problem {
         self.friction.iter().all(|&c| theta[c] > 0.0)
             && (0..self.first.len()).all(|b| self.pseudo_inertia(b, theta).cholesky().is_some())
     }
+}
+
+/// The orthonormal basis of symmetric 4 × 4 matrices (trace inner product), in the order of
+/// [`SYMMETRIC_BASIS`].
+fn symmetric_basis() -> Vec<Matrix4<f64>> {
+    (SYMMETRIC_BASIS.iter())
+        .map(|&(r, c)| {
+            let mut unit = Matrix4::zeros();
+            let x = if r == c {
+                1.0
+            } else {
+                core::f64::consts::FRAC_1_SQRT_2
+            };
+            unit[(r, c)] = x;
+            unit[(c, r)] = x;
+            unit
+        })
+        .collect()
+}
+
+/// The orthonormal basis of the pseudo-inertias axisymmetric about z (`Σ_xx = Σ_yy`, no
+/// first moment across the axis, no products of inertia): `(e₀e₀ᵀ + e₁e₁ᵀ)/√2`, `e₂e₂ᵀ`,
+/// `e₃e₃ᵀ`, `(e₂e₃ᵀ + e₃e₂ᵀ)/√2`. A Cholesky factor of such a matrix has its pattern, so
+/// `C Φ Cᵀ` keeps it.
+fn axisymmetric_basis() -> Vec<Matrix4<f64>> {
+    let half = core::f64::consts::FRAC_1_SQRT_2;
+    let mut across = Matrix4::zeros();
+    (across[(0, 0)], across[(1, 1)]) = (half, half);
+    let mut along = Matrix4::zeros();
+    along[(2, 2)] = 1.0;
+    let mut mass = Matrix4::zeros();
+    mass[(3, 3)] = 1.0;
+    let mut moment = Matrix4::zeros();
+    (moment[(2, 3)], moment[(3, 2)]) = (half, half);
+    vec![across, along, mass, moment]
 }
 
 /// The entries `(row, column)`, `row ≤ column`, of a symmetric 4 × 4 matrix, in the order

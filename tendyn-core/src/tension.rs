@@ -269,14 +269,16 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
 /// independent of all others, or the null space would reach them), its rows taken in the
 /// order a partially pivoting elimination of the model's `E` takes them. Chosen once,
 /// from the model, so the traced code does no pivoting: friction scales the columns of
-/// `E` by capstan factors `e^{±μβ}` and leaves its pattern of zeros, so the order that
-/// suits the model suits every state of a controllable routing.
+/// `E` by capstan factors `e^{±μβ}` and leaves its pattern of zeros, but a square part that
+/// is regular in the model may still turn singular at some state of a controllable routing,
+/// so the generator keeps an order only where [`Elimination::holds_while_sliding`].
 ///
-/// One null direction: the free unknown is the lead tendon, with the largest component of
-/// the model's positive null vector `n`; `n_k` is proportional to the determinant of `E`
-/// without column `k`, so of all the square parts of `E` the one eliminated is the
-/// farthest from singular. Several: the columns a completely pivoting elimination of the
-/// model's `E` leaves without a pivot (the usual rank-revealing choice).
+/// One null direction: the free unknown is first the lead tendon, with the largest
+/// component of the model's positive null vector `n` (`n_k` is proportional to the
+/// determinant of `E` without column `k`, so of all the square parts of `E` the one
+/// eliminated is the farthest from singular), then each other tendon by falling `n_k`
+/// ([`Elimination::candidates`]). Several: the columns a completely pivoting elimination of
+/// the model's `E` leaves without a pivot (the usual rank-revealing choice).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Elimination {
     /// The eliminated unknowns, one per row of `E`.
