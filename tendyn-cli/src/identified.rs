@@ -4,12 +4,13 @@
 //!
 //! The text is edited, not re-serialised: a scanner that knows RON's strings and comments
 //! finds each body's entry by its `name: "…"` field in the `links` and `pulleys` lists,
-//! and the four fields among the entry's own (depth one); a field the entry lacks is
-//! added right after its opening parenthesis; a `mass` given as a runtime parameter's name keeps
-//! it, and the parameter's declared value becomes the estimate. The result is parsed and
-//! validated again, and its
-//! parameters compared with the estimate's, before it is written: a file that would not
-//! load, or would not hold the estimate, is an error and nothing is written.
+//! and the four fields among the entry's own (depth one); a field the entry lacks is added
+//! right after its opening parenthesis (its end may be inside a comment). A `mass` given
+//! as a runtime parameter's name keeps it, and the parameter's declared value becomes the
+//! estimate (refused where the parameter also sets other numbers). The result is parsed
+//! and validated again, and each body's parameters compared with the estimate's, before it
+//! is written: a file that would not load, or would not hold the estimate, is an error and
+//! nothing is written.
 
 use tendyn_core::model::Model;
 use tendyn_core::physical_consistency::{BodyEstimate, Consistent};

@@ -39,11 +39,15 @@
 //! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles in [`ROUND_STEPS`] Newton
 //! steps where the gap is already below [`ROUND_OFF_GAP`] (round-off of `t f`'s gradient
 //! outgrows the barrier's), whichever comes first; a round that does not settle above that
-//! gap is an error. The iterates stay strictly
-//! inside the set: where the optimum is on its boundary (a flat disk, a massless drum) the
-//! estimate is a hair inside, by about the square root of the gap. Hand-written: the
-//! least-squares crates built on nalgebra (levenberg-marquardt 0.15) pull a second nalgebra,
-//! and Clarabel's semidefinite cones need a system BLAS and LAPACK.
+//! gap is an error. The iterates stay strictly inside the set: where the optimum is on its
+//! boundary (a flat disk, a massless drum) the estimate is a hair inside, by about the
+//! square root of the gap.
+//!
+//! The data term is taken through the normal equations (`H = (Y K)ᵀ Y K`), which square
+//! the regressor's condition number; least squares accepts motion up to 1e12, where this
+//! loses most digits. Hand-written: the least-squares crates built on nalgebra
+//! (levenberg-marquardt 0.15) pull a second nalgebra, and Clarabel's semidefinite cones
+//! need a system BLAS and LAPACK.
 
 use crate::base_parameters::{characteristic_length, dimension, BaseParameters};
 use crate::error::{Error, Result};
