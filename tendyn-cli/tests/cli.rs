@@ -860,19 +860,12 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     // own forces (to 1e-6 of the heaviest: the barrier method stays strictly inside the
     // physical set, and a massless drum is on its boundary).
     let forces_path = forces.to_str().unwrap().to_string();
-    let consistent = |file: &str, last: &[&str]| {
-        let mut args = vec![
-            "identify",
-            file,
-            "--data",
-            &forces_path,
-            "--forces",
-            "--consistent",
-        ];
+    let consistent = |file: &str, data: &str, last: &[&str]| {
+        let mut args = vec!["identify", file, "--data", data, "--forces", "--consistent"];
         args.extend(last);
         tendyn(&args)
     };
-    let (ok, out, err) = consistent(file, &["--json"]);
+    let (ok, out, err) = consistent(file, &forces_path, &["--json"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let m = tendyn_core::load(concat!(
@@ -908,7 +901,7 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     // --write: the file with the estimate, which loads and gives the same masses; the rest
     // of the text (comments, the routing) as written.
     let written = dir.join("identified.ron");
-    let (ok, _, err) = consistent(file, &["--write", written.to_str().unwrap()]);
+    let (ok, _, err) = consistent(file, &forces_path, &["--write", written.to_str().unwrap()]);
     assert!(ok, "{err}");
     let identified = tendyn_core::load(&written).unwrap();
     for (b, body) in identified.bodies().iter().zip(bodies) {
@@ -946,16 +939,11 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
         })
         .collect();
     std::fs::write(&noisy, lines).unwrap();
-    let (ok, _, err) = tendyn(&[
-        "identify",
+    let (ok, _, err) = consistent(
         file,
-        "--data",
         noisy.to_str().unwrap(),
-        "--forces",
-        "--consistent",
-        "--write",
-        written.to_str().unwrap(),
-    ]);
+        &["--write", written.to_str().unwrap()],
+    );
     assert!(ok, "{err}");
     let identified = tendyn_core::load(&written).unwrap();
     for (b, a) in m.bodies().iter().zip(identified.bodies()) {
@@ -976,6 +964,7 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
     .unwrap();
     let (ok, _, err) = consistent(
         with_parameter.to_str().unwrap(),
+        &forces_path,
         &["--write", written.to_str().unwrap()],
     );
     assert!(ok, "{err}");

@@ -252,6 +252,22 @@ fn traced_system<T: Real>(
 
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
+    check_with(model, outputs, &capstan_elimination(model))
+}
+
+/// The order of elimination of a model whose guides have capstan friction (`None` without
+/// such guides, or where no order holds): searched once per generation, for `check` and
+/// the trace alike, since each candidate is checked at every direction of sliding.
+fn capstan_elimination(model: &Model<f64>) -> Option<tension::Elimination> {
+    model.has_capstan().then(|| elimination(model)).flatten()
+}
+
+/// [`check`] with the order of elimination already searched.
+fn check_with(
+    model: &Model<f64>,
+    outputs: &[Output],
+    elimination: &Option<tension::Elimination>,
+) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
             // Its derivatives are those of the traced distribution: a closed form along one
@@ -271,7 +287,7 @@ pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> 
             | Output::SegmentTensions
             | Output::Bearings
             | Output::BaseReaction
-                if model.has_capstan() && elimination(model).is_none() =>
+                if model.has_capstan() && elimination.is_none() =>
             {
                 Some(
                     "a guide has capstan friction (`mu > 0`), which makes the tension system \
@@ -337,7 +353,8 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
     outputs: &[Output],
     symbolic: impl FnOnce(&Model<f64>, &[Sym]) -> Result<Model<Sym>, E>,
 ) -> Result<Traced, E> {
-    check(model, outputs)?;
+    let elimination = capstan_elimination(model);
+    check_with(model, outputs, &elimination)?;
     // Each output once, in the order asked for.
     let mut unique: Vec<Output> = Vec::new();
     for &o in outputs {
@@ -360,7 +377,7 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
-            elimination: model.has_capstan().then(|| elimination(model)).flatten(),
+            elimination,
             ..Shared::default()
         };
         let results = outputs

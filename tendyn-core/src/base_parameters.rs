@@ -13,7 +13,8 @@
 //!    parameter.
 //! 2. Each column is made dimensionless with the mechanism's length `L` (the largest
 //!    distance of a body origin from the base at `q = 0`, at least 1 mm): mass columns
-//!    times `L²`, first moments times `L`, so every column is in the inertia's units.
+//!    divided by `L²`, first moments by `L`, so that every column multiplies a parameter
+//!    in the inertia's units (`m L²`, `m c L`) and all have the units of `Q` per kg·m².
 //! 3. Columns are taken body by body (every body after its parent), each body's inertia
 //!    (`zz` first), then its first moment, mass and friction. A column whose norm is below
 //!    [`ZERO`] of the largest is **unidentifiable**: it does not act on `Q`. A column whose
@@ -102,7 +103,9 @@ impl BaseParameters {
             }
         }
         let length = characteristic_length(model);
-        let scale: Vec<f64> = parameters.iter().map(|x| dimension(x, length)).collect();
+        let scale: Vec<f64> = (parameters.iter())
+            .map(|x| 1.0 / dimension(x, length))
+            .collect();
         for (c, s) in scale.iter().enumerate() {
             stack.column_mut(c).scale_mut(*s);
         }
@@ -233,8 +236,8 @@ fn scan_order(parameters: &[Parameter]) -> Vec<usize> {
     order
 }
 
-/// What a parameter's column is multiplied by to be in the inertia's units: `L²` for a
-/// mass, `L` for a first moment.
+/// What a parameter is multiplied by to be in the inertia's units (kg·m²): `L²` for a
+/// mass, `L` for a first moment (its column is divided by as much).
 pub(crate) fn dimension(parameter: &Parameter, length: f64) -> f64 {
     match parameter.quantity {
         Quantity::Inertial(0) => length * length,

@@ -87,6 +87,18 @@ pub struct Body<T> {
     pub friction: Option<BearingFriction>,
 }
 
+impl<T> Body<T> {
+    /// Whether the model counts on the body's mass being axisymmetric about its axis: a
+    /// pulley that turns relative to its carrier but whose frame does not spin. Validation
+    /// leaves such a pulley in its housing frame only when its mass properties are
+    /// axisymmetric (`spins`), and the dynamics are exact only for such a mass, so whatever
+    /// changes its mass properties (identification) must keep them so.
+    pub fn axisymmetric(&self) -> bool {
+        !self.spins
+            && matches!(&self.kind, BodyKind::Pulley { role, .. } if *role != PulleyRole::Fixed)
+    }
+}
+
 /// Coulomb and viscous friction of a bearing: on the body, `τ_f = −(coulomb · sign(ω) +
 /// viscous · ω)` about its axis, `ω = coupling · q̇` its rate relative to its parent.
 #[derive(Clone, Copy, Debug, PartialEq)]

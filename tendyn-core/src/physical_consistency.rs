@@ -52,7 +52,7 @@
 use crate::base_parameters::{characteristic_length, dimension, BaseParameters};
 use crate::error::{Error, Result};
 use crate::identification::{least_squares, stack, Identification, Sample};
-use crate::model::{BodyKind, Model, PulleyRole};
+use crate::model::{Body, Model};
 use crate::regressor::{self, Quantity};
 use nalgebra::{DMatrix, DVector, Matrix4};
 
@@ -233,12 +233,7 @@ impl Problem {
             }
         }
         let length = characteristic_length(model);
-        let axisymmetric = (model.bodies().iter())
-            .map(|b| {
-                !b.spins
-                    && matches!(&b.kind, BodyKind::Pulley { role, .. } if *role != PulleyRole::Fixed)
-            })
-            .collect();
+        let axisymmetric = model.bodies().iter().map(Body::axisymmetric).collect();
         // K (r × p): column c is what parameter c adds to each base parameter.
         let mut k = DMatrix::<f64>::zeros(r, p);
         for (i, group) in base.groups.iter().enumerate() {
@@ -423,12 +418,13 @@ impl Problem {
                 }
                 steps += 1;
                 round += 1;
-                let (step, mu, decrement) = self.newton_step(t, &theta).ok_or_else(|| {
+                let newton = self.newton_step(t, &theta).ok_or_else(|| {
                     Error::State(
                         "physically consistent identification: the Newton system is singular"
                             .into(),
                     )
                 })?;
+                let decrement = newton.decrement;
                 if decrement <= 1e-12 {
                     break;
                 }
@@ -438,7 +434,7 @@ impl Problem {
                     break;
                 }
                 last = decrement;
-                theta = self.line_search(t, &theta, &step, &mu, decrement)?;
+                theta = self.line_search(t, &theta, &newton)?;
                 // A round that cannot settle once the gap is below [`ROUND_OFF_GAP`] has
                 // reached what round-off allows (`t f`'s gradient, of size `t`, then cancels
                 // the barrier's to a few digits): the estimate is as good as f64 makes it.
@@ -474,7 +470,7 @@ impl Problem {
     /// friction parameter `Δc = c φ`: there the barrier's Hessian is the identity and its
     /// gradient `−tr Φ`, so the system is `(1 + t Mᵀ H M) φ = −∇_φ`, `M` the map from `φ`
     /// to `Δθ`, whose eigenvalues are at least one.
-    fn newton_step(&self, t: f64, theta: &DVector<f64>) -> Option<(DVector<f64>, Vec<f64>, f64)> {
+    fn newton_step(&self, t: f64, theta: &DVector<f64>) -> Option<Newton> {
         let p = theta.len();
         // M is block diagonal: ten by ten per body, one by one per friction parameter.
         let mut blocks: Vec<(usize, DMatrix<f64>)> = Vec::new();
@@ -515,7 +511,10 @@ impl Problem {
                 .copy_from(&(self.h.columns(*at, k) * block));
         }
         let mut system = DMatrix::<f64>::identity(p, p);
-        let slope = (&self.h * theta - &self.g) * t;
+        // `f`'s gradient `H θ − g`, once: the system's right-hand side and the slope the
+        // line search needs.
+        let residual = &self.h * theta - &self.g;
+        let slope = &residual * t;
         let mut gradient = barrier_gradient;
         for (at, block) in &blocks {
             let k = block.nrows();
@@ -541,7 +540,12 @@ impl Problem {
             mu.extend(scaled.symmetric_eigenvalues().iter());
         }
         mu.extend(self.friction.iter().map(|&c| phi[c]));
-        Some((step, mu, decrement))
+        Some(Newton {
+            slope: step.dot(&residual),
+            step,
+            mu,
+            decrement,
+        })
     }
 
     /// Backtracking along the Newton direction `−step` (`−φ` in the scaled coordinates of
@@ -554,15 +558,14 @@ impl Problem {
     /// is large where the gap is small, and `log det J̃` of a body near the boundary has the
     /// round-off of `J̃`'s condition number. Along `ΔJ̃ = −α C Φ Cᵀ` the barrier changes by
     /// `−Σ log(1 − α μ_i)` over the eigenvalues `μ_i` of `Φ` (and of `φ_c` for friction).
-    fn line_search(
-        &self,
-        t: f64,
-        theta: &DVector<f64>,
-        step: &DVector<f64>,
-        mu: &[f64],
-        decrement: f64,
-    ) -> Result<DVector<f64>> {
-        let slope = step.dot(&(&self.h * theta - &self.g));
+    fn line_search(&self, t: f64, theta: &DVector<f64>, newton: &Newton) -> Result<DVector<f64>> {
+        let Newton {
+            step,
+            mu,
+            decrement,
+            slope,
+        } = newton;
+        let (decrement, slope) = (*decrement, *slope);
         let curvature = step.dot(&(&self.h * step));
         let mut alpha = 1.0;
         for _ in 0..60 {
@@ -589,6 +592,18 @@ impl Problem {
         self.friction.iter().all(|&c| theta[c] > 0.0)
             && (0..self.first.len()).all(|b| self.pseudo_inertia(b, theta).cholesky().is_some())
     }
+}
+
+/// Newton's step of `t f + barrier` at a point, with what the line search needs of it.
+struct Newton {
+    /// `H⁻¹ ∇` in the entries `θ` (the direction is `−step`).
+    step: DVector<f64>,
+    /// The eigenvalues of each body's `Φ` and each friction parameter's `φ`.
+    mu: Vec<f64>,
+    /// The Newton decrement `∇ᵀ H⁻¹ ∇`.
+    decrement: f64,
+    /// `stepᵀ (H θ − g)`: `f`'s slope along `step`.
+    slope: f64,
 }
 
 /// The orthonormal basis of symmetric 4 × 4 matrices (trace inner product), in the order of
