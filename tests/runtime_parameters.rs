@@ -274,6 +274,47 @@ fn a_drum_massless_at_its_nominal_value_carries_the_mass_set_at_run_time() {
     );
 }
 
+/// A centre of mass at the body's origin at its nominal value, but set by a parameter, is
+/// not there for good: the recursions skip the offsets the model knows to be zero, and a
+/// parameter's is not one of them.
+#[test]
+fn a_centre_of_mass_at_the_origin_at_its_nominal_value_moves_with_its_parameter() {
+    let text = example("example1_endless");
+    let com = "com: (-0.125, 0.0, 0.0),";
+    assert!(text.contains(com));
+    let parametric = text.replacen(com, "com: (\"cx\", 0.0, 0.0),", 1).replacen(
+        "(\n    name:",
+        "(\n    parameters: [(name: \"cx\", value: 0.0)],\n    name:",
+        1,
+    );
+    let model = tendyn_core::parse(&parametric).unwrap();
+    let set = model.with_parameters(&[-0.125]).unwrap();
+    let typed = tendyn_core::parse(&text).unwrap();
+    let (q, qd, qdd) = ([0.4, -1.1], [1.5, -0.7], [2.0, 3.0]);
+    let (mut a, mut b) = (Data::new(&set), Data::new(&typed));
+    assert_eq!(
+        a.generalized_forces(&set, &q, &qd, &qdd).unwrap(),
+        b.generalized_forces(&typed, &q, &qd, &qdd).unwrap()
+    );
+    assert_eq!(
+        a.inverse_dynamics(&set, &q, &qd, &qdd)
+            .unwrap()
+            .tendon_tensions,
+        b.inverse_dynamics(&typed, &q, &qd, &qdd)
+            .unwrap()
+            .tendon_tensions
+    );
+    // At the nominal value the centre of mass is at the origin, and `Q` differs.
+    let nominal = Data::new(&model)
+        .generalized_forces(&model, &q, &qd, &qdd)
+        .unwrap()
+        .to_vec();
+    assert_ne!(
+        nominal,
+        b.generalized_forces(&typed, &q, &qd, &qdd).unwrap()
+    );
+}
+
 /// One `Data` serves a model and the same mechanism with other parameters: its
 /// derivatives are each model's own, as fresh buffers give them (the dual-number copy it
 /// keeps between calls is that of the model passed, never a stale one).

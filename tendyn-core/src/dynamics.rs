@@ -191,9 +191,10 @@ fn expanded_sum<T: Real>(model: &Model<T>, known: &Loads<T, Vec3<T>>, out: &mut 
     for o in out.iter_mut() {
         *o = T::zero();
     }
-    for (b, t) in model.bodies.iter().zip(&known.axial) {
-        for (o, c) in out.iter_mut().zip(&b.coupling) {
-            *o = *o + *c * *t;
+    for ((b, pattern), t) in model.bodies.iter().zip(&model.patterns).zip(&known.axial) {
+        // Over the coupling's nonzero entries only.
+        for &j in &pattern.joints {
+            out[j] = out[j] + b.coupling[j] * *t;
         }
     }
 }

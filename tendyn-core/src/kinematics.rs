@@ -72,20 +72,23 @@ pub fn coupled<T: Real>(coupling: &[T], joints: &[usize], v: &[T]) -> T {
 }
 
 /// `ᵇR_parent` of a body at joint coordinates `q`: `(pre · RotZ(angle) · post)ᵀ`, the
-/// factors its pattern knows to be the identity skipped.
+/// factors its pattern knows to be the identity skipped, and the turn applied to its
+/// neighbour by mixing two rows or columns (a link's `post`, a pulley's `pre`), not by a
+/// full product.
 pub fn body_rotation<T: Real>(b: &Body<T>, pattern: &BodyPattern, q: &[T]) -> Mat3<T> {
-    let mut down = if pattern.plain_post {
-        Mat3::identity()
-    } else {
-        b.post.rotation
+    let turn = b
+        .spins
+        .then(|| (coupled(&b.coupling, &pattern.joints, q) + b.offset).sin_cos());
+    let down = match (turn, pattern.plain_pre, pattern.plain_post) {
+        (None, true, true) => Mat3::identity(),
+        (None, true, false) => b.post.rotation,
+        (None, false, true) => b.pre.rotation,
+        (None, false, false) => b.pre.rotation * b.post.rotation,
+        (Some((s, c)), true, true) => Mat3::rot_z(s, c),
+        (Some((s, c)), true, false) => b.post.rotation.turned_about_z(s, c),
+        (Some((s, c)), false, true) => b.pre.rotation.then_turned_about_z(s, c),
+        (Some((s, c)), false, false) => b.pre.rotation * b.post.rotation.turned_about_z(s, c),
     };
-    if b.spins {
-        let (s, c) = (coupled(&b.coupling, &pattern.joints, q) + b.offset).sin_cos();
-        down = Mat3::rot_z(s, c) * down;
-    }
-    if !pattern.plain_pre {
-        down = b.pre.rotation * down;
-    }
     down.transpose()
 }
 
@@ -126,18 +129,36 @@ pub fn forward<T: Real>(
         let omega_dot = r.mul_vec(wd_p) + b.axis.scale(rate_dot) + w_in.cross(spin);
         // Eq. 5 (14): acceleration of the joint point as a point of the parent, carried
         // into this frame, then out to this body's origin.
+        // The terms of offsets the pattern knows to be zero are skipped: they would add
+        // exact zeros (and a symbolic scalar folds them away).
         let j = b.pre.translation;
-        let a_joint = a_p + wd_p.cross(j) + w_p.cross(w_p.cross(j));
+        let a_joint = if pattern.joint_at_parent_origin {
+            a_p
+        } else {
+            a_p + wd_p.cross(j) + w_p.cross(w_p.cross(j))
+        };
         let p = b.joint_to_origin;
-        let accel = r.mul_vec(a_joint) + omega_dot.cross(p) + omega.cross(omega.cross(p));
+        let accel = if pattern.origin_at_joint {
+            r.mul_vec(a_joint)
+        } else {
+            r.mul_vec(a_joint) + omega_dot.cross(p) + omega.cross(omega.cross(p))
+        };
         // Eq. 6 (15): the centre of mass.
         let c = b.com;
-        let com_accel = accel + omega_dot.cross(c) + omega.cross(omega.cross(c));
+        let com_accel = if pattern.com_at_origin {
+            accel
+        } else {
+            accel + omega_dot.cross(c) + omega.cross(omega.cross(c))
+        };
         // Eqs. 21-22.
         let inertial_force = com_accel.scale(b.mass);
         let spin_momentum = b.inertia.mul_vec(omega);
-        let inertial_moment =
-            b.inertia.mul_vec(omega_dot) + omega.cross(spin_momentum) + c.cross(inertial_force);
+        let inertial_moment = b.inertia.mul_vec(omega_dot) + omega.cross(spin_momentum);
+        let inertial_moment = if pattern.com_at_origin {
+            inertial_moment
+        } else {
+            inertial_moment + c.cross(inertial_force)
+        };
         out[i] = Motion {
             inertial_force,
             inertial_moment,

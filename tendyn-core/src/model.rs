@@ -532,6 +532,15 @@ pub struct BodyPattern {
     pub plain_pre: bool,
     /// See `plain_pre`.
     pub plain_post: bool,
+    /// Whether the joint point is the parent's origin (`pre`'s translation zero, every
+    /// link's): its acceleration is the parent origin's.
+    pub joint_at_parent_origin: bool,
+    /// Whether the body's origin is on its joint point (`joint_to_origin` zero, every
+    /// pulley's): the origin moves as the joint point does.
+    pub origin_at_joint: bool,
+    /// Whether the centre of mass is the body's origin (and no parameter sets it): the
+    /// inertial force has no moment about the origin.
+    pub com_at_origin: bool,
 }
 
 /// Each body's [`BodyPattern`], from the `f64` bodies and the parameter slots (a mass a
@@ -548,11 +557,22 @@ pub(crate) fn patterns_of(bodies: &[Body<f64>], slots: &[(Slot, usize)]) -> Vec<
                 && !slots.iter().any(|(slot, _)| {
                     matches!(*slot, Slot::Mass(s) | Slot::Com(s, _) | Slot::Inertia(s, _, _) if s == i)
                 });
+            let zero = |v: Vec3<f64>| v.to_array() == [0.0; 3];
             BodyPattern {
                 joints: (0..b.coupling.len()).filter(|&j| b.coupling[j] != 0.0).collect(),
                 inert,
                 plain_pre: b.pre.rotation == identity,
                 plain_post: b.post.rotation == identity,
+                // A pulley's placement becomes symbols in `Model::symbolic_geometry` where
+                // it sits on its joint's axis, so only links (whose `pre` it never
+                // changes) are told; a zero DH `a` or `d` is never a symbol there.
+                joint_at_parent_origin: !matches!(b.kind, BodyKind::Pulley { .. })
+                    && zero(b.pre.translation),
+                origin_at_joint: zero(b.joint_to_origin),
+                com_at_origin: zero(b.com)
+                    && !slots
+                        .iter()
+                        .any(|(slot, _)| matches!(*slot, Slot::Com(s, _) if s == i)),
             }
         })
         .collect()

@@ -281,13 +281,18 @@ pub fn backward<T: Real, L: Load<T>>(
         }
         let b = &model.bodies[i];
         let m = &motion[i];
+        let pattern = &model.patterns[i];
         let joint_point = -b.joint_to_origin;
         // Eq. 19 / 23: force from the parent.
         let f = L::known(m.inertial_force, unknowns).sub(&out.force[i]);
-        // Eq. 20 / 24: moment from the parent about the joint point.
-        let n = L::known(m.inertial_moment, unknowns)
-            .sub(&out.moment[i])
-            .sub(&f.moment_of(joint_point));
+        // Eq. 20 / 24: moment from the parent about the joint point (the origin, where the
+        // pattern knows them to be one).
+        let n = L::known(m.inertial_moment, unknowns).sub(&out.moment[i]);
+        let n = if pattern.origin_at_joint {
+            n
+        } else {
+            n.sub(&f.moment_of(joint_point))
+        };
         out.axial[i] = n.dot(b.axis);
         // The reaction on the parent: −f at the joint point, −n.
         let r = m.rotation;
@@ -299,8 +304,12 @@ pub fn backward<T: Real, L: Load<T>>(
             // moment about it) and can swamp them when the pulley is heavy. So the part of
             // its inertial force due to the joint point's acceleration stays in the parent's
             // frame, where `a_J` was computed; only the rest turns.
-            let pc = b.joint_to_origin + b.com;
-            let rel = m.omega_dot.cross(pc) + m.omega.cross(m.omega.cross(pc));
+            let rel = if pattern.origin_at_joint && pattern.com_at_origin {
+                Vec3::zero()
+            } else {
+                let pc = b.joint_to_origin + b.com;
+                m.omega_dot.cross(pc) + m.omega.cross(m.omega.cross(pc))
+            };
             L::known(rel.scale(b.mass), unknowns)
                 .sub(&out.force[i])
                 .rotate_back(&r)
@@ -311,7 +320,11 @@ pub fn backward<T: Real, L: Load<T>>(
         };
         let n_parent = n.rotate_back(&r).neg();
         let at = b.pre.translation;
-        let moment_parent = n_parent.add(&f_parent.moment_of(at));
+        let moment_parent = if pattern.joint_at_parent_origin {
+            n_parent
+        } else {
+            n_parent.add(&f_parent.moment_of(at))
+        };
         match b.parent {
             Some(p) => {
                 out.force[p] = out.force[p].add(&f_parent);

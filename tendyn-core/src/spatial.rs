@@ -109,6 +109,29 @@ impl<T: Real> Mat3<T> {
             rows: [[c, -s, z], [s, c, z], [z, z, o]],
         }
     }
+    /// `RotZ(s, c) · self` ([`Mat3::rot_z`]): a turn about z mixes the first two rows, 12
+    /// products where the full product takes 27, with the same terms in the same order
+    /// (the product's are zero or one, and only drop out).
+    pub fn turned_about_z(&self, s: T, c: T) -> Self {
+        let m = &self.rows;
+        let minus_s = -s;
+        Mat3 {
+            rows: [
+                core::array::from_fn(|j| c * m[0][j] + minus_s * m[1][j]),
+                core::array::from_fn(|j| s * m[0][j] + c * m[1][j]),
+                m[2],
+            ],
+        }
+    }
+    /// `self · RotZ(s, c)`: the first two columns mixed, as in [`Mat3::turned_about_z`].
+    pub fn then_turned_about_z(&self, s: T, c: T) -> Self {
+        let minus_s = -s;
+        Mat3 {
+            rows: self
+                .rows
+                .map(|r| [r[0] * c + r[1] * s, r[0] * minus_s + r[1] * c, r[2]]),
+        }
+    }
     /// `selfᵀ` (for a rotation, its inverse).
     pub fn transpose(&self) -> Self {
         let r = &self.rows;
