@@ -23,11 +23,11 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s78, c79) = q[1].sin_cos();
-    let t652 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t659 = T::from_f64(0.03) * s78;
-    let t668 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t652 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t659));
+    let (s54, c55) = q[1].sin_cos();
+    let t652 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
+    let t659 = T::from_f64(0.03) * s54;
+    let t668 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t652 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t659));
     let t674 = qdd[0] * t652
         + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t659));
     [t668, t674]
@@ -44,19 +44,19 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
-    let (s78, c79) = q[1].sin_cos();
-    let t699 = qdd[1] * (T::from_f64(0.03) * c79 + T::from_f64(-0.00833334999999993))
+    let (s54, c55) = q[1].sin_cos();
+    let t699 = qdd[1] * (T::from_f64(0.03) * c55 + T::from_f64(-0.00833334999999993))
         - (qd[0]
-            * (qd[0] * (s78 * T::from_f64(0.04499999999999987))
-                + qd[1] * (s78 * T::from_f64(0.06)))
-            + qd[1] * (qd[1] * (T::from_f64(0.03) * s78)));
+            * (qd[0] * (s54 * T::from_f64(0.04499999999999987))
+                + qd[1] * (s54 * T::from_f64(0.06)))
+            + qd[1] * (qd[1] * (T::from_f64(0.03) * s54)));
     let t700 = qdd[0]
-        * (c79 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
+        * (c55 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
         + t699;
     let t712 = qdd[0]
-        * (c79 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
+        * (c55 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
-            + qd[0] * (qd[0] * (s78 * T::from_f64(0.045000000000000005))));
+            + qd[0] * (qd[0] * (s54 * T::from_f64(0.045000000000000005))));
     tendyn_core::distribution::Actuation::exact([t700, t712], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
@@ -67,9 +67,9 @@ pub fn actuation<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
-    let t79 = q[1].cos();
-    let t649 = t79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t714 = T::from_f64(0.03) * t79 + T::from_f64(0.0166967);
+    let t55 = q[1].cos();
+    let t649 = t55 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t714 = T::from_f64(0.03) * t55 + T::from_f64(0.0166967);
     [[t649, t714], [t714, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
@@ -80,9 +80,9 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
-    let t78 = q[1].sin();
-    let t659 = T::from_f64(0.03) * t78;
-    let t666 = -(qd[1] * (qd[0] * (t78 * T::from_f64(0.06)) + qd[1] * t659));
+    let t54 = q[1].sin();
+    let t659 = T::from_f64(0.03) * t54;
+    let t666 = -(qd[1] * (qd[0] * (t54 * T::from_f64(0.06)) + qd[1] * t659));
     let t672 = qd[0] * (qd[0] * t659);
     [t666, t672]
 }
@@ -109,12 +109,12 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    let (s78, c79) = q[1].sin_cos();
-    let t649 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t659 = T::from_f64(0.03) * s78;
+    let (s54, c55) = q[1].sin_cos();
+    let t649 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t659 = T::from_f64(0.03) * s54;
     let t715 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t659);
-    let t717 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t649;
+        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t659);
+    let t717 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t649;
     let t867 = (T::from_f64(0.6666666666666667) * motor_torques[1]
         - qd[0] * (qd[0] * t659) - t715 * t717)
         / (T::from_f64(0.0166867) - t649 * (t717 * t717));
@@ -129,13 +129,13 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s78, c79) = q[1].sin_cos();
-    let t768 = qdd[0] * (c79 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let (s54, c55) = q[1].sin_cos();
+    let t768 = qdd[0] * (c55 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
-            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s78 * T::from_f64(0.75)))));
+            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s54 * T::from_f64(0.75)))));
     let t787 = qdd[0]
-        * (T::from_f64(-0.4166675000000001) - c79 * T::from_f64(0.7500000000000001))
-        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s78 * T::from_f64(0.7500000000000001)))
+        * (T::from_f64(-0.4166675000000001) - c55 * T::from_f64(0.7500000000000001))
+        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s54 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
     [t768, t787]
 }
@@ -148,31 +148,31 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
     let (s52, c53) = q[0].sin_cos();
-    let t55 = T::from_f64(0.3) * qdd[0];
-    let t62 = t55 - qdd[0] * T::from_f64(0.15);
-    let t69 = T::from_f64(1.2) * t62;
-    let (s78, c79) = q[1].sin_cos();
+    let (s54, c55) = q[1].sin_cos();
+    let t57 = T::from_f64(0.3) * qdd[0];
+    let t64 = t57 - qdd[0] * T::from_f64(0.15);
+    let t71 = T::from_f64(1.2) * t64;
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
     let t120 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t183 = T::from_f64(0.019988885800753267) * s78;
-    let t187 = T::from_f64(0.019988885800753267) * c79;
+    let t183 = T::from_f64(0.019988885800753267) * s54;
+    let t187 = T::from_f64(0.019988885800753267) * c55;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
     let t475 = qd[0] * qd[0];
     let t476 = T::from_f64(0.3) * t475;
-    let t482 = T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18);
+    let t482 = T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18);
     let t488 = t81 * t81;
-    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + s78 * t476)
+    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + s54 * t476)
         - t82 * T::from_f64(0.125);
     let t494 = T::from_f64(0.8)
-        * (t55 * s78 - c79 * t476 - T::from_f64(0.25) * t488
+        * (s54 * t57 - c55 * t476 - T::from_f64(0.25) * t488
             + T::from_f64(0.125) * t488);
     let t495 = T::from_f64(0.8) * t491;
     let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
     let t499 = t497 + T::from_f64(0.2) * t491;
-    let t510 = t482 + t499 + T::from_f64(0.3) * (t69 + (s78 * t494 + c79 * t495));
+    let t510 = t482 + t499 + T::from_f64(0.3) * (t71 + (s54 * t494 + c55 * t495));
     let t532 = T::from_f64(20.0)
         + (T::from_f64(25.0) * t499
             - T::from_f64(0.000000000000000009071958584846753) * t510);
@@ -181,20 +181,20 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             + T::from_f64(25.000000000000004) * t499);
     let t534 = T::from_f64(0.9994442900376633) * t532;
     let t535 = T::from_f64(0.03333333333333362) * t532;
-    let t538 = s78 * t535 - c79 * t534;
-    let t541 = s78 * t534 + c79 * t535;
+    let t538 = s54 * t535 - c55 * t534;
+    let t541 = s54 * t534 + c55 * t535;
     let t547 = c53 * t534 + s52 * t535;
     let t550 = s52 * t534 - c53 * t535;
     let t554 = T::from_f64(0.9994442900376633) * t533;
     let t555 = T::from_f64(0.03333333333333337) * t533;
-    let t558 = c79 * t554 + s78 * t555;
-    let t561 = s78 * t554 - c79 * t555;
+    let t558 = c55 * t554 + s54 * t555;
+    let t561 = s54 * t554 - c55 * t555;
     let t562 = t538 - t558;
     let t563 = t541 + t561;
-    let t567 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t541
-        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t538
-        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t561
-            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t558);
+    let t567 = (T::from_f64(0.0006666666666666724) * c55 + t183) * t541
+        - (t187 - T::from_f64(0.0006666666666666724) * s54) * t538
+        + ((T::from_f64(0.0006666666666666674) * c55 - t183) * t561
+            - (t187 + T::from_f64(0.0006666666666666674) * s54) * t558);
     let t570 = c53 * t554 - s52 * t555;
     let t573 = s52 * t554 + c53 * t555;
     let t579 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t550
@@ -212,11 +212,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
         - T::from_f64(1.9620000000000002);
     let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
-    let t605 = c79 * t583 - s78 * t595;
+    let t605 = c55 * t583 - s54 * t595;
     let t609 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
-        - (s78 * t591 - c79 * t590);
-    let t610 = t69 + (s78 * t590 + c79 * t591);
-    let t614 = T::from_f64(1.7658) + (s78 * t583 + c79 * t595) - T::from_f64(5.886);
+        - (s54 * t591 - c55 * t590);
+    let t610 = t71 + (s54 * t590 + c55 * t591);
+    let t614 = T::from_f64(1.7658) + (s54 * t583 + c55 * t595) - T::from_f64(5.886);
     let t616 = t482 + t596 + T::from_f64(0.3) * t610
         - (t510 - T::from_f64(1.4999999999999958) * t499);
     let t617 = t120 - t579
@@ -246,33 +246,33 @@ pub fn base_reaction<T: Real>(
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
     let (s52, c53) = q[0].sin_cos();
-    let t55 = T::from_f64(0.3) * qdd[0];
-    let t62 = t55 - qdd[0] * T::from_f64(0.15);
-    let (s78, c79) = q[1].sin_cos();
+    let (s54, c55) = q[1].sin_cos();
+    let t57 = T::from_f64(0.3) * qdd[0];
+    let t64 = t57 - qdd[0] * T::from_f64(0.15);
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
-    let t137 = s78 * T::from_f64(0.9810000000000001);
-    let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
+    let t137 = s54 * T::from_f64(0.9810000000000001);
+    let t152 = T::from_f64(1.7658) - c55 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t167 = c53 * t137 - s52 * t152;
     let t170 = s52 * t137 + c53 * t152;
     let t475 = qd[0] * qd[0];
     let t476 = T::from_f64(0.3) * t475;
     let t488 = t81 * t81;
-    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + s78 * t476)
+    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + s54 * t476)
         - t82 * T::from_f64(0.125);
     let t494 = T::from_f64(0.8)
-        * (t55 * s78 - c79 * t476 - T::from_f64(0.25) * t488
+        * (s54 * t57 - c55 * t476 - T::from_f64(0.25) * t488
             + T::from_f64(0.125) * t488);
     let t495 = T::from_f64(0.8) * t491;
     let t506 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
-        - (s78 * t495 - c79 * t494);
-    let t507 = T::from_f64(1.2) * t62 + (s78 * t494 + c79 * t495);
+        - (s54 * t495 - c55 * t494);
+    let t507 = T::from_f64(1.2) * t64 + (s54 * t494 + c55 * t495);
     let t513 = c53 * t506 - s52 * t507;
     let t516 = s52 * t506 + c53 * t507;
     let t517 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
-        + (T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18)
+        + (T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18)
             + (T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491
                 + T::from_f64(0.2) * t491) + T::from_f64(0.3) * t507);
     [[[t513, t516, T::from_f64(20.601000000000003)], [t167, t170, t517]]]
@@ -310,43 +310,43 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s52, c53) = q[0].sin_cos();
-    let t55 = T::from_f64(0.3) * qdd[0];
-    let t62 = t55 - qdd[0] * T::from_f64(0.15);
-    let t69 = T::from_f64(1.2) * t62;
-    let (s78, c79) = q[1].sin_cos();
+    let (s54, c55) = q[1].sin_cos();
+    let t57 = T::from_f64(0.3) * qdd[0];
+    let t64 = t57 - qdd[0] * T::from_f64(0.15);
+    let t71 = T::from_f64(1.2) * t64;
     let t81 = qd[0] + qd[1];
     let t82 = qdd[0] + qdd[1];
     let t118 = qdd[0] + T::from_f64(0.6666666666666667) * qdd[1];
     let t120 = T::from_f64(0.000045) * t118;
-    let t137 = s78 * T::from_f64(0.9810000000000001);
-    let t152 = T::from_f64(1.7658) - c79 * T::from_f64(0.9810000000000001)
+    let t137 = s54 * T::from_f64(0.9810000000000001);
+    let t152 = T::from_f64(1.7658) - c55 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t167 = c53 * t137 - s52 * t152;
     let t170 = s52 * t137 + c53 * t152;
-    let t183 = T::from_f64(0.019988885800753267) * s78;
-    let t187 = T::from_f64(0.019988885800753267) * c79;
+    let t183 = T::from_f64(0.019988885800753267) * s54;
+    let t187 = T::from_f64(0.019988885800753267) * c55;
     let t190 = T::from_f64(0.029983328701129897) * s52;
     let t194 = T::from_f64(0.029983328701129897) * c53;
-    let t407 = T::from_f64(-0.18) + T::from_f64(0.1) * c79;
+    let t407 = T::from_f64(-0.18) + T::from_f64(0.1) * c55;
     let t425 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
             + T::from_f64(0.3) * (t407 + (t407 + T::from_f64(0.6))));
     let t475 = qd[0] * qd[0];
     let t476 = T::from_f64(0.3) * t475;
     let t479 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476);
-    let t482 = T::from_f64(0.009) * qdd[0] - t62 * T::from_f64(0.18);
-    let t483 = c79 * t476;
-    let t485 = s78 * t476;
+    let t482 = T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18);
+    let t483 = c55 * t476;
+    let t485 = s54 * t476;
     let t488 = t81 * t81;
     let t489 = T::from_f64(0.25) * t488;
-    let t491 = T::from_f64(0.25) * t82 + (t55 * c79 + t485) - t82 * T::from_f64(0.125);
+    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + t485) - t82 * T::from_f64(0.125);
     let t492 = T::from_f64(0.125) * t488;
-    let t494 = T::from_f64(0.8) * (t55 * s78 - t483 - t489 + t492);
+    let t494 = T::from_f64(0.8) * (s54 * t57 - t483 - t489 + t492);
     let t495 = T::from_f64(0.8) * t491;
     let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
     let t499 = t497 + T::from_f64(0.2) * t491;
-    let t506 = t479 - (s78 * t495 - c79 * t494);
-    let t507 = t69 + (s78 * t494 + c79 * t495);
+    let t506 = t479 - (s54 * t495 - c55 * t494);
+    let t507 = t71 + (s54 * t494 + c55 * t495);
     let t510 = t482 + t499 + T::from_f64(0.3) * t507;
     let t513 = c53 * t506 - s52 * t507;
     let t516 = s52 * t506 + c53 * t507;
@@ -364,20 +364,20 @@ pub fn all<T: Real>(
             + T::from_f64(25.000000000000004) * t499);
     let t534 = T::from_f64(0.9994442900376633) * t532;
     let t535 = T::from_f64(0.03333333333333362) * t532;
-    let t538 = s78 * t535 - c79 * t534;
-    let t541 = s78 * t534 + c79 * t535;
+    let t538 = s54 * t535 - c55 * t534;
+    let t541 = s54 * t534 + c55 * t535;
     let t547 = c53 * t534 + s52 * t535;
     let t550 = s52 * t534 - c53 * t535;
     let t554 = T::from_f64(0.9994442900376633) * t533;
     let t555 = T::from_f64(0.03333333333333337) * t533;
-    let t558 = c79 * t554 + s78 * t555;
-    let t561 = s78 * t554 - c79 * t555;
+    let t558 = c55 * t554 + s54 * t555;
+    let t561 = s54 * t554 - c55 * t555;
     let t562 = t538 - t558;
     let t563 = t541 + t561;
-    let t567 = (T::from_f64(0.0006666666666666724) * c79 + t183) * t541
-        - (t187 - T::from_f64(0.0006666666666666724) * s78) * t538
-        + ((T::from_f64(0.0006666666666666674) * c79 - t183) * t561
-            - (t187 + T::from_f64(0.0006666666666666674) * s78) * t558);
+    let t567 = (T::from_f64(0.0006666666666666724) * c55 + t183) * t541
+        - (t187 - T::from_f64(0.0006666666666666724) * s54) * t538
+        + ((T::from_f64(0.0006666666666666674) * c55 - t183) * t561
+            - (t187 + T::from_f64(0.0006666666666666674) * s54) * t558);
     let t570 = c53 * t554 - s52 * t555;
     let t573 = s52 * t554 + c53 * t555;
     let t579 = (T::from_f64(0.0010000000000000085) * c53 - t190) * t550
@@ -395,19 +395,19 @@ pub fn all<T: Real>(
     let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
         - T::from_f64(1.9620000000000002);
     let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
-    let t605 = c79 * t583 - s78 * t595;
-    let t609 = t479 - (s78 * t591 - c79 * t590);
-    let t610 = t69 + (s78 * t590 + c79 * t591);
-    let t614 = T::from_f64(1.7658) + (s78 * t583 + c79 * t595) - T::from_f64(5.886);
+    let t605 = c55 * t583 - s54 * t595;
+    let t609 = t479 - (s54 * t591 - c55 * t590);
+    let t610 = t71 + (s54 * t590 + c55 * t591);
+    let t614 = T::from_f64(1.7658) + (s54 * t583 + c55 * t595) - T::from_f64(5.886);
     let t616 = t482 + t596 + T::from_f64(0.3) * t610 - t527;
     let t617 = t120 - t579 - t531;
     let t620 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c79);
+        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c55);
     let t627 = T::from_f64(0.2) * t485 - T::from_f64(0.1) * t485;
     let t633 = t627
         + T::from_f64(0.3)
-            * (T::from_f64(0.8) * (s78 * (t492 - (t483 + t489)))
-                + c79 * (T::from_f64(0.8) * t485));
+            * (T::from_f64(0.8) * (s54 * (t492 - (t483 + t489)))
+                + c55 * (T::from_f64(0.8) * t485));
     let t634 = motor_torques[0] + motor_torques[1] - t633;
     let t636 = t620 / t425;
     let t643 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t627 - t634 * t636)

@@ -23,11 +23,11 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s78, c79) = q[1].sin_cos();
-    let t662 = T::from_f64(0.03) * c79 + T::from_f64(0.016696700000000002);
-    let t669 = T::from_f64(0.03) * s78;
-    let t678 = qdd[0] * (c79 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t662 - qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t669));
+    let (s54, c55) = q[1].sin_cos();
+    let t662 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
+    let t669 = T::from_f64(0.03) * s54;
+    let t678 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t662 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t669));
     let t684 = qdd[0] * t662
         + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t669));
     [t678, t684]
@@ -44,13 +44,13 @@ pub fn generalized_forces_derivatives<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
-    let (s78, c79) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c79;
-    let t657 = c79 * T::from_f64(0.06);
+    let (s54, c55) = q[1].sin_cos();
+    let t582 = T::from_f64(0.03) * c55;
+    let t657 = c55 * T::from_f64(0.06);
     let t662 = t582 + T::from_f64(0.016696700000000002);
-    let t665 = s78 * T::from_f64(0.06);
+    let t665 = s54 * T::from_f64(0.06);
     let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s78;
+    let t669 = T::from_f64(0.03) * s54;
     let t678 = qdd[0] * (t657 + T::from_f64(0.1247117))
         + (qdd[1] * t662 - qd[1] * (t667 + qd[1] * t669));
     let t684 = qdd[0] * t662
@@ -80,12 +80,12 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    let (s78, c79) = q[1].sin_cos();
-    let t659 = c79 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t669 = T::from_f64(0.03) * s78;
+    let (s54, c55) = q[1].sin_cos();
+    let t659 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t669 = T::from_f64(0.03) * s54;
     let t712 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s78 * T::from_f64(0.06)) + qd[1] * t669);
-    let t716 = (T::from_f64(0.03) * c79 + T::from_f64(0.0166967)) / t659;
+        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t669);
+    let t716 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t659;
     let t829 = (T::from_f64(0.6666666666666667) * motor_torques[1]
         - qd[0] * (qd[0] * t669) - t712 * t716)
         / (T::from_f64(0.0166867) - t659 * (t716 * t716));
@@ -105,30 +105,30 @@ pub fn forward_dynamics_derivatives<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
-    let (s78, c79) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c79;
-    let t657 = c79 * T::from_f64(0.06);
+    let (s54, c55) = q[1].sin_cos();
+    let t582 = T::from_f64(0.03) * c55;
+    let t657 = c55 * T::from_f64(0.06);
     let t659 = t657 + T::from_f64(0.1247117);
-    let t665 = s78 * T::from_f64(0.06);
+    let t665 = s54 * T::from_f64(0.06);
     let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s78;
+    let t669 = T::from_f64(0.03) * s54;
     let t708 = qd[1] * t665;
     let t713 = (motor_torques[0] + motor_torques[1] + qd[1] * (t667 + qd[1] * t669))
         / t659;
     let t716 = (t582 + T::from_f64(0.0166967)) / t659;
     let t718 = T::from_f64(0.06) * t716;
-    let t720 = s78 * t718;
+    let t720 = s54 * t718;
     let t722 = qd[1] * t720;
     let t728 = T::from_f64(0.03) * t716;
     let t738 = T::from_f64(0.6666666666666667) - t716;
     let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
     let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
-        - qd[1] * (qd[1] * (s78 * t728)) - qd[0] * (qd[0] * t669 + t722)) / t749;
+        - qd[1] * (qd[1] * (s54 * t728)) - qd[0] * (qd[0] * t669 + t722)) / t749;
     let t754 = t713 - t716 * t750;
     let t757 = T::from_f64(0.06) * t713;
-    let t786 = s78
+    let t786 = s54
         * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
-        - qd[1] * (qd[1] * (c79 * t728)) - qd[0] * (qd[0] * t582 + qd[1] * (c79 * t718));
+        - qd[1] * (qd[1] * (c55 * t728)) - qd[0] * (qd[0] * t582 + qd[1] * (c55 * t718));
     let t787 = t786 / t749;
     let t792 = (t667 + t722) / t749;
     let t793 = -t792;
@@ -137,7 +137,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t802 = T::from_f64(1.0) / t659;
     let t803 = t716 / t749;
     let t804 = t738 / t749;
-    let t810 = -((s78 * (t750 * (T::from_f64(-0.03) + t718) - t757)
+    let t810 = -((s54 * (t750 * (T::from_f64(-0.03) + t718) - t757)
         - qd[1] * (qd[0] * t657 + qd[1] * t582)) / t659 + t716 * t787);
     let t812 = t708 / t659 + t716 * t792;
     let t814 = (t667 + t708) / t659 + t716 * t800;
@@ -180,14 +180,14 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
-    let (s78, c79) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c79;
-    let t657 = c79 * T::from_f64(0.06);
+    let (s54, c55) = q[1].sin_cos();
+    let t582 = T::from_f64(0.03) * c55;
+    let t657 = c55 * T::from_f64(0.06);
     let t659 = t657 + T::from_f64(0.1247117);
     let t662 = t582 + T::from_f64(0.016696700000000002);
-    let t665 = s78 * T::from_f64(0.06);
+    let t665 = s54 * T::from_f64(0.06);
     let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s78;
+    let t669 = T::from_f64(0.03) * s54;
     let t675 = qd[1] * (t667 + qd[1] * t669);
     let t678 = qdd[0] * t659 + (qdd[1] * t662 - t675);
     let t681 = qd[0] * t669;
@@ -205,18 +205,18 @@ pub fn all<T: Real>(
     let t713 = t712 / t659;
     let t716 = (t582 + T::from_f64(0.0166967)) / t659;
     let t718 = T::from_f64(0.06) * t716;
-    let t720 = s78 * t718;
+    let t720 = s54 * t718;
     let t722 = qd[1] * t720;
     let t728 = T::from_f64(0.03) * t716;
     let t738 = T::from_f64(0.6666666666666667) - t716;
     let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
     let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
-        - qd[1] * (qd[1] * (s78 * t728)) - qd[0] * (t681 + t722)) / t749;
+        - qd[1] * (qd[1] * (s54 * t728)) - qd[0] * (t681 + t722)) / t749;
     let t754 = t713 - t716 * t750;
     let t757 = T::from_f64(0.06) * t713;
-    let t786 = s78
+    let t786 = s54
         * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
-        - qd[1] * (qd[1] * (c79 * t728)) - qd[0] * (t705 + qd[1] * (c79 * t718));
+        - qd[1] * (qd[1] * (c55 * t728)) - qd[0] * (t705 + qd[1] * (c55 * t718));
     let t787 = t786 / t749;
     let t792 = (t667 + t722) / t749;
     let t793 = -t792;
@@ -225,7 +225,7 @@ pub fn all<T: Real>(
     let t802 = T::from_f64(1.0) / t659;
     let t803 = t716 / t749;
     let t804 = t738 / t749;
-    let t810 = -((s78 * (t750 * (T::from_f64(-0.03) + t718) - t757) - t697) / t659
+    let t810 = -((s54 * (t750 * (T::from_f64(-0.03) + t718) - t757) - t697) / t659
         + t716 * t787);
     let t812 = t708 / t659 + t716 * t792;
     let t814 = t710 / t659 + t716 * t800;
