@@ -137,9 +137,21 @@ pub fn forward<T: Real>(
         let rate_dot = coupled(&b.coupling, &pattern.joints, qdd);
         // Eqs. 2-3 (11-12): ω = R(ω_p) + θ̇ z, ω̇ = R ω̇_p + θ̈ z + (R ω_p) × θ̇ z.
         let w_in = r.mul_vec(w_p);
-        let spin = b.axis.scale(rate);
-        let omega = w_in + spin;
-        let omega_dot = r.mul_vec(wd_p) + b.axis.scale(rate_dot) + w_in.cross(spin);
+        let (omega, omega_dot) = if pattern.axis_along_z {
+            // The same sums with the axis's zero components left out: `θ̇ z` adds to ω_z
+            // alone, and `(R ω_p) × θ̇ z = θ̇ (w_y, −w_x, 0)`.
+            let wd = r.mul_vec(wd_p);
+            (
+                Vec3::new(w_in.x, w_in.y, w_in.z + rate),
+                Vec3::new(wd.x + w_in.y * rate, wd.y - w_in.x * rate, wd.z + rate_dot),
+            )
+        } else {
+            let spin = b.axis.scale(rate);
+            (
+                w_in + spin,
+                r.mul_vec(wd_p) + b.axis.scale(rate_dot) + w_in.cross(spin),
+            )
+        };
         // Eq. 5 (14): acceleration of the joint point as a point of the parent, carried
         // into this frame, then out to this body's origin.
         // The terms of offsets the pattern knows to be zero are skipped: they would add

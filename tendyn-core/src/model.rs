@@ -541,6 +541,9 @@ pub struct BodyPattern {
     /// Whether the centre of mass is the body's origin (and no parameter sets it): the
     /// inertial force has no moment about the origin.
     pub com_at_origin: bool,
+    /// Whether the joint axis is the body frame's z axis exactly (every pulley's, and a
+    /// link's without twist): its own rate adds to the angular velocity's z alone.
+    pub axis_along_z: bool,
 }
 
 /// Each body's [`BodyPattern`], from the `f64` bodies and the parameter slots (a mass a
@@ -573,6 +576,7 @@ pub(crate) fn patterns_of(bodies: &[Body<f64>], slots: &[(Slot, usize)]) -> Vec<
                     && !slots
                         .iter()
                         .any(|(slot, _)| matches!(*slot, Slot::Com(s, _) if s == i)),
+                axis_along_z: b.axis.to_array() == [0.0, 0.0, 1.0],
             }
         })
         .collect()
