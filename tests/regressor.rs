@@ -7,6 +7,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use tendyn_core::regressor::{parameters, values, Quantity};
+use tendyn_core::spatial::{Mat3, Vec3};
 use tendyn_core::{Data, DoubleDouble, Model};
 use tendyn_spec::measure::random_state;
 
@@ -460,20 +461,30 @@ mod identification {
         assert!(within_two as f64 >= 0.85 * estimates as f64);
     }
 
+    /// The paper's examples with bearing friction among them.
+    const EXAMPLES: [&str; 3] = [
+        "example1_endless",
+        "example3_stanford_jpl",
+        "example2_friction",
+    ];
+
+    /// An example, its base parameters and their values in the file (the truth of data the
+    /// file's own inverse dynamics makes).
+    fn example_with_truth(name: &str) -> (Model<f64>, BaseParameters, Vec<f64>) {
+        let model = tendyn_core::parse(&tendyn_spec::examples::text(name)).unwrap();
+        let base = BaseParameters::of(&model).unwrap();
+        let truth = base.values(&values(&model));
+        (model, base, truth)
+    }
+
     /// Without noise, through the actuators: motor torques and tendon tensions of inverse
     /// dynamics, turned back into generalized forces by `Data::actuator_forces`, identify
     /// every base parameter to round-off, each against its own value: the tiny ones
     /// included.
     #[test]
     fn identification_from_actuator_forces_without_noise_is_exact() {
-        for name in [
-            "example1_endless",
-            "example3_stanford_jpl",
-            "example2_friction",
-        ] {
-            let model = tendyn_core::parse(&tendyn_spec::examples::text(name)).unwrap();
-            let base = BaseParameters::of(&model).unwrap();
-            let truth = base.values(&values(&model));
+        for name in EXAMPLES {
+            let (model, base, truth) = example_with_truth(name);
             let mut data = Data::new(&model);
             let samples: Vec<Sample> = synthetic(&model, 400, f64::INFINITY, 3)
                 .into_iter()
@@ -638,14 +649,8 @@ mod identification {
     /// the estimate by 1e-9 to 3e-7 of the largest base parameter (measured 3e-12 to 3e-11).
     #[test]
     fn poorly_exciting_motion_costs_the_consistent_estimate_no_squared_condition() {
-        for name in [
-            "example1_endless",
-            "example3_stanford_jpl",
-            "example2_friction",
-        ] {
-            let model = tendyn_core::parse(&tendyn_spec::examples::text(name)).unwrap();
-            let base = BaseParameters::of(&model).unwrap();
-            let truth = base.values(&values(&model));
+        for name in EXAMPLES {
+            let (model, base, truth) = example_with_truth(name);
             let size = truth.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             let samples = excitation(&model, 1000, f64::INFINITY, 5, 0.003);
             let c = identify_consistent(&model, &base, &samples).unwrap();
@@ -724,6 +729,57 @@ mod identification {
                 assert!(*v >= 0.0, "{}: {} = {v}", model.name(), p.name(model));
             }
         }
+    }
+
+    /// A body that turns without spinning is modelled only with a mass axisymmetric about
+    /// its axis, so at 40 dB, where the data alone would tilt it, its estimate stays so: the
+    /// centre of mass on the axis and the inertia about it of the form `A a aᵀ + B (1 − a aᵀ)`,
+    /// here about the twisted first link's axis, which is not the frame's z.
+    #[test]
+    fn a_body_turning_without_spinning_stays_axisymmetric_about_its_tilted_axis() {
+        let file =
+            tendyn_core::parse(&tendyn_spec::examples::text("example3_stanford_jpl")).unwrap();
+        let mut links = file.bodies()[..file.dof()].to_vec();
+        let link = &mut links[0];
+        let a = link.axis;
+        assert!(a.z.abs() < 0.5, "the twisted link's axis: {a:?}");
+        let axisymmetric = |along: f64, across: f64| {
+            let a = a.to_array();
+            Mat3 {
+                rows: std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        let identity = if i == j { 1.0 } else { 0.0 };
+                        along * a[i] * a[j] + across * (identity - a[i] * a[j])
+                    })
+                }),
+            }
+        };
+        link.spins = false;
+        link.com = -link.joint_to_origin + a.scale(0.01);
+        link.inertia = axisymmetric(2e-4, 1e-4);
+        let tree =
+            tendyn_core::Model::rigid_tree("tilted", [0.0, 0.0, -9.81], file.dof(), links, None)
+                .unwrap();
+        assert!(tree.bodies()[0].axisymmetric());
+        let base = BaseParameters::of(&tree).unwrap();
+        let samples = synthetic(&tree, 2000, 40.0, 11);
+        let c = identify_consistent(&tree, &base, &samples).unwrap();
+        let e = &c.bodies[0];
+        let com = Vec3::from_array(e.com);
+        let from_axis = com + tree.bodies()[0].joint_to_origin;
+        let radial = from_axis - a.scale(from_axis.dot(a));
+        assert!(radial.dot(radial).sqrt() <= 1e-9 * 0.1, "{:?}", e.com);
+        let inertia = Mat3 { rows: e.inertia };
+        let along = a.dot(inertia.mul_vec(a));
+        let across = (e.inertia[0][0] + e.inertia[1][1] + e.inertia[2][2] - along) / 2.0;
+        let want = axisymmetric(along, across);
+        for (row, want) in e.inertia.iter().zip(want.rows) {
+            for (x, w) in row.iter().zip(want) {
+                assert!((x - w).abs() <= 1e-9 * along, "{:?}", e.inertia);
+            }
+        }
+        // And the data moved it: the estimate is not the file's.
+        assert!((along - 2e-4).abs() > 1e-12 || (e.mass - tree.bodies()[0].mass).abs() > 1e-9);
     }
 
     /// Data no mechanism can produce: the generalized forces of the file's parameters with

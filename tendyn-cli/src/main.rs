@@ -580,13 +580,13 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::Equations { file, outputs } => {
             let m = load(&file)?;
             let outputs: Vec<tendyn_codegen::Output> = if outputs.is_empty() {
-                [
-                    tendyn_codegen::Output::GeneralizedForces,
-                    tendyn_codegen::Output::Actuation,
-                ]
-                .into_iter()
-                .filter(|o| tendyn_codegen::outputs::check(&m, &[*o]).is_ok())
-                .collect()
+                tendyn_codegen::outputs::available(
+                    &m,
+                    &[
+                        tendyn_codegen::Output::GeneralizedForces,
+                        tendyn_codegen::Output::Actuation,
+                    ],
+                )
             } else {
                 outputs
                     .iter()

@@ -208,11 +208,7 @@ pub fn generate_with(
 /// The default outputs `model` can provide ([`Output::DEFAULT`], less those [`outputs::check`]
 /// refuses): what is generated when no output is named.
 pub fn available_outputs(model: &tendyn_core::Model<f64>) -> Vec<Output> {
-    Output::DEFAULT
-        .iter()
-        .copied()
-        .filter(|o| outputs::check(model, &[*o]).is_ok())
-        .collect()
+    outputs::available(model, Output::DEFAULT)
 }
 
 /// The largest number `scalar` holds, and its name.

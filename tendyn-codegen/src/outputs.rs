@@ -252,14 +252,38 @@ fn traced_system<T: Real>(
 
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
-    check_with(model, outputs, &capstan_elimination(model))
+    check_with(model, outputs, &capstan_elimination(model, outputs))
 }
 
-/// The order of elimination of a model whose guides have capstan friction (`None` without
-/// such guides, or where no order holds): searched once per generation, for `check` and
-/// the trace alike, since each candidate is checked at every direction of sliding.
-fn capstan_elimination(model: &Model<f64>) -> Option<tension::Elimination> {
-    model.has_capstan().then(|| elimination(model)).flatten()
+/// Of `candidates`, those [`check`] lets through for `model` (the order of elimination
+/// searched once for all of them).
+pub fn available(model: &Model<f64>, candidates: &[Output]) -> Vec<Output> {
+    let elimination = capstan_elimination(model, candidates);
+    (candidates.iter().copied())
+        .filter(|o| check_with(model, &[*o], &elimination).is_ok())
+        .collect()
+}
+
+/// Whether generated code solves the state's tension system for output `o`: where guides
+/// have capstan friction, only with an order of elimination.
+fn solves_tension_system(o: Output) -> bool {
+    matches!(
+        o,
+        Output::Actuation
+            | Output::ActuationDerivatives
+            | Output::SegmentTensions
+            | Output::Bearings
+            | Output::BaseReaction
+    )
+}
+
+/// The order of elimination of a model whose guides have capstan friction, where one of
+/// `outputs` needs it (`None` otherwise, or where no order holds): searched once per
+/// generation, for `check` and the trace alike, since each candidate is checked at every
+/// direction of sliding.
+fn capstan_elimination(model: &Model<f64>, outputs: &[Output]) -> Option<tension::Elimination> {
+    let needed = model.has_capstan() && outputs.iter().any(|&o| solves_tension_system(o));
+    needed.then(|| elimination(model)).flatten()
 }
 
 /// [`check`] with the order of elimination already searched.
@@ -282,22 +306,14 @@ fn check_with(
                     model.system().null_space.len()
                 ))
             }
-            Output::Actuation
-            | Output::ActuationDerivatives
-            | Output::SegmentTensions
-            | Output::Bearings
-            | Output::BaseReaction
-                if model.has_capstan() && elimination.is_none() =>
-            {
-                Some(
-                    "a guide has capstan friction (`mu > 0`), which makes the tension system \
+            o if solves_tension_system(o) && model.has_capstan() && elimination.is_none() => Some(
+                "a guide has capstan friction (`mu > 0`), which makes the tension system \
                      depend on the state, and the order of elimination chosen from its `E` \
                      either leaves a motor or loop side free or meets a zero pivot for some \
                      direction of sliding (the routing is close to uncontrollable) — use the \
                      runtime solver (`tendyn eval`)"
-                        .to_string(),
-                )
-            }
+                    .to_string(),
+            ),
             // Segment tensions and bearings need the distributed tensions; the base
             // reaction does not (it comes from the tension-free pass), so it stays available.
             Output::SegmentTensions | Output::Bearings if model.system().null_space.len() > 1 => {
@@ -353,7 +369,7 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
     outputs: &[Output],
     symbolic: impl FnOnce(&Model<f64>, &[Sym]) -> Result<Model<Sym>, E>,
 ) -> Result<Traced, E> {
-    let elimination = capstan_elimination(model);
+    let elimination = capstan_elimination(model, outputs);
     check_with(model, outputs, &elimination)?;
     // Each output once, in the order asked for.
     let mut unique: Vec<Output> = Vec::new();

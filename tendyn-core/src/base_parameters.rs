@@ -11,7 +11,7 @@
 //! 1. `Y` is computed in double-double and stacked over deterministic, well-spread states (a Kronecker sequence over `q`
 //!    in `[−π, π]`, `q̇` in `[−3, 3]`, `q̈` in `[−10, 10]`), at least three rows per
 //!    parameter.
-//! 2. Each column is made dimensionless with the mechanism's length `L` (the largest
+//! 2. Each column is brought to common units with the mechanism's length `L` (the largest
 //!    distance of a body origin from the base at `q = 0`, at least 1 mm): mass columns
 //!    divided by `L²`, first moments by `L`, so that every column multiplies a parameter
 //!    in the inertia's units (`m L²`, `m c L`) and all have the units of `Q` per kg·m².
@@ -37,7 +37,7 @@ use crate::regressor::{self, Parameter, Quantity};
 use crate::{Data, DoubleDouble};
 use nalgebra::DMatrix;
 
-/// A column whose (dimensionless) norm is below this fraction of the largest acts on no
+/// A column whose norm (in those common units) is below this fraction of the largest acts on no
 /// generalized force: its values are the double-double round-off of an exact zero.
 pub const ZERO: f64 = 1e-20;
 

@@ -87,15 +87,14 @@ pub struct Body<T> {
     pub friction: Option<BearingFriction>,
 }
 
-impl<T> Body<T> {
+impl Body<f64> {
     /// Whether the model counts on the body's mass being axisymmetric about its axis: a
-    /// pulley that turns relative to its carrier but whose frame does not spin. Validation
-    /// leaves such a pulley in its housing frame only when its mass properties are
-    /// axisymmetric (`spins`), and the dynamics are exact only for such a mass, so whatever
-    /// changes its mass properties (identification) must keep them so.
+    /// body that turns relative to its parent (a nonzero coupling) but whose frame does not
+    /// spin. Validation allows that only for a mass axisymmetric about the axis (a file's
+    /// pulley, a rigid tree's body), and the dynamics are exact only for such a mass, so
+    /// whatever changes its mass properties (identification) must keep them so.
     pub fn axisymmetric(&self) -> bool {
-        !self.spins
-            && matches!(&self.kind, BodyKind::Pulley { role, .. } if *role != PulleyRole::Fixed)
+        !self.spins && self.coupling.iter().any(|&c| c != 0.0)
     }
 }
 

@@ -28,9 +28,10 @@
 //! that make every parameter an inertia). It does not act on the base parameters, so where
 //! the least-squares estimate completed by the file's values is physical the two agree;
 //! otherwise it moves them by about `λ`, 1e-6 of the data term's mean curvature, so that
-//! the data decide and the file only breaks ties. A pulley whose frame does not spin (its
-//! mass axisymmetric in the file) stays axisymmetric: the model's dynamics of it hold for
-//! no other mass.
+//! the data decide and the file only breaks ties. A body that turns but whose frame does
+//! not spin (a pulley whose mass the file makes axisymmetric, such a body of a rigid tree)
+//! stays axisymmetric about its axis, tilted or not: the model's dynamics of it hold for no
+//! other mass.
 //!
 //! The problem is convex (a quadratic over a product of cones) and is solved by the barrier
 //! method (Boyd & Vandenberghe, *Convex Optimization*, §11.3): Newton's method on
@@ -49,16 +50,17 @@
 //! square it. That is what lets the gap fall to 1e-28: with `H`, rounds stopped settling
 //! at gaps of 1e-20 to 1e-24, and since a body the optimum puts on the boundary stays
 //! inside by about the square root of the gap (over the data's curvature across it), motion
-//! of condition 1e6 cost the estimate 1e-9 to 3e-7 of the largest base parameter (3e-12
-//! now). Only the Newton system is formed from `H = Bᵀ B`: its round-off slows Newton's
-//! method, it does not move the point it converges to. Hand-written: the least-squares crates built on nalgebra
+//! of condition 2e6 cost the estimate 1e-9 to 3e-7 of the largest base parameter (3e-12 to
+//! 3e-11 now). Only the Newton system is formed from `H = Bᵀ B`: its round-off slows
+//! Newton's method, it does not move the point it converges to. Hand-written: the
+//! least-squares crates built on nalgebra
 //! (levenberg-marquardt 0.15) pull a second nalgebra, and Clarabel's semidefinite cones
 //! need a system BLAS and LAPACK.
 
 use crate::base_parameters::{characteristic_length, dimension, BaseParameters};
 use crate::error::{Error, Result};
 use crate::identification::{least_squares, stack, Identification, Sample};
-use crate::model::{Body, Model};
+use crate::model::Model;
 use crate::regressor::{self, Quantity};
 use nalgebra::{DMatrix, DVector, Matrix4};
 
@@ -145,7 +147,10 @@ pub fn identify_consistent(
     let residual = &target - &y * DVector::from_column_slice(&estimates);
     let rss = residual.norm_squared();
     let eigenvalues: Vec<_> = (0..model.bodies().len())
-        .map(|b| problem.pseudo_inertia(b, &theta).symmetric_eigenvalues())
+        .map(|b| {
+            let at = problem.first[b];
+            (problem.pseudo_inertia_of(&parameters[at..at + 10])).symmetric_eigenvalues()
+        })
         .collect();
     let largest = eigenvalues.iter().fold(0.0f64, |m, e| m.max(e.max()));
     let bodies = (0..model.bodies().len())
@@ -195,7 +200,8 @@ pub fn identify_consistent(
 }
 
 /// The problem in the variables `θ`: per body the ten entries of `J̃ = D J D`
-/// (`D = diag(1, 1, 1, L)`, so that every entry is an inertia), in the order of
+/// (`D = diag(1, 1, 1, L)`, so that every entry is an inertia; for a body kept
+/// axisymmetric, of `J̃' = G⁻¹ J̃ G⁻ᵀ`, [`axial_frame`]), in the order of
 /// [`SYMMETRIC_BASIS`], in the slots of its ten parameters; friction parameters as they
 /// are. In `θ` a body near the boundary is near it in its own entries (a planar body's
 /// `Σ_zz`), where in `π` it would be the difference `½ (xx + yy − zz)` of entries a
@@ -216,10 +222,13 @@ struct Problem {
     prior: Vec<f64>,
     /// Per body, the index of its first slot.
     first: Vec<usize>,
-    /// Per body, whether it is a pulley that turns but whose frame does not spin (the file
-    /// gives it an axisymmetric mass, and the model counts on it): its estimate stays
-    /// axisymmetric about its axis, or the model would no longer describe it.
-    axisymmetric: Vec<bool>,
+    /// Per body that turns but whose frame does not spin ([`crate::model::Body::axisymmetric`]:
+    /// the model counts on a mass axisymmetric about its joint axis), the map `G` of
+    /// [`axial_frame`] and its inverse. Its variables are the entries of `J̃' = G⁻¹ J̃ G⁻ᵀ`
+    /// (the body seen with its axis along z through the origin), which Newton's steps keep
+    /// axisymmetric about z: its estimate stays axisymmetric about its axis, or the model
+    /// would no longer describe it.
+    axial_frames: Vec<Option<(Matrix4<f64>, Matrix4<f64>)>>,
     /// The slots of the friction parameters.
     friction: Vec<usize>,
     /// `L` of `D`: the mechanism's length ([`crate::base_parameters`]).
@@ -245,7 +254,13 @@ impl Problem {
             }
         }
         let length = characteristic_length(model);
-        let axisymmetric = model.bodies().iter().map(Body::axisymmetric).collect();
+        let axial_frames = (model.bodies().iter())
+            .map(|b| {
+                let joint = (-b.joint_to_origin).to_array();
+                b.axisymmetric()
+                    .then(|| axial_frame(b.axis.to_array(), joint, length))
+            })
+            .collect();
         // K (r × p): column c is what parameter c adds to each base parameter.
         let mut k = DMatrix::<f64>::zeros(r, p);
         for (i, group) in base.groups.iter().enumerate() {
@@ -310,15 +325,19 @@ impl Problem {
             to_parameters: DMatrix::identity(p, p),
             prior,
             first,
-            axisymmetric,
+            axial_frames,
             friction,
             length,
         };
-        for &at in &problem.first {
+        for (b, &at) in problem.first.iter().enumerate() {
             for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
                 let mut unit = Matrix4::zeros();
                 unit[(row, column)] = 1.0;
                 unit[(column, row)] = 1.0;
+                // A body kept axisymmetric has the entries of `J̃'`, `J̃ = G J̃' Gᵀ`.
+                if let Some((g, _)) = &problem.axial_frames[b] {
+                    unit = g * unit * g.transpose();
+                }
                 let column_of_t = problem.parameters_of(&unit);
                 for (i, x) in column_of_t.iter().enumerate() {
                     problem.to_parameters[(at + i, at + k)] = *x;
@@ -399,8 +418,13 @@ impl Problem {
         let typical = if typical > 0.0 { typical } else { 1e-6 };
         let mut theta = DVector::from_column_slice(&self.prior);
         for (b, j) in priors.iter().enumerate() {
-            let smallest = j.symmetric_eigenvalues().min();
-            let lifted = j + Matrix4::identity() * ((-smallest).max(0.0) + 1e-3 * typical);
+            // A body kept axisymmetric starts from `J̃' = G⁻¹ J̃ G⁻ᵀ` (its variables).
+            let seen = match &self.axial_frames[b] {
+                Some((_, inverse)) => inverse * j * inverse.transpose(),
+                None => *j,
+            };
+            let smallest = seen.symmetric_eigenvalues().min();
+            let lifted = seen + Matrix4::identity() * ((-smallest).max(0.0) + 1e-3 * typical);
             for (k, &(row, column)) in SYMMETRIC_BASIS.iter().enumerate() {
                 theta[self.first[b] + k] = lifted[(row, column)];
             }
@@ -499,8 +523,10 @@ impl Problem {
         let mut units: Vec<(usize, Vec<Matrix4<f64>>)> = Vec::new();
         for b in 0..self.first.len() {
             let at = self.first[b];
-            let c = self.pseudo_inertia(b, theta).cholesky()?.l();
-            let basis = if self.axisymmetric[b] {
+            let j = self.pseudo_inertia(b, theta);
+            let c = j.cholesky()?.l();
+            // A body kept axisymmetric: `J̃'` axisymmetric about z, as every step.
+            let basis = if self.axial_frames[b].is_some() {
                 axisymmetric_basis()
             } else {
                 symmetric_basis()
@@ -534,8 +560,8 @@ impl Problem {
         let mut system = DMatrix::<f64>::identity(p, p);
         // `f`'s gradient `Bᵀ (B θ − c)`, once: the system's right-hand side and the slope
         // the line search needs.
-        let residual = self.root.transpose() * (&self.root * theta - &self.c);
-        let slope = &residual * t;
+        let gradient_f = self.root.transpose() * (&self.root * theta - &self.c);
+        let slope = &gradient_f * t;
         let mut gradient = barrier_gradient;
         for (at, block) in &blocks {
             let k = block.nrows();
@@ -562,7 +588,7 @@ impl Problem {
         }
         mu.extend(self.friction.iter().map(|&c| phi[c]));
         Some(Newton {
-            slope: step.dot(&residual),
+            slope: step.dot(&gradient_f),
             step,
             mu,
             decrement,
@@ -643,6 +669,35 @@ fn symmetric_basis() -> Vec<Matrix4<f64>> {
             unit
         })
         .collect()
+}
+
+/// The map of pseudo-inertias `J̃ = G J̃' Gᵀ` from a frame whose z axis is the joint axis
+/// through the origin to the body's, where the axis is the line through `joint` along the
+/// unit vector `axis` (body frame): `r = R r' + joint`, so `G = [[R, joint/L], [0, 1]]` in
+/// the units of `J̃ = D J D` ([`Problem`]), `R` a rotation whose third column is `axis`
+/// (the identity for z). With its inverse `[[Rᵀ, −Rᵀ joint/L], [0, 1]]`.
+fn axial_frame(axis: [f64; 3], joint: [f64; 3], length: f64) -> (Matrix4<f64>, Matrix4<f64>) {
+    let a = nalgebra::Vector3::from(axis).normalize();
+    let helper = if a.x.abs() < 0.9 {
+        nalgebra::Vector3::x()
+    } else {
+        nalgebra::Vector3::y()
+    };
+    let e1 = (helper - a * helper.dot(&a)).normalize();
+    let e2 = a.cross(&e1);
+    let r = nalgebra::Matrix3::from_columns(&[e1, e2, a]);
+    let shift = nalgebra::Vector3::from(joint) / length;
+    let mut g = Matrix4::identity();
+    g.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+    g.fixed_view_mut::<3, 1>(0, 3).copy_from(&shift);
+    let mut inverse = Matrix4::identity();
+    inverse
+        .fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&r.transpose());
+    inverse
+        .fixed_view_mut::<3, 1>(0, 3)
+        .copy_from(&(-(r.transpose() * shift)));
+    (g, inverse)
 }
 
 /// The orthonormal basis of the pseudo-inertias axisymmetric about z (`Σ_xx = Σ_yy`, no
