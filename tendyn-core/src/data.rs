@@ -437,8 +437,8 @@ impl<T: Numeric> Data<T> {
     /// The generalized forces that motor torques and ground-level tendon tensions deliver
     /// at `(q, q̇)`: `Σ motor columns · τ + A(q, q̇) T` ([`actuator_forces`], `A` the state's
     /// where guides have capstan friction). What identification takes as measured `Q`.
-    /// `Error::NotYet` where a turning idler follows a guide with capstan friction: what
-    /// the tendons deliver then depends on `q̈` (forward dynamics carries it).
+    /// Where a turning idler follows a guide with friction, that includes what the idler
+    /// demands through the guide's friction (`generalized_forces`' `Σ_i W_i (N_i − τ_f,i)`).
     pub fn actuator_forces(
         &mut self,
         model: &Model<T>,
@@ -447,15 +447,6 @@ impl<T: Numeric> Data<T> {
         motor_torques: &[T],
         tendon_tensions: &[T],
     ) -> Result<Vec<T>> {
-        if model.capstan_before_an_idler() {
-            return Err(Error::NotYet(
-                "the actuators' generalized forces alone where a turning idler follows a guide \
-                 with capstan friction (`mu > 0`) towards the tendon's exit: the idler's inertia \
-                 then reaches the joints scaled by the guide's friction, so what the tendons \
-                 deliver depends on q̈; forward and inverse dynamics handle it"
-                    .into(),
-            ));
-        }
         let inputs = self.check_forward_inputs(model, q, qd, motor_torques, tendon_tensions)?;
         let a = structure(model, q, qd, &mut self.ws);
         let out = actuator_forces(model, &a, motor_torques, tendon_tensions);

@@ -201,7 +201,9 @@ fn expanded_sum<T: Real>(model: &Model<T>, known: &Loads<T, Vec3<T>>, out: &mut 
 
 /// The generalized forces the actuators must deliver at a state: the expanded tree's
 /// `M q̈ + h + g − Q_ext` less what the bearings' friction does, `Σ_b c_bᵀ τ_f,b`
-/// ([`crate::friction`]; the direction at rest from `q̈`).
+/// ([`crate::friction`]; the direction at rest from `q̈`), and where turning idlers sit
+/// behind guides with friction, their `Σ_i W_i (N_i − τ_f,i)` ([`idlers_behind_capstan`];
+/// the guides' directions at rest from `q̈` too).
 pub fn generalized_forces<T: Real>(
     model: &Model<T>,
     q: &[T],
@@ -212,6 +214,11 @@ pub fn generalized_forces<T: Real>(
 ) {
     expanded_generalized_forces(model, q, qd, qdd, true, true, ws, out);
     friction::apply_at(model, qd, Some(qdd), Side::Delivered, out);
+    if model.capstan_before_an_idler() {
+        friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
+        friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
+        add_idlers_behind_capstan(model, ws, out);
+    }
 }
 
 /// Joint-space mass matrix `M(q)`, pulley inertias included through their couplings, by
@@ -320,43 +327,15 @@ pub fn idlers_behind_capstan<T: Real>(
     friction::bearing_torques(model, qd, None, &mut ws.friction);
     forward(model, q, qd, &zeros, true, true, &mut ws.motion);
     let mut out = Vec::new();
-    for (s, (strand, factors)) in model.strands.iter().zip(&ws.capstan).enumerate() {
-        for (i, idler) in strand.idlers.iter().enumerate() {
-            if idler.guide.is_some() {
-                continue;
-            }
-            // T_k / T_{i+1} for k = i, i − 1, …, 0, and the weight they give.
-            let mut ratio = T::one();
-            let mut weight = zeros.clone();
-            let mut behind = false;
-            for k in (0..=i).rev() {
-                if k < i && strand.idlers[k].capstan().is_some() {
-                    ratio = ratio * factors[k];
-                    behind = true;
-                }
-                if behind {
-                    let step = T::from_f64(idler.turn / idler.radius);
-                    for (w, share) in weight.iter_mut().zip(&strand.shares[k]) {
-                        *w = *w + step * (ratio - T::one()) * *share;
-                    }
-                }
-            }
-            if !behind {
-                continue;
-            }
-            let mut demand = tension::axial_demand(model, &ws.motion, idler.body);
-            if model.bodies[idler.body].friction.is_some() {
-                demand = demand - ws.friction[idler.body];
-            }
-            out.push(IdlerBehindCapstan {
-                strand: s,
-                idler: i,
-                weight,
-                demand,
-                inertia: Vec::new(),
-            });
-        }
-    }
+    idler_weights(model, &ws.capstan, |strand, idler, weight| {
+        out.push(IdlerBehindCapstan {
+            strand,
+            idler,
+            weight,
+            demand: idler_demand(model, ws, model.strands[strand].idlers[idler].body),
+            inertia: Vec::new(),
+        });
+    });
     // ∂N_i/∂q̈: the axial demands of a motion from rest with one unit acceleration and no
     // gravity (N is affine in q̈): n more forward passes, only for such mechanisms.
     let mut unit = zeros.clone();
@@ -371,6 +350,71 @@ pub fn idlers_behind_capstan<T: Real>(
         }
     }
     out
+}
+
+/// Calls `each(strand, idler, W_i)` for every turning idler behind a guide with capstan
+/// friction, `W_i` (one entry per joint) at the guides' factors `capstan`
+/// ([`friction::capstan_factors`]): the derivation is [`idlers_behind_capstan`]'s. Nothing
+/// is called where no such idler exists.
+pub fn idler_weights<T: Real>(
+    model: &Model<T>,
+    capstan: &[Vec<T>],
+    mut each: impl FnMut(usize, usize, Vec<T>),
+) {
+    if !model.capstan_before_an_idler() {
+        return;
+    }
+    for (s, (strand, factors)) in model.strands.iter().zip(capstan).enumerate() {
+        for (i, idler) in strand.idlers.iter().enumerate() {
+            if idler.guide.is_some() {
+                continue;
+            }
+            // T_k / T_{i+1} for k = i, i − 1, …, 0, and the weight they give.
+            let mut ratio = T::one();
+            let mut weight = vec![T::zero(); model.dof];
+            let mut behind = false;
+            for k in (0..=i).rev() {
+                if k < i && strand.idlers[k].capstan().is_some() {
+                    ratio = ratio * factors[k];
+                    behind = true;
+                }
+                if behind {
+                    let step = T::from_f64(idler.turn / idler.radius);
+                    for (w, share) in weight.iter_mut().zip(&strand.shares[k]) {
+                        *w = *w + step * (ratio - T::one()) * *share;
+                    }
+                }
+            }
+            if behind {
+                each(s, i, weight);
+            }
+        }
+    }
+}
+
+/// `N_i − τ_f,i` of idler body `body`: its axial demand over `ws.motion` less its bearing's
+/// friction in `ws.friction`.
+fn idler_demand<T: Real>(model: &Model<T>, ws: &Workspace<T>, body: usize) -> T {
+    let demand = tension::axial_demand(model, &ws.motion, body);
+    if model.bodies[body].friction.is_some() {
+        demand - ws.friction[body]
+    } else {
+        demand
+    }
+}
+
+/// Adds `Σ_i W_i (N_i − τ_f,i)` to the generalized forces `out`: what the actuators deliver
+/// beyond `M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` where turning idlers sit behind guides
+/// with friction ([`idlers_behind_capstan`]), over the state's motion, bearing torques and
+/// capstan factors in `ws` (`ws.motion` with the tendons' inert bodies: a massless idler
+/// demands nothing either way).
+fn add_idlers_behind_capstan<T: Real>(model: &Model<T>, ws: &Workspace<T>, out: &mut [T]) {
+    idler_weights(model, &ws.capstan, |strand, idler, weight| {
+        let demand = idler_demand(model, ws, model.strands[strand].idlers[idler].body);
+        for (o, w) in out.iter_mut().zip(&weight) {
+            *o = *o + *w * demand;
+        }
+    });
 }
 
 /// Forward dynamics' joint accelerations from its right-hand side `rhs` (replaced by `q̈`),
@@ -594,8 +638,9 @@ pub fn inverse_dynamics<T: Real>(
         &mut out.null_space_tensions,
         model.tendons.iter().map(|t| x[t.unknown] - x0[t.unknown]),
     );
-    // What the actuators deliver, `Σ c_m τ_m + A T`, is `M q̈ + h + g − Q_ext`: take it from
-    // the tension-free pass over the same motion rather than from the solved tensions. A
+    // What the actuators deliver, `Σ c_m τ_m + A T`, is `M q̈ + h + g − Q_ext` (less the
+    // bearings' friction, plus what idlers behind guides with friction demand): take it
+    // from the tension-free pass over the same motion rather than from the solved tensions. A
     // redundant routing's null-space part, `A N λ`, vanishes only to rounding, so summing
     // `A T` loses `u·|A||T|`: everything when the floors lift the tensions far above what
     // the motion needs. The base reaction likewise (momentum balance: the tendons are
@@ -612,6 +657,7 @@ pub fn inverse_dynamics<T: Real>(
         Side::Delivered,
         &mut out.generalized_forces,
     );
+    add_idlers_behind_capstan(model, ws, &mut out.generalized_forces);
     refill(
         &mut out.bearing_friction,
         (model.bodies.iter().zip(&ws.friction).enumerate())

@@ -95,11 +95,6 @@ pub enum Error {
     /// e.g. a massless chain): it is not positive definite at that state.
     #[error("forward dynamics: {0}")]
     Singular(String),
-
-    /// What the mechanism asks for is a named limitation of this version (the message says
-    /// what and what to use instead), e.g. forward dynamics with capstan friction on guides.
-    #[error("not implemented yet: {0}")]
-    NotYet(String),
 }
 
 /// The tension system `E x = b` of a rejected routing, named for a person to read.

@@ -12,7 +12,8 @@ use crate::spatial::Vec3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Output {
     /// `Q = M q̈ + h + g − Q_ext − Σ_b c_bᵀ τ_f,b` (what the actuators deliver, bearing
-    /// friction included).
+    /// friction included; plus `Σ_i W_i (N_i − τ_f,i)` of idlers behind guides with
+    /// friction, `crate::dynamics::idlers_behind_capstan`).
     GeneralizedForces,
     /// Motor torques and ground-level tendon tensions (the tension distribution included).
     Actuation,

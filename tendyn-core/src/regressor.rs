@@ -41,13 +41,18 @@
 //! ```
 //!
 //! A bearing's friction torque `τ_f = −(coulomb · s + viscous · ω_b)` ([`crate::friction`])
-//! needs `−c_bᵀ τ_f` of the actuators: its columns are `c_b s` and `c_b ω_b`. The external
+//! needs `−c_bᵀ τ_f` of the actuators: its columns are `c_b s` and `c_b ω_b`. Where a
+//! turning idler follows a guide with capstan friction, the actuators deliver
+//! `W_i (N_i − τ_f,i)` more ([`crate::dynamics::idlers_behind_capstan`]); its axial demand
+//! `N_i = axis · N` is the row above with `u = 0`, `r` the idler's axis, and its friction
+//! adds `W_i s` and `W_i ω_b` to its two columns. The external
 //! wrench, not a parameter, is the known part `Q₀ = −J_bᵀ (f, n + p × f)` of its link `b`.
 //!
 //! This shares the forward recursion with [`crate::dynamics`] but not the backward one, so
 //! `Y π + Q₀ = Q` checks the Newton-Euler recursion against the principle of virtual power.
 
 use crate::composite::point_shift;
+use crate::dynamics;
 use crate::friction;
 use crate::kinematics::{forward, Motion};
 use crate::model::Model;
@@ -149,6 +154,10 @@ pub struct Work<T> {
     /// `e_k` and zeros, `n` each.
     unit_qdd: Vec<T>,
     zeros: Vec<T>,
+    /// Each body's first column in `Y`.
+    first_column: Vec<usize>,
+    /// The guides' capstan factors ([`friction::capstan_factors`]).
+    capstan: Vec<Vec<T>>,
 }
 
 impl<T: Real> Work<T> {
@@ -161,6 +170,10 @@ impl<T: Real> Work<T> {
             jacobian: vec![(Vec3::zero(), Vec3::zero()); n * nb],
             unit_qdd: vec![T::zero(); n],
             zeros: vec![T::zero(); n],
+            first_column: vec![0; nb],
+            capstan: (model.strands().iter())
+                .map(|s| vec![T::one(); s.idlers.len()])
+                .collect(),
         }
     }
 }
@@ -206,19 +219,9 @@ pub fn regressor<T: Real>(
         for k in 0..n {
             let (u, r) = work.jacobian[k * nb + b];
             let row = &mut y[k * p + column..k * p + column + 10];
-            row[0] = u.dot(a);
-            let first = u.cross(wd) + u.cross(w).cross(w) + a.cross(r);
-            row[1..4].copy_from_slice(&first.to_array());
-            let s = r.cross(w);
-            let (r, s, w, wd) = (r.to_array(), s.to_array(), w.to_array(), wd.to_array());
-            for (e, &(i, j)) in INERTIA_ENTRIES.iter().enumerate() {
-                let mut v = r[i] * wd[j] + s[i] * w[j];
-                if i != j {
-                    v = v + r[j] * wd[i] + s[j] * w[i];
-                }
-                row[4 + e] = v;
-            }
+            row.copy_from_slice(&inertial_row(u, r, a, w, wd));
         }
+        work.first_column[b] = column;
         column += 10;
         if body.friction.is_some() {
             let joints = &pattern.joints;
@@ -230,6 +233,7 @@ pub fn regressor<T: Real>(
             column += 2;
         }
     }
+    idlers_behind_capstan(model, q, qd, qdd, work, y, p);
     for v in known.iter_mut() {
         *v = T::zero();
     }
@@ -241,4 +245,65 @@ pub fn regressor<T: Real>(
             *v = -(u.dot(wrench.force) + r.dot(moment));
         }
     }
+}
+
+/// The coefficients of `u · F + r · N` in a body's ten inertial parameters, `(F, N)` its
+/// inertial wrench about its origin (the module's formulas) at origin acceleration `a`
+/// (gravity included), angular velocity `w` and acceleration `wd`, all in its frame.
+fn inertial_row<T: Real>(u: Vec3<T>, r: Vec3<T>, a: Vec3<T>, w: Vec3<T>, wd: Vec3<T>) -> [T; 10] {
+    let mut row = [T::zero(); 10];
+    row[0] = u.dot(a);
+    let first = u.cross(wd) + u.cross(w).cross(w) + a.cross(r);
+    row[1..4].copy_from_slice(&first.to_array());
+    let s = r.cross(w);
+    let (r, s, w, wd) = (r.to_array(), s.to_array(), w.to_array(), wd.to_array());
+    for (e, &(i, j)) in INERTIA_ENTRIES.iter().enumerate() {
+        let mut v = r[i] * wd[j] + s[i] * w[j];
+        if i != j {
+            v = v + r[j] * wd[i] + s[j] * w[i];
+        }
+        row[4 + e] = v;
+    }
+    row
+}
+
+/// Adds to `y` (rows of `p` entries) what turning idlers behind guides with friction
+/// demand of the actuators beyond their couplings, `Σ_i W_i (N_i − τ_f,i)`
+/// ([`crate::dynamics::idlers_behind_capstan`]): idler `i`'s axial demand `N_i = axis · N`
+/// is linear in its own parameters (`inertial_row` with `u = 0`, `r` its axis), and
+/// `−τ_f,i = coulomb · s + viscous · ω_b`. The guides' directions at rest come from `q̈`,
+/// as in inverse dynamics. Nothing is done without such idlers.
+fn idlers_behind_capstan<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    qd: &[T],
+    qdd: &[T],
+    work: &mut Work<T>,
+    y: &mut [T],
+    p: usize,
+) {
+    if !model.capstan_before_an_idler() {
+        return;
+    }
+    friction::capstan_factors(model, q, qd, Some(qdd), &mut work.capstan);
+    let (state, first_column) = (&work.state, &work.first_column);
+    dynamics::idler_weights(model, &work.capstan, |strand, idler, weight| {
+        let b = model.strands()[strand].idlers[idler].body;
+        let (m, body) = (&state[b], &model.bodies[b]);
+        let axial = inertial_row(Vec3::zero(), body.axis, m.accel, m.omega, m.omega_dot);
+        let bearing = body.friction.map(|_| {
+            let (rate, direction) = friction::rate_and_direction(model, b, qd, Some(qdd));
+            [direction, rate]
+        });
+        let column = first_column[b];
+        for (k, w) in weight.iter().enumerate() {
+            let row = &mut y[k * p + column..];
+            for (v, x) in row.iter_mut().zip(&axial) {
+                *v = *v + *w * *x;
+            }
+            for (v, x) in row[10..].iter_mut().zip(bearing.iter().flatten()) {
+                *v = *v + *w * *x;
+            }
+        }
+    });
 }

@@ -52,3 +52,26 @@ pub fn forward_dynamics_term_scale(
         .forward_dynamics_scale(model, q, qd, motor_torques, tendon_tensions)
         .expect("a valid state")
 }
+
+/// The size of the terms of the generalized forces the actuators deliver,
+/// `Σ c_m τ_m + A(σ, q) T`: the largest `|τ_m|` and `|A_jk T_k|` (each tendon's column of
+/// the state from `Data::actuator_forces` with that tendon alone at 1 N). Delivered forces
+/// are measured relative to this: a redundant routing's tensions cancel in the sum.
+pub fn actuator_force_scale(
+    model: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+    motor_torques: &[f64],
+    tendon_tensions: &[f64],
+) -> f64 {
+    let mut data = tendyn_core::Data::new(model);
+    let idle = vec![0.0; motor_torques.len()];
+    let mut size = motor_torques.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (k, &t) in tendon_tensions.iter().enumerate() {
+        let mut alone = vec![0.0; tendon_tensions.len()];
+        alone[k] = 1.0;
+        let column = (data.actuator_forces(model, q, qd, &idle, &alone)).expect("a valid state");
+        size = column.iter().fold(size, |m, a| m.max((a * t).abs()));
+    }
+    size
+}
