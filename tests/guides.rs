@@ -191,10 +191,11 @@ fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynami
     assert!(model.capstan_before_an_idler());
     let worst = check_capstan_power(&model, 200, 17);
     println!("pin then idler: power balance worst {worst:.2e}");
-    let worst = check_forward_after_inverse(&model, 200, 17);
-    println!("pin then idler: forward after inverse worst {worst:.2e}");
-    let worst = check_delivered(&model, 200, 17);
-    println!("pin then idler: generalized forces against A(σ, q) T worst {worst:.2e}");
+    let (forward, delivered) = check_after_inverse(&model, 200, 17);
+    println!(
+        "pin then idler: forward after inverse worst {forward:.2e}, generalized forces \
+         against A(σ, q) T worst {delivered:.2e}"
+    );
     use tendyn_codegen::outputs::Output;
     let outputs = [Output::ForwardDynamics, Output::ForwardDynamicsDerivatives];
     tendyn_codegen::outputs::check(&model, &outputs).unwrap();
@@ -203,7 +204,8 @@ fn a_turning_idler_after_a_guide_with_friction_balances_power_and_forward_dynami
 /// Random mechanisms whose strands' first idlers are guides with friction and whose later
 /// idlers turn: inverse dynamics balances power with the guides' dissipation (and its `E`
 /// is the recursion's), and forward dynamics, with the idlers' inertia reaching the joints
-/// through the guides' friction, gives back the motion inverse dynamics solved for.
+/// through the guides' friction, gives back the motion inverse dynamics solved for, whose
+/// generalized forces are what its tensions deliver through the state's columns.
 #[test]
 fn random_mechanisms_with_idlers_behind_guides_with_friction_balance_power_and_give_the_motion_back(
 ) {
@@ -222,8 +224,7 @@ fn random_mechanisms_with_idlers_behind_guides_with_friction_balance_power_and_g
             continue;
         }
         let power = check_capstan_power(&model, 60, seed);
-        let forward = check_forward_after_inverse(&model, 60, seed);
-        let delivered = check_delivered(&model, 60, seed);
+        let (forward, delivered) = check_after_inverse(&model, 60, seed);
         println!(
             "random_{seed}: power {power:.2e}, forward after inverse {forward:.2e}, \
              delivered {delivered:.2e}"
@@ -236,44 +237,19 @@ fn random_mechanisms_with_idlers_behind_guides_with_friction_balance_power_and_g
     );
 }
 
-/// Forward dynamics fed the motor torques and tensions inverse dynamics solved for at
-/// random sliding states (both then take the same directions): the worst error in `q̈`
-/// relative to the largest `|q̈|` and 1, asserted within 1e-11.
-fn check_forward_after_inverse(model: &Model<f64>, states: usize, seed: u64) -> f64 {
+/// What inverse dynamics solved for at random sliding states (forward dynamics then takes
+/// the same directions), turned back:
+/// - forward dynamics fed its motor torques and tensions: the worst error in `q̈` relative
+///   to the largest `|q̈|` and 1, asserted within 1e-11;
+/// - its `generalized_forces` and `Data::generalized_forces` (both from the tension-free
+///   recursion and, behind guides with friction, the idlers' weights) against what its
+///   motor torques and tensions deliver through the state's columns `A(σ, q)`
+///   (`Data::actuator_forces`: the joint rows of the state's `E`): the worst difference
+///   relative to the largest `|A_jk T_k|` and `|τ|`, asserted within 1e-12.
+fn check_after_inverse(model: &Model<f64>, states: usize, seed: u64) -> (f64, f64) {
     let mut solver = Data::new(model);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut worst = 0.0f64;
-    for _ in 0..states {
-        let [q, qd, qdd] = random_state(&mut rng, model.dof());
-        let Ok(r) = solver.inverse_dynamics(model, &q, &qd, &qdd) else {
-            continue; // an uncontrollable state, counted by the power check
-        };
-        let r = r.clone();
-        let back = solver
-            .forward_dynamics(model, &q, &qd, &r.motor_torques, &r.tendon_tensions)
-            .unwrap();
-        let size = qdd.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        let e = back
-            .iter()
-            .zip(&qdd)
-            .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()))
-            / size;
-        assert!(e <= 1e-11, "{}: q̈ {back:?} for {qdd:?}", model.name());
-        worst = worst.max(e);
-    }
-    worst
-}
-
-/// `generalized_forces` (inverse dynamics' and `Data::generalized_forces`, both from the
-/// tension-free recursion and, behind guides with friction, the idlers' weights) against
-/// what the solved motor torques and tensions deliver through the state's columns
-/// `A(σ, q)` (`Data::actuator_forces`: the joint rows of the state's `E`), at random
-/// sliding states: the worst difference relative to the largest `|A_jk T_k|` and `|τ|`,
-/// asserted within 1e-12.
-fn check_delivered(model: &Model<f64>, states: usize, seed: u64) -> f64 {
-    let mut solver = Data::new(model);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut worst = 0.0f64;
+    let (mut forward, mut delivered) = (0.0f64, 0.0f64);
     for _ in 0..states {
         let [q, qd, qdd] = random_state(&mut rng, model.dof());
         let Ok(r) = solver.inverse_dynamics(model, &q, &qd, &qdd) else {
@@ -281,24 +257,37 @@ fn check_delivered(model: &Model<f64>, states: usize, seed: u64) -> f64 {
         };
         let r = r.clone();
         let (tau, t) = (&r.motor_torques, &r.tendon_tensions);
-        let delivered = solver.actuator_forces(model, &q, &qd, tau, t).unwrap();
+        let back = solver.forward_dynamics(model, &q, &qd, tau, t).unwrap();
+        let size = qdd.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let e = back
+            .iter()
+            .zip(&qdd)
+            .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()))
+            / size;
+        assert!(e <= 1e-11, "{}: q̈ {back:?} for {qdd:?}", model.name());
+        forward = forward.max(e);
+
+        let through_columns = solver.actuator_forces(model, &q, &qd, tau, t).unwrap();
         let alone = solver
             .generalized_forces(model, &q, &qd, &qdd)
             .unwrap()
             .to_vec();
         let size = actuator_force_scale(model, &q, &qd, tau, t);
-        for ((a, b), c) in r.generalized_forces.iter().zip(&alone).zip(&delivered) {
+        for ((a, b), c) in (r.generalized_forces.iter())
+            .zip(&alone)
+            .zip(&through_columns)
+        {
             let e = (a - c).abs().max((b - c).abs()) / size;
             assert!(
                 e <= 1e-12,
-                "{}: Q {:?} and {alone:?} for {delivered:?}",
+                "{}: Q {:?} and {alone:?} for {through_columns:?}",
                 model.name(),
                 r.generalized_forces
             );
-            worst = worst.max(e);
+            delivered = delivered.max(e);
         }
     }
-    worst
+    (forward, delivered)
 }
 
 /// Forward dynamics with capstan friction: the tendons act through the state's columns
