@@ -169,10 +169,18 @@ fn forward_dynamics_derivatives_match_central_differences_in_double_double() {
 }
 
 /// Where the distribution's active set does not change within the step, the tensions are
-/// differentiable and their dual derivative is the difference quotient's limit.
+/// differentiable and their dual derivative is the difference quotient's limit: on the
+/// mechanisms above and on the seeded bounded-distribution systems of one to four null
+/// directions with floors and maxima (`tendyn_spec::bounded::SIZES`).
 #[test]
 fn actuation_derivatives_match_central_differences_where_the_active_set_holds() {
-    for (i, model) in mechanisms().iter().enumerate() {
+    let mut models = mechanisms();
+    for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
+        let seed = tendyn_spec::bounded::seed(n, m);
+        let text = tendyn_spec::bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
+        models.push(tendyn_core::parse(&text).unwrap());
+    }
+    for (i, model) in models.iter().enumerate() {
         let mut rng = ChaCha8Rng::seed_from_u64(90 + i as u64);
         let reference = model.cast_numeric::<DD>();
         let (mut data, mut dd) = (Data::new(model), Data::new(&reference));

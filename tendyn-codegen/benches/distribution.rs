@@ -6,7 +6,9 @@
 //!   decide) and with a 60 N maximum on every tendon (one direction with a status);
 //! - `bounded_1x3` (one joint, three tendons: two directions) and `bounded_3x6` (three
 //!   joints, six tendons: three directions), floors and maxima drawn per tendon, where the
-//!   generated code calls the dual active-set routine of `tendyn_core::distribution`.
+//!   generated code calls the dual active-set routine of `tendyn_core::distribution`;
+//!   and the same two with their derivatives (`actuation_derivatives`: the routine again
+//!   over dual numbers for each of the `3n` coordinates), on every state.
 //!
 //! `cargo bench -p tendyn-codegen --bench distribution` (pin with `taskset -c 0` and build
 //! with `RUSTFLAGS="-C target-cpu=native"` for the protocol's conditions). The generated
@@ -30,6 +32,14 @@ mod bounded_1x3 {
 #[allow(dead_code)]
 mod bounded_3x6 {
     include!("../golden/distribution/bounded_3x6.rs");
+}
+#[allow(dead_code)]
+mod bounded_1x3_derivatives {
+    include!("../golden/distribution/bounded_1x3_derivatives.rs");
+}
+#[allow(dead_code)]
+mod bounded_3x6_derivatives {
+    include!("../golden/distribution/bounded_3x6_derivatives.rs");
 }
 
 #[path = "common/states.rs"]
@@ -71,6 +81,23 @@ macro_rules! bench_actuation {
     }};
 }
 
+macro_rules! bench_derivatives {
+    ($group:expr, $label:literal, $module:ident, $n:literal) => {{
+        let data = states::<$n>(7, 2.0, 6.0);
+        $group.bench_function($label, |b| {
+            b.iter(|| {
+                for (q, qd, qdd) in &data {
+                    black_box($module::actuation_derivatives::<f64>(
+                        black_box(q),
+                        black_box(qd),
+                        black_box(qdd),
+                    ));
+                }
+            })
+        });
+    }};
+}
+
 fn distribution(c: &mut Criterion) {
     let mut group = c.benchmark_group("generated actuation (f64)");
     group.throughput(Throughput::Elements(STATES as u64));
@@ -78,6 +105,22 @@ fn distribution(c: &mut Criterion) {
     bench_actuation!(group, "example 3, d = 1, with maxima", example3_bounded, 3);
     bench_actuation!(group, "1 joint, 3 tendons, d = 2", bounded_1x3, 1);
     bench_actuation!(group, "3 joints, 6 tendons, d = 3", bounded_3x6, 3);
+    group.finish();
+    // With the derivatives: the distribution again over dual numbers per coordinate.
+    let mut group = c.benchmark_group("generated actuation_derivatives (f64)");
+    group.throughput(Throughput::Elements(STATES as u64));
+    bench_derivatives!(
+        group,
+        "1 joint, 3 tendons, d = 2",
+        bounded_1x3_derivatives,
+        1
+    );
+    bench_derivatives!(
+        group,
+        "3 joints, 6 tendons, d = 3",
+        bounded_3x6_derivatives,
+        3
+    );
     group.finish();
 }
 

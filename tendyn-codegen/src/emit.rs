@@ -70,12 +70,15 @@ fn bound(scalar: Scalar, compares: bool) -> TokenStream {
     }
 }
 
-/// Whether `f` decides a distribution's status (and so compares).
+/// Whether `f` decides a distribution's status or distributes (and so compares).
 fn compares(f: &Function) -> bool {
     matches!(
         f.shape,
         Shape::Actuation {
             status: StatusFrom::Line | StatusFrom::Solve | StatusFrom::SolveAtState { .. },
+            ..
+        } | Shape::ActuationJacobians {
+            distributed: StatusFrom::Solve | StatusFrom::SolveAtState { .. },
             ..
         }
     )
@@ -529,7 +532,12 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             let offset = take(*n);
             parse_quote!(#core::mechanism::Regression { y: #y, offset: #offset })
         }
-        Shape::ActuationJacobians { n, actuators } => {
+        Shape::ActuationJacobians {
+            n,
+            actuators,
+            distributed: StatusFrom::Solve | StatusFrom::SolveAtState { .. },
+        } => distributed_jacobians(f, values.collect(), *n, *actuators, core),
+        Shape::ActuationJacobians { n, actuators, .. } => {
             let value = take(*actuators);
             let mut jacobian = || ast::array((0..*actuators).map(|_| take(*n)));
             let (d_q, d_qd, d_qdd) = (jacobian(), jacobian(), jacobian());
@@ -550,6 +558,135 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             }
         }
     }
+}
+
+/// `actuation_derivatives` over several null directions (`values` as
+/// [`Shape::ActuationJacobians`] lays them out): the minimal-norm tensions distributed by
+/// `Actuation::bounded` (or `bounded_at_state`) for the value, and the same call over dual
+/// numbers once per coordinate for each column of the tendons' rows: its comparisons see
+/// the values alone, so every pass takes the value's active set and carries the
+/// derivative of its solution. The motors' rows are traced.
+fn distributed_jacobians(
+    f: &Function,
+    values: Vec<Expr>,
+    n: usize,
+    actuators: usize,
+    core: &syn::Path,
+) -> Expr {
+    let dist = (f.distribution.as_ref()).expect("a many-dimensional distribution's constants");
+    let tendons = dist.floor.len();
+    let motors = actuators - tendons;
+    let coordinates = 3 * n;
+    // Entry (row r, coordinate c) of the Jacobians, as traced.
+    let jacobian =
+        |r: usize, c: usize| &values[actuators + (c / n) * actuators * n + r * n + c % n];
+    let (floor, max) = (f64_array(&dist.floor), f64_array(&dist.max));
+    let actuation = quote!(#core::distribution::Actuation);
+    let dual = quote!(#core::dual::Dual);
+    // The problem for the value (bound as `problem`) and, over dual numbers, for
+    // coordinate `c`.
+    let (problem, along): (Expr, Box<dyn Fn(usize) -> Expr>) = match f.shape {
+        Shape::ActuationJacobians {
+            distributed: StatusFrom::SolveAtState { directions },
+            ..
+        } => {
+            let size = directions * tendons + directions + tendons;
+            let first = actuators + 3 * actuators * n;
+            let at_state = move |entry: &dyn Fn(usize) -> TokenStream| -> Expr {
+                let row = |d: usize| {
+                    let cells = (0..tendons).map(|k| entry(d * tendons + k));
+                    quote!([#(#cells),*])
+                };
+                let null = (0..directions).map(row);
+                let target = (0..directions).map(|d| entry(directions * tendons + d));
+                let inverse_length =
+                    (0..tendons).map(|k| entry(directions * tendons + directions + k));
+                parse_quote!(#core::distribution::AtState {
+                    null: [#(#null),*],
+                    floor: #floor,
+                    max: #max,
+                    target: [#(#target),*],
+                    inverse_length: [#(#inverse_length),*],
+                })
+            };
+            let value = |i: usize| {
+                let v = &values[first + i];
+                quote!(#v)
+            };
+            let problem = at_state(&value);
+            let (values, dual) = (values.clone(), dual.clone());
+            let along = move |c: usize| {
+                let entry = |i: usize| {
+                    let (v, t) = (&values[first + i], &values[first + (c + 1) * size + i]);
+                    quote!(#dual::new(#v, #t))
+                };
+                at_state(&entry)
+            };
+            (problem, Box::new(along))
+        }
+        _ => {
+            let rows = dist.null.iter().map(|r| f64_array(r));
+            let (target, inverse_length) =
+                (f64_array(&dist.target), f64_array(&dist.inverse_length));
+            let fixed: Expr = parse_quote!(#core::distribution::Fixed {
+                null: [#(#rows),*],
+                floor: #floor,
+                max: #max,
+                target: #target,
+                inverse_length: #inverse_length,
+            });
+            // Constants, the same for every pass: bound once.
+            (fixed, Box::new(|_| parse_quote!(problem)))
+        }
+    };
+    let call = match f.shape {
+        Shape::ActuationJacobians {
+            distributed: StatusFrom::SolveAtState { .. },
+            ..
+        } => quote!(bounded_at_state),
+        _ => quote!(bounded),
+    };
+    let (m, t0) = (&values[..motors], &values[motors..actuators]);
+    let passes = (0..coordinates).map(|c| {
+        let seeded = (0..tendons).map(|k| {
+            let (v, t) = (&t0[k], jacobian(motors + k, c));
+            quote!(#dual::new(#v, #t))
+        });
+        let problem = along(c);
+        quote!(#actuation::#call([], [#(#seeded),*], &#problem).tendon_tensions)
+    });
+    let tendon = |k: usize| quote!(tensions[#k]);
+    let value = m.iter().map(|x| quote!(#x)).chain((0..tendons).map(tendon));
+    let rows = |block: usize| {
+        let columns = |r: usize| -> TokenStream {
+            let cells: Vec<TokenStream> = (block * n..(block + 1) * n)
+                .map(|c| {
+                    if r < motors {
+                        let x = jacobian(r, c);
+                        quote!(#x)
+                    } else {
+                        let k = r - motors;
+                        quote!(along[#c][#k].tangent)
+                    }
+                })
+                .collect();
+            quote!([#(#cells),*])
+        };
+        let rows = (0..actuators).map(columns);
+        quote!([#(#rows),*])
+    };
+    let (d_q, d_qd, d_qdd) = (rows(0), rows(1), rows(2));
+    parse_quote!({
+        let problem = #problem;
+        let tensions = #actuation::#call([#(#m),*], [#(#t0),*], &problem).tendon_tensions;
+        let along = [#(#passes),*];
+        #core::dual::ActuationJacobians {
+            value: [#(#value),*],
+            d_q: #d_q,
+            d_qd: #d_qd,
+            d_qdd: #d_qdd,
+        }
+    })
 }
 
 /// `[x₀, x₁, …]` of `f64` constants written exactly (`f64::INFINITY` for an absent maximum),
@@ -600,7 +737,7 @@ fn return_type(f: &Function, t: &syn::Type, core: &syn::Path) -> syn::Type {
             let v = array_type(t.clone(), *n);
             parse_quote!(#core::mechanism::Regression<#y, #v>)
         }
-        Shape::ActuationJacobians { n, actuators } => {
+        Shape::ActuationJacobians { n, actuators, .. } => {
             let v = array_type(t.clone(), *actuators);
             let j = array_type(array_type(t.clone(), *n), *actuators);
             parse_quote!(#core::dual::ActuationJacobians<#v, #j>)

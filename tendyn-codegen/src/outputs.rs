@@ -78,6 +78,15 @@ pub enum Shape {
         n: usize,
         /// Motors and tendons.
         actuators: usize,
+        /// [`StatusFrom::Exact`] where the traced values are the distributed ones (no
+        /// null space, or one direction in closed form). With several directions,
+        /// [`StatusFrom::Solve`]: the tendons' values and rows are the minimal-norm
+        /// tensions and their derivatives, which the emitted code distributes once for the
+        /// value and once per coordinate over dual numbers (the same routine as `actuation`,
+        /// whose comparisons see the values alone); [`StatusFrom::SolveAtState`] adds the
+        /// state's problem as `actuation` has it, then its derivative along each of the
+        /// `3n` coordinates (`q`, then `q̇`, then `q̈`) in the same layout.
+        distributed: StatusFrom,
     },
     /// `tendyn_core::mechanism::Regression<[[T; columns]; n], [T; n]>`: the flat results
     /// are `Y` row by row, then the offset `Q₀`.
@@ -133,9 +142,9 @@ pub struct Function {
     pub form: Form,
     /// Operations of `results`.
     pub ops: OpCount,
-    /// For `actuation` with a null space of more than one dimension ([`StatusFrom::Solve`],
-    /// [`StatusFrom::SolveAtState`]): the constants the emitted code distributes the
-    /// minimal-norm tensions with.
+    /// For `actuation` and `actuation_derivatives` with a null space of more than one
+    /// dimension ([`StatusFrom::Solve`], [`StatusFrom::SolveAtState`]): the constants the
+    /// emitted code distributes the minimal-norm tensions with.
     pub distribution: Option<Distribution>,
 }
 
@@ -250,6 +259,21 @@ fn traced_system<T: Real>(
     Ok(tension::system_traced(model, matrix, order))
 }
 
+/// The state's problem of several null directions as the emitted
+/// `tendyn_core::distribution::AtState` takes it: its orthonormal null basis over the
+/// tendons row by row, the objective's optimum in its coordinates, each tendon's
+/// `1 / |n_k|`.
+fn problem_at_state<T: Real>(model: &Model<T>, system: &TensionSystem<T>) -> Vec<T> {
+    let (d, k) = (system.null_space.len(), model.tendons().len());
+    let p = tension::bounds(model, system);
+    (0..d)
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .map(|(i, j)| p.null(i, j))
+        .chain((0..d).map(|i| p.target(i)))
+        .chain((0..k).map(|j| p.inverse_length(j)))
+        .collect()
+}
+
 /// Checks that every requested output can be generated for `model`.
 pub fn check(model: &Model<f64>, outputs: &[Output]) -> Result<(), Unavailable> {
     check_with(model, outputs, &capstan_elimination(model, outputs))
@@ -294,18 +318,6 @@ fn check_with(
 ) -> Result<(), Unavailable> {
     for &o in outputs {
         let reason = match o {
-            // Its derivatives are those of the traced distribution: a closed form along one
-            // null direction, not the numeric routine of two or more.
-            Output::ActuationDerivatives
-                if model.system().null_space.len() > 1 && !model.tendons().is_empty() =>
-            {
-                Some(format!(
-                    "the tension system has a {}-dimensional null space: generated code \
-                     distributes the tensions through a numeric routine, whose derivatives are \
-                     not generated — use the runtime solver (`Data::actuation_derivatives`)",
-                    model.system().null_space.len()
-                ))
-            }
             o if solves_tension_system(o) && model.has_capstan() && elimination.is_none() => Some(
                 "a guide has capstan friction (`mu > 0`), which makes the tension system \
                      depend on the state, and the order of elimination chosen from its `E` \
@@ -471,7 +483,8 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
             traced_ops,
             form,
             ops,
-            distribution: (output == Output::Actuation && model.system().null_space.len() > 1)
+            distribution: (matches!(output, Output::Actuation | Output::ActuationDerivatives)
+                && model.system().null_space.len() > 1)
                 .then(|| distribution_constants(model, !model.has_capstan())),
         });
     }
@@ -593,14 +606,7 @@ impl Shared {
                     *excess = tension::along_line(model, system, x).excess;
                 } else if d > 1 && k > 0 && system.eliminated.is_some() {
                     tension::minimal_norm(model, system, x);
-                    let p = tension::bounds(model, system);
-                    let values = (0..d)
-                        .flat_map(|i| (0..k).map(move |j| (i, j)))
-                        .map(|(i, j)| p.null(i, j))
-                        .chain((0..d).map(|i| p.target(i)))
-                        .chain((0..k).map(|j| p.inverse_length(j)))
-                        .collect();
-                    *state_problem = Some((d, values));
+                    *state_problem = Some((d, problem_at_state(model, system)));
                 }
                 Ok(())
             };
@@ -680,13 +686,21 @@ fn trace_one(
             let (dual, dual_ws) = shared.dual(m);
             // As `Shared::inverse` traces `actuation`: the state's system (capstan
             // friction) by the fixed order of elimination, one null direction in closed
-            // form (`check` refuses more).
+            // form; several: the minimal-norm tensions (and the state's problem, one per
+            // seeded coordinate), distributed by the emitted code.
+            let (tendons, directions) = (m.tendons().len(), m.system().null_space.len());
+            let problems = core::cell::RefCell::new(Vec::new());
             let at_state = |model: &Model<Dual<Sym>>, matrix| traced_system(&order, model, matrix);
             let distribute = |model: &Model<Dual<Sym>>,
                               system: &TensionSystem<Dual<Sym>>,
                               x: &mut [Dual<Sym>]| {
-                if system.null_space.len() == 1 && !model.tendons().is_empty() {
+                if tendons > 0 && directions == 1 {
                     tension::along_line(model, system, x);
+                } else if tendons > 0 && directions > 1 {
+                    tension::minimal_norm(model, system, x);
+                    if system.eliminated.is_some() {
+                        problems.borrow_mut().push(problem_at_state(model, system));
+                    }
                 }
                 Ok(())
             };
@@ -698,8 +712,30 @@ fn trace_one(
                 distribute,
             )
             .expect("tracing the distribution cannot fail");
-            let actuators = m.motors().len() + m.tendons().len();
-            (Shape::ActuationJacobians { n, actuators }, d.flattened())
+            let problems = problems.into_inner();
+            let distributed = match (tendons > 0 && directions > 1, problems.first()) {
+                (false, _) => StatusFrom::Exact,
+                (true, None) => StatusFrom::Solve,
+                (true, Some(_)) => StatusFrom::SolveAtState { directions },
+            };
+            // The state's problem: its values (the same in every seeded pass), then its
+            // derivative along each coordinate.
+            let values = problems.first().into_iter().flatten().map(|p| p.value);
+            let tangents = problems.iter().flatten().map(|p| p.tangent);
+            let actuators = m.motors().len() + tendons;
+            let shape = Shape::ActuationJacobians {
+                n,
+                actuators,
+                distributed,
+            };
+            (
+                shape,
+                d.flattened()
+                    .into_iter()
+                    .chain(values)
+                    .chain(tangents)
+                    .collect(),
+            )
         }
         Output::GeneralizedForcesDerivatives => {
             let (dual, dual_ws) = shared.dual(m);

@@ -4,7 +4,8 @@
 
 //!
 //! The benchmark of the tension distribution compiles `golden/distribution/`: `actuation`
-//! of the mechanisms in `benches/distribution/`, kept the same way; the benchmark of the
+//! of the mechanisms in `benches/distribution/` (and for two of them with its
+//! derivatives), kept the same way; the benchmark of the
 //! derivatives compiles `golden/derivatives/`: Examples 1 and 3 with `generalized_forces`,
 //! `forward_dynamics` and their derivatives.
 
@@ -36,6 +37,13 @@ fn generated_distribution_benchmarks_match_their_golden_files() {
         let model = tendyn_core::load(format!("{root}/benches/distribution/{name}.ron")).unwrap();
         let path = format!("{root}/golden/distribution/{name}.rs");
         compare(name, &model, &[Output::Actuation], &path);
+    }
+    // With its derivatives over two and three null directions (`benches/distribution.rs`).
+    for name in ["bounded_1x3", "bounded_3x6"] {
+        let model = tendyn_core::load(format!("{root}/benches/distribution/{name}.ron")).unwrap();
+        let path = format!("{root}/golden/distribution/{name}_derivatives.rs");
+        let outputs = [Output::Actuation, Output::ActuationDerivatives];
+        compare(name, &model, &outputs, &path);
     }
 }
 

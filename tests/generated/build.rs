@@ -229,8 +229,8 @@ fn main() {
     }
     registry.push_str("];\n");
     // Seeded random systems of the bounded tension distribution (structure-only tendons
-    // with floors and maxima, null spaces of one to four dimensions): `actuation` alone,
-    // with its status, in f64 and f32 (`tests/bounded.rs`).
+    // with floors and maxima, null spaces of one to four dimensions): `actuation` with its
+    // status, and its derivatives, in f64 and f32 (`tests/bounded.rs`).
     registry.push_str("pub static BOUNDED: &[Bounded] = &[\n");
     for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
         let name = format!("bounded_{n}x{m}");
@@ -239,7 +239,7 @@ fn main() {
         let model = tendyn_core::parse(&text).unwrap();
         let generated = generate(
             &model,
-            &[Output::Actuation],
+            &[Output::Actuation, Output::ActuationDerivatives],
             Scalar::Generic,
             &format!("{name}.ron"),
         )
@@ -255,11 +255,20 @@ fn main() {
                  (a.tendon_tensions.to_vec(), a.status) }}"
             )
             .unwrap();
+            let numbers = flattened_numbers(Output::ActuationDerivatives, "d");
+            writeln!(
+                adapter,
+                "pub fn actuation_derivatives_{t}(q: &[{t}], qd: &[{t}], qdd: &[{t}]) -> Vec<{t}> {{ \
+                 let d = code::actuation_derivatives::<{t}>(q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap()); \
+                 {numbers}.copied().collect() }}"
+            )
+            .unwrap();
         }
         module(&mut modules, &name, &adapter);
         writeln!(
             registry,
-            "    Bounded {{ name: \"{name}\", ron: {name}::RON, actuation_f64: {name}::actuation_f64, actuation_f32: {name}::actuation_f32 }},"
+            "    Bounded {{ name: \"{name}\", ron: {name}::RON, actuation_f64: {name}::actuation_f64, actuation_f32: {name}::actuation_f32, \
+             actuation_derivatives_f64: {name}::actuation_derivatives_f64, actuation_derivatives_f32: {name}::actuation_derivatives_f32 }},"
         )
         .unwrap();
     }

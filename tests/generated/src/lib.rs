@@ -24,6 +24,10 @@ pub struct Bounded {
     pub actuation_f64: fn(&[f64], &[f64], &[f64]) -> (Vec<f64>, Status),
     #[allow(clippy::type_complexity)]
     pub actuation_f32: fn(&[f32], &[f32], &[f32]) -> (Vec<f32>, Status),
+    /// `actuation_derivatives`, flattened: the value, then `∂/∂q`, `∂/∂q̇`, `∂/∂q̈` row by row.
+    pub actuation_derivatives_f64: fn(&[f64], &[f64], &[f64]) -> Vec<f64>,
+    /// The same in `f32`.
+    pub actuation_derivatives_f32: fn(&[f32], &[f32], &[f32]) -> Vec<f32>,
 }
 
 use tendyn_core::distribution::Status;
