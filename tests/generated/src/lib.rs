@@ -20,15 +20,16 @@ pub struct Mechanism {
 pub struct Bounded {
     pub name: &'static str,
     pub ron: &'static str,
-    #[allow(clippy::type_complexity)]
-    pub actuation_f64: fn(&[f64], &[f64], &[f64]) -> (Vec<f64>, Status),
-    #[allow(clippy::type_complexity)]
-    pub actuation_f32: fn(&[f32], &[f32], &[f32]) -> (Vec<f32>, Status),
+    pub actuation_f64: AtState<f64, (Vec<f64>, Status)>,
+    pub actuation_f32: AtState<f32, (Vec<f32>, Status)>,
     /// `actuation_derivatives`, flattened: the value, then `∂/∂q`, `∂/∂q̇`, `∂/∂q̈` row by row.
-    pub actuation_derivatives_f64: fn(&[f64], &[f64], &[f64]) -> Vec<f64>,
+    pub actuation_derivatives_f64: AtState<f64, Vec<f64>>,
     /// The same in `f32`.
-    pub actuation_derivatives_f32: fn(&[f32], &[f32], &[f32]) -> Vec<f32>,
+    pub actuation_derivatives_f32: AtState<f32, Vec<f32>>,
 }
+
+/// A generated function of the state `(q, q̇, q̈)`, adapted to slices.
+pub type AtState<T, R> = fn(&[T], &[T], &[T]) -> R;
 
 use tendyn_core::distribution::Status;
 
