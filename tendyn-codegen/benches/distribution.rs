@@ -7,8 +7,8 @@
 //! - `bounded_1x3` (one joint, three tendons: two directions) and `bounded_3x6` (three
 //!   joints, six tendons: three directions), floors and maxima drawn per tendon, where the
 //!   generated code calls the dual active-set routine of `tendyn_core::distribution`;
-//!   and the same two with their derivatives (`actuation_derivatives`: the routine again
-//!   over dual numbers for each of the `3n` coordinates), on every state.
+//!   and the same two with their derivatives (`actuation_derivatives`: the optimum
+//!   differentiated on its active set along each of the `3n` coordinates), on every state.
 //!
 //! `cargo bench -p tendyn-codegen --bench distribution` (pin with `taskset -c 0` and build
 //! with `RUSTFLAGS="-C target-cpu=native"` for the protocol's conditions). The generated
@@ -106,7 +106,7 @@ fn distribution(c: &mut Criterion) {
     bench_actuation!(group, "1 joint, 3 tendons, d = 2", bounded_1x3, 1);
     bench_actuation!(group, "3 joints, 6 tendons, d = 3", bounded_3x6, 3);
     group.finish();
-    // With the derivatives: the distribution again over dual numbers per coordinate.
+    // With the derivatives: the optimum's active set differentiated per coordinate.
     let mut group = c.benchmark_group("generated actuation_derivatives (f64)");
     group.throughput(Throughput::Elements(STATES as u64));
     bench_derivatives!(

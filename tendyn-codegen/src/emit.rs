@@ -561,11 +561,11 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
 }
 
 /// `actuation_derivatives` over several null directions (`values` as
-/// [`Shape::ActuationJacobians`] lays them out): the minimal-norm tensions distributed by
-/// `Actuation::bounded` (or `bounded_at_state`) for the value, and the same call over dual
-/// numbers once per coordinate for each column of the tendons' rows: its comparisons see
-/// the values alone, so every pass takes the value's active set and carries the
-/// derivative of its solution. The motors' rows are traced.
+/// [`Shape::ActuationJacobians`] lays them out): the minimal-norm tensions and their
+/// derivatives along each coordinate, distributed by `Actuation::bounded_with_tangents`
+/// (or `bounded_at_state_with_tangents`, with the state's problem and its derivatives):
+/// the runtime's routine, which differentiates its optimum on its active set. The motors'
+/// rows are traced.
 fn distributed_jacobians(
     f: &Function,
     values: Vec<Expr>,
@@ -582,22 +582,26 @@ fn distributed_jacobians(
         |r: usize, c: usize| &values[actuators + (c / n) * actuators * n + r * n + c % n];
     let (floor, max) = (f64_array(&dist.floor), f64_array(&dist.max));
     let actuation = quote!(#core::distribution::Actuation);
-    let dual = quote!(#core::dual::Dual);
-    // The problem for the value (bound as `problem`) and, over dual numbers, for
-    // coordinate `c`.
-    let (problem, along): (Expr, Box<dyn Fn(usize) -> Expr>) = match f.shape {
+    let (m, t0) = (&values[..motors], &values[motors..actuators]);
+    let t0_tangents = (0..coordinates).map(|c| {
+        let cells = (0..tendons).map(|k| jacobian(motors + k, c));
+        quote!([#(#cells),*])
+    });
+    let call = match f.shape {
         Shape::ActuationJacobians {
             distributed: StatusFrom::SolveAtState { directions },
             ..
         } => {
+            // The state's problem (its values, then its derivative along each coordinate),
+            // in `actuation`'s layout.
             let size = directions * tendons + directions + tendons;
             let first = actuators + 3 * actuators * n;
-            let at_state = move |entry: &dyn Fn(usize) -> TokenStream| -> Expr {
-                let row = |d: usize| {
+            let at_state = |block: usize| -> Expr {
+                let entry = |i: usize| &values[first + block * size + i];
+                let null = (0..directions).map(|d| {
                     let cells = (0..tendons).map(|k| entry(d * tendons + k));
                     quote!([#(#cells),*])
-                };
-                let null = (0..directions).map(row);
+                });
                 let target = (0..directions).map(|d| entry(directions * tendons + d));
                 let inverse_length =
                     (0..tendons).map(|k| entry(directions * tendons + directions + k));
@@ -609,77 +613,49 @@ fn distributed_jacobians(
                     inverse_length: [#(#inverse_length),*],
                 })
             };
-            let value = |i: usize| {
-                let v = &values[first + i];
-                quote!(#v)
-            };
-            let problem = at_state(&value);
-            let (values, dual) = (values.clone(), dual.clone());
-            let along = move |c: usize| {
-                let entry = |i: usize| {
-                    let (v, t) = (&values[first + i], &values[first + (c + 1) * size + i]);
-                    quote!(#dual::new(#v, #t))
-                };
-                at_state(&entry)
-            };
-            (problem, Box::new(along))
+            let problem = at_state(0);
+            let tangents = (1..=coordinates).map(at_state);
+            quote!(#actuation::bounded_at_state_with_tangents(
+                [#(#m),*], [#(#t0),*], &[#(#t0_tangents),*], &#problem, &[#(#tangents),*]
+            ))
         }
         _ => {
             let rows = dist.null.iter().map(|r| f64_array(r));
             let (target, inverse_length) =
                 (f64_array(&dist.target), f64_array(&dist.inverse_length));
-            let fixed: Expr = parse_quote!(#core::distribution::Fixed {
-                null: [#(#rows),*],
-                floor: #floor,
-                max: #max,
-                target: #target,
-                inverse_length: #inverse_length,
-            });
-            // Constants, the same for every pass: bound once.
-            (fixed, Box::new(|_| parse_quote!(problem)))
+            quote!(#actuation::bounded_with_tangents(
+                [#(#m),*], [#(#t0),*], &[#(#t0_tangents),*], &#core::distribution::Fixed {
+                    null: [#(#rows),*],
+                    floor: #floor,
+                    max: #max,
+                    target: #target,
+                    inverse_length: #inverse_length,
+                }
+            ))
         }
     };
-    let call = match f.shape {
-        Shape::ActuationJacobians {
-            distributed: StatusFrom::SolveAtState { .. },
-            ..
-        } => quote!(bounded_at_state),
-        _ => quote!(bounded),
-    };
-    let (m, t0) = (&values[..motors], &values[motors..actuators]);
-    let passes = (0..coordinates).map(|c| {
-        let seeded = (0..tendons).map(|k| {
-            let (v, t) = (&t0[k], jacobian(motors + k, c));
-            quote!(#dual::new(#v, #t))
-        });
-        let problem = along(c);
-        quote!(#actuation::#call([], [#(#seeded),*], &#problem).tendon_tensions)
-    });
-    let tendon = |k: usize| quote!(tensions[#k]);
-    let value = m.iter().map(|x| quote!(#x)).chain((0..tendons).map(tendon));
+    let value = m
+        .iter()
+        .map(|x| quote!(#x))
+        .chain((0..tendons).map(|k| quote!(actuation.tendon_tensions[#k])));
     let rows = |block: usize| {
-        let columns = |r: usize| -> TokenStream {
-            let cells: Vec<TokenStream> = (block * n..(block + 1) * n)
-                .map(|c| {
-                    if r < motors {
-                        let x = jacobian(r, c);
-                        quote!(#x)
-                    } else {
-                        let k = r - motors;
-                        quote!(along[#c][#k].tangent)
-                    }
-                })
-                .collect();
+        let rows = (0..actuators).map(|r| {
+            let cells = (block * n..(block + 1) * n).map(|c| {
+                if r < motors {
+                    let x = jacobian(r, c);
+                    quote!(#x)
+                } else {
+                    let k = r - motors;
+                    quote!(tangents[#c][#k])
+                }
+            });
             quote!([#(#cells),*])
-        };
-        let rows = (0..actuators).map(columns);
+        });
         quote!([#(#rows),*])
     };
     let (d_q, d_qd, d_qdd) = (rows(0), rows(1), rows(2));
     parse_quote!({
-        let problem = #problem;
-        let tensions = #actuation::#call([#(#m),*], [#(#t0),*], &problem).tendon_tensions;
-        let along = [#(#passes),*];
+        let (actuation, tangents) = #call;
         #core::dual::ActuationJacobians {
             value: [#(#value),*],
             d_q: #d_q,

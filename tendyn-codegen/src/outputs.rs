@@ -81,11 +81,11 @@ pub enum Shape {
         /// [`StatusFrom::Exact`] where the traced values are the distributed ones (no
         /// null space, or one direction in closed form). With several directions,
         /// [`StatusFrom::Solve`]: the tendons' values and rows are the minimal-norm
-        /// tensions and their derivatives, which the emitted code distributes once for the
-        /// value and once per coordinate over dual numbers (the same routine as `actuation`,
-        /// whose comparisons see the values alone); [`StatusFrom::SolveAtState`] adds the
-        /// state's problem as `actuation` has it, then its derivative along each of the
-        /// `3n` coordinates (`q`, then `q̇`, then `q̈`) in the same layout.
+        /// tensions and their derivatives, which the emitted code distributes with their
+        /// derivatives (`Actuation::bounded_with_tangents`: `actuation`'s routine, which
+        /// then differentiates its optimum on its active set); [`StatusFrom::SolveAtState`]
+        /// adds the state's problem as `actuation` has it, then its derivative along each
+        /// of the `3n` coordinates (`q`, then `q̇`, then `q̈`) in the same layout.
         distributed: StatusFrom,
     },
     /// `tendyn_core::mechanism::Regression<[[T; columns]; n], [T; n]>`: the flat results

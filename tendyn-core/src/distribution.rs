@@ -70,6 +70,7 @@
 // Index loops read like the algorithm over index sets.
 #![allow(clippy::needless_range_loop)]
 
+use crate::dual::Dual;
 use crate::linalg::dot;
 use crate::real::{Numeric, Real};
 
@@ -160,6 +161,147 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         problem: &AtState<T, K, D>,
     ) -> Self {
         Self::distributed::<D, _>(motor_torques, t0, problem)
+    }
+
+    /// [`Actuation::bounded`] with the tensions' derivatives along `J` directions, from the
+    /// minimal-norm tensions' (`t0_tangents[j]`): `tangents[j][k] = ∂T_k` along direction
+    /// `j` (see [`Actuation::distributed_with_tangents`]).
+    #[inline(always)]
+    pub fn bounded_with_tangents<const D: usize, const J: usize>(
+        motor_torques: [T; M],
+        t0: [T; K],
+        t0_tangents: &[[T; K]; J],
+        problem: &Fixed<K, D>,
+    ) -> (Self, [[T; K]; J]) {
+        Self::distributed_with_tangents::<D, J, _, _>(
+            motor_torques,
+            t0,
+            t0_tangents,
+            problem,
+            |_| (problem, true),
+        )
+    }
+
+    /// [`Actuation::bounded_at_state`] with the tensions' derivatives along `J`
+    /// directions, from the minimal-norm tensions' (`t0_tangents[j]`) and the state's
+    /// problem's (`problem_tangents[j]`: the derivatives of its `null`, `target` and
+    /// `inverse_length`; its bounds are not read).
+    #[inline(always)]
+    pub fn bounded_at_state_with_tangents<const D: usize, const J: usize>(
+        motor_torques: [T; M],
+        t0: [T; K],
+        t0_tangents: &[[T; K]; J],
+        problem: &AtState<T, K, D>,
+        problem_tangents: &[AtState<T, K, D>; J],
+    ) -> (Self, [[T; K]; J]) {
+        Self::distributed_with_tangents::<D, J, _, _>(
+            motor_torques,
+            t0,
+            t0_tangents,
+            problem,
+            |j| (problem.seeded(&problem_tangents[j]), false),
+        )
+    }
+
+    /// `t0` distributed by [`solve`], with the derivatives along `J` directions of what it
+    /// returns, `along(j)` the problem over dual numbers seeded along direction `j` and
+    /// whether its normals are constants (then the factorisation of the active normals is
+    /// the value's, taken as it is; else it is taken afresh over dual numbers). At a
+    /// feasible optimum the active bounds hold nearby (a change of active set is where the
+    /// derivative is one-sided; this takes the side of the set found), and the derivative
+    /// is that of the solution on them: [`refine`]'s step over dual numbers, whose result
+    /// is that solution whatever point it starts from (`λ = P⊥ λ* + Q R⁻ᵀ rhs`, `Q R` the
+    /// active normals, `rhs` their bounds), so it starts from the optimum with no
+    /// derivative. A best effort ([`Status::MaxExceeded`]) is the floors' optimum, the
+    /// method's first phase: found again over the floors alone ([`FloorsOnly`]) for its
+    /// active set, and differentiated the same way. Where the method did not finish
+    /// ([`Status::Unresolved`]) it runs again over dual numbers per direction, which gives
+    /// what [`Actuation::bounded`] over [`Dual`] would.
+    #[inline(always)]
+    fn distributed_with_tangents<
+        const D: usize,
+        const J: usize,
+        P: Problem<T>,
+        Q: Problem<Dual<T>>,
+    >(
+        motor_torques: [T; M],
+        t0: [T; K],
+        t0_tangents: &[[T; K]; J],
+        problem: &P,
+        along: impl Fn(usize) -> (Q, bool),
+    ) -> (Self, [[T; K]; J]) {
+        let mut lambda = [T::zero(); D];
+        let mut basis = [[T::zero(); D]; D];
+        let mut triangle = [[T::zero(); D]; D];
+        let mut multipliers = [T::zero(); D];
+        let mut scratch = [[T::zero(); D]; 4];
+        let mut active = [0usize; D];
+        let mut work = Work {
+            lambda: &mut lambda,
+            basis: basis.as_flattened_mut(),
+            triangle: triangle.as_flattened_mut(),
+            multipliers: &mut multipliers,
+            scratch: scratch.as_flattened_mut(),
+            active: &mut active,
+        };
+        let mut tendon_tensions = [T::zero(); K];
+        let (status, mut q) = solve_counted(problem, &t0, &mut work, &mut tendon_tensions, None);
+        let differentiable = match status {
+            Status::Feasible => true,
+            Status::MaxExceeded => {
+                let mut floors = [T::zero(); K];
+                let floors_only = FloorsOnly(problem);
+                let (found, count) = solve_counted(&floors_only, &t0, &mut work, &mut floors, None);
+                q = count;
+                found == Status::Feasible
+            }
+            Status::Unresolved => false,
+        };
+        // (Over the floors' active set no maximum is read.)
+        let active = &active[..q];
+        let zero = Dual::constant(T::zero());
+        let mut tangents = [[T::zero(); K]; J];
+        for (j, out) in tangents.iter_mut().enumerate() {
+            let (p, constant_normals) = along(j);
+            let seeded: [Dual<T>; K] =
+                core::array::from_fn(|k| Dual::new(t0[k], t0_tangents[j][k]));
+            let mut t = [zero; K];
+            if differentiable {
+                let (mut basis, mut triangle) = if constant_normals {
+                    let lift = |m: [[T; D]; D]| m.map(|row| row.map(Dual::constant));
+                    (lift(basis), lift(triangle))
+                } else {
+                    ([[zero; D]; D], [[zero; D]; D])
+                };
+                let (basis, triangle) = (basis.as_flattened_mut(), triangle.as_flattened_mut());
+                if !constant_normals {
+                    factorize(&p, basis, triangle, active, D, 0);
+                }
+                let mut lambda = lambda.map(Dual::constant);
+                let (mut y, mut delta) = ([zero; D], [zero; D]);
+                refine(
+                    &p,
+                    &seeded,
+                    &mut lambda,
+                    basis,
+                    triangle,
+                    active,
+                    &mut y,
+                    &mut delta,
+                );
+                tensions_at(&p, &seeded, &lambda, &mut t);
+            } else {
+                t = Actuation::<[Dual<T>; 0], [Dual<T>; K]>::distributed::<D, _>([], seeded, &p)
+                    .tendon_tensions;
+            }
+            *out = t.map(|x| x.tangent);
+        }
+        let actuation = Actuation {
+            motor_torques,
+            tendon_tensions,
+            status,
+        };
+        (actuation, tangents)
     }
 
     /// `t0` distributed by [`solve`] over `D` directions, with work buffers on the stack.
@@ -302,6 +444,58 @@ pub fn inverse_length<T: Real>(components: impl IntoIterator<Item = T>) -> T {
     T::one() / square.sqrt()
 }
 
+impl<T, P: Problem<T>> Problem<T> for &P {
+    fn tendons(&self) -> usize {
+        (**self).tendons()
+    }
+    fn directions(&self) -> usize {
+        (**self).directions()
+    }
+    fn null(&self, d: usize, k: usize) -> T {
+        (**self).null(d, k)
+    }
+    fn floor(&self, k: usize) -> f64 {
+        (**self).floor(k)
+    }
+    fn max(&self, k: usize) -> f64 {
+        (**self).max(k)
+    }
+    fn target(&self, d: usize) -> T {
+        (**self).target(d)
+    }
+    fn inverse_length(&self, k: usize) -> T {
+        (**self).inverse_length(k)
+    }
+}
+
+/// A problem with its maxima taken away: its floors' optimum is [`solve`]'s best effort
+/// where the maxima cannot all be met.
+struct FloorsOnly<P>(P);
+
+impl<T, P: Problem<T>> Problem<T> for FloorsOnly<P> {
+    fn tendons(&self) -> usize {
+        self.0.tendons()
+    }
+    fn directions(&self) -> usize {
+        self.0.directions()
+    }
+    fn null(&self, d: usize, k: usize) -> T {
+        self.0.null(d, k)
+    }
+    fn floor(&self, k: usize) -> f64 {
+        self.0.floor(k)
+    }
+    fn max(&self, _: usize) -> f64 {
+        f64::INFINITY
+    }
+    fn target(&self, d: usize) -> T {
+        self.0.target(d)
+    }
+    fn inverse_length(&self, k: usize) -> T {
+        self.0.inverse_length(k)
+    }
+}
+
 /// A [`Problem`] of constants, as generated code holds it.
 #[derive(Clone, Copy, Debug)]
 pub struct Fixed<const K: usize, const D: usize> {
@@ -356,6 +550,26 @@ pub struct AtState<T, const K: usize, const D: usize> {
     pub target: [T; D],
     /// `1 / |n_k|` of each tendon's normal ([`inverse_length`] of `null[·][k]`).
     pub inverse_length: [T; K],
+}
+
+impl<T: Real, const K: usize, const D: usize> AtState<T, K, D> {
+    /// The problem over dual numbers: these values, with the derivatives of the basis, the
+    /// target and the normals' lengths along one direction from `tangent` (whose bounds
+    /// are not read).
+    pub fn seeded(&self, tangent: &Self) -> AtState<Dual<T>, K, D> {
+        let pair = |v: T, t: T| Dual::new(v, t);
+        AtState {
+            null: core::array::from_fn(|d| {
+                core::array::from_fn(|k| pair(self.null[d][k], tangent.null[d][k]))
+            }),
+            floor: self.floor,
+            max: self.max,
+            target: core::array::from_fn(|d| pair(self.target[d], tangent.target[d])),
+            inverse_length: core::array::from_fn(|k| {
+                pair(self.inverse_length[k], tangent.inverse_length[k])
+            }),
+        }
+    }
 }
 
 impl<T: Real, const K: usize, const D: usize> Problem<T> for AtState<T, K, D> {
@@ -450,6 +664,19 @@ pub fn solve<T: Numeric, P: Problem<T>>(
     tensions: &mut [T],
     certificate: Option<&mut [T]>,
 ) -> Status {
+    solve_counted(problem, t0, work, tensions, certificate).0
+}
+
+/// [`solve`], with the count of active bounds at a feasible optimum (0 otherwise): `work`
+/// then holds the optimum `λ` and those bounds, first in `work.active`.
+#[inline(always)]
+fn solve_counted<T: Numeric, P: Problem<T>>(
+    problem: &P,
+    t0: &[T],
+    work: &mut Work<'_, T>,
+    tensions: &mut [T],
+    certificate: Option<&mut [T]>,
+) -> (Status, usize) {
     let (k, d) = (problem.tendons(), problem.directions());
     // Non-finite tensions (from a non-finite state, which generated code does not check)
     // have no distribution: say so at once rather than search.
@@ -460,13 +687,13 @@ pub fn solve<T: Numeric, P: Problem<T>>(
         for (t, x) in tensions.iter_mut().zip(t0) {
             *t = *x;
         }
-        return Status::Unresolved;
+        return (Status::Unresolved, 0);
     }
-    let status = project(problem, t0, work, tensions, certificate);
+    let (status, active) = project(problem, t0, work, tensions, certificate);
     if status == Status::Unresolved {
         tensions.copy_from_slice(t0);
     }
-    status
+    (status, active)
 }
 
 /// `4 (K + d) u`: the bound violation that round-off allows, per unit of size.
@@ -489,8 +716,9 @@ fn normal<T: Real, P: Problem<T>>(p: &P, i: usize, d: usize) -> T {
 /// the floors and the maxima, continuing from the first phase's optimum (the method only
 /// ever adds violated bounds to an optimal pair, so a widened set of bounds is just more
 /// candidates). The first phase's optimum is the best effort of [`Status::MaxExceeded`],
-/// so an infeasible state costs no second run. Leaves the tensions in `t`; the caller has
-/// checked every length ([`solve`]).
+/// so an infeasible state costs no second run. Leaves the tensions in `t`, and where they
+/// are feasible the optimum in `work` (`λ`, and its active bounds: how many is returned);
+/// the caller has checked every length ([`solve`]).
 ///
 /// Every buffer is cut to its exact length on entry, so that where the sizes are constants
 /// (generated code's [`Fixed`]) the compiler sees them: the loops over `d` and `K` unroll
@@ -502,7 +730,7 @@ fn project<T: Numeric, P: Problem<T>>(
     work: &mut Work<'_, T>,
     t: &mut [T],
     certificate: Option<&mut [T]>,
-) -> Status {
+) -> (Status, usize) {
     let (k, d) = (p.tendons(), p.directions());
     let (t0, t) = (&t0[..k], &mut t[..k]);
     let lambda = &mut work.lambda[..d];
@@ -564,14 +792,14 @@ fn project<T: Numeric, P: Problem<T>>(
             }
             // The tensions afresh from λ: the steps' updates of `t` round at every step.
             tensions_at(p, t0, lambda, t);
-            return Status::Feasible;
+            return (Status::Feasible, q);
         };
         let mut added_multiplier = T::zero();
         loop {
             steps += 1;
             if steps > limit {
                 if limit_is_bound {
-                    return Status::Unresolved;
+                    return (Status::Unresolved, 0);
                 }
                 let bounds = k + (0..k).filter(|&j| p.max(j).is_finite()).count();
                 limit = iteration_bound(d, bounds);
@@ -613,10 +841,10 @@ fn project<T: Numeric, P: Problem<T>>(
                     // every tendon), so only the maxima can empty the set: the best
                     // effort is the floors' optimum.
                     if !with_max {
-                        return Status::Unresolved;
+                        return (Status::Unresolved, 0);
                     }
                     tensions_at(p, t0, floors_only, t);
-                    return Status::MaxExceeded;
+                    return (Status::MaxExceeded, 0);
                 }
                 Step::Full(s) => {
                     advance(p, s, z, lambda, t);
@@ -1070,6 +1298,49 @@ mod tests {
         // The torque is kept: T₁ + T₂ − T₃ = 3.
         assert!((t[0] + t[1] - t[2] - 3.0).abs() < 1e-13, "{t:?}");
         assert!(t.iter().all(|&x| x >= 1.0 - 1e-14), "{t:?}");
+    }
+
+    /// The derivatives `bounded_with_tangents` returns are those of the tensions `bounded`
+    /// returns: along the torque `τ` of `T₀ = (τ/3)(1, 1, −1)`, against central differences
+    /// of `bounded` for `τ` over ±40 N·m with maxima 15, 30 and 20 N, at feasible optima
+    /// (the active set's solution) and at best efforts (`MaxExceeded`: the method again over
+    /// dual numbers), away from a change of active set (where the one-sided differences
+    /// part).
+    #[test]
+    fn the_tangents_are_the_derivatives_of_the_distribution() {
+        let p = three_on_one([15.0, 30.0, 20.0]);
+        let dt0 = [1.0 / 3.0, 1.0 / 3.0, -1.0 / 3.0];
+        let at = |tau: f64| {
+            let t0 = dt0.map(|x| x * tau);
+            Actuation::<[f64; 0], [f64; 3]>::bounded_with_tangents([], t0, &[dt0], &p)
+        };
+        let h = 1e-5;
+        let (mut feasible, mut exceeded) = (0, 0);
+        for i in 0..800 {
+            let tau = -40.0 + 0.1 * i as f64 + 0.0123;
+            let (a, [tangent]) = at(tau);
+            let (up, down) = (at(tau + h).0, at(tau - h).0);
+            if up.status != a.status || down.status != a.status {
+                continue;
+            }
+            let (mut kink, mut error) = (false, 0.0f64);
+            for k in 0..3 {
+                let forward = (up.tendon_tensions[k] - a.tendon_tensions[k]) / h;
+                let backward = (a.tendon_tensions[k] - down.tendon_tensions[k]) / h;
+                kink |= (forward - backward).abs() > 1e-6;
+                error = error.max((0.5 * (forward + backward) - tangent[k]).abs());
+            }
+            if kink {
+                continue;
+            }
+            assert!(error < 1e-8, "τ = {tau}: {tangent:?}, {:?}", a.status);
+            match a.status {
+                Status::Feasible => feasible += 1,
+                Status::MaxExceeded => exceeded += 1,
+                Status::Unresolved => panic!("τ = {tau}"),
+            }
+        }
+        assert!(feasible > 100 && exceeded > 100, "{feasible}, {exceeded}");
     }
 
     #[test]

@@ -45,7 +45,7 @@
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
-//! feature only [`Real`], `distribution`, `linalg` and `mechanism` remain (`no_std`, no
+//! feature only [`Real`], `dual`, `distribution`, `linalg` and `mechanism` remain (`no_std`, no
 //! `alloc`, math from `libm`): what generated code needs.
 //!
 //! ```

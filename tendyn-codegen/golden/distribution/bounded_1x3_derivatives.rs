@@ -78,83 +78,69 @@ pub fn actuation_derivatives<T: Numeric>(
     let t168 = -(s28 * T::from_f64(1.5223696228493755));
     let t171 = -(s28 * T::from_f64(7.0203077846917195));
     {
-        let problem = tendyn_core::distribution::Fixed {
-            null: [
-                [0.08916218038101588f64, 0.9958316182311895f64, -0.01922221945441637f64],
-                [0.41116555377488956f64, -0.01922221945441637f64, 0.9113579942416892f64],
+        let (actuation, tangents) = tendyn_core::distribution::Actuation::bounded_with_tangents(
+            [],
+            [t156, t160, t164],
+            &[
+                [t165, t168, t171],
+                [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
+                [
+                    T::from_f64(-0.24148052699609443),
+                    T::from_f64(0.023733660538548376),
+                    T::from_f64(0.10944622077137119),
+                ],
             ],
-            floor: [9.99147404069322f64, 0.6502140212460183f64, 0.7867476313485433f64],
-            max: [51.361003180773395f64, 18.794489339390513f64, 34.55789424314793f64],
-            target: [0f64, 0f64],
-            inverse_length: [
-                2.3768663958470335f64,
-                1.0039988056256037f64,
-                1.097019664709061f64,
-            ],
-        };
-        let tensions = tendyn_core::distribution::Actuation::bounded(
-                [],
-                [t156, t160, t164],
-                &problem,
-            )
-            .tendon_tensions;
-        let along = [
-            tendyn_core::distribution::Actuation::bounded(
-                    [],
+            &tendyn_core::distribution::Fixed {
+                null: [
                     [
-                        tendyn_core::dual::Dual::new(t156, t165),
-                        tendyn_core::dual::Dual::new(t160, t168),
-                        tendyn_core::dual::Dual::new(t164, t171),
+                        0.08916218038101588f64,
+                        0.9958316182311895f64,
+                        -0.01922221945441637f64,
                     ],
-                    &problem,
-                )
-                .tendon_tensions,
-            tendyn_core::distribution::Actuation::bounded(
-                    [],
                     [
-                        tendyn_core::dual::Dual::new(t156, T::from_f64(0.0)),
-                        tendyn_core::dual::Dual::new(t160, T::from_f64(0.0)),
-                        tendyn_core::dual::Dual::new(t164, T::from_f64(0.0)),
+                        0.41116555377488956f64,
+                        -0.01922221945441637f64,
+                        0.9113579942416892f64,
                     ],
-                    &problem,
-                )
-                .tendon_tensions,
-            tendyn_core::distribution::Actuation::bounded(
-                    [],
-                    [
-                        tendyn_core::dual::Dual::new(
-                            t156,
-                            T::from_f64(-0.24148052699609443),
-                        ),
-                        tendyn_core::dual::Dual::new(
-                            t160,
-                            T::from_f64(0.023733660538548376),
-                        ),
-                        tendyn_core::dual::Dual::new(
-                            t164,
-                            T::from_f64(0.10944622077137119),
-                        ),
-                    ],
-                    &problem,
-                )
-                .tendon_tensions,
-        ];
+                ],
+                floor: [
+                    9.99147404069322f64,
+                    0.6502140212460183f64,
+                    0.7867476313485433f64,
+                ],
+                max: [
+                    51.361003180773395f64,
+                    18.794489339390513f64,
+                    34.55789424314793f64,
+                ],
+                target: [0f64, 0f64],
+                inverse_length: [
+                    2.3768663958470335f64,
+                    1.0039988056256037f64,
+                    1.097019664709061f64,
+                ],
+            },
+        );
         tendyn_core::dual::ActuationJacobians {
-            value: [tensions[0usize], tensions[1usize], tensions[2usize]],
+            value: [
+                actuation.tendon_tensions[0usize],
+                actuation.tendon_tensions[1usize],
+                actuation.tendon_tensions[2usize],
+            ],
             d_q: [
-                [along[0usize][0usize].tangent],
-                [along[0usize][1usize].tangent],
-                [along[0usize][2usize].tangent],
+                [tangents[0usize][0usize]],
+                [tangents[0usize][1usize]],
+                [tangents[0usize][2usize]],
             ],
             d_qd: [
-                [along[1usize][0usize].tangent],
-                [along[1usize][1usize].tangent],
-                [along[1usize][2usize].tangent],
+                [tangents[1usize][0usize]],
+                [tangents[1usize][1usize]],
+                [tangents[1usize][2usize]],
             ],
             d_qdd: [
-                [along[2usize][0usize].tangent],
-                [along[2usize][1usize].tangent],
-                [along[2usize][2usize].tangent],
+                [tangents[2usize][0usize]],
+                [tangents[2usize][1usize]],
+                [tangents[2usize][2usize]],
             ],
         }
     }
@@ -220,99 +206,69 @@ pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
             },
         ),
         actuation_derivatives: {
-            let problem = tendyn_core::distribution::Fixed {
-                null: [
+            let (actuation, tangents) = tendyn_core::distribution::Actuation::bounded_with_tangents(
+                [],
+                [t156, t160, t164],
+                &[
+                    [t165, t168, t171],
+                    [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
                     [
-                        0.08916218038101588f64,
-                        0.9958316182311895f64,
-                        -0.01922221945441637f64,
-                    ],
-                    [
-                        0.41116555377488956f64,
-                        -0.01922221945441637f64,
-                        0.9113579942416892f64,
+                        T::from_f64(-0.24148052699609443),
+                        T::from_f64(0.023733660538548376),
+                        T::from_f64(0.10944622077137119),
                     ],
                 ],
-                floor: [
-                    9.99147404069322f64,
-                    0.6502140212460183f64,
-                    0.7867476313485433f64,
-                ],
-                max: [
-                    51.361003180773395f64,
-                    18.794489339390513f64,
-                    34.55789424314793f64,
-                ],
-                target: [0f64, 0f64],
-                inverse_length: [
-                    2.3768663958470335f64,
-                    1.0039988056256037f64,
-                    1.097019664709061f64,
-                ],
-            };
-            let tensions = tendyn_core::distribution::Actuation::bounded(
-                    [],
-                    [t156, t160, t164],
-                    &problem,
-                )
-                .tendon_tensions;
-            let along = [
-                tendyn_core::distribution::Actuation::bounded(
-                        [],
+                &tendyn_core::distribution::Fixed {
+                    null: [
                         [
-                            tendyn_core::dual::Dual::new(t156, t165),
-                            tendyn_core::dual::Dual::new(t160, t168),
-                            tendyn_core::dual::Dual::new(t164, t171),
+                            0.08916218038101588f64,
+                            0.9958316182311895f64,
+                            -0.01922221945441637f64,
                         ],
-                        &problem,
-                    )
-                    .tendon_tensions,
-                tendyn_core::distribution::Actuation::bounded(
-                        [],
                         [
-                            tendyn_core::dual::Dual::new(t156, T::from_f64(0.0)),
-                            tendyn_core::dual::Dual::new(t160, T::from_f64(0.0)),
-                            tendyn_core::dual::Dual::new(t164, T::from_f64(0.0)),
+                            0.41116555377488956f64,
+                            -0.01922221945441637f64,
+                            0.9113579942416892f64,
                         ],
-                        &problem,
-                    )
-                    .tendon_tensions,
-                tendyn_core::distribution::Actuation::bounded(
-                        [],
-                        [
-                            tendyn_core::dual::Dual::new(
-                                t156,
-                                T::from_f64(-0.24148052699609443),
-                            ),
-                            tendyn_core::dual::Dual::new(
-                                t160,
-                                T::from_f64(0.023733660538548376),
-                            ),
-                            tendyn_core::dual::Dual::new(
-                                t164,
-                                T::from_f64(0.10944622077137119),
-                            ),
-                        ],
-                        &problem,
-                    )
-                    .tendon_tensions,
-            ];
+                    ],
+                    floor: [
+                        9.99147404069322f64,
+                        0.6502140212460183f64,
+                        0.7867476313485433f64,
+                    ],
+                    max: [
+                        51.361003180773395f64,
+                        18.794489339390513f64,
+                        34.55789424314793f64,
+                    ],
+                    target: [0f64, 0f64],
+                    inverse_length: [
+                        2.3768663958470335f64,
+                        1.0039988056256037f64,
+                        1.097019664709061f64,
+                    ],
+                },
+            );
             tendyn_core::dual::ActuationJacobians {
-                value: [tensions[0usize], tensions[1usize], tensions[2usize]],
+                value: [
+                    actuation.tendon_tensions[0usize],
+                    actuation.tendon_tensions[1usize],
+                    actuation.tendon_tensions[2usize],
+                ],
                 d_q: [
-                    [along[0usize][0usize].tangent],
-                    [along[0usize][1usize].tangent],
-                    [along[0usize][2usize].tangent],
+                    [tangents[0usize][0usize]],
+                    [tangents[0usize][1usize]],
+                    [tangents[0usize][2usize]],
                 ],
                 d_qd: [
-                    [along[1usize][0usize].tangent],
-                    [along[1usize][1usize].tangent],
-                    [along[1usize][2usize].tangent],
+                    [tangents[1usize][0usize]],
+                    [tangents[1usize][1usize]],
+                    [tangents[1usize][2usize]],
                 ],
                 d_qdd: [
-                    [along[2usize][0usize].tangent],
-                    [along[2usize][1usize].tangent],
-                    [along[2usize][2usize].tangent],
+                    [tangents[2usize][0usize]],
+                    [tangents[2usize][1usize]],
+                    [tangents[2usize][2usize]],
                 ],
             }
         },
