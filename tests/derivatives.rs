@@ -174,19 +174,21 @@ fn forward_dynamics_derivatives_match_central_differences_in_double_double() {
 /// directions with floors and maxima (`tendyn_spec::bounded::SIZES`).
 #[test]
 fn actuation_derivatives_match_central_differences_where_the_active_set_holds() {
-    let mut models = mechanisms();
+    // Five states each; twenty for the bounded systems, where about a third of the states
+    // cannot meet the maxima (no derivative at run time).
+    let mut models: Vec<(Model<f64>, usize)> = mechanisms().into_iter().map(|m| (m, 5)).collect();
     for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
         let seed = tendyn_spec::bounded::seed(n, m);
         let text = tendyn_spec::bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
-        models.push(tendyn_core::parse(&text).unwrap());
+        models.push((tendyn_core::parse(&text).unwrap(), 20));
     }
-    for (i, model) in models.iter().enumerate() {
+    for (i, (model, states)) in models.iter().enumerate() {
         let mut rng = ChaCha8Rng::seed_from_u64(90 + i as u64);
         let reference = model.cast_numeric::<DD>();
         let (mut data, mut dd) = (Data::new(model), Data::new(&reference));
         let mut worst = 0.0f64;
         let mut checked = 0;
-        for _ in 0..5 {
+        for _ in 0..*states {
             let [q, qd, qdd] = random_state(&mut rng, model.dof());
             let Ok(d) = data.actuation_derivatives(model, &q, &qd, &qdd) else {
                 continue; // a state the bounds cannot meet
@@ -211,7 +213,7 @@ fn actuation_derivatives_match_central_differences_where_the_active_set_holds() 
             "{}: ∂(τ, T)/∂(q, q̇, q̈) at {checked} states, worst relative error {worst:.2e}",
             model.name()
         );
-        assert!(checked > 0 && worst < TOL, "{}: {worst:e}", model.name());
+        assert!(checked >= 3 && worst < TOL, "{}: {worst:e}", model.name());
     }
 }
 

@@ -100,7 +100,12 @@ fn pin_then_rubbing_idler() -> Model<f64> {
         "zz: 0.00002), friction: (coulomb: 0.002, viscous: 0.0001)),",
         1,
     );
-    tendyn_core::parse(&text).unwrap()
+    let model = tendyn_core::parse(&text).unwrap();
+    assert!(model
+        .bodies()
+        .iter()
+        .any(|b| b.name == "idl" && b.friction.is_some()));
+    model
 }
 
 /// Where a turning idler follows a guide with friction, the idler's demand reaches the

@@ -783,11 +783,15 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
     let labels = result_labels(model, f.output);
     let what = match f.output {
         Output::GeneralizedForces => {
-            let (term, note) = if model.has_friction() {
-                (" − Σ_b c_bᵀ τ_f,b", "; the last term the bearings' friction")
+            let (mut term, mut note) = if model.has_friction() {
+                (" − Σ_b c_bᵀ τ_f,b".to_string(), "; the last term the bearings' friction".to_string())
             } else {
-                ("", "")
+                (String::new(), String::new())
             };
+            if model.capstan_before_an_idler() {
+                term.push_str(" + Σ_i W_i (N_i − τ_f,i)");
+                note.push_str("; `Σ_i W_i (N_i − τ_f,i)` what the turning idlers behind guides with friction demand through the guides (docs/outputs.md §3)");
+            }
             format!("Generalized forces the actuators must deliver, `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext{term}` (N·m, per joint{note})")
         }
         Output::Actuation => "Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`)".to_string(),
@@ -802,7 +806,10 @@ fn doc(model: &Model<f64>, f: &Function) -> String {
         Output::Bearings => "Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame".to_string(),
         Output::BaseReaction => "Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame".to_string(),
         Output::Regressor => "The identification regressor: `y[j][c]`, the generalized force on joint `j` per unit of parameter `c` (`tendyn regressor --json` lists them: each body's `m`, `mx`, `my`, `mz`, `xx`, `xy`, `xz`, `yy`, `yz`, `zz` about its frame origin, then `coulomb`, `viscous` where its bearing has friction), and `offset`, the external wrench's part: `Q = y · π + offset`".to_string(),
-        Output::GeneralizedForcesDerivatives => "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion".to_string(),
+        Output::GeneralizedForcesDerivatives => format!(
+            "`Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`{}), by dual numbers through the same recursion",
+            if model.capstan_before_an_idler() { " plus `Σ_i W_i ∂N_i/∂q̈ᵀ` of the idlers behind guides with friction" } else { "" }
+        ),
         Output::ActuationDerivatives => "The motor torques and tendon tensions `actuation` computes (`value`, in its order) with their exact derivatives `d_q[i][k] = ∂value_i/∂q_k`, `d_qd[i][k] = ∂value_i/∂q̇_k` and `d_qdd[i][k] = ∂value_i/∂q̈_k`, by dual numbers through the same recursion and distribution: where a tendon's floor or maximum becomes active or inactive, those of the bounds active at the state (one-sided)".to_string(),
         Output::ForwardDynamicsDerivatives => "`q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion".to_string(),
     };

@@ -191,7 +191,8 @@ impl<T: Numeric> Data<T> {
     }
 
     /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
-    /// ([`generalized_forces`]).
+    /// (plus `Σ_i W_i (N_i − τ_f,i)` where turning idlers follow guides with friction:
+    /// [`generalized_forces`]).
     pub fn generalized_forces(
         &mut self,
         model: &Model<T>,
@@ -242,7 +243,8 @@ impl<T: Numeric> Data<T> {
     }
 
     /// `Q` and its derivatives `∂Q/∂q`, `∂Q/∂q̇` ([`derivatives::generalized_forces_derivatives`];
-    /// `∂Q/∂q̈` is `M`, [`Data::mass_matrix`]).
+    /// `∂Q/∂q̈` is `M`, [`Data::mass_matrix`], plus `Σ_i W_i ∂N_i/∂q̈ᵀ` where turning idlers
+    /// follow guides with friction, [`crate::dynamics::idlers_behind_capstan`]).
     pub fn generalized_forces_derivatives(
         &mut self,
         model: &Model<T>,
@@ -437,8 +439,11 @@ impl<T: Numeric> Data<T> {
     /// The generalized forces that motor torques and ground-level tendon tensions deliver
     /// at `(q, q̇)`: `Σ motor columns · τ + A(q, q̇) T` ([`actuator_forces`], `A` the state's
     /// where guides have capstan friction). What identification takes as measured `Q`.
-    /// Where a turning idler follows a guide with friction, that includes what the idler
-    /// demands through the guide's friction (`generalized_forces`' `Σ_i W_i (N_i − τ_f,i)`).
+    /// It equals [`Data::generalized_forces`] of the motion the torques and tensions produce
+    /// (where turning idlers follow guides with friction, that includes their
+    /// `Σ_i W_i (N_i − τ_f,i)`) wherever no guide or bearing is within the band of rest:
+    /// there `σ` and the bearings' directions come from `q̇` alone here, as in forward
+    /// dynamics, and from `q̈` in inverse dynamics.
     pub fn actuator_forces(
         &mut self,
         model: &Model<T>,

@@ -5,7 +5,8 @@
 //!
 //! What [`crate::Data`] offers on this:
 //!
-//! - [`crate::Data::generalized_forces_derivatives`]: `∂Q/∂q`, `∂Q/∂q̇` (`∂Q/∂q̈ = M`);
+//! - [`crate::Data::generalized_forces_derivatives`]: `∂Q/∂q`, `∂Q/∂q̇` (`∂Q/∂q̈ = M`, plus
+//!   `Σ_i W_i ∂N_i/∂q̈ᵀ` where turning idlers follow guides with friction);
 //! - [`crate::Data::forward_dynamics_derivatives`]: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u`, `u` the
 //!   motor torques then the open-ended tendons' tensions;
 //! - [`crate::Data::actuation_derivatives`]: the derivatives of the motor torques and

@@ -435,6 +435,15 @@ pub trait Problem<T> {
     /// bounds ([`inverse_length`]): the first step of a run needs it, and it is a constant
     /// of the problem.
     fn inverse_length(&self, k: usize) -> T;
+    /// The largest floor or finite maximum: the bounds' part of the size that round-off
+    /// is measured against ([`solve`]'s tolerance).
+    fn bound_size(&self) -> f64 {
+        (0..self.tendons()).fold(0.0f64, |m, j| {
+            let max = self.max(j);
+            m.max(self.floor(j))
+                .max(if max.is_finite() { max } else { 0.0 })
+        })
+    }
 }
 
 /// `1 / |n|` for the components of `n`: [`Problem::inverse_length`], computed the same way
@@ -466,10 +475,14 @@ impl<T, P: Problem<T>> Problem<T> for &P {
     fn inverse_length(&self, k: usize) -> T {
         (**self).inverse_length(k)
     }
+    fn bound_size(&self) -> f64 {
+        (**self).bound_size()
+    }
 }
 
 /// A problem with its maxima taken away: its floors' optimum is [`solve`]'s best effort
-/// where the maxima cannot all be met.
+/// where the maxima cannot all be met, found by the same steps as the first phase of the
+/// run over the whole problem (the size of round-off, which the maxima enter, is kept).
 struct FloorsOnly<P>(P);
 
 impl<T, P: Problem<T>> Problem<T> for FloorsOnly<P> {
@@ -493,6 +506,9 @@ impl<T, P: Problem<T>> Problem<T> for FloorsOnly<P> {
     }
     fn inverse_length(&self, k: usize) -> T {
         self.0.inverse_length(k)
+    }
+    fn bound_size(&self) -> f64 {
+        self.0.bound_size()
     }
 }
 
@@ -744,12 +760,7 @@ fn project<T: Numeric, P: Problem<T>>(
 
     let mut with_max = false;
     // The bounds' part of the size is a constant of the problem (folded where it is one).
-    let bounds = (0..k).fold(0.0f64, |m, j| {
-        let max = p.max(j);
-        m.max(p.floor(j))
-            .max(if max.is_finite() { max } else { 0.0 })
-    });
-    let mut size = T::from_f64(bounds);
+    let mut size = T::from_f64(p.bound_size());
     for x in t0.iter() {
         let x = x.abs();
         if x > size {
@@ -1303,9 +1314,9 @@ mod tests {
     /// The derivatives `bounded_with_tangents` returns are those of the tensions `bounded`
     /// returns: along the torque `τ` of `T₀ = (τ/3)(1, 1, −1)`, against central differences
     /// of `bounded` for `τ` over ±40 N·m with maxima 15, 30 and 20 N, at feasible optima
-    /// (the active set's solution) and at best efforts (`MaxExceeded`: the method again over
-    /// dual numbers), away from a change of active set (where the one-sided differences
-    /// part).
+    /// (the active set's solution) and at best efforts (`MaxExceeded`: the floors' optimum,
+    /// found again over the floors alone for its active set), away from a change of active
+    /// set (where the one-sided differences part).
     #[test]
     fn the_tangents_are_the_derivatives_of_the_distribution() {
         let p = three_on_one([15.0, 30.0, 20.0]);

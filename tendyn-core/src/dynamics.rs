@@ -30,8 +30,9 @@ use crate::tension;
 pub struct InverseDynamics<T> {
     /// Generalized forces the actuators deliver, `Q = Σ motor columns · τ + A T` (N·m),
     /// evaluated as the `M q̈ + h + g − Q_ext − Q_friction` it equals (the tension-free
-    /// pass and the bearings' friction, [`generalized_forces`]), so that tensions far above
-    /// what the motion needs cost it no accuracy.
+    /// pass and the bearings' friction, [`generalized_forces`]; plus `Σ_i W_i (N_i − τ_f,i)`
+    /// where turning idlers follow guides with friction, [`idlers_behind_capstan`]), so
+    /// that tensions far above what the motion needs cost it no accuracy.
     pub generalized_forces: Vec<T>,
     /// One torque per motor, in file order (N·m).
     pub motor_torques: Vec<T>,
@@ -123,8 +124,8 @@ pub struct Workspace<T: Real> {
     pub(crate) b: Vec<T>,
     /// The minimal-norm solution `x₀ = E⁺ b`.
     pub(crate) minimal: Vec<T>,
-    /// Bearing friction torque of every body at the last inverse-dynamics call
-    /// ([`friction::bearing_torques`]), which its balance rows carry.
+    /// Bearing friction torque of every body at the last state a recursion took it at
+    /// ([`friction::bearing_torques`]): inverse dynamics' balance rows carry it.
     pub(crate) friction: Vec<T>,
     /// Capstan factor of every idler step, `[strand][idler]` (1 but on guides with
     /// friction; [`friction::capstan_factors`]).
@@ -213,9 +214,11 @@ pub fn generalized_forces<T: Real>(
     out: &mut [T],
 ) {
     expanded_generalized_forces(model, q, qd, qdd, true, true, ws, out);
-    friction::apply_at(model, qd, Some(qdd), Side::Delivered, out);
-    if model.capstan_before_an_idler() {
+    if model.has_friction() {
         friction::bearing_torques(model, qd, Some(qdd), &mut ws.friction);
+        friction::apply(model, &ws.friction, Side::Delivered, out);
+    }
+    if model.capstan_before_an_idler() {
         friction::capstan_factors(model, q, qd, Some(qdd), &mut ws.capstan);
         add_idlers_behind_capstan(model, ws, out);
     }

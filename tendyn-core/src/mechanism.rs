@@ -83,7 +83,8 @@ pub trait TendonMechanism {
     const STRUCTURE_MATRIX: &'static [&'static [f64]];
 
     /// `Q = M(q) q̈ + h(q, q̇) + g(q) − Q_ext − Σ_b c_bᵀ τ_f,b`: what the actuators deliver
-    /// (the last term the bearings' friction, `crate::friction`).
+    /// (the last term the bearings' friction, `crate::friction`; plus `Σ_i W_i (N_i − τ_f,i)`
+    /// where turning idlers follow guides with friction, `crate::dynamics::idlers_behind_capstan`).
     fn generalized_forces(
         &self,
         _q: &Self::Joints,

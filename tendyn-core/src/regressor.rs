@@ -233,7 +233,7 @@ pub fn regressor<T: Real>(
             column += 2;
         }
     }
-    idlers_behind_capstan(model, q, qd, qdd, work, y, p);
+    add_idler_rows(model, q, qd, qdd, work, y, p);
     for v in known.iter_mut() {
         *v = T::zero();
     }
@@ -273,7 +273,7 @@ fn inertial_row<T: Real>(u: Vec3<T>, r: Vec3<T>, a: Vec3<T>, w: Vec3<T>, wd: Vec
 /// is linear in its own parameters (`inertial_row` with `u = 0`, `r` its axis), and
 /// `−τ_f,i = coulomb · s + viscous · ω_b`. The guides' directions at rest come from `q̈`,
 /// as in inverse dynamics. Nothing is done without such idlers.
-fn idlers_behind_capstan<T: Real>(
+fn add_idler_rows<T: Real>(
     model: &Model<T>,
     q: &[T],
     qd: &[T],
