@@ -230,20 +230,8 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         problem: &P,
         along: impl Fn(usize) -> (Q, bool),
     ) -> (Self, [[T; K]; J]) {
-        let mut lambda = [T::zero(); D];
-        let mut basis = [[T::zero(); D]; D];
-        let mut triangle = [[T::zero(); D]; D];
-        let mut multipliers = [T::zero(); D];
-        let mut scratch = [[T::zero(); D]; 4];
-        let mut active = [0usize; D];
-        let mut work = Work {
-            lambda: &mut lambda,
-            basis: basis.as_flattened_mut(),
-            triangle: triangle.as_flattened_mut(),
-            multipliers: &mut multipliers,
-            scratch: scratch.as_flattened_mut(),
-            active: &mut active,
-        };
+        let mut buffers = Buffers::<T, D>::new();
+        let mut work = buffers.work();
         let mut tendon_tensions = [T::zero(); K];
         let (status, mut q) = solve_counted(problem, &t0, &mut work, &mut tendon_tensions, None);
         let differentiable = match status {
@@ -258,6 +246,13 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
             Status::Unresolved => false,
         };
         // (Over the floors' active set no maximum is read.)
+        let Buffers {
+            lambda,
+            basis,
+            triangle,
+            active,
+            ..
+        } = buffers;
         let active = &active[..q];
         let zero = Dual::constant(T::zero());
         let mut tangents = [[T::zero(); K]; J];
@@ -311,26 +306,56 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         t0: [T; K],
         problem: &P,
     ) -> Self {
-        let mut lambda = [T::zero(); D];
-        let mut basis = [[T::zero(); D]; D];
-        let mut triangle = [[T::zero(); D]; D];
-        let mut multipliers = [T::zero(); D];
-        let mut scratch = [[T::zero(); D]; 4];
-        let mut active = [0usize; D];
-        let mut work = Work {
-            lambda: &mut lambda,
-            basis: basis.as_flattened_mut(),
-            triangle: triangle.as_flattened_mut(),
-            multipliers: &mut multipliers,
-            scratch: scratch.as_flattened_mut(),
-            active: &mut active,
-        };
+        let mut buffers = Buffers::<T, D>::new();
         let mut tendon_tensions = [T::zero(); K];
-        let status = solve(problem, &t0, &mut work, &mut tendon_tensions, None);
+        let status = solve(
+            problem,
+            &t0,
+            &mut buffers.work(),
+            &mut tendon_tensions,
+            None,
+        );
         Actuation {
             motor_torques,
             tendon_tensions,
             status,
+        }
+    }
+}
+
+/// [`Work`]'s buffers for `D` directions, on the stack (generated code's sizes are
+/// constants, so the compiler sees them).
+struct Buffers<T, const D: usize> {
+    lambda: [T; D],
+    basis: [[T; D]; D],
+    triangle: [[T; D]; D],
+    multipliers: [T; D],
+    scratch: [[T; D]; 4],
+    active: [usize; D],
+}
+
+impl<T: Real, const D: usize> Buffers<T, D> {
+    #[inline(always)]
+    fn new() -> Self {
+        Buffers {
+            lambda: [T::zero(); D],
+            basis: [[T::zero(); D]; D],
+            triangle: [[T::zero(); D]; D],
+            multipliers: [T::zero(); D],
+            scratch: [[T::zero(); D]; 4],
+            active: [0; D],
+        }
+    }
+
+    #[inline(always)]
+    fn work(&mut self) -> Work<'_, T> {
+        Work {
+            lambda: &mut self.lambda,
+            basis: self.basis.as_flattened_mut(),
+            triangle: self.triangle.as_flattened_mut(),
+            multipliers: &mut self.multipliers,
+            scratch: self.scratch.as_flattened_mut(),
+            active: &mut self.active,
         }
     }
 }

@@ -12,6 +12,20 @@ use tendyn_core::distribution::Status;
 use tendyn_core::{Data, Error};
 use tendyn_generated_tests::BOUNDED;
 
+/// A random state of `n` joints in f32 (q in ±π, q̇ in ±2, q̈ in ±6) and the same in f64,
+/// so that both scalars see exactly the same inputs.
+fn random_state(rng: &mut ChaCha8Rng, n: usize) -> ([Vec<f32>; 3], [Vec<f64>; 3]) {
+    let narrow = [std::f64::consts::PI, 2.0, 6.0].map(|s| {
+        (0..n)
+            .map(|_| rng.random_range(-s..s) as f32)
+            .collect::<Vec<f32>>()
+    });
+    let wide = narrow
+        .clone()
+        .map(|x| x.iter().map(|&v| v as f64).collect());
+    (narrow, wide)
+}
+
 #[test]
 fn generated_actuation_agrees_with_the_runtime_on_status_and_tensions() {
     for mech in BOUNDED {
@@ -23,14 +37,7 @@ fn generated_actuation_agrees_with_the_runtime_on_status_and_tensions() {
         let (mut feasible, mut exceeded, mut worst64, mut worst32, mut disagree32) =
             (0, 0, 0.0f64, 0.0f64, 0);
         for _ in 0..2000 {
-            let mut v = |s: f64| {
-                (0..n)
-                    .map(|_| rng.random_range(-s..s) as f32)
-                    .collect::<Vec<f32>>()
-            };
-            let (q, qd, qdd) = (v(std::f64::consts::PI), v(2.0), v(6.0));
-            let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
-            let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
+            let ([q, qd, qdd], [q64, qd64, qdd64]) = random_state(&mut rng, n);
             let (t64, status64) = (mech.actuation_f64)(&q64, &qd64, &qdd64);
             let (t32, status32) = (mech.actuation_f32)(&q, &qd, &qdd);
             for (t, f) in t64.iter().zip(model.tendons()) {
@@ -126,14 +133,7 @@ fn generated_actuation_derivatives_agree_with_the_runtime_over_any_null_space() 
         let (mut checked, mut checked32, mut worst64, mut worst32) = (0, 0, 0.0f64, 0.0f64);
         let (mut best_efforts, mut worst_best) = (0, 0.0f64);
         for _ in 0..300 {
-            let mut v = |s: f64| {
-                (0..n)
-                    .map(|_| rng.random_range(-s..s) as f32)
-                    .collect::<Vec<f32>>()
-            };
-            let (q, qd, qdd) = (v(std::f64::consts::PI), v(2.0), v(6.0));
-            let wide = |x: &[f32]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
-            let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
+            let ([q, qd, qdd], [q64, qd64, qdd64]) = random_state(&mut rng, n);
             let Ok(d) = data.actuation_derivatives(&model, &q64, &qd64, &qdd64) else {
                 // Beyond the maxima: no derivative at run time.
                 if let Some(e) = best_effort_error(mech, [&q64, &qd64, &qdd64], k) {
