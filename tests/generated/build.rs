@@ -229,13 +229,30 @@ fn main() {
     }
     registry.push_str("];\n");
     // Seeded random systems of the bounded tension distribution (structure-only tendons
-    // with floors and maxima, null spaces of one to four dimensions): `actuation` with its
-    // status, and its derivatives, in f64 and f32 (`tests/bounded.rs`).
+    // with floors and maxima, null spaces of one to four dimensions), and one with capstan
+    // friction: `actuation` with its status, and its derivatives, in f64 and f32
+    // (`tests/bounded.rs`).
     registry.push_str("pub static BOUNDED: &[Bounded] = &[\n");
-    for (n, m, gravity, max) in tendyn_spec::bounded::SIZES {
-        let name = format!("bounded_{n}x{m}");
-        let seed = tendyn_spec::bounded::seed(n, m);
-        let text = tendyn_spec::bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
+    let mut bounded: Vec<(String, String)> = tendyn_spec::bounded::SIZES
+        .iter()
+        .map(|&(n, m, gravity, max)| {
+            let seed = tendyn_spec::bounded::seed(n, m);
+            let text = tendyn_spec::bounded::mechanism_ron_scaled(seed, n, m, gravity, max);
+            (format!("bounded_{n}x{m}"), text)
+        })
+        .collect();
+    // Example 2 with capstan friction and an antagonist on drum 1 (two null directions, a
+    // function of the state) with maxima that about a third of the states cannot meet:
+    // `bounded_at_state` and its derivatives, best efforts included.
+    let antagonist = tendyn_spec::guides::with_antagonist_on_drum1(
+        &std::fs::read_to_string(root.join("example2_capstan.ron")).unwrap(),
+    );
+    let maxima = [("T32", 12.0), ("T42", 12.0), ("T11", 25.0), ("T12", 20.0)];
+    bounded.push((
+        "capstan_antagonist_bounded".to_string(),
+        tendyn_spec::guides::with_maxima(&antagonist, &maxima),
+    ));
+    for (name, text) in bounded {
         let model = tendyn_core::parse(&text).unwrap();
         let generated = generate(
             &model,

@@ -69,6 +69,19 @@ pub fn with_antagonist_on_drum1(text: &str) -> String {
         )
 }
 
+/// `text` with `max_tension` on the named tendons.
+pub fn with_maxima(text: &str, maxima: &[(&str, f64)]) -> String {
+    maxima.iter().fold(text.to_string(), |text, (name, max)| {
+        let from = format!("(name: \"{name}\", route:");
+        assert_eq!(text.matches(&from).count(), 1, "{from}");
+        text.replacen(
+            &from,
+            &format!("(name: \"{name}\", max_tension: {max:?}, route:"),
+            1,
+        )
+    })
+}
+
 /// One joint. A drum of radius 0.02 m on the joint axis; `over_pin` leaves its top
 /// horizontally to the left, meets the top of a pin (radius 0.01 m, centre (−0.1, 0.01) in
 /// the base) tangentially, wraps it a quarter turn counter-clockwise and leaves straight

@@ -15,8 +15,9 @@ pub struct Mechanism {
         fn(&[f32], &[f32], &[f32], &[f32], &[f32], &[f32]) -> Vec<(&'static str, Vec<f32>)>,
 }
 
-/// Generated `actuation` of a random bounded-distribution system (`BOUNDED`): ground-level
-/// tensions and status, in each scalar.
+/// Generated `actuation` of a bounded-distribution system (`BOUNDED`: the seeded random
+/// ones and a capstan one, see `build.rs`): ground-level tensions and status, in each
+/// scalar, and their derivatives.
 pub struct Bounded {
     pub name: &'static str,
     pub ron: &'static str,

@@ -1,6 +1,8 @@
 //! Generated `actuation` of the seeded random bounded-distribution systems
 //! (`tendyn_spec::bounded::SIZES`: null spaces of one to four dimensions, floors and maxima
-//! per tendon) agrees with the runtime solver at 2,000 random states each, in f64 and f32:
+//! per tendon) and of Example 2 with capstan friction, an antagonist and maxima (two null
+//! directions that depend on the state) agrees with the runtime solver at 2,000 random
+//! states each, in f64 and f32:
 //! `Status::Feasible` exactly where the runtime returns tensions (f64), `MaxExceeded`
 //! where it reports that the bounds cannot be met, and the tensions within 1e-12 (f64) and
 //! 1e-4 (f32, whose whole recursion runs in f32) of the runtime's, max norm relative. In
