@@ -596,7 +596,9 @@ fn distributed_jacobians(
             // in `actuation`'s layout.
             let size = directions * tendons + directions + tendons;
             let first = actuators + 3 * actuators * n;
-            let at_state = |block: usize| -> Expr {
+            // Block 0 is the problem's values, block `c + 1` its derivative along `c`:
+            // the basis, target and lengths, as `AtState` and `AtStateTangent` name them.
+            let parts = |block: usize| {
                 let entry = |i: usize| &values[first + block * size + i];
                 let null = (0..directions).map(|d| {
                     let cells = (0..tendons).map(|k| entry(d * tendons + k));
@@ -605,18 +607,23 @@ fn distributed_jacobians(
                 let target = (0..directions).map(|d| entry(directions * tendons + d));
                 let inverse_length =
                     (0..tendons).map(|k| entry(directions * tendons + directions + k));
-                parse_quote!(#core::distribution::AtState {
+                quote!(
                     null: [#(#null),*],
-                    floor: #floor,
-                    max: #max,
                     target: [#(#target),*],
                     inverse_length: [#(#inverse_length),*],
-                })
+                )
             };
-            let problem = at_state(0);
-            let tangents = (1..=coordinates).map(at_state);
+            let values = parts(0);
+            let tangents = (1..=coordinates).map(|c| {
+                let parts = parts(c);
+                quote!(#core::distribution::AtStateTangent { #parts })
+            });
             quote!(#actuation::bounded_at_state_with_tangents(
-                [#(#m),*], [#(#t0),*], &[#(#t0_tangents),*], &#problem, &[#(#tangents),*]
+                [#(#m),*],
+                [#(#t0),*],
+                &[#(#t0_tangents),*],
+                &#core::distribution::AtState { #values floor: #floor, max: #max },
+                &[#(#tangents),*]
             ))
         }
         _ => {

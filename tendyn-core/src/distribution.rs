@@ -178,35 +178,37 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
             t0,
             t0_tangents,
             problem,
-            |_| (problem, true),
+            true,
+            |_| problem,
         )
     }
 
     /// [`Actuation::bounded_at_state`] with the tensions' derivatives along `J`
     /// directions, from the minimal-norm tensions' (`t0_tangents[j]`) and the state's
-    /// problem's (`problem_tangents[j]`: the derivatives of its `null`, `target` and
-    /// `inverse_length`; its bounds are not read).
+    /// problem's (`problem_tangents[j]`).
     #[inline(always)]
     pub fn bounded_at_state_with_tangents<const D: usize, const J: usize>(
         motor_torques: [T; M],
         t0: [T; K],
         t0_tangents: &[[T; K]; J],
         problem: &AtState<T, K, D>,
-        problem_tangents: &[AtState<T, K, D>; J],
+        problem_tangents: &[AtStateTangent<T, K, D>; J],
     ) -> (Self, [[T; K]; J]) {
         Self::distributed_with_tangents::<D, J, _, _>(
             motor_torques,
             t0,
             t0_tangents,
             problem,
-            |j| (problem.seeded(&problem_tangents[j]), false),
+            false,
+            |j| problem.seeded(&problem_tangents[j]),
         )
     }
 
     /// `t0` distributed by [`solve`], with the derivatives along `J` directions of what it
-    /// returns, `along(j)` the problem over dual numbers seeded along direction `j` and
-    /// whether its normals are constants (then the factorisation of the active normals is
-    /// the value's, taken as it is; else it is taken afresh over dual numbers). At a
+    /// returns, `along(j)` the problem over dual numbers seeded along direction `j`; where
+    /// its normals are constants (`constant_normals`) the factorisation of the active
+    /// normals is the value's, taken as it is, else it is taken afresh over dual numbers
+    /// for each direction. At a
     /// feasible optimum the active bounds hold nearby (a change of active set is where the
     /// derivative is one-sided; this takes the side of the set found), and the derivative
     /// is that of the solution on them: [`refine`]'s step over dual numbers, whose result
@@ -228,7 +230,8 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         t0: [T; K],
         t0_tangents: &[[T; K]; J],
         problem: &P,
-        along: impl Fn(usize) -> (Q, bool),
+        constant_normals: bool,
+        along: impl Fn(usize) -> Q,
     ) -> (Self, [[T; K]; J]) {
         let mut buffers = Buffers::<T, D>::new();
         let mut work = buffers.work();
@@ -255,31 +258,33 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
         } = buffers;
         let active = &active[..q];
         let zero = Dual::constant(T::zero());
+        let lift = |m: [[T; D]; D]| m.map(|row| row.map(Dual::constant));
+        let (mut basis, mut triangle) = if constant_normals {
+            (lift(basis), lift(triangle))
+        } else {
+            ([[zero; D]; D], [[zero; D]; D])
+        };
+        // Each direction's step starts from the optimum, with no derivative.
+        let optimum = lambda.map(Dual::constant);
         let mut tangents = [[T::zero(); K]; J];
         for (j, out) in tangents.iter_mut().enumerate() {
-            let (p, constant_normals) = along(j);
+            let p = along(j);
             let seeded: [Dual<T>; K] =
                 core::array::from_fn(|k| Dual::new(t0[k], t0_tangents[j][k]));
             let mut t = [zero; K];
             if differentiable {
-                let (mut basis, mut triangle) = if constant_normals {
-                    let lift = |m: [[T; D]; D]| m.map(|row| row.map(Dual::constant));
-                    (lift(basis), lift(triangle))
-                } else {
-                    ([[zero; D]; D], [[zero; D]; D])
-                };
-                let (basis, triangle) = (basis.as_flattened_mut(), triangle.as_flattened_mut());
                 if !constant_normals {
-                    factorize(&p, basis, triangle, active, D, 0);
+                    let (b, r) = (basis.as_flattened_mut(), triangle.as_flattened_mut());
+                    factorize(&p, b, r, active, D, 0);
                 }
-                let mut lambda = lambda.map(Dual::constant);
+                let mut lambda = optimum;
                 let (mut y, mut delta) = ([zero; D], [zero; D]);
                 refine(
                     &p,
                     &seeded,
                     &mut lambda,
-                    basis,
-                    triangle,
+                    basis.as_flattened(),
+                    triangle.as_flattened(),
                     active,
                     &mut y,
                     &mut delta,
@@ -593,11 +598,22 @@ pub struct AtState<T, const K: usize, const D: usize> {
     pub inverse_length: [T; K],
 }
 
+/// The derivative of an [`AtState`] problem's state-dependent parts along one direction
+/// (its bounds are constants).
+#[derive(Clone, Copy, Debug)]
+pub struct AtStateTangent<T, const K: usize, const D: usize> {
+    /// `∂null[d][k]`.
+    pub null: [[T; K]; D],
+    /// `∂target[d]`.
+    pub target: [T; D],
+    /// `∂inverse_length[k]`.
+    pub inverse_length: [T; K],
+}
+
 impl<T: Real, const K: usize, const D: usize> AtState<T, K, D> {
     /// The problem over dual numbers: these values, with the derivatives of the basis, the
-    /// target and the normals' lengths along one direction from `tangent` (whose bounds
-    /// are not read).
-    pub fn seeded(&self, tangent: &Self) -> AtState<Dual<T>, K, D> {
+    /// target and the normals' lengths along one direction from `tangent`.
+    pub fn seeded(&self, tangent: &AtStateTangent<T, K, D>) -> AtState<Dual<T>, K, D> {
         let pair = |v: T, t: T| Dual::new(v, t);
         AtState {
             null: core::array::from_fn(|d| {

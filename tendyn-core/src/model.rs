@@ -498,6 +498,9 @@ pub struct Model<T> {
     /// Explicit couplings or structure columns are present: segment tensions and bearing
     /// forces cannot be attributed and are reported as unavailable.
     pub(crate) routing_incomplete: bool,
+    /// [`Model::capstan_before_an_idler`], found once at validation: every inverse and
+    /// forward dynamics call asks it.
+    pub(crate) idler_behind_capstan: bool,
     /// What the routing was traced from ([`Model::symbolic_geometry`] traces it again).
     pub(crate) trace_record: crate::transmission::TraceRecord,
     /// What the recursions may skip for each body (derived at validation by
@@ -703,10 +706,7 @@ impl<T: Real> Model<T> {
     /// scaled by the guide's factor, beyond what the symmetric mass matrix carries
     /// (forward dynamics adds it: `dynamics::idlers_behind_capstan`).
     pub fn capstan_before_an_idler(&self) -> bool {
-        self.strands.iter().any(|strand| {
-            let first = strand.idlers.iter().position(|i| i.capstan().is_some());
-            first.is_some_and(|k| strand.idlers[k..].iter().any(|i| i.guide.is_none()))
-        })
+        self.idler_behind_capstan
     }
 
     /// Every fixed guide a tendon slides over, strand by strand in route order: strand
@@ -827,6 +827,7 @@ impl<T: Real> Model<T> {
                 moment: v(w.moment),
             }),
             routing_incomplete: self.routing_incomplete,
+            idler_behind_capstan: self.idler_behind_capstan,
             trace_record: self.trace_record.clone(),
             patterns: self.patterns.clone(),
             identity: new_identity(),
@@ -1142,6 +1143,15 @@ impl Model<f64> {
         }
         m
     }
+}
+
+/// Whether, on some strand, a turning idler lies between a guide with capstan friction and
+/// the ground end ([`Model::capstan_before_an_idler`]).
+pub(crate) fn capstan_before_an_idler<T>(strands: &[Strand<T>]) -> bool {
+    strands.iter().any(|strand| {
+        let first = strand.idlers.iter().position(|i| i.capstan().is_some());
+        first.is_some_and(|k| strand.idlers[k..].iter().any(|i| i.guide.is_none()))
+    })
 }
 
 /// Whether one of the strand's guides has capstan friction.

@@ -229,7 +229,7 @@ impl<'a> Validator<'a> {
                     }
                 )
             });
-        let strands = (strands.into_iter().enumerate())
+        let strands: Vec<_> = (strands.into_iter().enumerate())
             .map(|(i, (name, g))| Strand {
                 name,
                 shares: (g.segment_rates.iter())
@@ -256,6 +256,7 @@ impl<'a> Validator<'a> {
         };
         let parameter_slots = parameter_slots(f);
         let patterns = crate::model::patterns_of(&bodies, &parameter_slots);
+        let idler_behind_capstan = crate::model::capstan_before_an_idler(&strands);
         Ok(Model {
             name: f.name.clone(),
             gravity: Vec3::from_array(gravity),
@@ -280,6 +281,7 @@ impl<'a> Validator<'a> {
             system,
             external_wrench,
             routing_incomplete,
+            idler_behind_capstan,
             trace_record,
             patterns,
             identity: crate::model::new_identity(),

@@ -102,6 +102,7 @@ impl Model<f64> {
             joint_ranges: vec![None; dof],
             external_wrench,
             routing_incomplete: false,
+            idler_behind_capstan: false,
             patterns,
             trace_record: Default::default(),
             identity: crate::model::new_identity(),
