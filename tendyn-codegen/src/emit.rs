@@ -536,7 +536,11 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
             n,
             actuators,
             distributed: StatusFrom::Solve | StatusFrom::SolveAtState { .. },
-        } => distributed_jacobians(f, values.collect(), *n, *actuators, core),
+        } => {
+            let values: Vec<Expr> = values.collect();
+            let call = distributed_call(f, &values, *n, *actuators, core);
+            jacobians_from(f, &values, *n, *actuators, core, call)
+        }
         Shape::ActuationJacobians { n, actuators, .. } => {
             let value = take(*actuators);
             let mut jacobian = || ast::array((0..*actuators).map(|_| take(*n)));
@@ -564,11 +568,11 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
 /// [`Shape::ActuationJacobians`] lays them out): the minimal-norm tensions and their
 /// derivatives along each coordinate, distributed by `Actuation::bounded_with_tangents`
 /// (or `bounded_at_state_with_tangents`, with the state's problem and its derivatives):
-/// the runtime's routine, which differentiates its optimum on its active set. The motors'
-/// rows are traced.
-fn distributed_jacobians(
+/// the runtime's routine, which differentiates its optimum on its active set. This is the
+/// call, whose value is `(Actuation, tangents)`; [`jacobians_from`] lays it out.
+fn distributed_call(
     f: &Function,
-    values: Vec<Expr>,
+    values: &[Expr],
     n: usize,
     actuators: usize,
     core: &syn::Path,
@@ -641,6 +645,26 @@ fn distributed_jacobians(
             ))
         }
     };
+    parse_quote!(#call)
+}
+
+/// `actuation_derivatives` over several null directions from `pair`, the value of
+/// [`distributed_call`] (`(Actuation, tangents)`): the motors' rows as traced, the tendons'
+/// from the tangents.
+fn jacobians_from(
+    f: &Function,
+    values: &[Expr],
+    n: usize,
+    actuators: usize,
+    core: &syn::Path,
+    pair: Expr,
+) -> Expr {
+    let dist = (f.distribution.as_ref()).expect("a many-dimensional distribution's constants");
+    let tendons = dist.floor.len();
+    let motors = actuators - tendons;
+    let jacobian =
+        |r: usize, c: usize| &values[actuators + (c / n) * actuators * n + r * n + c % n];
+    let m = &values[..motors];
     let value = m
         .iter()
         .map(|x| quote!(#x))
@@ -662,7 +686,7 @@ fn distributed_jacobians(
     };
     let (d_q, d_qd, d_qdd) = (rows(0), rows(1), rows(2));
     parse_quote!({
-        let (actuation, tangents) = #call;
+        let (actuation, tangents) = #pair;
         #core::dual::ActuationJacobians {
             value: [#(#value),*],
             d_q: #d_q,
@@ -670,6 +694,51 @@ fn distributed_jacobians(
             d_qdd: #d_qdd,
         }
     })
+}
+
+/// In `all`: the indices of `actuation` and `actuation_derivatives` where both distribute
+/// over several null directions the very same tensions within the same problem (their
+/// traced arguments the same expressions), so that one call serves both.
+fn one_distribution(functions: &[Function], values: &[Vec<Expr>]) -> Option<(usize, usize)> {
+    let a = functions.iter().position(|f| {
+        matches!(
+            f.shape,
+            Shape::Actuation {
+                status: StatusFrom::Solve | StatusFrom::SolveAtState { .. },
+                ..
+            }
+        )
+    })?;
+    let j = functions.iter().position(|f| {
+        matches!(
+            f.shape,
+            Shape::ActuationJacobians {
+                distributed: StatusFrom::Solve | StatusFrom::SolveAtState { .. },
+                ..
+            }
+        )
+    })?;
+    let (
+        Shape::Actuation {
+            motors, tendons, ..
+        },
+        Shape::ActuationJacobians { n, actuators, .. },
+    ) = (&functions[a].shape, &functions[j].shape)
+    else {
+        return None;
+    };
+    let (n, actuators) = (*n, *actuators);
+    // The actuation's arguments: motors, tendons, then the state's problem (if any); the
+    // derivatives': motors and tendons, the Jacobians, then the state's problem.
+    let state_problem = values[a].len().checked_sub(actuators)?;
+    let first = actuators + 3 * actuators * n;
+    let tokens = |x: &[Expr]| quote!(#(#x),*).to_string();
+    let same = motors + tendons == actuators
+        && functions[a].distribution == functions[j].distribution
+        && values[j].len() >= first + state_problem
+        && tokens(&values[a][..actuators]) == tokens(&values[j][..actuators])
+        && tokens(&values[a][actuators..]) == tokens(&values[j][first..first + state_problem]);
+    same.then_some((a, j))
 }
 
 /// `[x₀, x₁, …]` of `f64` constants written exactly (`f64::INFINITY` for an absent maximum),
@@ -993,7 +1062,7 @@ pub fn emit_file(
         quote!(#[doc = #d] pub #name: #ty)
     });
     let mut offset = 0;
-    let inits: Vec<(Ident, Expr)> = traced
+    let values: Vec<Vec<Expr>> = traced
         .functions
         .iter()
         .map(|f| {
@@ -1002,9 +1071,35 @@ pub fn emit_file(
                 .map(|&r| body.expr(r))
                 .collect();
             offset += f.results.len();
-            (ast::ident(f.output.name()), shaped(f, values, core))
+            values
         })
         .collect();
+    let mut inits: Vec<(Ident, Expr)> = traced
+        .functions
+        .iter()
+        .zip(&values)
+        .map(|(f, values)| (ast::ident(f.output.name()), shaped(f, values.clone(), core)))
+        .collect();
+    // `actuation` and `actuation_derivatives` over several null directions: one run of the
+    // distribution gives both (the tangents' routine returns the value's `Actuation`).
+    if let Some((a, j)) = one_distribution(&traced.functions, &values) {
+        let Shape::ActuationJacobians { n, actuators, .. } = traced.functions[j].shape else {
+            unreachable!("one_distribution pairs an actuation_derivatives")
+        };
+        let (f, values) = (&traced.functions[j], &values[j]);
+        let call = distributed_call(f, values, n, actuators, core);
+        body.stmts
+            .push(parse_quote!(let actuation_and_tangents = #call;));
+        inits[a].1 = parse_quote!(actuation_and_tangents.0);
+        inits[j].1 = jacobians_from(
+            f,
+            values,
+            n,
+            actuators,
+            core,
+            parse_quote!(actuation_and_tangents),
+        );
+    }
     let count = traced.all_ops;
     let all_doc =
         format!(" Every generated output at once, sharing their common work. Operations: {count}.");

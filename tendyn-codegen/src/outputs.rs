@@ -173,7 +173,7 @@ impl Form {
 /// The constants of the fixed-size tension distribution (see [`Function::distribution`]).
 /// Where the null space depends on the state ([`StatusFrom::SolveAtState`]) only the floors
 /// and maxima are constants, and `null`, `target` and `inverse_length` are empty.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Distribution {
     /// Null-space basis restricted to the tendons: `null[d][k]`.
     pub null: Vec<Vec<f64>>,

@@ -281,11 +281,21 @@ fn main() {
             )
             .unwrap();
         }
+        let numbers = flattened_numbers(Output::ActuationDerivatives, "d");
+        writeln!(
+            adapter,
+            "pub fn all_f64(q: &[f64], qd: &[f64], qdd: &[f64]) -> (Vec<f64>, tendyn_core::distribution::Status, Vec<f64>) {{ \
+             let o = code::all::<f64>(q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap()); \
+             let d = o.actuation_derivatives; \
+             (o.actuation.tendon_tensions.to_vec(), o.actuation.status, {numbers}.copied().collect()) }}"
+        )
+        .unwrap();
         module(&mut modules, &name, &adapter);
         writeln!(
             registry,
             "    Bounded {{ name: \"{name}\", ron: {name}::RON, actuation_f64: {name}::actuation_f64, actuation_f32: {name}::actuation_f32, \
-             actuation_derivatives_f64: {name}::actuation_derivatives_f64, actuation_derivatives_f32: {name}::actuation_derivatives_f32 }},"
+             actuation_derivatives_f64: {name}::actuation_derivatives_f64, actuation_derivatives_f32: {name}::actuation_derivatives_f32, \
+             all_f64: {name}::all_f64 }},"
         )
         .unwrap();
     }

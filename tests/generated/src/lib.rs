@@ -27,6 +27,9 @@ pub struct Bounded {
     pub actuation_derivatives_f64: AtState<f64, Vec<f64>>,
     /// The same in `f32`.
     pub actuation_derivatives_f32: AtState<f32, Vec<f32>>,
+    /// `all` (`f64`): its `actuation`'s tensions and status, and its
+    /// `actuation_derivatives` flattened as above.
+    pub all_f64: AtState<f64, (Vec<f64>, Status, Vec<f64>)>,
 }
 
 /// A generated function of the state `(q, q̇, q̈)`, adapted to slices.

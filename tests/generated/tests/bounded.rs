@@ -242,3 +242,26 @@ fn best_effort_error(
     }
     Some(worst)
 }
+
+/// `all` runs the distribution once for both outputs (the tangents' routine returns the
+/// value's `Actuation`): what it returns is, bit for bit, what `actuation` and
+/// `actuation_derivatives` return on their own, best efforts included.
+#[test]
+fn all_gives_exactly_what_actuation_and_its_derivatives_give() {
+    let mut exceeded = 0;
+    for mech in BOUNDED {
+        let n = tendyn_core::parse(mech.ron).unwrap().dof();
+        let mut rng = ChaCha8Rng::seed_from_u64(37);
+        for _ in 0..300 {
+            let (_, [q, qd, qdd]) = random_state(&mut rng, n);
+            let (tensions, status, derivatives) = (mech.all_f64)(&q, &qd, &qdd);
+            let alone = (mech.actuation_f64)(&q, &qd, &qdd);
+            assert_eq!((&tensions, status), (&alone.0, alone.1), "{}", mech.name);
+            let alone = (mech.actuation_derivatives_f64)(&q, &qd, &qdd);
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&derivatives), bits(&alone), "{}", mech.name);
+            exceeded += usize::from(status == Status::MaxExceeded);
+        }
+    }
+    assert!(exceeded > 100, "{exceeded} best efforts");
+}
