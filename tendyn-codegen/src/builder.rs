@@ -108,7 +108,9 @@ impl Builder {
                 })?,
         };
         let base = std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from);
-        let mut written = Vec::new();
+        // Every file is generated before any is written: an error leaves the directory as
+        // it was.
+        let mut sources = Vec::new();
         for path in &self.mechanisms {
             let full = match (&base, path.is_relative()) {
                 (Some(b), true) => b.join(path),
@@ -132,9 +134,16 @@ impl Builder {
                 source: file_name(&full),
                 core_path: self.core_path.clone(),
             };
-            let generated = generate_with(&model, &outputs, &options)?;
-            let target = out_dir.join(format!("{stem}.rs"));
-            write_if_changed(&target, &generated.source())?;
+            let generated =
+                generate_with(&model, &outputs, &options).map_err(|e| Error::Generation {
+                    path: shown.clone(),
+                    error: Box::new(e),
+                })?;
+            sources.push((out_dir.join(format!("{stem}.rs")), generated.source()));
+        }
+        let mut written = Vec::new();
+        for (target, source) in sources {
+            write_if_changed(&target, &source)?;
             written.push(target);
         }
         Ok(written)
@@ -276,6 +285,36 @@ mod tests {
             .unwrap_err();
         assert_eq!(e, Error::UnknownOutput("torques".to_string()));
         assert!(e.to_string().contains("generalized_forces"), "{e}");
+    }
+
+    #[test]
+    fn an_output_one_mechanism_cannot_provide_is_refused_naming_its_file_and_nothing_is_written() {
+        let dir = std::env::temp_dir().join(format!("tendyn-builder-gen-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // One link driven by a motor: no tendon, so no segment tensions.
+        let motor = dir.join("motor.ron");
+        std::fs::write(
+            &motor,
+            "(name: \"motor1\", links: [(name: \"arm\", dh: (a: 0.2, alpha: 0.0, d: 0.0), \
+             mass: 0.5, com: (-0.1, 0.0, 0.0))], motors: [(name: \"m\", on: Joint(\"arm\"))])",
+        )
+        .unwrap();
+        let e = Builder::new()
+            .mechanism(example("example1_endless.ron"))
+            .mechanism(&motor)
+            .outputs(&["segment_tensions"])
+            .out_dir(&dir)
+            .emit_rerun_if_changed(false)
+            .generate()
+            .unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("motor.ron") && text.contains("segment_tensions"),
+            "{text}"
+        );
+        // The first mechanism could be generated, but nothing is written.
+        assert!(!dir.join("example1_endless.rs").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -53,6 +53,14 @@ pub enum Error {
         /// What reading or validating it reported.
         error: tendyn_core::Error,
     },
+    /// Code generation failed for a mechanism file of a [`Builder`] (an output it cannot
+    /// provide, a constant its scalar cannot hold).
+    Generation {
+        /// The file's path as given to [`Builder::mechanism`].
+        path: String,
+        /// What generation reported.
+        error: Box<Error>,
+    },
     /// An output name that is not one of [`Output::ALL`].
     UnknownOutput(String),
     /// The build environment is not what [`Builder`] needs (no `OUT_DIR`, an unwritable
@@ -81,6 +89,7 @@ impl std::fmt::Display for Error {
                 )
             }
             Error::File { path, error } => write!(f, "{path}: {error}"),
+            Error::Generation { path, error } => write!(f, "{path}: {error}"),
             Error::UnknownOutput(name) => write!(
                 f,
                 "unknown output `{name}`: the outputs are {}",
