@@ -118,7 +118,7 @@ use tendyn_codegen::{Options, Output, Scalar};
 /// | a RON syntax error | `mechanisms/x.ron:17:13: RON syntax error: ...` (the path) |
 /// | an invalid mechanism (unknown name, invalid inertia, uncontrollable routing, ...) | `mechanisms/x.ron:LINE:COLUMN: ITEM: PROBLEM`, as `tendyn check` reports it (the path; `inline RON:LINE:COLUMN` for `ron = ...`) |
 /// | an output the mechanism cannot provide | ``mechanism `motor_only` cannot provide `segment_tensions`: ...`` (that output) |
-/// | a number the scalar cannot hold | ``BODY: its mass is 1e39 kg, which f32 cannot hold ...``, ``output `NAME`: a constant folded from the mechanism's numbers is ...`` (the `file` or `ron` value) |
+/// | a number the scalar cannot hold | ``output `NAME`: a constant folded from the mechanism's numbers is ..., which f32 cannot hold ...`` (the `file` or `ron` value) |
 /// | a field that is not a parameter | ``field `payload` is not a runtime parameter of mechanism `finger`: it declares `m3`, `g` `` (the field) |
 /// | a parameter without a field | ``mechanism `finger` declares the runtime parameter `g`, missing from the fields of `Finger` (fields: `m3`); ...`` (the struct's name) |
 /// | a field of another type | rustc's `mismatched types` (the field) |
