@@ -1,5 +1,7 @@
-//! The `tendyn` command line: check a mechanism, evaluate its dynamics, run the demo,
-//! generate code, and measure error against run time (`report`, through cargo).
+//! The `tendyn` command line: check a mechanism, evaluate its dynamics (inverse and
+//! forward), identify its parameters (`regressor`, `identify`), draw it, export it to
+//! MuJoCo, generate code or its equations, run the demo, and measure error against run
+//! time (`report`, through cargo).
 
 mod draw;
 mod identified;

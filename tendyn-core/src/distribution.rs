@@ -165,7 +165,7 @@ impl<T: Numeric, const M: usize, const K: usize> Actuation<[T; M], [T; K]> {
 
     /// [`Actuation::bounded`] with the tensions' derivatives along `J` directions, from the
     /// minimal-norm tensions' (`t0_tangents[j]`): `tangents[j][k] = ∂T_k` along direction
-    /// `j` (see [`Actuation::distributed_with_tangents`]).
+    /// `j` (see `Actuation::distributed_with_tangents`).
     #[inline(always)]
     pub fn bounded_with_tangents<const D: usize, const J: usize>(
         motor_torques: [T; M],

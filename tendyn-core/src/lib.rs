@@ -5,12 +5,19 @@
 //! The modules follow the data flow, file by file:
 //!
 //! - [`format`](mod@format): the RON file as serde reads it;
-//! - [`validate`]: file → [`Model`], every check with a named error ([`Error`]);
+//! - [`validate`]: file → [`Model`], every check with a named error ([`Error`], `error.rs`);
+//! - [`model`]: the validated, immutable [`Model`] (bodies, strands, the tension system)
+//!   and what the recursions may skip ([`model::BodyPattern`]);
+//! - [`real`]: the scalar traits [`Real`] (what the recursion needs), [`Numeric`]
+//!   (ordering and round-off, for what decides) and [`Symbolic`]; [`DoubleDouble`]
+//!   (`double_double.rs`) for references beyond f64; [`spatial`]: 3-vectors and 3×3
+//!   matrices over any of them;
 //! - [`transmission`]: tendon routing → pulley couplings, segment geometry, structure
 //!   matrix `A` and the tension system (paper Eqs. 9-10, 17-18, 26, 31, 33-35);
-//! - [`kinematics`]: forward recursion over primary and intermediate links (Eqs. 2-6, 11-16);
-//! - [`newton_euler`]: backward recursion with forces affine in the unknown tensions
-//!   (Eqs. 19-24);
+//! - [`kinematics`]: forward recursion over primary and intermediate links (Eqs. 2-6, 11-15);
+//! - [`newton_euler`]: backward recursion (Eqs. 19-24), linear in the tensions: run with
+//!   them zero and then with the solved ones; with them as unknowns (affine forms,
+//!   [`affine`], at most 12) only for the tests that check `E` against its statics;
 //! - [`friction`]: Coulomb and viscous friction of the bearings, the torques the backward
 //!   recursion's balances and the generalized forces take in (not in the paper, §2 ii);
 //! - [`tension`]: `E x = b` and its minimal-norm solution, segment tensions, and the
@@ -45,8 +52,9 @@
 //!
 //! Everything numeric is generic over [`Real`], so `f32`, `f64`, [`DoubleDouble`] and the
 //! symbolic scalar of `tendyn-codegen` run the same code. Without the default `std`
-//! feature only [`Real`], `dual`, `distribution`, `linalg` and `mechanism` remain (`no_std`, no
-//! `alloc`, math from `libm`): what generated code needs.
+//! feature only `real` ([`Real`], [`Numeric`], [`Symbolic`]), `dual`, `distribution`,
+//! `linalg` and `mechanism` remain (`no_std`, no `alloc`, math from `libm`): what generated
+//! code needs.
 //!
 //! ```
 //! # fn main() -> Result<(), tendyn_core::Error> {

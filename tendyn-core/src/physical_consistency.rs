@@ -37,8 +37,8 @@
 //! method (Boyd & Vandenberghe, *Convex Optimization*, §11.3): Newton's method on
 //! `t f(π) − Σ_b log det J_b − Σ log(friction)`, `t` growing tenfold per round, until the
 //! duality gap `ν / t` (`ν` = 4 per body and 1 per friction parameter) is below
-//! [`GAP`] of `½ ‖Q − Q₀‖²`, or until a round no longer settles in [`ROUND_STEPS`] Newton
-//! steps where the gap is already below [`ROUND_OFF_GAP`] (round-off of `t f`'s gradient
+//! `GAP` of `½ ‖Q − Q₀‖²`, or until a round no longer settles in `ROUND_STEPS` Newton
+//! steps where the gap is already below `ROUND_OFF_GAP` (round-off of `t f`'s gradient
 //! outgrows the barrier's), whichever comes first; a round that does not settle above that
 //! gap is an error. The iterates stay strictly inside the set: where the optimum is on its
 //! boundary (a flat disk, a massless drum) the estimate is a hair inside, by about the

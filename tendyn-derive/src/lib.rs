@@ -10,9 +10,11 @@
 //! The attribute:
 //! - `file = "path"`: the mechanism, relative to the crate's manifest directory (editing
 //!   it rebuilds the crate); or `ron = "..."`: the mechanism inline;
-//! - `outputs(...)`: the functions to generate (default: every output the mechanism can
-//!   provide): `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`,
-//!   `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`;
+//! - `outputs(...)`: the functions to generate: `generalized_forces`, `actuation`,
+//!   `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`,
+//!   `base_reaction` (by default each of these the mechanism can provide), and only when
+//!   named `generalized_forces_derivatives`, `forward_dynamics_derivatives`,
+//!   `actuation_derivatives` and `regressor`;
 //! - `scalar = f64` (default) or `f32`;
 //! - `crate = "path"`: where the front crate is (default `::tendyn`).
 //!
@@ -69,7 +71,7 @@ use tendyn_codegen::{Options, Output, Scalar};
 /// |---|---|
 /// | `file = "path"` | The mechanism file, relative to the crate's manifest directory. The expansion embeds it with `include_bytes!`, so editing it rebuilds the crate. |
 /// | `ron = "..."` | The mechanism inline (a raw string `r#"..."#` is convenient). Exactly one of `file` and `ron`. |
-/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`, the derivatives `generalized_forces_derivatives`, `forward_dynamics_derivatives` and the identification `regressor` (these three as inherent methods only; not in the trait). Default: every output the mechanism can provide, less those three. |
+/// | `outputs(a, b, ...)` | The functions to generate, by name: `generalized_forces`, `actuation`, `mass_matrix`, `bias`, `gravity`, `forward_dynamics`, `segment_tensions`, `bearings`, `base_reaction`, the derivatives `generalized_forces_derivatives`, `forward_dynamics_derivatives`, `actuation_derivatives` and the identification `regressor` (these four as inherent methods only; not in the trait). Default: every output the mechanism can provide, less those four. |
 /// | `scalar = f64` or `scalar = f32` | The type of every input, output and field. Default `f64`. (The derive always generates concrete code; there is no generic scalar.) |
 /// | `crate = "path"` | Where the front crate is, default `::tendyn`: the expansion implements `<path>::TendonMechanism`, and the generated code reaches `<path>::core`. |
 ///

@@ -31,7 +31,9 @@
 //! ```
 //!
 //! Without the default `std` feature the crate is `#![no_std]` and needs no `alloc`: the
-//! derive's code uses only [`Real`] (math from `libm`).
+//! derive's code uses only what `tendyn-core` keeps without `std` ([`Real`] and `Numeric`,
+//! the tension distribution, dual numbers' Jacobian structs and the `mechanism` module;
+//! math from `libm`).
 #![no_std]
 
 #[cfg(feature = "std")]
