@@ -4,7 +4,7 @@ Arrays of states are `(n,)` for one state or `(N, n)` for `N` states; results ca
 same leading axis.
 """
 
-from typing import Optional, Sequence
+from typing import Any, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -13,7 +13,8 @@ Array = npt.NDArray[np.float64]
 ArrayLike = npt.ArrayLike
 
 class TendynError(Exception):
-    """A mechanism file that does not validate, or a state the solver cannot evaluate."""
+    """A mechanism file that cannot be read or does not validate, a state the solver
+    cannot evaluate, or code that cannot be generated."""
 
 def load(path: str) -> Model:
     """Loads and validates the mechanism file at `path`."""
@@ -49,20 +50,25 @@ class Model:
         """Each strand's name and number of segments."""
     @property
     def structure_matrix(self) -> Array:
-        """`A` (m), `(n, tendons)`: `Q = A T`."""
+        """`A` (m), `(n, tendons)`: the tendons' part of `Q` is `A T` (paper Eqs. 33, 35).
+        The frictionless, constant matrix: where tendons slide over guides with capstan
+        friction the solver uses the state's `A(σ, q)` instead."""
     @property
     def couplings(self) -> dict[str, Array]:
         """Each pulley's angle relative to its carrier per joint angle, `(n,)`."""
     def inverse_dynamics(
         self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
-    ) -> dict[str, Optional[Array]]:
-        """`generalized_forces`, `motor_torques`, `tendon_tensions`,
-        `minimal_norm_tensions`, `null_space_tensions`, `loop_sides`, `pulley_moments`,
+    ) -> dict[str, Optional[npt.NDArray[Any]]]:
+        """`generalized_forces` `(n,)`, `motor_torques`, `tendon_tensions`,
+        `minimal_norm_tensions`, `null_space_tensions`, `loop_sides` `(loops, 2)`,
+        `pulley_moments`,
         `bearing_friction` and `sticking` (bool; one entry per `friction_bodies`),
         `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`,
         `guide_sticking` (bool) and `guide_dissipated_powers` (one entry per `guides`),
-        `segment_tensions`, `bearings`, `base_reaction` (these three and
-        `guide_dissipated_powers` `None` where the routing cannot attribute them)."""
+        `segment_tensions`, `bearings` `(bodies, 2, 3)` (force, moment),
+        `base_reaction` `(2, 3)` (these three and `guide_dissipated_powers` `None` where
+        the routing cannot attribute them); per state, with the batch axis first when the
+        states are batched. Float64 arrays but `sticking` and `guide_sticking` (bool)."""
     def mass_matrix(self, q: ArrayLike) -> Array:
         """`M(q)` (kg·m²), `(n, n)` per state."""
     def bias(self, q: ArrayLike, qd: ArrayLike) -> Array:
@@ -102,5 +108,14 @@ class Model:
         """The base parameters: `name`, `value`, `kept`, `merged` (docs/outputs.md §6d)."""
     def check(self) -> dict:
         """The `tendyn check --json` report."""
-    def generate(self, outputs: Optional[Sequence[str]] = None, scalar: str = "generic") -> str:
-        """The generated Rust source of `outputs` (the default ones available when `None`)."""
+    def generate(
+        self,
+        outputs: Optional[Union[list[str], tuple[str, ...]]] = None,
+        scalar: str = "generic",
+    ) -> str:
+        """The generated Rust source of `outputs` (the default ones available when `None`);
+        `ValueError` for an unknown output or scalar, `TendynError` for an output the
+        mechanism cannot provide."""
+    def _rust_loop_ns(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, repeats: int) -> float:
+        """Private, for `bench/inverse_dynamics_batch.py`: the Rust solver alone on the
+        states, one thread, best of `repeats` passes, nanoseconds per state."""

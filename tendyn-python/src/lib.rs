@@ -540,7 +540,9 @@ impl Model {
         self.model.motors().iter().map(|m| m.name.clone()).collect()
     }
 
-    /// The structure matrix `A` (m), `(n, tendons)`: `Q = A T` (paper Eqs. 33, 35).
+    /// The structure matrix `A` (m), `(n, tendons)`: the tendons' part of `Q` is `A T`
+    /// (paper Eqs. 33, 35). The frictionless, constant matrix: where tendons slide over
+    /// guides with capstan friction the solver uses the state's `A(σ, q)` instead.
     #[getter]
     fn structure_matrix<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
         let (n, k) = (self.model.dof(), self.model.tendons().len());
