@@ -696,10 +696,23 @@ fn jacobians_from(
     })
 }
 
-/// In `all`: the indices of `actuation` and `actuation_derivatives` where both distribute
-/// over several null directions the very same tensions within the same problem (their
-/// traced arguments the same expressions), so that one call serves both.
-fn one_distribution(functions: &[Function], values: &[Vec<Expr>]) -> Option<(usize, usize)> {
+/// `actuation` and `actuation_derivatives` in `all`, where one call of the distribution
+/// serves both ([`one_distribution`]).
+struct OneDistribution {
+    /// Index of `actuation` among the functions.
+    actuation: usize,
+    /// Index of `actuation_derivatives`.
+    derivatives: usize,
+    /// Joints.
+    n: usize,
+    /// Motors and tendons.
+    actuators: usize,
+}
+
+/// In `all`: `actuation` and `actuation_derivatives` where both distribute over several
+/// null directions the very same tensions within the same problem (their traced arguments
+/// the same expressions), so that one call serves both.
+fn one_distribution(functions: &[Function], values: &[Vec<Expr>]) -> Option<OneDistribution> {
     let a = functions.iter().position(|f| {
         matches!(
             f.shape,
@@ -738,7 +751,12 @@ fn one_distribution(functions: &[Function], values: &[Vec<Expr>]) -> Option<(usi
         && values[j].len() >= first + state_problem
         && tokens(&values[a][..actuators]) == tokens(&values[j][..actuators])
         && tokens(&values[a][actuators..]) == tokens(&values[j][first..first + state_problem]);
-    same.then_some((a, j))
+    same.then_some(OneDistribution {
+        actuation: a,
+        derivatives: j,
+        n,
+        actuators,
+    })
 }
 
 /// `[x₀, x₁, …]` of `f64` constants written exactly (`f64::INFINITY` for an absent maximum),
@@ -1082,15 +1100,13 @@ pub fn emit_file(
         .collect();
     // `actuation` and `actuation_derivatives` over several null directions: one run of the
     // distribution gives both (the tangents' routine returns the value's `Actuation`).
-    if let Some((a, j)) = one_distribution(&traced.functions, &values) {
-        let Shape::ActuationJacobians { n, actuators, .. } = traced.functions[j].shape else {
-            unreachable!("one_distribution pairs an actuation_derivatives")
-        };
+    if let Some(one) = one_distribution(&traced.functions, &values) {
+        let (j, n, actuators) = (one.derivatives, one.n, one.actuators);
         let (f, values) = (&traced.functions[j], &values[j]);
         let call = distributed_call(f, values, n, actuators, core);
         body.stmts
             .push(parse_quote!(let actuation_and_tangents = #call;));
-        inits[a].1 = parse_quote!(actuation_and_tangents.0);
+        inits[one.actuation].1 = parse_quote!(actuation_and_tangents.0);
         inits[j].1 = jacobians_from(
             f,
             values,
