@@ -146,7 +146,7 @@ enum Command {
             value_delimiter = ',',
             allow_hyphen_values = true,
             value_parser = number,
-                value_name = "T1,..."
+                value_name = "TAU1,..."
         )]
         torques: Vec<f64>,
         /// One ground-level tension per open-ended tendon (N), comma-separated, in the
@@ -169,10 +169,12 @@ enum Command {
     },
     /// Draw the mechanism at a state as SVG: links, joints, pulleys to scale, every tendon
     /// segment in its strand's colour, exits and anchors, a scale bar and a legend.
+    ///
+    /// The state drawn is --q (default: all 0); --qd and --qdd (default 0) matter only with
+    /// --tensions.
     Draw {
         /// The mechanism's RON file (docs/format.md).
         file: String,
-        /// The state drawn (default: all 0; qd and qdd matter with --tensions).
         #[command(flatten)]
         state: State,
         #[command(flatten)]
@@ -216,11 +218,13 @@ enum Command {
         #[arg(short = 'o', long)]
         out: Option<String>,
     },
-    /// Print the closed-form equations in readable notation (beside the paper's Eqs. 28-35).
+    /// Print the closed-form equations in readable notation (beside the paper's Eqs. 26-30,
+    /// 33-35).
     Equations {
         /// The mechanism's RON file (docs/format.md).
         file: String,
-        /// Comma-separated outputs (default: generalized_forces and actuation).
+        /// Comma-separated outputs (default: generalized_forces, and actuation when there
+        /// are motors or tendons).
         #[arg(long, value_delimiter = ',')]
         outputs: Vec<String>,
     },
@@ -243,7 +247,7 @@ enum Command {
     /// stderr). Pin it to one core for steadier figures: `taskset -c 0 tendyn report`.
     Report {
         /// Mechanism files (default: the paper's three examples and Example 2 with bearing
-        /// friction).
+        /// and with capstan friction).
         files: Vec<String>,
         /// Print JSON instead of the table.
         #[arg(long)]
@@ -295,9 +299,20 @@ fn join_continued(args: impl Iterator<Item = std::ffi::OsString>) -> Vec<std::ff
     let (mut continued, mut verbatim) = (false, false);
     for a in args {
         let text = a.to_str().unwrap_or("");
-        let flag = text.starts_with("--");
+        // A long flag, or a short one (`-o`); a negative number is no flag.
+        let short = text.len() == 2
+            && text.starts_with('-')
+            && text[1..].chars().all(|c| c.is_ascii_alphabetic());
+        let flag = text.starts_with("--") || short;
         match out.last_mut() {
             Some(last) if continued && !flag => last.push(&a),
+            Some(last) if continued => {
+                // A list that ends in a comma before a flag ends there.
+                if let Some(ended) = last.to_str().map(|t| t.trim_end_matches(',').to_owned()) {
+                    *last = ended.into();
+                }
+                out.push(a.clone());
+            }
             _ => out.push(a.clone()),
         }
         verbatim |= text == "--";
@@ -405,9 +420,6 @@ fn run(cli: Cli) -> Result<(), String> {
                 }
                 Ok(out)
             };
-            if csv {
-                say!("{}", report::inverse_csv_header(&m));
-            }
             match states {
                 None => {
                     if json {
@@ -420,7 +432,12 @@ fn run(cli: Cli) -> Result<(), String> {
                     if !(q.is_empty() && qd.is_empty() && qdd.is_empty()) {
                         return Err("give either --states or --q/--qd/--qdd, not both".into());
                     }
-                    for (line, vals) in csv_rows(&path, 3 * n, "q, qd, qdd")? {
+                    // Every line is read and checked before anything is printed.
+                    let rows = csv_rows(&path, 3 * n, "q, qd, qdd")?;
+                    if csv {
+                        say!("{}", report::inverse_csv_header(&m));
+                    }
+                    for (line, vals) in rows {
                         let (q, qd, qdd) = (&vals[..n], &vals[n..2 * n], &vals[2 * n..]);
                         let at = |e: String| format!("{path}:{line}: {e}");
                         if csv {
@@ -593,8 +610,9 @@ fn run(cli: Cli) -> Result<(), String> {
                 outputs
                     .iter()
                     .map(|o| {
-                        tendyn_codegen::Output::parse(o)
-                            .ok_or_else(|| format!("unknown output `{o}`"))
+                        tendyn_codegen::Output::parse(o).ok_or_else(|| {
+                            tendyn_codegen::Error::UnknownOutput(o.clone()).to_string()
+                        })
                     })
                     .collect::<Result<_, _>>()?
             };
@@ -636,8 +654,9 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             let code = report_command(&files, &args)?;
             if code != 0 {
-                // tendyn-report (or cargo) has said why.
-                std::process::exit(code);
+                // tendyn-report (or cargo) has said why; every failure is status 1, as
+                // for every other subcommand (cargo's own would be 101).
+                std::process::exit(1);
             }
             Ok(())
         }
@@ -788,7 +807,10 @@ fn csv_rows(path: &str, columns: usize, what: &str) -> Result<Vec<(usize, Vec<f6
             .split(',')
             .map(|x| x.trim().parse().map_err(|e| format!("`{}`: {e}", x.trim())))
             .collect();
-        let header = std::mem::replace(&mut first, false);
+        // A first line none of whose fields is a number is a header; one with a number
+        // and a typo is a data line with an error, never silently dropped.
+        let header = std::mem::replace(&mut first, false)
+            && line.split(',').all(|x| x.trim().parse::<f64>().is_err());
         let vals = match parsed {
             Ok(v) => v,
             Err(_) if header => continue,

@@ -16,8 +16,9 @@
 //! friction): MuJoCo's fixed tendons carry the kinematics `Q = A T`, not the path; loops
 //! (their pretension acts inside the transmission); bearing friction; the external
 //! wrench; pulleys without mass (they carry nothing and have no dynamics, and MuJoCo
-//! refuses a massless moving body). A turning link without positive mass and inertia, or
-//! a body named `world`, is refused with an error naming it.
+//! refuses a massless moving body). A turning body that is exported (a link, or a pulley
+//! with mass) without positive mass and positive-definite inertia, or a body named
+//! `world`, is refused with an error naming it.
 
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;

@@ -139,6 +139,39 @@ fn eval_over_a_csv_of_states_prints_one_json_object_per_state() {
 }
 
 #[test]
+fn a_first_state_line_with_a_typo_is_an_error_not_a_header_and_nothing_is_printed() {
+    let dir = scratch_dir("tendyn_cli_typo");
+    let csv = dir.join("states.csv");
+    // A header, then data whose first line has a typo: reported, never skipped.
+    std::fs::write(&csv, "0.1,0.2,0,0,1,1x\n0.3,-0.4,1,2,-3,4\n").unwrap();
+    for format in ["--json", "--csv"] {
+        let (ok, out, err) = tendyn(&[
+            "eval",
+            "examples/mechanisms/example2_open_ended.ron",
+            "--states",
+            csv.to_str().unwrap(),
+            format,
+        ]);
+        assert!(!ok, "{format}: {out}");
+        assert!(
+            err.contains("states.csv:1:") && err.contains("`1x`"),
+            "{err}"
+        );
+        assert!(out.is_empty(), "{format}: nothing is printed: {out}");
+    }
+    // A line of names alone is a header.
+    std::fs::write(&csv, "q1, q2, qd1, qd2, qdd1, qdd2\n0.3,-0.4,1,2,-3,4\n").unwrap();
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        "examples/mechanisms/example2_open_ended.ron",
+        "--states",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(out.lines().count(), 1);
+}
+
+#[test]
 fn forward_gives_joint_accelerations_and_bad_input_fails_with_the_reason() {
     let (ok, out, err) = tendyn(&[
         "forward",
@@ -510,6 +543,11 @@ fn a_state_list_may_have_spaces_after_its_commas_as_in_a_states_file() {
     ]);
     assert!(ok, "{err}");
     assert_eq!(unquoted, tight);
+    // A short flag after a trailing comma is a flag, not a number of the list.
+    let dir = scratch_dir("tendyn_cli_short_flag");
+    let svg = dir.join("x.svg");
+    let (ok, _, err) = tendyn(&["draw", file, "--q", "0.1,", "-o", svg.to_str().unwrap()]);
+    assert!(!ok && err.contains("q has 1 entries"), "{err}");
     let (_, _, err) = run(&["eval", file, "--q", "0.1,x", "--qd", "0,0", "--qdd", "0,0"]);
     assert!(err.contains("`x` is not a number"), "{err}");
 }

@@ -91,12 +91,13 @@ fn main() -> ExitCode {
         report.table()
     };
     let mut out = std::io::stdout().lock();
-    if out
-        .write_all(text.as_bytes())
-        .and_then(|_| out.flush())
-        .is_err()
-    {
-        return ExitCode::SUCCESS; // the reader went away
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        // A reader that went away is no failure; anything else (a full disk) is.
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return ExitCode::SUCCESS;
+        }
+        eprintln!("error: cannot write to standard output: {e}");
+        return ExitCode::FAILURE;
     }
     let shown = std::path::absolute(&args.svg).unwrap_or(args.svg);
     eprintln!("chart: {}", shown.display());
