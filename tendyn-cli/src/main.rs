@@ -242,9 +242,9 @@ enum Command {
     ///
     /// The generated code must be compiled to be timed: this runs
     /// `cargo run --release -p tendyn-report` in the tendyn source tree this binary was
-    /// built from, so it needs cargo and that tree. The first run compiles for a minute or
-    /// two; the measurement takes about a minute for the paper's examples (progress on
-    /// stderr). Pin it to one core for steadier figures: `taskset -c 0 tendyn report`.
+    /// built from, so it needs cargo and that tree. The first run compiles for a few
+    /// minutes; the measurement takes about a minute for the default mechanisms (progress
+    /// on stderr). Pin it to one core for steadier figures: `taskset -c 0 tendyn report`.
     Report {
         /// Mechanism files (default: the paper's three examples and Example 2 with bearing
         /// and with capstan friction).

@@ -41,7 +41,14 @@ use crate::tension;
 /// The model is passed to every call, so that a controller can own both without a
 /// lifetime; a `Data` made for a model of another shape is an error, never a panic.
 ///
-/// Each evaluator writes its result into the buffers and lends it out until the next call.
+/// `inverse_dynamics`, `generalized_forces`, `mass_matrix`, `bias`, `gravity`,
+/// `forward_dynamics` and `regressor` lend their results out of the buffers until the next
+/// call; the derivatives, `actuator_forces`, `forward_dynamics_scale`, `output` and
+/// `balance_rows` return theirs as owned values.
+///
+/// Errors: `Error::Model` for a `Data` made for a model of another shape, `Error::State`
+/// for a state (or actuator input) of the wrong length or not finite, or a result that
+/// overflowed the scalar; see each evaluator for the others.
 #[derive(Clone, Debug)]
 pub struct Data<T: Real> {
     shape: Shape,
@@ -131,6 +138,7 @@ impl Shape {
         self.dof == model.dof()
             && self.bodies == model.bodies().len()
             && self.unknowns == model.system().unknowns.len()
+            && self.rows == model.system().rows.len()
             && self.strands.len() == model.strands().len()
             && self
                 .strands
@@ -192,7 +200,8 @@ impl<T: Numeric> Data<T> {
 
     /// Generalized forces the actuators deliver, `Q = M q̈ + h + g − Jᵀ w_ext − Q_friction`
     /// (plus `Σ_i W_i (N_i − τ_f,i)` where turning idlers follow guides with friction:
-    /// [`generalized_forces`]).
+    /// [`generalized_forces`]). Friction at rest (within the band of format.md §4a) takes
+    /// the direction of `q̈`, as inverse dynamics does.
     pub fn generalized_forces(
         &mut self,
         model: &Model<T>,
@@ -292,7 +301,7 @@ impl<T: Numeric> Data<T> {
     /// The motor torques and tendon tensions of inverse dynamics (in that order, as one
     /// vector) and their derivatives with respect to `q`, `q̇`, `q̈`
     /// ([`crate::derivatives`]: where the distribution's active set changes, those of the
-    /// active set chosen at the state).
+    /// active set chosen at the state). Errors as [`Data::inverse_dynamics`].
     pub fn actuation_derivatives(
         &mut self,
         model: &Model<T>,
@@ -416,7 +425,9 @@ impl<T: Numeric> Data<T> {
     }
 
     /// Forward dynamics: `q̈` from the motor torques (file order) and the ground-level
-    /// tensions of the open-ended tendons (file order).
+    /// tensions of the open-ended tendons (file order). Friction's directions come from
+    /// `q̇` alone (none at rest, or the smoothed law: format.md §4a). `Error::Singular`
+    /// where the mass matrix is not positive definite.
     pub fn forward_dynamics(
         &mut self,
         model: &Model<T>,
@@ -528,6 +539,12 @@ impl<T: Numeric> Data<T> {
     /// Inverse dynamics by the paper's recursion (see [`inverse_dynamics`]), with the
     /// tension distribution for null spaces of any dimension ([`tension::distribute`]:
     /// every tendon within its floor and maximum, the model's objective least).
+    ///
+    /// Errors besides those of every evaluator: `Error::State` for a model without tendons
+    /// or motors (nothing to solve for: use [`Data::generalized_forces`]);
+    /// `Error::Tension` where no tensions within the bounds produce the motion, or, with
+    /// capstan friction, where the state's tension system cannot be solved (docs/outputs.md
+    /// §7).
     pub fn inverse_dynamics(
         &mut self,
         model: &Model<T>,
@@ -634,7 +651,8 @@ impl<T: Numeric> Data<T> {
     /// The balance rows of `E x = b` at a state, as affine forms in the unknowns (for
     /// checks of the recursion against the transmission's `E`: their coefficients are
     /// `−E` on the strand columns, their constants `b`). At most [`MAX_UNKNOWNS`] unknowns;
-    /// checked as [`Data::inverse_dynamics`] is.
+    /// the model and the state are checked as for every evaluator, the rows (a check's
+    /// raw material) are not.
     pub fn balance_rows(
         &mut self,
         model: &Model<T>,
@@ -676,7 +694,6 @@ impl<T: Numeric> Model<T> {
     }
 }
 
-/// [`finite`] over a value and every derivative.
 /// `Err` for a model without tendons or motors, whose inverse dynamics has nothing to
 /// solve for.
 fn solvable<T: Real>(model: &Model<T>) -> Result<()> {
@@ -690,6 +707,7 @@ fn solvable<T: Real>(model: &Model<T>) -> Result<()> {
     Ok(())
 }
 
+/// [`finite`] over a value and every derivative.
 fn finite_derivatives<T: Numeric>(
     what: &str,
     d: &Derivatives<T>,
@@ -743,4 +761,35 @@ fn finite<T: Numeric>(
          value overflowed the scalar{blame}",
         x.to_f64()
     )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A model fits a `Data` only if every size its buffers depend on is the same: the
+    /// rows of the tension system included (with a row fewer, `E x = b` would silently
+    /// drop a balance and give wrong torques instead of an error).
+    #[test]
+    fn a_model_differing_in_any_size_of_the_buffers_does_not_fit() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../examples/mechanisms/example1_endless.ron"
+        );
+        let model = crate::load(path).unwrap();
+        assert!(Shape::of(&model).fits(&model));
+        let changes: [fn(&mut Shape); 6] = [
+            |s| s.dof += 1,
+            |s| s.bodies += 1,
+            |s| s.unknowns += 1,
+            |s| s.rows += 1,
+            |s| s.strands.push((1, 0)),
+            |s| s.strands[0].0 += 1,
+        ];
+        for (i, change) in changes.iter().enumerate() {
+            let mut shape = Shape::of(&model);
+            change(&mut shape);
+            assert!(!shape.fits(&model), "change {i}");
+        }
+    }
 }

@@ -36,7 +36,8 @@ pub struct Derivatives<T> {
     pub d_q: Vec<T>,
     /// `∂value/∂q̇` (`value.len() × n`).
     pub d_qd: Vec<T>,
-    /// `∂value/∂q̈` (`value.len() × n`), where the function takes `q̈`.
+    /// `∂value/∂q̈` (`value.len() × n`), where the function takes `q̈` and it is not
+    /// otherwise known (empty for the generalized forces: `∂Q/∂q̈ = M`).
     pub d_qdd: Vec<T>,
     /// `∂value/∂u` (`value.len() × m`), `u` the motor torques then the tendon tensions,
     /// where the function takes them.

@@ -7,6 +7,11 @@
 //! can do: input checks, the tension distribution for null spaces of any dimension, the
 //! positive-definiteness check of forward dynamics.
 //!
+//! The functions here take the model's sizes on trust (`q` of `dof` entries, output
+//! slices as long as they write, a [`Workspace`] made for the model): shorter slices
+//! panic on indexing. [`crate::Data`] checks every size and returns a named error; call
+//! them directly only with sizes from the model.
+//!
 //! `Q`, `h` and `g` come from the expanded-tree form of the recursion: every body's axial
 //! joint moment `τ_b` mapped to the joint coordinates through its coupling,
 //! `Q = Σ_b c_bᵀ τ_b` (virtual work), with the tendons left out (their forces are internal

@@ -723,7 +723,9 @@ impl<T: Real> Model<T> {
         self.tendons.len()
     }
 
-    /// The structure matrix `A` (n × tendons): `Q = A T`.
+    /// The structure matrix `A` (n × tendons): the tendons' constant columns, their part
+    /// of `Q = Σ c_m τ_m + A T` without capstan friction (with it, the state's
+    /// `A(σ, q)`: `dynamics::structure`).
     pub fn structure_matrix(&self) -> Vec<Vec<f64>> {
         (0..self.dof)
             .map(|j| self.tendons.iter().map(|t| t.structure[j]).collect())

@@ -191,8 +191,8 @@ pub struct State<'a, T> {
 impl<T: Copy> InverseDynamics<T> {
     /// `output` flattened as its generated function returns it, when inverse dynamics
     /// gives it: `None` for the joint-space outputs (`mass_matrix`, `bias`, `gravity`,
-    /// `forward_dynamics`), and for segment tensions, bearings and the base reaction of an
-    /// incomplete routing.
+    /// `forward_dynamics`), the derivatives and the regressor, and for segment tensions,
+    /// bearings and the base reaction of an incomplete routing.
     pub fn flattened(&self, output: Output) -> Option<Vec<T>> {
         let mut out = Vec::new();
         self.extend_flattened(output, &mut out).then_some(out)
