@@ -318,6 +318,14 @@ mod tests {
     }
 
     #[test]
+    fn asking_for_no_output_is_an_error_naming_the_outputs() {
+        let model = tendyn_core::load(example("example1_endless.ron")).unwrap();
+        let e = crate::generate(&model, &[], Scalar::Generic, "x.ron").unwrap_err();
+        assert_eq!(e, Error::NoOutputs);
+        assert!(e.to_string().contains("generalized_forces"), "{e}");
+    }
+
+    #[test]
     fn a_bad_mechanism_file_is_refused_with_its_path_and_line() {
         let dir = std::env::temp_dir().join(format!("tendyn-builder-bad-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -63,6 +63,9 @@ pub enum Error {
     },
     /// An output name that is not one of [`Output::ALL`].
     UnknownOutput(String),
+    /// No output was asked for: a file of no function (and an `Outputs` struct of no
+    /// field, which does not compile for a generic scalar) is never what is wanted.
+    NoOutputs,
     /// The build environment is not what [`Builder`] needs (no `OUT_DIR`, an unwritable
     /// file).
     Build(String),
@@ -96,6 +99,11 @@ impl std::fmt::Display for Error {
                 Output::ALL.map(|o| o.name()).join(", ")
             ),
             Error::Build(problem) => write!(f, "{problem}"),
+            Error::NoOutputs => write!(
+                f,
+                "no output asked for: name at least one of {}",
+                Output::ALL.map(|o| o.name()).join(", ")
+            ),
             Error::Constant { item, problem } => write!(f, "{item}: {problem}"),
             Error::CorePath { path } => write!(
                 f,
@@ -199,6 +207,9 @@ pub fn generate_with(
     let core: syn::Path = syn::parse_str(&options.core_path).map_err(|_| Error::CorePath {
         path: options.core_path.clone(),
     })?;
+    if outputs.is_empty() {
+        return Err(Error::NoOutputs);
+    }
     let traced = outputs::trace(model, outputs)?;
     check_constants(model, &traced, options.scalar)?;
     let functions = traced
