@@ -1720,3 +1720,64 @@ fn more_than_thirty_links_are_refused_naming_the_limit() {
         .replace("        (name: \"m31\", on: Joint(\"l31\")),\n", "");
     parse(&thirty).unwrap();
 }
+
+/// Sixty-five guides with friction that one pull slides together (one class of guides,
+/// each free to rest under `friction_smoothing`): validation counts the corners it would
+/// enumerate before it shifts by their number, so it neither panics (a shift by 64 or
+/// more) nor builds them, and the routing is validated as beyond its limit of systems.
+#[test]
+fn sixty_five_guides_sliding_together_are_validated_without_overflow() {
+    let guides: Vec<String> = (1..=65)
+        .map(|k| {
+            format!(
+                "(name: \"g{k}\", carrier: \"base\", at: Pose(origin: ({}, 0.0, 0.0), \
+                 rpy: (0.0, 0.0, 0.0)), radius: 0.01, fixed: true, mu: 0.1)",
+                0.1 * k as f64
+            )
+        })
+        .collect();
+    let route: Vec<String> = (1..=65).map(|k| format!("(\"g{k}\", Ccw)")).collect();
+    let text = format!(
+        "(name: \"guides65\", friction_smoothing: 0.01,
+          links: [(name: \"l1\", dh: (a: 0.1, alpha: 0.0, d: 0.0), mass: 1.0)],
+          pulleys: [
+            (name: \"dA\", carrier: \"l1\", at: Joint(joint: \"l1\", height: 0.0), radius: 0.01, fixed: true),
+            (name: \"dB\", carrier: \"l1\", at: Joint(joint: \"l1\", height: 0.05), radius: 0.01, fixed: true),
+            {}],
+          tendons: [
+            (name: \"a\", route: [(\"dA\", Ccw), {}], exit: (10.0, -0.01, 0.0)),
+            (name: \"b\", route: [(\"dB\", Cw)], exit: (0.0, 1.0, 0.05)),
+          ])",
+        guides.join(",\n"),
+        route.join(", ")
+    );
+    let model = parse(&text).expect("a controllable routing");
+    assert_eq!(model.guides().count(), 65);
+}
+
+/// A tree of bodies built in code has no routing: an idler (whose strand would be looked
+/// up by everything that reports on it) or a loop's driving pulley is refused, naming the
+/// roles it may have.
+#[test]
+fn a_rigid_tree_refuses_an_idler_which_needs_a_routing() {
+    let file = load("../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let n = file.dof();
+    let idler = file.bodies()[n..]
+        .iter()
+        .find(|b| {
+            matches!(
+                b.kind,
+                tendyn_core::model::BodyKind::Pulley {
+                    role: tendyn_core::model::PulleyRole::Idler { .. },
+                    ..
+                }
+            )
+        })
+        .expect("Example 3 has idlers")
+        .clone();
+    let mut bodies = file.bodies()[..n].to_vec();
+    bodies.push(idler);
+    let g = file.gravity().to_array();
+    let err = tendyn_core::Model::rigid_tree("idler", g, n, bodies, None).unwrap_err();
+    assert!(err.to_string().contains("`Fixed` or `Coupled`"), "{err}");
+}

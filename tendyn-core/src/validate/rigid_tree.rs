@@ -5,7 +5,7 @@
 use super::ranges::{beyond, Range, MIN_RADIUS};
 use super::{check_gravity_and_wrench, check_mass_properties};
 use crate::error::{Error, Location, Result};
-use crate::model::{Body, BodyKind, Model, TensionSystem, Wrench};
+use crate::model::{Body, BodyKind, Model, PulleyRole, TensionSystem, Wrench};
 use crate::spatial::{Transform, Vec3};
 
 /// How far a body's derived numbers (`axis`, `joint_to_origin`, an orthonormal rotation, an
@@ -19,8 +19,9 @@ impl Model<f64> {
     /// for checks whose reference needs only the bodies.
     ///
     /// Bodies as [`Body`] documents them: at least one joint; the `dof` links first, link
-    /// `j` of kind `Link { joint: j }` with coupling `e_j`, then intermediate links (pulleys)
-    /// carried by the base or a link; parents before children; names unique and not empty;
+    /// `j` of kind `Link { joint: j }` with coupling `e_j`, then intermediate links (pulleys,
+    /// `Fixed` or `Coupled`: an idler or a driving pulley needs a routing) carried by the
+    /// base or a link; parents before children; names unique and not empty;
     /// `axis = postᵀ z` and `joint_to_origin = postᵀ t` as validation derives them; a
     /// symmetric inertia; a body that turns without spinning axisymmetric about its axis.
     /// Every violation, and every number not finite or beyond the file format's ranges, is
@@ -129,6 +130,15 @@ fn check_body(index: usize, body: &Body<f64>, dof: usize) -> std::result::Result
     }
     match (&body.kind, index < dof) {
         (BodyKind::Link { joint }, true) if *joint == index => {}
+        (BodyKind::Pulley { role, .. }, false)
+            if !matches!(role, PulleyRole::Fixed | PulleyRole::Coupled) =>
+        {
+            return Err(
+                "a pulley of a tree of bodies alone is `Fixed` or `Coupled`: an idler or a \
+                 loop's driving pulley needs the strands of a routing, which only a file gives"
+                    .into(),
+            );
+        }
         (BodyKind::Pulley { radius, .. }, false) => {
             let out_of_range = beyond("radius", &[*radius], Range::Length).is_some();
             if !radius.is_finite() || *radius < MIN_RADIUS || out_of_range {

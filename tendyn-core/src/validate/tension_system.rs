@@ -674,6 +674,12 @@ fn held_between(
     tendons: &[usize],
 ) -> std::result::Result<(), Option<Vec<f64>>> {
     let d = model.system.null_space.len();
+    // The choices are C(tendons, d): past the limit of systems the points obey (26,244),
+    // the states between them are left to the runtime, which checks every state's system,
+    // as beyond that limit of points (and the choices are never built: C(40, 20) is 1e11).
+    if choose(tendons.len(), d) > EVERY_WAY_UP_TO {
+        return Ok(());
+    }
     let columns = model.system.matrix.first().map_or(0, Vec::len);
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
     let choices = combinations(tendons, d);
@@ -789,6 +795,23 @@ fn proportion(rows: &[Vec<f64>], d: usize) -> Option<Vec<f64>> {
     }
 }
 
+/// `C(n, k)`, saturating.
+fn choose(n: usize, k: usize) -> usize {
+    if k > n {
+        return 0;
+    }
+    let k = k.min(n - k);
+    // C(n, i + 1) = C(n, i) (n − i) / (i + 1), an integer at every step.
+    let mut c: usize = 1;
+    for i in 0..k {
+        match c.checked_mul(n - i) {
+            Some(product) => c = product / (i + 1),
+            None => return usize::MAX,
+        }
+    }
+    c
+}
+
 /// Every set of `k` of `items`, in increasing order of position.
 fn combinations(items: &[usize], k: usize) -> Vec<Vec<usize>> {
     if k == 0 {
@@ -901,7 +924,12 @@ impl Sliding {
             let free: Vec<usize> = (0..point.len())
                 .filter(|&i| point[i] != 0.0 && self.sliders[i].variable)
                 .collect();
-            for rest in 0..1usize << free.len().min(usize::BITS as usize - 1) {
+            // Each guide free to rest doubles the corners: past the limit's count they are
+            // not enumerated (and `rest >> k` stays within the word).
+            if free.len() >= usize::BITS as usize || 1usize << free.len() > EVERY_WAY_UP_TO {
+                return None;
+            }
+            for rest in 0..1usize << free.len() {
                 let mut corner = point.clone();
                 for (k, &i) in free.iter().enumerate() {
                     if rest >> k & 1 == 1 {
@@ -1433,7 +1461,18 @@ fn alternating(k: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{basis, proportion, Class, Minors, Slider, Sliding};
+    use super::{basis, choose, proportion, Class, Minors, Slider, Sliding};
+
+    /// The count of fixed bases `held_between` would try, which decides whether it builds
+    /// them: exact while it fits, past any limit where it does not.
+    #[test]
+    fn choose_counts_subsets_and_saturates() {
+        assert_eq!(choose(4, 2), 6);
+        assert_eq!(choose(30, 15), 155_117_520);
+        assert_eq!(choose(3, 5), 0);
+        assert_eq!(choose(7, 0), 1);
+        assert!(choose(200, 100) > 1 << 60);
+    }
 
     /// Guides with friction by `(group, speed)` of their class, each on its own strand;
     /// `groups` the groups' speeds per joint velocity; `variable` the guides whose capstan
