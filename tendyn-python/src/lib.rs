@@ -10,7 +10,7 @@
 
 use numpy::ndarray::{Array, ArrayD, IxDyn};
 use numpy::{
-    AllowTypeChange, IntoPyArray, PyArrayDyn, PyArrayLikeDyn, PyReadonlyArrayDyn,
+    AllowTypeChange, IntoPyArray, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadonlyArrayDyn,
     PyUntypedArrayMethods,
 };
 
@@ -76,13 +76,30 @@ struct Batch {
     batched: bool,
 }
 
-/// The numbers of `view` in logical (row-major) order: one copy when they already lie so
-/// in memory, as numpy's arrays usually do.
-fn in_order(view: numpy::ndarray::ArrayViewD<'_, f64>) -> Vec<f64> {
-    match view.as_slice() {
+/// The numbers of `array` in logical (row-major) order: one copy when they already lie so
+/// in memory, aligned, as numpy's arrays usually do. Any other array of float64 (a view
+/// into a record array, a misaligned buffer, broadcast or strided views) is first made
+/// so by `numpy.require(a, float64, ["C", "A"])`: a view of it would read the wrong
+/// numbers (strides that are no multiple of 8) or misaligned memory. Where that copy
+/// cannot be made (a broadcast view of more numbers than memory holds), numpy raises
+/// `MemoryError`.
+fn numbers(array: &PyReadonlyArrayDyn<'_, f64>) -> PyResult<Vec<f64>> {
+    let aligned = (array.data() as usize).is_multiple_of(std::mem::align_of::<f64>());
+    if aligned && array.is_c_contiguous() {
+        if let Some(values) = array.as_array().as_slice() {
+            return Ok(values.to_vec());
+        }
+    }
+    let py = array.py();
+    let copy = py
+        .import("numpy")?
+        .call_method1("require", (array.as_any(), "float64", vec!["C", "A"]))?;
+    let copy: PyReadonlyArrayDyn<'_, f64> = copy.extract()?;
+    let view = copy.as_array();
+    Ok(match view.as_slice() {
         Some(values) => values.to_vec(),
         None => view.iter().copied().collect(),
-    }
+    })
 }
 
 impl Batch {
@@ -92,17 +109,17 @@ impl Batch {
     }
 
     fn of(what: &str, array: &PyReadonlyArrayDyn<'_, f64>, n: usize) -> PyResult<Batch> {
+        // The shape first: a view is made only of one of the two shapes taken.
         let shape = array.shape().to_vec();
-        let view = array.as_array();
         match shape.as_slice() {
             [k] if *k == n => Ok(Batch {
-                values: in_order(view),
+                values: numbers(array)?,
                 width: n,
                 count: 1,
                 batched: false,
             }),
             [count, k] if *k == n => Ok(Batch {
-                values: in_order(view),
+                values: numbers(array)?,
                 width: n,
                 count: *count,
                 batched: true,
@@ -349,9 +366,22 @@ impl Model {
         // failing state.
         let run = |data: &mut Data<f64>, first: usize| {
             let states = first..(first + chunk).min(count);
-            let mut fields: Vec<Vec<f64>> = (sizes.iter())
-                .map(|size| Vec::with_capacity(size * states.len()))
-                .collect();
+            // Fallibly: a batch whose results exceed memory is an error, not an abort.
+            let mut fields: Vec<Vec<f64>> = Vec::new();
+            for size in &sizes {
+                let mut field = Vec::new();
+                let room = size.checked_mul(states.len()).ok_or(());
+                room.and_then(|r| field.try_reserve_exact(r).map_err(|_| ()))
+                    .map_err(|()| {
+                        let e = tendyn_core::Error::State(format!(
+                            "the results of {} states need more memory than there is: \
+                             give fewer states per call",
+                            states.len()
+                        ));
+                        (first, e)
+                    })?;
+                fields.push(field);
+            }
             for k in states {
                 evaluate(data, &state(k)[..inputs.len()], &mut fields).map_err(|e| (k, e))?;
                 debug_assert!(

@@ -172,6 +172,28 @@ def test_a_bad_file_raises_tendyn_error_naming_line_and_column():
         tendyn.load("no-such.ron")
 
 
+def test_record_fields_misaligned_buffers_and_broadcasts_are_read_as_their_numbers():
+    """Float64 arrays a view of which would read the wrong numbers (a record field whose
+    stride is no multiple of 8), misaligned memory, or one state broadcast to many."""
+    m = model("example3_stanford_jpl")
+    n = m.dof
+    q, qd, qdd = states(m, 5, 9)
+    want = m.mass_matrix(q)
+    record = np.zeros(5, dtype=[("q", "<f8", (n,)), ("flag", "<f4")])
+    record["q"] = q
+    assert record["q"].strides[0] % 8 != 0
+    assert np.array_equal(m.mass_matrix(record["q"]), want)
+    buffer = bytearray(8 * q.size + 1)
+    misaligned = np.frombuffer(buffer, dtype="<f8", count=q.size, offset=1).reshape(q.shape)
+    misaligned[...] = q
+    assert not misaligned.flags.aligned
+    assert np.array_equal(m.mass_matrix(misaligned), want)
+    broadcast = np.broadcast_to(q[0], (3, n))
+    assert np.array_equal(m.mass_matrix(broadcast), np.stack([want[0]] * 3))
+    with pytest.raises(ValueError):  # numpy 1 refuses 33 dimensions itself; tendyn, with numpy 2
+        m.mass_matrix(np.ones((1,) * 33))
+
+
 def test_bad_shapes_and_states_are_named():
     m = model("example1_endless")
     n = m.dof
