@@ -754,7 +754,7 @@ pub fn named(model: &Model<f64>, outputs: &[Output]) -> Result<Named, crate::Err
 
     // Traced with the lengths and radii as symbols; a square E's exact inverse by name.
     let mut transmission = None;
-    let traced = outputs::trace_with(&m, outputs, |m, params| {
+    let traced = outputs::trace_with(&m, outputs, outputs::Regroup::No, |m, params| {
         let symbols = outputs::array("lengths", lengths.len());
         let mut given = Dimensions {
             a: vec![None; dof],

@@ -207,7 +207,8 @@ pub struct Traced {
     /// Number of runtime parameters (inputs of every function).
     pub parameters: usize,
     /// Results of every function for `all`, in function order: each function's chosen
-    /// form, or every function traced if that shares more and so costs less in total.
+    /// form, or every function traced, or (beside bearings or the base reaction) every
+    /// function traced on the file's bodies: whichever shares most and so costs least.
     pub all: Vec<Id>,
     /// Operations of `all`.
     pub all_ops: OpCount,
@@ -369,9 +370,48 @@ fn check_with(
 
 /// Traces the requested outputs of `model` (see [`check`] for which are available).
 pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailable> {
-    trace_with(model, outputs, |model, params| {
+    trace_with(model, outputs, Regroup::Yes, |model, params| {
         Ok(model.symbolic(|k| params[k]))
     })
+}
+
+/// Whether the outputs made of torques about the bodies' axes alone are traced on the
+/// regrouped model ([`Model::regrouped`]: each pulley's mass that moves with its carrier
+/// moved onto it), which gives them exactly for less work.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Regroup {
+    /// Generated code.
+    Yes,
+    /// `tendyn equations`, whose lengths are symbols the moved masses' places would not
+    /// follow, and whose equations read as the file's bodies.
+    No,
+}
+
+/// Whether output `o` is made of torques about the bodies' axes alone (the regrouped model
+/// gives it exactly), not of bearing forces, the base reaction or per-body parameters.
+fn axial(o: Output) -> bool {
+    !matches!(
+        o,
+        Output::Bearings | Output::BaseReaction | Output::Regressor
+    )
+}
+
+/// The symbolic models an output is traced on.
+struct Models<'a> {
+    /// The file's bodies.
+    full: &'a Model<Sym>,
+    /// The regrouped one, where it differs.
+    regrouped: Option<&'a Model<Sym>>,
+}
+
+impl Models<'_> {
+    /// The model `o` is traced on, and whether it is the regrouped one.
+    fn of(&self, o: Output) -> (&Model<Sym>, bool) {
+        match self.regrouped {
+            Some(r) if axial(o) => (r, true),
+            _ => (self.full, false),
+        }
+    }
 }
 
 /// [`trace`] of the symbolic model `symbolic` makes of `model` and its parameters' symbols
@@ -379,7 +419,8 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
 pub(crate) fn trace_with<E: From<Unavailable>>(
     model: &Model<f64>,
     outputs: &[Output],
-    symbolic: impl FnOnce(&Model<f64>, &[Sym]) -> Result<Model<Sym>, E>,
+    regroup: Regroup,
+    mut symbolic: impl FnMut(&Model<f64>, &[Sym]) -> Result<Model<Sym>, E>,
 ) -> Result<Traced, E> {
     let elimination = capstan_elimination(model, outputs);
     check_with(model, outputs, &elimination)?;
@@ -396,6 +437,17 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         // Runtime parameters stay symbols: inputs of every function.
         let params = array("params", model.parameters().len());
         let m = symbolic(model, &params)?;
+        let regrouped = match (regroup == Regroup::Yes)
+            .then(|| model.regrouped())
+            .flatten()
+        {
+            Some(r) => Some(symbolic(&r, &params)?),
+            None => None,
+        };
+        let models = Models {
+            full: &m,
+            regrouped: regrouped.as_ref(),
+        };
         let inputs = Inputs {
             q: array("q", n),
             qd: array("qd", n),
@@ -405,16 +457,37 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         };
         let mut ws = Workspace::new(&m);
         let mut shared = Shared {
-            elimination,
+            elimination: elimination.clone(),
             ..Shared::default()
         };
         let results = outputs
             .iter()
-            .map(|&o| (o, trace_one(&m, o, &inputs, &mut ws, &mut shared)))
+            .map(|&o| (o, trace_one(&models, o, &inputs, &mut ws, &mut shared)))
             .collect::<Vec<_>>();
-        Ok((results, shared.forward_parts))
+        // Where bearings or the base reaction walk the file's bodies beside outputs that
+        // walk the regrouped ones, `all` may share more with every output on the file's
+        // bodies: those are traced too, as a third way to share work.
+        let unregrouped = if models.regrouped.is_some() && !outputs.iter().all(|&o| axial(o)) {
+            let full = Models {
+                full: &m,
+                regrouped: None,
+            };
+            let mut shared = Shared {
+                elimination,
+                ..Shared::default()
+            };
+            let roots = outputs
+                .iter()
+                .flat_map(|&o| trace_one(&full, o, &inputs, &mut ws, &mut shared).1)
+                .map(|s| s.0)
+                .collect();
+            Some(roots)
+        } else {
+            None
+        };
+        Ok((results, shared.forward_parts, unregrouped))
     });
-    let (results, forward_parts) = results?;
+    let (results, forward_parts, unregrouped): (_, _, Option<Vec<Id>>) = results?;
     let mut functions = Vec::new();
     let traced: Vec<(Output, Shape, Vec<Id>)> = results
         .into_iter()
@@ -433,6 +506,7 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         .iter()
         .flat_map(|t| t.2.iter().copied())
         .chain(parts)
+        .chain(unregrouped.iter().flatten().copied())
         .collect();
     let mut gathered = graph.shared_products(&every).into_iter();
     /// One function as traced: its roots, and those with numbers gathered with their count.
@@ -523,11 +597,18 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         .flat_map(|f| f.traced.iter().copied())
         .collect();
     let (chosen_ops, traced_ops) = (graph.count(&chosen), graph.count(&traced));
-    let (all, all_ops) = if traced_ops.arithmetic() < chosen_ops.arithmetic() {
+    let (mut all, mut all_ops) = if traced_ops.arithmetic() < chosen_ops.arithmetic() {
         (traced, traced_ops)
     } else {
         (chosen, chosen_ops)
     };
+    if unregrouped.is_some() {
+        let unregrouped: Vec<Id> = gathered.collect();
+        let ops = graph.count(&unregrouped);
+        if ops.arithmetic() < all_ops.arithmetic() {
+            (all, all_ops) = (unregrouped, ops);
+        }
+    }
     Ok(Traced {
         graph,
         functions,
@@ -567,7 +648,8 @@ struct Shared {
     /// How a state's tension system is solved where guides have friction (chosen from
     /// the numeric model; `None` only where `check` refuses capstan friction).
     elimination: Option<tension::Elimination>,
-    inverse: Option<dynamics::InverseDynamics<Sym>>,
+    /// On the file's model, and on the regrouped one.
+    inverse: [Option<dynamics::InverseDynamics<Sym>>; 2],
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
     /// A state's many-dimensional distribution problem (guides with capstan friction):
@@ -587,14 +669,14 @@ type DualModel = (Model<Dual<Sym>>, Workspace<Dual<Sym>>);
 impl Shared {
     fn inverse(
         &mut self,
-        m: &Model<Sym>,
+        (m, regrouped): (&Model<Sym>, bool),
         i: &Inputs,
         ws: &mut Workspace<Sym>,
     ) -> &dynamics::InverseDynamics<Sym> {
         let excess = &mut self.line_excess;
         let state_problem = &mut self.state_problem;
         let elimination = &self.elimination;
-        self.inverse.get_or_insert_with(|| {
+        self.inverse[usize::from(regrouped)].get_or_insert_with(|| {
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`). With
             // guides with friction `E` depends on the state: its solution is traced too,
@@ -635,12 +717,13 @@ impl Shared {
 }
 
 fn trace_one(
-    m: &Model<Sym>,
+    models: &Models,
     o: Output,
     i: &Inputs,
     ws: &mut Workspace<Sym>,
     shared: &mut Shared,
 ) -> (Shape, Vec<Sym>) {
+    let (m, regrouped) = models.of(o);
     let n = m.dof();
     let zeros = vec![Sym::zero(); n];
     match o {
@@ -766,7 +849,7 @@ fn trace_one(
             (Shape::Regression { n, columns }, y)
         }
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
-            let r = shared.inverse(m, i, ws);
+            let r = shared.inverse((m, regrouped), i, ws);
             // Availability was checked before tracing (`check`).
             let flat = r.flattened(o).expect("an output inverse dynamics gives");
             let shape = match o {

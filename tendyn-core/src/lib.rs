@@ -24,6 +24,9 @@
 //!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`composite`]: the joint-space mass matrix by the composite-rigid-body algorithm over
 //!   the expanded tree (pulleys through their couplings);
+//! - [`regrouping`]: the model with each pulley's mass that moves with its carrier moved
+//!   onto it ([`model::Model::regrouped`]): the same torque about every body's axis for
+//!   less work, which code generation traces its axial outputs on;
 //! - [`dual`](mod@dual) and [`derivatives`]: dual numbers (`no_std`), on which the generic
 //!   functions give their exact derivatives with respect to the state and the actuators;
 //! - [`regressor`]: the identification regressor `Q = Y π + Q₀`, linear in every body's
@@ -119,6 +122,8 @@ pub mod output;
 pub mod physical_consistency;
 #[cfg(feature = "std")]
 pub mod regressor;
+#[cfg(feature = "std")]
+pub mod regrouping;
 #[cfg(feature = "std")]
 pub mod spatial;
 #[cfg(feature = "std")]

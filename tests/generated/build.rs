@@ -114,7 +114,8 @@ fn main() {
         antagonist,
     ));
     // The scale benchmarks' mechanisms (issue 16): a finger, a random arm with gears, and
-    // chains of 7, 8 and 12 links (the last with 13 unknowns).
+    // chains of 7, 8 and 12 links (the last with 13 unknowns); and the arm with gears and a
+    // drum whose mass regrouping moves.
     let top = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     for file in [
         "bench/mechanisms/finger4",
@@ -122,6 +123,8 @@ fn main() {
         "bench/mechanisms/chain8",
         "bench/mechanisms/chain12",
         "tendyn-codegen/benches/chain7",
+        // Pulleys whose mass moves onto their carriers in the traced model (regrouping).
+        "tests/mechanisms/geared_arm",
     ] {
         let path = top.join(format!("{file}.ron"));
         println!("cargo:rerun-if-changed={}", path.display());

@@ -24,13 +24,13 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s54, c55) = q[1].sin_cos();
-    let t662 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
-    let t669 = T::from_f64(0.03) * s54;
-    let t678 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t662 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t669));
-    let t684 = qdd[0] * t662
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t669));
-    [t678, t684]
+    let t661 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
+    let t668 = T::from_f64(0.03) * s54;
+    let t677 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t661 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t668));
+    let t683 = qdd[0] * t661
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t668));
+    [t677, t683]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -45,26 +45,26 @@ pub fn generalized_forces_derivatives<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s54, c55) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c55;
-    let t657 = c55 * T::from_f64(0.06);
-    let t662 = t582 + T::from_f64(0.016696700000000002);
-    let t665 = s54 * T::from_f64(0.06);
-    let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s54;
-    let t678 = qdd[0] * (t657 + T::from_f64(0.1247117))
-        + (qdd[1] * t662 - qd[1] * (t667 + qd[1] * t669));
-    let t684 = qdd[0] * t662
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t669));
-    let t702 = -(qdd[0] * t665
-        + (qdd[1] * t669 + qd[1] * (qd[0] * t657 + qd[1] * t582)));
-    let t707 = qd[0] * (qd[0] * t582) - qdd[0] * t669;
-    let t708 = qd[1] * t665;
-    let t709 = -t708;
-    let t711 = -(t667 + t708);
+    let t581 = T::from_f64(0.03) * c55;
+    let t656 = c55 * T::from_f64(0.06);
+    let t661 = t581 + T::from_f64(0.016696700000000002);
+    let t664 = s54 * T::from_f64(0.06);
+    let t666 = qd[0] * t664;
+    let t668 = T::from_f64(0.03) * s54;
+    let t677 = qdd[0] * (t656 + T::from_f64(0.1247117))
+        + (qdd[1] * t661 - qd[1] * (t666 + qd[1] * t668));
+    let t683 = qdd[0] * t661
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t668));
+    let t701 = -(qdd[0] * t664
+        + (qdd[1] * t668 + qd[1] * (qd[0] * t656 + qd[1] * t581)));
+    let t706 = qd[0] * (qd[0] * t581) - qdd[0] * t668;
+    let t707 = qd[1] * t664;
+    let t708 = -t707;
+    let t710 = -(t666 + t707);
     tendyn_core::dual::StateJacobians {
-        value: [t678, t684],
-        d_q: [[T::from_f64(0.0), t702], [T::from_f64(0.0), t707]],
-        d_qd: [[t709, t711], [t667, T::from_f64(0.0)]],
+        value: [t677, t683],
+        d_q: [[T::from_f64(0.0), t701], [T::from_f64(0.0), t706]],
+        d_qd: [[t708, t710], [t666, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -81,16 +81,16 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s54, c55) = q[1].sin_cos();
-    let t659 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t669 = T::from_f64(0.03) * s54;
-    let t712 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t669);
-    let t716 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t659;
-    let t829 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t669) - t712 * t716)
-        / (T::from_f64(0.0166867) - t659 * (t716 * t716));
-    let t831 = t712 / t659 - t716 * t829;
-    [t831, t829]
+    let t658 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t668 = T::from_f64(0.03) * s54;
+    let t711 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t668);
+    let t715 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t658;
+    let t828 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t668) - t711 * t715)
+        / (T::from_f64(0.0166867) - t658 * (t715 * t715));
+    let t830 = t711 / t658 - t715 * t828;
+    [t830, t828]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
@@ -106,49 +106,49 @@ pub fn forward_dynamics_derivatives<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s54, c55) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c55;
-    let t657 = c55 * T::from_f64(0.06);
-    let t659 = t657 + T::from_f64(0.1247117);
-    let t665 = s54 * T::from_f64(0.06);
-    let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s54;
-    let t708 = qd[1] * t665;
-    let t713 = (motor_torques[0] + motor_torques[1] + qd[1] * (t667 + qd[1] * t669))
-        / t659;
-    let t716 = (t582 + T::from_f64(0.0166967)) / t659;
-    let t718 = T::from_f64(0.06) * t716;
-    let t720 = s54 * t718;
-    let t722 = qd[1] * t720;
-    let t728 = T::from_f64(0.03) * t716;
-    let t738 = T::from_f64(0.6666666666666667) - t716;
-    let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
-    let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
-        - qd[1] * (qd[1] * (s54 * t728)) - qd[0] * (qd[0] * t669 + t722)) / t749;
-    let t754 = t713 - t716 * t750;
-    let t757 = T::from_f64(0.06) * t713;
-    let t786 = s54
-        * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
-        - qd[1] * (qd[1] * (c55 * t728)) - qd[0] * (qd[0] * t582 + qd[1] * (c55 * t718));
-    let t787 = t786 / t749;
-    let t792 = (t667 + t722) / t749;
-    let t793 = -t792;
-    let t800 = (t722 + qd[0] * t720) / t749;
-    let t801 = -t800;
-    let t802 = T::from_f64(1.0) / t659;
-    let t803 = t716 / t749;
-    let t804 = t738 / t749;
-    let t810 = -((s54 * (t750 * (T::from_f64(-0.03) + t718) - t757)
-        - qd[1] * (qd[0] * t657 + qd[1] * t582)) / t659 + t716 * t787);
-    let t812 = t708 / t659 + t716 * t792;
-    let t814 = (t667 + t708) / t659 + t716 * t800;
-    let t816 = t802 + t716 * t803;
-    let t820 = t802 - t716 * t804;
-    let t821 = -t803;
+    let t581 = T::from_f64(0.03) * c55;
+    let t656 = c55 * T::from_f64(0.06);
+    let t658 = t656 + T::from_f64(0.1247117);
+    let t664 = s54 * T::from_f64(0.06);
+    let t666 = qd[0] * t664;
+    let t668 = T::from_f64(0.03) * s54;
+    let t707 = qd[1] * t664;
+    let t712 = (motor_torques[0] + motor_torques[1] + qd[1] * (t666 + qd[1] * t668))
+        / t658;
+    let t715 = (t581 + T::from_f64(0.0166967)) / t658;
+    let t717 = T::from_f64(0.06) * t715;
+    let t719 = s54 * t717;
+    let t721 = qd[1] * t719;
+    let t727 = T::from_f64(0.03) * t715;
+    let t737 = T::from_f64(0.6666666666666667) - t715;
+    let t748 = T::from_f64(0.0166867) + t715 * (t715 * (T::from_f64(-0.1247117) - t656));
+    let t749 = (motor_torques[1] * t737 - motor_torques[0] * t715
+        - qd[1] * (qd[1] * (s54 * t727)) - qd[0] * (qd[0] * t668 + t721)) / t748;
+    let t753 = t712 - t715 * t749;
+    let t756 = T::from_f64(0.06) * t712;
+    let t785 = s54
+        * (t715 * (t749 * (T::from_f64(-0.06) + t717) - t756) + T::from_f64(0.03) * t712)
+        - qd[1] * (qd[1] * (c55 * t727)) - qd[0] * (qd[0] * t581 + qd[1] * (c55 * t717));
+    let t786 = t785 / t748;
+    let t791 = (t666 + t721) / t748;
+    let t792 = -t791;
+    let t799 = (t721 + qd[0] * t719) / t748;
+    let t800 = -t799;
+    let t801 = T::from_f64(1.0) / t658;
+    let t802 = t715 / t748;
+    let t803 = t737 / t748;
+    let t809 = -((s54 * (t749 * (T::from_f64(-0.03) + t717) - t756)
+        - qd[1] * (qd[0] * t656 + qd[1] * t581)) / t658 + t715 * t786);
+    let t811 = t707 / t658 + t715 * t791;
+    let t813 = (t666 + t707) / t658 + t715 * t799;
+    let t815 = t801 + t715 * t802;
+    let t819 = t801 - t715 * t803;
+    let t820 = -t802;
     tendyn_core::dual::ForwardJacobians {
-        value: [t754, t750],
-        d_q: [[T::from_f64(0.0), t810], [T::from_f64(0.0), t787]],
-        d_qd: [[t812, t814], [t793, t801]],
-        d_u: [[t816, t820], [t821, t804]],
+        value: [t753, t749],
+        d_q: [[T::from_f64(0.0), t809], [T::from_f64(0.0), t786]],
+        d_qd: [[t811, t813], [t792, t800]],
+        d_u: [[t815, t819], [t820, t803]],
     }
 }
 /// Every requested output of [`all`].
@@ -181,73 +181,73 @@ pub fn all<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
     let (s54, c55) = q[1].sin_cos();
-    let t582 = T::from_f64(0.03) * c55;
-    let t657 = c55 * T::from_f64(0.06);
-    let t659 = t657 + T::from_f64(0.1247117);
-    let t662 = t582 + T::from_f64(0.016696700000000002);
-    let t665 = s54 * T::from_f64(0.06);
-    let t667 = qd[0] * t665;
-    let t669 = T::from_f64(0.03) * s54;
-    let t675 = qd[1] * (t667 + qd[1] * t669);
-    let t678 = qdd[0] * t659 + (qdd[1] * t662 - t675);
-    let t681 = qd[0] * t669;
-    let t682 = qd[0] * t681;
-    let t684 = qdd[0] * t662 + (qdd[1] * T::from_f64(0.0166867) + t682);
-    let t697 = qd[1] * (qd[0] * t657 + qd[1] * t582);
-    let t702 = -(qdd[0] * t665 + (qdd[1] * t669 + t697));
-    let t705 = qd[0] * t582;
-    let t707 = qd[0] * t705 - qdd[0] * t669;
-    let t708 = qd[1] * t665;
-    let t709 = -t708;
-    let t710 = t667 + t708;
-    let t711 = -t710;
-    let t712 = motor_torques[0] + motor_torques[1] + t675;
-    let t713 = t712 / t659;
-    let t716 = (t582 + T::from_f64(0.0166967)) / t659;
-    let t718 = T::from_f64(0.06) * t716;
-    let t720 = s54 * t718;
-    let t722 = qd[1] * t720;
-    let t728 = T::from_f64(0.03) * t716;
-    let t738 = T::from_f64(0.6666666666666667) - t716;
-    let t749 = T::from_f64(0.0166867) + t716 * (t716 * (T::from_f64(-0.1247117) - t657));
-    let t750 = (motor_torques[1] * t738 - motor_torques[0] * t716
-        - qd[1] * (qd[1] * (s54 * t728)) - qd[0] * (t681 + t722)) / t749;
-    let t754 = t713 - t716 * t750;
-    let t757 = T::from_f64(0.06) * t713;
-    let t786 = s54
-        * (t716 * (t750 * (T::from_f64(-0.06) + t718) - t757) + T::from_f64(0.03) * t713)
-        - qd[1] * (qd[1] * (c55 * t728)) - qd[0] * (t705 + qd[1] * (c55 * t718));
-    let t787 = t786 / t749;
-    let t792 = (t667 + t722) / t749;
-    let t793 = -t792;
-    let t800 = (t722 + qd[0] * t720) / t749;
-    let t801 = -t800;
-    let t802 = T::from_f64(1.0) / t659;
-    let t803 = t716 / t749;
-    let t804 = t738 / t749;
-    let t810 = -((s54 * (t750 * (T::from_f64(-0.03) + t718) - t757) - t697) / t659
-        + t716 * t787);
-    let t812 = t708 / t659 + t716 * t792;
-    let t814 = t710 / t659 + t716 * t800;
-    let t816 = t802 + t716 * t803;
-    let t820 = t802 - t716 * t804;
-    let t821 = -t803;
-    let t829 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t682 - t712 * t716)
-        / (T::from_f64(0.0166867) - t659 * (t716 * t716));
-    let t831 = t713 - t716 * t829;
+    let t581 = T::from_f64(0.03) * c55;
+    let t656 = c55 * T::from_f64(0.06);
+    let t658 = t656 + T::from_f64(0.1247117);
+    let t661 = t581 + T::from_f64(0.016696700000000002);
+    let t664 = s54 * T::from_f64(0.06);
+    let t666 = qd[0] * t664;
+    let t668 = T::from_f64(0.03) * s54;
+    let t674 = qd[1] * (t666 + qd[1] * t668);
+    let t677 = qdd[0] * t658 + (qdd[1] * t661 - t674);
+    let t680 = qd[0] * t668;
+    let t681 = qd[0] * t680;
+    let t683 = qdd[0] * t661 + (qdd[1] * T::from_f64(0.0166867) + t681);
+    let t696 = qd[1] * (qd[0] * t656 + qd[1] * t581);
+    let t701 = -(qdd[0] * t664 + (qdd[1] * t668 + t696));
+    let t704 = qd[0] * t581;
+    let t706 = qd[0] * t704 - qdd[0] * t668;
+    let t707 = qd[1] * t664;
+    let t708 = -t707;
+    let t709 = t666 + t707;
+    let t710 = -t709;
+    let t711 = motor_torques[0] + motor_torques[1] + t674;
+    let t712 = t711 / t658;
+    let t715 = (t581 + T::from_f64(0.0166967)) / t658;
+    let t717 = T::from_f64(0.06) * t715;
+    let t719 = s54 * t717;
+    let t721 = qd[1] * t719;
+    let t727 = T::from_f64(0.03) * t715;
+    let t737 = T::from_f64(0.6666666666666667) - t715;
+    let t748 = T::from_f64(0.0166867) + t715 * (t715 * (T::from_f64(-0.1247117) - t656));
+    let t749 = (motor_torques[1] * t737 - motor_torques[0] * t715
+        - qd[1] * (qd[1] * (s54 * t727)) - qd[0] * (t680 + t721)) / t748;
+    let t753 = t712 - t715 * t749;
+    let t756 = T::from_f64(0.06) * t712;
+    let t785 = s54
+        * (t715 * (t749 * (T::from_f64(-0.06) + t717) - t756) + T::from_f64(0.03) * t712)
+        - qd[1] * (qd[1] * (c55 * t727)) - qd[0] * (t704 + qd[1] * (c55 * t717));
+    let t786 = t785 / t748;
+    let t791 = (t666 + t721) / t748;
+    let t792 = -t791;
+    let t799 = (t721 + qd[0] * t719) / t748;
+    let t800 = -t799;
+    let t801 = T::from_f64(1.0) / t658;
+    let t802 = t715 / t748;
+    let t803 = t737 / t748;
+    let t809 = -((s54 * (t749 * (T::from_f64(-0.03) + t717) - t756) - t696) / t658
+        + t715 * t786);
+    let t811 = t707 / t658 + t715 * t791;
+    let t813 = t709 / t658 + t715 * t799;
+    let t815 = t801 + t715 * t802;
+    let t819 = t801 - t715 * t803;
+    let t820 = -t802;
+    let t828 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t681 - t711 * t715)
+        / (T::from_f64(0.0166867) - t658 * (t715 * t715));
+    let t830 = t712 - t715 * t828;
     Outputs {
-        generalized_forces: [t678, t684],
+        generalized_forces: [t677, t683],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t678, t684],
-            d_q: [[T::from_f64(0.0), t702], [T::from_f64(0.0), t707]],
-            d_qd: [[t709, t711], [t667, T::from_f64(0.0)]],
+            value: [t677, t683],
+            d_q: [[T::from_f64(0.0), t701], [T::from_f64(0.0), t706]],
+            d_qd: [[t708, t710], [t666, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t831, t829],
+        forward_dynamics: [t830, t828],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t754, t750],
-            d_q: [[T::from_f64(0.0), t810], [T::from_f64(0.0), t787]],
-            d_qd: [[t812, t814], [t793, t801]],
-            d_u: [[t816, t820], [t821, t804]],
+            value: [t753, t749],
+            d_q: [[T::from_f64(0.0), t809], [T::from_f64(0.0), t786]],
+            d_qd: [[t811, t813], [t792, t800]],
+            d_u: [[t815, t819], [t820, t803]],
         },
     }
 }

@@ -1,0 +1,156 @@
+//! Regrouping: the part of a pulley's mass that moves with its carrier whatever the
+//! pulley's angle is moved onto the carrier (Khalil and Kleinfinger's grouping of inertial
+//! parameters, 1987, for the turning bodies tendyn adds), so that the recursion walks
+//! less for the same generalized forces.
+//!
+//! A pulley turns about its axis `z` (its body frame's, through its origin) relative to
+//! its carrier. Part of its mass distribution is unchanged by that turn:
+//!
+//! - **a mass on the axis**: its position, and so its acceleration, does not depend on the
+//!   angle;
+//! - **an inertia `A (1 − z zᵀ)`**, axisymmetric with no moment about the axis: turning
+//!   does not change it, and with `ω = ω_c + θ̇ z`, `ω̇ = ω̇_c + θ̈ z + θ̇ ω_c × z` (Eqs. 11-12)
+//!   its moment `J ω̇ + ω × J ω` equals `J ω̇_c + ω_c × J ω_c`, the carrier's rigid part's:
+//!   the difference is `θ̇ (J (ω_c × z) + z × J ω_c) = θ̇ A (ω_c × z + z × ω_c) = 0`
+//!   (`J z = 0`, `ω_c × z ⟂ z`);
+//! - **everything**, when the pulley does not turn at all (a fixed drum: zero coupling).
+//!
+//! Such a part exerts the same force and moment on the carrier whether the pulley or the
+//! carrier holds it, and has no moment about the pulley's axis (`z · J ω̇ = 0`,
+//! `z · (ω × J ω) = 0` for that `J`, `z · (h z × a) = 0` for a mass on the axis), so moved
+//! onto the carrier it changes no body's torque about its own axis: not `Q = Σ cᵀ τ`, `M`,
+//! `h`, `g`, the tension system's right-hand side (every pulley's axial balance), the
+//! tensions, segment tensions or motor torques. It changes the pulley's own bearing
+//! force, and, where the carrier is the base, the base reaction (the part is dropped: the
+//! base does not move): the regrouped model is for the former outputs only.
+//!
+//! The pulleys are taken from the last body to the first, so a pulley carried by a pulley
+//! hands its part on further. The axis part moved is `A = I_yy` (about the centre of
+//! mass), which leaves an axisymmetric pulley with its `zz` alone; the mass moves when the
+//! centre of mass is on the axis exactly. A body whose mass properties a runtime parameter
+//! sets keeps them, and hands nothing to, or takes nothing from, its neighbours.
+
+use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, Slot};
+use crate::spatial::{Mat3, Vec3};
+
+impl Model<f64> {
+    /// The model with every pulley's mass that moves with its carrier moved onto it (see
+    /// [`crate::regrouping`]): the same torque about every body's axis at every state, so
+    /// the same `Q`, `M`, `h`, `g`, forward dynamics and actuation, for less work; not the
+    /// same bearing forces or base reaction. `None` where nothing moves.
+    pub fn regrouped(&self) -> Option<Model<f64>> {
+        let parametric = |i: usize| {
+            self.parameter_slots.iter().any(|(slot, _)| {
+                matches!(*slot, Slot::Mass(b) | Slot::Com(b, _) | Slot::Inertia(b, _, _) if b == i)
+            })
+        };
+        let mut m = self.clone();
+        let mut moved = 0;
+        for i in (0..m.bodies.len()).rev() {
+            let pattern = &self.patterns[i];
+            let body = &m.bodies[i];
+            let pulley = matches!(body.kind, BodyKind::Pulley { .. });
+            if !pulley
+                || !pattern.axis_along_z
+                || !pattern.origin_at_joint
+                || parametric(i)
+                || body.parent.is_some_and(parametric)
+            {
+                continue;
+            }
+            let rigid = pattern.joints.is_empty() && body.offset == 0.0;
+            let on_axis = body.com.x == 0.0 && body.com.y == 0.0;
+            let a = body.inertia.rows[1][1];
+            let axial = [[a, 0.0, 0.0], [0.0, a, 0.0], [0.0, 0.0, 0.0]];
+            // What may move: everything of a body that does not turn; else its mass where it
+            // is on the axis, and its inertia `A (1 − z zᵀ)`. Each part moves only where the
+            // carrier already has a number at every place the part adds one (no new term
+            // in its equations: a part that fills the carrier's zeros can cost it more than
+            // it saves the pulley); to the base, always.
+            let parts: &[(f64, [[f64; 3]; 3])] = if rigid {
+                &[(body.mass, body.inertia.rows)]
+            } else if on_axis {
+                &[(body.mass, [[0.0; 3]; 3]), (0.0, axial)]
+            } else {
+                &[(0.0, axial)]
+            };
+            let (rotation, at) = (body.pre.rotation, body.pre.apply(body.com));
+            for &(mass, inertia) in parts {
+                if mass == 0.0 && inertia.iter().flatten().all(|&x| x == 0.0) {
+                    continue;
+                }
+                let turned = (rotation * Mat3 { rows: inertia } * rotation.transpose()).rows;
+                if let Some(parent) = m.bodies[i].parent {
+                    let mut taken = m.bodies[parent].clone();
+                    take_on(&mut taken, mass, at, turned);
+                    if fills(&m.bodies[parent], &taken) {
+                        continue;
+                    }
+                    m.bodies[parent] = taken;
+                }
+                moved += 1;
+                let body = &mut m.bodies[i];
+                for (row, part) in body.inertia.rows.iter_mut().zip(&inertia) {
+                    for (x, y) in row.iter_mut().zip(part) {
+                        *x -= y;
+                    }
+                }
+                if mass != 0.0 && mass == body.mass {
+                    body.mass = 0.0;
+                    body.com = Vec3::zero();
+                }
+            }
+        }
+        if moved == 0 {
+            return None;
+        }
+        m.patterns = patterns_of(&m.bodies, &m.parameter_slots);
+        m.identity = new_identity();
+        Some(m)
+    }
+}
+
+/// Whether `after` has a nonzero mass, centre of mass or inertia entry where `before` has
+/// a zero.
+fn fills(before: &Body<f64>, after: &Body<f64>) -> bool {
+    let numbers = |b: &Body<f64>| {
+        let mut v = vec![b.mass];
+        v.extend(b.com.to_array());
+        v.extend(b.inertia.rows.iter().flatten());
+        v
+    };
+    numbers(before)
+        .iter()
+        .zip(numbers(after))
+        .any(|(&x, y)| x == 0.0 && y != 0.0)
+}
+
+/// Adds to `body` a part of mass `mass` centred at `at` with inertia `inertia` about `at`
+/// (its frame, its axes): mass, centre of mass and inertia about the new centre combined
+/// by the parallel-axis theorem.
+fn take_on(body: &mut Body<f64>, mass: f64, at: Vec3<f64>, inertia: [[f64; 3]; 3]) {
+    let total = body.mass + mass;
+    let com = if mass != 0.0 && total > 0.0 {
+        (body.com.scale(body.mass) + at.scale(mass)).scale(1.0 / total)
+    } else {
+        body.com
+    };
+    let own = shifted(body.mass, body.com - com);
+    let part = shifted(mass, at - com);
+    for r in 0..3 {
+        for c in 0..3 {
+            body.inertia.rows[r][c] += own[r][c] + inertia[r][c] + part[r][c];
+        }
+    }
+    body.mass = total;
+    body.com = com;
+}
+
+/// `m (|d|² 1 − d dᵀ)`: the inertia a point mass `m` at `d` adds about the origin.
+fn shifted(m: f64, d: Vec3<f64>) -> [[f64; 3]; 3] {
+    let d = d.to_array();
+    let squared = d.iter().map(|x| x * x).sum::<f64>();
+    core::array::from_fn(|r| {
+        core::array::from_fn(|c| m * (if r == c { squared } else { 0.0 } - d[r] * d[c]))
+    })
+}

@@ -1,0 +1,155 @@
+//! Regrouping (`Model::regrouped`, what generated code traces its axial outputs on): each
+//! pulley's mass that moves with its carrier whatever the pulley's angle (a mass on its
+//! axis, an inertia `A (1 − z zᵀ)`, all of a fixed drum) moved onto the carrier, or dropped
+//! on the base, leaves the torque about every body's axis as it was. So every output made
+//! of those torques is the same at every state, to round-off; the bearing forces of the
+//! pulleys that gave something up are not, which is why those stay on the file's bodies.
+
+use tendyn_core::model::Model;
+use tendyn_core::output::{Output, State};
+use tendyn_core::Data;
+
+fn geared_arm() -> Model<f64> {
+    tendyn_core::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/mechanisms/geared_arm.ron"
+    ))
+    .unwrap()
+}
+
+/// `count` well-spread states (a Kronecker sequence): `q` in `[−π, π]`, `q̇` in `[−2, 2]`,
+/// `q̈` in `[−6, 6]`.
+fn states(n: usize, count: usize) -> Vec<[Vec<f64>; 3]> {
+    let frac = |k: usize, i: usize| ((k + 1) as f64 * (2.0 + i as f64).sqrt()).fract() * 2.0 - 1.0;
+    (0..count)
+        .map(|k| {
+            let v = |offset: usize, scale: f64| -> Vec<f64> {
+                (0..n).map(|j| scale * frac(k, offset + j)).collect()
+            };
+            [v(0, core::f64::consts::PI), v(n, 2.0), v(2 * n, 6.0)]
+        })
+        .collect()
+}
+
+/// `max |a − b| / max |b|`: the error relative to the output's largest entry (max norm).
+fn relative(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let error = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    error / scale.max(f64::MIN_POSITIVE)
+}
+
+/// The largest relative error of `output` between `regrouped` and `model` over `states`.
+fn worst(
+    model: &Model<f64>,
+    regrouped: &Model<f64>,
+    output: Output,
+    states: &[[Vec<f64>; 3]],
+) -> f64 {
+    let (mut file, mut moved) = (Data::new(model), Data::new(regrouped));
+    let motor_torques: Vec<f64> = (0..model.motors().len())
+        .map(|k| 0.3 - 0.1 * k as f64)
+        .collect();
+    let tendon_tensions: Vec<f64> = (0..model.tendons().len())
+        .map(|k| 8.0 + 3.0 * k as f64)
+        .collect();
+    states
+        .iter()
+        .map(|[q, qd, qdd]| {
+            let state = State {
+                q,
+                qd,
+                qdd,
+                motor_torques: &motor_torques,
+                tendon_tensions: &tendon_tensions,
+            };
+            let want = file.output(model, output, &state).unwrap();
+            let got = moved.output(regrouped, output, &state).unwrap();
+            relative(&got, &want)
+        })
+        .fold(0.0, f64::max)
+}
+
+fn body<'a>(model: &'a Model<f64>, name: &str) -> &'a tendyn_core::model::Body<f64> {
+    model.bodies().iter().find(|b| b.name == name).unwrap()
+}
+
+#[test]
+fn what_turns_with_the_carrier_moves_onto_it_and_the_spin_stays() {
+    let model = geared_arm();
+    let regrouped = model.regrouped().expect("the geared arm has mass to move");
+    // gear0: axisymmetric, centre of mass on its axis: only its moment about the axis stays.
+    let gear0 = body(&regrouped, "gear0");
+    assert_eq!(gear0.mass, 0.0);
+    assert_eq!(
+        gear0.inertia.rows,
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 6e-4]]
+    );
+    let gained = body(&regrouped, "l4").mass - body(&model, "l4").mass;
+    assert!(
+        (gained - body(&model, "gear0").mass).abs() < 1e-15,
+        "l4 gains {gained} kg"
+    );
+    // drum0: a fixed drum turns with nothing: all of it moves onto l1.
+    let drum0 = body(&regrouped, "drum0");
+    assert_eq!(drum0.mass, 0.0);
+    assert_eq!(drum0.inertia.rows, [[0.0; 3]; 3]);
+    // idler1_1, on the base: its mass and the axisymmetric part of its inertia are dropped.
+    let idler = body(&regrouped, "idler1_1");
+    let zz = body(&model, "idler1_1").inertia.rows[2][2];
+    assert_eq!(idler.mass, 0.0);
+    assert_eq!(
+        idler.inertia.rows,
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, zz]]
+    );
+    // l1 carries drum0 and idler2_1, on its joint axis.
+    let gained = body(&regrouped, "l1").mass - body(&model, "l1").mass;
+    let given = body(&model, "drum0").mass + body(&model, "idler2_1").mass;
+    assert!((gained - given).abs() < 1e-15, "l1 gains {gained} kg");
+}
+
+#[test]
+fn every_output_made_of_axial_torques_is_the_file_models_to_round_off() {
+    let model = geared_arm();
+    let regrouped = model.regrouped().expect("the geared arm has mass to move");
+    let states = states(model.dof(), 40);
+    // Measured: at most 8e-16 (Q, M, h, g, ∂Q), 3e-15 (forward dynamics, through M's
+    // factorisation) and 7e-15 (actuation, through the tension system's solution).
+    for (output, bound) in [
+        (Output::GeneralizedForces, 1e-13),
+        (Output::MassMatrix, 1e-13),
+        (Output::Bias, 1e-13),
+        (Output::Gravity, 1e-13),
+        (Output::Actuation, 1e-13),
+        (Output::ForwardDynamics, 1e-12),
+        (Output::GeneralizedForcesDerivatives, 1e-12),
+    ] {
+        let error = worst(&model, &regrouped, output, &states);
+        eprintln!("{output:?}: {error:.1e}");
+        assert!(error <= bound, "{output:?}: {error:.1e} relative");
+    }
+}
+
+#[test]
+fn a_routed_mechanism_keeps_its_tensions_but_not_its_pulleys_bearing_forces() {
+    // Example 3: idlers with mass on their carriers' joint axes.
+    let model = tendyn_core::parse(&tendyn_spec::examples::text("example3_stanford_jpl")).unwrap();
+    let regrouped = model
+        .regrouped()
+        .expect("Example 3's idlers have mass to move");
+    let states = states(model.dof(), 20);
+    for output in [
+        Output::Actuation,
+        Output::SegmentTensions,
+        Output::GeneralizedForces,
+    ] {
+        let error = worst(&model, &regrouped, output, &states);
+        assert!(error <= 1e-13, "{output:?}: {error:.1e} relative");
+    }
+    // The moved masses' inertial forces leave the idlers' bearings: far beyond round-off.
+    let error = worst(&model, &regrouped, Output::Bearings, &states);
+    assert!(error > 1e-6, "bearings: {error:.1e} relative");
+}
