@@ -23,14 +23,14 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s54, c55) = q[1].sin_cos();
-    let t652 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
-    let t659 = T::from_f64(0.03) * s54;
-    let t668 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t652 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t659));
-    let t674 = qdd[0] * t652
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t659));
-    [t668, t674]
+    let (s56, c57) = q[1].sin_cos();
+    let t668 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t675 = T::from_f64(0.03) * s56;
+    let t684 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t668 - qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675));
+    let t690 = qdd[0] * t668
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t675));
+    [t684, t690]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -44,20 +44,20 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
-    let (s54, c55) = q[1].sin_cos();
-    let t699 = qdd[1] * (T::from_f64(0.03) * c55 + T::from_f64(-0.00833334999999993))
+    let (s56, c57) = q[1].sin_cos();
+    let t715 = qdd[1] * (T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993))
         - (qd[0]
-            * (qd[0] * (s54 * T::from_f64(0.04499999999999987))
-                + qd[1] * (s54 * T::from_f64(0.06)))
-            + qd[1] * (qd[1] * (T::from_f64(0.03) * s54)));
-    let t700 = qdd[0]
-        * (c55 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t699;
-    let t712 = qdd[0]
-        * (c55 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
+            * (qd[0] * (s56 * T::from_f64(0.04499999999999987))
+                + qd[1] * (s56 * T::from_f64(0.06)))
+            + qd[1] * (qd[1] * (T::from_f64(0.03) * s56)));
+    let t716 = qdd[0]
+        * (c57 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
+        + t715;
+    let t728 = qdd[0]
+        * (c57 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
         + (qdd[1] * T::from_f64(0.025030050000000005)
-            + qd[0] * (qd[0] * (s54 * T::from_f64(0.045000000000000005))));
-    tendyn_core::distribution::Actuation::exact([t700, t712], [])
+            + qd[0] * (qd[0] * (s56 * T::from_f64(0.045000000000000005))));
+    tendyn_core::distribution::Actuation::exact([t716, t728], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -67,10 +67,10 @@ pub fn actuation<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
-    let t55 = q[1].cos();
-    let t649 = t55 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t714 = T::from_f64(0.03) * t55 + T::from_f64(0.0166967);
-    [[t649, t714], [t714, T::from_f64(0.0166867)]]
+    let t57 = q[1].cos();
+    let t665 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t730 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
+    [[t665, t730], [t730, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -80,11 +80,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
-    let t54 = q[1].sin();
-    let t659 = T::from_f64(0.03) * t54;
-    let t666 = -(qd[1] * (qd[0] * (t54 * T::from_f64(0.06)) + qd[1] * t659));
-    let t672 = qd[0] * (qd[0] * t659);
-    [t666, t672]
+    let t56 = q[1].sin();
+    let t675 = T::from_f64(0.03) * t56;
+    let t682 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t675));
+    let t688 = qd[0] * (qd[0] * t675);
+    [t682, t688]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -109,17 +109,17 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    let (s54, c55) = q[1].sin_cos();
-    let t649 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t659 = T::from_f64(0.03) * s54;
-    let t715 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t659);
-    let t717 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t649;
-    let t867 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t659) - t715 * t717)
-        / (T::from_f64(0.0166867) - t649 * (t717 * t717));
-    let t869 = t715 / t649 - t717 * t867;
-    [t869, t867]
+    let (s56, c57) = q[1].sin_cos();
+    let t665 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t675 = T::from_f64(0.03) * s56;
+    let t731 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675);
+    let t733 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t665;
+    let t883 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t675) - t731 * t733)
+        / (T::from_f64(0.0166867) - t665 * (t733 * t733));
+    let t885 = t731 / t665 - t733 * t883;
+    [t885, t883]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -129,15 +129,15 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s54, c55) = q[1].sin_cos();
-    let t768 = qdd[0] * (c55 * T::from_f64(0.75) + T::from_f64(0.4166675))
+    let (s56, c57) = q[1].sin_cos();
+    let t784 = qdd[0] * (c57 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
-            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s54 * T::from_f64(0.75)))));
-    let t787 = qdd[0]
-        * (T::from_f64(-0.4166675000000001) - c55 * T::from_f64(0.7500000000000001))
-        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s54 * T::from_f64(0.7500000000000001)))
+            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s56 * T::from_f64(0.75)))));
+    let t803 = qdd[0]
+        * (T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001))
+        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001));
-    [t768, t787]
+    [t784, t803]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -147,90 +147,90 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
-    let (s52, c53) = q[0].sin_cos();
-    let (s54, c55) = q[1].sin_cos();
-    let t57 = T::from_f64(0.3) * qdd[0];
-    let t64 = t57 - qdd[0] * T::from_f64(0.15);
-    let t71 = T::from_f64(1.2) * t64;
-    let t81 = qd[0] + qd[1];
-    let t82 = qdd[0] + qdd[1];
-    let t120 = T::from_f64(0.000045)
+    let (s54, c55) = q[0].sin_cos();
+    let (s56, c57) = q[1].sin_cos();
+    let t59 = T::from_f64(0.3) * qdd[0];
+    let t66 = t59 - qdd[0] * T::from_f64(0.15);
+    let t73 = T::from_f64(1.2) * t66;
+    let t83 = qd[0] + qd[1];
+    let t84 = qdd[0] + qdd[1];
+    let t122 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
-    let t182 = T::from_f64(0.019988885800753267) * s54;
-    let t186 = T::from_f64(0.019988885800753267) * c55;
-    let t189 = T::from_f64(0.029983328701129897) * s52;
-    let t193 = T::from_f64(0.029983328701129897) * c53;
-    let t475 = qd[0] * qd[0];
-    let t476 = T::from_f64(0.3) * t475;
-    let t482 = T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18);
-    let t488 = t81 * t81;
-    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + s54 * t476)
-        - t82 * T::from_f64(0.125);
-    let t494 = T::from_f64(0.8)
-        * (s54 * t57 - c55 * t476 - T::from_f64(0.25) * t488
-            + T::from_f64(0.125) * t488);
-    let t495 = T::from_f64(0.8) * t491;
-    let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
-    let t499 = t497 + T::from_f64(0.2) * t491;
-    let t510 = t482 + t499 + T::from_f64(0.3) * (t71 + (s54 * t494 + c55 * t495));
-    let t532 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t499
-            - T::from_f64(0.000000000000000009071958584846753) * t510);
-    let t533 = T::from_f64(20.0)
-        - (T::from_f64(0.00000000000000003335808724852205) * t510
-            + T::from_f64(25.000000000000004) * t499);
-    let t534 = T::from_f64(0.9994442900376633) * t532;
-    let t535 = T::from_f64(0.03333333333333362) * t532;
-    let t538 = s54 * t535 - c55 * t534;
-    let t541 = s54 * t534 + c55 * t535;
-    let t547 = c53 * t534 + s52 * t535;
-    let t550 = s52 * t534 - c53 * t535;
-    let t554 = T::from_f64(0.9994442900376633) * t533;
-    let t555 = T::from_f64(0.03333333333333337) * t533;
-    let t558 = c55 * t554 + s54 * t555;
-    let t561 = s54 * t554 - c55 * t555;
-    let t562 = t538 - t558;
-    let t563 = t541 + t561;
-    let t567 = (T::from_f64(0.0006666666666666724) * c55 + t182) * t541
-        - (t186 - T::from_f64(0.0006666666666666724) * s54) * t538
-        + ((T::from_f64(0.0006666666666666674) * c55 - t182) * t561
-            - (t186 + T::from_f64(0.0006666666666666674) * s54) * t558);
-    let t570 = c53 * t554 - s52 * t555;
-    let t573 = s52 * t554 + c53 * t555;
-    let t579 = (T::from_f64(0.0010000000000000085) * c53 - t189) * t550
-        - (T::from_f64(0.0010000000000000085) * s52 + t193) * t547
-        + ((t189 + T::from_f64(0.0010000000000000009) * c53) * t573
-            - (T::from_f64(0.0010000000000000009) * s52 - t193) * t570);
-    let t580 = t558 - t538;
-    let t581 = -t563;
-    let t582 = -t567;
-    let t583 = T::from_f64(0.02) * t563;
-    let t587 = -(t547 + t570);
-    let t588 = -(t550 + t573);
-    let t590 = t494 - t562;
-    let t591 = t495 - t563;
-    let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
+    let t184 = T::from_f64(0.019988885800753267) * s56;
+    let t188 = T::from_f64(0.019988885800753267) * c57;
+    let t191 = T::from_f64(0.029983328701129897) * s54;
+    let t195 = T::from_f64(0.029983328701129897) * c55;
+    let t491 = qd[0] * qd[0];
+    let t492 = T::from_f64(0.3) * t491;
+    let t498 = T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18);
+    let t504 = t83 * t83;
+    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + s56 * t492)
+        - t84 * T::from_f64(0.125);
+    let t510 = T::from_f64(0.8)
+        * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
+            + T::from_f64(0.125) * t504);
+    let t511 = T::from_f64(0.8) * t507;
+    let t513 = T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507;
+    let t515 = t513 + T::from_f64(0.2) * t507;
+    let t526 = t498 + t515 + T::from_f64(0.3) * (t73 + (s56 * t510 + c57 * t511));
+    let t548 = T::from_f64(20.0)
+        + (T::from_f64(25.0) * t515
+            - T::from_f64(0.000000000000000009071958584846753) * t526);
+    let t549 = T::from_f64(20.0)
+        - (T::from_f64(0.00000000000000003335808724852205) * t526
+            + T::from_f64(25.000000000000004) * t515);
+    let t550 = T::from_f64(0.9994442900376633) * t548;
+    let t551 = T::from_f64(0.03333333333333362) * t548;
+    let t554 = s56 * t551 - c57 * t550;
+    let t557 = s56 * t550 + c57 * t551;
+    let t563 = c55 * t550 + s54 * t551;
+    let t566 = s54 * t550 - c55 * t551;
+    let t570 = T::from_f64(0.9994442900376633) * t549;
+    let t571 = T::from_f64(0.03333333333333337) * t549;
+    let t574 = c57 * t570 + s56 * t571;
+    let t577 = s56 * t570 - c57 * t571;
+    let t578 = t554 - t574;
+    let t579 = t557 + t577;
+    let t583 = (T::from_f64(0.0006666666666666724) * c57 + t184) * t557
+        - (t188 - T::from_f64(0.0006666666666666724) * s56) * t554
+        + ((T::from_f64(0.0006666666666666674) * c57 - t184) * t577
+            - (t188 + T::from_f64(0.0006666666666666674) * s56) * t574);
+    let t586 = c55 * t570 - s54 * t571;
+    let t589 = s54 * t570 + c55 * t571;
+    let t595 = (T::from_f64(0.0010000000000000085) * c55 - t191) * t566
+        - (T::from_f64(0.0010000000000000085) * s54 + t195) * t563
+        + ((t191 + T::from_f64(0.0010000000000000009) * c55) * t589
+            - (T::from_f64(0.0010000000000000009) * s54 - t195) * t586);
+    let t596 = t574 - t554;
+    let t597 = -t579;
+    let t598 = -t583;
+    let t599 = T::from_f64(0.02) * t579;
+    let t603 = -(t563 + t586);
+    let t604 = -(t566 + t589);
+    let t606 = t510 - t578;
+    let t607 = t511 - t579;
+    let t611 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t578
         - T::from_f64(1.9620000000000002);
-    let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
-    let t605 = c55 * t583 - s54 * t595;
-    let t609 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
-        - (s54 * t591 - c55 * t590);
-    let t610 = t71 + (s54 * t590 + c55 * t591);
-    let t614 = T::from_f64(1.7658) + (s54 * t583 + c55 * t595) - T::from_f64(5.886);
-    let t616 = t482 + t596 + T::from_f64(0.3) * t610
-        - (t510 - T::from_f64(1.4999999999999958) * t499);
-    let t617 = t120 - t579
-        - (t120
-            + (T::from_f64(0.0000000000000000047704895589362195) * t510
-                + T::from_f64(1.5000000000000002) * t499));
+    let t612 = t513 - (t583 - T::from_f64(0.25) * t579) + T::from_f64(0.25) * t607;
+    let t621 = c57 * t599 - s56 * t611;
+    let t625 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492)
+        - (s56 * t607 - c57 * t606);
+    let t626 = t73 + (s56 * t606 + c57 * t607);
+    let t630 = T::from_f64(1.7658) + (s56 * t599 + c57 * t611) - T::from_f64(5.886);
+    let t632 = t498 + t612 + T::from_f64(0.3) * t626
+        - (t526 - T::from_f64(1.4999999999999958) * t515);
+    let t633 = t122 - t595
+        - (t122
+            + (T::from_f64(0.0000000000000000047704895589362195) * t526
+                + T::from_f64(1.5000000000000002) * t515));
     [
-        [[t609, t610, T::from_f64(19.62)], [t605, t614, t616]],
-        [[t590, t591, T::from_f64(7.848000000000001)], [t583, t595, t596]],
+        [[t625, t626, T::from_f64(19.62)], [t621, t630, t632]],
+        [[t606, t607, T::from_f64(7.848000000000001)], [t599, t611, t612]],
         [
-            [t587, t588, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t617],
+            [t603, t604, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t633],
         ],
-        [[t580, t581, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t582]],
+        [[t596, t597, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t598]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
@@ -245,37 +245,37 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
-    let (s52, c53) = q[0].sin_cos();
-    let (s54, c55) = q[1].sin_cos();
-    let t57 = T::from_f64(0.3) * qdd[0];
-    let t64 = t57 - qdd[0] * T::from_f64(0.15);
-    let t81 = qd[0] + qd[1];
-    let t82 = qdd[0] + qdd[1];
-    let t137 = s54 * T::from_f64(0.9810000000000001);
-    let t152 = T::from_f64(1.7658) - c55 * T::from_f64(0.9810000000000001)
+    let (s54, c55) = q[0].sin_cos();
+    let (s56, c57) = q[1].sin_cos();
+    let t59 = T::from_f64(0.3) * qdd[0];
+    let t66 = t59 - qdd[0] * T::from_f64(0.15);
+    let t83 = qd[0] + qd[1];
+    let t84 = qdd[0] + qdd[1];
+    let t139 = s56 * T::from_f64(0.9810000000000001);
+    let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t167 = c53 * t137 - s52 * t152;
-    let t170 = s52 * t137 + c53 * t152;
-    let t475 = qd[0] * qd[0];
-    let t476 = T::from_f64(0.3) * t475;
-    let t488 = t81 * t81;
-    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + s54 * t476)
-        - t82 * T::from_f64(0.125);
-    let t494 = T::from_f64(0.8)
-        * (s54 * t57 - c55 * t476 - T::from_f64(0.25) * t488
-            + T::from_f64(0.125) * t488);
-    let t495 = T::from_f64(0.8) * t491;
-    let t506 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476)
-        - (s54 * t495 - c55 * t494);
-    let t507 = T::from_f64(1.2) * t64 + (s54 * t494 + c55 * t495);
-    let t513 = c53 * t506 - s52 * t507;
-    let t516 = s52 * t506 + c53 * t507;
-    let t517 = T::from_f64(0.000045)
+    let t169 = c55 * t139 - s54 * t154;
+    let t172 = s54 * t139 + c55 * t154;
+    let t491 = qd[0] * qd[0];
+    let t492 = T::from_f64(0.3) * t491;
+    let t504 = t83 * t83;
+    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + s56 * t492)
+        - t84 * T::from_f64(0.125);
+    let t510 = T::from_f64(0.8)
+        * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
+            + T::from_f64(0.125) * t504);
+    let t511 = T::from_f64(0.8) * t507;
+    let t522 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492)
+        - (s56 * t511 - c57 * t510);
+    let t523 = T::from_f64(1.2) * t66 + (s56 * t510 + c57 * t511);
+    let t529 = c55 * t522 - s54 * t523;
+    let t532 = s54 * t522 + c55 * t523;
+    let t533 = T::from_f64(0.000045)
         * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
-        + (T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18)
-            + (T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491
-                + T::from_f64(0.2) * t491) + T::from_f64(0.3) * t507);
-    [[[t513, t516, T::from_f64(20.601000000000003)], [t167, t170, t517]]]
+        + (T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18)
+            + (T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507
+                + T::from_f64(0.2) * t507) + T::from_f64(0.3) * t523);
+    [[[t529, t532, T::from_f64(20.601000000000003)], [t169, t172, t533]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -309,129 +309,129 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
-    let (s52, c53) = q[0].sin_cos();
-    let (s54, c55) = q[1].sin_cos();
-    let t57 = T::from_f64(0.3) * qdd[0];
-    let t64 = t57 - qdd[0] * T::from_f64(0.15);
-    let t71 = T::from_f64(1.2) * t64;
-    let t81 = qd[0] + qd[1];
-    let t82 = qdd[0] + qdd[1];
-    let t118 = qdd[0] + T::from_f64(0.6666666666666667) * qdd[1];
-    let t120 = T::from_f64(0.000045) * t118;
-    let t137 = s54 * T::from_f64(0.9810000000000001);
-    let t152 = T::from_f64(1.7658) - c55 * T::from_f64(0.9810000000000001)
+    let (s54, c55) = q[0].sin_cos();
+    let (s56, c57) = q[1].sin_cos();
+    let t59 = T::from_f64(0.3) * qdd[0];
+    let t66 = t59 - qdd[0] * T::from_f64(0.15);
+    let t73 = T::from_f64(1.2) * t66;
+    let t83 = qd[0] + qd[1];
+    let t84 = qdd[0] + qdd[1];
+    let t120 = qdd[0] + T::from_f64(0.6666666666666667) * qdd[1];
+    let t122 = T::from_f64(0.000045) * t120;
+    let t139 = s56 * T::from_f64(0.9810000000000001);
+    let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
-    let t167 = c53 * t137 - s52 * t152;
-    let t170 = s52 * t137 + c53 * t152;
-    let t182 = T::from_f64(0.019988885800753267) * s54;
-    let t186 = T::from_f64(0.019988885800753267) * c55;
-    let t189 = T::from_f64(0.029983328701129897) * s52;
-    let t193 = T::from_f64(0.029983328701129897) * c53;
-    let t406 = T::from_f64(-0.18) + T::from_f64(0.1) * c55;
-    let t424 = T::from_f64(0.000045)
+    let t169 = c55 * t139 - s54 * t154;
+    let t172 = s54 * t139 + c55 * t154;
+    let t184 = T::from_f64(0.019988885800753267) * s56;
+    let t188 = T::from_f64(0.019988885800753267) * c57;
+    let t191 = T::from_f64(0.029983328701129897) * s54;
+    let t195 = T::from_f64(0.029983328701129897) * c55;
+    let t402 = T::from_f64(-0.18) + T::from_f64(0.1) * c57;
+    let t420 = T::from_f64(0.000045)
         + (T::from_f64(0.0526667)
-            + T::from_f64(0.3) * (t406 + (t406 + T::from_f64(0.6))));
-    let t475 = qd[0] * qd[0];
-    let t476 = T::from_f64(0.3) * t475;
-    let t479 = T::from_f64(1.2) * (T::from_f64(0.15) * t475 - t476);
-    let t482 = T::from_f64(0.009) * qdd[0] - t64 * T::from_f64(0.18);
-    let t483 = c55 * t476;
-    let t485 = s54 * t476;
-    let t488 = t81 * t81;
-    let t489 = T::from_f64(0.25) * t488;
-    let t491 = T::from_f64(0.25) * t82 + (c55 * t57 + t485) - t82 * T::from_f64(0.125);
-    let t492 = T::from_f64(0.125) * t488;
-    let t494 = T::from_f64(0.8) * (s54 * t57 - t483 - t489 + t492);
-    let t495 = T::from_f64(0.8) * t491;
-    let t497 = T::from_f64(0.0041667) * t82 - T::from_f64(0.1) * t491;
-    let t499 = t497 + T::from_f64(0.2) * t491;
-    let t506 = t479 - (s54 * t495 - c55 * t494);
-    let t507 = t71 + (s54 * t494 + c55 * t495);
-    let t510 = t482 + t499 + T::from_f64(0.3) * t507;
-    let t513 = c53 * t506 - s52 * t507;
-    let t516 = s52 * t506 + c53 * t507;
-    let t517 = t120 + t510;
-    let t519 = t499 + t118 * T::from_f64(0.000030000000000000004);
-    let t527 = t510 - T::from_f64(1.4999999999999958) * t499;
-    let t531 = t120
-        + (T::from_f64(0.0000000000000000047704895589362195) * t510
-            + T::from_f64(1.5000000000000002) * t499);
-    let t532 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t499
-            - T::from_f64(0.000000000000000009071958584846753) * t510);
-    let t533 = T::from_f64(20.0)
-        - (T::from_f64(0.00000000000000003335808724852205) * t510
-            + T::from_f64(25.000000000000004) * t499);
-    let t534 = T::from_f64(0.9994442900376633) * t532;
-    let t535 = T::from_f64(0.03333333333333362) * t532;
-    let t538 = s54 * t535 - c55 * t534;
-    let t541 = s54 * t534 + c55 * t535;
-    let t547 = c53 * t534 + s52 * t535;
-    let t550 = s52 * t534 - c53 * t535;
-    let t554 = T::from_f64(0.9994442900376633) * t533;
-    let t555 = T::from_f64(0.03333333333333337) * t533;
-    let t558 = c55 * t554 + s54 * t555;
-    let t561 = s54 * t554 - c55 * t555;
-    let t562 = t538 - t558;
-    let t563 = t541 + t561;
-    let t567 = (T::from_f64(0.0006666666666666724) * c55 + t182) * t541
-        - (t186 - T::from_f64(0.0006666666666666724) * s54) * t538
-        + ((T::from_f64(0.0006666666666666674) * c55 - t182) * t561
-            - (t186 + T::from_f64(0.0006666666666666674) * s54) * t558);
-    let t570 = c53 * t554 - s52 * t555;
-    let t573 = s52 * t554 + c53 * t555;
-    let t579 = (T::from_f64(0.0010000000000000085) * c53 - t189) * t550
-        - (T::from_f64(0.0010000000000000085) * s52 + t193) * t547
-        + ((t189 + T::from_f64(0.0010000000000000009) * c53) * t573
-            - (T::from_f64(0.0010000000000000009) * s52 - t193) * t570);
-    let t580 = t558 - t538;
-    let t581 = -t563;
-    let t582 = -t567;
-    let t583 = T::from_f64(0.02) * t563;
-    let t587 = -(t547 + t570);
-    let t588 = -(t550 + t573);
-    let t590 = t494 - t562;
-    let t591 = t495 - t563;
-    let t595 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t562
+            + T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6))));
+    let t491 = qd[0] * qd[0];
+    let t492 = T::from_f64(0.3) * t491;
+    let t495 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492);
+    let t498 = T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18);
+    let t499 = c57 * t492;
+    let t501 = s56 * t492;
+    let t504 = t83 * t83;
+    let t505 = T::from_f64(0.25) * t504;
+    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + t501) - t84 * T::from_f64(0.125);
+    let t508 = T::from_f64(0.125) * t504;
+    let t510 = T::from_f64(0.8) * (s56 * t59 - t499 - t505 + t508);
+    let t511 = T::from_f64(0.8) * t507;
+    let t513 = T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507;
+    let t515 = t513 + T::from_f64(0.2) * t507;
+    let t522 = t495 - (s56 * t511 - c57 * t510);
+    let t523 = t73 + (s56 * t510 + c57 * t511);
+    let t526 = t498 + t515 + T::from_f64(0.3) * t523;
+    let t529 = c55 * t522 - s54 * t523;
+    let t532 = s54 * t522 + c55 * t523;
+    let t533 = t122 + t526;
+    let t535 = t515 + t120 * T::from_f64(0.000030000000000000004);
+    let t543 = t526 - T::from_f64(1.4999999999999958) * t515;
+    let t547 = t122
+        + (T::from_f64(0.0000000000000000047704895589362195) * t526
+            + T::from_f64(1.5000000000000002) * t515);
+    let t548 = T::from_f64(20.0)
+        + (T::from_f64(25.0) * t515
+            - T::from_f64(0.000000000000000009071958584846753) * t526);
+    let t549 = T::from_f64(20.0)
+        - (T::from_f64(0.00000000000000003335808724852205) * t526
+            + T::from_f64(25.000000000000004) * t515);
+    let t550 = T::from_f64(0.9994442900376633) * t548;
+    let t551 = T::from_f64(0.03333333333333362) * t548;
+    let t554 = s56 * t551 - c57 * t550;
+    let t557 = s56 * t550 + c57 * t551;
+    let t563 = c55 * t550 + s54 * t551;
+    let t566 = s54 * t550 - c55 * t551;
+    let t570 = T::from_f64(0.9994442900376633) * t549;
+    let t571 = T::from_f64(0.03333333333333337) * t549;
+    let t574 = c57 * t570 + s56 * t571;
+    let t577 = s56 * t570 - c57 * t571;
+    let t578 = t554 - t574;
+    let t579 = t557 + t577;
+    let t583 = (T::from_f64(0.0006666666666666724) * c57 + t184) * t557
+        - (t188 - T::from_f64(0.0006666666666666724) * s56) * t554
+        + ((T::from_f64(0.0006666666666666674) * c57 - t184) * t577
+            - (t188 + T::from_f64(0.0006666666666666674) * s56) * t574);
+    let t586 = c55 * t570 - s54 * t571;
+    let t589 = s54 * t570 + c55 * t571;
+    let t595 = (T::from_f64(0.0010000000000000085) * c55 - t191) * t566
+        - (T::from_f64(0.0010000000000000085) * s54 + t195) * t563
+        + ((t191 + T::from_f64(0.0010000000000000009) * c55) * t589
+            - (T::from_f64(0.0010000000000000009) * s54 - t195) * t586);
+    let t596 = t574 - t554;
+    let t597 = -t579;
+    let t598 = -t583;
+    let t599 = T::from_f64(0.02) * t579;
+    let t603 = -(t563 + t586);
+    let t604 = -(t566 + t589);
+    let t606 = t510 - t578;
+    let t607 = t511 - t579;
+    let t611 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t578
         - T::from_f64(1.9620000000000002);
-    let t596 = t497 - (t567 - T::from_f64(0.25) * t563) + T::from_f64(0.25) * t591;
-    let t605 = c55 * t583 - s54 * t595;
-    let t609 = t479 - (s54 * t591 - c55 * t590);
-    let t610 = t71 + (s54 * t590 + c55 * t591);
-    let t614 = T::from_f64(1.7658) + (s54 * t583 + c55 * t595) - T::from_f64(5.886);
-    let t616 = t482 + t596 + T::from_f64(0.3) * t610 - t527;
-    let t617 = t120 - t579 - t531;
-    let t620 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c55);
-    let t627 = T::from_f64(0.2) * t485 - T::from_f64(0.1) * t485;
-    let t633 = t627
+    let t612 = t513 - (t583 - T::from_f64(0.25) * t579) + T::from_f64(0.25) * t607;
+    let t621 = c57 * t599 - s56 * t611;
+    let t625 = t495 - (s56 * t607 - c57 * t606);
+    let t626 = t73 + (s56 * t606 + c57 * t607);
+    let t630 = T::from_f64(1.7658) + (s56 * t599 + c57 * t611) - T::from_f64(5.886);
+    let t632 = t498 + t612 + T::from_f64(0.3) * t626 - t543;
+    let t633 = t122 - t595 - t547;
+    let t636 = T::from_f64(0.000030000000000000004)
+        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c57);
+    let t643 = T::from_f64(0.2) * t501 - T::from_f64(0.1) * t501;
+    let t649 = t643
         + T::from_f64(0.3)
-            * (T::from_f64(0.8) * (s54 * (t492 - (t483 + t489)))
-                + c55 * (T::from_f64(0.8) * t485));
-    let t634 = motor_torques[0] + motor_torques[1] - t633;
-    let t636 = t620 / t424;
-    let t643 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t627 - t634 * t636)
-        / (T::from_f64(0.0166867) - t424 * (t636 * t636));
-    let t645 = t634 / t424 - t636 * t643;
+            * (T::from_f64(0.8) * (s56 * (t508 - (t499 + t505)))
+                + c57 * (T::from_f64(0.8) * t501));
+    let t650 = motor_torques[0] + motor_torques[1] - t649;
+    let t652 = t636 / t420;
+    let t659 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t643 - t650 * t652)
+        / (T::from_f64(0.0166867) - t420 * (t652 * t652));
+    let t661 = t650 / t420 - t652 * t659;
     Outputs {
-        generalized_forces: [t517, t519],
-        actuation: tendyn_core::distribution::Actuation::exact([t527, t531], []),
-        mass_matrix: [[t424, t620], [t620, T::from_f64(0.0166867)]],
-        bias: [t633, t627],
+        generalized_forces: [t533, t535],
+        actuation: tendyn_core::distribution::Actuation::exact([t543, t547], []),
+        mass_matrix: [[t420, t636], [t636, T::from_f64(0.0166867)]],
+        bias: [t649, t643],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t645, t643],
-        segment_tensions: [t532, t533],
+        forward_dynamics: [t661, t659],
+        segment_tensions: [t548, t549],
         bearings: [
-            [[t609, t610, T::from_f64(19.62)], [t605, t614, t616]],
-            [[t590, t591, T::from_f64(7.848000000000001)], [t583, t595, t596]],
+            [[t625, t626, T::from_f64(19.62)], [t621, t630, t632]],
+            [[t606, t607, T::from_f64(7.848000000000001)], [t599, t611, t612]],
             [
-                [t587, t588, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t617],
+                [t603, t604, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t633],
             ],
-            [[t580, t581, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t582]],
+            [[t596, t597, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t598]],
         ],
         base_reaction: [
-            [[t513, t516, T::from_f64(20.601000000000003)], [t167, t170, t517]],
+            [[t529, t532, T::from_f64(20.601000000000003)], [t169, t172, t533]],
         ],
     }
 }

@@ -376,7 +376,7 @@ pub fn trace(model: &Model<f64>, outputs: &[Output]) -> Result<Traced, Unavailab
 }
 
 /// Whether the outputs made of torques about the bodies' axes alone are traced on the
-/// regrouped model ([`Model::regrouped`]: each pulley's mass that moves with its carrier
+/// regrouped model ([`Model::regrouped`]: each body's mass that moves with its carrier
 /// moved onto it), which gives them exactly for less work.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Regroup {

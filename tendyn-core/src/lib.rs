@@ -24,7 +24,7 @@
 //!   model's data for the distribution (and the message when its bounds cannot be met);
 //! - [`composite`]: the joint-space mass matrix by the composite-rigid-body algorithm over
 //!   the expanded tree (pulleys through their couplings);
-//! - [`regrouping`]: the model with each pulley's mass that moves with its carrier moved
+//! - [`regrouping`]: the model with each body's mass that moves with its carrier moved
 //!   onto it ([`model::Model::regrouped`]): the same torque about every body's axis for
 //!   less work, which code generation traces its axial outputs on;
 //! - [`dual`](mod@dual) and [`derivatives`]: dual numbers (`no_std`), on which the generic

@@ -1,5 +1,5 @@
-//! Regrouping: the part of a pulley's mass that moves with its carrier whatever the
-//! pulley's angle is moved onto the carrier (Khalil and Kleinfinger's grouping of inertial
+//! Regrouping: the part of a body's mass that moves with its carrier whatever the body's
+//! angle is moved onto the carrier (Khalil and Kleinfinger's grouping of inertial
 //! parameters, 1987, for the turning bodies tendyn adds), so that the recursion walks
 //! less for the same generalized forces.
 //!
@@ -20,21 +20,29 @@
 //! `z · (ω × J ω) = 0` for that `J`, `z · (h z × a) = 0` for a mass on the axis), so moved
 //! onto the carrier it changes no body's torque about its own axis: not `Q = Σ cᵀ τ`, `M`,
 //! `h`, `g`, the tension system's right-hand side (every pulley's axial balance), the
-//! tensions, segment tensions or motor torques. It changes the pulley's own bearing
+//! tensions, segment tensions or motor torques. It changes the body's own bearing
 //! force, and, where the carrier is the base, the base reaction (the part is dropped: the
 //! base does not move): the regrouped model is for the former outputs only.
 //!
-//! The pulleys are taken from the last body to the first, so a pulley carried by a pulley
-//! hands its part on further. The axis part moved is `A = I_yy` (about the centre of
-//! mass), which leaves an axisymmetric pulley with its `zz` alone; the mass moves when the
-//! centre of mass is on the axis exactly. A body whose mass properties a runtime parameter
-//! sets keeps them, and hands nothing to, or takes nothing from, its neighbours.
+//! A link turns about its joint axis too, so the inertia part moves from a link as well,
+//! where its axis is an axis `e_k` of its frame (a DH link without twist, or a twist of a
+//! right angle): `A (1 − e_k e_kᵀ)` then zeroes one of its diagonal entries. (Its mass
+//! would move only from the axis, which a link's centre of mass seldom is on.)
+//!
+//! The bodies are taken from the last to the first, so a pulley carried by a pulley hands
+//! its part on further. The axis part moved has `A` the diagonal entry after `k`'s (of the
+//! inertia about the centre of mass: `I_xx` about a pulley's `z`), which leaves an
+//! axisymmetric pulley with its `zz` alone; a pulley's mass moves when its centre of mass
+//! is on the axis exactly. A part moves only where it fills no zero entry of the carrier's
+//! mass, centre of mass or inertia (a new term in the carrier's equations can cost more
+//! than the body saves); to the base, always. A body whose mass properties a runtime
+//! parameter sets keeps them, and hands nothing to, or takes nothing from, its neighbours.
 
 use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, Slot};
 use crate::spatial::{Mat3, Vec3};
 
 impl Model<f64> {
-    /// The model with every pulley's mass that moves with its carrier moved onto it (see
+    /// The model with every body's mass that moves with its carrier moved onto it (see
     /// [`crate::regrouping`]): the same torque about every body's axis at every state, so
     /// the same `Q`, `M`, `h`, `g`, forward dynamics and actuation, for less work; not the
     /// same bearing forces or base reaction. `None` where nothing moves.
@@ -50,23 +58,30 @@ impl Model<f64> {
             let pattern = &self.patterns[i];
             let body = &m.bodies[i];
             let pulley = matches!(body.kind, BodyKind::Pulley { .. });
-            if !pulley
-                || !pattern.axis_along_z
-                || !pattern.origin_at_joint
-                || parametric(i)
-                || body.parent.is_some_and(parametric)
-            {
+            // The axis `e_k` of the body's frame its joint turns it about, if it is one.
+            let along = body.axis.to_array();
+            let Some(k) = (0..3).find(|&k| along[k].abs() == 1.0) else {
+                continue;
+            };
+            if parametric(i) || body.parent.is_some_and(parametric) {
                 continue;
             }
-            let rigid = pattern.joints.is_empty() && body.offset == 0.0;
-            let on_axis = body.com.x == 0.0 && body.com.y == 0.0;
-            let a = body.inertia.rows[1][1];
-            let axial = [[a, 0.0, 0.0], [0.0, a, 0.0], [0.0, 0.0, 0.0]];
+            // `A (1 − e_k e_kᵀ)` with `A` the diagonal entry after `k`'s, which it zeroes
+            // (`xx` about a pulley's `z`).
+            let a = body.inertia.rows[(k + 1) % 3][(k + 1) % 3];
+            let axial: [[f64; 3]; 3] = core::array::from_fn(|r| {
+                core::array::from_fn(|c| if r == c && r != k { a } else { 0.0 })
+            });
+            // A pulley's origin is on its axis (its frame is `pre` turned about `z`): its
+            // mass moves too, where it is on the axis, and all of it where it does not turn.
+            let own = pulley && pattern.origin_at_joint && k == 2;
+            let rigid = own && pattern.joints.is_empty() && body.offset == 0.0;
+            let on_axis = own && body.com.x == 0.0 && body.com.y == 0.0;
             // What may move: everything of a body that does not turn; else its mass where it
-            // is on the axis, and its inertia `A (1 − z zᵀ)`. Each part moves only where the
-            // carrier already has a number at every place the part adds one (no new term
-            // in its equations: a part that fills the carrier's zeros can cost it more than
-            // it saves the pulley); to the base, always.
+            // is on the axis, and its inertia `A (1 − e_k e_kᵀ)`. Each part moves only where
+            // the carrier already has a number at every place the part adds one (no new
+            // term in its equations: a part that fills the carrier's zeros can cost it more
+            // than it saves the body); to the base, always.
             let parts: &[(f64, [[f64; 3]; 3])] = if rigid {
                 &[(body.mass, body.inertia.rows)]
             } else if on_axis {
@@ -74,12 +89,16 @@ impl Model<f64> {
             } else {
                 &[(0.0, axial)]
             };
-            let (rotation, at) = (body.pre.rotation, body.pre.apply(body.com));
+            // In the carrier's frame: the body's frame is `pre · RotZ(θ) · post`, and the
+            // turn leaves an axisymmetric part about its axis as it is.
+            let rotation = body.pre.rotation * body.post.rotation;
+            let at = body.pre.apply(body.com);
             for &(mass, inertia) in parts {
                 if mass == 0.0 && inertia.iter().flatten().all(|&x| x == 0.0) {
                     continue;
                 }
                 let turned = (rotation * Mat3 { rows: inertia } * rotation.transpose()).rows;
+                // (`at` is read only for a pulley's mass, whose `post` is the identity.)
                 if let Some(parent) = m.bodies[i].parent {
                     let mut taken = m.bodies[parent].clone();
                     take_on(&mut taken, mass, at, turned);

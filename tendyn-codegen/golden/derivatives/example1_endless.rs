@@ -23,14 +23,14 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    let (s54, c55) = q[1].sin_cos();
-    let t661 = T::from_f64(0.03) * c55 + T::from_f64(0.016696700000000002);
-    let t668 = T::from_f64(0.03) * s54;
-    let t677 = qdd[0] * (c55 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t661 - qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t668));
-    let t683 = qdd[0] * t661
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t668));
-    [t677, t683]
+    let (s56, c57) = q[1].sin_cos();
+    let t657 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t664 = T::from_f64(0.03) * s56;
+    let t673 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
+        + (qdd[1] * t657 - qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664));
+    let t679 = qdd[0] * t657
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t664));
+    [t673, t679]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -44,27 +44,27 @@ pub fn generalized_forces_derivatives<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
-    let (s54, c55) = q[1].sin_cos();
-    let t581 = T::from_f64(0.03) * c55;
-    let t656 = c55 * T::from_f64(0.06);
-    let t661 = t581 + T::from_f64(0.016696700000000002);
-    let t664 = s54 * T::from_f64(0.06);
-    let t666 = qd[0] * t664;
-    let t668 = T::from_f64(0.03) * s54;
-    let t677 = qdd[0] * (t656 + T::from_f64(0.1247117))
-        + (qdd[1] * t661 - qd[1] * (t666 + qd[1] * t668));
-    let t683 = qdd[0] * t661
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t668));
-    let t701 = -(qdd[0] * t664
-        + (qdd[1] * t668 + qd[1] * (qd[0] * t656 + qd[1] * t581)));
-    let t706 = qd[0] * (qd[0] * t581) - qdd[0] * t668;
-    let t707 = qd[1] * t664;
-    let t708 = -t707;
-    let t710 = -(t666 + t707);
+    let (s56, c57) = q[1].sin_cos();
+    let t577 = T::from_f64(0.03) * c57;
+    let t652 = c57 * T::from_f64(0.06);
+    let t657 = t577 + T::from_f64(0.016696700000000002);
+    let t660 = s56 * T::from_f64(0.06);
+    let t662 = qd[0] * t660;
+    let t664 = T::from_f64(0.03) * s56;
+    let t673 = qdd[0] * (t652 + T::from_f64(0.1247117))
+        + (qdd[1] * t657 - qd[1] * (t662 + qd[1] * t664));
+    let t679 = qdd[0] * t657
+        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t664));
+    let t697 = -(qdd[0] * t660
+        + (qdd[1] * t664 + qd[1] * (qd[0] * t652 + qd[1] * t577)));
+    let t702 = qd[0] * (qd[0] * t577) - qdd[0] * t664;
+    let t703 = qd[1] * t660;
+    let t704 = -t703;
+    let t706 = -(t662 + t703);
     tendyn_core::dual::StateJacobians {
-        value: [t677, t683],
-        d_q: [[T::from_f64(0.0), t701], [T::from_f64(0.0), t706]],
-        d_qd: [[t708, t710], [t666, T::from_f64(0.0)]],
+        value: [t673, t679],
+        d_q: [[T::from_f64(0.0), t697], [T::from_f64(0.0), t702]],
+        d_qd: [[t704, t706], [t662, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -80,17 +80,17 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    let (s54, c55) = q[1].sin_cos();
-    let t658 = c55 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t668 = T::from_f64(0.03) * s54;
-    let t711 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s54 * T::from_f64(0.06)) + qd[1] * t668);
-    let t715 = (T::from_f64(0.03) * c55 + T::from_f64(0.0166967)) / t658;
-    let t828 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t668) - t711 * t715)
-        / (T::from_f64(0.0166867) - t658 * (t715 * t715));
-    let t830 = t711 / t658 - t715 * t828;
-    [t830, t828]
+    let (s56, c57) = q[1].sin_cos();
+    let t654 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t664 = T::from_f64(0.03) * s56;
+    let t707 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664);
+    let t711 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t654;
+    let t824 = (T::from_f64(0.6666666666666667) * motor_torques[1]
+        - qd[0] * (qd[0] * t664) - t707 * t711)
+        / (T::from_f64(0.0166867) - t654 * (t711 * t711));
+    let t826 = t707 / t654 - t711 * t824;
+    [t826, t824]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
@@ -105,50 +105,50 @@ pub fn forward_dynamics_derivatives<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
-    let (s54, c55) = q[1].sin_cos();
-    let t581 = T::from_f64(0.03) * c55;
-    let t656 = c55 * T::from_f64(0.06);
-    let t658 = t656 + T::from_f64(0.1247117);
-    let t664 = s54 * T::from_f64(0.06);
-    let t666 = qd[0] * t664;
-    let t668 = T::from_f64(0.03) * s54;
-    let t707 = qd[1] * t664;
-    let t712 = (motor_torques[0] + motor_torques[1] + qd[1] * (t666 + qd[1] * t668))
-        / t658;
-    let t715 = (t581 + T::from_f64(0.0166967)) / t658;
-    let t717 = T::from_f64(0.06) * t715;
-    let t719 = s54 * t717;
-    let t721 = qd[1] * t719;
-    let t727 = T::from_f64(0.03) * t715;
-    let t737 = T::from_f64(0.6666666666666667) - t715;
-    let t748 = T::from_f64(0.0166867) + t715 * (t715 * (T::from_f64(-0.1247117) - t656));
-    let t749 = (motor_torques[1] * t737 - motor_torques[0] * t715
-        - qd[1] * (qd[1] * (s54 * t727)) - qd[0] * (qd[0] * t668 + t721)) / t748;
-    let t753 = t712 - t715 * t749;
-    let t756 = T::from_f64(0.06) * t712;
-    let t785 = s54
-        * (t715 * (t749 * (T::from_f64(-0.06) + t717) - t756) + T::from_f64(0.03) * t712)
-        - qd[1] * (qd[1] * (c55 * t727)) - qd[0] * (qd[0] * t581 + qd[1] * (c55 * t717));
-    let t786 = t785 / t748;
-    let t791 = (t666 + t721) / t748;
-    let t792 = -t791;
-    let t799 = (t721 + qd[0] * t719) / t748;
-    let t800 = -t799;
-    let t801 = T::from_f64(1.0) / t658;
-    let t802 = t715 / t748;
-    let t803 = t737 / t748;
-    let t809 = -((s54 * (t749 * (T::from_f64(-0.03) + t717) - t756)
-        - qd[1] * (qd[0] * t656 + qd[1] * t581)) / t658 + t715 * t786);
-    let t811 = t707 / t658 + t715 * t791;
-    let t813 = (t666 + t707) / t658 + t715 * t799;
-    let t815 = t801 + t715 * t802;
-    let t819 = t801 - t715 * t803;
-    let t820 = -t802;
+    let (s56, c57) = q[1].sin_cos();
+    let t577 = T::from_f64(0.03) * c57;
+    let t652 = c57 * T::from_f64(0.06);
+    let t654 = t652 + T::from_f64(0.1247117);
+    let t660 = s56 * T::from_f64(0.06);
+    let t662 = qd[0] * t660;
+    let t664 = T::from_f64(0.03) * s56;
+    let t703 = qd[1] * t660;
+    let t708 = (motor_torques[0] + motor_torques[1] + qd[1] * (t662 + qd[1] * t664))
+        / t654;
+    let t711 = (t577 + T::from_f64(0.0166967)) / t654;
+    let t713 = T::from_f64(0.06) * t711;
+    let t715 = s56 * t713;
+    let t717 = qd[1] * t715;
+    let t723 = T::from_f64(0.03) * t711;
+    let t733 = T::from_f64(0.6666666666666667) - t711;
+    let t744 = T::from_f64(0.0166867) + t711 * (t711 * (T::from_f64(-0.1247117) - t652));
+    let t745 = (motor_torques[1] * t733 - motor_torques[0] * t711
+        - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (qd[0] * t664 + t717)) / t744;
+    let t749 = t708 - t711 * t745;
+    let t752 = T::from_f64(0.06) * t708;
+    let t781 = s56
+        * (t711 * (t745 * (T::from_f64(-0.06) + t713) - t752) + T::from_f64(0.03) * t708)
+        - qd[1] * (qd[1] * (c57 * t723)) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t713));
+    let t782 = t781 / t744;
+    let t787 = (t662 + t717) / t744;
+    let t788 = -t787;
+    let t795 = (t717 + qd[0] * t715) / t744;
+    let t796 = -t795;
+    let t797 = T::from_f64(1.0) / t654;
+    let t798 = t711 / t744;
+    let t799 = t733 / t744;
+    let t805 = -((s56 * (t745 * (T::from_f64(-0.03) + t713) - t752)
+        - qd[1] * (qd[0] * t652 + qd[1] * t577)) / t654 + t711 * t782);
+    let t807 = t703 / t654 + t711 * t787;
+    let t809 = (t662 + t703) / t654 + t711 * t795;
+    let t811 = t797 + t711 * t798;
+    let t815 = t797 - t711 * t799;
+    let t816 = -t798;
     tendyn_core::dual::ForwardJacobians {
-        value: [t753, t749],
-        d_q: [[T::from_f64(0.0), t809], [T::from_f64(0.0), t786]],
-        d_qd: [[t811, t813], [t792, t800]],
-        d_u: [[t815, t819], [t820, t803]],
+        value: [t749, t745],
+        d_q: [[T::from_f64(0.0), t805], [T::from_f64(0.0), t782]],
+        d_qd: [[t807, t809], [t788, t796]],
+        d_u: [[t811, t815], [t816, t799]],
     }
 }
 /// Every requested output of [`all`].
@@ -180,74 +180,74 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
-    let (s54, c55) = q[1].sin_cos();
-    let t581 = T::from_f64(0.03) * c55;
-    let t656 = c55 * T::from_f64(0.06);
-    let t658 = t656 + T::from_f64(0.1247117);
-    let t661 = t581 + T::from_f64(0.016696700000000002);
-    let t664 = s54 * T::from_f64(0.06);
-    let t666 = qd[0] * t664;
-    let t668 = T::from_f64(0.03) * s54;
-    let t674 = qd[1] * (t666 + qd[1] * t668);
-    let t677 = qdd[0] * t658 + (qdd[1] * t661 - t674);
-    let t680 = qd[0] * t668;
-    let t681 = qd[0] * t680;
-    let t683 = qdd[0] * t661 + (qdd[1] * T::from_f64(0.0166867) + t681);
-    let t696 = qd[1] * (qd[0] * t656 + qd[1] * t581);
-    let t701 = -(qdd[0] * t664 + (qdd[1] * t668 + t696));
-    let t704 = qd[0] * t581;
-    let t706 = qd[0] * t704 - qdd[0] * t668;
-    let t707 = qd[1] * t664;
-    let t708 = -t707;
-    let t709 = t666 + t707;
-    let t710 = -t709;
-    let t711 = motor_torques[0] + motor_torques[1] + t674;
-    let t712 = t711 / t658;
-    let t715 = (t581 + T::from_f64(0.0166967)) / t658;
-    let t717 = T::from_f64(0.06) * t715;
-    let t719 = s54 * t717;
-    let t721 = qd[1] * t719;
-    let t727 = T::from_f64(0.03) * t715;
-    let t737 = T::from_f64(0.6666666666666667) - t715;
-    let t748 = T::from_f64(0.0166867) + t715 * (t715 * (T::from_f64(-0.1247117) - t656));
-    let t749 = (motor_torques[1] * t737 - motor_torques[0] * t715
-        - qd[1] * (qd[1] * (s54 * t727)) - qd[0] * (t680 + t721)) / t748;
-    let t753 = t712 - t715 * t749;
-    let t756 = T::from_f64(0.06) * t712;
-    let t785 = s54
-        * (t715 * (t749 * (T::from_f64(-0.06) + t717) - t756) + T::from_f64(0.03) * t712)
-        - qd[1] * (qd[1] * (c55 * t727)) - qd[0] * (t704 + qd[1] * (c55 * t717));
-    let t786 = t785 / t748;
-    let t791 = (t666 + t721) / t748;
-    let t792 = -t791;
-    let t799 = (t721 + qd[0] * t719) / t748;
-    let t800 = -t799;
-    let t801 = T::from_f64(1.0) / t658;
-    let t802 = t715 / t748;
-    let t803 = t737 / t748;
-    let t809 = -((s54 * (t749 * (T::from_f64(-0.03) + t717) - t756) - t696) / t658
-        + t715 * t786);
-    let t811 = t707 / t658 + t715 * t791;
-    let t813 = t709 / t658 + t715 * t799;
-    let t815 = t801 + t715 * t802;
-    let t819 = t801 - t715 * t803;
-    let t820 = -t802;
-    let t828 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t681 - t711 * t715)
-        / (T::from_f64(0.0166867) - t658 * (t715 * t715));
-    let t830 = t712 - t715 * t828;
+    let (s56, c57) = q[1].sin_cos();
+    let t577 = T::from_f64(0.03) * c57;
+    let t652 = c57 * T::from_f64(0.06);
+    let t654 = t652 + T::from_f64(0.1247117);
+    let t657 = t577 + T::from_f64(0.016696700000000002);
+    let t660 = s56 * T::from_f64(0.06);
+    let t662 = qd[0] * t660;
+    let t664 = T::from_f64(0.03) * s56;
+    let t670 = qd[1] * (t662 + qd[1] * t664);
+    let t673 = qdd[0] * t654 + (qdd[1] * t657 - t670);
+    let t676 = qd[0] * t664;
+    let t677 = qd[0] * t676;
+    let t679 = qdd[0] * t657 + (qdd[1] * T::from_f64(0.0166867) + t677);
+    let t692 = qd[1] * (qd[0] * t652 + qd[1] * t577);
+    let t697 = -(qdd[0] * t660 + (qdd[1] * t664 + t692));
+    let t700 = qd[0] * t577;
+    let t702 = qd[0] * t700 - qdd[0] * t664;
+    let t703 = qd[1] * t660;
+    let t704 = -t703;
+    let t705 = t662 + t703;
+    let t706 = -t705;
+    let t707 = motor_torques[0] + motor_torques[1] + t670;
+    let t708 = t707 / t654;
+    let t711 = (t577 + T::from_f64(0.0166967)) / t654;
+    let t713 = T::from_f64(0.06) * t711;
+    let t715 = s56 * t713;
+    let t717 = qd[1] * t715;
+    let t723 = T::from_f64(0.03) * t711;
+    let t733 = T::from_f64(0.6666666666666667) - t711;
+    let t744 = T::from_f64(0.0166867) + t711 * (t711 * (T::from_f64(-0.1247117) - t652));
+    let t745 = (motor_torques[1] * t733 - motor_torques[0] * t711
+        - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (t676 + t717)) / t744;
+    let t749 = t708 - t711 * t745;
+    let t752 = T::from_f64(0.06) * t708;
+    let t781 = s56
+        * (t711 * (t745 * (T::from_f64(-0.06) + t713) - t752) + T::from_f64(0.03) * t708)
+        - qd[1] * (qd[1] * (c57 * t723)) - qd[0] * (t700 + qd[1] * (c57 * t713));
+    let t782 = t781 / t744;
+    let t787 = (t662 + t717) / t744;
+    let t788 = -t787;
+    let t795 = (t717 + qd[0] * t715) / t744;
+    let t796 = -t795;
+    let t797 = T::from_f64(1.0) / t654;
+    let t798 = t711 / t744;
+    let t799 = t733 / t744;
+    let t805 = -((s56 * (t745 * (T::from_f64(-0.03) + t713) - t752) - t692) / t654
+        + t711 * t782);
+    let t807 = t703 / t654 + t711 * t787;
+    let t809 = t705 / t654 + t711 * t795;
+    let t811 = t797 + t711 * t798;
+    let t815 = t797 - t711 * t799;
+    let t816 = -t798;
+    let t824 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t677 - t707 * t711)
+        / (T::from_f64(0.0166867) - t654 * (t711 * t711));
+    let t826 = t708 - t711 * t824;
     Outputs {
-        generalized_forces: [t677, t683],
+        generalized_forces: [t673, t679],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t677, t683],
-            d_q: [[T::from_f64(0.0), t701], [T::from_f64(0.0), t706]],
-            d_qd: [[t708, t710], [t666, T::from_f64(0.0)]],
+            value: [t673, t679],
+            d_q: [[T::from_f64(0.0), t697], [T::from_f64(0.0), t702]],
+            d_qd: [[t704, t706], [t662, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t830, t828],
+        forward_dynamics: [t826, t824],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t753, t749],
-            d_q: [[T::from_f64(0.0), t809], [T::from_f64(0.0), t786]],
-            d_qd: [[t811, t813], [t792, t800]],
-            d_u: [[t815, t819], [t820, t803]],
+            value: [t749, t745],
+            d_q: [[T::from_f64(0.0), t805], [T::from_f64(0.0), t782]],
+            d_qd: [[t807, t809], [t788, t796]],
+            d_u: [[t811, t815], [t816, t799]],
         },
     }
 }

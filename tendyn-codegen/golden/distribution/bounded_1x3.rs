@@ -29,16 +29,16 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let t29 = q[0].cos();
-    let t93 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + t29 * T::from_f64(15.489503534923216));
-    let t98 = qdd[0] * T::from_f64(0.023733660538548376)
-        + t29 * T::from_f64(1.5223696228493755);
-    let t103 = qdd[0] * T::from_f64(0.10944622077137119)
-        + t29 * T::from_f64(7.0203077846917195);
+    let t30 = q[0].cos();
+    let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
+        + t30 * T::from_f64(15.489503534923216));
+    let t99 = qdd[0] * T::from_f64(0.023733660538548376)
+        + t30 * T::from_f64(1.5223696228493755);
+    let t104 = qdd[0] * T::from_f64(0.10944622077137119)
+        + t30 * T::from_f64(7.0203077846917195);
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t93, t98, t103],
+        [t94, t99, t104],
         &tendyn_core::distribution::Fixed {
             null: [
                 [0.08916218038101588f64, 0.9958316182311895f64, -0.01922221945441637f64],
@@ -65,17 +65,17 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
-    let t29 = q[0].cos();
-    let t93 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + t29 * T::from_f64(15.489503534923216));
-    let t98 = qdd[0] * T::from_f64(0.023733660538548376)
-        + t29 * T::from_f64(1.5223696228493755);
-    let t103 = qdd[0] * T::from_f64(0.10944622077137119)
-        + t29 * T::from_f64(7.0203077846917195);
+    let t30 = q[0].cos();
+    let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
+        + t30 * T::from_f64(15.489503534923216));
+    let t99 = qdd[0] * T::from_f64(0.023733660538548376)
+        + t30 * T::from_f64(1.5223696228493755);
+    let t104 = qdd[0] * T::from_f64(0.10944622077137119)
+        + t30 * T::from_f64(7.0203077846917195);
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],
-            [t93, t98, t103],
+            [t94, t99, t104],
             &tendyn_core::distribution::Fixed {
                 null: [
                     [

@@ -29,16 +29,16 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let t29 = q[0].cos();
-    let t156 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + t29 * T::from_f64(15.489503534923216));
-    let t160 = qdd[0] * T::from_f64(0.023733660538548376)
-        + t29 * T::from_f64(1.5223696228493755);
-    let t164 = qdd[0] * T::from_f64(0.10944622077137119)
-        + t29 * T::from_f64(7.0203077846917195);
+    let t30 = q[0].cos();
+    let t157 = -(qdd[0] * T::from_f64(0.24148052699609443)
+        + t30 * T::from_f64(15.489503534923216));
+    let t161 = qdd[0] * T::from_f64(0.023733660538548376)
+        + t30 * T::from_f64(1.5223696228493755);
+    let t165 = qdd[0] * T::from_f64(0.10944622077137119)
+        + t30 * T::from_f64(7.0203077846917195);
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t156, t160, t164],
+        [t157, t161, t165],
         &tendyn_core::distribution::Fixed {
             null: [
                 [0.08916218038101588f64, 0.9958316182311895f64, -0.01922221945441637f64],
@@ -67,22 +67,22 @@ pub fn actuation_derivatives<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::dual::ActuationJacobians<[T; 3], [[T; 1]; 3]> {
-    let (s28, c29) = q[0].sin_cos();
-    let t156 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + c29 * T::from_f64(15.489503534923216));
-    let t160 = qdd[0] * T::from_f64(0.023733660538548376)
-        + c29 * T::from_f64(1.5223696228493755);
-    let t164 = qdd[0] * T::from_f64(0.10944622077137119)
-        + c29 * T::from_f64(7.0203077846917195);
-    let t165 = s28 * T::from_f64(15.489503534923216);
-    let t168 = -(s28 * T::from_f64(1.5223696228493755));
-    let t171 = -(s28 * T::from_f64(7.0203077846917195));
+    let (s29, c30) = q[0].sin_cos();
+    let t157 = -(qdd[0] * T::from_f64(0.24148052699609443)
+        + c30 * T::from_f64(15.489503534923216));
+    let t161 = qdd[0] * T::from_f64(0.023733660538548376)
+        + c30 * T::from_f64(1.5223696228493755);
+    let t165 = qdd[0] * T::from_f64(0.10944622077137119)
+        + c30 * T::from_f64(7.0203077846917195);
+    let t166 = s29 * T::from_f64(15.489503534923216);
+    let t169 = -(s29 * T::from_f64(1.5223696228493755));
+    let t172 = -(s29 * T::from_f64(7.0203077846917195));
     {
         let (actuation, tangents) = tendyn_core::distribution::Actuation::bounded_with_tangents(
             [],
-            [t156, t160, t164],
+            [t157, t161, t165],
             &[
-                [t165, t168, t171],
+                [t166, t169, t172],
                 [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
                 [
                     T::from_f64(-0.24148052699609443),
@@ -160,21 +160,21 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
-    let (s28, c29) = q[0].sin_cos();
-    let t156 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + c29 * T::from_f64(15.489503534923216));
-    let t160 = qdd[0] * T::from_f64(0.023733660538548376)
-        + c29 * T::from_f64(1.5223696228493755);
-    let t164 = qdd[0] * T::from_f64(0.10944622077137119)
-        + c29 * T::from_f64(7.0203077846917195);
-    let t165 = s28 * T::from_f64(15.489503534923216);
-    let t168 = -(s28 * T::from_f64(1.5223696228493755));
-    let t171 = -(s28 * T::from_f64(7.0203077846917195));
+    let (s29, c30) = q[0].sin_cos();
+    let t157 = -(qdd[0] * T::from_f64(0.24148052699609443)
+        + c30 * T::from_f64(15.489503534923216));
+    let t161 = qdd[0] * T::from_f64(0.023733660538548376)
+        + c30 * T::from_f64(1.5223696228493755);
+    let t165 = qdd[0] * T::from_f64(0.10944622077137119)
+        + c30 * T::from_f64(7.0203077846917195);
+    let t166 = s29 * T::from_f64(15.489503534923216);
+    let t169 = -(s29 * T::from_f64(1.5223696228493755));
+    let t172 = -(s29 * T::from_f64(7.0203077846917195));
     let actuation_and_tangents = tendyn_core::distribution::Actuation::bounded_with_tangents(
         [],
-        [t156, t160, t164],
+        [t157, t161, t165],
         &[
-            [t165, t168, t171],
+            [t166, t169, t172],
             [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
             [
                 T::from_f64(-0.24148052699609443),
