@@ -207,8 +207,9 @@ pub struct Traced {
     /// Number of runtime parameters (inputs of every function).
     pub parameters: usize,
     /// Results of every function for `all`, in function order: each function's chosen
-    /// form, or every function traced, or (beside bearings or the base reaction) every
-    /// function traced on the file's bodies: whichever shares most and so costs least.
+    /// form, or every function traced, or (beside bearings, the base reaction or the
+    /// regressor) every function traced on the file's bodies: whichever shares most and so
+    /// costs least.
     pub all: Vec<Id>,
     /// Operations of `all`.
     pub all_ops: OpCount,
@@ -464,10 +465,11 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
             .iter()
             .map(|&o| (o, trace_one(&models, o, &inputs, &mut ws, &mut shared)))
             .collect::<Vec<_>>();
-        // Where bearings or the base reaction walk the file's bodies beside outputs that
-        // walk the regrouped ones, `all` may share more with every output on the file's
-        // bodies: those are traced too, as a third way to share work.
-        let unregrouped = if models.regrouped.is_some() && !outputs.iter().all(|&o| axial(o)) {
+        // Where bearings, the base reaction or the regressor walk the file's bodies beside
+        // outputs that walk the regrouped ones, `all` may share more with every output on
+        // the file's bodies: those are traced too, as a third way to share work.
+        let mixed = outputs.iter().any(|&o| axial(o)) && outputs.iter().any(|&o| !axial(o));
+        let unregrouped = if models.regrouped.is_some() && mixed {
             let full = Models {
                 full: &m,
                 regrouped: None,
@@ -649,18 +651,25 @@ struct Shared {
     /// the numeric model; `None` only where `check` refuses capstan friction).
     elimination: Option<tension::Elimination>,
     /// On the file's model, and on the regrouped one.
-    inverse: [Option<dynamics::InverseDynamics<Sym>>; 2],
+    inverse: [Option<InverseTrace>; 2],
+    /// Read by axial outputs only, so on the regrouped model where there is one.
+    mass: Option<Vec<Vec<Sym>>>,
+    /// Forward dynamics' mass matrix (flat) and right-hand side, to solve again over each
+    /// one's best form.
+    forward_parts: Option<(Vec<Id>, Vec<Id>)>,
+    /// The model on dual numbers and its workspace, for the derivatives (axial outputs
+    /// only, like `mass`).
+    dual: Option<DualModel>,
+}
+
+/// Inverse dynamics as traced, with what `actuation`'s status needs from its distribution.
+struct InverseTrace {
+    result: dynamics::InverseDynamics<Sym>,
     /// The one-direction distribution's excess and scale, where maxima make it needed.
     line_excess: Option<(Sym, Sym)>,
     /// A state's many-dimensional distribution problem (guides with capstan friction):
     /// its null basis row by row, target and inverse lengths ([`StatusFrom::SolveAtState`]).
     state_problem: Option<(usize, Vec<Sym>)>,
-    mass: Option<Vec<Vec<Sym>>>,
-    /// Forward dynamics' mass matrix (flat) and right-hand side, to solve again over each
-    /// one's best form.
-    forward_parts: Option<(Vec<Id>, Vec<Id>)>,
-    /// The model on dual numbers and its workspace, for the derivatives.
-    dual: Option<DualModel>,
 }
 
 /// The model on dual numbers and a workspace for it (the derivatives' trace).
@@ -672,11 +681,11 @@ impl Shared {
         (m, regrouped): (&Model<Sym>, bool),
         i: &Inputs,
         ws: &mut Workspace<Sym>,
-    ) -> &dynamics::InverseDynamics<Sym> {
-        let excess = &mut self.line_excess;
-        let state_problem = &mut self.state_problem;
+    ) -> &InverseTrace {
         let elimination = &self.elimination;
         self.inverse[usize::from(regrouped)].get_or_insert_with(|| {
+            let (mut line_excess, mut state_problem) = (None, None);
+            let (excess, problem) = (&mut line_excess, &mut state_problem);
             // One-dimensional null spaces: the closed form (`max`es), traced; larger ones
             // are distributed by the emitted call (see `Function::distribution`). With
             // guides with friction `E` depends on the state: its solution is traced too,
@@ -688,14 +697,27 @@ impl Shared {
                     *excess = tension::along_line(model, system, x).excess;
                 } else if d > 1 && k > 0 && system.eliminated.is_some() {
                     tension::minimal_norm(model, system, x);
-                    *state_problem = Some((d, problem_at_state(model, system)));
+                    *problem = Some((d, problem_at_state(model, system)));
                 }
                 Ok(())
             };
-            let mut r = dynamics::InverseDynamics::empty();
-            dynamics::inverse_dynamics(m, &i.q, &i.qd, &i.qdd, ws, at_state, distribute, &mut r)
-                .expect("tracing the distribution cannot fail");
-            r
+            let mut result = dynamics::InverseDynamics::empty();
+            dynamics::inverse_dynamics(
+                m,
+                &i.q,
+                &i.qd,
+                &i.qdd,
+                ws,
+                at_state,
+                distribute,
+                &mut result,
+            )
+            .expect("tracing the distribution cannot fail");
+            InverseTrace {
+                result,
+                line_excess,
+                state_problem,
+            }
         })
     }
 
@@ -851,10 +873,13 @@ fn trace_one(
         Output::Actuation | Output::SegmentTensions | Output::Bearings | Output::BaseReaction => {
             let r = shared.inverse((m, regrouped), i, ws);
             // Availability was checked before tracing (`check`).
-            let flat = r.flattened(o).expect("an output inverse dynamics gives");
+            let flat = r
+                .result
+                .flattened(o)
+                .expect("an output inverse dynamics gives");
             let shape = match o {
                 Output::Actuation => {
-                    let status = match (&shared.state_problem, shared.line_excess) {
+                    let status = match (&r.state_problem, r.line_excess) {
                         (Some((directions, _)), _) => StatusFrom::SolveAtState {
                             directions: *directions,
                         },
@@ -877,8 +902,8 @@ fn trace_one(
             // After the torques and tensions, what `status` needs: a one-dimensional
             // distribution's excess and scale, or the state's problem of several directions.
             let actuation = o == Output::Actuation;
-            let excess = shared.line_excess.filter(|_| actuation);
-            let problem = (shared.state_problem.as_ref()).filter(|_| actuation);
+            let excess = r.line_excess.filter(|_| actuation);
+            let problem = (r.state_problem.as_ref()).filter(|_| actuation);
             let results = flat
                 .into_iter()
                 .chain(excess.into_iter().flat_map(|(e, s)| [e, s]))

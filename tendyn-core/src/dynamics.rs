@@ -109,7 +109,8 @@ impl<T: Numeric> InverseDynamics<T> {
 
 /// Work buffers of the recursion, sized by [`Workspace::new`] for one model's shape: the
 /// generic functions index them by that model's bodies and strands (the runtime
-/// [`crate::Data`] checks the shape; the code generator makes one per traced model).
+/// [`crate::Data`] checks the shape; the code generator makes one for its models, which
+/// share their shape).
 #[derive(Clone, Debug)]
 pub struct Workspace<T: Real> {
     /// Motion of every body from the last forward recursion.

@@ -13,16 +13,20 @@
 //!   its moment `J ω̇ + ω × J ω` equals `J ω̇_c + ω_c × J ω_c`, the carrier's rigid part's:
 //!   the difference is `θ̇ (J (ω_c × z) + z × J ω_c) = θ̇ A (ω_c × z + z × ω_c) = 0`
 //!   (`J z = 0`, `ω_c × z ⟂ z`);
-//! - **everything**, when the pulley does not turn at all (a fixed drum: zero coupling).
+//! - **everything** of a fixed drum, which never turns relative to its carrier.
 //!
 //! Such a part exerts the same force and moment on the carrier whether the pulley or the
 //! carrier holds it, and has no moment about the pulley's axis (`z · J ω̇ = 0`,
 //! `z · (ω × J ω) = 0` for that `J`, `z · (h z × a) = 0` for a mass on the axis), so moved
-//! onto the carrier it changes no body's torque about its own axis: not `Q = Σ cᵀ τ`, `M`,
-//! `h`, `g`, the tension system's right-hand side (every pulley's axial balance), the
-//! tensions, segment tensions or motor torques. It changes the body's own bearing
-//! force, and, where the carrier is the base, the base reaction (the part is dropped: the
-//! base does not move): the regrouped model is for the former outputs only.
+//! onto the carrier it changes no body's torque about its own axis (but a fixed drum's,
+//! which nothing reads: its coupling is zero and it has no balance row): not
+//! `Q = Σ cᵀ τ`, `M`, `h`, `g`, the tension system's right-hand side (every idler's and
+//! driving pulley's axial balance), the tensions, segment tensions or motor torques. It
+//! changes the body's own bearing force, and, where the carrier is the base, the base
+//! reaction (the part is dropped: the base does not move): the regrouped model is for
+//! the former outputs only. Nothing moves onto a carrier whose frame does not spin (an
+//! axisymmetric body of [`Model::rigid_tree`]), which must stay axisymmetric about its
+//! own axis.
 //!
 //! A link turns about its joint axis too, so the inertia part moves from a link as well,
 //! where its axis is an axis `e_k` of its frame (a DH link without twist, or a twist of a
@@ -38,7 +42,7 @@
 //! than the body saves); to the base, always. A body whose mass properties a runtime
 //! parameter sets keeps them, and hands nothing to, or takes nothing from, its neighbours.
 
-use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, Slot};
+use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, PulleyRole, Slot};
 use crate::spatial::{Mat3, Vec3};
 
 impl Model<f64> {
@@ -57,13 +61,18 @@ impl Model<f64> {
         for i in (0..m.bodies.len()).rev() {
             let pattern = &self.patterns[i];
             let body = &m.bodies[i];
-            let pulley = matches!(body.kind, BodyKind::Pulley { .. });
             // The axis `e_k` of the body's frame its joint turns it about, if it is one.
             let along = body.axis.to_array();
             let Some(k) = (0..3).find(|&k| along[k].abs() == 1.0) else {
                 continue;
             };
-            if parametric(i) || body.parent.is_some_and(parametric) {
+            if (0..3).any(|j| j != k && along[j] != 0.0) {
+                continue;
+            }
+            // A carrier whose frame does not spin must stay axisymmetric about its own axis
+            // (`Body::axisymmetric`), which a part axisymmetric about another axis spoils.
+            let spoils = |p: usize| m.bodies[p].axisymmetric();
+            if parametric(i) || body.parent.is_some_and(|p| parametric(p) || spoils(p)) {
                 continue;
             }
             // `A (1 − e_k e_kᵀ)` with `A` the diagonal entry after `k`'s, which it zeroes
@@ -73,9 +82,19 @@ impl Model<f64> {
                 core::array::from_fn(|c| if r == c && r != k { a } else { 0.0 })
             });
             // A pulley's origin is on its axis (its frame is `pre` turned about `z`): its
-            // mass moves too, where it is on the axis, and all of it where it does not turn.
-            let own = pulley && pattern.origin_at_joint && k == 2;
-            let rigid = own && pattern.joints.is_empty() && body.offset == 0.0;
+            // mass moves too, where it is on the axis, and all of a fixed drum, which never
+            // turns and whose own torque nothing reads (no coupling, no balance row: an idler
+            // or driving pulley's is read even where its coupling is zero).
+            let own =
+                matches!(body.kind, BodyKind::Pulley { .. }) && pattern.origin_at_joint && k == 2;
+            let fixed = matches!(
+                body.kind,
+                BodyKind::Pulley {
+                    role: PulleyRole::Fixed,
+                    ..
+                }
+            );
+            let rigid = own && fixed && pattern.joints.is_empty() && body.offset == 0.0;
             let on_axis = own && body.com.x == 0.0 && body.com.y == 0.0;
             // What may move: everything of a body that does not turn; else its mass where it
             // is on the axis, and its inertia `A (1 − e_k e_kᵀ)`. Each part moves only where
