@@ -40,8 +40,9 @@
 //! is on the axis exactly. An inertia part moves only where it fills no zero entry of the
 //! carrier's mass, centre of mass or inertia (a new term in the carrier's equations can
 //! cost more than the body saves), a part with mass always: it leaves the body no mass,
-//! whose acceleration and force are then not needed. To the base, always. A body whose mass properties a runtime
-//! parameter sets keeps them, and hands nothing to, or takes nothing from, its neighbours.
+//! whose acceleration and force are then not needed. To the base, always. A body whose
+//! mass properties a runtime parameter sets keeps them, and hands nothing to, or takes
+//! nothing from, its neighbours.
 
 use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, PulleyRole, Slot};
 use crate::spatial::{Mat3, Vec3};
