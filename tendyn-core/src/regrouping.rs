@@ -24,17 +24,19 @@
 //! driving pulley's axial balance), the tensions, segment tensions or motor torques. It
 //! changes the body's own bearing force, and, where the carrier is the base, the base
 //! reaction (the part is dropped: the base does not move): the regrouped model is for
-//! the former outputs only. Nothing moves onto a carrier whose frame does not spin (an
-//! axisymmetric body of [`Model::rigid_tree`]), which must stay axisymmetric about its
-//! own axis.
+//! the former outputs only. Nothing moves onto a carrier that turns without spinning
+//! ([`crate::model::Body::axisymmetric`]: a body of [`Model::rigid_tree`] whose frame stays
+//! put while it turns), which must stay axisymmetric about its own axis.
 //!
 //! A link turns about its joint axis too, so the inertia part moves from a link as well,
 //! where its axis is an axis `e_k` of its frame (a DH link without twist, or a twist of a
-//! right angle): `A (1 − e_k e_kᵀ)` then zeroes one of its diagonal entries. (Its mass
-//! would move only from the axis, which a link's centre of mass seldom is on.)
+//! right angle): `A (1 − e_k e_kᵀ)` then zeroes one of its diagonal entries. A link's mass
+//! is never moved (it could move only from the axis, which a link's centre of mass is
+//! seldom on).
 //!
-//! The bodies are taken from the last to the first, so a pulley carried by a pulley hands
-//! its part on further. The axis part moved has `A` the diagonal entry after `k`'s (of the
+//! The bodies are taken from the last to the first (pulleys, then links from the tip), so
+//! what a pulley gives its link moves on with the link's own part where that goes further
+//! (to the base, for the first link). The axis part moved has `A` the diagonal entry after `k`'s (of the
 //! inertia about the centre of mass: `I_xx` about a pulley's `z`), which leaves an
 //! axisymmetric pulley with its `zz` alone; a pulley's mass moves when its centre of mass
 //! is on the axis exactly. An inertia part moves only where it fills no zero entry of the
