@@ -1,6 +1,8 @@
 //! What can be generated, and how each output is traced: the generic functions of
-//! `tendyn-core` run on the symbolic scalar, so the generated code computes exactly what
-//! the runtime solver computes (the same recursion, written once).
+//! `tendyn-core` run on the symbolic scalar, so the generated code computes what the
+//! runtime solver computes (the same recursion, written once). The outputs made of torques
+//! about the bodies' axes run it on the regrouped model ([`Model::regrouped`]), whose
+//! every such torque is the file model's: the same functions of the state, to round-off.
 //!
 //! All requested functions are traced into one graph, so the function that returns every
 //! requested output shares their common work. Then, per function, the collected closed
