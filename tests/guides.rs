@@ -605,6 +605,106 @@ fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_
     );
 }
 
+/// Two joints driven by four tendons (a two-dimensional null space), one of which slides over
+/// a pin on link 1 with `μ = 0.4` (found by a seeded random search). Without friction the
+/// routing is controllable; sliding `t2` over the pin towards its anchor, no tensions lift
+/// every tendon together (the runtime solver then refuses such states). With the exact
+/// law and fixed wrap angles no state lies between the points, so only the points' own
+/// check can see it, which before checked the rank alone with two or more null directions.
+const PIN_ON_LINK_1: &str = r#"(
+    name: "pin on link 1",
+    links: [
+        (name: "l1", dh: (a: 0.3, alpha: 0.0, d: 0.0), mass: 1.0),
+        (name: "l2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.5),
+    ],
+    pulleys: [
+        (name: "e", carrier: "l1", at: Joint(joint: "l1", height: 0.0), radius: 0.02, fixed: true),
+        (name: "d1", carrier: "l2", at: Joint(joint: "l2", height: 0.01), radius: 0.02, fixed: true),
+        (name: "g1", carrier: "base", at: Joint(joint: "l1", height: 0.01), radius: 0.018, fixed: true),
+        (name: "d2", carrier: "l2", at: Joint(joint: "l2", height: 0.02), radius: 0.02, fixed: true),
+        (name: "g2", carrier: "base", at: Joint(joint: "l1", height: 0.02), radius: 0.024, fixed: true),
+        (name: "p", carrier: "l1", at: Pose(origin: (-0.23, -0.036, 0.02), rpy: (0.0, 0.0, 0.0)), radius: 0.01, fixed: true, mu: 0.4),
+    ],
+    tendons: [
+        (name: "t0", route: [("e", Cw)], exit: (-0.1, 0.2, 0.0)),
+        (name: "t1", route: [("d1", Ccw), ("g1", Cw)], exit: (-0.18, -0.09, 0.01)),
+        (name: "t2", route: [("d2", Cw), ("p", Cw), ("g2", Ccw)], exit: (-0.14, 0.2, 0.02)),
+        (name: "t3", route: [("e", Cw)], exit: (-0.2, 0.03, 0.0)),
+    ],
+)"#;
+
+#[test]
+fn with_two_null_directions_a_sliding_direction_that_lifts_no_tendon_set_is_refused() {
+    // Without friction: controllable.
+    parse(&PIN_ON_LINK_1.replace("mu: 0.4", "mu: 0.0")).unwrap();
+    let e = parse(PIN_ON_LINK_1).unwrap_err();
+    let shown = e.to_string();
+    assert!(matches!(e, Error::Routing { .. }), "{shown}");
+    assert!(
+        shown.starts_with("p (line ")
+            && shown.contains("whichever way the tendons slide")
+            && shown.contains("sliding `t2` over `p` towards its anchor (at q = 0)")
+            && shown.contains("no null vector of the tension system lifts them all"),
+        "{shown}"
+    );
+}
+
+/// With `friction_smoothing`, states lie between rest and each direction of sliding, which
+/// validation covers by a fixed basis (docs/format.md §6a): two tendons held in one proportion
+/// that keep the others taut at rest and at every point. Here (two joints, four tendons
+/// over pins on link 1 and guides on joint 1's axis with `μβ` up to about 3.4, found by a
+/// seeded random search) every point alone is controllable, but the columns turn and
+/// scale so differently from point to point that no pair holds: validation cannot show the
+/// states between controllable and refuses, saying so.
+#[test]
+fn a_routing_no_fixed_basis_carries_between_rest_and_sliding_is_refused() {
+    let text = r#"(
+    name: "no fixed basis",
+    friction_smoothing: 0.01,
+    links: [
+        (name: "l1", dh: (a: 0.3, alpha: 0.0, d: 0.0), mass: 1.0),
+        (name: "l2", dh: (a: 0.25, alpha: 0.0, d: 0.0), mass: 0.5),
+    ],
+    pulleys: [
+        (name: "d0", carrier: "l2", at: Joint(joint: "l2", height: 0.0000), radius: 0.0185, fixed: true),
+        (name: "g0", carrier: "base", at: Joint(joint: "l1", height: 0.0000), radius: 0.0179, fixed: true, mu: 8.4172),
+        (name: "d1", carrier: "l2", at: Joint(joint: "l2", height: 0.0100), radius: 0.0139, fixed: true),
+        (name: "g1", carrier: "base", at: Joint(joint: "l1", height: 0.0100), radius: 0.0103, fixed: true, mu: 2.7661),
+        (name: "p1", carrier: "l1", at: Pose(origin: (-0.0446, -0.0027, 0.0100), rpy: (0.0, 0.0, 0.0)), radius: 0.0141, fixed: true, mu: 6.2643),
+        (name: "d2", carrier: "l2", at: Joint(joint: "l2", height: 0.0200), radius: 0.0221, fixed: true),
+        (name: "g2", carrier: "base", at: Joint(joint: "l1", height: 0.0200), radius: 0.0268, fixed: true),
+        (name: "p2", carrier: "l1", at: Pose(origin: (-0.0719, -0.0430, 0.0200), rpy: (0.0, 0.0, 0.0)), radius: 0.0090, fixed: true, mu: 3.2250),
+        (name: "d3", carrier: "l2", at: Joint(joint: "l2", height: 0.0300), radius: 0.0165, fixed: true),
+        (name: "g3", carrier: "base", at: Joint(joint: "l1", height: 0.0300), radius: 0.0171, fixed: true),
+    ],
+    tendons: [
+        (name: "t0", route: [("d0", Ccw), ("g0", Cw)], exit: (-0.1596, 0.0004, 0.0000)),
+        (name: "t1", route: [("d1", Cw), ("p1", Cw), ("g1", Ccw)], exit: (-0.1015, -0.1802, 0.0100)),
+        (name: "t2", route: [("d2", Cw), ("p2", Cw), ("g2", Cw)], exit: (-0.1428, 0.0155, 0.0200)),
+        (name: "t3", route: [("d3", Ccw), ("g3", Ccw)], exit: (-0.1656, 0.0438, 0.0300)),
+    ],
+)"#;
+    // Without friction: controllable.
+    let frictionless = ["8.4172", "2.7661", "6.2643", "3.2250"]
+        .iter()
+        .fold(text.to_string(), |t, mu| {
+            t.replace(&format!("mu: {mu}"), "mu: 0.0")
+        });
+    parse(&frictionless).unwrap();
+    let e = parse(text).unwrap_err();
+    let shown = e.to_string();
+    assert!(matches!(e, Error::Routing { .. }), "{shown}");
+    // Not a point that fails (that message says "whichever way the tendons slide"): the
+    // states between rest and the points.
+    assert!(
+        shown.starts_with("g0 (line ")
+            && shown.contains("must stay controllable between rest and every direction of sliding")
+            && shown.contains("no 2 tendons do up to sliding")
+            && !shown.contains("whichever way"),
+        "{shown}"
+    );
+}
+
 /// The per-state system in every precision: on the capstan example, inverse dynamics in
 /// `f64` and `f32` against the double-double solver (a reference of precision: it solves
 /// the state's system by the same QR in its own arithmetic; the physics is checked above,

@@ -571,10 +571,11 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     let fails = |e: Vec<Vec<f64>>| -> Option<String> {
         match &frictionless {
             Some(without) => without.compare(&without.at(&e), &tendons).err(),
-            None => crate::tension::system_at(model, e).err().map(|e| match e {
-                Error::Tension(why) => why,
-                other => other.to_string(),
-            }),
+            None => match crate::tension::system_at(model, e) {
+                Ok(system) => lifts_every_tendon(&system.null_space, &tendons).err(),
+                Err(Error::Tension(why)) => Some(why),
+                Err(other) => Some(other.to_string()),
+            },
         }
     };
     let ranged = sliding.ranged(model);
@@ -650,6 +651,40 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
         }
     }
     Ok(())
+}
+
+/// What `tension::system_at` leaves unchecked with two or more null directions (it checks
+/// the rank; with one, the null vector's signs): that the state's null space still leaves
+/// the motors and loop sides determined and holds a vector that lifts every tendon
+/// ([`positive_null_vector`], as for the model's `E`). Without open-ended tendons, or
+/// without a null direction, there is nothing to lift.
+fn lifts_every_tendon(
+    null_space: &[Vec<f64>],
+    tendons: &[usize],
+) -> std::result::Result<(), String> {
+    if null_space.len() < 2 || tendons.is_empty() {
+        return Ok(());
+    }
+    for v in null_space {
+        let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let moved = (0..v.len()).any(|c| !tendons.contains(&c) && v[c].abs() > 1e-9 * scale);
+        if moved {
+            return Err(
+                "at this state the guides' friction lets a motor torque or loop side \
+                 trade against the tendons' tensions: the dynamics no longer determines it"
+                    .into(),
+            );
+        }
+    }
+    match positive_null_vector(null_space, tendons) {
+        Some(_) => Ok(()),
+        None => Err(
+            "at this state the guides' friction leaves no tensions that raise every \
+             tendon together (no null vector of the tension system lifts them all): the \
+             routing is not controllable in this direction of sliding"
+                .into(),
+        ),
+    }
 }
 
 /// With no null direction or two or more, the state's system is checked at the points
