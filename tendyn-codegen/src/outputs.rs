@@ -476,8 +476,11 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
                 full: &m,
                 regrouped: None,
             };
+            // The file model's inverse dynamics (bearings', already traced) is kept; the
+            // mass matrix and the dual model were the regrouped model's.
             let mut shared = Shared {
                 elimination,
+                inverse: [shared.inverse[0].take(), None],
                 ..Shared::default()
             };
             let roots = outputs

@@ -307,7 +307,7 @@ pub(crate) fn point_shift<T: Real>(r: Vec3<T>, mass: T, h: Vec3<T>) -> Mat3<T> {
 }
 
 /// `R S Rᵀ` of a symmetric `S`.
-fn congruence<T: Real>(r: &Mat3<T>, s: &Mat3<T>) -> Mat3<T> {
+pub(crate) fn congruence<T: Real>(r: &Mat3<T>, s: &Mat3<T>) -> Mat3<T> {
     let rs = *r * *s;
     symmetric(|i, j| (0..3).fold(T::zero(), |acc, k| acc + rs.rows[i][k] * r.rows[j][k]))
 }

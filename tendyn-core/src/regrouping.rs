@@ -46,6 +46,7 @@
 //! mass properties a runtime parameter sets keeps them, and hands nothing to, or takes
 //! nothing from, its neighbours.
 
+use crate::composite::{congruence, point_shift};
 use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, PulleyRole, Slot};
 use crate::spatial::{Mat3, Vec3};
 
@@ -122,7 +123,7 @@ impl Model<f64> {
                 if mass == 0.0 && inertia.iter().flatten().all(|&x| x == 0.0) {
                     continue;
                 }
-                let turned = (rotation * Mat3 { rows: inertia } * rotation.transpose()).rows;
+                let turned = congruence(&rotation, &Mat3 { rows: inertia }).rows;
                 // (`at` is read only for a pulley's mass, whose `post` is the identity.)
                 if let Some(parent) = m.bodies[i].parent {
                     let mut taken = m.bodies[parent].clone();
@@ -179,8 +180,9 @@ fn take_on(body: &mut Body<f64>, mass: f64, at: Vec3<f64>, inertia: [[f64; 3]; 3
     } else {
         body.com
     };
-    let own = shifted(body.mass, body.com - com);
-    let part = shifted(mass, at - com);
+    // `point_shift(d, m, 0)` is `m (|d|² 1 − d dᵀ)`: a point mass `m` at `d`.
+    let own = point_shift(body.com - com, body.mass, Vec3::zero()).rows;
+    let part = point_shift(at - com, mass, Vec3::zero()).rows;
     for r in 0..3 {
         for c in 0..3 {
             body.inertia.rows[r][c] += own[r][c] + inertia[r][c] + part[r][c];
@@ -188,13 +190,4 @@ fn take_on(body: &mut Body<f64>, mass: f64, at: Vec3<f64>, inertia: [[f64; 3]; 3
     }
     body.mass = total;
     body.com = com;
-}
-
-/// `m (|d|² 1 − d dᵀ)`: the inertia a point mass `m` at `d` adds about the origin.
-fn shifted(m: f64, d: Vec3<f64>) -> [[f64; 3]; 3] {
-    let d = d.to_array();
-    let squared = d.iter().map(|x| x * x).sum::<f64>();
-    core::array::from_fn(|r| {
-        core::array::from_fn(|c| m * (if r == c { squared } else { 0.0 } - d[r] * d[c]))
-    })
 }

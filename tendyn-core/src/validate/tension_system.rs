@@ -216,19 +216,17 @@ impl Validator<'_> {
                     || matches!(u, Unknown::Strand(s) if tendons.iter().any(|t| t.strand == Some(*s)))
             };
             for v in &null_space {
-                let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-                for (u, x) in unknowns.iter().zip(v) {
-                    if !is_tendon(u) && x.abs() > 1e-9 * scale {
-                        return Err(self.routing(
-                            &item_of(u),
-                            format!(
-                                "{} is not determined by the dynamics (it can trade against the \
-                                 tendons' tensions); a motor or loop must not share its joint with \
-                                 redundant tendons this way",
-                                what(u)
-                            ),
-                        ));
-                    }
+                if let Some(c) = undetermined(v, |c| is_tendon(&unknowns[c])) {
+                    let u = &unknowns[c];
+                    return Err(self.routing(
+                        &item_of(u),
+                        format!(
+                            "{} is not determined by the dynamics (it can trade against the \
+                             tendons' tensions); a motor or loop must not share its joint with \
+                             redundant tendons this way",
+                            what(u)
+                        ),
+                    ));
                 }
             }
             let tendon_cols: Vec<usize> = (0..m).filter(|&c| is_tendon(&unknowns[c])).collect();
@@ -653,6 +651,14 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
     Ok(())
 }
 
+/// The first column of null vector `v` that is not a tendon's (a motor torque or loop side)
+/// and that `v` moves beyond round-off (`1e-9` of its largest component): one the dynamics
+/// does not determine.
+fn undetermined(v: &[f64], tendon: impl Fn(usize) -> bool) -> Option<usize> {
+    let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    (0..v.len()).find(|&c| !tendon(c) && v[c].abs() > 1e-9 * scale)
+}
+
 /// What `tension::system_at` leaves unchecked with two or more null directions (it checks
 /// the rank; with one, the null vector's signs): that the state's null space still leaves
 /// the motors and loop sides determined and holds a vector that lifts every tendon
@@ -666,9 +672,7 @@ fn lifts_every_tendon(
         return Ok(());
     }
     for v in null_space {
-        let scale = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let moved = (0..v.len()).any(|c| !tendons.contains(&c) && v[c].abs() > 1e-9 * scale);
-        if moved {
+        if undetermined(v, |c| tendons.contains(&c)).is_some() {
             return Err(
                 "at this state the guides' friction lets a motor torque or loop side \
                  trade against the tendons' tensions: the dynamics no longer determines it"
