@@ -204,3 +204,125 @@ fn nothing_moves_onto_a_body_that_turns_without_spinning() {
         assert!(error <= 1e-13, "{output:?}: {error:.1e} relative");
     }
 }
+
+#[test]
+fn a_fixed_drum_moves_to_where_its_post_puts_it() {
+    use tendyn_core::model::{Body, BodyKind, PulleyRole};
+    use tendyn_core::spatial::{Mat3, Transform, Vec3};
+    // A rigid tree's fixed drum whose `post` turns it a right angle about z (allowed: its
+    // axis stays z), its centre of mass 5 cm along its own x, which is the link's y.
+    let isotropic = |x: f64| Mat3 {
+        rows: [[x, 0.0, 0.0], [0.0, x, 0.0], [0.0, 0.0, x]],
+    };
+    let link = Body {
+        name: "l1".into(),
+        kind: BodyKind::Link { joint: 0 },
+        parent: None,
+        pre: Transform::identity(),
+        post: Transform::identity(),
+        offset: 0.0,
+        coupling: vec![1.0],
+        spins: true,
+        mass: 1.0,
+        com: Vec3::new(0.1, 0.0, 0.0),
+        inertia: isotropic(1e-3),
+        axis: Vec3::unit_z(),
+        joint_to_origin: Vec3::zero(),
+        friction: None,
+    };
+    let drum = Body {
+        name: "drum".into(),
+        kind: BodyKind::Pulley {
+            radius: 0.02,
+            role: PulleyRole::Fixed,
+        },
+        parent: Some(0),
+        pre: Transform {
+            rotation: Mat3::identity(),
+            translation: Vec3::new(0.2, 0.0, 0.0),
+        },
+        post: Transform {
+            rotation: Mat3 {
+                rows: [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            },
+            translation: Vec3::zero(),
+        },
+        offset: 0.0,
+        coupling: vec![0.0],
+        spins: true,
+        mass: 0.5,
+        com: Vec3::new(0.05, 0.0, 0.0),
+        inertia: isotropic(1e-4),
+        axis: Vec3::unit_z(),
+        joint_to_origin: Vec3::zero(),
+        friction: None,
+    };
+    let tree = Model::rigid_tree(
+        "drum turned by its post",
+        [9.81, 0.0, 0.0],
+        1,
+        vec![link, drum],
+        None,
+    )
+    .unwrap();
+    let regrouped = tree.regrouped().expect("the drum moves onto l1");
+    // All of the drum on l1: 1.5 kg, centred between l1's own (0.1, 0, 0) and the drum's
+    // (0.2, 0.05, 0) in l1's frame.
+    let l1 = body(&regrouped, "l1");
+    assert_eq!(l1.mass, 1.5);
+    let want = [0.4 / 3.0, 0.05 / 3.0, 0.0];
+    for (x, w) in l1.com.to_array().iter().zip(want) {
+        assert!((x - w).abs() <= 1e-16, "{:?}", l1.com);
+    }
+    let states = states(1, 20);
+    for output in [
+        Output::GeneralizedForces,
+        Output::MassMatrix,
+        Output::Bias,
+        Output::Gravity,
+    ] {
+        let error = worst(&tree, &regrouped, output, &states);
+        assert!(error <= 1e-13, "{output:?}: {error:.1e} relative");
+    }
+}
+
+#[test]
+fn a_regrouped_parametric_model_takes_parameter_values_as_the_file_model_does() {
+    // Regrouping leaves parts of bodies that are not physical alone (no mass, an inertia
+    // with a zero diagonal entry); the parameters set other bodies, which alone are
+    // checked. At values other than the file's, the outputs still agree.
+    let file = tendyn_core::parse(&tendyn_spec::parametric::finger()).unwrap();
+    let regrouped = file.regrouped().expect("the finger's pulleys regroup");
+    // Masses and gravity up; the inertia entries (each a flat part's largest, at the
+    // triangle inequality's limit) down.
+    let values: Vec<f64> = file
+        .parameters()
+        .iter()
+        .map(|p| match p.name.starts_with('i') {
+            true => 0.95 * p.value,
+            false => 1.3 * p.value,
+        })
+        .collect();
+    let (file, regrouped) = (
+        file.with_parameters(&values).unwrap(),
+        regrouped.with_parameters(&values).unwrap(),
+    );
+    let states = states(file.dof(), 20);
+    for output in [
+        Output::GeneralizedForces,
+        Output::MassMatrix,
+        Output::Gravity,
+        Output::Actuation,
+    ] {
+        let error = worst(&file, &regrouped, output, &states);
+        assert!(error <= 1e-13, "{output:?}: {error:.1e} relative");
+    }
+    // A value the parametric body cannot take is still refused.
+    let mut negative = values.clone();
+    negative[0] = -0.02;
+    let error = regrouped
+        .with_parameters(&negative)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("mass"), "{error}");
+}

@@ -912,7 +912,9 @@ fn map2<T: Copy, U>(m: &[Vec<T>], f: impl Fn(T) -> U + Copy) -> Vec<Vec<U>> {
 
 impl Model<f64> {
     /// The same mechanism with its runtime parameters set to `values` (file order), checked
-    /// as validation checks the file: finite numbers, non-negative masses, physical inertias.
+    /// as validation checks the file: finite numbers, non-negative masses, physical inertias
+    /// of the bodies the parameters set (the others are as validation left them, or, in a
+    /// [`Model::regrouped`] one, parts of bodies that need not be physical alone).
     pub fn with_parameters(&self, values: &[f64]) -> crate::Result<Model<f64>> {
         self.check_parameter_count(values.len())?;
         if let Some((p, v)) = self
@@ -928,8 +930,13 @@ impl Model<f64> {
         }
         let mut m = self.clone();
         m.set_parameters(values);
-        for b in &m.bodies {
-            crate::validate::check_mass_properties(&b.name, b.mass, b.com, &b.inertia)?;
+        for (i, b) in m.bodies.iter().enumerate() {
+            let set = self.parameter_slots.iter().any(|(slot, _)| {
+                matches!(*slot, Slot::Mass(j) | Slot::Com(j, _) | Slot::Inertia(j, _, _) if j == i)
+            });
+            if set {
+                crate::validate::check_mass_properties(&b.name, b.mass, b.com, &b.inertia)?;
+            }
         }
         crate::validate::check_gravity_and_wrench(&m.name, m.gravity, m.external_wrench.as_ref())?;
         Ok(m)

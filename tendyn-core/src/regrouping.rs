@@ -115,16 +115,18 @@ impl Model<f64> {
             } else {
                 &[(0.0, axial)]
             };
-            // In the carrier's frame: the body's frame is `pre · RotZ(θ) · post`, and the
-            // turn leaves an axisymmetric part about its axis as it is.
+            // In the carrier's frame: the body's frame is `pre · RotZ(θ) · post`. The turn
+            // leaves a part axisymmetric about the axis as it is, and a point on the axis
+            // where it is (the `post` of a pulley whose origin is on its joint keeps z on z:
+            // a file's pulley has none, a rigid tree's may turn about z); a fixed drum's θ
+            // is 0.
             let rotation = body.pre.rotation * body.post.rotation;
-            let at = body.pre.apply(body.com);
+            let at = body.pre.apply(body.post.apply(body.com));
             for &(mass, inertia) in parts {
                 if mass == 0.0 && inertia.iter().flatten().all(|&x| x == 0.0) {
                     continue;
                 }
                 let turned = congruence(&rotation, &Mat3 { rows: inertia }).rows;
-                // (`at` is read only for a pulley's mass, whose `post` is the identity.)
                 if let Some(parent) = m.bodies[i].parent {
                     let mut taken = m.bodies[parent].clone();
                     take_on(&mut taken, mass, at, turned);
