@@ -1755,6 +1755,39 @@ fn sixty_five_guides_sliding_together_are_validated_without_overflow() {
     assert_eq!(model.guides().count(), 65);
 }
 
+/// A body that turns without spinning keeps its housing frame, so what it carried would
+/// not turn with it: a rigid tree with such a body as a parent is refused, naming it.
+#[test]
+fn a_rigid_tree_refuses_a_body_turning_without_spinning_that_carries_another() {
+    let file = load("../examples/mechanisms/example3_stanford_jpl.ron").unwrap();
+    let mut links = file.bodies()[..file.dof()].to_vec();
+    let a = links[0].axis.to_array();
+    let axisymmetric: [[f64; 3]; 3] = core::array::from_fn(|i| {
+        core::array::from_fn(|j| {
+            let identity = if i == j { 1.0 } else { 0.0 };
+            2e-4 * a[i] * a[j] + 1e-4 * (identity - a[i] * a[j])
+        })
+    });
+    let first = &mut links[0];
+    first.spins = false;
+    first.com = -first.joint_to_origin + first.axis.scale(0.01);
+    first.inertia.rows = axisymmetric;
+    let g = file.gravity().to_array();
+    // Alone it is a valid tree; carrying the second link it is not.
+    let mut alone = links[..1].to_vec();
+    alone[0].coupling.truncate(1);
+    let alone = tendyn_core::Model::rigid_tree("alone", g, 1, alone, None);
+    assert!(alone.is_ok(), "{:?}", alone.err());
+    let err = tendyn_core::Model::rigid_tree("carrying", g, file.dof(), links, None).unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.starts_with(&format!("{}: ", file.bodies()[0].name))
+            && message.contains(&format!("carries `{}`", file.bodies()[1].name))
+            && message.contains("let it spin"),
+        "{message}"
+    );
+}
+
 /// A tree of bodies built in code has no routing: an idler (whose strand would be looked
 /// up by everything that reports on it) or a loop's driving pulley is refused, naming the
 /// roles it may have.

@@ -168,57 +168,6 @@ fn a_routed_mechanism_keeps_its_tensions_but_not_its_pulleys_bearing_forces() {
 }
 
 #[test]
-fn nothing_moves_onto_a_body_that_turns_without_spinning() {
-    // Example 3's links as a rigid tree, the first one (twisted by a right angle) turning
-    // without spinning: its frame stays put, so its mass must stay axisymmetric about its
-    // axis, its frame's y. Its child turns about its frame's z: a part axisymmetric about
-    // that would spoil it.
-    let file = tendyn_core::parse(&tendyn_spec::examples::text("example3_stanford_jpl")).unwrap();
-    let mut links = file.bodies()[..file.dof()].to_vec();
-    let a = links[0].axis.to_array();
-    let axisymmetric: [[f64; 3]; 3] = core::array::from_fn(|i| {
-        core::array::from_fn(|j| {
-            let identity = if i == j { 1.0 } else { 0.0 };
-            2e-4 * a[i] * a[j] + 1e-4 * (identity - a[i] * a[j])
-        })
-    });
-    let first = &mut links[0];
-    first.spins = false;
-    first.com = -first.joint_to_origin + first.axis.scale(0.01);
-    first.inertia.rows = axisymmetric;
-    let tree = Model::rigid_tree(
-        "turning without spinning",
-        [0.0, 0.0, -9.81],
-        file.dof(),
-        links,
-        None,
-    )
-    .unwrap();
-    let regrouped = tree.regrouped().expect("the links' parts leave them");
-    // The first link gives the base its own `A (1 − a aᵀ)` (its axis is its frame's y) and
-    // takes nothing: its mass as it was, its inertia `B a aᵀ` about its axis.
-    let first = &regrouped.bodies()[0];
-    assert_eq!(first.mass, tree.bodies()[0].mass);
-    let along = 2e-4;
-    for (i, row) in first.inertia.rows.iter().enumerate() {
-        for (j, &x) in row.iter().enumerate() {
-            assert!(
-                (x - along * a[i] * a[j]).abs() <= 1e-18,
-                "{:?}",
-                first.inertia.rows
-            );
-        }
-    }
-    let states = states(tree.dof(), 20);
-    agree(
-        &tree,
-        &regrouped,
-        &[Output::MassMatrix, Output::Bias, Output::Gravity],
-        &states,
-    );
-}
-
-#[test]
 fn a_fixed_drum_moves_to_where_its_post_puts_it() {
     use tendyn_core::model::{Body, BodyKind, PulleyRole};
     use tendyn_core::spatial::{Mat3, Transform, Vec3};

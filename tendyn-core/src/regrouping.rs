@@ -24,9 +24,9 @@
 //! driving pulley's axial balance), the tensions, segment tensions or motor torques. It
 //! changes the body's own bearing force, and, where the carrier is the base, the base
 //! reaction (the part is dropped: the base does not move): the regrouped model is for
-//! the former outputs only. Nothing moves onto a carrier that turns without spinning
-//! ([`crate::model::Body::axisymmetric`]: a body of [`Model::rigid_tree`] whose frame stays
-//! put while it turns), which must stay axisymmetric about its own axis.
+//! the former outputs only. A body that turns without spinning
+//! ([`crate::model::Body::axisymmetric`]) carries nothing (validation and
+//! [`Model::rigid_tree`] see to it), so no part ever spoils its axisymmetry.
 //!
 //! A link turns about its joint axis too, so the inertia part moves from a link as well,
 //! where its axis is an axis `e_k` of its frame (a DH link without twist, or a twist of a
@@ -74,10 +74,7 @@ impl Model<f64> {
             if (0..3).any(|j| j != k && along[j] != 0.0) {
                 continue;
             }
-            // A carrier whose frame does not spin must stay axisymmetric about its own axis
-            // (`Body::axisymmetric`), which a part axisymmetric about another axis spoils.
-            let spoils = |p: usize| m.bodies[p].axisymmetric();
-            if parametric(i) || body.parent.is_some_and(|p| parametric(p) || spoils(p)) {
+            if parametric(i) || body.parent.is_some_and(parametric) {
                 continue;
             }
             // `A (1 − e_k e_kᵀ)` with `A` the diagonal entry after `k`'s, which it zeroes

@@ -23,7 +23,8 @@ impl Model<f64> {
     /// `Fixed` or `Coupled`: an idler or a driving pulley needs a routing) carried by the
     /// base or a link; parents before children; names unique and not empty;
     /// `axis = postᵀ z` and `joint_to_origin = postᵀ t` as validation derives them; a
-    /// symmetric inertia; a body that turns without spinning axisymmetric about its axis.
+    /// symmetric inertia; a body that turns without spinning axisymmetric about its axis and
+    /// carrying no other body (its frame does not turn, so what it carried would not).
     /// Every violation, and every number not finite or beyond the file format's ranges, is
     /// an [`Error::Invalid`] naming the body.
     pub fn rigid_tree(
@@ -68,6 +69,19 @@ impl Model<f64> {
             }
             check_body(index, body, dof).map_err(|p| invalid(&body.name, p))?;
             check_mass_properties(&body.name, body.mass, body.com, &body.inertia)?;
+            // Children are placed in their parent's frame, which for a body turning without
+            // spinning stays the housing frame (Eq. 16 without the spin): they would not
+            // turn with it.
+            if let Some(parent) = body.parent.map(|p| &bodies[p]).filter(|p| p.axisymmetric()) {
+                return Err(invalid(
+                    &parent.name,
+                    format!(
+                        "it turns without spinning (`spins: false`) and carries `{}`, which \
+                         would not turn with it: let it spin",
+                        body.name
+                    ),
+                ));
+            }
         }
         check_gravity_and_wrench(name, Vec3::from_array(gravity), external_wrench.as_ref())?;
         if let Some(w) = external_wrench.as_ref().filter(|w| w.link >= dof) {
