@@ -16,12 +16,16 @@ fn vertical_arm() -> String {
 }
 
 fn ops(text: &str, output: Output) -> usize {
+    ops_among(text, output, &[output])
+}
+
+/// The operations (arithmetic and trigonometry) of `output`'s function when `outputs` are
+/// generated together.
+fn ops_among(text: &str, output: Output, outputs: &[Output]) -> usize {
     let m = tendyn_core::parse(text).unwrap_or_else(|e| panic!("{e}"));
-    let g = generate(&m, &[output], Scalar::Generic, "test").unwrap();
-    g.functions[0].1.arithmetic()
-        + g.functions[0].1.sin
-        + g.functions[0].1.cos
-        + g.functions[0].1.sin_cos
+    let g = generate(&m, outputs, Scalar::Generic, "test").unwrap();
+    let f = &g.functions.iter().find(|f| f.0 == output).unwrap().1;
+    f.arithmetic() + f.sin + f.cos + f.sin_cos
 }
 
 fn replace_once(text: &str, from: &str, to: &str) -> String {
@@ -209,20 +213,12 @@ fn actuation_costs_the_same_whatever_is_generated_beside_it() {
     ))
     .unwrap();
     let alone = ops(&text, Output::Actuation);
-    let m = tendyn_core::parse(&text).unwrap();
     for order in [
         &[Output::SegmentTensions, Output::Bearings, Output::Actuation][..],
         &[Output::Bearings, Output::Actuation],
         &[Output::Actuation, Output::Bearings],
     ] {
-        let g = generate(&m, order, Scalar::Generic, "t").unwrap();
-        let f = g
-            .functions
-            .iter()
-            .find(|f| f.0 == Output::Actuation)
-            .unwrap()
-            .1;
-        let inside = f.arithmetic() + f.sin + f.cos + f.sin_cos;
+        let inside = ops_among(&text, Output::Actuation, order);
         // Numbers gathered in products over every function at once may move a count by one
         // (341 against 340 here, as before regrouping); another model's distribution would
         // add its whole recursion.

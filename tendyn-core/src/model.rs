@@ -442,6 +442,21 @@ pub enum Slot {
     WrenchMoment(usize),
 }
 
+impl Slot {
+    /// The body whose mass properties the slot sets, if it sets any.
+    pub fn body(self) -> Option<usize> {
+        match self {
+            Slot::Mass(b) | Slot::Com(b, _) | Slot::Inertia(b, _, _) => Some(b),
+            _ => None,
+        }
+    }
+}
+
+/// Whether a parameter of `slots` sets body `i`'s mass properties.
+pub(crate) fn parametric(slots: &[(Slot, usize)], i: usize) -> bool {
+    slots.iter().any(|(slot, _)| slot.body() == Some(i))
+}
+
 /// Lengths and radii in another scalar: what [`Model::symbolic_geometry`] derives the
 /// geometry from. `None` keeps the file's number.
 #[derive(Clone, Debug)]
@@ -559,12 +574,12 @@ pub(crate) fn patterns_of(bodies: &[Body<f64>], slots: &[(Slot, usize)]) -> Vec<
                 && b.mass == 0.0
                 && b.inertia.rows.iter().flatten().all(|&x| x == 0.0)
                 && !bodies.iter().any(|c| c.parent == Some(i))
-                && !slots.iter().any(|(slot, _)| {
-                    matches!(*slot, Slot::Mass(s) | Slot::Com(s, _) | Slot::Inertia(s, _, _) if s == i)
-                });
+                && !parametric(slots, i);
             let zero = |v: Vec3<f64>| v.to_array() == [0.0; 3];
             BodyPattern {
-                joints: (0..b.coupling.len()).filter(|&j| b.coupling[j] != 0.0).collect(),
+                joints: (0..b.coupling.len())
+                    .filter(|&j| b.coupling[j] != 0.0)
+                    .collect(),
                 inert,
                 plain_pre: b.pre.rotation == identity,
                 plain_post: b.post.rotation == identity,
@@ -931,10 +946,7 @@ impl Model<f64> {
         let mut m = self.clone();
         m.set_parameters(values);
         for (i, b) in m.bodies.iter().enumerate() {
-            let set = self.parameter_slots.iter().any(|(slot, _)| {
-                matches!(*slot, Slot::Mass(j) | Slot::Com(j, _) | Slot::Inertia(j, _, _) if j == i)
-            });
-            if set {
+            if parametric(&self.parameter_slots, i) {
                 crate::validate::check_mass_properties(&b.name, b.mass, b.com, &b.inertia)?;
             }
         }

@@ -36,8 +36,8 @@
 //!
 //! The bodies are taken from the last to the first (pulleys, then links from the tip), so
 //! what a pulley gives its link moves on with the link's own part where that goes further
-//! (to the base, for the first link). The axis part moved has `A` the diagonal entry after `k`'s (of the
-//! inertia about the centre of mass: `I_xx` about a pulley's `z`), which leaves an
+//! (to the base, for the first link). The axis part moved has `A` the diagonal entry after
+//! `k`'s (of the inertia about the centre of mass: `I_xx` about a pulley's `z`), which leaves an
 //! axisymmetric pulley with its `zz` alone; a pulley's mass moves when its centre of mass
 //! is on the axis exactly. An inertia part moves only where it fills no zero entry of the
 //! carrier's mass, centre of mass or inertia (a new term in the carrier's equations can
@@ -47,7 +47,7 @@
 //! nothing from, its neighbours.
 
 use crate::composite::{congruence, point_shift};
-use crate::model::{new_identity, patterns_of, Body, BodyKind, Model, PulleyRole, Slot};
+use crate::model::{new_identity, parametric, patterns_of, Body, BodyKind, Model, PulleyRole};
 use crate::spatial::{Mat3, Vec3};
 
 impl Model<f64> {
@@ -56,11 +56,7 @@ impl Model<f64> {
     /// the same `Q`, `M`, `h`, `g`, forward dynamics and actuation, for less work; not the
     /// same bearing forces or base reaction. `None` where nothing moves.
     pub fn regrouped(&self) -> Option<Model<f64>> {
-        let parametric = |i: usize| {
-            self.parameter_slots.iter().any(|(slot, _)| {
-                matches!(*slot, Slot::Mass(b) | Slot::Com(b, _) | Slot::Inertia(b, _, _) if b == i)
-            })
-        };
+        let set_by_parameter = |i: usize| parametric(&self.parameter_slots, i);
         let mut m = self.clone();
         let mut moved = 0;
         for i in (0..m.bodies.len()).rev() {
@@ -74,7 +70,7 @@ impl Model<f64> {
             if (0..3).any(|j| j != k && along[j] != 0.0) {
                 continue;
             }
-            if parametric(i) || body.parent.is_some_and(parametric) {
+            if set_by_parameter(i) || body.parent.is_some_and(set_by_parameter) {
                 continue;
             }
             // `A (1 − e_k e_kᵀ)` with `A` the diagonal entry after `k`'s, which it zeroes
