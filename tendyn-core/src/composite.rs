@@ -43,7 +43,7 @@
 //! origin, `p`; the parent's origin to the joint point, `pre`'s translation, zero for a
 //! link).
 
-use crate::kinematics::body_turn;
+use crate::kinematics::body_turns;
 use crate::model::{Body, BodyPattern, Model};
 use crate::real::Real;
 use crate::spatial::{Mat3, Vec3};
@@ -412,10 +412,10 @@ pub fn mass_matrix<T: Real>(model: &Model<T>, q: &[T], work: &mut Work<T>, out: 
         turned,
         ..
     } = work;
+    // The angles as the forward recursion forms them, so that traces share their sines.
+    body_turns(model, q, |_| true, |i, turn| composite[i].spin = turn);
     // Each body's own inertia about its origin.
-    for ((b, c), pattern) in bodies.iter().zip(composite.iter_mut()).zip(patterns) {
-        // The angle as the forward recursion forms it, so that traces share its sine.
-        c.spin = body_turn(b, pattern, q);
+    for (b, c) in bodies.iter().zip(composite.iter_mut()) {
         c.mass = b.mass;
         c.first_moment = b.com.scale(b.mass);
         c.inertia = add(&b.inertia, &point_shift(b.com, b.mass, Vec3::zero()));

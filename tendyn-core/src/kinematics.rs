@@ -66,17 +66,45 @@ pub fn coupled<T: Real>(coupling: &[T], joints: &[usize], v: &[T]) -> T {
     s
 }
 
-/// Sine and cosine of a body's angle at joint coordinates `q` (`(0, 1)` where its frame
-/// does not spin).
-pub fn body_turn<T: Real>(b: &Body<T>, pattern: &BodyPattern, q: &[T]) -> (T, T) {
-    if b.spins {
-        (coupled(&b.coupling, &pattern.joints, q) + b.offset).sin_cos()
-    } else {
-        (T::zero(), T::one())
+/// The sine and cosine of the angle `coupling · q + offset` of every body `wanted` selects
+/// (`(0, 1)` where its frame does not spin), handed to `put` with the body's index: the
+/// angles formed first and their sines and cosines computed together, a block at a time
+/// ([`Real::sin_cos_many`]: an `f64` computes several in one vector).
+pub fn body_turns<T: Real>(
+    model: &Model<T>,
+    q: &[T],
+    wanted: impl Fn(usize) -> bool,
+    mut put: impl FnMut(usize, (T, T)),
+) {
+    const BLOCK: usize = 8;
+    let mut angles = [T::zero(); BLOCK];
+    let mut owners = [0; BLOCK];
+    let mut turns = [(T::zero(), T::one()); BLOCK];
+    let mut filled = 0;
+    let bodies = model.bodies.iter().zip(&model.patterns).enumerate();
+    for (i, (b, pattern)) in bodies.filter(|(i, _)| wanted(*i)) {
+        if !b.spins {
+            put(i, (T::zero(), T::one()));
+            continue;
+        }
+        angles[filled] = coupled(&b.coupling, &pattern.joints, q) + b.offset;
+        owners[filled] = i;
+        filled += 1;
+        if filled == BLOCK {
+            T::sin_cos_many(&angles, &mut turns);
+            for (&i, &turn) in owners.iter().zip(&turns) {
+                put(i, turn);
+            }
+            filled = 0;
+        }
+    }
+    T::sin_cos_many(&angles[..filled], &mut turns[..filled]);
+    for (&i, &turn) in owners[..filled].iter().zip(&turns[..filled]) {
+        put(i, turn);
     }
 }
 
-/// `ᵇR_parent` of a body whose angle has sine and cosine `turn` ([`body_turn`]):
+/// `ᵇR_parent` of a body whose angle has sine and cosine `turn` ([`body_turns`]):
 /// `(pre · RotZ(angle) · post)ᵀ`, the factors its pattern knows to be the identity
 /// skipped, and the turn applied to its neighbour by mixing two rows or columns (a link's
 /// `post`, a pulley's `pre`), not by a full product.
@@ -114,15 +142,11 @@ pub fn forward<T: Real>(
     } else {
         Vec3::zero()
     };
-    // The sines and cosines first: they depend on `q` alone, and in a loop of their own
-    // the processor overlaps them, where in the recursion each would wait for the last
-    // body's arithmetic (measured: 3-5 % of `Q` at run time).
-    for (i, (b, pattern)) in model.bodies.iter().zip(&model.patterns).enumerate() {
-        if !tendons && pattern.inert {
-            continue;
-        }
-        out[i].turn = body_turn(b, pattern, q);
-    }
+    // The sines and cosines first: they depend on `q` alone, and computed together the
+    // processor overlaps them (and an f64 computes several in one vector), where in the
+    // recursion each would wait for the last body's arithmetic.
+    let wanted = |i: usize| tendons || !model.patterns[i].inert;
+    body_turns(model, q, wanted, |i, turn| out[i].turn = turn);
     for (i, (b, pattern)) in model.bodies.iter().zip(&model.patterns).enumerate() {
         if !tendons && pattern.inert {
             continue;

@@ -9,7 +9,9 @@
 //! - [`model`]: the validated, immutable [`Model`] (bodies, strands, the tension system)
 //!   and what the recursions may skip ([`model::BodyPattern`]);
 //! - [`real`]: the scalar traits [`Real`] (what the recursion needs), [`Numeric`]
-//!   (ordering and round-off, for what decides) and [`Symbolic`]; [`DoubleDouble`]
+//!   (ordering and round-off, for what decides) and [`Symbolic`]; [`trigonometry`]: the
+//!   sine and cosine of `f64`, several angles at once (the kinematics forms every angle
+//!   first and takes them together); [`DoubleDouble`]
 //!   (`double_double.rs`) for references beyond f64; [`spatial`]: 3-vectors and 3×3
 //!   matrices over any of them;
 //! - [`transmission`]: tendon routing → pulley couplings, segment geometry, structure
@@ -85,6 +87,7 @@ pub mod dual;
 pub mod linalg;
 pub mod mechanism;
 pub mod real;
+pub mod trigonometry;
 pub use mechanism::TendonMechanism;
 pub use real::{Numeric, Real, Symbolic};
 

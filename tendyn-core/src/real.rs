@@ -61,6 +61,21 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
     }
+    /// `out[i] = angles[i].sin_cos()`, over the shorter of the two: every angle of a
+    /// recursion at once, which an `f64` computes several at a time
+    /// ([`crate::trigonometry`]); a symbolic scalar records them one after another.
+    fn sin_cos_many(angles: &[Self], out: &mut [(Self, Self)]) {
+        for (o, a) in out.iter_mut().zip(angles) {
+            *o = a.sin_cos();
+        }
+    }
+    /// [`Real::sin_cos_many`] of an array: how generated code takes the sines and cosines
+    /// of all its angles, in one call.
+    fn sin_cos_array<const N: usize>(angles: [Self; N]) -> [(Self, Self); N] {
+        let mut out = [(Self::zero(), Self::zero()); N];
+        Self::sin_cos_many(&angles, &mut out);
+        out
+    }
 }
 
 /// A [`Real`] whose values are expressions of named inputs, not numbers: the expression
@@ -81,35 +96,59 @@ pub trait Numeric: Real + PartialOrd {
     fn unit_roundoff() -> f64;
 }
 
+/// Sine and cosine of a primitive float: the library's (`std`, or `libm` without it), or
+/// [`crate::trigonometry`]'s, which computes several angles at a time.
+macro_rules! primitive_trigonometry {
+    (library, $t:ty, $sin:ident, $cos:ident) => {
+        #[cfg(feature = "std")]
+        fn sin(self) -> Self {
+            <$t>::sin(self)
+        }
+        #[cfg(feature = "std")]
+        fn cos(self) -> Self {
+            <$t>::cos(self)
+        }
+        #[cfg(feature = "std")]
+        fn sin_cos(self) -> (Self, Self) {
+            <$t>::sin_cos(self)
+        }
+        #[cfg(not(feature = "std"))]
+        fn sin(self) -> Self {
+            libm::$sin(self)
+        }
+        #[cfg(not(feature = "std"))]
+        fn cos(self) -> Self {
+            libm::$cos(self)
+        }
+    };
+    (trigonometry, $t:ty, $sin:ident, $cos:ident) => {
+        // Sine and cosine alone from the same routine, so that every path of one angle
+        // agrees to the bit.
+        fn sin(self) -> Self {
+            crate::trigonometry::sin_cos(self).0
+        }
+        fn cos(self) -> Self {
+            crate::trigonometry::sin_cos(self).1
+        }
+        fn sin_cos(self) -> (Self, Self) {
+            crate::trigonometry::sin_cos(self)
+        }
+        fn sin_cos_many(angles: &[Self], out: &mut [(Self, Self)]) {
+            crate::trigonometry::sin_cos_many(angles, out)
+        }
+    };
+}
+
 macro_rules! primitive_real {
-    ($t:ty, $sin:ident, $cos:ident, $sqrt:ident, $tanh:ident, $exp:ident) => {
+    ($t:ty, $trigonometry:ident, $sin:ident, $cos:ident, $sqrt:ident, $tanh:ident, $exp:ident) => {
         impl Real for $t {
             fn from_f64(x: f64) -> Self {
                 x as $t
             }
-            #[cfg(feature = "std")]
-            fn sin(self) -> Self {
-                <$t>::sin(self)
-            }
-            #[cfg(feature = "std")]
-            fn cos(self) -> Self {
-                <$t>::cos(self)
-            }
-            #[cfg(feature = "std")]
-            fn sin_cos(self) -> (Self, Self) {
-                <$t>::sin_cos(self)
-            }
+            primitive_trigonometry!($trigonometry, $t, $sin, $cos);
             #[cfg(feature = "std")]
             fn sqrt(self) -> Self {
                 <$t>::sqrt(self)
-            }
-            #[cfg(not(feature = "std"))]
-            fn sin(self) -> Self {
-                libm::$sin(self)
-            }
-            #[cfg(not(feature = "std"))]
-            fn cos(self) -> Self {
-                libm::$cos(self)
             }
             #[cfg(not(feature = "std"))]
             fn sqrt(self) -> Self {
@@ -160,5 +199,5 @@ macro_rules! primitive_real {
         }
     };
 }
-primitive_real!(f32, sinf, cosf, sqrtf, tanhf, expf);
-primitive_real!(f64, sin, cos, sqrt, tanh, exp);
+primitive_real!(f32, library, sinf, cosf, sqrtf, tanhf, expf);
+primitive_real!(f64, trigonometry, sin, cos, sqrt, tanh, exp);
