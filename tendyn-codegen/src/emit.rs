@@ -2,8 +2,9 @@
 //! that returns every output sharing their common work; formatted with prettyplease.
 //!
 //! Every live node the results reach becomes at most one `let` (nodes used once are
-//! written inline), in index order, so the code computes exactly the graph; the sine and
-//! cosine of one angle are computed together with `sin_cos`. Nothing else is emitted: no
+//! written inline), in index order, so the code computes exactly the graph; the sines and
+//! cosines of every angle linear in `q` are computed first, together, in one call of
+//! `Real::sin_cos_array` (several at a time in `f64`), any other angle's with `sin_cos`. Nothing else is emitted: no
 //! loops, no allocation, no panics, no arithmetic on known zeros (those never became nodes).
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
@@ -242,6 +243,23 @@ mod ast {
         local(pat(name), value)
     }
 
+    /// `let [(s₁, c₁), (s₂, c₂), …] = value;`
+    pub fn let_pairs(pairs: impl IntoIterator<Item = (Ident, Ident)>, value: Expr) -> Stmt {
+        let tuple = |(a, b)| {
+            syn::Pat::Tuple(syn::PatTuple {
+                attrs: Vec::new(),
+                paren_token: Default::default(),
+                elems: Punctuated::from_iter([pat(a), pat(b)]),
+            })
+        };
+        let slice = syn::Pat::Slice(syn::PatSlice {
+            attrs: Vec::new(),
+            bracket_token: Default::default(),
+            elems: pairs.into_iter().map(tuple).collect(),
+        });
+        local(slice, value)
+    }
+
     /// `let (a, b) = value;`
     pub fn let_pair(a: Ident, b: Ident, value: Expr) -> Stmt {
         let pair = syn::Pat::Tuple(syn::PatTuple {
@@ -422,6 +440,7 @@ impl<'g> Body<'g> {
         for r in roots {
             uses[r.0 as usize] += 2;
         }
+        self.bind_turns(&is_live);
         let mut sizes = vec![0usize; g.nodes.len()];
         for id in live() {
             if self.var(id).is_some() {
@@ -463,6 +482,67 @@ impl<'g> Body<'g> {
                 self.vars[id.0 as usize] = Some(name);
             }
         }
+    }
+}
+
+impl Body<'_> {
+    /// The sines and cosines of every live angle whose sine and cosine are both used and
+    /// that depends on no other sine or cosine (every joint's and pulley's angle, linear in
+    /// `q`): the angles bound first, then all their sines and cosines in one call of
+    /// `Real::sin_cos_array`, which an `f64` computes several at a time
+    /// (`tendyn_core::trigonometry`), as the runtime solver does.
+    fn bind_turns(&mut self, is_live: &[bool]) {
+        let g = self.g;
+        let live = |id: Id| is_live[id.0 as usize];
+        let mut turns = Vec::new();
+        for id in (0..g.nodes.len() as u32).map(Id).filter(|&id| live(id)) {
+            let Node::Sin(angle) = g.node(id) else {
+                continue;
+            };
+            let cos = g.lookup(Node::Cos(angle)).filter(|&c| live(c));
+            if let Some(cos) = cos.filter(|_| self.var(id).is_none() && !self.turns_inside(angle)) {
+                turns.push((angle, id, cos));
+            }
+        }
+        if turns.is_empty() {
+            return;
+        }
+        let angles: Vec<Id> = turns.iter().map(|t| t.0).collect();
+        self.bind(&angles);
+        let scalar = match self.atoms.scalar {
+            Scalar::Generic => "T",
+            Scalar::F64 => "f64",
+            Scalar::F32 => "f32",
+        };
+        let args = ast::array(angles.iter().map(|&a| self.expr(a)));
+        let value = ast::call(ast::path(&[scalar, "sin_cos_array"]), args);
+        let names: Vec<(Ident, Ident)> = turns
+            .iter()
+            .map(|&(_, s, c)| (variable('s', s), variable('c', c)))
+            .collect();
+        self.stmts
+            .push(ast::let_pairs(names.iter().cloned(), value));
+        for (&(_, s, c), (sn, cn)) in turns.iter().zip(names) {
+            self.vars[s.0 as usize] = Some(sn);
+            self.vars[c.0 as usize] = Some(cn);
+        }
+    }
+
+    /// Whether `id` depends on a sine or cosine not yet bound (it cannot join the turns
+    /// computed before everything else).
+    fn turns_inside(&self, id: Id) -> bool {
+        let mut stack = vec![id];
+        let mut seen = rustc_hash::FxHashSet::default();
+        while let Some(x) = stack.pop() {
+            if self.var(x).is_some() || !seen.insert(x) {
+                continue;
+            }
+            if matches!(self.g.node(x), Node::Sin(_) | Node::Cos(_)) {
+                return true;
+            }
+            stack.extend(self.g.node(x).operands());
+        }
+        false
     }
 }
 
