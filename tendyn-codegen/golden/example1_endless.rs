@@ -23,7 +23,10 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t668 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t675 = T::from_f64(0.03) * s56;
     let t684 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
@@ -44,7 +47,10 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t715 = qdd[1] * (T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993))
         - (qd[0]
             * (qd[0] * (s56 * T::from_f64(0.04499999999999987))
@@ -109,7 +115,10 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t665 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t675 = T::from_f64(0.03) * s56;
     let t731 = motor_torques[0] + motor_torques[1]
@@ -129,7 +138,10 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t784 = qdd[0] * (c57 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
             + (T::from_f64(20.0) + qd[0] * (qd[0] * (s56 * T::from_f64(0.75)))));
@@ -147,7 +159,12 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
+    #[cfg(target_feature = "avx2")]
     let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s54, c55) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);
     let t73 = T::from_f64(1.2) * t66;
@@ -244,7 +261,12 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
+    #[cfg(target_feature = "avx2")]
     let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s54, c55) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);
     let t83 = qd[0] + qd[1];
@@ -307,7 +329,12 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
+    #[cfg(target_feature = "avx2")]
     let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s54, c55) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);
     let t73 = T::from_f64(1.2) * t66;

@@ -26,7 +26,10 @@ pub const TENDONS: usize = 3;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s77, c78)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t1105 = T::from_f64(0.0166667) + c78 * T::from_f64(0.03);
     let t1142 = s77 * T::from_f64(0.03);
     let t1151 = qdd[0] * (c78 * T::from_f64(0.06) + T::from_f64(0.1247117))
@@ -47,7 +50,10 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
+    #[cfg(target_feature = "avx2")]
     let [(s77, c78)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t1160 = c78 * T::from_f64(0.22058823529411686);
     let t1166 = c78 * T::from_f64(0.2647058823529412);
     let t1184 = qd[0]
@@ -145,7 +151,10 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s77, c78)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t1134 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t1142 = s77 * T::from_f64(0.03);
     let t1317 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1142)
@@ -167,7 +176,10 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
+    #[cfg(target_feature = "avx2")]
     let [(s77, c78)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t1160 = c78 * T::from_f64(0.22058823529411686);
     let t1166 = c78 * T::from_f64(0.2647058823529412);
     let t1184 = qd[0]
@@ -227,7 +239,12 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
+    #[cfg(target_feature = "avx2")]
     let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s75, c76) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);
     let t94 = T::from_f64(1.2) * t87;
@@ -383,7 +400,12 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
+    #[cfg(target_feature = "avx2")]
     let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s75, c76) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);
     let t104 = qd[0] + qd[1];
@@ -447,7 +469,12 @@ pub fn all<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 3],
 ) -> Outputs<T> {
+    #[cfg(target_feature = "avx2")]
     let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s75, c76) = q[0].sin_cos();
+    #[cfg(not(target_feature = "avx2"))]
+    let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);
     let t94 = T::from_f64(1.2) * t87;

@@ -2,9 +2,10 @@
 //! that returns every output sharing their common work; formatted with prettyplease.
 //!
 //! Every live node the results reach becomes at most one `let` (nodes used once are
-//! written inline), in index order, so the code computes exactly the graph; the sines and
-//! cosines of every angle linear in `q` are computed first, together, in one call of
-//! `Real::sin_cos_array` (several at a time in `f64`), any other angle's with `sin_cos`. Nothing else is emitted: no
+//! written inline), in index order, so the code computes exactly the graph; the sine and
+//! cosine of one angle are computed together with `sin_cos`, and on targets with 256-bit
+//! vectors those of every angle linear in `q` first, in one call of `Real::sin_cos_array`
+//! (vector code in `f64`). Nothing else is emitted: no
 //! loops, no allocation, no panics, no arithmetic on known zeros (those never became nodes).
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
@@ -260,6 +261,13 @@ mod ast {
         local(slice, value)
     }
 
+    /// `#[cfg(predicate)]` on a `let`.
+    pub fn only_if(stmt: &mut Stmt, predicate: TokenStream) {
+        if let Stmt::Local(local) = stmt {
+            local.attrs.push(parse_quote!(#[cfg(#predicate)]));
+        }
+    }
+
     /// `let (a, b) = value;`
     pub fn let_pair(a: Ident, b: Ident, value: Expr) -> Stmt {
         let pair = syn::Pat::Tuple(syn::PatTuple {
@@ -350,6 +358,9 @@ struct Body<'g> {
     vars: Vec<Option<Ident>>,
     /// The `let`s, in order.
     stmts: Vec<Stmt>,
+    /// The sines whose angle's sine and cosine also come from the one `sin_cos_array` call
+    /// of targets with wide vectors ([`Body::bind_turns`]).
+    batched: rustc_hash::FxHashSet<Id>,
 }
 
 impl<'g> Body<'g> {
@@ -359,6 +370,7 @@ impl<'g> Body<'g> {
             atoms,
             vars: vec![None; atoms.g.nodes.len()],
             stmts: Vec::new(),
+            batched: Default::default(),
         }
     }
 
@@ -457,8 +469,12 @@ impl<'g> Body<'g> {
                             let (arg, p) = self.expr_prec(a);
                             let arg = if p < 4 { ast::paren(arg) } else { arg };
                             let value = ast::method(arg, "sin_cos", None);
-                            self.stmts
-                                .push(ast::let_pair(sn.clone(), cn.clone(), value));
+                            let mut stmt = ast::let_pair(sn.clone(), cn.clone(), value);
+                            if self.batched.contains(&s) {
+                                let wide = wide_vectors();
+                                ast::only_if(&mut stmt, quote!(not(#wide)));
+                            }
+                            self.stmts.push(stmt);
                             self.vars[s.0 as usize] = Some(sn);
                             self.vars[c.0 as usize] = Some(cn);
                             continue;
@@ -488,9 +504,13 @@ impl<'g> Body<'g> {
 impl Body<'_> {
     /// The sines and cosines of every live angle whose sine and cosine are both used and
     /// that depends on no other sine or cosine (every joint's and pulley's angle, linear in
-    /// `q`): the angles bound first, then all their sines and cosines in one call of
-    /// `Real::sin_cos_array`, which an `f64` computes several at a time
-    /// (`tendyn_core::trigonometry`), as the runtime solver does.
+    /// `q`), for targets with wide vectors: the angles bound first, then, only where
+    /// [`wide_vectors`] holds, all their sines and cosines in one call of
+    /// `Real::sin_cos_array`, which an `f64` computes as vector code there
+    /// (`tendyn_core::trigonometry`). Elsewhere each pair is computed where it is first
+    /// needed, under the opposite `cfg`: without wide vectors the routine takes the angles
+    /// one at a time, no faster than the C library, and the batch at the start measured
+    /// slower on three of the four scale mechanisms (by up to 18 %, arm6's `Q`).
     fn bind_turns(&mut self, is_live: &[bool]) {
         let g = self.g;
         let live = |id: Id| is_live[id.0 as usize];
@@ -520,12 +540,10 @@ impl Body<'_> {
             .iter()
             .map(|&(_, s, c)| (variable('s', s), variable('c', c)))
             .collect();
-        self.stmts
-            .push(ast::let_pairs(names.iter().cloned(), value));
-        for (&(_, s, c), (sn, cn)) in turns.iter().zip(names) {
-            self.vars[s.0 as usize] = Some(sn);
-            self.vars[c.0 as usize] = Some(cn);
-        }
+        let mut stmt = ast::let_pairs(names, value);
+        ast::only_if(&mut stmt, wide_vectors());
+        self.stmts.push(stmt);
+        self.batched.extend(turns.iter().map(|t| t.1));
     }
 
     /// Whether `id` depends on a sine or cosine not yet bound (it cannot join the turns
@@ -544,6 +562,12 @@ impl Body<'_> {
         }
         false
     }
+}
+
+/// The `cfg` predicate of targets on which one call for every angle pays: those with
+/// 256-bit vectors, as `tendyn_core::trigonometry` decides for its own routine.
+fn wide_vectors() -> TokenStream {
+    quote!(target_feature = "avx2")
 }
 
 /// The flat results of `f` arranged in its shape.

@@ -70,7 +70,7 @@ pub trait Real:
         }
     }
     /// [`Real::sin_cos_many`] of an array: how generated code takes the sines and cosines
-    /// of all its angles, in one call.
+    /// of all its angles in one call, on targets with AVX2.
     fn sin_cos_array<const N: usize>(angles: [Self; N]) -> [(Self, Self); N] {
         let mut out = [(Self::zero(), Self::zero()); N];
         Self::sin_cos_many(&angles, &mut out);
@@ -135,6 +135,9 @@ macro_rules! primitive_trigonometry {
         }
         fn sin_cos_many(angles: &[Self], out: &mut [(Self, Self)]) {
             crate::trigonometry::sin_cos_many(angles, out)
+        }
+        fn sin_cos_array<const N: usize>(angles: [Self; N]) -> [(Self, Self); N] {
+            crate::trigonometry::sin_cos_array(angles)
         }
     };
 }

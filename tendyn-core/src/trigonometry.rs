@@ -3,13 +3,17 @@
 //! Every spinning body needs the sine and cosine of its angle, and they are a large part of
 //! a dynamics call: the C library's `sincos` took 37 % of the runtime solver's `Q` over the
 //! four scale benchmarks (`perf`, `bench/examples/runtime_q_minimum.rs`), about 11 ns an
-//! angle. The angles depend on
-//! `q` alone, so they can all be computed first and together; this module computes them
-//! with arithmetic alone (no table, no branch on the value), so a loop over several angles
-//! becomes vector code: 8 angles in 62 ns against the C library's 92 ns for the baseline
-//! x86-64 (SSE2), 32 ns against 93 ns with `-C target-cpu=x86-64-v3` (AVX2) and 22 ns
-//! against 119 ns with `-C target-cpu=native` on this AVX-512 machine (minimum over 300
-//! passes of 1,024 seeded blocks of angles in `[−15, 15]` rad, one core, 2026-12-04).
+//! angle. The angles depend on `q` alone, so they can all be computed first and together;
+//! this module computes them with arithmetic alone (no table, no branch on the value), so
+//! that where the target has 256-bit vectors (AVX2 and beyond) a block of angles becomes
+//! vector code: 8 angles in 36 ns against the C library's 89 ns with `-C
+//! target-cpu=x86-64-v3`, 44 ns against 90 ns with `-C target-cpu=native` on this AVX-512
+//! machine (`bench/examples/sin_cos_minimum.rs`, the minimum over 300 passes of 1,024
+//! seeded blocks, one core, 2026-12-04). With the baseline x86-64's 128-bit vectors a block
+//! may lose to the library, so there every angle is computed alone (105 ns for 8 in that
+//! benchmark against the library's 92, but inlined into the recursion, where the library's
+//! calls are not: the runtime `Q` of the chains still gains 19-20 %, as the README's scale
+//! section says).
 //!
 //! The method is fdlibm's (Sun Microsystems, 1993, as in musl and the `libm` crate):
 //! `x = n π/2 + y`, `n` the nearest integer to `x · 2/π`, `y` in `[−π/4, π/4]`, then
@@ -69,32 +73,62 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     }
 }
 
-/// `out[i] = (sin angles[i], cos angles[i])` for every `i` (up to the shorter length),
-/// several at a time.
+/// Whether the target has 256-bit vectors (AVX2 and beyond): there a block of angles
+/// becomes vector code and beats the C library; with the 128-bit vectors of the baseline
+/// x86-64 it may not (9 angles in 117 ns against the library's 103, in a scratch crate),
+/// so there each angle is computed alone, inlined.
+const WIDE: bool = cfg!(target_feature = "avx2");
+
+/// `[(sin angles[i], cos angles[i])]`: where the target has wide vectors (AVX2 and
+/// beyond), all at once, which the compiler makes vector code of; elsewhere one at a time.
 #[inline]
-pub fn sin_cos_many(angles: &[f64], out: &mut [(f64, f64)]) {
-    const LANES: usize = 8;
-    let mut angles = angles.chunks(LANES);
-    let mut out = out.chunks_mut(LANES);
-    while let (Some(x), Some(o)) = (angles.next(), out.next()) {
-        // A full block of constant length, so that the compiler makes it vector code.
-        let mut block = [0.0; LANES];
-        block[..x.len()].copy_from_slice(x);
-        // Sines and cosines in arrays of their own, not pairs: vectors hold one or the other.
-        let (mut sines, mut cosines) = ([0.0; LANES], [0.0; LANES]);
-        for i in 0..LANES {
-            (sines[i], cosines[i]) = reduced(block[i]);
-        }
-        if !block.iter().all(|&a| reducible(a)) {
-            for i in 0..LANES {
-                if !reducible(block[i]) {
-                    (sines[i], cosines[i]) = library(block[i]);
-                }
+pub fn sin_cos_array<const N: usize>(angles: [f64; N]) -> [(f64, f64); N] {
+    if WIDE {
+        together(angles)
+    } else {
+        angles.map(sin_cos)
+    }
+}
+
+/// [`sin_cos_array`]'s vector form, the same arithmetic as [`sin_cos`] lane by lane.
+/// Never inlined: in the one long block of a generated function the compiler's vectoriser
+/// gives up on it (arm6's `Q` gained nothing inlined, measured), on its own it does not.
+#[inline(never)]
+fn together<const N: usize>(angles: [f64; N]) -> [(f64, f64); N] {
+    // Sines and cosines in arrays of their own, not pairs: vectors hold one or the other.
+    let (mut sines, mut cosines) = ([0.0; N], [0.0; N]);
+    for i in 0..N {
+        (sines[i], cosines[i]) = reduced(angles[i]);
+    }
+    if !angles.iter().all(|&a| reducible(a)) {
+        for i in 0..N {
+            if !reducible(angles[i]) {
+                (sines[i], cosines[i]) = library(angles[i]);
             }
         }
-        for (i, o) in o.iter_mut().take(x.len()).enumerate() {
-            *o = (sines[i], cosines[i]);
-        }
+    }
+    core::array::from_fn(|i| (sines[i], cosines[i]))
+}
+
+/// `out[i] = (sin angles[i], cos angles[i])` for every `i` (up to the shorter length):
+/// blocks of 8 and then of 4 by [`sin_cos_array`], the last few one at a time.
+#[inline]
+pub fn sin_cos_many(angles: &[f64], out: &mut [(f64, f64)]) {
+    let count = angles.len().min(out.len());
+    let (angles, out) = (&angles[..count], &mut out[..count]);
+    let mut at = 0;
+    while count - at >= 8 {
+        let block: [f64; 8] = core::array::from_fn(|i| angles[at + i]);
+        out[at..at + 8].copy_from_slice(&sin_cos_array(block));
+        at += 8;
+    }
+    if count - at >= 4 {
+        let block: [f64; 4] = core::array::from_fn(|i| angles[at + i]);
+        out[at..at + 4].copy_from_slice(&sin_cos_array(block));
+        at += 4;
+    }
+    for (o, &a) in out[at..].iter_mut().zip(&angles[at..]) {
+        *o = sin_cos(a);
     }
 }
 
@@ -197,11 +231,18 @@ mod tests {
         let angles: Vec<f64> = angles.into_iter().collect();
         let mut batch = vec![(0.0, 0.0); angles.len()];
         sin_cos_many(&angles, &mut batch);
+        // The vector form, whichever form this target's `sin_cos_many` takes.
+        let vector: Vec<(f64, f64)> = angles
+            .chunks(7)
+            .flat_map(|c| together::<7>(core::array::from_fn(|i| *c.get(i).unwrap_or(&0.0))))
+            .collect();
         let mut worst = (0.0, 0.0);
-        for (&x, &pair) in angles.iter().zip(&batch) {
+        for ((&x, &pair), &lane) in angles.iter().zip(&batch).zip(&vector) {
             let one = sin_cos(x);
             assert_eq!(one.0.to_bits(), pair.0.to_bits(), "batched sine at {x}");
             assert_eq!(one.1.to_bits(), pair.1.to_bits(), "batched cosine at {x}");
+            assert_eq!(one.0.to_bits(), lane.0.to_bits(), "vector sine at {x}");
+            assert_eq!(one.1.to_bits(), lane.1.to_bits(), "vector cosine at {x}");
             let (s, c) = (DoubleDouble::from(x).sin(), DoubleDouble::from(x).cos());
             let e = ulps(one.0, s).max(ulps(one.1, c));
             if e > worst.0 {
@@ -259,11 +300,14 @@ mod tests {
         for x in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
             let (s, c) = sin_cos(x);
             assert!(s.is_nan() && c.is_nan());
-            let mut out = [(0.0, 0.0); 3];
-            sin_cos_many(&[0.5, x, 0.25], &mut out);
-            assert!(out[1].0.is_nan() && out[1].1.is_nan());
-            assert_eq!(out[0], sin_cos(0.5));
-            assert_eq!(out[2], sin_cos(0.25));
+            let mut out = [(0.0, 0.0); 9];
+            let angles = [0.5, x, 0.25, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5];
+            sin_cos_many(&angles, &mut out);
+            for block in [out, together(angles)] {
+                assert!(block[1].0.is_nan() && block[1].1.is_nan());
+                assert_eq!(block[0], sin_cos(0.5));
+                assert_eq!(block[2], sin_cos(0.25));
+            }
         }
     }
 }

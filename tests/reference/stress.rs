@@ -12,8 +12,9 @@
 //!
 //! - the paper's three examples in the benchmark protocol's range (the baseline);
 //! - pulley inertia against link inertia from 1e-9 to 1e9 ([`Arm::pulley_ratio`]);
-//! - drum against idler radius from 1e-3 to 1e3 ([`Arm::radius_ratio`]), and a structure
-//!   matrix `σ_min/σ_max` from 1e-2 down to 1e-8, and past the 1e-10 the validator accepts;
+//! - drum against idler radius from 1e-3 to 1e3 ([`Arm::drum_radius`] against
+//!   [`Arm::idler_radius`]), and a structure matrix `σ_min/σ_max` from 1e-2 down to 1e-8,
+//!   and past the 1e-10 the validator accepts;
 //! - joint speeds to 1e3 rad/s, angles to 1e4 rad, accelerations to 1e6 rad/s²;
 //! - chains of 2 to 12 links, motor-driven with 2.5 explicitly coupled pulleys per link
 //!   (30 at 12 links), and of 2 to 11 links with a tendon-driven proximal block over idlers

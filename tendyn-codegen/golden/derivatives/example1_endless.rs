@@ -23,7 +23,10 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t657 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t664 = T::from_f64(0.03) * s56;
     let t673 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
@@ -44,7 +47,10 @@ pub fn generalized_forces_derivatives<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);
     let t657 = t577 + T::from_f64(0.016696700000000002);
@@ -80,7 +86,10 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t654 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t664 = T::from_f64(0.03) * s56;
     let t707 = motor_torques[0] + motor_torques[1]
@@ -105,7 +114,10 @@ pub fn forward_dynamics_derivatives<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);
     let t654 = t652 + T::from_f64(0.1247117);
@@ -180,7 +192,10 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
+    #[cfg(target_feature = "avx2")]
     let [(s56, c57)] = T::sin_cos_array([q[1]]);
+    #[cfg(not(target_feature = "avx2"))]
+    let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);
     let t654 = t652 + T::from_f64(0.1247117);
