@@ -23,9 +23,6 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t668 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t675 = T::from_f64(0.03) * s56;
@@ -47,9 +44,6 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t715 = qdd[1] * (T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993))
         - (qd[0]
@@ -115,9 +109,6 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t665 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t675 = T::from_f64(0.03) * s56;
@@ -138,9 +129,6 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t784 = qdd[0] * (c57 * T::from_f64(0.75) + T::from_f64(0.4166675))
         + (qdd[1] * T::from_f64(0.4166675)
@@ -159,11 +147,7 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
-    #[cfg(target_feature = "avx2")]
-    let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s54, c55) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);
@@ -261,11 +245,7 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
-    #[cfg(target_feature = "avx2")]
-    let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s54, c55) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);
@@ -329,11 +309,7 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s54, c55), (s56, c57)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s54, c55) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
     let t66 = t59 - qdd[0] * T::from_f64(0.15);

@@ -26,9 +26,6 @@ pub const TENDONS: usize = 3;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s77, c78)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t1105 = T::from_f64(0.0166667) + c78 * T::from_f64(0.03);
     let t1142 = s77 * T::from_f64(0.03);
@@ -50,9 +47,6 @@ pub fn actuation<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s77, c78)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t1160 = c78 * T::from_f64(0.22058823529411686);
     let t1166 = c78 * T::from_f64(0.2647058823529412);
@@ -151,9 +145,6 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s77, c78)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t1134 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t1142 = s77 * T::from_f64(0.03);
@@ -176,9 +167,6 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
-    #[cfg(target_feature = "avx2")]
-    let [(s77, c78)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t1160 = c78 * T::from_f64(0.22058823529411686);
     let t1166 = c78 * T::from_f64(0.2647058823529412);
@@ -239,11 +227,7 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
-    #[cfg(target_feature = "avx2")]
-    let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s75, c76) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);
@@ -400,11 +384,7 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> [[[T; 3]; 2]; 1] {
-    #[cfg(target_feature = "avx2")]
-    let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s75, c76) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);
@@ -469,11 +449,7 @@ pub fn all<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 3],
 ) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s75, c76), (s77, c78)] = T::sin_cos_array([q[0], q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s75, c76) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
     let t87 = t80 - qdd[0] * T::from_f64(0.15);

@@ -27,11 +27,7 @@ pub const TENDONS: usize = 4;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
@@ -107,11 +103,7 @@ pub fn actuation<T: Real>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
@@ -246,11 +238,7 @@ pub fn actuation<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t3883 = c115 * T::from_f64(0.00004);
     let t3958 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
@@ -289,11 +277,7 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t3238 = s114 * T::from_f64(0.00002);
     let t3871 = c115 * T::from_f64(0.0000208);
@@ -346,11 +330,7 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t3998 = c115 * T::from_f64(0.003924);
     let t4005 = s112 * (s114 * T::from_f64(0.003924));
@@ -371,11 +351,7 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 4],
 ) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
@@ -464,11 +440,7 @@ pub fn forward_dynamics<T: Real>(
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 10] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
@@ -609,17 +581,8 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2]; 12] {
-    #[cfg(target_feature = "avx2")]
-    let [(s110, c111), (s112, c113), (s114, c115)] = T::sin_cos_array([
-        q[0],
-        q[1],
-        q[2],
-    ]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s110, c111) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
@@ -930,17 +893,8 @@ pub fn base_reaction<T: Real>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> [[[T; 3]; 2]; 1] {
-    #[cfg(target_feature = "avx2")]
-    let [(s110, c111), (s112, c113), (s114, c115)] = T::sin_cos_array([
-        q[0],
-        q[1],
-        q[2],
-    ]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s110, c111) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
@@ -1075,17 +1029,8 @@ pub fn all<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 4],
 ) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s110, c111), (s112, c113), (s114, c115)] = T::sin_cos_array([
-        q[0],
-        q[1],
-        q[2],
-    ]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s110, c111) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;

@@ -4,8 +4,8 @@
 //! Every live node the results reach becomes at most one `let` (nodes used once are
 //! written inline), in index order, so the code computes exactly the graph; the sine and
 //! cosine of one angle are computed together with `sin_cos`, and on targets with 256-bit
-//! vectors those of every angle linear in `q` first, in one call of `Real::sin_cos_array`
-//! (vector code in `f64`). Nothing else is emitted: no loops, no allocation, no panics, no
+//! vectors those of every angle linear in `q` (four or more) first, in one call of
+//! `Real::sin_cos_array` (vector code in `f64`). Nothing else is emitted: no loops, no allocation, no panics, no
 //! arithmetic on known zeros (those never became nodes).
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
@@ -502,15 +502,15 @@ impl<'g> Body<'g> {
 }
 
 impl Body<'_> {
-    /// The sines and cosines of every live angle whose sine and cosine are both used and
-    /// that depends on no other sine or cosine (every joint's and pulley's angle, linear in
-    /// `q`), for targets with wide vectors: the angles bound first, then, only where
+    /// The sines and cosines of every live angle whose sine and cosine are both used and that
+    /// depends on no other sine or cosine (every joint's and pulley's angle, linear in `q`),
+    /// four or more, for targets with wide vectors: the angles bound first, then, only where
     /// [`wide_vectors`] holds, all their sines and cosines in one call of
     /// `Real::sin_cos_array`, which an `f64` computes as vector code there
-    /// (`tendyn_core::trigonometry`). Elsewhere each pair is computed where it is first
-    /// needed, under the opposite `cfg`: without wide vectors the routine takes the angles
-    /// one at a time, no faster than the C library, and the batch at the start measured
-    /// slower on three of the four scale mechanisms (by up to 18 %, arm6's `Q`).
+    /// (`tendyn_core::trigonometry`). Elsewhere each pair is computed where it is first needed,
+    /// under the opposite `cfg`: without wide vectors the routine takes the angles one at a
+    /// time, no faster than the C library, and the batch at the start measured slower on three
+    /// of the four scale mechanisms (by up to 18 %, arm6's `Q`).
     fn bind_turns(&mut self, is_live: &[bool]) {
         let g = self.g;
         let live = |id: Id| is_live[id.0 as usize];
@@ -524,7 +524,9 @@ impl Body<'_> {
                 turns.push((angle, id, cos));
             }
         }
-        if turns.is_empty() {
+        // Fewer than four angles fill no vector: each `sin_cos` stays where it is needed
+        // (measured: Example 3's two angles in one call cost its `actuation` 15 %).
+        if turns.len() < 4 {
             return;
         }
         let angles: Vec<Id> = turns.iter().map(|t| t.0).collect();

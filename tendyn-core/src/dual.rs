@@ -106,6 +106,23 @@ impl<T: Real> Real for Dual<T> {
             Dual::new(c, -(s * self.tangent)),
         )
     }
+    fn sin_cos_many(angles: &[Self], out: &mut [(Self, Self)]) {
+        // The values as the plain scalar takes several angles (an `f64` by its own routine,
+        // `crate::trigonometry`), so that a dual pass's value is the plain pass's to the bit.
+        const BLOCK: usize = 8;
+        for (a, o) in angles.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+            let n = a.len().min(o.len());
+            let mut values = [T::zero(); BLOCK];
+            let mut turns = [(T::zero(), T::zero()); BLOCK];
+            for (v, x) in values.iter_mut().zip(a) {
+                *v = x.value;
+            }
+            T::sin_cos_many(&values[..n], &mut turns[..n]);
+            for ((o, x), &(s, c)) in o.iter_mut().zip(a).zip(&turns[..n]) {
+                *o = (Dual::new(s, c * x.tangent), Dual::new(c, -(s * x.tangent)));
+            }
+        }
+    }
     fn sqrt(self) -> Self {
         let r = self.value.sqrt();
         Dual::new(r, self.tangent / (r + r))

@@ -96,8 +96,8 @@ pub trait Numeric: Real + PartialOrd {
     fn unit_roundoff() -> f64;
 }
 
-/// Sine and cosine of a primitive float: the library's (`std`, or `libm` without it), or
-/// [`crate::trigonometry`]'s, which computes several angles at a time.
+/// Sine and cosine of a primitive float: the library's (`std`, or `libm` without it), and
+/// for `f64` several angles at a time by [`crate::trigonometry`].
 macro_rules! primitive_trigonometry {
     (library, $t:ty, $sin:ident, $cos:ident) => {
         #[cfg(feature = "std")]
@@ -122,16 +122,12 @@ macro_rules! primitive_trigonometry {
         }
     };
     (trigonometry, $t:ty, $sin:ident, $cos:ident) => {
-        // Sine and cosine alone from the same routine, so that every path of one angle
-        // agrees to the bit.
-        fn sin(self) -> Self {
-            crate::trigonometry::sin_cos(self).0
-        }
-        fn cos(self) -> Self {
-            crate::trigonometry::sin_cos(self).1
-        }
+        // One angle: the library's, as fast where called alone (and a call inlines less
+        // into long generated functions); several: `trigonometry`'s.
+        primitive_trigonometry!(library, $t, $sin, $cos);
+        #[cfg(not(feature = "std"))]
         fn sin_cos(self) -> (Self, Self) {
-            crate::trigonometry::sin_cos(self)
+            libm::sincos(self)
         }
         fn sin_cos_many(angles: &[Self], out: &mut [(Self, Self)]) {
             crate::trigonometry::sin_cos_many(angles, out)

@@ -1,4 +1,5 @@
-//! Sine and cosine of `f64` angles, several at once.
+//! Sine and cosine of `f64` angles, several at once (`Real::sin_cos_many` and
+//! `Real::sin_cos_array` for `f64`; one angle alone is the C library's).
 //!
 //! Every spinning body needs the sine and cosine of its angle, and they are a large part of
 //! a dynamics call: the C library's `sincos` took 37 % of the runtime solver's `Q` over the
@@ -83,7 +84,8 @@ const WIDE: bool = cfg!(target_feature = "avx2");
 /// beyond), all at once, which the compiler makes vector code of; elsewhere one at a time.
 #[inline]
 pub fn sin_cos_array<const N: usize>(angles: [f64; N]) -> [(f64, f64); N] {
-    if WIDE {
+    // Fewer than four angles fill no vector: one at a time.
+    if WIDE && N >= 4 {
         together(angles)
     } else {
         angles.map(sin_cos)

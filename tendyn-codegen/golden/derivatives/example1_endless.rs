@@ -23,9 +23,6 @@ pub const TENDONS: usize = 0;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t657 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t664 = T::from_f64(0.03) * s56;
@@ -47,9 +44,6 @@ pub fn generalized_forces_derivatives<T: Real>(
     qd: &[T; 2],
     qdd: &[T; 2],
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);
@@ -86,9 +80,6 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t654 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t664 = T::from_f64(0.03) * s56;
@@ -114,9 +105,6 @@ pub fn forward_dynamics_derivatives<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);
@@ -192,9 +180,6 @@ pub fn all<T: Real>(
     motor_torques: &[T; 2],
     tendon_tensions: &[T; 0],
 ) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s56, c57)] = T::sin_cos_array([q[1]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
     let t652 = c57 * T::from_f64(0.06);

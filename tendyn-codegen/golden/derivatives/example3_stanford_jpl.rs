@@ -27,11 +27,7 @@ pub const TENDONS: usize = 4;
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
@@ -107,11 +103,7 @@ pub fn generalized_forces_derivatives<T: Real>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> tendyn_core::dual::StateJacobians<[T; 3], [[T; 3]; 3]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
@@ -264,11 +256,7 @@ pub fn forward_dynamics<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 4],
 ) -> [T; 3] {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
@@ -362,11 +350,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 4],
 ) -> tendyn_core::dual::ForwardJacobians<[T; 3], [[T; 3]; 3], [[T; 4]; 3]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t120 = T::from_f64(0.012) * qd[0];
     let t122 = qd[0] * t120;
@@ -724,11 +708,7 @@ pub fn all<T: Real>(
     motor_torques: &[T; 0],
     tendon_tensions: &[T; 4],
 ) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t120 = T::from_f64(0.012) * qd[0];

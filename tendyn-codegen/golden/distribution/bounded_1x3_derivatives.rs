@@ -67,9 +67,6 @@ pub fn actuation_derivatives<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::dual::ActuationJacobians<[T; 3], [[T; 1]; 3]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s29, c30)] = T::sin_cos_array([q[0]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s29, c30) = q[0].sin_cos();
     let t157 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + c30 * T::from_f64(15.489503534923216));
@@ -163,9 +160,6 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s29, c30)] = T::sin_cos_array([q[0]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s29, c30) = q[0].sin_cos();
     let t157 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + c30 * T::from_f64(15.489503534923216));

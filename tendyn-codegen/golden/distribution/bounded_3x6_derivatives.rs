@@ -52,13 +52,8 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 6]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s96, c97), (s98, c99), (s100, c101)] = T::sin_cos_array([q[0], q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s96, c97) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s98, c99) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s100, c101) = q[2].sin_cos();
     let t106 = T::from_f64(4.905) * c97 + T::from_f64(0.17348249055745907) * qdd[0];
     let t110 = T::from_f64(4.905) * s96
@@ -181,13 +176,8 @@ pub fn actuation_derivatives<T: Numeric>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> tendyn_core::dual::ActuationJacobians<[T; 6], [[T; 3]; 6]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s96, c97), (s98, c99), (s100, c101)] = T::sin_cos_array([q[0], q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s96, c97) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s98, c99) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s100, c101) = q[2].sin_cos();
     let t103 = T::from_f64(4.905) * s96;
     let t104 = T::from_f64(4.905) * c97;
@@ -714,13 +704,8 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s96, c97), (s98, c99), (s100, c101)] = T::sin_cos_array([q[0], q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s96, c97) = q[0].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s98, c99) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s100, c101) = q[2].sin_cos();
     let t103 = T::from_f64(4.905) * s96;
     let t104 = T::from_f64(4.905) * c97;

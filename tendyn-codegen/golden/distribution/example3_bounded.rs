@@ -31,11 +31,7 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 3],
     qdd: &[T; 3],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
@@ -191,11 +187,7 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
-    #[cfg(target_feature = "avx2")]
-    let [(s112, c113), (s114, c115)] = T::sin_cos_array([q[1], q[2]]);
-    #[cfg(not(target_feature = "avx2"))]
     let (s112, c113) = q[1].sin_cos();
-    #[cfg(not(target_feature = "avx2"))]
     let (s114, c115) = q[2].sin_cos();
     let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
