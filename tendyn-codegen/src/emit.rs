@@ -525,8 +525,9 @@ impl Body<'_> {
             }
         }
         // Fewer than four angles fill no vector: each `sin_cos` stays where it is needed
-        // (measured: Example 3's two angles in one call cost its `actuation` 15 %).
-        if turns.len() < 4 {
+        // (measured: Example 3's two angles in one call cost its `actuation` 15 %); nor has
+        // `f32` a vector form.
+        if turns.len() < 4 || self.atoms.scalar == Scalar::F32 {
             return;
         }
         let angles: Vec<Id> = turns.iter().map(|t| t.0).collect();
