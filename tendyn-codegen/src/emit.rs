@@ -499,9 +499,7 @@ impl<'g> Body<'g> {
             }
         }
     }
-}
 
-impl Body<'_> {
     /// The sines and cosines of every live angle whose sine and cosine are both used and that
     /// depends on no other sine or cosine (every joint's and pulley's angle, linear in `q`),
     /// four or more, for targets with wide vectors: the angles bound first, then, only where
