@@ -6,7 +6,7 @@
 // the median ns per call of 51 samples, each a pass over the 1,024 states.
 #include <pinocchio/algorithm/rnea-derivatives.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
-#include <pinocchio/multibody.hpp>
+#include "expanded_tree.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -15,107 +15,19 @@
 #include <iostream>
 #include <vector>
 
-using pinocchio::SE3;
-
-static Eigen::Matrix3d read_matrix(std::istream& in) {
-  Eigen::Matrix3d m;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) in >> m(r, c);
-  return m;
-}
-
-static SE3 read_transform(std::istream& in) {
-  Eigen::Matrix3d r = read_matrix(in);
-  Eigen::Vector3d t;
-  in >> t(0) >> t(1) >> t(2);
-  return SE3(r, t);
-}
-
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: pinocchio_rnea FILE.tree\n";
     return 2;
   }
   std::ifstream in(argv[1]);
-  double nd, bd;
-  Eigen::Vector3d g;
-  in >> nd >> bd >> g(0) >> g(1) >> g(2);
-  const int n = int(nd), bodies = int(bd);
-  double wrench_link;
-  Eigen::Vector3d point, force, moment;
-  in >> wrench_link;
-  if (wrench_link >= 0) {
-    in >> point(0) >> point(1) >> point(2) >> force(0) >> force(1) >> force(2) >> moment(0) >>
-        moment(1) >> moment(2);
-  }
-  pinocchio::Model model;
-  model.gravity.linear(g);
-  struct Body {
-    int parent;
-    SE3 pre;
-    double mass;
-    Eigen::Vector3d com;
-    Eigen::Matrix3d inertia;
-  };
-  std::vector<Body> body(bodies);
-  Eigen::MatrixXd coupling_read(bodies, n);
-  Eigen::VectorXd offset_read(bodies);
-  std::vector<SE3> post(bodies);
-  for (int b = 0; b < bodies; ++b) {
-    double parent;
-    in >> parent >> offset_read(b);
-    body[b].parent = int(parent);
-    body[b].pre = read_transform(in);
-    post[b] = read_transform(in);
-    for (int j = 0; j < n; ++j) in >> coupling_read(b, j);
-    in >> body[b].mass >> body[b].com(0) >> body[b].com(1) >> body[b].com(2);
-    body[b].inertia = read_matrix(in);
-  }
-  // Joints are added depth first: Pinocchio's derivative algorithms take a joint's subtree
-  // to be the joints that follow it up to its last descendant, and tendyn's body order
-  // (links, then pulleys) is not depth first. (RNEA itself does not care; its derivatives
-  // disagreed with central differences of it by 1e-3 in the other order.) Joint k is body
-  // order[k], so the rows of C and the offsets are taken in that order.
-  std::vector<int> order;
-  std::vector<std::vector<int>> children(bodies + 1);
-  for (int b = 0; b < bodies; ++b) children[body[b].parent + 1].push_back(b);
-  std::vector<int> stack(children[0].rbegin(), children[0].rend());
-  while (!stack.empty()) {
-    const int b = stack.back();
-    stack.pop_back();
-    order.push_back(b);
-    stack.insert(stack.end(), children[b + 1].rbegin(), children[b + 1].rend());
-  }
-  Eigen::MatrixXd coupling(bodies, n);
-  Eigen::VectorXd offset(bodies);
-  std::vector<pinocchio::JointIndex> joint(bodies);
-  for (int k = 0; k < bodies; ++k) {
-    const int b = order[k];
-    coupling.row(k) = coupling_read.row(b);
-    offset(k) = offset_read(b);
-    // The joint frame is the body frame before `post`: the parent's body frame (its joint
-    // frame times its post) times `pre`.
-    const int p = body[b].parent;
-    const pinocchio::JointIndex parent_joint = p < 0 ? 0 : joint[p];
-    const SE3 placement = p < 0 ? body[b].pre : post[p] * body[b].pre;
-    joint[b] = model.addJoint(parent_joint, pinocchio::JointModelRZ(), placement,
-                              "j" + std::to_string(b));
-    // Mass properties given in the body frame, moved to the joint frame by `post`.
-    const Eigen::Matrix3d& r = post[b].rotation();
-    model.appendBodyToJoint(
-        joint[b],
-        pinocchio::Inertia(body[b].mass, post[b].act(body[b].com), r * body[b].inertia * r.transpose()),
-        SE3::Identity());
-  }
+  ExpandedTree tree = read_expanded_tree(in);
+  const int n = tree.dof, bodies = tree.bodies;
+  const pinocchio::Model& model = tree.model;
+  const Eigen::MatrixXd& coupling = tree.coupling;
+  const Eigen::VectorXd& offset = tree.offset;
+  const std::vector<pinocchio::Force>& fext = tree.fext;
   pinocchio::Data data(model);
-  // The wrench acts on the link, given in its body frame about the point: in the joint
-  // frame (the body frame before `post`), about the joint frame's origin.
-  std::vector<pinocchio::Force> fext(model.njoints, pinocchio::Force::Zero());
-  if (wrench_link >= 0) {
-    const SE3& m = post[int(wrench_link)];
-    const Eigen::Vector3d f = m.rotation() * force, p = m.act(point);
-    fext[joint[int(wrench_link)]] = pinocchio::Force(f, m.rotation() * moment + p.cross(f));
-  }
   struct State {
     Eigen::VectorXd q, v, a, tendyn;
     Eigen::MatrixXd d_q, d_qd;  // tendyn's ∂Q/∂q, ∂Q/∂q̇
