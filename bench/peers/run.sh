@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Pinocchio's RNEA and tendyn's runtime solver on the scale mechanisms, in one run, pinned
-# to one core (the protocol of docs/references.md). Needs python3 with pip and g++; Pinocchio
-# comes from PyPI (`pin`, its C++ headers and libraries are in the wheel), into a virtual
-# environment of its own. Not part of CI: a timing run wants an otherwise idle machine.
+# Pinocchio's RNEA, Pinocchio's RNEA on CasADi's symbolic scalar generated as C, and
+# tendyn's runtime solver and generated code on the scale mechanisms, in one run, pinned to
+# one core (the protocol of docs/references.md). Needs python3 with pip, g++ and gcc;
+# Pinocchio and CasADi come from PyPI (`pin`, `casadi`: their C++ headers and libraries are
+# in the wheels), into a virtual environment of its own. Not part of CI: a timing run wants an otherwise idle machine.
 #
 #   bench/peers/run.sh [DIR]     (DIR: where the environment and the builds go; /tmp/tendyn-peers)
 set -euo pipefail
