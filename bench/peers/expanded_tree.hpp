@@ -3,12 +3,14 @@
 // (pinocchio_rnea.cpp, pinocchio_casadi.cpp). Every link and pulley is a body on a revolute
 // joint about its own z axis, placed as tendyn places it (paper Eq. 8: `pre · RotZ(θ) · post`
 // in its parent's frame; Pinocchio's joint frame is the body frame before `post`), with the
-// joint angles `θ = C q + offset`. The stream is left at the first state.
+// joint angles `θ = C q + offset`. The stream is left at the first state. A file that cannot be
+// read, or whose parents do not form a tree, throws std::runtime_error.
 #pragma once
 
 #include <pinocchio/multibody.hpp>
 
 #include <istream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,11 +46,14 @@ inline ExpandedTree read_expanded_tree(std::istream& in) {
   ExpandedTree tree;
   double nd, bd;
   Eigen::Vector3d g;
-  in >> nd >> bd >> g(0) >> g(1) >> g(2);
+  if (!(in >> nd >> bd >> g(0) >> g(1) >> g(2)) || nd < 1 || bd < nd)
+    throw std::runtime_error("no tree header (degrees of freedom, bodies, gravity)");
   const int n = tree.dof = int(nd), bodies = tree.bodies = int(bd);
   double wrench_link;
   Eigen::Vector3d point, force, moment;
   in >> wrench_link;
+  if (!in) throw std::runtime_error("no external wrench line");
+  if (wrench_link >= bd) throw std::runtime_error("the external wrench's link is not a body");
   if (wrench_link >= 0) {
     in >> point(0) >> point(1) >> point(2) >> force(0) >> force(1) >> force(2) >> moment(0) >>
         moment(1) >> moment(2);
@@ -73,6 +78,10 @@ inline ExpandedTree read_expanded_tree(std::istream& in) {
     for (int j = 0; j < n; ++j) in >> coupling_read(b, j);
     in >> body[b].mass >> body[b].com(0) >> body[b].com(1) >> body[b].com(2);
     body[b].inertia = read_matrix(in);
+    if (!in) throw std::runtime_error("body " + std::to_string(b) + " is incomplete");
+    if (body[b].parent < -1 || body[b].parent >= b)
+      throw std::runtime_error("body " + std::to_string(b) + " has parent " +
+                               std::to_string(body[b].parent) + ", not an earlier body or -1");
   }
   // Joints are added depth first: Pinocchio's derivative algorithms take a joint's subtree
   // to be the joints that follow it up to its last descendant, and tendyn's body order

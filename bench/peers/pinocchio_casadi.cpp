@@ -27,7 +27,13 @@ int main(int argc, char** argv) {
   }
   const std::string name = argv[2], dir = argv[3];
   std::ifstream in(argv[1]);
-  const ExpandedTree tree = read_expanded_tree(in);
+  ExpandedTree tree;
+  try {
+    tree = read_expanded_tree(in);
+  } catch (const std::runtime_error& e) {
+    std::cerr << argv[1] << ": " << e.what() << "\n";
+    return 2;
+  }
   const int n = tree.dof, bodies = tree.bodies;
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -35,10 +41,13 @@ int main(int argc, char** argv) {
   ADModel ad_model = tree.model.cast<SX>();
   ADModel::Data ad_data(ad_model);
   SX q = SX::sym("q", n), qd = SX::sym("qd", n), qdd = SX::sym("qdd", n);
-  ADModel::ConfigVectorType theta(bodies), rate(bodies), accel(bodies);
+  ADModel::ConfigVectorType theta(bodies);
+  ADModel::TangentVectorType rate(bodies), accel(bodies);
   // Joint k (body order[k]) has the k-th row of C and offset; zero coefficients are skipped
   // so that CasADi's expression holds no `0 * q_j` to fold.
-  auto joint_of = [&](int k) { return ad_model.joints[tree.joint[tree.order[k]]]; };
+  auto joint_of = [&](int k) -> const ADModel::JointModel& {
+    return ad_model.joints[tree.joint[tree.order[k]]];
+  };
   for (int k = 0; k < bodies; ++k) {
     SX angle = tree.offset(k), w = 0, wd = 0;
     for (int j = 0; j < n; ++j) {
@@ -52,7 +61,7 @@ int main(int argc, char** argv) {
     rate[joint_of(k).idx_v()] = w;
     accel[joint_of(k).idx_v()] = wd;
   }
-  PINOCCHIO_ALIGNED_STD_VECTOR(pinocchio::ForceTpl<SX>) fext;
+  std::vector<pinocchio::ForceTpl<SX>> fext;
   for (const pinocchio::Force& f : tree.fext) fext.push_back(f.cast<SX>());
   pinocchio::rnea(ad_model, ad_data, theta, rate, accel, fext);
   SX generalized = SX::zeros(n);
@@ -65,8 +74,9 @@ int main(int argc, char** argv) {
     generalized(j) = sum;
   }
   // As Pinocchio's expression comes, and with CasADi's common subexpression elimination
-  // (its `cse` option, which a user generating code would turn on): both are generated and
-  // timed.
+  // (its `cse` option, which a user generating code would turn on): both are counted, and
+  // the second is generated and timed. (Generated both, gcc's own elimination and identical
+  // code folding made them one machine function.)
   casadi::Function plain("casadi_q", {q, qd, qdd}, {generalized});
   casadi::Function merged("casadi_q_cse", {q, qd, qdd}, {generalized}, {{"cse", true}});
   const double built_ms =
@@ -94,7 +104,6 @@ int main(int argc, char** argv) {
   }
   const auto t1 = std::chrono::steady_clock::now();
   casadi::CodeGenerator gen(name + "_casadi.c");
-  gen.add(plain);
   gen.add(merged);
   gen.generate(dir + "/");
   const double generated_ms =
@@ -104,6 +113,10 @@ int main(int argc, char** argv) {
 
   // The states, in tendyn's coordinates, with tendyn's Q, for the timing driver.
   std::ofstream states(dir + "/" + name + ".states");
+  if (!states) {
+    std::cerr << dir << "/" << name << ".states: cannot be written\n";
+    return 2;
+  }
   states.precision(17);
   states << n << "\n";
   for (;;) {

@@ -21,7 +21,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::ifstream in(argv[1]);
-  ExpandedTree tree = read_expanded_tree(in);
+  ExpandedTree tree;
+  try {
+    tree = read_expanded_tree(in);
+  } catch (const std::runtime_error& e) {
+    std::cerr << argv[1] << ": " << e.what() << "\n";
+    return 2;
+  }
   const int n = tree.dof, bodies = tree.bodies;
   const pinocchio::Model& model = tree.model;
   const Eigen::MatrixXd& coupling = tree.coupling;

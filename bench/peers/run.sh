@@ -5,7 +5,9 @@
 # Pinocchio and CasADi come from PyPI (`pin`, `casadi`: their C++ headers and libraries are
 # in the wheels), into a virtual environment of its own. Not part of CI: a timing run wants an otherwise idle machine.
 #
-#   bench/peers/run.sh [DIR]     (DIR: where the environment and the builds go; /tmp/tendyn-peers)
+#   bench/peers/run.sh [DIR]
+#
+# DIR is where the environment and the builds go (default /tmp/tendyn-peers).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 dir="${1:-/tmp/tendyn-peers}"
