@@ -3,7 +3,8 @@
 # tendyn's runtime solver and generated code on the scale mechanisms, in one run, pinned to
 # one core (the protocol of docs/references.md). Needs python3 with pip, g++ and gcc;
 # Pinocchio and CasADi come from PyPI (`pin`, `casadi`: their C++ headers and libraries are
-# in the wheels), into a virtual environment of its own. Not part of CI: a timing run wants an otherwise idle machine.
+# in the wheels), into a virtual environment of its own. Not part of CI: a timing run wants
+# an otherwise idle machine.
 #
 #   bench/peers/run.sh [DIR]
 #
