@@ -26,10 +26,20 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
     let (s56, c57) = q[1].sin_cos();
     let t668 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t675 = T::from_f64(0.03) * s56;
-    let t684 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t668 - qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675));
-    let t690 = qdd[0] * t668
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t675));
+    let t684 = Real::mul_add(
+        qdd[0],
+        c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
+        Real::mul_add(
+            qdd[1],
+            t668,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675)),
+        ),
+    );
+    let t690 = Real::mul_add(
+        qdd[0],
+        t668,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t675)),
+    );
     [t684, t690]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
@@ -45,18 +55,36 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s56, c57) = q[1].sin_cos();
-    let t715 = qdd[1] * (T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993))
-        - (qd[0]
+    let t715 = Real::mul_add(
+        qdd[1],
+        T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993),
+        -(qd[0]
             * (qd[0] * (s56 * T::from_f64(0.04499999999999987))
                 + qd[1] * (s56 * T::from_f64(0.06)))
-            + qd[1] * (qd[1] * (T::from_f64(0.03) * s56)));
-    let t716 = qdd[0]
-        * (c57 * T::from_f64(0.015000000000000126) + T::from_f64(0.09966665000000006))
-        + t715;
-    let t728 = qdd[0]
-        * (c57 * T::from_f64(0.045000000000000005) + T::from_f64(0.025045050000000006))
-        + (qdd[1] * T::from_f64(0.025030050000000005)
-            + qd[0] * (qd[0] * (s56 * T::from_f64(0.045000000000000005))));
+            + qd[1] * (qd[1] * (T::from_f64(0.03) * s56))),
+    );
+    let t716 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(
+            c57,
+            T::from_f64(0.015000000000000126),
+            T::from_f64(0.09966665000000006),
+        ),
+        t715,
+    );
+    let t728 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(
+            c57,
+            T::from_f64(0.045000000000000005),
+            T::from_f64(0.025045050000000006),
+        ),
+        Real::mul_add(
+            qd[0],
+            qd[0] * (s56 * T::from_f64(0.045000000000000005)),
+            qdd[1] * T::from_f64(0.025030050000000005),
+        ),
+    );
     tendyn_core::distribution::Actuation::exact([t716, t728], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
@@ -115,10 +143,12 @@ pub fn forward_dynamics<T: Real>(
     let t731 = motor_torques[0] + motor_torques[1]
         + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675);
     let t733 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t665;
-    let t883 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t675) - t731 * t733)
-        / (T::from_f64(0.0166867) - t665 * (t733 * t733));
-    let t885 = t731 / t665 - t733 * t883;
+    let t883 = Real::mul_add(
+        -t731,
+        t733,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t675),
+    ) / Real::mul_add(-t665, t733 * t733, T::from_f64(0.0166867));
+    let t885 = Real::mul_add(-t733, t883, t731 / t665);
     [t885, t883]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
@@ -130,13 +160,21 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t784 = qdd[0] * (c57 * T::from_f64(0.75) + T::from_f64(0.4166675))
-        + (qdd[1] * T::from_f64(0.4166675)
-            + (T::from_f64(20.0) + qd[0] * (qd[0] * (s56 * T::from_f64(0.75)))));
-    let t803 = qdd[0]
-        * (T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001))
-        + (T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
-            - qdd[1] * T::from_f64(0.4166675000000001));
+    let t784 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(c57, T::from_f64(0.75), T::from_f64(0.4166675)),
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(0.4166675),
+            Real::mul_add(qd[0], qd[0] * (s56 * T::from_f64(0.75)), T::from_f64(20.0)),
+        ),
+    );
+    let t803 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001),
+        T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
+            - qdd[1] * T::from_f64(0.4166675000000001),
+    );
     [t784, t803]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
@@ -155,14 +193,14 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
     let t122 = T::from_f64(0.000045)
-        * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1]);
+        * Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0]);
     let t184 = T::from_f64(0.019988885800753267) * s56;
     let t188 = T::from_f64(0.019988885800753267) * c57;
     let t191 = T::from_f64(0.029983328701129897) * s54;
     let t195 = T::from_f64(0.029983328701129897) * c55;
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
-    let t498 = T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18);
+    let t498 = Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t504 = t83 * t83;
     let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + s56 * t492)
         - t84 * T::from_f64(0.125);
@@ -170,37 +208,59 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
     let t511 = T::from_f64(0.8) * t507;
-    let t513 = T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507;
-    let t515 = t513 + T::from_f64(0.2) * t507;
-    let t526 = t498 + t515 + T::from_f64(0.3) * (t73 + (s56 * t510 + c57 * t511));
+    let t513 = Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84);
+    let t515 = Real::mul_add(T::from_f64(0.2), t507, t513);
+    let t526 = Real::mul_add(
+        T::from_f64(0.3),
+        t73 + Real::mul_add(c57, t511, s56 * t510),
+        t498 + t515,
+    );
     let t548 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t515
-            - T::from_f64(0.000000000000000009071958584846753) * t526);
+        + Real::mul_add(
+            -T::from_f64(0.000000000000000009071958584846753),
+            t526,
+            T::from_f64(25.0) * t515,
+        );
     let t549 = T::from_f64(20.0)
-        - (T::from_f64(0.00000000000000003335808724852205) * t526
-            + T::from_f64(25.000000000000004) * t515);
+        - Real::mul_add(
+            T::from_f64(25.000000000000004),
+            t515,
+            T::from_f64(0.00000000000000003335808724852205) * t526,
+        );
     let t550 = T::from_f64(0.9994442900376633) * t548;
     let t551 = T::from_f64(0.03333333333333362) * t548;
-    let t554 = s56 * t551 - c57 * t550;
-    let t557 = s56 * t550 + c57 * t551;
-    let t563 = c55 * t550 + s54 * t551;
-    let t566 = s54 * t550 - c55 * t551;
+    let t554 = Real::mul_add(-c57, t550, s56 * t551);
+    let t557 = Real::mul_add(c57, t551, s56 * t550);
+    let t563 = Real::mul_add(s54, t551, c55 * t550);
+    let t566 = Real::mul_add(-c55, t551, s54 * t550);
     let t570 = T::from_f64(0.9994442900376633) * t549;
     let t571 = T::from_f64(0.03333333333333337) * t549;
-    let t574 = c57 * t570 + s56 * t571;
-    let t577 = s56 * t570 - c57 * t571;
+    let t574 = Real::mul_add(s56, t571, c57 * t570);
+    let t577 = Real::mul_add(-c57, t571, s56 * t570);
     let t578 = t554 - t574;
     let t579 = t557 + t577;
-    let t583 = (T::from_f64(0.0006666666666666724) * c57 + t184) * t557
-        - (t188 - T::from_f64(0.0006666666666666724) * s56) * t554
-        + ((T::from_f64(0.0006666666666666674) * c57 - t184) * t577
-            - (t188 + T::from_f64(0.0006666666666666674) * s56) * t574);
-    let t586 = c55 * t570 - s54 * t571;
-    let t589 = s54 * t570 + c55 * t571;
-    let t595 = (T::from_f64(0.0010000000000000085) * c55 - t191) * t566
-        - (T::from_f64(0.0010000000000000085) * s54 + t195) * t563
-        + ((t191 + T::from_f64(0.0010000000000000009) * c55) * t589
-            - (T::from_f64(0.0010000000000000009) * s54 - t195) * t586);
+    let t583 = Real::mul_add(
+        -(t188 - T::from_f64(0.0006666666666666724) * s56),
+        t554,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t557,
+    )
+        + Real::mul_add(
+            -(t188 + T::from_f64(0.0006666666666666674) * s56),
+            t574,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t577,
+        );
+    let t586 = Real::mul_add(-s54, t571, c55 * t570);
+    let t589 = Real::mul_add(c55, t571, s54 * t570);
+    let t595 = Real::mul_add(
+        -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
+        t563,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t566,
+    )
+        + Real::mul_add(
+            -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
+            t586,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t589,
+        );
     let t596 = t574 - t554;
     let t597 = -t579;
     let t598 = -t583;
@@ -209,20 +269,28 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t604 = -(t566 + t589);
     let t606 = t510 - t578;
     let t607 = t511 - t579;
-    let t611 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t578
+    let t611 = Real::mul_add(-T::from_f64(0.02), t578, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t612 = t513 - (t583 - T::from_f64(0.25) * t579) + T::from_f64(0.25) * t607;
-    let t621 = c57 * t599 - s56 * t611;
-    let t625 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492)
-        - (s56 * t607 - c57 * t606);
-    let t626 = t73 + (s56 * t606 + c57 * t607);
-    let t630 = T::from_f64(1.7658) + (s56 * t599 + c57 * t611) - T::from_f64(5.886);
-    let t632 = t498 + t612 + T::from_f64(0.3) * t626
-        - (t526 - T::from_f64(1.4999999999999958) * t515);
+    let t612 = Real::mul_add(
+        T::from_f64(0.25),
+        t607,
+        t513 - Real::mul_add(-T::from_f64(0.25), t579, t583),
+    );
+    let t621 = Real::mul_add(-s56, t611, c57 * t599);
+    let t625 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
+        - Real::mul_add(-c57, t606, s56 * t607);
+    let t626 = t73 + Real::mul_add(c57, t607, s56 * t606);
+    let t630 = T::from_f64(1.7658) + Real::mul_add(c57, t611, s56 * t599)
+        - T::from_f64(5.886);
+    let t632 = Real::mul_add(T::from_f64(0.3), t626, t498 + t612)
+        - Real::mul_add(-T::from_f64(1.4999999999999958), t515, t526);
     let t633 = t122 - t595
         - (t122
-            + (T::from_f64(0.0000000000000000047704895589362195) * t526
-                + T::from_f64(1.5000000000000002) * t515));
+            + Real::mul_add(
+                T::from_f64(1.5000000000000002),
+                t515,
+                T::from_f64(0.0000000000000000047704895589362195) * t526,
+            ));
     [
         [[t625, t626, T::from_f64(19.62)], [t621, t630, t632]],
         [[t606, t607, T::from_f64(7.848000000000001)], [t599, t611, t612]],
@@ -255,7 +323,7 @@ pub fn base_reaction<T: Real>(
     let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t169 = c55 * t139 - s54 * t154;
-    let t172 = s54 * t139 + c55 * t154;
+    let t172 = Real::mul_add(c55, t154, s54 * t139);
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
     let t504 = t83 * t83;
@@ -265,16 +333,23 @@ pub fn base_reaction<T: Real>(
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
     let t511 = T::from_f64(0.8) * t507;
-    let t522 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492)
-        - (s56 * t511 - c57 * t510);
-    let t523 = T::from_f64(1.2) * t66 + (s56 * t510 + c57 * t511);
-    let t529 = c55 * t522 - s54 * t523;
-    let t532 = s54 * t522 + c55 * t523;
+    let t522 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
+        - Real::mul_add(-c57, t510, s56 * t511);
+    let t523 = T::from_f64(1.2) * t66 + Real::mul_add(c57, t511, s56 * t510);
+    let t529 = Real::mul_add(-s54, t523, c55 * t522);
+    let t532 = Real::mul_add(c55, t523, s54 * t522);
     let t533 = T::from_f64(0.000045)
-        * (qdd[0] + T::from_f64(0.6666666666666667) * qdd[1])
-        + (T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18)
-            + (T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507
-                + T::from_f64(0.2) * t507) + T::from_f64(0.3) * t523);
+        * Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0])
+        + Real::mul_add(
+            T::from_f64(0.3),
+            t523,
+            Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
+                + Real::mul_add(
+                    T::from_f64(0.2),
+                    t507,
+                    Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84),
+                ),
+        );
     [[[t529, t532, T::from_f64(20.601000000000003)], [t169, t172, t533]]]
 }
 /// Every requested output of [`all`].
@@ -316,13 +391,13 @@ pub fn all<T: Real>(
     let t73 = T::from_f64(1.2) * t66;
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
-    let t120 = qdd[0] + T::from_f64(0.6666666666666667) * qdd[1];
+    let t120 = Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0]);
     let t122 = T::from_f64(0.000045) * t120;
     let t139 = s56 * T::from_f64(0.9810000000000001);
     let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t169 = c55 * t139 - s54 * t154;
-    let t172 = s54 * t139 + c55 * t154;
+    let t172 = Real::mul_add(c55, t154, s54 * t139);
     let t184 = T::from_f64(0.019988885800753267) * s56;
     let t188 = T::from_f64(0.019988885800753267) * c57;
     let t191 = T::from_f64(0.029983328701129897) * s54;
@@ -333,8 +408,8 @@ pub fn all<T: Real>(
             + T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6))));
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
-    let t495 = T::from_f64(1.2) * (T::from_f64(0.15) * t491 - t492);
-    let t498 = T::from_f64(0.009) * qdd[0] - t66 * T::from_f64(0.18);
+    let t495 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492);
+    let t498 = Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t499 = c57 * t492;
     let t501 = s56 * t492;
     let t504 = t83 * t83;
@@ -343,47 +418,68 @@ pub fn all<T: Real>(
     let t508 = T::from_f64(0.125) * t504;
     let t510 = T::from_f64(0.8) * (s56 * t59 - t499 - t505 + t508);
     let t511 = T::from_f64(0.8) * t507;
-    let t513 = T::from_f64(0.0041667) * t84 - T::from_f64(0.1) * t507;
-    let t515 = t513 + T::from_f64(0.2) * t507;
-    let t522 = t495 - (s56 * t511 - c57 * t510);
-    let t523 = t73 + (s56 * t510 + c57 * t511);
-    let t526 = t498 + t515 + T::from_f64(0.3) * t523;
-    let t529 = c55 * t522 - s54 * t523;
-    let t532 = s54 * t522 + c55 * t523;
+    let t513 = Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84);
+    let t515 = Real::mul_add(T::from_f64(0.2), t507, t513);
+    let t522 = t495 - Real::mul_add(-c57, t510, s56 * t511);
+    let t523 = t73 + Real::mul_add(c57, t511, s56 * t510);
+    let t526 = Real::mul_add(T::from_f64(0.3), t523, t498 + t515);
+    let t529 = Real::mul_add(-s54, t523, c55 * t522);
+    let t532 = Real::mul_add(c55, t523, s54 * t522);
     let t533 = t122 + t526;
-    let t535 = t515 + t120 * T::from_f64(0.000030000000000000004);
-    let t543 = t526 - T::from_f64(1.4999999999999958) * t515;
+    let t535 = Real::mul_add(t120, T::from_f64(0.000030000000000000004), t515);
+    let t543 = Real::mul_add(-T::from_f64(1.4999999999999958), t515, t526);
     let t547 = t122
-        + (T::from_f64(0.0000000000000000047704895589362195) * t526
-            + T::from_f64(1.5000000000000002) * t515);
+        + Real::mul_add(
+            T::from_f64(1.5000000000000002),
+            t515,
+            T::from_f64(0.0000000000000000047704895589362195) * t526,
+        );
     let t548 = T::from_f64(20.0)
-        + (T::from_f64(25.0) * t515
-            - T::from_f64(0.000000000000000009071958584846753) * t526);
+        + Real::mul_add(
+            -T::from_f64(0.000000000000000009071958584846753),
+            t526,
+            T::from_f64(25.0) * t515,
+        );
     let t549 = T::from_f64(20.0)
-        - (T::from_f64(0.00000000000000003335808724852205) * t526
-            + T::from_f64(25.000000000000004) * t515);
+        - Real::mul_add(
+            T::from_f64(25.000000000000004),
+            t515,
+            T::from_f64(0.00000000000000003335808724852205) * t526,
+        );
     let t550 = T::from_f64(0.9994442900376633) * t548;
     let t551 = T::from_f64(0.03333333333333362) * t548;
-    let t554 = s56 * t551 - c57 * t550;
-    let t557 = s56 * t550 + c57 * t551;
-    let t563 = c55 * t550 + s54 * t551;
-    let t566 = s54 * t550 - c55 * t551;
+    let t554 = Real::mul_add(-c57, t550, s56 * t551);
+    let t557 = Real::mul_add(c57, t551, s56 * t550);
+    let t563 = Real::mul_add(s54, t551, c55 * t550);
+    let t566 = Real::mul_add(-c55, t551, s54 * t550);
     let t570 = T::from_f64(0.9994442900376633) * t549;
     let t571 = T::from_f64(0.03333333333333337) * t549;
-    let t574 = c57 * t570 + s56 * t571;
-    let t577 = s56 * t570 - c57 * t571;
+    let t574 = Real::mul_add(s56, t571, c57 * t570);
+    let t577 = Real::mul_add(-c57, t571, s56 * t570);
     let t578 = t554 - t574;
     let t579 = t557 + t577;
-    let t583 = (T::from_f64(0.0006666666666666724) * c57 + t184) * t557
-        - (t188 - T::from_f64(0.0006666666666666724) * s56) * t554
-        + ((T::from_f64(0.0006666666666666674) * c57 - t184) * t577
-            - (t188 + T::from_f64(0.0006666666666666674) * s56) * t574);
-    let t586 = c55 * t570 - s54 * t571;
-    let t589 = s54 * t570 + c55 * t571;
-    let t595 = (T::from_f64(0.0010000000000000085) * c55 - t191) * t566
-        - (T::from_f64(0.0010000000000000085) * s54 + t195) * t563
-        + ((t191 + T::from_f64(0.0010000000000000009) * c55) * t589
-            - (T::from_f64(0.0010000000000000009) * s54 - t195) * t586);
+    let t583 = Real::mul_add(
+        -(t188 - T::from_f64(0.0006666666666666724) * s56),
+        t554,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t557,
+    )
+        + Real::mul_add(
+            -(t188 + T::from_f64(0.0006666666666666674) * s56),
+            t574,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t577,
+        );
+    let t586 = Real::mul_add(-s54, t571, c55 * t570);
+    let t589 = Real::mul_add(c55, t571, s54 * t570);
+    let t595 = Real::mul_add(
+        -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
+        t563,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t566,
+    )
+        + Real::mul_add(
+            -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
+            t586,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t589,
+        );
     let t596 = t574 - t554;
     let t597 = -t579;
     let t598 = -t583;
@@ -392,27 +488,40 @@ pub fn all<T: Real>(
     let t604 = -(t566 + t589);
     let t606 = t510 - t578;
     let t607 = t511 - t579;
-    let t611 = T::from_f64(0.9810000000000001) - T::from_f64(0.02) * t578
+    let t611 = Real::mul_add(-T::from_f64(0.02), t578, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t612 = t513 - (t583 - T::from_f64(0.25) * t579) + T::from_f64(0.25) * t607;
-    let t621 = c57 * t599 - s56 * t611;
-    let t625 = t495 - (s56 * t607 - c57 * t606);
-    let t626 = t73 + (s56 * t606 + c57 * t607);
-    let t630 = T::from_f64(1.7658) + (s56 * t599 + c57 * t611) - T::from_f64(5.886);
-    let t632 = t498 + t612 + T::from_f64(0.3) * t626 - t543;
+    let t612 = Real::mul_add(
+        T::from_f64(0.25),
+        t607,
+        t513 - Real::mul_add(-T::from_f64(0.25), t579, t583),
+    );
+    let t621 = Real::mul_add(-s56, t611, c57 * t599);
+    let t625 = t495 - Real::mul_add(-c57, t606, s56 * t607);
+    let t626 = t73 + Real::mul_add(c57, t607, s56 * t606);
+    let t630 = T::from_f64(1.7658) + Real::mul_add(c57, t611, s56 * t599)
+        - T::from_f64(5.886);
+    let t632 = Real::mul_add(T::from_f64(0.3), t626, t498 + t612) - t543;
     let t633 = t122 - t595 - t547;
     let t636 = T::from_f64(0.000030000000000000004)
         + (T::from_f64(0.0166667) + T::from_f64(0.03) * c57);
-    let t643 = T::from_f64(0.2) * t501 - T::from_f64(0.1) * t501;
-    let t649 = t643
-        + T::from_f64(0.3)
-            * (T::from_f64(0.8) * (s56 * (t508 - (t499 + t505)))
-                + c57 * (T::from_f64(0.8) * t501));
+    let t643 = Real::mul_add(-T::from_f64(0.1), t501, T::from_f64(0.2) * t501);
+    let t649 = Real::mul_add(
+        T::from_f64(0.3),
+        Real::mul_add(
+            c57,
+            T::from_f64(0.8) * t501,
+            T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
+        ),
+        t643,
+    );
     let t650 = motor_torques[0] + motor_torques[1] - t649;
     let t652 = t636 / t420;
-    let t659 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t643 - t650 * t652)
-        / (T::from_f64(0.0166867) - t420 * (t652 * t652));
-    let t661 = t650 / t420 - t652 * t659;
+    let t659 = Real::mul_add(
+        -t650,
+        t652,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - t643,
+    ) / Real::mul_add(-t420, t652 * t652, T::from_f64(0.0166867));
+    let t661 = Real::mul_add(-t652, t659, t650 / t420);
     Outputs {
         generalized_forces: [t533, t535],
         actuation: tendyn_core::distribution::Actuation::exact([t543, t547], []),

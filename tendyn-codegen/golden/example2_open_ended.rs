@@ -27,12 +27,22 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
-    let t1105 = T::from_f64(0.0166667) + c78 * T::from_f64(0.03);
+    let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
     let t1142 = s77 * T::from_f64(0.03);
-    let t1151 = qdd[0] * (c78 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t1105 - qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1142));
-    let t1157 = qdd[0] * t1105
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t1142));
+    let t1151 = Real::mul_add(
+        qdd[0],
+        c78 * T::from_f64(0.06) + T::from_f64(0.1247117),
+        Real::mul_add(
+            qdd[1],
+            t1105,
+            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1142)),
+        ),
+    );
+    let t1157 = Real::mul_add(
+        qdd[0],
+        t1105,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1142)),
+    );
     [t1151, t1157]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
@@ -61,38 +71,86 @@ pub fn actuation<T: Real>(
     let t1224 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
     let t1230 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t1160)
-                + (qdd[1] * (t1166 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t1191 - t1184)),
+            Real::mul_add(
+                qdd[0],
+                T::from_f64(0.6837298529411769) - t1160,
+                Real::mul_add(
+                    qdd[1],
+                    t1166 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1191 - t1184,
+                ),
+            ),
         )
         .max(
-            qdd[0] * (t1199 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t1204 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t1210 - t1215) + (T::from_f64(5.0) - t1224))),
+            Real::mul_add(
+                qdd[0],
+                t1199 + T::from_f64(1.517064852941176),
+                Real::mul_add(
+                    qdd[1],
+                    t1204 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1210 - t1215, T::from_f64(5.0) - t1224),
+                ),
+            ),
         );
-    let t1255 = qdd[0]
-        * (T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764))
-        + (qdd[1]
-            * (T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588))
-            + (qd[1]
-                * (qd[0] * (s77 * T::from_f64(0.4705882352941176))
-                    + qd[1] * (s77 * T::from_f64(0.2352941176470588)))
-                + T::from_f64(3.3333333333333326)));
+    let t1255 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588),
+            Real::mul_add(
+                qd[1],
+                Real::mul_add(
+                    qd[1],
+                    s77 * T::from_f64(0.2352941176470588),
+                    qd[0] * (s77 * T::from_f64(0.4705882352941176)),
+                ),
+                T::from_f64(3.3333333333333326),
+            ),
+        ),
+    );
     let t1256 = t1230.max(t1255);
-    let t1267 = qdd[0] * (t1160 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1166)
-            + (t1184 + (t1191 + t1256)));
-    let t1285 = qdd[0] * (T::from_f64(-1.517064852941176) - t1199)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1204)
-            + (qd[0] * (t1215 - t1210) + (t1224 + t1256)));
-    let t1314 = qdd[0]
-        * (c78 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
-        + (qdd[1]
-            * (c78 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t1256
-                - qd[1]
+    let t1267 = Real::mul_add(
+        qdd[0],
+        t1160 + T::from_f64(-0.6837298529411769),
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(0.27010838235294077) - t1166,
+            t1184 + (t1191 + t1256),
+        ),
+    );
+    let t1285 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-1.517064852941176) - t1199,
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(-0.5642266176470587) - t1204,
+            Real::mul_add(qd[0], t1215 - t1210, t1224 + t1256),
+        ),
+    );
+    let t1314 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(
+            c78,
+            T::from_f64(0.7058823529411766),
+            T::from_f64(1.4671964705882354),
+        ),
+        Real::mul_add(
+            qdd[1],
+            Real::mul_add(
+                c78,
+                T::from_f64(0.35294117647058826),
+                T::from_f64(0.19607882352941183),
+            ),
+            Real::mul_add(
+                T::from_f64(1.5000000000000002),
+                t1256,
+                -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))));
+                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
+            ),
+        ),
+    );
     tendyn_core::distribution::Actuation::exact([], [t1267, t1285, t1314])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
@@ -104,7 +162,7 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
-    let t1105 = T::from_f64(0.0166667) + t78 * T::from_f64(0.03);
+    let t1105 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
     let t1134 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
     [[t1134, t1105], [t1105, T::from_f64(0.0166867)]]
 }
@@ -152,11 +210,17 @@ pub fn forward_dynamics<T: Real>(
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1319 = (T::from_f64(0.0166667) + c78 * T::from_f64(0.03)) / t1134;
-    let t1459 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - qd[0] * (qd[0] * t1142)
-        - t1317 * t1319) / (T::from_f64(0.0166867) - t1134 * (t1319 * t1319));
-    let t1461 = t1317 / t1134 - t1319 * t1459;
+    let t1319 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1134;
+    let t1459 = Real::mul_add(
+        -t1317,
+        t1319,
+        Real::mul_add(
+            T::from_f64(0.02),
+            tendon_tensions[0],
+            -(T::from_f64(0.02) * tendon_tensions[1]),
+        ) - qd[0] * (qd[0] * t1142),
+    ) / Real::mul_add(-t1134, t1319 * t1319, T::from_f64(0.0166867));
+    let t1461 = Real::mul_add(-t1319, t1459, t1317 / t1134);
     [t1461, t1459]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
@@ -181,42 +245,90 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
     let t1224 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
     let t1230 = T::from_f64(0.0)
         .max(
-            qdd[0] * (T::from_f64(0.6837298529411769) - t1160)
-                + (qdd[1] * (t1166 + T::from_f64(-0.27010838235294077))
-                    + (T::from_f64(5.0) - t1191 - t1184)),
+            Real::mul_add(
+                qdd[0],
+                T::from_f64(0.6837298529411769) - t1160,
+                Real::mul_add(
+                    qdd[1],
+                    t1166 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1191 - t1184,
+                ),
+            ),
         )
         .max(
-            qdd[0] * (t1199 + T::from_f64(1.517064852941176))
-                + (qdd[1] * (t1204 + T::from_f64(0.5642266176470587))
-                    + (qd[0] * (t1210 - t1215) + (T::from_f64(5.0) - t1224))),
+            Real::mul_add(
+                qdd[0],
+                t1199 + T::from_f64(1.517064852941176),
+                Real::mul_add(
+                    qdd[1],
+                    t1204 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1210 - t1215, T::from_f64(5.0) - t1224),
+                ),
+            ),
         );
-    let t1255 = qdd[0]
-        * (T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764))
-        + (qdd[1]
-            * (T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588))
-            + (qd[1]
-                * (qd[0] * (s77 * T::from_f64(0.4705882352941176))
-                    + qd[1] * (s77 * T::from_f64(0.2352941176470588)))
-                + T::from_f64(3.3333333333333326)));
+    let t1255 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588),
+            Real::mul_add(
+                qd[1],
+                Real::mul_add(
+                    qd[1],
+                    s77 * T::from_f64(0.2352941176470588),
+                    qd[0] * (s77 * T::from_f64(0.4705882352941176)),
+                ),
+                T::from_f64(3.3333333333333326),
+            ),
+        ),
+    );
     let t1256 = t1230.max(t1255);
     let t1265 = t1184 + (t1191 + t1256);
-    let t1267 = qdd[0] * (t1160 + T::from_f64(-0.6837298529411769))
-        + (qdd[1] * (T::from_f64(0.27010838235294077) - t1166) + t1265);
-    let t1283 = qd[0] * (t1215 - t1210) + (t1224 + t1256);
-    let t1285 = qdd[0] * (T::from_f64(-1.517064852941176) - t1199)
-        + (qdd[1] * (T::from_f64(-0.5642266176470587) - t1204) + t1283);
-    let t1314 = qdd[0]
-        * (c78 * T::from_f64(0.7058823529411766) + T::from_f64(1.4671964705882354))
-        + (qdd[1]
-            * (c78 * T::from_f64(0.35294117647058826) + T::from_f64(0.19607882352941183))
-            + (T::from_f64(1.5000000000000002) * t1256
-                - qd[1]
+    let t1267 = Real::mul_add(
+        qdd[0],
+        t1160 + T::from_f64(-0.6837298529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1166, t1265),
+    );
+    let t1283 = Real::mul_add(qd[0], t1215 - t1210, t1224 + t1256);
+    let t1285 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-1.517064852941176) - t1199,
+        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1204, t1283),
+    );
+    let t1314 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(
+            c78,
+            T::from_f64(0.7058823529411766),
+            T::from_f64(1.4671964705882354),
+        ),
+        Real::mul_add(
+            qdd[1],
+            Real::mul_add(
+                c78,
+                T::from_f64(0.35294117647058826),
+                T::from_f64(0.19607882352941183),
+            ),
+            Real::mul_add(
+                T::from_f64(1.5000000000000002),
+                t1256,
+                -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))));
-    let t1371 = qdd[0] * (t1160 + T::from_f64(-0.6829798529411769))
-        + (t1265 + qdd[1] * (T::from_f64(0.26960838235294077) - t1166));
-    let t1379 = qdd[0] * (T::from_f64(-1.516314852941176) - t1199)
-        + (t1283 + qdd[1] * (T::from_f64(-0.5637266176470587) - t1204));
+                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
+            ),
+        ),
+    );
+    let t1371 = Real::mul_add(
+        qdd[0],
+        t1160 + T::from_f64(-0.6829798529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1166, t1265),
+    );
+    let t1379 = Real::mul_add(
+        qdd[0],
+        T::from_f64(-1.516314852941176) - t1199,
+        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1204, t1283),
+    );
     [t1371, t1267, t1379, t1285, t1314]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
@@ -237,17 +349,26 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
     let t143 = qdd[0] - t141;
     let t147 = qdd[0] + t141;
-    let t244 = T::from_f64(0.019720265943665386) * s77
-        - c78 * T::from_f64(0.0033333333333333305);
-    let t248 = s77 * T::from_f64(0.0033333333333333305)
-        + T::from_f64(0.019720265943665386) * c78;
-    let t292 = T::from_f64(0.0006666666666666674) * c78
-        - s77 * T::from_f64(0.019988885800753267);
+    let t244 = Real::mul_add(
+        T::from_f64(0.019720265943665386),
+        s77,
+        -(c78 * T::from_f64(0.0033333333333333305)),
+    );
+    let t248 = Real::mul_add(
+        T::from_f64(0.019720265943665386),
+        c78,
+        s77 * T::from_f64(0.0033333333333333305),
+    );
+    let t292 = Real::mul_add(
+        T::from_f64(0.0006666666666666674),
+        c78,
+        -(s77 * T::from_f64(0.019988885800753267)),
+    );
     let t297 = T::from_f64(0.0006666666666666674) * s77
         + c78 * T::from_f64(0.019988885800753267);
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
-    let t867 = T::from_f64(0.009) * qdd[0] - t87 * T::from_f64(0.18);
+    let t867 = Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t873 = t104 * t104;
     let t876 = T::from_f64(0.25) * t105 + (c78 * t80 + s77 * t861)
         - t105 * T::from_f64(0.125);
@@ -255,83 +376,136 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
     let t880 = T::from_f64(0.8) * t876;
-    let t882 = T::from_f64(0.0041667) * t105 - T::from_f64(0.1) * t876;
+    let t882 = Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105);
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
-    let t918 = c78 * t913 + s77 * t915;
-    let t921 = s77 * t913 - c78 * t915;
+    let t918 = Real::mul_add(s77, t915, c78 * t913);
+    let t921 = Real::mul_add(-c78, t915, s77 * t913);
     let t926 = t147 * T::from_f64(0.0007495832175282476);
     let t928 = t147 * T::from_f64(0.000025000000000000028);
-    let t931 = c78 * t926 + s77 * t928;
-    let t934 = s77 * t926 - c78 * t928;
+    let t931 = Real::mul_add(s77, t928, c78 * t926);
+    let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t946 = t880 - (t921 + t934);
-    let t949 = t882
-        - (t292 * t934 - t297 * t931 - T::from_f64(0.25) * t934
-            + (t244 * t921 + t248 * t918 - T::from_f64(0.25) * t921))
-        + T::from_f64(0.25) * t946;
-    let t956 = t867 + t949
-        + T::from_f64(0.3) * (t94 + (s77 * (t879 + (t918 + t931)) + c78 * t946));
-    let t959 = T::from_f64(24.999999999999975) * t949
-        - T::from_f64(8.823529411764707) * t956;
-    let t962 = T::from_f64(8.823529411764705) * t956
-        + T::from_f64(24.999999999999993) * t949;
-    let t965 = T::from_f64(11.764705882352942) * t956
-        + T::from_f64(0.000000000000002943923360032077) * t949;
+    let t949 = Real::mul_add(
+        T::from_f64(0.25),
+        t946,
+        t882
+            - (Real::mul_add(
+                -T::from_f64(0.25),
+                t934,
+                Real::mul_add(-t297, t931, t292 * t934),
+            )
+                + Real::mul_add(
+                    -T::from_f64(0.25),
+                    t921,
+                    Real::mul_add(t248, t918, t244 * t921),
+                )),
+    );
+    let t956 = Real::mul_add(
+        T::from_f64(0.3),
+        t94 + Real::mul_add(c78, t946, s77 * (t879 + (t918 + t931))),
+        t867 + t949,
+    );
+    let t959 = Real::mul_add(
+        -T::from_f64(8.823529411764707),
+        t956,
+        T::from_f64(24.999999999999975) * t949,
+    );
+    let t962 = Real::mul_add(
+        T::from_f64(24.999999999999993),
+        t949,
+        T::from_f64(8.823529411764705) * t956,
+    );
+    let t965 = Real::mul_add(
+        T::from_f64(0.000000000000002943923360032077),
+        t949,
+        T::from_f64(11.764705882352942) * t956,
+    );
     let t972 = T::from_f64(0.0)
         .max(T::from_f64(5.0) - t959)
         .max(T::from_f64(5.0) + t962)
         .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t965));
     let t973 = t959 + t972;
     let t974 = t972 - t962;
-    let t976 = t965 + T::from_f64(1.5000000000000002) * t972;
-    let t977 = t143 * T::from_f64(0.0007500000000000001) + t973;
-    let t978 = t147 * T::from_f64(0.0007500000000000001) + t974;
+    let t976 = Real::mul_add(T::from_f64(1.5000000000000002), t972, t965);
+    let t977 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t973);
+    let t978 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t974);
     let t979 = T::from_f64(0.9860132971832694) * t977;
     let t980 = T::from_f64(0.16666666666666652) * t977;
-    let t983 = c78 * t979 + s77 * t980;
+    let t983 = Real::mul_add(s77, t980, c78 * t979);
     let t984 = s77 * t979;
     let t985 = c78 * t980;
     let t986 = t984 - t985;
-    let t989 = t244 * t986 + t248 * t983;
-    let t992 = c76 * t979 - s75 * t980;
-    let t995 = s75 * t979 + c76 * t980;
-    let t1007 = (T::from_f64(0.004999999999999996) * c76
-        + s75 * T::from_f64(0.02958039891549808)) * t995
-        - (T::from_f64(0.004999999999999996) * s75
-            - c76 * T::from_f64(0.02958039891549808)) * t992
-        - (t973 * T::from_f64(0.002885572782373361)
-            + t973 * T::from_f64(0.027114427217626635));
+    let t989 = Real::mul_add(t248, t983, t244 * t986);
+    let t992 = Real::mul_add(-s75, t980, c76 * t979);
+    let t995 = Real::mul_add(c76, t980, s75 * t979);
+    let t1007 = Real::mul_add(
+        -Real::mul_add(
+            T::from_f64(0.004999999999999996),
+            s75,
+            -(c76 * T::from_f64(0.02958039891549808)),
+        ),
+        t992,
+        Real::mul_add(
+            T::from_f64(0.004999999999999996),
+            c76,
+            s75 * T::from_f64(0.02958039891549808),
+        ) * t995,
+    )
+        - Real::mul_add(
+            t973,
+            T::from_f64(0.027114427217626635),
+            t973 * T::from_f64(0.002885572782373361),
+        );
     let t1008 = T::from_f64(0.9994442900376633) * t978;
     let t1009 = T::from_f64(0.03333333333333337) * t978;
-    let t1012 = c78 * t1008 + s77 * t1009;
+    let t1012 = Real::mul_add(s77, t1009, c78 * t1008);
     let t1013 = s77 * t1008;
     let t1014 = c78 * t1009;
     let t1015 = t1013 - t1014;
     let t1016 = t292 * t1015;
     let t1017 = t297 * t1012;
-    let t1021 = c76 * t1008 - s75 * t1009;
-    let t1024 = s75 * t1008 + c76 * t1009;
-    let t1035 = (T::from_f64(0.0010000000000000009) * c76
-        + s75 * T::from_f64(0.029983328701129897)) * t1024
-        - (T::from_f64(0.0010000000000000009) * s75
-            - c76 * T::from_f64(0.029983328701129897)) * t1021
-        - (t974 * T::from_f64(0.0001889834306443847)
-            + t974 * T::from_f64(0.029811016569355614));
+    let t1021 = Real::mul_add(-s75, t1009, c76 * t1008);
+    let t1024 = Real::mul_add(c76, t1009, s75 * t1008);
+    let t1035 = Real::mul_add(
+        -Real::mul_add(
+            T::from_f64(0.0010000000000000009),
+            s75,
+            -(c76 * T::from_f64(0.029983328701129897)),
+        ),
+        t1021,
+        Real::mul_add(
+            T::from_f64(0.0010000000000000009),
+            c76,
+            s75 * T::from_f64(0.029983328701129897),
+        ) * t1024,
+    )
+        - Real::mul_add(
+            t974,
+            T::from_f64(0.029811016569355614),
+            t974 * T::from_f64(0.0001889834306443847),
+        );
     let t1036 = T::from_f64(0.9733466865996102) * t976;
     let t1037 = T::from_f64(0.22933867463984403) * t976;
     let t1038 = c76 * t1036;
     let t1039 = s75 * t1037;
     let t1040 = t1039 - t1038;
-    let t1043 = s75 * t1036 + c76 * t1037;
-    let t1044 = (T::from_f64(0.009173546985593762) * c76
-        + T::from_f64(0.03893386746398441) * s75) * t1043;
-    let t1045 = (T::from_f64(0.03893386746398441) * c76
-        - T::from_f64(0.009173546985593762) * s75) * t1040;
-    let t1047 = T::from_f64(0.9968453000901664) * t974 - t1021;
-    let t1048 = T::from_f64(0.0793690600180332) * t974 - t1024;
+    let t1043 = Real::mul_add(c76, t1037, s75 * t1036);
+    let t1044 = Real::mul_add(
+        T::from_f64(0.03893386746398441),
+        s75,
+        T::from_f64(0.009173546985593762) * c76,
+    ) * t1043;
+    let t1045 = Real::mul_add(
+        T::from_f64(0.03893386746398441),
+        c76,
+        -(T::from_f64(0.009173546985593762) * s75),
+    ) * t1040;
+    let t1047 = Real::mul_add(T::from_f64(0.9968453000901664), t974, -t1021);
+    let t1048 = Real::mul_add(T::from_f64(0.0793690600180332), t974, -t1024);
     let t1049 = T::from_f64(0.0000225) * t147 - t1035;
-    let t1050 = T::from_f64(0.9506914539363203) * t973 - t992;
-    let t1051 = -(t995 + T::from_f64(0.31013829078726374) * t973);
+    let t1050 = Real::mul_add(T::from_f64(0.9506914539363203), t973, -t992);
+    let t1051 = -Real::mul_add(T::from_f64(0.31013829078726374), t973, t995);
     let t1052 = T::from_f64(0.0000225) * t143 - t1007;
     let t1053 = t1038 - t1039;
     let t1054 = -t1043;
@@ -342,20 +516,28 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t1065 = -t989;
     let t1074 = t879 + (t983 + t1012);
     let t1075 = t880 - (t986 + t1015);
-    let t1076 = T::from_f64(0.01) * t986 - T::from_f64(0.01) * t1015;
+    let t1076 = Real::mul_add(-T::from_f64(0.01), t1015, T::from_f64(0.01) * t986);
     let t1080 = T::from_f64(0.9810000000000001)
-        - (T::from_f64(0.01) * t1012 - T::from_f64(0.01) * t983)
+        - Real::mul_add(-T::from_f64(0.01), t983, T::from_f64(0.01) * t1012)
         - T::from_f64(1.9620000000000002);
-    let t1081 = t882
-        - (t1016 - t1017 - T::from_f64(0.25) * t1015 + (t989 - T::from_f64(0.25) * t986))
-        + T::from_f64(0.25) * t1075;
-    let t1090 = c78 * t1076 - s77 * t1080;
-    let t1097 = T::from_f64(1.2) * (T::from_f64(0.15) * t860 - t861)
-        - (t1040 + (s77 * t1075 - c78 * t1074));
-    let t1098 = t94 - (t1043 - (s77 * t1074 + c78 * t1075));
-    let t1102 = T::from_f64(1.7658) + (s77 * t1076 + c78 * t1080) - T::from_f64(5.886);
-    let t1103 = t867 - (t1044 - t1045 - T::from_f64(0.3) * t1043 - t1081)
-        + T::from_f64(0.3) * t1098;
+    let t1081 = Real::mul_add(
+        T::from_f64(0.25),
+        t1075,
+        t882
+            - (Real::mul_add(-T::from_f64(0.25), t1015, t1016 - t1017)
+                + Real::mul_add(-T::from_f64(0.25), t986, t989)),
+    );
+    let t1090 = Real::mul_add(-s77, t1080, c78 * t1076);
+    let t1097 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - (t1040 + Real::mul_add(-c78, t1074, s77 * t1075));
+    let t1098 = t94 - (t1043 - Real::mul_add(c78, t1075, s77 * t1074));
+    let t1102 = T::from_f64(1.7658) + Real::mul_add(c78, t1080, s77 * t1076)
+        - T::from_f64(5.886);
+    let t1103 = Real::mul_add(
+        T::from_f64(0.3),
+        t1098,
+        t867 - (Real::mul_add(-T::from_f64(0.3), t1043, t1044 - t1045) - t1081),
+    );
     [
         [[t1097, t1098, T::from_f64(19.62)], [t1090, t1102, t1103]],
         [[t1074, t1075, T::from_f64(7.848000000000001)], [t1076, t1080, t1081]],
@@ -395,7 +577,7 @@ pub fn base_reaction<T: Real>(
     let t182 = T::from_f64(1.7658) - c78 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t197 = c76 * t168 - s75 * t182;
-    let t200 = s75 * t168 + c76 * t182;
+    let t200 = Real::mul_add(c76, t182, s75 * t168);
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t873 = t104 * t104;
@@ -405,16 +587,23 @@ pub fn base_reaction<T: Real>(
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
     let t880 = T::from_f64(0.8) * t876;
-    let t891 = T::from_f64(1.2) * (T::from_f64(0.15) * t860 - t861)
-        - (s77 * t880 - c78 * t879);
-    let t892 = T::from_f64(1.2) * t87 + (s77 * t879 + c78 * t880);
-    let t898 = c76 * t891 - s75 * t892;
-    let t901 = s75 * t891 + c76 * t892;
+    let t891 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - Real::mul_add(-c78, t879, s77 * t880);
+    let t892 = T::from_f64(1.2) * t87 + Real::mul_add(c78, t880, s77 * t879);
+    let t898 = Real::mul_add(-s75, t892, c76 * t891);
+    let t901 = Real::mul_add(c76, t892, s75 * t891);
     let t902 = T::from_f64(0.0000225) * (qdd[0] - t141)
         + T::from_f64(0.0000225) * (qdd[0] + t141)
-        + (T::from_f64(0.009) * qdd[0] - t87 * T::from_f64(0.18)
-            + (T::from_f64(0.0041667) * t105 - T::from_f64(0.1) * t876
-                + T::from_f64(0.2) * t876) + T::from_f64(0.3) * t892);
+        + Real::mul_add(
+            T::from_f64(0.3),
+            t892,
+            Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
+                + Real::mul_add(
+                    T::from_f64(0.2),
+                    t876,
+                    Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105),
+                ),
+        );
     [[[t898, t901, T::from_f64(20.601000000000003)], [t197, t200, t902]]]
 }
 /// Every requested output of [`all`].
@@ -465,13 +654,22 @@ pub fn all<T: Real>(
     let t182 = T::from_f64(1.7658) - c78 * T::from_f64(0.9810000000000001)
         - T::from_f64(5.886);
     let t197 = c76 * t168 - s75 * t182;
-    let t200 = s75 * t168 + c76 * t182;
-    let t244 = T::from_f64(0.019720265943665386) * s77
-        - c78 * T::from_f64(0.0033333333333333305);
-    let t248 = s77 * T::from_f64(0.0033333333333333305)
-        + T::from_f64(0.019720265943665386) * c78;
-    let t292 = T::from_f64(0.0006666666666666674) * c78
-        - s77 * T::from_f64(0.019988885800753267);
+    let t200 = Real::mul_add(c76, t182, s75 * t168);
+    let t244 = Real::mul_add(
+        T::from_f64(0.019720265943665386),
+        s77,
+        -(c78 * T::from_f64(0.0033333333333333305)),
+    );
+    let t248 = Real::mul_add(
+        T::from_f64(0.019720265943665386),
+        c78,
+        s77 * T::from_f64(0.0033333333333333305),
+    );
+    let t292 = Real::mul_add(
+        T::from_f64(0.0006666666666666674),
+        c78,
+        -(s77 * T::from_f64(0.019988885800753267)),
+    );
     let t297 = T::from_f64(0.0006666666666666674) * s77
         + c78 * T::from_f64(0.019988885800753267);
     let t759 = T::from_f64(-0.18) + T::from_f64(0.1) * c78;
@@ -480,8 +678,8 @@ pub fn all<T: Real>(
             + T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6))));
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
-    let t864 = T::from_f64(1.2) * (T::from_f64(0.15) * t860 - t861);
-    let t867 = T::from_f64(0.009) * qdd[0] - t87 * T::from_f64(0.18);
+    let t864 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861);
+    let t867 = Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t868 = c78 * t861;
     let t870 = s77 * t861;
     let t873 = t104 * t104;
@@ -490,93 +688,149 @@ pub fn all<T: Real>(
     let t877 = T::from_f64(0.125) * t873;
     let t879 = T::from_f64(0.8) * (s77 * t80 - t868 - t874 + t877);
     let t880 = T::from_f64(0.8) * t876;
-    let t882 = T::from_f64(0.0041667) * t105 - T::from_f64(0.1) * t876;
-    let t884 = t882 + T::from_f64(0.2) * t876;
-    let t891 = t864 - (s77 * t880 - c78 * t879);
-    let t892 = t94 + (s77 * t879 + c78 * t880);
-    let t895 = t867 + t884 + T::from_f64(0.3) * t892;
-    let t898 = c76 * t891 - s75 * t892;
-    let t901 = s75 * t891 + c76 * t892;
+    let t882 = Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105);
+    let t884 = Real::mul_add(T::from_f64(0.2), t876, t882);
+    let t891 = t864 - Real::mul_add(-c78, t879, s77 * t880);
+    let t892 = t94 + Real::mul_add(c78, t880, s77 * t879);
+    let t895 = Real::mul_add(T::from_f64(0.3), t892, t867 + t884);
+    let t898 = Real::mul_add(-s75, t892, c76 * t891);
+    let t901 = Real::mul_add(c76, t892, s75 * t891);
     let t902 = t145 + t149 + t895;
     let t906 = t149 + (t145 + t895);
-    let t908 = t884 - t143 * T::from_f64(0.000015000000000000002)
-        + t147 * T::from_f64(0.000015000000000000002);
+    let t908 = Real::mul_add(
+        t147,
+        T::from_f64(0.000015000000000000002),
+        Real::mul_add(-t143, T::from_f64(0.000015000000000000002), t884),
+    );
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
-    let t918 = c78 * t913 + s77 * t915;
-    let t921 = s77 * t913 - c78 * t915;
+    let t918 = Real::mul_add(s77, t915, c78 * t913);
+    let t921 = Real::mul_add(-c78, t915, s77 * t913);
     let t926 = t147 * T::from_f64(0.0007495832175282476);
     let t928 = t147 * T::from_f64(0.000025000000000000028);
-    let t931 = c78 * t926 + s77 * t928;
-    let t934 = s77 * t926 - c78 * t928;
+    let t931 = Real::mul_add(s77, t928, c78 * t926);
+    let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t946 = t880 - (t921 + t934);
-    let t949 = t882
-        - (t292 * t934 - t297 * t931 - T::from_f64(0.25) * t934
-            + (t244 * t921 + t248 * t918 - T::from_f64(0.25) * t921))
-        + T::from_f64(0.25) * t946;
-    let t956 = t867 + t949
-        + T::from_f64(0.3) * (t94 + (s77 * (t879 + (t918 + t931)) + c78 * t946));
-    let t959 = T::from_f64(24.999999999999975) * t949
-        - T::from_f64(8.823529411764707) * t956;
-    let t962 = T::from_f64(8.823529411764705) * t956
-        + T::from_f64(24.999999999999993) * t949;
-    let t965 = T::from_f64(11.764705882352942) * t956
-        + T::from_f64(0.000000000000002943923360032077) * t949;
+    let t949 = Real::mul_add(
+        T::from_f64(0.25),
+        t946,
+        t882
+            - (Real::mul_add(
+                -T::from_f64(0.25),
+                t934,
+                Real::mul_add(-t297, t931, t292 * t934),
+            )
+                + Real::mul_add(
+                    -T::from_f64(0.25),
+                    t921,
+                    Real::mul_add(t248, t918, t244 * t921),
+                )),
+    );
+    let t956 = Real::mul_add(
+        T::from_f64(0.3),
+        t94 + Real::mul_add(c78, t946, s77 * (t879 + (t918 + t931))),
+        t867 + t949,
+    );
+    let t959 = Real::mul_add(
+        -T::from_f64(8.823529411764707),
+        t956,
+        T::from_f64(24.999999999999975) * t949,
+    );
+    let t962 = Real::mul_add(
+        T::from_f64(24.999999999999993),
+        t949,
+        T::from_f64(8.823529411764705) * t956,
+    );
+    let t965 = Real::mul_add(
+        T::from_f64(0.000000000000002943923360032077),
+        t949,
+        T::from_f64(11.764705882352942) * t956,
+    );
     let t972 = T::from_f64(0.0)
         .max(T::from_f64(5.0) - t959)
         .max(T::from_f64(5.0) + t962)
         .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t965));
     let t973 = t959 + t972;
     let t974 = t972 - t962;
-    let t976 = t965 + T::from_f64(1.5000000000000002) * t972;
-    let t977 = t143 * T::from_f64(0.0007500000000000001) + t973;
-    let t978 = t147 * T::from_f64(0.0007500000000000001) + t974;
+    let t976 = Real::mul_add(T::from_f64(1.5000000000000002), t972, t965);
+    let t977 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t973);
+    let t978 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t974);
     let t979 = T::from_f64(0.9860132971832694) * t977;
     let t980 = T::from_f64(0.16666666666666652) * t977;
-    let t983 = c78 * t979 + s77 * t980;
+    let t983 = Real::mul_add(s77, t980, c78 * t979);
     let t984 = s77 * t979;
     let t985 = c78 * t980;
     let t986 = t984 - t985;
-    let t989 = t244 * t986 + t248 * t983;
-    let t992 = c76 * t979 - s75 * t980;
-    let t995 = s75 * t979 + c76 * t980;
-    let t1007 = (T::from_f64(0.004999999999999996) * c76
-        + s75 * T::from_f64(0.02958039891549808)) * t995
-        - (T::from_f64(0.004999999999999996) * s75
-            - c76 * T::from_f64(0.02958039891549808)) * t992
-        - (t973 * T::from_f64(0.002885572782373361)
-            + t973 * T::from_f64(0.027114427217626635));
+    let t989 = Real::mul_add(t248, t983, t244 * t986);
+    let t992 = Real::mul_add(-s75, t980, c76 * t979);
+    let t995 = Real::mul_add(c76, t980, s75 * t979);
+    let t1007 = Real::mul_add(
+        -Real::mul_add(
+            T::from_f64(0.004999999999999996),
+            s75,
+            -(c76 * T::from_f64(0.02958039891549808)),
+        ),
+        t992,
+        Real::mul_add(
+            T::from_f64(0.004999999999999996),
+            c76,
+            s75 * T::from_f64(0.02958039891549808),
+        ) * t995,
+    )
+        - Real::mul_add(
+            t973,
+            T::from_f64(0.027114427217626635),
+            t973 * T::from_f64(0.002885572782373361),
+        );
     let t1008 = T::from_f64(0.9994442900376633) * t978;
     let t1009 = T::from_f64(0.03333333333333337) * t978;
-    let t1012 = c78 * t1008 + s77 * t1009;
+    let t1012 = Real::mul_add(s77, t1009, c78 * t1008);
     let t1013 = s77 * t1008;
     let t1014 = c78 * t1009;
     let t1015 = t1013 - t1014;
     let t1016 = t292 * t1015;
     let t1017 = t297 * t1012;
-    let t1021 = c76 * t1008 - s75 * t1009;
-    let t1024 = s75 * t1008 + c76 * t1009;
-    let t1035 = (T::from_f64(0.0010000000000000009) * c76
-        + s75 * T::from_f64(0.029983328701129897)) * t1024
-        - (T::from_f64(0.0010000000000000009) * s75
-            - c76 * T::from_f64(0.029983328701129897)) * t1021
-        - (t974 * T::from_f64(0.0001889834306443847)
-            + t974 * T::from_f64(0.029811016569355614));
+    let t1021 = Real::mul_add(-s75, t1009, c76 * t1008);
+    let t1024 = Real::mul_add(c76, t1009, s75 * t1008);
+    let t1035 = Real::mul_add(
+        -Real::mul_add(
+            T::from_f64(0.0010000000000000009),
+            s75,
+            -(c76 * T::from_f64(0.029983328701129897)),
+        ),
+        t1021,
+        Real::mul_add(
+            T::from_f64(0.0010000000000000009),
+            c76,
+            s75 * T::from_f64(0.029983328701129897),
+        ) * t1024,
+    )
+        - Real::mul_add(
+            t974,
+            T::from_f64(0.029811016569355614),
+            t974 * T::from_f64(0.0001889834306443847),
+        );
     let t1036 = T::from_f64(0.9733466865996102) * t976;
     let t1037 = T::from_f64(0.22933867463984403) * t976;
     let t1038 = c76 * t1036;
     let t1039 = s75 * t1037;
     let t1040 = t1039 - t1038;
-    let t1043 = s75 * t1036 + c76 * t1037;
-    let t1044 = (T::from_f64(0.009173546985593762) * c76
-        + T::from_f64(0.03893386746398441) * s75) * t1043;
-    let t1045 = (T::from_f64(0.03893386746398441) * c76
-        - T::from_f64(0.009173546985593762) * s75) * t1040;
-    let t1047 = T::from_f64(0.9968453000901664) * t974 - t1021;
-    let t1048 = T::from_f64(0.0793690600180332) * t974 - t1024;
+    let t1043 = Real::mul_add(c76, t1037, s75 * t1036);
+    let t1044 = Real::mul_add(
+        T::from_f64(0.03893386746398441),
+        s75,
+        T::from_f64(0.009173546985593762) * c76,
+    ) * t1043;
+    let t1045 = Real::mul_add(
+        T::from_f64(0.03893386746398441),
+        c76,
+        -(T::from_f64(0.009173546985593762) * s75),
+    ) * t1040;
+    let t1047 = Real::mul_add(T::from_f64(0.9968453000901664), t974, -t1021);
+    let t1048 = Real::mul_add(T::from_f64(0.0793690600180332), t974, -t1024);
     let t1049 = t149 - t1035;
-    let t1050 = T::from_f64(0.9506914539363203) * t973 - t992;
-    let t1051 = -(t995 + T::from_f64(0.31013829078726374) * t973);
+    let t1050 = Real::mul_add(T::from_f64(0.9506914539363203), t973, -t992);
+    let t1051 = -Real::mul_add(T::from_f64(0.31013829078726374), t973, t995);
     let t1052 = t145 - t1007;
     let t1053 = t1038 - t1039;
     let t1054 = -t1043;
@@ -587,33 +841,52 @@ pub fn all<T: Real>(
     let t1065 = -t989;
     let t1074 = t879 + (t983 + t1012);
     let t1075 = t880 - (t986 + t1015);
-    let t1076 = T::from_f64(0.01) * t986 - T::from_f64(0.01) * t1015;
+    let t1076 = Real::mul_add(-T::from_f64(0.01), t1015, T::from_f64(0.01) * t986);
     let t1080 = T::from_f64(0.9810000000000001)
-        - (T::from_f64(0.01) * t1012 - T::from_f64(0.01) * t983)
+        - Real::mul_add(-T::from_f64(0.01), t983, T::from_f64(0.01) * t1012)
         - T::from_f64(1.9620000000000002);
-    let t1081 = t882
-        - (t1016 - t1017 - T::from_f64(0.25) * t1015 + (t989 - T::from_f64(0.25) * t986))
-        + T::from_f64(0.25) * t1075;
-    let t1090 = c78 * t1076 - s77 * t1080;
-    let t1097 = t864 - (t1040 + (s77 * t1075 - c78 * t1074));
-    let t1098 = t94 - (t1043 - (s77 * t1074 + c78 * t1075));
-    let t1102 = T::from_f64(1.7658) + (s77 * t1076 + c78 * t1080) - T::from_f64(5.886);
-    let t1103 = t867 - (t1044 - t1045 - T::from_f64(0.3) * t1043 - t1081)
-        + T::from_f64(0.3) * t1098;
-    let t1105 = T::from_f64(0.0166667) + c78 * T::from_f64(0.03);
-    let t1112 = T::from_f64(0.2) * t870 - T::from_f64(0.1) * t870;
-    let t1118 = t1112
-        + T::from_f64(0.3)
-            * (T::from_f64(0.8) * (s77 * (t877 - (t868 + t874)))
-                + c78 * (T::from_f64(0.8) * t870));
+    let t1081 = Real::mul_add(
+        T::from_f64(0.25),
+        t1075,
+        t882
+            - (Real::mul_add(-T::from_f64(0.25), t1015, t1016 - t1017)
+                + Real::mul_add(-T::from_f64(0.25), t986, t989)),
+    );
+    let t1090 = Real::mul_add(-s77, t1080, c78 * t1076);
+    let t1097 = t864 - (t1040 + Real::mul_add(-c78, t1074, s77 * t1075));
+    let t1098 = t94 - (t1043 - Real::mul_add(c78, t1075, s77 * t1074));
+    let t1102 = T::from_f64(1.7658) + Real::mul_add(c78, t1080, s77 * t1076)
+        - T::from_f64(5.886);
+    let t1103 = Real::mul_add(
+        T::from_f64(0.3),
+        t1098,
+        t867 - (Real::mul_add(-T::from_f64(0.3), t1043, t1044 - t1045) - t1081),
+    );
+    let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1112 = Real::mul_add(-T::from_f64(0.1), t870, T::from_f64(0.2) * t870);
+    let t1118 = Real::mul_add(
+        T::from_f64(0.3),
+        Real::mul_add(
+            c78,
+            T::from_f64(0.8) * t870,
+            T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
+        ),
+        t1112,
+    );
     let t1119 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
             + tendon_tensions[1] * T::from_f64(0.03)) - t1118;
     let t1121 = t1105 / t777;
-    let t1128 = (T::from_f64(0.02) * tendon_tensions[0]
-        - T::from_f64(0.02) * tendon_tensions[1] - t1112 - t1119 * t1121)
-        / (T::from_f64(0.0166867) - t777 * (t1121 * t1121));
-    let t1130 = t1119 / t777 - t1121 * t1128;
+    let t1128 = Real::mul_add(
+        -t1119,
+        t1121,
+        Real::mul_add(
+            T::from_f64(0.02),
+            tendon_tensions[0],
+            -(T::from_f64(0.02) * tendon_tensions[1]),
+        ) - t1112,
+    ) / Real::mul_add(-t777, t1121 * t1121, T::from_f64(0.0166867));
+    let t1130 = Real::mul_add(-t1121, t1128, t1119 / t777);
     Outputs {
         generalized_forces: [t906, t908],
         actuation: tendyn_core::distribution::Actuation::exact([], [t973, t974, t976]),

@@ -49,6 +49,14 @@ pub trait Real:
     /// `e^self`: the capstan law of a guide, `T_high = T_low e^{μβ}`.
     fn exp(self) -> Self;
 
+    /// `self · a + b`: how generated code writes a product added to a sum. A primitive
+    /// float rounds it once (a fused multiply-add instruction) where the target has one
+    /// (`target_feature = "fma"`, with `std`); every other scalar, and every other target,
+    /// computes `self * a + b` as written, so without FMA generated code rounds exactly as
+    /// its unfused form.
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
     /// `0`.
     fn zero() -> Self {
         Self::from_f64(0.0)
@@ -171,6 +179,19 @@ macro_rules! primitive_real {
             }
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
+            }
+            // Without the instruction, `<$t>::mul_add` is a slow software routine: fused
+            // only where the target has it (see the trait's documentation).
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                #[cfg(all(feature = "std", target_feature = "fma"))]
+                {
+                    <$t>::mul_add(self, a, b)
+                }
+                #[cfg(not(all(feature = "std", target_feature = "fma")))]
+                {
+                    self * a + b
+                }
             }
             fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
                 if self > band {

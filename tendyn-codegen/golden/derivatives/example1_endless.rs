@@ -26,10 +26,20 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
     let (s56, c57) = q[1].sin_cos();
     let t657 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
     let t664 = T::from_f64(0.03) * s56;
-    let t673 = qdd[0] * (c57 * T::from_f64(0.06) + T::from_f64(0.1247117))
-        + (qdd[1] * t657 - qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664));
-    let t679 = qdd[0] * t657
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t664));
+    let t673 = Real::mul_add(
+        qdd[0],
+        c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
+        Real::mul_add(
+            qdd[1],
+            t657,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664)),
+        ),
+    );
+    let t679 = Real::mul_add(
+        qdd[0],
+        t657,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t664)),
+    );
     [t673, t679]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
@@ -51,13 +61,19 @@ pub fn generalized_forces_derivatives<T: Real>(
     let t660 = s56 * T::from_f64(0.06);
     let t662 = qd[0] * t660;
     let t664 = T::from_f64(0.03) * s56;
-    let t673 = qdd[0] * (t652 + T::from_f64(0.1247117))
-        + (qdd[1] * t657 - qd[1] * (t662 + qd[1] * t664));
-    let t679 = qdd[0] * t657
-        + (qdd[1] * T::from_f64(0.0166867) + qd[0] * (qd[0] * t664));
+    let t673 = Real::mul_add(
+        qdd[0],
+        t652 + T::from_f64(0.1247117),
+        Real::mul_add(qdd[1], t657, -(qd[1] * (t662 + qd[1] * t664))),
+    );
+    let t679 = Real::mul_add(
+        qdd[0],
+        t657,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t664)),
+    );
     let t697 = -(qdd[0] * t660
         + (qdd[1] * t664 + qd[1] * (qd[0] * t652 + qd[1] * t577)));
-    let t702 = qd[0] * (qd[0] * t577) - qdd[0] * t664;
+    let t702 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t664));
     let t703 = qd[1] * t660;
     let t704 = -t703;
     let t706 = -(t662 + t703);
@@ -86,10 +102,12 @@ pub fn forward_dynamics<T: Real>(
     let t707 = motor_torques[0] + motor_torques[1]
         + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664);
     let t711 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t654;
-    let t824 = (T::from_f64(0.6666666666666667) * motor_torques[1]
-        - qd[0] * (qd[0] * t664) - t707 * t711)
-        / (T::from_f64(0.0166867) - t654 * (t711 * t711));
-    let t826 = t707 / t654 - t711 * t824;
+    let t824 = Real::mul_add(
+        -t707,
+        t711,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t664),
+    ) / Real::mul_add(-t654, t711 * t711, T::from_f64(0.0166867));
+    let t826 = Real::mul_add(-t711, t824, t707 / t654);
     [t826, t824]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
@@ -121,14 +139,24 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t717 = qd[1] * t715;
     let t723 = T::from_f64(0.03) * t711;
     let t733 = T::from_f64(0.6666666666666667) - t711;
-    let t744 = T::from_f64(0.0166867) + t711 * (t711 * (T::from_f64(-0.1247117) - t652));
-    let t745 = (motor_torques[1] * t733 - motor_torques[0] * t711
+    let t744 = Real::mul_add(
+        t711,
+        t711 * (T::from_f64(-0.1247117) - t652),
+        T::from_f64(0.0166867),
+    );
+    let t745 = (Real::mul_add(motor_torques[1], t733, -(motor_torques[0] * t711))
         - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (qd[0] * t664 + t717)) / t744;
     let t749 = t708 - t711 * t745;
     let t752 = T::from_f64(0.06) * t708;
-    let t781 = s56
-        * (t711 * (t745 * (T::from_f64(-0.06) + t713) - t752) + T::from_f64(0.03) * t708)
-        - qd[1] * (qd[1] * (c57 * t723)) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t713));
+    let t781 = Real::mul_add(
+        s56,
+        Real::mul_add(
+            T::from_f64(0.03),
+            t708,
+            t711 * Real::mul_add(t745, T::from_f64(-0.06) + t713, -t752),
+        ),
+        -(qd[1] * (qd[1] * (c57 * t723))),
+    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t713));
     let t782 = t781 / t744;
     let t787 = (t662 + t717) / t744;
     let t788 = -t787;
@@ -137,11 +165,14 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t797 = T::from_f64(1.0) / t654;
     let t798 = t711 / t744;
     let t799 = t733 / t744;
-    let t805 = -((s56 * (t745 * (T::from_f64(-0.03) + t713) - t752)
-        - qd[1] * (qd[0] * t652 + qd[1] * t577)) / t654 + t711 * t782);
-    let t807 = t703 / t654 + t711 * t787;
-    let t809 = (t662 + t703) / t654 + t711 * t795;
-    let t811 = t797 + t711 * t798;
+    let t805 = -(Real::mul_add(
+        s56,
+        Real::mul_add(t745, T::from_f64(-0.03) + t713, -t752),
+        -(qd[1] * (qd[0] * t652 + qd[1] * t577)),
+    ) / t654 + t711 * t782);
+    let t807 = Real::mul_add(t711, t787, t703 / t654);
+    let t809 = Real::mul_add(t711, t795, (t662 + t703) / t654);
+    let t811 = Real::mul_add(t711, t798, t797);
     let t815 = t797 - t711 * t799;
     let t816 = -t798;
     tendyn_core::dual::ForwardJacobians {
@@ -189,14 +220,18 @@ pub fn all<T: Real>(
     let t662 = qd[0] * t660;
     let t664 = T::from_f64(0.03) * s56;
     let t670 = qd[1] * (t662 + qd[1] * t664);
-    let t673 = qdd[0] * t654 + (qdd[1] * t657 - t670);
+    let t673 = Real::mul_add(qdd[0], t654, Real::mul_add(qdd[1], t657, -t670));
     let t676 = qd[0] * t664;
     let t677 = qd[0] * t676;
-    let t679 = qdd[0] * t657 + (qdd[1] * T::from_f64(0.0166867) + t677);
+    let t679 = Real::mul_add(
+        qdd[0],
+        t657,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), t677),
+    );
     let t692 = qd[1] * (qd[0] * t652 + qd[1] * t577);
     let t697 = -(qdd[0] * t660 + (qdd[1] * t664 + t692));
     let t700 = qd[0] * t577;
-    let t702 = qd[0] * t700 - qdd[0] * t664;
+    let t702 = Real::mul_add(qd[0], t700, -(qdd[0] * t664));
     let t703 = qd[1] * t660;
     let t704 = -t703;
     let t705 = t662 + t703;
@@ -209,14 +244,24 @@ pub fn all<T: Real>(
     let t717 = qd[1] * t715;
     let t723 = T::from_f64(0.03) * t711;
     let t733 = T::from_f64(0.6666666666666667) - t711;
-    let t744 = T::from_f64(0.0166867) + t711 * (t711 * (T::from_f64(-0.1247117) - t652));
-    let t745 = (motor_torques[1] * t733 - motor_torques[0] * t711
+    let t744 = Real::mul_add(
+        t711,
+        t711 * (T::from_f64(-0.1247117) - t652),
+        T::from_f64(0.0166867),
+    );
+    let t745 = (Real::mul_add(motor_torques[1], t733, -(motor_torques[0] * t711))
         - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (t676 + t717)) / t744;
     let t749 = t708 - t711 * t745;
     let t752 = T::from_f64(0.06) * t708;
-    let t781 = s56
-        * (t711 * (t745 * (T::from_f64(-0.06) + t713) - t752) + T::from_f64(0.03) * t708)
-        - qd[1] * (qd[1] * (c57 * t723)) - qd[0] * (t700 + qd[1] * (c57 * t713));
+    let t781 = Real::mul_add(
+        s56,
+        Real::mul_add(
+            T::from_f64(0.03),
+            t708,
+            t711 * Real::mul_add(t745, T::from_f64(-0.06) + t713, -t752),
+        ),
+        -(qd[1] * (qd[1] * (c57 * t723))),
+    ) - qd[0] * (t700 + qd[1] * (c57 * t713));
     let t782 = t781 / t744;
     let t787 = (t662 + t717) / t744;
     let t788 = -t787;
@@ -225,16 +270,22 @@ pub fn all<T: Real>(
     let t797 = T::from_f64(1.0) / t654;
     let t798 = t711 / t744;
     let t799 = t733 / t744;
-    let t805 = -((s56 * (t745 * (T::from_f64(-0.03) + t713) - t752) - t692) / t654
-        + t711 * t782);
-    let t807 = t703 / t654 + t711 * t787;
-    let t809 = t705 / t654 + t711 * t795;
-    let t811 = t797 + t711 * t798;
+    let t805 = -(Real::mul_add(
+        s56,
+        Real::mul_add(t745, T::from_f64(-0.03) + t713, -t752),
+        -t692,
+    ) / t654 + t711 * t782);
+    let t807 = Real::mul_add(t711, t787, t703 / t654);
+    let t809 = Real::mul_add(t711, t795, t705 / t654);
+    let t811 = Real::mul_add(t711, t798, t797);
     let t815 = t797 - t711 * t799;
     let t816 = -t798;
-    let t824 = (T::from_f64(0.6666666666666667) * motor_torques[1] - t677 - t707 * t711)
-        / (T::from_f64(0.0166867) - t654 * (t711 * t711));
-    let t826 = t708 - t711 * t824;
+    let t824 = Real::mul_add(
+        -t707,
+        t711,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - t677,
+    ) / Real::mul_add(-t654, t711 * t711, T::from_f64(0.0166867));
+    let t826 = Real::mul_add(-t711, t824, t708);
     Outputs {
         generalized_forces: [t673, t679],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {

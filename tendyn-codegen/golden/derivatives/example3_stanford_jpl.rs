@@ -36,31 +36,62 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let t2921 = s114 * T::from_f64(0.0000208);
     let t2928 = c115 * T::from_f64(0.00004);
     let t2936 = c115 * T::from_f64(0.000009600000000000001);
-    let t2950 = s112
-        * (s114 * (c113 * t2919 + (s112 * t2921 + T::from_f64(-0.000009600000000000001)))
-            + s112 * (T::from_f64(-0.00008495) - t2928))
-        + (c113 * (t2936 + T::from_f64(0.000042000000000000004))
+    let t2950 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            s112,
+            T::from_f64(-0.00008495) - t2928,
+            s114
+                * Real::mul_add(
+                    c113,
+                    t2919,
+                    Real::mul_add(s112, t2921, T::from_f64(-0.000009600000000000001)),
+                ),
+        ),
+        c113 * (t2936 + T::from_f64(0.000042000000000000004))
             + (t2928 + T::from_f64(0.00009551400000000001)
-                - s114 * (s114 * T::from_f64(0.0000104))));
+                - s114 * (s114 * T::from_f64(0.0000104))),
+    );
     let t2958 = s114 * (s114 * T::from_f64(0.0000416));
     let t2967 = c115 * T::from_f64(0.0000416);
     let t2980 = s114 * (t2919 - c113 * T::from_f64(0.000009600000000000001));
     let t2982 = qd[1]
-        * (s112
-            * (c113 * (t2958 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)))
-                + (s112 * (s114 * (T::from_f64(0.00008) + t2967))
-                    + (T::from_f64(-0.000042000000000000004) - t2936))) + t2980);
+        * Real::mul_add(
+            s112,
+            Real::mul_add(
+                c113,
+                t2958 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                Real::mul_add(
+                    s112,
+                    s114 * (T::from_f64(0.00008) + t2967),
+                    T::from_f64(-0.000042000000000000004) - t2936,
+                ),
+            ),
+            t2980,
+        );
     let t2995 = qd[0]
-        * (t2982
-            + qd[2]
-                * (t2980
-                    + s112
-                        * (c113 * (t2958 + (T::from_f64(-0.0000208) - t2928))
-                            + (s112 * (s114 * (T::from_f64(0.00004) + t2967))
-                                - t2936))));
-    let t2998 = qdd[0] * t2950
-        + (qdd[1] * T::from_f64(0.000000021000000000000006)
-            + (qdd[2] * T::from_f64(0.000000024000000000000006) + t2995));
+        * Real::mul_add(
+            qd[2],
+            Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    t2958 + (T::from_f64(-0.0000208) - t2928),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t2967), -t2936),
+                ),
+                t2980,
+            ),
+            t2982,
+        );
+    let t2998 = Real::mul_add(
+        qdd[0],
+        t2950,
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(0.000000021000000000000006),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t2995),
+        ),
+    );
     let t3003 = t2580 + T::from_f64(0.000011224000000000001);
     let t3007 = s114 * t2921;
     let t3016 = c115 * T::from_f64(0.000004800000000000001);
@@ -69,26 +100,57 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
     let t3043 = c115 * T::from_f64(0.003924);
     let t3050 = s112 * (s114 * T::from_f64(0.003924));
-    let t3054 = qd[0]
-        * (qd[0]
-            * (s112
-                * (c113 * (t2928 + T::from_f64(0.00008495) - t3007)
-                    + (s112 * (s114 * t2919)
-                        + (t3016 + T::from_f64(0.000021000000000000002)))) + t3026))
-        + (c113 * (t3043 + T::from_f64(0.017167500000000002)) - t3050
-            - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585));
-    let t3057 = qdd[1] * (t2928 + T::from_f64(0.000086946))
-        + (qdd[2] * t3003 + (qdd[0] * T::from_f64(0.000000021000000000000006) + t3054));
-    let t3079 = qd[0]
-        * (qd[0]
-            * (t3026
-                + s112
-                    * (c113 * (t2580 + T::from_f64(0.0000104) - t3007)
-                        + (t3016 + s112 * (s114 * (T::from_f64(-0.00002) - t2916))))))
-        + (qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050));
-    let t3082 = qdd[1] * t3003
-        + (qdd[0] * T::from_f64(0.000000024000000000000006)
-            + (qdd[2] * T::from_f64(0.000011256) + t3079));
+    let t3054 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    t2928 + T::from_f64(0.00008495) - t3007,
+                    Real::mul_add(
+                        s112,
+                        s114 * t2919,
+                        t3016 + T::from_f64(0.000021000000000000002),
+                    ),
+                ),
+                t3026,
+            ),
+        Real::mul_add(c113, t3043 + T::from_f64(0.017167500000000002), -t3050)
+            - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585),
+    );
+    let t3057 = Real::mul_add(
+        qdd[1],
+        t2928 + T::from_f64(0.000086946),
+        Real::mul_add(
+            qdd[2],
+            t3003,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3054),
+        ),
+    );
+    let t3079 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    t2580 + T::from_f64(0.0000104) - t3007,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t2916), t3016),
+                ),
+                t3026,
+            ),
+        qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050),
+    );
+    let t3082 = Real::mul_add(
+        qdd[1],
+        t3003,
+        Real::mul_add(
+            qdd[0],
+            T::from_f64(0.000000024000000000000006),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3079),
+        ),
+    );
     [t2998, t3057, t3082]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
@@ -113,12 +175,22 @@ pub fn generalized_forces_derivatives<T: Real>(
     let t2928 = c115 * T::from_f64(0.00004);
     let t2936 = c115 * T::from_f64(0.000009600000000000001);
     let t2938 = t2936 + T::from_f64(0.000042000000000000004);
-    let t2950 = s112
-        * (s114 * (c113 * t2919 + (s112 * t2921 + T::from_f64(-0.000009600000000000001)))
-            + s112 * (T::from_f64(-0.00008495) - t2928))
-        + (c113 * t2938
+    let t2950 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            s112,
+            T::from_f64(-0.00008495) - t2928,
+            s114
+                * Real::mul_add(
+                    c113,
+                    t2919,
+                    Real::mul_add(s112, t2921, T::from_f64(-0.000009600000000000001)),
+                ),
+        ),
+        c113 * t2938
             + (t2928 + T::from_f64(0.00009551400000000001)
-                - s114 * (s114 * T::from_f64(0.0000104))));
+                - s114 * (s114 * T::from_f64(0.0000104))),
+    );
     let t2957 = s114 * T::from_f64(0.0000416);
     let t2958 = s114 * t2957;
     let t2961 = c115 * T::from_f64(0.00008);
@@ -128,18 +200,35 @@ pub fn generalized_forces_derivatives<T: Real>(
     let t2973 = T::from_f64(-0.000042000000000000004) - t2936;
     let t2977 = c113 * T::from_f64(0.000009600000000000001);
     let t2980 = s114 * (t2919 - t2977);
-    let t2981 = s112
-        * (c113 * t2965 + (s112 * (s114 * (T::from_f64(0.00008) + t2967)) + t2973))
-        + t2980;
+    let t2981 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            c113,
+            t2965,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t2967), t2973),
+        ),
+        t2980,
+    );
     let t2983 = T::from_f64(-0.0000208) - t2928;
-    let t2992 = t2980
-        + s112
-            * (c113 * (t2958 + t2983)
-                + (s112 * (s114 * (T::from_f64(0.00004) + t2967)) - t2936));
-    let t2994 = qd[1] * t2981 + qd[2] * t2992;
-    let t2998 = qdd[0] * t2950
-        + (qdd[1] * T::from_f64(0.000000021000000000000006)
-            + (qdd[2] * T::from_f64(0.000000024000000000000006) + qd[0] * t2994));
+    let t2992 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            c113,
+            t2958 + t2983,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t2967), -t2936),
+        ),
+        t2980,
+    );
+    let t2994 = Real::mul_add(qd[2], t2992, qd[1] * t2981);
+    let t2998 = Real::mul_add(
+        qdd[0],
+        t2950,
+        Real::mul_add(
+            qdd[1],
+            T::from_f64(0.000000021000000000000006),
+            Real::mul_add(qd[0], t2994, qdd[2] * T::from_f64(0.000000024000000000000006)),
+        ),
+    );
     let t3003 = t2580 + T::from_f64(0.000011224000000000001);
     let t3007 = s114 * t2921;
     let t3011 = t2928 + T::from_f64(0.00008495) - t3007;
@@ -152,83 +241,163 @@ pub fn generalized_forces_derivatives<T: Real>(
     let t3043 = c115 * T::from_f64(0.003924);
     let t3048 = s114 * T::from_f64(0.003924);
     let t3050 = s112 * t3048;
-    let t3054 = qd[0]
-        * (qd[0] * (s112 * (c113 * t3011 + (s112 * (s114 * t2919) + t3018)) + t3026))
-        + (c113 * (t3043 + T::from_f64(0.017167500000000002)) - t3050
-            - qd[2] * (t3032 + qd[2] * t2585));
-    let t3057 = qdd[1] * (t2928 + T::from_f64(0.000086946))
-        + (qdd[2] * t3003 + (qdd[0] * T::from_f64(0.000000021000000000000006) + t3054));
-    let t3079 = qd[0]
-        * (qd[0]
-            * (t3026
-                + s112
-                    * (c113 * (t2580 + T::from_f64(0.0000104) - t3007)
-                        + (t3016 + s112 * (s114 * (T::from_f64(-0.00002) - t2916))))))
-        + (qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050));
-    let t3082 = qdd[1] * t3003
-        + (qdd[0] * T::from_f64(0.000000024000000000000006)
-            + (qdd[2] * T::from_f64(0.000011256) + t3079));
+    let t3054 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(c113, t3011, Real::mul_add(s112, s114 * t2919, t3018)),
+                t3026,
+            ),
+        Real::mul_add(c113, t3043 + T::from_f64(0.017167500000000002), -t3050)
+            - qd[2] * (t3032 + qd[2] * t2585),
+    );
+    let t3057 = Real::mul_add(
+        qdd[1],
+        t2928 + T::from_f64(0.000086946),
+        Real::mul_add(
+            qdd[2],
+            t3003,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3054),
+        ),
+    );
+    let t3079 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    t2580 + T::from_f64(0.0000104) - t3007,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t2916), t3016),
+                ),
+                t3026,
+            ),
+        qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050),
+    );
+    let t3082 = Real::mul_add(
+        qdd[1],
+        t3003,
+        Real::mul_add(
+            qdd[0],
+            T::from_f64(0.000000024000000000000006),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3079),
+        ),
+    );
     let t3085 = c115 * T::from_f64(0.0000832);
     let t3094 = T::from_f64(0.000009600000000000001)
         - s112 * (s114 * T::from_f64(0.0000832));
     let t3106 = qd[1]
-        * (s112
-            * (s114 * (c113 * (t3085 + T::from_f64(0.00016)) + t3094)
-                + s112 * (c115 * T::from_f64(0.00016) + T::from_f64(0.0003398)))
-            + (t2965 + c113 * t2973));
-    let t3118 = c115 * (T::from_f64(-0.00004) - t2977)
-        + (T::from_f64(-0.0000208) + t2958);
-    let t3119 = s112
-        * (s114 * (t3094 + c113 * (T::from_f64(0.00008) + t3085))
-            + s112 * (T::from_f64(0.0000416) + t2961)) + t3118;
-    let t3123 = qdd[0] * t2981 + qd[0] * (t3106 + qd[2] * t3119);
+        * Real::mul_add(
+            s112,
+            Real::mul_add(
+                s112,
+                c115 * T::from_f64(0.00016) + T::from_f64(0.0003398),
+                s114 * Real::mul_add(c113, t3085 + T::from_f64(0.00016), t3094),
+            ),
+            Real::mul_add(c113, t2973, t2965),
+        );
+    let t3118 = Real::mul_add(
+        c115,
+        T::from_f64(-0.00004) - t2977,
+        T::from_f64(-0.0000208) + t2958,
+    );
+    let t3119 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            s112,
+            T::from_f64(0.0000416) + t2961,
+            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3085, t3094),
+        ),
+        t3118,
+    );
+    let t3123 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3119, t3106), qdd[0] * t2981);
     let t3137 = qd[0]
-        * (qd[1] * t3119
-            + qd[2]
-                * (t3118
-                    + s112
-                        * (s114 * (t3094 + c113 * (T::from_f64(0.00004) + t3085))
-                            + s112 * (t2928 + T::from_f64(0.0000416)))));
-    let t3138 = qdd[0] * t2992 + t3137;
+        * Real::mul_add(
+            qd[2],
+            Real::mul_add(
+                s112,
+                Real::mul_add(
+                    s112,
+                    t2928 + T::from_f64(0.0000416),
+                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3085, t3094),
+                ),
+                t3118,
+            ),
+            qd[1] * t3119,
+        );
+    let t3138 = Real::mul_add(qdd[0], t2992, t3137);
     let t3141 = T::from_f64(-0.00008) - t2967;
-    let t3145 = s112 * t2957 + T::from_f64(-0.000004800000000000001);
+    let t3145 = Real::mul_add(s112, t2957, T::from_f64(-0.000004800000000000001));
     let t3160 = c113 * t3048;
-    let t3163 = qd[0]
-        * (qd[0]
-            * (s112 * (s114 * (c113 * t3141 + t3145) + s112 * t2964)
-                + (t3011 + c113 * t3018)))
-        + (s112 * (T::from_f64(-0.017167500000000002) - t3043) - t3160);
+    let t3163 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(s112, t2964, s114 * Real::mul_add(c113, t3141, t3145)),
+                Real::mul_add(c113, t3018, t3011),
+            ),
+        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3043, -t3160),
+    );
     let t3168 = T::from_f64(-0.00004) - t2967;
-    let t3178 = c115 * (T::from_f64(0.00002) + t3022) + (T::from_f64(0.0000104) - t3007);
+    let t3178 = Real::mul_add(
+        c115,
+        T::from_f64(0.00002) + t3022,
+        T::from_f64(0.0000104) - t3007,
+    );
     let t3181 = qd[0]
-        * (qd[0] * (s112 * (s114 * (t3145 + c113 * t3168) + s112 * t2983) + t3178));
+        * (qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(s112, t2983, s114 * Real::mul_add(c113, t3168, t3145)),
+                t3178,
+            ));
     let t3193 = t3160 + s112 * t3043;
     let t3199 = t3181 - (qd[2] * (qd[1] * t2928 + qd[2] * t2580) + t3193)
         - qdd[2] * t2585 - qdd[1] * t3030;
     let t3200 = t3181 - t3193;
-    let t3217 = qd[0]
-        * (qd[0]
-            * (t3178
-                + s112
-                    * (s114 * (t3145 + c113 * (T::from_f64(-0.00002) - t2967))
-                        + s112 * (T::from_f64(-0.0000208) - t2580))))
-        + (qd[1] * (qd[1] * t2580) - t3193);
+    let t3217 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    s112,
+                    T::from_f64(-0.0000208) - t2580,
+                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t2967, t3145),
+                ),
+                t3178,
+            ),
+        Real::mul_add(qd[1], qd[1] * t2580, -t3193),
+    );
     let t3218 = t3217 - qdd[1] * t2585;
     let t3219 = qd[0] * t2981;
     let t3220 = qd[0] * t2992;
     let t3234 = s114 * (t2977 + (t2916 + T::from_f64(0.00004)));
     let t3236 = qd[0]
-        * (s112
-            * (c113 * (t2961 + T::from_f64(0.0001699) - t2958)
-                + (t2938 + s112 * (s114 * t3141))) + t3234);
+        * Real::mul_add(
+            s112,
+            Real::mul_add(
+                c113,
+                t2961 + T::from_f64(0.0001699) - t2958,
+                Real::mul_add(s112, s114 * t3141, t2938),
+            ),
+            t3234,
+        );
     let t3237 = qd[2] * t3030;
     let t3238 = -t3237;
     let t3240 = -(t3032 + t3237);
     let t3250 = qd[0]
-        * (t3234
-            + s112
-                * (c113 * (T::from_f64(0.0000208) + t2928 - t2958)
-                    + (t2936 + s112 * (s114 * t3168))));
+        * Real::mul_add(
+            s112,
+            Real::mul_add(
+                c113,
+                T::from_f64(0.0000208) + t2928 - t2958,
+                Real::mul_add(s112, s114 * t3168, t2936),
+            ),
+            t3234,
+        );
     tendyn_core::dual::StateJacobians {
         value: [t2998, t3057, t3082],
         d_q: [
@@ -272,33 +441,58 @@ pub fn forward_dynamics<T: Real>(
     let t3232 = t2916 + T::from_f64(0.00004);
     let t3234 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3232);
     let t3251 = qd[1]
-        * (s112
-            * (c113 * (c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t2958)
-                + (t2936 + T::from_f64(0.000042000000000000004)
-                    + s112 * (s114 * (T::from_f64(-0.00008) - t2967)))) + t3234);
+        * Real::mul_add(
+            s112,
+            Real::mul_add(
+                c113,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t2958,
+                Real::mul_add(
+                    s112,
+                    s114 * (T::from_f64(-0.00008) - t2967),
+                    t2936 + T::from_f64(0.000042000000000000004),
+                ),
+            ),
+            t3234,
+        );
     let t3254 = qd[0]
-        * (t3251
-            + qd[2]
-                * (t3234
-                    + s112
-                        * (c113 * (T::from_f64(0.0000208) + t2928 - t2958)
-                            + (t2936
-                                + s112 * (s114 * (T::from_f64(-0.00004) - t2967))))));
+        * Real::mul_add(
+            qd[2],
+            Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    T::from_f64(0.0000208) + t2928 - t2958,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t2967), t2936),
+                ),
+                t3234,
+            ),
+            t3251,
+        );
     let t3258 = t3254
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t3284 = s112
-        * (s114
-            * (c113
-                * (T::from_f64(-0.00004) - c115 * T::from_f64(0.000020800000000000004))
-                + (T::from_f64(-0.000009600000000000001)
-                    + s112 * (s114 * T::from_f64(0.000020800000000000004))))
-            + s112 * (T::from_f64(-0.00008495000000000003) - t2928))
-        + (c113 * (t2936 + T::from_f64(0.00004200000000000001))
-            + (t2928 + T::from_f64(0.00009551400000000003)
-                - s114 * (s114 * T::from_f64(0.000010400000000000002))));
+    let t3284 = Real::mul_add(
+        s112,
+        Real::mul_add(
+            s112,
+            T::from_f64(-0.00008495000000000003) - t2928,
+            s114
+                * Real::mul_add(
+                    c113,
+                    T::from_f64(-0.00004) - c115 * T::from_f64(0.000020800000000000004),
+                    T::from_f64(-0.000009600000000000001)
+                        + s112 * (s114 * T::from_f64(0.000020800000000000004)),
+                ),
+        ),
+        Real::mul_add(
+            c113,
+            t2936 + T::from_f64(0.00004200000000000001),
+            t2928 + T::from_f64(0.00009551400000000003)
+                - s114 * (s114 * T::from_f64(0.000010400000000000002)),
+        ),
+    );
     let t3286 = T::from_f64(0.00000002100000000000001) / t3284;
     let t3301 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
@@ -307,34 +501,66 @@ pub fn forward_dynamics<T: Real>(
     let t4143 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (t3050 + c113 * (T::from_f64(-0.017167500000000002) - t3043)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3043, t3050)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t4144 = qd[0]
-        * (qd[0]
-            * (s112
-                * (c113 * (T::from_f64(-0.00008495) - t2928 + t3007)
-                    + (s112 * (s114 * t3232)
-                        + (T::from_f64(-0.000021000000000000002) - t3016))) + t3301))
-        + t4143;
-    let t4155 = qd[0]
-        * (qd[0]
-            * (t3301
-                + s112
-                    * (c113 * (t3007 + (T::from_f64(-0.0000104) - t2580))
-                        + (s112 * (s114 * (T::from_f64(0.00002) + t2916)) - t3016))))
-        + (T::from_f64(0.008) * tendon_tensions[0]
+    let t4144 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    T::from_f64(-0.00008495) - t2928 + t3007,
+                    Real::mul_add(
+                        s112,
+                        s114 * t3232,
+                        T::from_f64(-0.000021000000000000002) - t3016,
+                    ),
+                ),
+                t3301,
+            ),
+        t4143,
+    );
+    let t4155 = Real::mul_add(
+        qd[0],
+        qd[0]
+            * Real::mul_add(
+                s112,
+                Real::mul_add(
+                    c113,
+                    t3007 + (T::from_f64(-0.0000104) - t2580),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t2916), -t3016),
+                ),
+                t3301,
+            ),
+        T::from_f64(0.008) * tendon_tensions[0]
             + (t3050 - c113 * t3043 - T::from_f64(0.008) * tendon_tensions[1])
-            - qd[1] * (qd[1] * t2585));
-    let t4158 = t2928 + T::from_f64(0.00008694600000000003) - t3284 * (t3286 * t3286);
-    let t4162 = (t2580 + T::from_f64(0.000011224000000000001) - t3284 * (t3286 * t3357))
-        / t4158;
-    let t4170 = t4144 - t3258 * t3286;
-    let t4176 = (t4155 - t3258 * t3357 - t4162 * t4170)
-        / (T::from_f64(0.000011256000000000002) - t3284 * (t3357 * t3357)
-            - t4158 * (t4162 * t4162));
-    let t4178 = t4170 / t4158 - t4162 * t4176;
-    let t4182 = t3258 / t3284 - t3286 * t4178 - t3357 * t4176;
+            - qd[1] * (qd[1] * t2585),
+    );
+    let t4158 = Real::mul_add(
+        -t3284,
+        t3286 * t3286,
+        t2928 + T::from_f64(0.00008694600000000003),
+    );
+    let t4162 = Real::mul_add(
+        -t3284,
+        t3286 * t3357,
+        t2580 + T::from_f64(0.000011224000000000001),
+    ) / t4158;
+    let t4170 = Real::mul_add(-t3258, t3286, t4144);
+    let t4176 = Real::mul_add(-t4162, t4170, Real::mul_add(-t3258, t3357, t4155))
+        / Real::mul_add(
+            -t4158,
+            t4162 * t4162,
+            Real::mul_add(-t3284, t3357 * t3357, T::from_f64(0.000011256000000000002)),
+        );
+    let t4178 = Real::mul_add(-t4162, t4176, t4170 / t4158);
+    let t4182 = Real::mul_add(
+        -t3357,
+        t4176,
+        Real::mul_add(-t3286, t4178, t3258 / t3284),
+    );
     [t4182, t4178, t4176]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
@@ -363,23 +589,23 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t158 = qd[1] * t152;
     let t160 = c113 * t122;
     let t162 = T::from_f64(9.81) * s112;
-    let t166 = s112 * t122 + T::from_f64(9.81) * c113;
+    let t166 = Real::mul_add(T::from_f64(9.81), c113, s112 * t122);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
     let t176 = t153 * t174;
     let t181 = t152 * t174;
     let t183 = t152 * t173;
-    let t184 = t162 - t160 - (t176 + qd[1] * t173);
+    let t184 = t162 - t160 - Real::mul_add(qd[1], t173, t176);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
     let t204 = t152 * t194;
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t216 = t153 * t213;
-    let t218 = t216 - qd[1] * t212;
+    let t218 = Real::mul_add(-qd[1], t212, t216);
     let t219 = t152 * t213;
     let t233 = c115 * t152 + s114 * t153;
-    let t237 = c115 * t153 - s114 * t152;
+    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
     let t245 = qd[1] + qd[2];
     let t248 = qd[2] * t233;
     let t251 = c115 * t184;
@@ -387,7 +613,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
     let t266 = t237 * t264;
-    let t269 = t266 + t245 * t263;
+    let t269 = Real::mul_add(t245, t263, t266);
     let t271 = t233 * t264;
     let t273 = t233 * t263;
     let t283 = T::from_f64(0.02) * t245;
@@ -399,28 +625,28 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t305 = t237 * t302;
-    let t307 = t305 - t245 * t301;
+    let t307 = Real::mul_add(-t245, t301, t305);
     let t308 = t233 * t302;
     let t408 = c115 * t307;
     let t412 = s114 * t307;
     let t522 = T::from_f64(0.05) * t152;
-    let t530 = t166 + (t181 + t153 * t522);
+    let t530 = t166 + Real::mul_add(t153, t522, t181);
     let t531 = t160 - t162 + (t176 - t152 * t522);
     let t536 = t152 * T::from_f64(0.025);
     let t549 = t531 + (t152 * t536 - t153 * t196);
     let t554 = T::from_f64(0.0000058) * t152;
     let t592 = T::from_f64(0.04) * t233;
-    let t595 = t271 + t237 * t592;
+    let t595 = Real::mul_add(t237, t592, t271);
     let t598 = t266 - t233 * t592;
     let t599 = t237 * t263;
     let t606 = T::from_f64(0.02) * t233;
     let t610 = t291 + t237 * t606;
     let t615 = t233 * t606 - t287;
     let t616 = t237 * t283;
-    let t619 = c115 * t531 - s114 * t530 + t598 + t615;
+    let t619 = Real::mul_add(c115, t531, -(s114 * t530)) + t598 + t615;
     let t624 = T::from_f64(0.0000024) * t233;
     let t630 = t245 * t624 - t308;
-    let t635 = t237 * t301 - t233 * t624;
+    let t635 = Real::mul_add(t237, t301, -(t233 * t624));
     let t660 = c115 * t630;
     let t664 = s114 * t630;
     let t849 = t120 + t120;
@@ -428,21 +654,21 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t863 = qd[1] * s112;
     let t870 = T::from_f64(0.05) * c113;
     let t885 = c113 * t849 + (c113 * t174 + t153 * t870);
-    let t887 = s112 * t849 + (s112 * t174 + t152 * t870);
-    let t888 = T::from_f64(0.05) * t863 + s112 * t173;
+    let t887 = Real::mul_add(s112, t849, s112 * t174 + t152 * t870);
+    let t888 = Real::mul_add(s112, t173, T::from_f64(0.05) * t863);
     let t905 = t888 - T::from_f64(0.025) * t863 - s112 * t194;
     let t909 = T::from_f64(0.0000058) * c113;
-    let t930 = s112 * c115 + c113 * s114;
-    let t934 = c113 * c115 - s112 * s114;
-    let t948 = s114 * (qd[1] * c113) + c115 * t863 + qd[2] * t930;
+    let t930 = Real::mul_add(c113, s114, s112 * c115);
+    let t934 = Real::mul_add(c113, c115, -(s112 * s114));
+    let t948 = Real::mul_add(qd[2], t930, s114 * (qd[1] * c113) + c115 * t863);
     let t960 = T::from_f64(0.04) * t934;
     let t981 = T::from_f64(0.02) * t934;
-    let t993 = s114 * t885 + c115 * t887 + (t264 * t930 + t233 * t960)
-        - (t285 * t930 + t233 * t981);
-    let t994 = t888 + T::from_f64(0.04) * t948 + t263 * t930 - T::from_f64(0.02) * t948
-        - t283 * t930;
+    let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
+        - Real::mul_add(t233, t981, t285 * t930);
+    let t994 = Real::mul_add(t263, t930, t888 + T::from_f64(0.04) * t948)
+        - T::from_f64(0.02) * t948 - t283 * t930;
     let t998 = T::from_f64(0.0000024) * t934;
-    let t1003 = t302 * t934 - t245 * t998;
+    let t1003 = Real::mul_add(-t245, t998, t302 * t934);
     let t1052 = T::from_f64(0.03) * t905 + T::from_f64(0.02) * t994;
     let t1112 = t173 + t173;
     let t1114 = t522 + t522;
@@ -451,7 +677,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
     let t1144 = t592 + (t592 + t1114) - t606 - t606;
-    let t1149 = T::from_f64(0.000003) * t237 - t301;
+    let t1149 = Real::mul_add(T::from_f64(0.000003), t237, -t301);
     let t1152 = t624 + T::from_f64(0.000003) * t233;
     let t1183 = c115 * t1149;
     let t1187 = s114 * t1149;
@@ -462,7 +688,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t1347 = t1342 - t152 * t196;
     let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
     let t1372 = t248 + (s114 * t156 + c115 * t158);
-    let t1388 = t271 + (c115 * t1342 - t254) - t291;
+    let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
     let t1389 = t273 + (t1343 + T::from_f64(0.04) * t1372) - T::from_f64(0.02) * t1372
         - t293;
     let t1429 = T::from_f64(0.03) * t1348 + T::from_f64(0.02) * t1389;
@@ -471,199 +697,410 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
-        + (c113 * t1590 - s112 * (s114 * T::from_f64(0.0004)));
-    let t2406 = t635 - t619 * T::from_f64(0.0004) + t619 * T::from_f64(0.0008);
+        + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
+    let t2406 = Real::mul_add(
+        t619,
+        T::from_f64(0.0008),
+        Real::mul_add(-t619, T::from_f64(0.0004), t635),
+    );
     let t2418 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t549
-            + (c115 * (T::from_f64(0.02) * t619)
-                + T::from_f64(0.02)
-                    * (s114 * (c115 * t530 + s114 * t531 + t595 - t610))));
-    let t2462 = t887 - (s112 * t196 + T::from_f64(0.025) * (c113 * t152));
-    let t2474 = t994 * T::from_f64(0.0004)
-        - (T::from_f64(0.0000024) * t948 + t302 * t930) - t994 * T::from_f64(0.0008);
-    let t2475 = t301 * t930 + t233 * t998 - t993 * T::from_f64(0.0004)
-        + t993 * T::from_f64(0.0008);
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
+                c115 * (T::from_f64(0.02) * t619),
+            ));
+    let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
+    let t2474 = Real::mul_add(
+        -t994,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t994,
+            T::from_f64(0.0004),
+            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+        ),
+    );
+    let t2475 = Real::mul_add(
+        t993,
+        T::from_f64(0.0008),
+        Real::mul_add(-t993, T::from_f64(0.0004), Real::mul_add(t233, t998, t301 * t930)),
+    );
     let t2477 = T::from_f64(0.02)
         * (s114
-            * (s114 * t887 - c115 * t885 - (t264 * t934 + t237 * t960)
-                + (t285 * t934 + t237 * t981)));
-    let t2489 = s112 * t212 + t152 * t909 - T::from_f64(0.00075) * t2462 + t2475
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t2462 + (c115 * (T::from_f64(0.02) * t993) + t2477));
-    let t2492 = s112 * (c113 * t213 - qd[1] * t909 - (s114 * t2474 - c115 * t1003))
-        + c113
-            * (t905 * T::from_f64(0.00075)
-                - (T::from_f64(0.0000058) * t863 + s112 * t213)
-                + (s114 * t1003 + c115 * t2474) - T::from_f64(0.05) * t1052);
+            * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
+                + Real::mul_add(t237, t981, t285 * t934)));
+    let t2489 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t2462,
+            c115 * (T::from_f64(0.02) * t993) + t2477,
+        ),
+        Real::mul_add(
+            -T::from_f64(0.00075),
+            t2462,
+            Real::mul_add(t152, t909, s112 * t212),
+        ) + t2475,
+    );
+    let t2492 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t905,
+            T::from_f64(0.00075),
+            -(T::from_f64(0.0000058) * t863 + s112 * t213),
+        ) + Real::mul_add(c115, t2474, s114 * t1003) - T::from_f64(0.05) * t1052,
+        s112
+            * (Real::mul_add(-qd[1], t909, c113 * t213)
+                - Real::mul_add(s114, t2474, -(c115 * t1003))),
+    );
     let t2495 = T::from_f64(0.012) * (t1052 - T::from_f64(0.014) * t852)
-        - ((t131 + t131 - t849) * T::from_f64(0.00003) - t852 * T::from_f64(0.00006)
-            + t2492);
+        - (Real::mul_add(
+            -t852,
+            T::from_f64(0.00006),
+            (t131 + t131 - t849) * T::from_f64(0.00003),
+        ) + t2492);
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
-    let t2503 = t1144 * T::from_f64(0.0004) - t1152 - t1144 * T::from_f64(0.0008);
-    let t2520 = s112 * (T::from_f64(0.0000068) * t153 - t212 - (s114 * t2503 - t1183))
-        + c113
-            * (t1119 * T::from_f64(0.00075) - (t554 + T::from_f64(0.0000068) * t152)
-                + (t1187 + c115 * t2503) - T::from_f64(0.05) * t1194);
+    let t2503 = Real::mul_add(
+        -t1144,
+        T::from_f64(0.0008),
+        Real::mul_add(t1144, T::from_f64(0.0004), -t1152),
+    );
+    let t2520 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t1119,
+            T::from_f64(0.00075),
+            -(t554 + T::from_f64(0.0000068) * t152),
+        ) + Real::mul_add(c115, t2503, t1187) - T::from_f64(0.05) * t1194,
+        s112
+            * (Real::mul_add(T::from_f64(0.0000068), t153, -t212)
+                - Real::mul_add(s114, t2503, -t1183)),
+    );
     let t2522 = T::from_f64(0.012) * t1194 - t2520;
-    let t2526 = t1253 * T::from_f64(0.0004) - t1152 - t1253 * T::from_f64(0.0008);
+    let t2526 = Real::mul_add(
+        -t1253,
+        T::from_f64(0.0008),
+        Real::mul_add(t1253, T::from_f64(0.0004), -t1152),
+    );
     let t2541 = t1253 * T::from_f64(0.00024)
-        - (s112 * (t1183 - s114 * t2526)
-            + c113 * (t1187 + c115 * t2526 - t1253 * T::from_f64(0.001)));
-    let t2555 = t1389 * T::from_f64(0.0004) - (t308 + T::from_f64(0.0000024) * t1372)
-        - t1389 * T::from_f64(0.0008);
-    let t2556 = t233 * t301 - t1388 * T::from_f64(0.0004) + t1388 * T::from_f64(0.0008);
-    let t2570 = t152 * t212 - t1347 * T::from_f64(0.00075) + t2556
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t1347
-                + (c115 * (T::from_f64(0.02) * t1388)
-                    + T::from_f64(0.02)
-                        * (s114 * (t290 + (t251 + s114 * t1342 - t269)))));
-    let t2573 = s112 * (t218 - (s114 * t2555 - t408))
-        + c113
-            * (t1348 * T::from_f64(0.00075) - (t219 + T::from_f64(0.0000058) * t158)
-                + (t412 + c115 * t2555) - T::from_f64(0.05) * t1429);
+        - Real::mul_add(
+            c113,
+            Real::mul_add(-t1253, T::from_f64(0.001), Real::mul_add(c115, t2526, t1187)),
+            s112 * Real::mul_add(-s114, t2526, t1183),
+        );
+    let t2555 = Real::mul_add(
+        -t1389,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t1389,
+            T::from_f64(0.0004),
+            -(t308 + T::from_f64(0.0000024) * t1372),
+        ),
+    );
+    let t2556 = Real::mul_add(
+        t1388,
+        T::from_f64(0.0008),
+        Real::mul_add(-t1388, T::from_f64(0.0004), t233 * t301),
+    );
+    let t2570 = Real::mul_add(
+        T::from_f64(0.05),
+        T::from_f64(0.03) * t1347
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
+                c115 * (T::from_f64(0.02) * t1388),
+            ),
+        Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t2556,
+    );
+    let t2573 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t1348,
+            T::from_f64(0.00075),
+            -(t219 + T::from_f64(0.0000058) * t158),
+        ) + Real::mul_add(c115, t2555, t412) - T::from_f64(0.05) * t1429,
+        s112 * (t218 - Real::mul_add(s114, t2555, -t408)),
+    );
     let t2576 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
-        - ((qd[0] * t131 - t122) * T::from_f64(0.00003) - t134 * T::from_f64(0.00006)
-            + t2573 - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
+        - (Real::mul_add(
+            -t134,
+            T::from_f64(0.00006),
+            (qd[0] * t131 - t122) * T::from_f64(0.00003),
+        ) + t2573 - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2596 = s112
-        * (s112
-            * (s114 * t1577
-                + (t1592 - (T::from_f64(0.05) * t1590 + T::from_f64(0.05) * t1586)))
-            - c113 * t2586)
-        + c113
-            * (c113
+    let t2596 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -s112,
+            t2586,
+            c113
                 * (t1592
-                    + (T::from_f64(0.00002455)
-                        + T::from_f64(0.000010400000000000002) * (c115 * c115)))
-                - s112 * t2586);
+                    + Real::mul_add(
+                        T::from_f64(0.000010400000000000002),
+                        c115 * c115,
+                        T::from_f64(0.00002455),
+                    )),
+        ),
+        s112
+            * Real::mul_add(
+                -c113,
+                t2586,
+                s112
+                    * (s114 * t1577
+                        + (t1592
+                            - Real::mul_add(
+                                T::from_f64(0.05),
+                                t1586,
+                                T::from_f64(0.05) * t1590,
+                            ))),
+            ),
+    );
     let t2599 = T::from_f64(0.000000245)
         + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
             + (T::from_f64(0.000002543) + t2596));
     let t2600 = T::from_f64(0.00000002100000000000001) / t2599;
     let t2601 = T::from_f64(0.000000024000000000000003) / t2599;
-    let t2604 = T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592)
-        - t2599 * (t2600 * t2600);
-    let t2608 = (T::from_f64(0.00000022400000000000002)
-        + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002))
-        - t2599 * (t2600 * t2601)) / t2604;
-    let t2614 = T::from_f64(0.000011256000000000002) - t2599 * (t2601 * t2601)
-        - t2604 * (t2608 * t2608);
-    let t2616 = T::from_f64(0.007) * tendon_tensions[0]
-        - T::from_f64(0.007) * tendon_tensions[1]
-        + T::from_f64(0.01) * tendon_tensions[2] - T::from_f64(0.01) * tendon_tensions[3]
-        - t2570 - t2576 * t2600;
-    let t2623 = (T::from_f64(0.008) * tendon_tensions[0]
-        - T::from_f64(0.008) * tendon_tensions[1] - t2556 - t2576 * t2601
-        - t2608 * t2616) / t2614;
-    let t2625 = t2616 / t2604 - t2608 * t2623;
-    let t2629 = t2576 / t2599 - t2600 * t2625 - t2601 * t2623;
-    let t2633 = t156 + s112 * t2629;
-    let t2634 = c113 * t2629 - t158;
-    let t2639 = t181 + (t166 + T::from_f64(0.05) * t2625);
-    let t2640 = t183 - (T::from_f64(0.012) * t2629 + T::from_f64(0.05) * t2634);
-    let t2643 = t2640 + T::from_f64(0.025) * t2634 - t204;
-    let t2655 = qd[2] * t237 + (c115 * t2633 + s114 * t2634);
-    let t2656 = c115 * t2634 - s114 * t2633 - t248;
+    let t2604 = Real::mul_add(
+        -t2599,
+        t2600 * t2600,
+        T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592),
+    );
+    let t2608 = Real::mul_add(
+        -t2599,
+        t2600 * t2601,
+        T::from_f64(0.00000022400000000000002)
+            + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002)),
+    ) / t2604;
+    let t2614 = Real::mul_add(
+        -t2604,
+        t2608 * t2608,
+        Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
+    );
+    let t2616 = Real::mul_add(
+        -t2576,
+        t2600,
+        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
+            + T::from_f64(0.01) * tendon_tensions[2]
+            - T::from_f64(0.01) * tendon_tensions[3] - t2570,
+    );
+    let t2623 = Real::mul_add(
+        -t2608,
+        t2616,
+        Real::mul_add(
+            -t2576,
+            t2601,
+            T::from_f64(0.008) * tendon_tensions[0]
+                - T::from_f64(0.008) * tendon_tensions[1] - t2556,
+        ),
+    ) / t2614;
+    let t2625 = Real::mul_add(-t2608, t2623, t2616 / t2604);
+    let t2629 = Real::mul_add(
+        -t2601,
+        t2623,
+        Real::mul_add(-t2600, t2625, t2576 / t2599),
+    );
+    let t2633 = Real::mul_add(s112, t2629, t156);
+    let t2634 = Real::mul_add(c113, t2629, -t158);
+    let t2639 = t181 + Real::mul_add(T::from_f64(0.05), t2625, t166);
+    let t2640 = t183
+        - Real::mul_add(T::from_f64(0.05), t2634, T::from_f64(0.012) * t2629);
+    let t2643 = Real::mul_add(T::from_f64(0.025), t2634, t2640) - t204;
+    let t2655 = qd[2] * t237 + Real::mul_add(s114, t2634, c115 * t2633);
+    let t2656 = Real::mul_add(-s114, t2633, c115 * t2634) - t248;
     let t2657 = t2623 + t2625;
-    let t2659 = t251 + s114 * t2639;
-    let t2661 = c115 * t2639 - t254;
-    let t2675 = t273 + (t2640 - T::from_f64(0.04) * t2656) + T::from_f64(0.02) * t2656
-        - t293;
-    let t2684 = T::from_f64(0.0000024) * t2656 - t308 + T::from_f64(0.0004) * t2675
-        - T::from_f64(0.0008) * t2675;
+    let t2659 = Real::mul_add(s114, t2639, t251);
+    let t2661 = Real::mul_add(c115, t2639, -t254);
+    let t2675 = Real::mul_add(
+        T::from_f64(0.02),
+        t2656,
+        t273 + Real::mul_add(-T::from_f64(0.04), t2656, t2640),
+    ) - t293;
+    let t2684 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2675,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2675,
+            Real::mul_add(T::from_f64(0.0000024), t2656, -t308),
+        ),
+    );
     let t2689 = s114 * t2684;
     let t2690 = c115 * t2684;
-    let t2701 = t153 * t173 + T::from_f64(0.05) * t2633;
-    let t2704 = t2701 - T::from_f64(0.025) * t2633 - t153 * t194;
+    let t2701 = Real::mul_add(T::from_f64(0.05), t2633, t153 * t173);
+    let t2704 = Real::mul_add(-T::from_f64(0.025), t2633, t2701) - t153 * t194;
     let t2710 = T::from_f64(0.04) * t2655;
     let t2713 = T::from_f64(0.02) * t2655;
     let t2715 = t599 + (t2701 + t2710) - t2713 - t616;
-    let t2718 = t305 + T::from_f64(0.0000024) * t2655;
-    let t2722 = T::from_f64(0.0004) * t2715 - t2718 - T::from_f64(0.0008) * t2715;
-    let t2727 = T::from_f64(0.03) * t2704 + T::from_f64(0.02) * t2715;
-    let t2735 = c113
-        * (T::from_f64(0.00075) * t2704 - (t216 + T::from_f64(0.0000058) * t2633)
-            + (t664 + c115 * t2722) - T::from_f64(0.05) * t2727)
-        - s112
-            * (T::from_f64(0.0000058) * t2634 - t219 + T::from_f64(0.00075) * t2643
-                + (t412 + t2690)
-                - T::from_f64(0.05)
-                    * (T::from_f64(0.03) * t2643 + T::from_f64(0.02) * t2675));
-    let t2738 = T::from_f64(0.012) * t2727
-        - (c113 * (t218 - (t2689 - t408))
-            + s112 * (qd[1] * t554 - t219 - (s114 * t2722 - t660)) + t2735);
+    let t2718 = Real::mul_add(T::from_f64(0.0000024), t2655, t305);
+    let t2722 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2715,
+        Real::mul_add(T::from_f64(0.0004), t2715, -t2718),
+    );
+    let t2727 = Real::mul_add(T::from_f64(0.02), t2715, T::from_f64(0.03) * t2704);
+    let t2735 = Real::mul_add(
+        -s112,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            Real::mul_add(T::from_f64(0.02), t2675, T::from_f64(0.03) * t2643),
+            Real::mul_add(
+                T::from_f64(0.00075),
+                t2643,
+                Real::mul_add(T::from_f64(0.0000058), t2634, -t219),
+            ) + (t412 + t2690),
+        ),
+        c113
+            * Real::mul_add(
+                -T::from_f64(0.05),
+                t2727,
+                Real::mul_add(
+                    T::from_f64(0.00075),
+                    t2704,
+                    -Real::mul_add(T::from_f64(0.0000058), t2633, t216),
+                ) + Real::mul_add(c115, t2722, t664),
+            ),
+    );
+    let t2738 = Real::mul_add(
+        T::from_f64(0.012),
+        t2727,
+        -(Real::mul_add(
+            s112,
+            qd[1] * t554 - t219 - Real::mul_add(s114, t2722, -t660),
+            c113 * (t218 - (t2689 - t408)),
+        ) + t2735),
+    );
     let t2744 = t615 + (t598 - t2659);
     let t2745 = t599 + t2710 - t2713 - t616;
-    let t2755 = T::from_f64(0.0004) * t2745 - t2718 - T::from_f64(0.0008) * t2745;
-    let t2756 = t635 - T::from_f64(0.0004) * t2744 + T::from_f64(0.0008) * t2744;
-    let t2762 = T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269)))
-        + T::from_f64(0.02) * (s114 * (t595 + t2661 - t610))
-        + (c115 * (T::from_f64(0.02) * t2744)
-            - T::from_f64(0.02)
-                * (s114
-                    * (t271 + (t2661 + T::from_f64(0.04) * t2657)
-                        - T::from_f64(0.02) * t2657 - t291)));
-    let t2775 = s112 * (t660 - t412 - (t2690 + s114 * t2755))
-        + c113 * (t408 + t664 + (c115 * t2755 - t2689) - T::from_f64(0.001) * t2745);
-    let t2777 = T::from_f64(0.00024) * t2745 - t2775;
-    let t2779 = t153 * t212 - t152 * t554 - t549 * T::from_f64(0.00075) + t2406 + t2418
-        + t2600 * t2738;
-    let t2786 = (t2608 * t2779 - (t2406 + t2601 * t2738)) / t2614;
-    let t2788 = t2779 / t2604 + t2608 * t2786;
+    let t2755 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2745,
+        Real::mul_add(T::from_f64(0.0004), t2745, -t2718),
+    );
+    let t2756 = Real::mul_add(
+        T::from_f64(0.0008),
+        t2744,
+        Real::mul_add(-T::from_f64(0.0004), t2744, t635),
+    );
+    let t2762 = Real::mul_add(
+        T::from_f64(0.02),
+        s114 * (t595 + t2661 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269))),
+    )
+        + Real::mul_add(
+            -T::from_f64(0.02),
+            s114
+                * (Real::mul_add(
+                    -T::from_f64(0.02),
+                    t2657,
+                    t271 + Real::mul_add(T::from_f64(0.04), t2657, t2661),
+                ) - t291),
+            c115 * (T::from_f64(0.02) * t2744),
+        );
+    let t2775 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.001),
+            t2745,
+            t408 + t664 + Real::mul_add(c115, t2755, -t2689),
+        ),
+        s112 * (t660 - t412 - Real::mul_add(s114, t2755, t2690)),
+    );
+    let t2777 = Real::mul_add(T::from_f64(0.00024), t2745, -t2775);
+    let t2779 = Real::mul_add(
+        t2600,
+        t2738,
+        Real::mul_add(
+            -t549,
+            T::from_f64(0.00075),
+            Real::mul_add(t153, t212, -(t152 * t554)),
+        ) + t2406 + t2418,
+    );
+    let t2786 = Real::mul_add(t2608, t2779, -Real::mul_add(t2601, t2738, t2406)) / t2614;
+    let t2788 = Real::mul_add(t2608, t2786, t2779 / t2604);
     let t2789 = -t2788;
-    let t2793 = t2738 / t2599 + t2600 * t2788 - t2601 * t2786;
-    let t2795 = t2756 + T::from_f64(0.05) * t2762 + t2600 * t2777;
-    let t2802 = (t2608 * t2795 - (t2756 + t2601 * t2777)) / t2614;
-    let t2804 = t2795 / t2604 + t2608 * t2802;
+    let t2793 = Real::mul_add(-t2601, t2786, Real::mul_add(t2600, t2788, t2738 / t2599));
+    let t2795 = Real::mul_add(
+        t2600,
+        t2777,
+        Real::mul_add(T::from_f64(0.05), t2762, t2756),
+    );
+    let t2802 = Real::mul_add(t2608, t2795, -Real::mul_add(t2601, t2777, t2756)) / t2614;
+    let t2804 = Real::mul_add(t2608, t2802, t2795 / t2604);
     let t2805 = -t2804;
-    let t2809 = t2777 / t2599 + t2600 * t2804 - t2601 * t2802;
-    let t2811 = t2489 + t2495 * t2600;
-    let t2818 = (t2608 * t2811 - (t2475 + t2495 * t2601)) / t2614;
-    let t2820 = t2811 / t2604 + t2608 * t2818;
+    let t2809 = Real::mul_add(-t2601, t2802, Real::mul_add(t2600, t2804, t2777 / t2599));
+    let t2811 = Real::mul_add(t2495, t2600, t2489);
+    let t2818 = Real::mul_add(t2608, t2811, -Real::mul_add(t2495, t2601, t2475)) / t2614;
+    let t2820 = Real::mul_add(t2608, t2818, t2811 / t2604);
     let t2821 = -t2820;
-    let t2825 = t2495 / t2599 + t2600 * t2820 - t2601 * t2818;
-    let t2827 = t2502 - t2499
-        + T::from_f64(0.05)
-            * (c115 * (T::from_f64(0.02) * t1133)
-                + T::from_f64(0.02) * (s114 * (t1141 - (c115 * t1112 + t1135))))
-        + t2522 * t2600;
-    let t2834 = (t2499 - t2502 - t2522 * t2601 + t2608 * t2827) / t2614;
-    let t2836 = t2827 / t2604 + t2608 * t2834;
+    let t2825 = Real::mul_add(-t2601, t2818, Real::mul_add(t2600, t2820, t2495 / t2599));
+    let t2827 = Real::mul_add(
+        t2522,
+        t2600,
+        Real::mul_add(
+            T::from_f64(0.05),
+            Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t1141 - (c115 * t1112 + t1135)),
+                c115 * (T::from_f64(0.02) * t1133),
+            ),
+            t2502 - t2499,
+        ),
+    );
+    let t2834 = Real::mul_add(t2608, t2827, Real::mul_add(-t2522, t2601, t2499 - t2502))
+        / t2614;
+    let t2836 = Real::mul_add(t2608, t2834, t2827 / t2604);
     let t2837 = -t2836;
-    let t2841 = t2522 / t2599 + t2600 * t2836 - t2601 * t2834;
-    let t2843 = T::from_f64(0.001) * (s114 * (t1141 - t1135)) + t2541 * t2600;
-    let t2849 = (t2608 * t2843 - t2541 * t2601) / t2614;
-    let t2851 = t2843 / t2604 + t2608 * t2849;
+    let t2841 = Real::mul_add(-t2601, t2834, Real::mul_add(t2600, t2836, t2522 / t2599));
+    let t2843 = Real::mul_add(
+        t2541,
+        t2600,
+        T::from_f64(0.001) * (s114 * (t1141 - t1135)),
+    );
+    let t2849 = Real::mul_add(-t2541, t2601, t2608 * t2843) / t2614;
+    let t2851 = Real::mul_add(t2608, t2849, t2843 / t2604);
     let t2852 = -t2851;
-    let t2856 = t2541 / t2599 + t2600 * t2851 - t2601 * t2849;
-    let t2858 = T::from_f64(0.007) + T::from_f64(0.006) * t2600;
-    let t2865 = (T::from_f64(0.008) + T::from_f64(0.006) * t2601 - t2608 * t2858)
-        / t2614;
-    let t2867 = t2858 / t2604 - t2608 * t2865;
-    let t2871 = T::from_f64(-0.006) / t2599 - t2600 * t2867 - t2601 * t2865;
-    let t2873 = T::from_f64(-0.007) + T::from_f64(0.009) * t2600;
-    let t2880 = (T::from_f64(-0.008) + T::from_f64(0.009) * t2601 - t2608 * t2873)
-        / t2614;
-    let t2882 = t2873 / t2604 - t2608 * t2880;
-    let t2886 = T::from_f64(-0.009) / t2599 - t2600 * t2882 - t2601 * t2880;
+    let t2856 = Real::mul_add(-t2601, t2849, Real::mul_add(t2600, t2851, t2541 / t2599));
+    let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
+    let t2865 = Real::mul_add(
+        -t2608,
+        t2858,
+        Real::mul_add(T::from_f64(0.006), t2601, T::from_f64(0.008)),
+    ) / t2614;
+    let t2867 = Real::mul_add(-t2608, t2865, t2858 / t2604);
+    let t2871 = Real::mul_add(
+        -t2601,
+        t2865,
+        Real::mul_add(-t2600, t2867, T::from_f64(-0.006) / t2599),
+    );
+    let t2873 = Real::mul_add(T::from_f64(0.009), t2600, T::from_f64(-0.007));
+    let t2880 = Real::mul_add(
+        -t2608,
+        t2873,
+        Real::mul_add(T::from_f64(0.009), t2601, T::from_f64(-0.008)),
+    ) / t2614;
+    let t2882 = Real::mul_add(-t2608, t2880, t2873 / t2604);
+    let t2886 = Real::mul_add(
+        -t2601,
+        t2880,
+        Real::mul_add(-t2600, t2882, T::from_f64(-0.009) / t2599),
+    );
     let t2887 = T::from_f64(0.008) * t2600;
     let t2888 = T::from_f64(0.01) - t2887;
     let t2889 = T::from_f64(0.008) * t2601;
     let t2892 = T::from_f64(0.008) / t2599;
-    let t2894 = (t2889 + t2608 * t2888) / t2614;
+    let t2894 = Real::mul_add(t2608, t2888, t2889) / t2614;
     let t2895 = -t2894;
-    let t2897 = t2888 / t2604 + t2608 * t2894;
-    let t2901 = t2892 - t2600 * t2897 + t2601 * t2894;
+    let t2897 = Real::mul_add(t2608, t2894, t2888 / t2604);
+    let t2901 = Real::mul_add(t2601, t2894, Real::mul_add(-t2600, t2897, t2892));
     let t2902 = T::from_f64(-0.01) - t2887;
-    let t2906 = (t2889 + t2608 * t2902) / t2614;
+    let t2906 = Real::mul_add(t2608, t2902, t2889) / t2614;
     let t2907 = -t2906;
-    let t2909 = t2902 / t2604 + t2608 * t2906;
-    let t2913 = t2892 - t2600 * t2909 + t2601 * t2906;
+    let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
+    let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
     tendyn_core::dual::ForwardJacobians {
         value: [t2629, t2625, t2623],
         d_q: [
@@ -723,17 +1160,17 @@ pub fn all<T: Real>(
     let t156 = qd[1] * t153;
     let t157 = qdd[0] * s112 + t156;
     let t158 = qd[1] * t152;
-    let t159 = qdd[0] * c113 - t158;
+    let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t160 = c113 * t122;
     let t162 = T::from_f64(9.81) * s112;
-    let t166 = s112 * t122 + T::from_f64(9.81) * c113;
+    let t166 = Real::mul_add(T::from_f64(9.81), c113, s112 * t122);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
     let t176 = t153 * t174;
     let t181 = t152 * t174;
     let t183 = t152 * t173;
-    let t184 = t162 - t160 - (t176 + qd[1] * t173);
-    let t185 = t166 + T::from_f64(0.05) * qdd[1] + t181;
+    let t184 = t162 - t160 - Real::mul_add(qd[1], t173, t176);
+    let t185 = Real::mul_add(T::from_f64(0.05), qdd[1], t166) + t181;
     let t186 = t183 - (t118 + T::from_f64(0.05) * t159);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
@@ -744,25 +1181,25 @@ pub fn all<T: Real>(
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t216 = t153 * t213;
-    let t218 = t216 - qd[1] * t212;
+    let t218 = Real::mul_add(-qd[1], t212, t216);
     let t219 = t152 * t213;
     let t221 = t152 * t212;
     let t233 = c115 * t152 + s114 * t153;
-    let t237 = c115 * t153 - s114 * t152;
+    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
     let t245 = qd[1] + qd[2];
     let t246 = qd[2] * t237;
     let t247 = c115 * t157 + s114 * t159 + t246;
     let t248 = qd[2] * t233;
-    let t249 = c115 * t159 - s114 * t157 - t248;
+    let t249 = Real::mul_add(c115, t159, -(s114 * t157)) - t248;
     let t250 = qdd[1] + qdd[2];
     let t251 = c115 * t184;
     let t253 = t251 + s114 * t185;
     let t254 = s114 * t184;
-    let t257 = c115 * t185 - t254;
+    let t257 = Real::mul_add(c115, t185, -t254);
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
     let t266 = t237 * t264;
-    let t269 = t266 + t245 * t263;
+    let t269 = Real::mul_add(t245, t263, t266);
     let t271 = t233 * t264;
     let t273 = t233 * t263;
     let t283 = T::from_f64(0.02) * t245;
@@ -771,22 +1208,26 @@ pub fn all<T: Real>(
     let t290 = t287 + t245 * t283;
     let t291 = t233 * t285;
     let t293 = t233 * t283;
-    let t296 = t257 + T::from_f64(0.04) * t250 + t271 - T::from_f64(0.02) * t250 - t291;
+    let t296 = Real::mul_add(T::from_f64(0.04), t250, t257) + t271
+        - T::from_f64(0.02) * t250 - t291;
     let t297 = t186 - T::from_f64(0.04) * t249 + t273 + T::from_f64(0.02) * t249 - t293;
     let t298 = T::from_f64(0.02) * (t253 - t269 + t290);
     let t299 = T::from_f64(0.02) * t296;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t305 = t237 * t302;
-    let t307 = t305 - t245 * t301;
+    let t307 = Real::mul_add(-t245, t301, t305);
     let t308 = t233 * t302;
     let t310 = t233 * t301;
-    let t322 = qdd[1] + T::from_f64(1.1428571428571428) * qdd[2];
+    let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
     let t332 = T::from_f64(0.000000049) * t322;
     let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333);
-    let t364 = qdd[0] + T::from_f64(0.7777777777777779) * qdd[1]
-        + T::from_f64(0.888888888888889) * qdd[2];
+    let t364 = Real::mul_add(
+        T::from_f64(0.888888888888889),
+        qdd[2],
+        Real::mul_add(T::from_f64(0.7777777777777779), qdd[1], qdd[0]),
+    );
     let t369 = T::from_f64(1.25) * qdd[1];
     let t370 = qdd[0] + t369;
     let t376 = qdd[0] - t369;
@@ -795,7 +1236,7 @@ pub fn all<T: Real>(
     let t420 = T::from_f64(0.03) * t208 + T::from_f64(0.02) * t297;
     let t522 = T::from_f64(0.05) * t152;
     let t529 = t153 * t173;
-    let t530 = t166 + (t181 + t153 * t522);
+    let t530 = t166 + Real::mul_add(t153, t522, t181);
     let t531 = t160 - t162 + (t176 - t152 * t522);
     let t532 = T::from_f64(0.05) * t157 + t529;
     let t536 = t152 * T::from_f64(0.025);
@@ -806,7 +1247,7 @@ pub fn all<T: Real>(
     let t560 = qd[1] * t554 - t219;
     let t589 = T::from_f64(0.04) * t247;
     let t592 = T::from_f64(0.04) * t233;
-    let t595 = t271 + t237 * t592;
+    let t595 = Real::mul_add(t237, t592, t271);
     let t598 = t266 - t233 * t592;
     let t599 = t237 * t263;
     let t603 = T::from_f64(0.02) * t247;
@@ -814,11 +1255,11 @@ pub fn all<T: Real>(
     let t610 = t291 + t237 * t606;
     let t615 = t233 * t606 - t287;
     let t616 = t237 * t283;
-    let t619 = c115 * t531 - s114 * t530 + t598 + t615;
+    let t619 = Real::mul_add(c115, t531, -(s114 * t530)) + t598 + t615;
     let t620 = t532 + t589 + t599 - t603 - t616;
     let t624 = T::from_f64(0.0000024) * t233;
     let t630 = t245 * t624 - t308;
-    let t635 = t237 * t301 - t233 * t624;
+    let t635 = Real::mul_add(t237, t301, -(t233 * t624));
     let t636 = t305 + T::from_f64(0.0000024) * t247;
     let t660 = c115 * t630;
     let t664 = s114 * t630;
@@ -832,21 +1273,21 @@ pub fn all<T: Real>(
     let t863 = qd[1] * s112;
     let t870 = T::from_f64(0.05) * c113;
     let t885 = c113 * t849 + (c113 * t174 + t153 * t870);
-    let t887 = s112 * t849 + (s112 * t174 + t152 * t870);
-    let t888 = T::from_f64(0.05) * t863 + s112 * t173;
+    let t887 = Real::mul_add(s112, t849, s112 * t174 + t152 * t870);
+    let t888 = Real::mul_add(s112, t173, T::from_f64(0.05) * t863);
     let t905 = t888 - T::from_f64(0.025) * t863 - s112 * t194;
     let t909 = T::from_f64(0.0000058) * c113;
-    let t930 = s112 * c115 + c113 * s114;
-    let t934 = c113 * c115 - s112 * s114;
-    let t948 = s114 * (qd[1] * c113) + c115 * t863 + qd[2] * t930;
+    let t930 = Real::mul_add(c113, s114, s112 * c115);
+    let t934 = Real::mul_add(c113, c115, -(s112 * s114));
+    let t948 = Real::mul_add(qd[2], t930, s114 * (qd[1] * c113) + c115 * t863);
     let t960 = T::from_f64(0.04) * t934;
     let t981 = T::from_f64(0.02) * t934;
-    let t993 = s114 * t885 + c115 * t887 + (t264 * t930 + t233 * t960)
-        - (t285 * t930 + t233 * t981);
-    let t994 = t888 + T::from_f64(0.04) * t948 + t263 * t930 - T::from_f64(0.02) * t948
-        - t283 * t930;
+    let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
+        - Real::mul_add(t233, t981, t285 * t930);
+    let t994 = Real::mul_add(t263, t930, t888 + T::from_f64(0.04) * t948)
+        - T::from_f64(0.02) * t948 - t283 * t930;
     let t998 = T::from_f64(0.0000024) * t934;
-    let t1003 = t302 * t934 - t245 * t998;
+    let t1003 = Real::mul_add(-t245, t998, t302 * t934);
     let t1052 = T::from_f64(0.03) * t905 + T::from_f64(0.02) * t994;
     let t1087 = T::from_f64(0.012) * (t1052 - T::from_f64(0.014) * t852);
     let t1112 = t173 + t173;
@@ -856,7 +1297,7 @@ pub fn all<T: Real>(
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
     let t1144 = t592 + (t592 + t1114) - t606 - t606;
-    let t1149 = T::from_f64(0.000003) * t237 - t301;
+    let t1149 = Real::mul_add(T::from_f64(0.000003), t237, -t301);
     let t1152 = t624 + T::from_f64(0.000003) * t233;
     let t1183 = c115 * t1149;
     let t1187 = s114 * t1149;
@@ -868,7 +1309,7 @@ pub fn all<T: Real>(
     let t1347 = t1342 - t202;
     let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
     let t1372 = t248 + (s114 * t156 + c115 * t158);
-    let t1388 = t271 + (c115 * t1342 - t254) - t291;
+    let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
     let t1389 = t273 + (t1343 + T::from_f64(0.04) * t1372) - T::from_f64(0.02) * t1372
         - t293;
     let t1429 = T::from_f64(0.03) * t1348 + T::from_f64(0.02) * t1389;
@@ -877,248 +1318,527 @@ pub fn all<T: Real>(
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
-        + (c113 * t1590 - s112 * (s114 * T::from_f64(0.0004)));
-    let t2354 = T::from_f64(0.0000024) * t249 - t308 + t297 * T::from_f64(0.0004)
-        - t297 * T::from_f64(0.0008);
-    let t2355 = T::from_f64(0.000003) * t250 + t310 - t296 * T::from_f64(0.0004)
-        + t296 * T::from_f64(0.0008);
+        + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
+    let t2354 = Real::mul_add(
+        -t297,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t297,
+            T::from_f64(0.0004),
+            Real::mul_add(T::from_f64(0.0000024), t249, -t308),
+        ),
+    );
+    let t2355 = Real::mul_add(
+        t296,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            -t296,
+            T::from_f64(0.0004),
+            Real::mul_add(T::from_f64(0.000003), t250, t310),
+        ),
+    );
     let t2356 = s114 * t2354;
     let t2357 = c115 * t2354;
     let t2360 = t218 - (t2356 - t408);
-    let t2363 = T::from_f64(0.0000058) * t159 - t219 + t208 * T::from_f64(0.00075)
-        + (t412 + t2357) - T::from_f64(0.05) * t420;
+    let t2363 = Real::mul_add(
+        t208,
+        T::from_f64(0.00075),
+        Real::mul_add(T::from_f64(0.0000058), t159, -t219),
+    ) + (t412 + t2357) - T::from_f64(0.05) * t420;
     let t2371 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + ((T::from_f64(0.002142857142857143) * qdd[0] - t122 + t133)
-            * T::from_f64(0.00003) + t137 * T::from_f64(0.00006))
-        + (s112 * t2360 + c113 * t2363)
+        + Real::mul_add(
+            t137,
+            T::from_f64(0.00006),
+            (Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
+                * T::from_f64(0.00003),
+        ) + Real::mul_add(c113, t2363, s112 * t2360)
         - T::from_f64(0.012) * (T::from_f64(0.014) * t137 + t420);
     let t2372 = t332
         + (T::from_f64(0.05) * (T::from_f64(0.03) * t207 + (s114 * t298 + c115 * t299))
-            + (T::from_f64(0.0000068) * qdd[1] + t221 - t207 * T::from_f64(0.00075)
-                + t2355));
+            + (Real::mul_add(
+                -t207,
+                T::from_f64(0.00075),
+                Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
+            ) + t2355));
     let t2373 = t322 * T::from_f64(0.000000056);
-    let t2388 = t2373 + (t2355 + t2373) - t354 * T::from_f64(0.00000004799999999999999)
-        + t364 * T::from_f64(0.000000072);
+    let t2388 = Real::mul_add(
+        t364,
+        T::from_f64(0.000000072),
+        Real::mul_add(
+            -t354,
+            T::from_f64(0.00000004799999999999999),
+            t2373 + (t2355 + t2373),
+        ),
+    );
     let t2392 = T::from_f64(0.000000064) * t376
         + (T::from_f64(0.000000064) * t370
             + (T::from_f64(0.000000081) * t364
                 + (T::from_f64(0.000000036) * t354 + t2371)));
-    let t2394 = t332 + t2372 - t354 * T::from_f64(0.000000042)
-        + t364 * T::from_f64(0.00000006300000000000001) + t370 * T::from_f64(0.00000008)
-        - t376 * T::from_f64(0.00000008);
-    let t2405 = t620 * T::from_f64(0.0004) - t636 - t620 * T::from_f64(0.0008);
-    let t2406 = t635 - t619 * T::from_f64(0.0004) + t619 * T::from_f64(0.0008);
+    let t2394 = Real::mul_add(
+        -t376,
+        T::from_f64(0.00000008),
+        Real::mul_add(
+            t370,
+            T::from_f64(0.00000008),
+            Real::mul_add(
+                t364,
+                T::from_f64(0.00000006300000000000001),
+                Real::mul_add(-t354, T::from_f64(0.000000042), t332 + t2372),
+            ),
+        ),
+    );
+    let t2405 = Real::mul_add(
+        -t620,
+        T::from_f64(0.0008),
+        Real::mul_add(t620, T::from_f64(0.0004), -t636),
+    );
+    let t2406 = Real::mul_add(
+        t619,
+        T::from_f64(0.0008),
+        Real::mul_add(-t619, T::from_f64(0.0004), t635),
+    );
     let t2418 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t549
-            + (c115 * (T::from_f64(0.02) * t619)
-                + T::from_f64(0.02)
-                    * (s114 * (c115 * t530 + s114 * t531 + t595 - t610))));
-    let t2420 = t153 * t212 - t152 * t554 - t549 * T::from_f64(0.00075) + t2406 + t2418;
-    let t2425 = c113 * t2360 + s112 * (t560 - (s114 * t2405 - t660))
-        + (c113
-            * (t550 * T::from_f64(0.00075) - (t216 + T::from_f64(0.0000058) * t157)
-                + (t664 + c115 * t2405) - T::from_f64(0.05) * t672) - s112 * t2363);
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
+                c115 * (T::from_f64(0.02) * t619),
+            ));
+    let t2420 = Real::mul_add(
+        -t549,
+        T::from_f64(0.00075),
+        Real::mul_add(t153, t212, -(t152 * t554)),
+    ) + t2406 + t2418;
+    let t2425 = Real::mul_add(
+        s112,
+        t560 - Real::mul_add(s114, t2405, -t660),
+        c113 * t2360,
+    )
+        + Real::mul_add(
+            -s112,
+            t2363,
+            c113
+                * (Real::mul_add(
+                    t550,
+                    T::from_f64(0.00075),
+                    -(t216 + T::from_f64(0.0000058) * t157),
+                ) + Real::mul_add(c115, t2405, t664) - T::from_f64(0.05) * t672),
+        );
     let t2426 = t2425 - T::from_f64(0.012) * t672;
-    let t2433 = t751 * T::from_f64(0.0004) - t636 - t751 * T::from_f64(0.0008);
-    let t2434 = t635 - t750 * T::from_f64(0.0004) + t750 * T::from_f64(0.0008);
-    let t2449 = t2434
-        + T::from_f64(0.05)
-            * (c115 * (T::from_f64(0.02) * t750) - s114 * t299
-                + (c115 * t298 + T::from_f64(0.02) * (s114 * (t257 + t595 - t610))));
-    let t2455 = s112 * (t785 - (t2357 + s114 * t2433))
-        + c113 * (t792 + (c115 * t2433 - t2356) - t751 * T::from_f64(0.001))
-        - t751 * T::from_f64(0.00024);
-    let t2462 = t887 - (s112 * t196 + T::from_f64(0.025) * (c113 * t152));
-    let t2474 = t994 * T::from_f64(0.0004)
-        - (T::from_f64(0.0000024) * t948 + t302 * t930) - t994 * T::from_f64(0.0008);
-    let t2475 = t301 * t930 + t233 * t998 - t993 * T::from_f64(0.0004)
-        + t993 * T::from_f64(0.0008);
+    let t2433 = Real::mul_add(
+        -t751,
+        T::from_f64(0.0008),
+        Real::mul_add(t751, T::from_f64(0.0004), -t636),
+    );
+    let t2434 = Real::mul_add(
+        t750,
+        T::from_f64(0.0008),
+        Real::mul_add(-t750, T::from_f64(0.0004), t635),
+    );
+    let t2449 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(c115, T::from_f64(0.02) * t750, -(s114 * t299))
+            + Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298),
+        t2434,
+    );
+    let t2455 = Real::mul_add(
+        -t751,
+        T::from_f64(0.00024),
+        Real::mul_add(
+            c113,
+            Real::mul_add(
+                -t751,
+                T::from_f64(0.001),
+                t792 + Real::mul_add(c115, t2433, -t2356),
+            ),
+            s112 * (t785 - Real::mul_add(s114, t2433, t2357)),
+        ),
+    );
+    let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
+    let t2474 = Real::mul_add(
+        -t994,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t994,
+            T::from_f64(0.0004),
+            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+        ),
+    );
+    let t2475 = Real::mul_add(
+        t993,
+        T::from_f64(0.0008),
+        Real::mul_add(-t993, T::from_f64(0.0004), Real::mul_add(t233, t998, t301 * t930)),
+    );
     let t2477 = T::from_f64(0.02)
         * (s114
-            * (s114 * t887 - c115 * t885 - (t264 * t934 + t237 * t960)
-                + (t285 * t934 + t237 * t981)));
-    let t2489 = s112 * t212 + t152 * t909 - T::from_f64(0.00075) * t2462 + t2475
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t2462 + (c115 * (T::from_f64(0.02) * t993) + t2477));
-    let t2492 = s112 * (c113 * t213 - qd[1] * t909 - (s114 * t2474 - c115 * t1003))
-        + c113
-            * (t905 * T::from_f64(0.00075)
-                - (T::from_f64(0.0000058) * t863 + s112 * t213)
-                + (s114 * t1003 + c115 * t2474) - T::from_f64(0.05) * t1052);
-    let t2493 = (t131 + t131 - t849) * T::from_f64(0.00003) - t852 * T::from_f64(0.00006)
-        + t2492;
+            * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
+                + Real::mul_add(t237, t981, t285 * t934)));
+    let t2489 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t2462,
+            c115 * (T::from_f64(0.02) * t993) + t2477,
+        ),
+        Real::mul_add(
+            -T::from_f64(0.00075),
+            t2462,
+            Real::mul_add(t152, t909, s112 * t212),
+        ) + t2475,
+    );
+    let t2492 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t905,
+            T::from_f64(0.00075),
+            -(T::from_f64(0.0000058) * t863 + s112 * t213),
+        ) + Real::mul_add(c115, t2474, s114 * t1003) - T::from_f64(0.05) * t1052,
+        s112
+            * (Real::mul_add(-qd[1], t909, c113 * t213)
+                - Real::mul_add(s114, t2474, -(c115 * t1003))),
+    );
+    let t2493 = Real::mul_add(
+        -t852,
+        T::from_f64(0.00006),
+        (t131 + t131 - t849) * T::from_f64(0.00003),
+    ) + t2492;
     let t2494 = t2493 - t1087;
     let t2495 = t1087 - t2493;
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
-    let t2503 = t1144 * T::from_f64(0.0004) - t1152 - t1144 * T::from_f64(0.0008);
+    let t2503 = Real::mul_add(
+        -t1144,
+        T::from_f64(0.0008),
+        Real::mul_add(t1144, T::from_f64(0.0004), -t1152),
+    );
     let t2504 = t2502 - t2499;
-    let t2517 = t2504
-        + T::from_f64(0.05)
-            * (c115 * (T::from_f64(0.02) * t1133)
-                + T::from_f64(0.02) * (s114 * (t1141 - (c115 * t1112 + t1135))));
-    let t2520 = s112 * (T::from_f64(0.0000068) * t153 - t212 - (s114 * t2503 - t1183))
-        + c113
-            * (t1119 * T::from_f64(0.00075) - (t554 + T::from_f64(0.0000068) * t152)
-                + (t1187 + c115 * t2503) - T::from_f64(0.05) * t1194);
+    let t2517 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.02),
+            s114 * (t1141 - (c115 * t1112 + t1135)),
+            c115 * (T::from_f64(0.02) * t1133),
+        ),
+        t2504,
+    );
+    let t2520 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t1119,
+            T::from_f64(0.00075),
+            -(t554 + T::from_f64(0.0000068) * t152),
+        ) + Real::mul_add(c115, t2503, t1187) - T::from_f64(0.05) * t1194,
+        s112
+            * (Real::mul_add(T::from_f64(0.0000068), t153, -t212)
+                - Real::mul_add(s114, t2503, -t1183)),
+    );
     let t2521 = t2520 - t1225;
     let t2522 = t1225 - t2520;
-    let t2526 = t1253 * T::from_f64(0.0004) - t1152 - t1253 * T::from_f64(0.0008);
+    let t2526 = Real::mul_add(
+        -t1253,
+        T::from_f64(0.0008),
+        Real::mul_add(t1253, T::from_f64(0.0004), -t1152),
+    );
     let t2534 = T::from_f64(0.001) * (s114 * (t1141 - t1135));
-    let t2538 = s112 * (t1183 - s114 * t2526)
-        + c113 * (t1187 + c115 * t2526 - t1253 * T::from_f64(0.001));
+    let t2538 = Real::mul_add(
+        c113,
+        Real::mul_add(-t1253, T::from_f64(0.001), Real::mul_add(c115, t2526, t1187)),
+        s112 * Real::mul_add(-s114, t2526, t1183),
+    );
     let t2539 = t1253 * T::from_f64(0.00024);
     let t2540 = t2538 - t2539;
     let t2541 = t2539 - t2538;
-    let t2555 = t1389 * T::from_f64(0.0004) - (t308 + T::from_f64(0.0000024) * t1372)
-        - t1389 * T::from_f64(0.0008);
-    let t2556 = t310 - t1388 * T::from_f64(0.0004) + t1388 * T::from_f64(0.0008);
-    let t2570 = t221 - t1347 * T::from_f64(0.00075) + t2556
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t1347
-                + (c115 * (T::from_f64(0.02) * t1388)
-                    + T::from_f64(0.02)
-                        * (s114 * (t290 + (t251 + s114 * t1342 - t269)))));
-    let t2573 = s112 * (t218 - (s114 * t2555 - t408))
-        + c113
-            * (t1348 * T::from_f64(0.00075) - (t219 + T::from_f64(0.0000058) * t158)
-                + (t412 + c115 * t2555) - T::from_f64(0.05) * t1429);
+    let t2555 = Real::mul_add(
+        -t1389,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t1389,
+            T::from_f64(0.0004),
+            -(t308 + T::from_f64(0.0000024) * t1372),
+        ),
+    );
+    let t2556 = Real::mul_add(
+        t1388,
+        T::from_f64(0.0008),
+        Real::mul_add(-t1388, T::from_f64(0.0004), t310),
+    );
+    let t2570 = Real::mul_add(
+        T::from_f64(0.05),
+        T::from_f64(0.03) * t1347
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
+                c115 * (T::from_f64(0.02) * t1388),
+            ),
+        Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t2556,
+    );
+    let t2573 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            t1348,
+            T::from_f64(0.00075),
+            -(t219 + T::from_f64(0.0000058) * t158),
+        ) + Real::mul_add(c115, t2555, t412) - T::from_f64(0.05) * t1429,
+        s112 * (t218 - Real::mul_add(s114, t2555, -t408)),
+    );
     let t2576 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
-        - ((t133 - t122) * T::from_f64(0.00003) - t134 * T::from_f64(0.00006) + t2573
-            - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
+        - (Real::mul_add(
+            -t134,
+            T::from_f64(0.00006),
+            (t133 - t122) * T::from_f64(0.00003),
+        ) + t2573 - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2596 = s112
-        * (s112
-            * (s114 * t1577
-                + (t1592 - (T::from_f64(0.05) * t1590 + T::from_f64(0.05) * t1586)))
-            - c113 * t2586)
-        + c113
-            * (c113
+    let t2596 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -s112,
+            t2586,
+            c113
                 * (t1592
-                    + (T::from_f64(0.00002455)
-                        + T::from_f64(0.000010400000000000002) * (c115 * c115)))
-                - s112 * t2586);
+                    + Real::mul_add(
+                        T::from_f64(0.000010400000000000002),
+                        c115 * c115,
+                        T::from_f64(0.00002455),
+                    )),
+        ),
+        s112
+            * Real::mul_add(
+                -c113,
+                t2586,
+                s112
+                    * (s114 * t1577
+                        + (t1592
+                            - Real::mul_add(
+                                T::from_f64(0.05),
+                                t1586,
+                                T::from_f64(0.05) * t1590,
+                            ))),
+            ),
+    );
     let t2599 = T::from_f64(0.000000245)
         + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
             + (T::from_f64(0.000002543) + t2596));
     let t2600 = T::from_f64(0.00000002100000000000001) / t2599;
     let t2601 = T::from_f64(0.000000024000000000000003) / t2599;
-    let t2604 = T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592)
-        - t2599 * (t2600 * t2600);
-    let t2608 = (T::from_f64(0.00000022400000000000002)
-        + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002))
-        - t2599 * (t2600 * t2601)) / t2604;
-    let t2614 = T::from_f64(0.000011256000000000002) - t2599 * (t2601 * t2601)
-        - t2604 * (t2608 * t2608);
-    let t2616 = T::from_f64(0.007) * tendon_tensions[0]
-        - T::from_f64(0.007) * tendon_tensions[1]
-        + T::from_f64(0.01) * tendon_tensions[2] - T::from_f64(0.01) * tendon_tensions[3]
-        - t2570 - t2576 * t2600;
-    let t2623 = (T::from_f64(0.008) * tendon_tensions[0]
-        - T::from_f64(0.008) * tendon_tensions[1] - t2556 - t2576 * t2601
-        - t2608 * t2616) / t2614;
-    let t2625 = t2616 / t2604 - t2608 * t2623;
-    let t2629 = t2576 / t2599 - t2600 * t2625 - t2601 * t2623;
-    let t2633 = t156 + s112 * t2629;
-    let t2634 = c113 * t2629 - t158;
-    let t2639 = t181 + (t166 + T::from_f64(0.05) * t2625);
-    let t2640 = t183 - (T::from_f64(0.012) * t2629 + T::from_f64(0.05) * t2634);
-    let t2643 = t2640 + T::from_f64(0.025) * t2634 - t204;
-    let t2655 = t246 + (c115 * t2633 + s114 * t2634);
-    let t2656 = c115 * t2634 - s114 * t2633 - t248;
+    let t2604 = Real::mul_add(
+        -t2599,
+        t2600 * t2600,
+        T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592),
+    );
+    let t2608 = Real::mul_add(
+        -t2599,
+        t2600 * t2601,
+        T::from_f64(0.00000022400000000000002)
+            + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002)),
+    ) / t2604;
+    let t2614 = Real::mul_add(
+        -t2604,
+        t2608 * t2608,
+        Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
+    );
+    let t2616 = Real::mul_add(
+        -t2576,
+        t2600,
+        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
+            + T::from_f64(0.01) * tendon_tensions[2]
+            - T::from_f64(0.01) * tendon_tensions[3] - t2570,
+    );
+    let t2623 = Real::mul_add(
+        -t2608,
+        t2616,
+        Real::mul_add(
+            -t2576,
+            t2601,
+            T::from_f64(0.008) * tendon_tensions[0]
+                - T::from_f64(0.008) * tendon_tensions[1] - t2556,
+        ),
+    ) / t2614;
+    let t2625 = Real::mul_add(-t2608, t2623, t2616 / t2604);
+    let t2629 = Real::mul_add(
+        -t2601,
+        t2623,
+        Real::mul_add(-t2600, t2625, t2576 / t2599),
+    );
+    let t2633 = Real::mul_add(s112, t2629, t156);
+    let t2634 = Real::mul_add(c113, t2629, -t158);
+    let t2639 = t181 + Real::mul_add(T::from_f64(0.05), t2625, t166);
+    let t2640 = t183
+        - Real::mul_add(T::from_f64(0.05), t2634, T::from_f64(0.012) * t2629);
+    let t2643 = Real::mul_add(T::from_f64(0.025), t2634, t2640) - t204;
+    let t2655 = t246 + Real::mul_add(s114, t2634, c115 * t2633);
+    let t2656 = Real::mul_add(-s114, t2633, c115 * t2634) - t248;
     let t2657 = t2623 + t2625;
-    let t2659 = t251 + s114 * t2639;
-    let t2661 = c115 * t2639 - t254;
-    let t2675 = t273 + (t2640 - T::from_f64(0.04) * t2656) + T::from_f64(0.02) * t2656
-        - t293;
-    let t2684 = T::from_f64(0.0000024) * t2656 - t308 + T::from_f64(0.0004) * t2675
-        - T::from_f64(0.0008) * t2675;
+    let t2659 = Real::mul_add(s114, t2639, t251);
+    let t2661 = Real::mul_add(c115, t2639, -t254);
+    let t2675 = Real::mul_add(
+        T::from_f64(0.02),
+        t2656,
+        t273 + Real::mul_add(-T::from_f64(0.04), t2656, t2640),
+    ) - t293;
+    let t2684 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2675,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2675,
+            Real::mul_add(T::from_f64(0.0000024), t2656, -t308),
+        ),
+    );
     let t2689 = s114 * t2684;
     let t2690 = c115 * t2684;
-    let t2701 = t529 + T::from_f64(0.05) * t2633;
-    let t2704 = t2701 - T::from_f64(0.025) * t2633 - t546;
+    let t2701 = Real::mul_add(T::from_f64(0.05), t2633, t529);
+    let t2704 = Real::mul_add(-T::from_f64(0.025), t2633, t2701) - t546;
     let t2710 = T::from_f64(0.04) * t2655;
     let t2713 = T::from_f64(0.02) * t2655;
     let t2715 = t599 + (t2701 + t2710) - t2713 - t616;
-    let t2718 = t305 + T::from_f64(0.0000024) * t2655;
-    let t2722 = T::from_f64(0.0004) * t2715 - t2718 - T::from_f64(0.0008) * t2715;
-    let t2727 = T::from_f64(0.03) * t2704 + T::from_f64(0.02) * t2715;
-    let t2735 = c113
-        * (T::from_f64(0.00075) * t2704 - (t216 + T::from_f64(0.0000058) * t2633)
-            + (t664 + c115 * t2722) - T::from_f64(0.05) * t2727)
-        - s112
-            * (T::from_f64(0.0000058) * t2634 - t219 + T::from_f64(0.00075) * t2643
-                + (t412 + t2690)
-                - T::from_f64(0.05)
-                    * (T::from_f64(0.03) * t2643 + T::from_f64(0.02) * t2675));
-    let t2738 = T::from_f64(0.012) * t2727
-        - (c113 * (t218 - (t2689 - t408)) + s112 * (t560 - (s114 * t2722 - t660))
-            + t2735);
+    let t2718 = Real::mul_add(T::from_f64(0.0000024), t2655, t305);
+    let t2722 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2715,
+        Real::mul_add(T::from_f64(0.0004), t2715, -t2718),
+    );
+    let t2727 = Real::mul_add(T::from_f64(0.02), t2715, T::from_f64(0.03) * t2704);
+    let t2735 = Real::mul_add(
+        -s112,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            Real::mul_add(T::from_f64(0.02), t2675, T::from_f64(0.03) * t2643),
+            Real::mul_add(
+                T::from_f64(0.00075),
+                t2643,
+                Real::mul_add(T::from_f64(0.0000058), t2634, -t219),
+            ) + (t412 + t2690),
+        ),
+        c113
+            * Real::mul_add(
+                -T::from_f64(0.05),
+                t2727,
+                Real::mul_add(
+                    T::from_f64(0.00075),
+                    t2704,
+                    -Real::mul_add(T::from_f64(0.0000058), t2633, t216),
+                ) + Real::mul_add(c115, t2722, t664),
+            ),
+    );
+    let t2738 = Real::mul_add(
+        T::from_f64(0.012),
+        t2727,
+        -(Real::mul_add(
+            s112,
+            t560 - Real::mul_add(s114, t2722, -t660),
+            c113 * (t218 - (t2689 - t408)),
+        ) + t2735),
+    );
     let t2744 = t615 + (t598 - t2659);
     let t2745 = t599 + t2710 - t2713 - t616;
-    let t2755 = T::from_f64(0.0004) * t2745 - t2718 - T::from_f64(0.0008) * t2745;
-    let t2756 = t635 - T::from_f64(0.0004) * t2744 + T::from_f64(0.0008) * t2744;
-    let t2762 = T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269)))
-        + T::from_f64(0.02) * (s114 * (t595 + t2661 - t610))
-        + (c115 * (T::from_f64(0.02) * t2744)
-            - T::from_f64(0.02)
-                * (s114
-                    * (t271 + (t2661 + T::from_f64(0.04) * t2657)
-                        - T::from_f64(0.02) * t2657 - t291)));
-    let t2777 = T::from_f64(0.00024) * t2745
-        - (s112 * (t785 - (t2690 + s114 * t2755))
-            + c113 * (t792 + (c115 * t2755 - t2689) - T::from_f64(0.001) * t2745));
-    let t2779 = t2420 + t2600 * t2738;
-    let t2786 = (t2608 * t2779 - (t2406 + t2601 * t2738)) / t2614;
-    let t2788 = t2779 / t2604 + t2608 * t2786;
+    let t2755 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2745,
+        Real::mul_add(T::from_f64(0.0004), t2745, -t2718),
+    );
+    let t2756 = Real::mul_add(
+        T::from_f64(0.0008),
+        t2744,
+        Real::mul_add(-T::from_f64(0.0004), t2744, t635),
+    );
+    let t2762 = Real::mul_add(
+        T::from_f64(0.02),
+        s114 * (t595 + t2661 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269))),
+    )
+        + Real::mul_add(
+            -T::from_f64(0.02),
+            s114
+                * (Real::mul_add(
+                    -T::from_f64(0.02),
+                    t2657,
+                    t271 + Real::mul_add(T::from_f64(0.04), t2657, t2661),
+                ) - t291),
+            c115 * (T::from_f64(0.02) * t2744),
+        );
+    let t2777 = Real::mul_add(
+        T::from_f64(0.00024),
+        t2745,
+        -Real::mul_add(
+            c113,
+            Real::mul_add(
+                -T::from_f64(0.001),
+                t2745,
+                t792 + Real::mul_add(c115, t2755, -t2689),
+            ),
+            s112 * (t785 - Real::mul_add(s114, t2755, t2690)),
+        ),
+    );
+    let t2779 = Real::mul_add(t2600, t2738, t2420);
+    let t2786 = Real::mul_add(t2608, t2779, -Real::mul_add(t2601, t2738, t2406)) / t2614;
+    let t2788 = Real::mul_add(t2608, t2786, t2779 / t2604);
     let t2789 = -t2788;
-    let t2793 = t2738 / t2599 + t2600 * t2788 - t2601 * t2786;
-    let t2795 = t2756 + T::from_f64(0.05) * t2762 + t2600 * t2777;
-    let t2802 = (t2608 * t2795 - (t2756 + t2601 * t2777)) / t2614;
-    let t2804 = t2795 / t2604 + t2608 * t2802;
+    let t2793 = Real::mul_add(-t2601, t2786, Real::mul_add(t2600, t2788, t2738 / t2599));
+    let t2795 = Real::mul_add(
+        t2600,
+        t2777,
+        Real::mul_add(T::from_f64(0.05), t2762, t2756),
+    );
+    let t2802 = Real::mul_add(t2608, t2795, -Real::mul_add(t2601, t2777, t2756)) / t2614;
+    let t2804 = Real::mul_add(t2608, t2802, t2795 / t2604);
     let t2805 = -t2804;
-    let t2809 = t2777 / t2599 + t2600 * t2804 - t2601 * t2802;
-    let t2811 = t2489 + t2495 * t2600;
-    let t2818 = (t2608 * t2811 - (t2475 + t2495 * t2601)) / t2614;
-    let t2820 = t2811 / t2604 + t2608 * t2818;
+    let t2809 = Real::mul_add(-t2601, t2802, Real::mul_add(t2600, t2804, t2777 / t2599));
+    let t2811 = Real::mul_add(t2495, t2600, t2489);
+    let t2818 = Real::mul_add(t2608, t2811, -Real::mul_add(t2495, t2601, t2475)) / t2614;
+    let t2820 = Real::mul_add(t2608, t2818, t2811 / t2604);
     let t2821 = -t2820;
-    let t2825 = t2495 / t2599 + t2600 * t2820 - t2601 * t2818;
-    let t2827 = t2517 + t2522 * t2600;
-    let t2834 = (t2499 - t2502 - t2522 * t2601 + t2608 * t2827) / t2614;
-    let t2836 = t2827 / t2604 + t2608 * t2834;
+    let t2825 = Real::mul_add(-t2601, t2818, Real::mul_add(t2600, t2820, t2495 / t2599));
+    let t2827 = Real::mul_add(t2522, t2600, t2517);
+    let t2834 = Real::mul_add(t2608, t2827, Real::mul_add(-t2522, t2601, t2499 - t2502))
+        / t2614;
+    let t2836 = Real::mul_add(t2608, t2834, t2827 / t2604);
     let t2837 = -t2836;
-    let t2841 = t2522 / t2599 + t2600 * t2836 - t2601 * t2834;
-    let t2843 = t2534 + t2541 * t2600;
-    let t2849 = (t2608 * t2843 - t2541 * t2601) / t2614;
-    let t2851 = t2843 / t2604 + t2608 * t2849;
+    let t2841 = Real::mul_add(-t2601, t2834, Real::mul_add(t2600, t2836, t2522 / t2599));
+    let t2843 = Real::mul_add(t2541, t2600, t2534);
+    let t2849 = Real::mul_add(-t2541, t2601, t2608 * t2843) / t2614;
+    let t2851 = Real::mul_add(t2608, t2849, t2843 / t2604);
     let t2852 = -t2851;
-    let t2856 = t2541 / t2599 + t2600 * t2851 - t2601 * t2849;
-    let t2858 = T::from_f64(0.007) + T::from_f64(0.006) * t2600;
-    let t2865 = (T::from_f64(0.008) + T::from_f64(0.006) * t2601 - t2608 * t2858)
-        / t2614;
-    let t2867 = t2858 / t2604 - t2608 * t2865;
-    let t2871 = T::from_f64(-0.006) / t2599 - t2600 * t2867 - t2601 * t2865;
-    let t2873 = T::from_f64(-0.007) + T::from_f64(0.009) * t2600;
-    let t2880 = (T::from_f64(-0.008) + T::from_f64(0.009) * t2601 - t2608 * t2873)
-        / t2614;
-    let t2882 = t2873 / t2604 - t2608 * t2880;
-    let t2886 = T::from_f64(-0.009) / t2599 - t2600 * t2882 - t2601 * t2880;
+    let t2856 = Real::mul_add(-t2601, t2849, Real::mul_add(t2600, t2851, t2541 / t2599));
+    let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
+    let t2865 = Real::mul_add(
+        -t2608,
+        t2858,
+        Real::mul_add(T::from_f64(0.006), t2601, T::from_f64(0.008)),
+    ) / t2614;
+    let t2867 = Real::mul_add(-t2608, t2865, t2858 / t2604);
+    let t2871 = Real::mul_add(
+        -t2601,
+        t2865,
+        Real::mul_add(-t2600, t2867, T::from_f64(-0.006) / t2599),
+    );
+    let t2873 = Real::mul_add(T::from_f64(0.009), t2600, T::from_f64(-0.007));
+    let t2880 = Real::mul_add(
+        -t2608,
+        t2873,
+        Real::mul_add(T::from_f64(0.009), t2601, T::from_f64(-0.008)),
+    ) / t2614;
+    let t2882 = Real::mul_add(-t2608, t2880, t2873 / t2604);
+    let t2886 = Real::mul_add(
+        -t2601,
+        t2880,
+        Real::mul_add(-t2600, t2882, T::from_f64(-0.009) / t2599),
+    );
     let t2887 = T::from_f64(0.008) * t2600;
     let t2888 = T::from_f64(0.01) - t2887;
     let t2889 = T::from_f64(0.008) * t2601;
     let t2892 = T::from_f64(0.008) / t2599;
-    let t2894 = (t2889 + t2608 * t2888) / t2614;
+    let t2894 = Real::mul_add(t2608, t2888, t2889) / t2614;
     let t2895 = -t2894;
-    let t2897 = t2888 / t2604 + t2608 * t2894;
-    let t2901 = t2892 - t2600 * t2897 + t2601 * t2894;
+    let t2897 = Real::mul_add(t2608, t2894, t2888 / t2604);
+    let t2901 = Real::mul_add(t2601, t2894, Real::mul_add(-t2600, t2897, t2892));
     let t2902 = T::from_f64(-0.01) - t2887;
-    let t2906 = (t2889 + t2608 * t2902) / t2614;
+    let t2906 = Real::mul_add(t2608, t2902, t2889) / t2614;
     let t2907 = -t2906;
-    let t2909 = t2902 / t2604 + t2608 * t2906;
-    let t2913 = t2892 - t2600 * t2909 + t2601 * t2906;
+    let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
+    let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
     Outputs {
         generalized_forces: [t2392, t2394, t2388],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {

@@ -32,10 +32,16 @@ pub fn actuation<T: Numeric>(
     let t30 = q[0].cos();
     let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + t30 * T::from_f64(15.489503534923216));
-    let t99 = qdd[0] * T::from_f64(0.023733660538548376)
-        + t30 * T::from_f64(1.5223696228493755);
-    let t104 = qdd[0] * T::from_f64(0.10944622077137119)
-        + t30 * T::from_f64(7.0203077846917195);
+    let t99 = Real::mul_add(
+        t30,
+        T::from_f64(1.5223696228493755),
+        qdd[0] * T::from_f64(0.023733660538548376),
+    );
+    let t104 = Real::mul_add(
+        t30,
+        T::from_f64(7.0203077846917195),
+        qdd[0] * T::from_f64(0.10944622077137119),
+    );
     tendyn_core::distribution::Actuation::bounded(
         [],
         [t94, t99, t104],
@@ -68,10 +74,16 @@ pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
     let t30 = q[0].cos();
     let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + t30 * T::from_f64(15.489503534923216));
-    let t99 = qdd[0] * T::from_f64(0.023733660538548376)
-        + t30 * T::from_f64(1.5223696228493755);
-    let t104 = qdd[0] * T::from_f64(0.10944622077137119)
-        + t30 * T::from_f64(7.0203077846917195);
+    let t99 = Real::mul_add(
+        t30,
+        T::from_f64(1.5223696228493755),
+        qdd[0] * T::from_f64(0.023733660538548376),
+    );
+    let t104 = Real::mul_add(
+        t30,
+        T::from_f64(7.0203077846917195),
+        qdd[0] * T::from_f64(0.10944622077137119),
+    );
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],

@@ -37,23 +37,27 @@ pub fn actuation<T: Numeric>(
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
-    let t159 = qdd[0] * c113 - t158;
+    let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
-    let t233 = c115 * t152 + s114 * t153;
-    let t237 = c115 * t153 - s114 * t152;
+    let t233 = Real::mul_add(s114, t153, c115 * t152);
+    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
     let t245 = qd[1] + qd[2];
-    let t249 = c115 * t159 - s114 * (qdd[0] * s112 + qd[1] * t153) - qd[2] * t233;
+    let t249 = Real::mul_add(
+        -qd[2],
+        t233,
+        Real::mul_add(c115, t159, -(s114 * Real::mul_add(qd[1], t153, qdd[0] * s112))),
+    );
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
+    let t297 = Real::mul_add(t233, t263, t186 - T::from_f64(0.04) * t249)
+        + T::from_f64(0.02) * t249 - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t446 = T::from_f64(1.25) * qdd[1];
@@ -63,92 +67,197 @@ pub fn actuation<T: Numeric>(
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
-    let t1495 = qdd[0] * T::from_f64(0.004285714285714286) - t118
-        - T::from_f64(0.002142857142857143) * t1489;
-    let t1509 = T::from_f64(9.81) * s112 - c113 * t1490 - (t153 * t174 + qd[1] * t173);
+    let t1495 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t1489,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
+    let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
+        - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t1490));
-    let t1515 = t1510 - qdd[1] * T::from_f64(0.025) - T::from_f64(0.025) * (t152 * t153);
-    let t1516 = t186 + t159 * T::from_f64(0.025) - t158 * T::from_f64(0.025);
-    let t1535 = t233 * t264 + (T::from_f64(0.04) * t250 + (c115 * t1510 - s114 * t1509))
+        + (T::from_f64(0.05) * qdd[1]
+            + Real::mul_add(s112, t1490, T::from_f64(9.81) * c113));
+    let t1515 = Real::mul_add(
+        -T::from_f64(0.025),
+        t152 * t153,
+        t1510 - qdd[1] * T::from_f64(0.025),
+    );
+    let t1516 = Real::mul_add(
+        -t158,
+        T::from_f64(0.025),
+        t186 + t159 * T::from_f64(0.025),
+    );
+    let t1535 = t233 * t264
+        + (T::from_f64(0.04) * t250 + Real::mul_add(-s114, t1509, c115 * t1510))
         - T::from_f64(0.02) * t250 - t233 * t285;
     let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
-    let t1546 = (qdd[1] + T::from_f64(1.1428571428571428) * qdd[2])
+    let t1546 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t1547 = t1544 - t1546;
-    let t1549 = (qdd[0] + T::from_f64(0.7777777777777779) * qdd[1]
-        + T::from_f64(0.888888888888889) * qdd[2]) * T::from_f64(0.000009);
+    let t1549 = Real::mul_add(
+        T::from_f64(0.888888888888889),
+        qdd[2],
+        Real::mul_add(T::from_f64(0.7777777777777779), qdd[1], qdd[0]),
+    ) * T::from_f64(0.000009);
     let t1550 = t1546 + t1549;
     let t1552 = (qdd[0] + t446) * T::from_f64(0.000008000000000000001);
     let t1553 = (qdd[0] - t446) * T::from_f64(0.000008000000000000001);
     let t1554 = T::from_f64(0.999799979995999) * t1547;
     let t1555 = T::from_f64(0.019999999999999785) * t1547;
-    let t1558 = c115 * t1554 + s114 * t1555;
-    let t1561 = s114 * t1554 - c115 * t1555;
+    let t1558 = Real::mul_add(s114, t1555, c115 * t1554);
+    let t1561 = Real::mul_add(-c115, t1555, s114 * t1554);
     let t1569 = T::from_f64(0.999799979995999) * t1550;
     let t1570 = T::from_f64(0.02000000000000003) * t1550;
-    let t1573 = s114 * t1570 - c115 * t1569;
-    let t1576 = s114 * t1569 + c115 * t1570;
+    let t1573 = Real::mul_add(-c115, t1569, s114 * t1570);
+    let t1576 = Real::mul_add(c115, t1570, s114 * t1569);
     let t1584 = c113 * t1552;
     let t1585 = s112 * t1552;
     let t1589 = c113 * t1553;
     let t1590 = s112 * t1553;
     let t1592 = t1585 + t1590;
-    let t1616 = (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561
-        + (s114 * T::from_f64(0.00015999999999999828) + t498) * t1558
-        - T::from_f64(0.04) * t1561
-        - ((t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576
-            + (s114 * T::from_f64(0.00016000000000000026) - t498) * t1573
-            + T::from_f64(0.04) * t1576);
-    let t1617 = T::from_f64(0.02)
-        * (t237 * t285 + t245 * t283
-            + (c115 * t1509 + s114 * t1510 - (t237 * t264 + t245 * t263)))
-        - (t1573 - t1558);
-    let t1618 = T::from_f64(0.02) * t1535 - (t1561 + t1576);
-    let t1619 = t237 * t302 - t245 * t301
-        + (T::from_f64(0.009) * t1576 + T::from_f64(0.006) * t1561);
-    let t1625 = T::from_f64(0.0000024) * t249 - t233 * t302 + t297 * T::from_f64(0.0004)
-        - (T::from_f64(0.009) * t1573 - T::from_f64(0.006) * t1558)
-        - t297 * T::from_f64(0.0008);
-    let t1626 = T::from_f64(0.000003) * t250 + t233 * t301 - t1535 * T::from_f64(0.0004)
-        - t1616 + T::from_f64(0.04) * t1618;
-    let t1641 = T::from_f64(0.02) * t297 + T::from_f64(0.03) * t1516;
-    let t1644 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
-        - t1515 * T::from_f64(0.00075)
-        - (t602 * t1590 + t603 * t1589 - (t602 * t1585 + t603 * t1584)
-            + T::from_f64(0.05) * t1592 - t1626);
-    let t1647 = T::from_f64(0.0000058) * t159 - t152 * t213
-        + t1516 * T::from_f64(0.00075)
-        + (T::from_f64(0.008) * (t1584 + t1589) + (s114 * t1619 + c115 * t1625))
-        - T::from_f64(0.05) * t1641;
-    let t1648 = t1644
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t1515 + (t1592 + (s114 * t1617 + c115 * t1618)));
-    let t1652 = T::from_f64(0.009) * (c113 * t1569 + s112 * t1570 - t1549)
-        + T::from_f64(0.006) * (c113 * t1554 - s112 * t1555 - t1544)
-        - (s112
-            * (t153 * t213 - qd[1] * t212
-                - (s114 * t1625 - c115 * t1619 - T::from_f64(0.008) * t1592))
-            + c113 * t1647);
-    let t1656 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + ((T::from_f64(0.002142857142857143) * qdd[0] - t1490
-            + T::from_f64(0.004285714285714286) * t1489) * T::from_f64(0.00003)
-            + t1495 * T::from_f64(0.00006)) - t1652
-        - T::from_f64(0.012) * (T::from_f64(0.014) * t1495 + t1641);
-    let t1661 = T::from_f64(0.000000000000003552713678800501) * t1648
-        - T::from_f64(31.185031185031185) * t1656
-        + T::from_f64(68.34719334719333) * t1626;
-    let t1666 = T::from_f64(31.18503118503118) * t1656
-        + T::from_f64(0.000000000000007105427357601002) * t1648
-        + T::from_f64(56.65280665280666) * t1626;
-    let t1670 = T::from_f64(33.26403326403328) * t1656
-        + T::from_f64(50.000000000000014) * t1648;
+    let t1616 = Real::mul_add(
+        -T::from_f64(0.04),
+        t1561,
+        Real::mul_add(
+            s114 * T::from_f64(0.00015999999999999828) + t498,
+            t1558,
+            (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561,
+        ),
+    )
+        - Real::mul_add(
+            T::from_f64(0.04),
+            t1576,
+            Real::mul_add(
+                s114 * T::from_f64(0.00016000000000000026) - t498,
+                t1573,
+                (t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576,
+            ),
+        );
+    let t1617 = Real::mul_add(
+        T::from_f64(0.02),
+        Real::mul_add(t237, t285, t245 * t283)
+            + (Real::mul_add(s114, t1510, c115 * t1509)
+                - Real::mul_add(t245, t263, t237 * t264)),
+        -(t1573 - t1558),
+    );
+    let t1618 = Real::mul_add(T::from_f64(0.02), t1535, -(t1561 + t1576));
+    let t1619 = Real::mul_add(-t245, t301, t237 * t302)
+        + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
+    let t1625 = Real::mul_add(
+        -t297,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t297,
+            T::from_f64(0.0004),
+            Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302)),
+        ) - Real::mul_add(-T::from_f64(0.006), t1558, T::from_f64(0.009) * t1573),
+    );
+    let t1626 = Real::mul_add(
+        T::from_f64(0.04),
+        t1618,
+        Real::mul_add(
+            -t1535,
+            T::from_f64(0.0004),
+            Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
+        ) - t1616,
+    );
+    let t1641 = Real::mul_add(T::from_f64(0.03), t1516, T::from_f64(0.02) * t297);
+    let t1644 = Real::mul_add(
+        -t1515,
+        T::from_f64(0.00075),
+        Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
+    )
+        - (Real::mul_add(
+            T::from_f64(0.05),
+            t1592,
+            Real::mul_add(t603, t1589, t602 * t1590)
+                - Real::mul_add(t603, t1584, t602 * t1585),
+        ) - t1626);
+    let t1647 = Real::mul_add(
+        -T::from_f64(0.05),
+        t1641,
+        Real::mul_add(
+            t1516,
+            T::from_f64(0.00075),
+            Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
+        )
+            + Real::mul_add(
+                T::from_f64(0.008),
+                t1584 + t1589,
+                Real::mul_add(c115, t1625, s114 * t1619),
+            ),
+    );
+    let t1648 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1515,
+            t1592 + Real::mul_add(c115, t1618, s114 * t1617),
+        ),
+        t1644,
+    );
+    let t1652 = Real::mul_add(
+        T::from_f64(0.006),
+        Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
+        T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
+    )
+        - Real::mul_add(
+            c113,
+            t1647,
+            s112
+                * (Real::mul_add(-qd[1], t212, t153 * t213)
+                    - Real::mul_add(
+                        -T::from_f64(0.008),
+                        t1592,
+                        Real::mul_add(-c115, t1619, s114 * t1625),
+                    )),
+        );
+    let t1656 = Real::mul_add(
+        -T::from_f64(0.012),
+        Real::mul_add(T::from_f64(0.014), t1495, t1641),
+        T::from_f64(0.0000022215714285714285) * qdd[0]
+            + Real::mul_add(
+                t1495,
+                T::from_f64(0.00006),
+                Real::mul_add(
+                    T::from_f64(0.004285714285714286),
+                    t1489,
+                    T::from_f64(0.002142857142857143) * qdd[0] - t1490,
+                ) * T::from_f64(0.00003),
+            ) - t1652,
+    );
+    let t1661 = Real::mul_add(
+        T::from_f64(68.34719334719333),
+        t1626,
+        Real::mul_add(
+            -T::from_f64(31.185031185031185),
+            t1656,
+            T::from_f64(0.000000000000003552713678800501) * t1648,
+        ),
+    );
+    let t1666 = Real::mul_add(
+        T::from_f64(56.65280665280666),
+        t1626,
+        Real::mul_add(
+            T::from_f64(0.000000000000007105427357601002),
+            t1648,
+            T::from_f64(31.18503118503118) * t1656,
+        ),
+    );
+    let t1670 = Real::mul_add(
+        T::from_f64(50.000000000000014),
+        t1648,
+        T::from_f64(33.26403326403328) * t1656,
+    );
     let t1671 = T::from_f64(49.98700623700625) * t1626;
     let t1672 = t1670 - t1671;
-    let t1677 = T::from_f64(33.26403326403329) * t1656 - T::from_f64(50.0) * t1648
-        + T::from_f64(37.512993762993766) * t1626;
+    let t1677 = Real::mul_add(
+        T::from_f64(37.512993762993766),
+        t1626,
+        Real::mul_add(-T::from_f64(50.0), t1648, T::from_f64(33.26403326403329) * t1656),
+    );
     let t1687 = (T::from_f64(0.9374999999999998) * (t1661 - T::from_f64(60.0)))
         .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1666)))
         .max(t1672 - T::from_f64(60.0))
@@ -166,8 +275,8 @@ pub fn actuation<T: Numeric>(
         .max(-t1677);
     let t1710 = t1687 + t1698;
     let t1711 = (-T::from_f64(0.0).max(t1687)).max(t1698);
-    let t1713 = t1661 + T::from_f64(1.0666666666666669) * t1711;
-    let t1715 = T::from_f64(1.0666666666666664) * t1711 - t1666;
+    let t1713 = Real::mul_add(T::from_f64(1.0666666666666669), t1711, t1661);
+    let t1715 = Real::mul_add(T::from_f64(1.0666666666666664), t1711, -t1666);
     let t1716 = t1672 + t1711;
     let t1717 = t1677 + t1711;
     tendyn_core::distribution::Actuation::along_line(
@@ -193,23 +302,27 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
-    let t159 = qdd[0] * c113 - t158;
+    let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
-    let t233 = c115 * t152 + s114 * t153;
-    let t237 = c115 * t153 - s114 * t152;
+    let t233 = Real::mul_add(s114, t153, c115 * t152);
+    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
     let t245 = qd[1] + qd[2];
-    let t249 = c115 * t159 - s114 * (qdd[0] * s112 + qd[1] * t153) - qd[2] * t233;
+    let t249 = Real::mul_add(
+        -qd[2],
+        t233,
+        Real::mul_add(c115, t159, -(s114 * Real::mul_add(qd[1], t153, qdd[0] * s112))),
+    );
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
+    let t297 = Real::mul_add(t233, t263, t186 - T::from_f64(0.04) * t249)
+        + T::from_f64(0.02) * t249 - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t446 = T::from_f64(1.25) * qdd[1];
@@ -219,92 +332,197 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
-    let t1495 = qdd[0] * T::from_f64(0.004285714285714286) - t118
-        - T::from_f64(0.002142857142857143) * t1489;
-    let t1509 = T::from_f64(9.81) * s112 - c113 * t1490 - (t153 * t174 + qd[1] * t173);
+    let t1495 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t1489,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
+    let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
+        - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t1490));
-    let t1515 = t1510 - qdd[1] * T::from_f64(0.025) - T::from_f64(0.025) * (t152 * t153);
-    let t1516 = t186 + t159 * T::from_f64(0.025) - t158 * T::from_f64(0.025);
-    let t1535 = t233 * t264 + (T::from_f64(0.04) * t250 + (c115 * t1510 - s114 * t1509))
+        + (T::from_f64(0.05) * qdd[1]
+            + Real::mul_add(s112, t1490, T::from_f64(9.81) * c113));
+    let t1515 = Real::mul_add(
+        -T::from_f64(0.025),
+        t152 * t153,
+        t1510 - qdd[1] * T::from_f64(0.025),
+    );
+    let t1516 = Real::mul_add(
+        -t158,
+        T::from_f64(0.025),
+        t186 + t159 * T::from_f64(0.025),
+    );
+    let t1535 = t233 * t264
+        + (T::from_f64(0.04) * t250 + Real::mul_add(-s114, t1509, c115 * t1510))
         - T::from_f64(0.02) * t250 - t233 * t285;
     let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
-    let t1546 = (qdd[1] + T::from_f64(1.1428571428571428) * qdd[2])
+    let t1546 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t1547 = t1544 - t1546;
-    let t1549 = (qdd[0] + T::from_f64(0.7777777777777779) * qdd[1]
-        + T::from_f64(0.888888888888889) * qdd[2]) * T::from_f64(0.000009);
+    let t1549 = Real::mul_add(
+        T::from_f64(0.888888888888889),
+        qdd[2],
+        Real::mul_add(T::from_f64(0.7777777777777779), qdd[1], qdd[0]),
+    ) * T::from_f64(0.000009);
     let t1550 = t1546 + t1549;
     let t1552 = (qdd[0] + t446) * T::from_f64(0.000008000000000000001);
     let t1553 = (qdd[0] - t446) * T::from_f64(0.000008000000000000001);
     let t1554 = T::from_f64(0.999799979995999) * t1547;
     let t1555 = T::from_f64(0.019999999999999785) * t1547;
-    let t1558 = c115 * t1554 + s114 * t1555;
-    let t1561 = s114 * t1554 - c115 * t1555;
+    let t1558 = Real::mul_add(s114, t1555, c115 * t1554);
+    let t1561 = Real::mul_add(-c115, t1555, s114 * t1554);
     let t1569 = T::from_f64(0.999799979995999) * t1550;
     let t1570 = T::from_f64(0.02000000000000003) * t1550;
-    let t1573 = s114 * t1570 - c115 * t1569;
-    let t1576 = s114 * t1569 + c115 * t1570;
+    let t1573 = Real::mul_add(-c115, t1569, s114 * t1570);
+    let t1576 = Real::mul_add(c115, t1570, s114 * t1569);
     let t1584 = c113 * t1552;
     let t1585 = s112 * t1552;
     let t1589 = c113 * t1553;
     let t1590 = s112 * t1553;
     let t1592 = t1585 + t1590;
-    let t1616 = (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561
-        + (s114 * T::from_f64(0.00015999999999999828) + t498) * t1558
-        - T::from_f64(0.04) * t1561
-        - ((t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576
-            + (s114 * T::from_f64(0.00016000000000000026) - t498) * t1573
-            + T::from_f64(0.04) * t1576);
-    let t1617 = T::from_f64(0.02)
-        * (t237 * t285 + t245 * t283
-            + (c115 * t1509 + s114 * t1510 - (t237 * t264 + t245 * t263)))
-        - (t1573 - t1558);
-    let t1618 = T::from_f64(0.02) * t1535 - (t1561 + t1576);
-    let t1619 = t237 * t302 - t245 * t301
-        + (T::from_f64(0.009) * t1576 + T::from_f64(0.006) * t1561);
-    let t1625 = T::from_f64(0.0000024) * t249 - t233 * t302 + t297 * T::from_f64(0.0004)
-        - (T::from_f64(0.009) * t1573 - T::from_f64(0.006) * t1558)
-        - t297 * T::from_f64(0.0008);
-    let t1626 = T::from_f64(0.000003) * t250 + t233 * t301 - t1535 * T::from_f64(0.0004)
-        - t1616 + T::from_f64(0.04) * t1618;
-    let t1641 = T::from_f64(0.02) * t297 + T::from_f64(0.03) * t1516;
-    let t1644 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
-        - t1515 * T::from_f64(0.00075)
-        - (t602 * t1590 + t603 * t1589 - (t602 * t1585 + t603 * t1584)
-            + T::from_f64(0.05) * t1592 - t1626);
-    let t1647 = T::from_f64(0.0000058) * t159 - t152 * t213
-        + t1516 * T::from_f64(0.00075)
-        + (T::from_f64(0.008) * (t1584 + t1589) + (s114 * t1619 + c115 * t1625))
-        - T::from_f64(0.05) * t1641;
-    let t1648 = t1644
-        + T::from_f64(0.05)
-            * (T::from_f64(0.03) * t1515 + (t1592 + (s114 * t1617 + c115 * t1618)));
-    let t1652 = T::from_f64(0.009) * (c113 * t1569 + s112 * t1570 - t1549)
-        + T::from_f64(0.006) * (c113 * t1554 - s112 * t1555 - t1544)
-        - (s112
-            * (t153 * t213 - qd[1] * t212
-                - (s114 * t1625 - c115 * t1619 - T::from_f64(0.008) * t1592))
-            + c113 * t1647);
-    let t1656 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + ((T::from_f64(0.002142857142857143) * qdd[0] - t1490
-            + T::from_f64(0.004285714285714286) * t1489) * T::from_f64(0.00003)
-            + t1495 * T::from_f64(0.00006)) - t1652
-        - T::from_f64(0.012) * (T::from_f64(0.014) * t1495 + t1641);
-    let t1661 = T::from_f64(0.000000000000003552713678800501) * t1648
-        - T::from_f64(31.185031185031185) * t1656
-        + T::from_f64(68.34719334719333) * t1626;
-    let t1666 = T::from_f64(31.18503118503118) * t1656
-        + T::from_f64(0.000000000000007105427357601002) * t1648
-        + T::from_f64(56.65280665280666) * t1626;
-    let t1670 = T::from_f64(33.26403326403328) * t1656
-        + T::from_f64(50.000000000000014) * t1648;
+    let t1616 = Real::mul_add(
+        -T::from_f64(0.04),
+        t1561,
+        Real::mul_add(
+            s114 * T::from_f64(0.00015999999999999828) + t498,
+            t1558,
+            (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561,
+        ),
+    )
+        - Real::mul_add(
+            T::from_f64(0.04),
+            t1576,
+            Real::mul_add(
+                s114 * T::from_f64(0.00016000000000000026) - t498,
+                t1573,
+                (t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576,
+            ),
+        );
+    let t1617 = Real::mul_add(
+        T::from_f64(0.02),
+        Real::mul_add(t237, t285, t245 * t283)
+            + (Real::mul_add(s114, t1510, c115 * t1509)
+                - Real::mul_add(t245, t263, t237 * t264)),
+        -(t1573 - t1558),
+    );
+    let t1618 = Real::mul_add(T::from_f64(0.02), t1535, -(t1561 + t1576));
+    let t1619 = Real::mul_add(-t245, t301, t237 * t302)
+        + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
+    let t1625 = Real::mul_add(
+        -t297,
+        T::from_f64(0.0008),
+        Real::mul_add(
+            t297,
+            T::from_f64(0.0004),
+            Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302)),
+        ) - Real::mul_add(-T::from_f64(0.006), t1558, T::from_f64(0.009) * t1573),
+    );
+    let t1626 = Real::mul_add(
+        T::from_f64(0.04),
+        t1618,
+        Real::mul_add(
+            -t1535,
+            T::from_f64(0.0004),
+            Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
+        ) - t1616,
+    );
+    let t1641 = Real::mul_add(T::from_f64(0.03), t1516, T::from_f64(0.02) * t297);
+    let t1644 = Real::mul_add(
+        -t1515,
+        T::from_f64(0.00075),
+        Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
+    )
+        - (Real::mul_add(
+            T::from_f64(0.05),
+            t1592,
+            Real::mul_add(t603, t1589, t602 * t1590)
+                - Real::mul_add(t603, t1584, t602 * t1585),
+        ) - t1626);
+    let t1647 = Real::mul_add(
+        -T::from_f64(0.05),
+        t1641,
+        Real::mul_add(
+            t1516,
+            T::from_f64(0.00075),
+            Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
+        )
+            + Real::mul_add(
+                T::from_f64(0.008),
+                t1584 + t1589,
+                Real::mul_add(c115, t1625, s114 * t1619),
+            ),
+    );
+    let t1648 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1515,
+            t1592 + Real::mul_add(c115, t1618, s114 * t1617),
+        ),
+        t1644,
+    );
+    let t1652 = Real::mul_add(
+        T::from_f64(0.006),
+        Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
+        T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
+    )
+        - Real::mul_add(
+            c113,
+            t1647,
+            s112
+                * (Real::mul_add(-qd[1], t212, t153 * t213)
+                    - Real::mul_add(
+                        -T::from_f64(0.008),
+                        t1592,
+                        Real::mul_add(-c115, t1619, s114 * t1625),
+                    )),
+        );
+    let t1656 = Real::mul_add(
+        -T::from_f64(0.012),
+        Real::mul_add(T::from_f64(0.014), t1495, t1641),
+        T::from_f64(0.0000022215714285714285) * qdd[0]
+            + Real::mul_add(
+                t1495,
+                T::from_f64(0.00006),
+                Real::mul_add(
+                    T::from_f64(0.004285714285714286),
+                    t1489,
+                    T::from_f64(0.002142857142857143) * qdd[0] - t1490,
+                ) * T::from_f64(0.00003),
+            ) - t1652,
+    );
+    let t1661 = Real::mul_add(
+        T::from_f64(68.34719334719333),
+        t1626,
+        Real::mul_add(
+            -T::from_f64(31.185031185031185),
+            t1656,
+            T::from_f64(0.000000000000003552713678800501) * t1648,
+        ),
+    );
+    let t1666 = Real::mul_add(
+        T::from_f64(56.65280665280666),
+        t1626,
+        Real::mul_add(
+            T::from_f64(0.000000000000007105427357601002),
+            t1648,
+            T::from_f64(31.18503118503118) * t1656,
+        ),
+    );
+    let t1670 = Real::mul_add(
+        T::from_f64(50.000000000000014),
+        t1648,
+        T::from_f64(33.26403326403328) * t1656,
+    );
     let t1671 = T::from_f64(49.98700623700625) * t1626;
     let t1672 = t1670 - t1671;
-    let t1677 = T::from_f64(33.26403326403329) * t1656 - T::from_f64(50.0) * t1648
-        + T::from_f64(37.512993762993766) * t1626;
+    let t1677 = Real::mul_add(
+        T::from_f64(37.512993762993766),
+        t1626,
+        Real::mul_add(-T::from_f64(50.0), t1648, T::from_f64(33.26403326403329) * t1656),
+    );
     let t1687 = (T::from_f64(0.9374999999999998) * (t1661 - T::from_f64(60.0)))
         .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1666)))
         .max(t1672 - T::from_f64(60.0))
@@ -322,8 +540,8 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         .max(-t1677);
     let t1710 = t1687 + t1698;
     let t1711 = (-T::from_f64(0.0).max(t1687)).max(t1698);
-    let t1713 = t1661 + T::from_f64(1.0666666666666669) * t1711;
-    let t1715 = T::from_f64(1.0666666666666664) * t1711 - t1666;
+    let t1713 = Real::mul_add(T::from_f64(1.0666666666666669), t1711, t1661);
+    let t1715 = Real::mul_add(T::from_f64(1.0666666666666664), t1711, -t1666);
     let t1716 = t1672 + t1711;
     let t1717 = t1677 + t1711;
     Outputs {
