@@ -9,6 +9,8 @@
 
 #include <pinocchio/multibody.hpp>
 
+#include <fstream>
+#include <iostream>
 #include <istream>
 #include <stdexcept>
 #include <string>
@@ -128,4 +130,17 @@ inline ExpandedTree read_expanded_tree(std::istream& in) {
         pinocchio::Force(f, m.rotation() * moment + p.cross(f));
   }
   return tree;
+}
+
+// Opens the tree file at `path` into `in` and reads it into `tree`, leaving `in` at the
+// first state; where it cannot, says why on stderr and returns false.
+inline bool open_expanded_tree(const char* path, std::ifstream& in, ExpandedTree& tree) {
+  in.open(path);
+  try {
+    tree = read_expanded_tree(in);
+    return true;
+  } catch (const std::runtime_error& e) {
+    std::cerr << path << ": " << e.what() << "\n";
+    return false;
+  }
 }

@@ -26,14 +26,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string name = argv[2], dir = argv[3];
-  std::ifstream in(argv[1]);
+  std::ifstream in;
   ExpandedTree tree;
-  try {
-    tree = read_expanded_tree(in);
-  } catch (const std::runtime_error& e) {
-    std::cerr << argv[1] << ": " << e.what() << "\n";
-    return 2;
-  }
+  if (!open_expanded_tree(argv[1], in, tree)) return 2;
   const int n = tree.dof, bodies = tree.bodies;
 
   const auto t0 = std::chrono::steady_clock::now();

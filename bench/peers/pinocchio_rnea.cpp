@@ -20,14 +20,9 @@ int main(int argc, char** argv) {
     std::cerr << "usage: pinocchio_rnea FILE.tree\n";
     return 2;
   }
-  std::ifstream in(argv[1]);
+  std::ifstream in;
   ExpandedTree tree;
-  try {
-    tree = read_expanded_tree(in);
-  } catch (const std::runtime_error& e) {
-    std::cerr << argv[1] << ": " << e.what() << "\n";
-    return 2;
-  }
+  if (!open_expanded_tree(argv[1], in, tree)) return 2;
   const int n = tree.dof, bodies = tree.bodies;
   const pinocchio::Model& model = tree.model;
   const Eigen::MatrixXd& coupling = tree.coupling;
