@@ -437,8 +437,9 @@ impl<'g> Body<'g> {
             (ast::binary(a, op, b), p)
         };
         // A product written inline into a sum or difference becomes `Real::mul_add`, one
-        // rounding where the target has FMA (measured: generated `Q` 9-20 % faster on the
-        // 8- and 12-link chains) and exactly the unfused form elsewhere. `a − x·y` is
+        // rounding where the target has FMA (measured: generated `Q` 11-26 % faster on the
+        // 8- and 12-link chains, docs/generated-code.md §4) and exactly the unfused form
+        // elsewhere. `a − x·y` is
         // `mul_add(−x, y, a)` and `x·y − b` is `mul_add(x, y, −b)`: negation is exact. A
         // product with more than one consumer in the graph, or bound to a variable, stays
         // as it is.
