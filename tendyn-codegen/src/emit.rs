@@ -399,6 +399,34 @@ impl<'g> Body<'g> {
         self.expr_prec(id).0
     }
 
+    /// `a ± b` as `Real::mul_add` where one of them is a product that may be fused
+    /// ([`Atoms::fusible`]) and is written inline: one rounding where the target has FMA
+    /// (measured: generated `Q` 11-26 % faster on the 8- and 12-link chains,
+    /// docs/generated-code.md §4), exactly the unfused form elsewhere. `a − x·y` is
+    /// `mul_add(−x, y, a)` and `x·y − b` is `mul_add(x, y, −b)`: negation is exact.
+    fn multiply_add(&self, a: Id, b: Id, subtract: bool) -> Option<(Expr, u8)> {
+        let product = |x: Id| match self.g.node(x) {
+            Node::Mul(p, q) if self.atoms.fusible[x.0 as usize] && self.var(x).is_none() => {
+                Some((p, q))
+            }
+            _ => None,
+        };
+        let signed = |x: Id, negate: bool| {
+            if negate {
+                self.negated(x)
+            } else {
+                self.expr(x)
+            }
+        };
+        let (x, y, addend) = match (product(a), product(b)) {
+            (_, Some((x, y))) => (signed(x, subtract), self.expr(y), self.expr(a)),
+            (Some((x, y)), None) => (self.expr(x), self.expr(y), signed(b, subtract)),
+            (None, None) => return None,
+        };
+        let call = ast::call(ast::path(&["Real", "mul_add"]), [x, y, addend]);
+        Some((call, 4))
+    }
+
     /// `−id`, with no double negation: `−(−e)` is written `e` (negation is exact).
     fn negated(&self, id: Id) -> Expr {
         match self.expr_prec(id) {
@@ -436,47 +464,14 @@ impl<'g> Body<'g> {
             let (a, b) = (operand(a, p), operand(b, p + 1));
             (ast::binary(a, op, b), p)
         };
-        // A product written inline into a sum or difference becomes `Real::mul_add`, one
-        // rounding where the target has FMA (measured: generated `Q` 11-26 % faster on the
-        // 8- and 12-link chains, docs/generated-code.md §4) and exactly the unfused form
-        // elsewhere. `a − x·y` is
-        // `mul_add(−x, y, a)` and `x·y − b` is `mul_add(x, y, −b)`: negation is exact. A
-        // product with more than one consumer in the graph, or bound to a variable, stays
-        // as it is.
-        let product = |x: Id| match self.g.node(x) {
-            Node::Mul(p, q) if self.atoms.fusible[x.0 as usize] && self.var(x).is_none() => {
-                Some((p, q))
-            }
-            _ => None,
-        };
-        let fused = |x: Id, y: Id, addend: Expr, negate: bool| {
-            let x = if negate {
-                self.negated(x)
-            } else {
-                self.expr(x)
-            };
-            let args = [x, self.expr(y), addend];
-            (ast::call(ast::path(&["Real", "mul_add"]), args), 4)
-        };
         match self.g.node(id) {
             Node::Const(_) | Node::Input(_) => self.atoms.get(id),
-            Node::Add(a, b) | Node::Sub(a, b) if product(a).or(product(b)).is_some() => {
-                let subtract = matches!(self.g.node(id), Node::Sub(..));
-                match (product(a), product(b)) {
-                    (_, Some((x, y))) => fused(x, y, self.expr(a), subtract),
-                    (Some((x, y)), None) => {
-                        let b = if subtract {
-                            self.negated(b)
-                        } else {
-                            self.expr(b)
-                        };
-                        fused(x, y, b, false)
-                    }
-                    (None, None) => unreachable!("one operand is a product"),
-                }
-            }
-            Node::Add(a, b) => binary(a, BinOp::Add(Default::default()), b, 1),
-            Node::Sub(a, b) => binary(a, BinOp::Sub(Default::default()), b, 1),
+            Node::Add(a, b) => self
+                .multiply_add(a, b, false)
+                .unwrap_or_else(|| binary(a, BinOp::Add(Default::default()), b, 1)),
+            Node::Sub(a, b) => self
+                .multiply_add(a, b, true)
+                .unwrap_or_else(|| binary(a, BinOp::Sub(Default::default()), b, 1)),
             Node::Mul(a, b) => binary(a, BinOp::Mul(Default::default()), b, 2),
             Node::Div(a, b) => binary(a, BinOp::Div(Default::default()), b, 2),
             Node::Neg(a) => (ast::neg(operand(a, 3)), 3),
