@@ -24,23 +24,23 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t668 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
-    let t675 = T::from_f64(0.03) * s56;
-    let t684 = Real::mul_add(
+    let t810 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t817 = T::from_f64(0.03) * s56;
+    let t826 = Real::mul_add(
         qdd[0],
         c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
-            t668,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675)),
+            t810,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t817)),
         ),
     );
-    let t690 = Real::mul_add(
+    let t832 = Real::mul_add(
         qdd[0],
-        t668,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t675)),
+        t810,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t817)),
     );
-    [t684, t690]
+    [t826, t832]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -55,7 +55,7 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s56, c57) = q[1].sin_cos();
-    let t715 = Real::mul_add(
+    let t857 = Real::mul_add(
         qdd[1],
         T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993),
         -(qd[0]
@@ -63,16 +63,16 @@ pub fn actuation<T: Real>(
                 + qd[1] * (s56 * T::from_f64(0.06)))
             + qd[1] * (qd[1] * (T::from_f64(0.03) * s56))),
     );
-    let t716 = Real::mul_add(
+    let t858 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c57,
             T::from_f64(0.015000000000000126),
             T::from_f64(0.09966665000000006),
         ),
-        t715,
+        t857,
     );
-    let t728 = Real::mul_add(
+    let t870 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c57,
@@ -85,7 +85,7 @@ pub fn actuation<T: Real>(
             qdd[1] * T::from_f64(0.025030050000000005),
         ),
     );
-    tendyn_core::distribution::Actuation::exact([t716, t728], [])
+    tendyn_core::distribution::Actuation::exact([t858, t870], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -96,9 +96,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t57 = q[1].cos();
-    let t665 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t730 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
-    [[t665, t730], [t730, T::from_f64(0.0166867)]]
+    let t807 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t872 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
+    [[t807, t872], [t872, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -109,10 +109,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t56 = q[1].sin();
-    let t675 = T::from_f64(0.03) * t56;
-    let t682 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t675));
-    let t688 = qd[0] * (qd[0] * t675);
-    [t682, t688]
+    let t817 = T::from_f64(0.03) * t56;
+    let t824 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t817));
+    let t830 = qd[0] * (qd[0] * t817);
+    [t824, t830]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -138,18 +138,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t665 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t675 = T::from_f64(0.03) * s56;
-    let t731 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t675);
-    let t733 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t665;
-    let t883 = Real::mul_add(
-        -t731,
-        t733,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t675),
-    ) / Real::mul_add(-t665, t733 * t733, T::from_f64(0.0166867));
-    let t885 = Real::mul_add(-t733, t883, t731 / t665);
-    [t885, t883]
+    let t807 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t817 = T::from_f64(0.03) * s56;
+    let t873 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t817);
+    let t875 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t807;
+    let t1025 = Real::mul_add(
+        -t873,
+        t875,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t817),
+    ) / Real::mul_add(-t807, t875 * t875, T::from_f64(0.0166867));
+    let t1027 = Real::mul_add(-t875, t1025, t873 / t807);
+    [t1027, t1025]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -160,7 +160,7 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t784 = Real::mul_add(
+    let t926 = Real::mul_add(
         qdd[0],
         Real::mul_add(c57, T::from_f64(0.75), T::from_f64(0.4166675)),
         Real::mul_add(
@@ -169,27 +169,26 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
             Real::mul_add(qd[0], qd[0] * (s56 * T::from_f64(0.75)), T::from_f64(20.0)),
         ),
     );
-    let t803 = Real::mul_add(
+    let t945 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001),
         T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001),
     );
-    [t784, t803]
+    [t926, t945]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, pulley3, drum2.
 ///
-/// Operations (traced recursion): 164 arithmetic (72 add/sub, 88 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 161 arithmetic (69 add/sub, 87 mul, 0 div, 5 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
     let (s54, c55) = q[0].sin_cos();
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
-    let t66 = t59 - qdd[0] * T::from_f64(0.15);
-    let t73 = T::from_f64(1.2) * t66;
+    let t64 = qdd[0] * T::from_f64(0.15);
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
     let t122 = T::from_f64(0.000045)
@@ -200,112 +199,112 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t195 = T::from_f64(0.029983328701129897) * c55;
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
-    let t498 = Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t504 = t83 * t83;
-    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + s56 * t492)
-        - t84 * T::from_f64(0.125);
     let t510 = T::from_f64(0.8)
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
-    let t511 = T::from_f64(0.8) * t507;
-    let t513 = Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84);
-    let t515 = Real::mul_add(T::from_f64(0.2), t507, t513);
-    let t526 = Real::mul_add(
+    let t662 = T::from_f64(1.2) * t64;
+    let t667 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t669 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t670 = T::from_f64(0.8) * t669;
+    let t672 = Real::mul_add(-T::from_f64(0.1), t669, T::from_f64(0.0041667) * t84);
+    let t674 = Real::mul_add(T::from_f64(0.2), t669, t672);
+    let t684 = Real::mul_add(
         T::from_f64(0.3),
-        t73 + Real::mul_add(c57, t511, s56 * t510),
-        t498 + t515,
+        t662 + Real::mul_add(c57, t670, s56 * t510),
+        t667 + t674,
     );
-    let t548 = T::from_f64(20.0)
+    let t708 = T::from_f64(20.0)
         + Real::mul_add(
             -T::from_f64(0.000000000000000009071958584846753),
-            t526,
-            T::from_f64(25.0) * t515,
+            t684,
+            T::from_f64(25.0) * t674,
         );
-    let t549 = T::from_f64(20.0)
+    let t709 = T::from_f64(20.0)
         - Real::mul_add(
             T::from_f64(25.000000000000004),
-            t515,
-            T::from_f64(0.00000000000000003335808724852205) * t526,
+            t674,
+            T::from_f64(0.00000000000000003335808724852205) * t684,
         );
-    let t550 = T::from_f64(0.9994442900376633) * t548;
-    let t551 = T::from_f64(0.03333333333333362) * t548;
-    let t554 = Real::mul_add(-c57, t550, s56 * t551);
-    let t557 = Real::mul_add(c57, t551, s56 * t550);
-    let t563 = Real::mul_add(s54, t551, c55 * t550);
-    let t566 = Real::mul_add(-c55, t551, s54 * t550);
-    let t570 = T::from_f64(0.9994442900376633) * t549;
-    let t571 = T::from_f64(0.03333333333333337) * t549;
-    let t574 = Real::mul_add(s56, t571, c57 * t570);
-    let t577 = Real::mul_add(-c57, t571, s56 * t570);
-    let t578 = t554 - t574;
-    let t579 = t557 + t577;
-    let t583 = Real::mul_add(
+    let t710 = T::from_f64(0.9994442900376633) * t708;
+    let t711 = T::from_f64(0.03333333333333362) * t708;
+    let t714 = Real::mul_add(-c57, t710, s56 * t711);
+    let t717 = Real::mul_add(c57, t711, s56 * t710);
+    let t723 = Real::mul_add(s54, t711, c55 * t710);
+    let t726 = Real::mul_add(-c55, t711, s54 * t710);
+    let t730 = T::from_f64(0.9994442900376633) * t709;
+    let t731 = T::from_f64(0.03333333333333337) * t709;
+    let t734 = Real::mul_add(s56, t731, c57 * t730);
+    let t737 = Real::mul_add(-c57, t731, s56 * t730);
+    let t738 = t714 - t734;
+    let t739 = t717 + t737;
+    let t743 = Real::mul_add(
         -(t188 - T::from_f64(0.0006666666666666724) * s56),
-        t554,
-        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t557,
+        t714,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t717,
     )
         + Real::mul_add(
             -(t188 + T::from_f64(0.0006666666666666674) * s56),
-            t574,
-            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t577,
+            t734,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t737,
         );
-    let t586 = Real::mul_add(-s54, t571, c55 * t570);
-    let t589 = Real::mul_add(c55, t571, s54 * t570);
-    let t595 = Real::mul_add(
+    let t746 = Real::mul_add(-s54, t731, c55 * t730);
+    let t749 = Real::mul_add(c55, t731, s54 * t730);
+    let t755 = Real::mul_add(
         -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
-        t563,
-        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t566,
+        t723,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t726,
     )
         + Real::mul_add(
             -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
-            t586,
-            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t589,
+            t746,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t749,
         );
-    let t596 = t574 - t554;
-    let t597 = -t579;
-    let t598 = -t583;
-    let t599 = T::from_f64(0.02) * t579;
-    let t603 = -(t563 + t586);
-    let t604 = -(t566 + t589);
-    let t606 = t510 - t578;
-    let t607 = t511 - t579;
-    let t611 = Real::mul_add(-T::from_f64(0.02), t578, T::from_f64(0.9810000000000001))
+    let t756 = t734 - t714;
+    let t757 = -t739;
+    let t758 = -t743;
+    let t759 = T::from_f64(0.02) * t739;
+    let t763 = -(t723 + t746);
+    let t764 = -(t726 + t749);
+    let t766 = t510 - t738;
+    let t767 = t670 - t739;
+    let t771 = Real::mul_add(-T::from_f64(0.02), t738, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t612 = Real::mul_add(
+    let t772 = Real::mul_add(
         T::from_f64(0.25),
-        t607,
-        t513 - Real::mul_add(-T::from_f64(0.25), t579, t583),
+        t767,
+        t672 - Real::mul_add(-T::from_f64(0.25), t739, t743),
     );
-    let t621 = Real::mul_add(-s56, t611, c57 * t599);
-    let t625 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
-        - Real::mul_add(-c57, t606, s56 * t607);
-    let t626 = t73 + Real::mul_add(c57, t607, s56 * t606);
-    let t630 = T::from_f64(1.7658) + Real::mul_add(c57, t611, s56 * t599)
+    let t781 = Real::mul_add(-s56, t771, c57 * t759);
+    let t786 = -(T::from_f64(1.2) * (T::from_f64(0.15) * t491)
+        + Real::mul_add(-c57, t766, s56 * t767));
+    let t787 = t662 + Real::mul_add(c57, t767, s56 * t766);
+    let t791 = T::from_f64(1.7658) + Real::mul_add(c57, t771, s56 * t759)
         - T::from_f64(5.886);
-    let t632 = Real::mul_add(T::from_f64(0.3), t626, t498 + t612)
-        - Real::mul_add(-T::from_f64(1.4999999999999958), t515, t526);
-    let t633 = t122 - t595
+    let t793 = Real::mul_add(T::from_f64(0.3), t787, t667 + t772)
+        - Real::mul_add(-T::from_f64(1.4999999999999958), t674, t684);
+    let t794 = t122 - t755
         - (t122
             + Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t515,
-                T::from_f64(0.0000000000000000047704895589362195) * t526,
+                t674,
+                T::from_f64(0.0000000000000000047704895589362195) * t684,
             ));
     [
-        [[t625, t626, T::from_f64(19.62)], [t621, t630, t632]],
-        [[t606, t607, T::from_f64(7.848000000000001)], [t599, t611, t612]],
+        [[t786, t787, T::from_f64(19.62)], [t781, t791, t793]],
+        [[t766, t767, T::from_f64(7.848000000000001)], [t759, t771, t772]],
         [
-            [t603, t604, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t633],
+            [t763, t764, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t794],
         ],
-        [[t596, t597, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t598]],
+        [[t756, t757, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t758]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 67 arithmetic (27 add/sub, 40 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 64 arithmetic (24 add/sub, 39 mul, 0 div, 1 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -316,7 +315,7 @@ pub fn base_reaction<T: Real>(
     let (s54, c55) = q[0].sin_cos();
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
-    let t66 = t59 - qdd[0] * T::from_f64(0.15);
+    let t64 = qdd[0] * T::from_f64(0.15);
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
     let t139 = s56 * T::from_f64(0.9810000000000001);
@@ -327,30 +326,29 @@ pub fn base_reaction<T: Real>(
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
     let t504 = t83 * t83;
-    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + s56 * t492)
-        - t84 * T::from_f64(0.125);
     let t510 = T::from_f64(0.8)
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
-    let t511 = T::from_f64(0.8) * t507;
-    let t522 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
-        - Real::mul_add(-c57, t510, s56 * t511);
-    let t523 = T::from_f64(1.2) * t66 + Real::mul_add(c57, t511, s56 * t510);
-    let t529 = Real::mul_add(-s54, t523, c55 * t522);
-    let t532 = Real::mul_add(c55, t523, s54 * t522);
-    let t533 = T::from_f64(0.000045)
+    let t669 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t670 = T::from_f64(0.8) * t669;
+    let t679 = T::from_f64(1.2) * (T::from_f64(0.15) * t491)
+        + Real::mul_add(s56, t670, -(c57 * t510));
+    let t681 = T::from_f64(1.2) * t64 + Real::mul_add(c57, t670, s56 * t510);
+    let t689 = -Real::mul_add(s54, t681, c55 * t679);
+    let t693 = Real::mul_add(c55, t681, -(s54 * t679));
+    let t694 = T::from_f64(0.000045)
         * Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0])
         + Real::mul_add(
             T::from_f64(0.3),
-            t523,
-            Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
+            t681,
+            Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t507,
-                    Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84),
+                    t669,
+                    Real::mul_add(-T::from_f64(0.1), t669, T::from_f64(0.0041667) * t84),
                 ),
         );
-    [[[t529, t532, T::from_f64(20.601000000000003)], [t169, t172, t533]]]
+    [[[t689, t693, T::from_f64(20.601000000000003)], [t169, t172, t694]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -374,7 +372,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 223 arithmetic (100 add/sub, 116 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 219 arithmetic (96 add/sub, 114 mul, 3 div, 6 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -387,8 +385,7 @@ pub fn all<T: Real>(
     let (s54, c55) = q[0].sin_cos();
     let (s56, c57) = q[1].sin_cos();
     let t59 = T::from_f64(0.3) * qdd[0];
-    let t66 = t59 - qdd[0] * T::from_f64(0.15);
-    let t73 = T::from_f64(1.2) * t66;
+    let t64 = qdd[0] * T::from_f64(0.15);
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
     let t120 = Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0]);
@@ -408,139 +405,138 @@ pub fn all<T: Real>(
             + T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6))));
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
-    let t495 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492);
-    let t498 = Real::mul_add(-t66, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t499 = c57 * t492;
     let t501 = s56 * t492;
     let t504 = t83 * t83;
     let t505 = T::from_f64(0.25) * t504;
-    let t507 = T::from_f64(0.25) * t84 + (c57 * t59 + t501) - t84 * T::from_f64(0.125);
     let t508 = T::from_f64(0.125) * t504;
     let t510 = T::from_f64(0.8) * (s56 * t59 - t499 - t505 + t508);
-    let t511 = T::from_f64(0.8) * t507;
-    let t513 = Real::mul_add(-T::from_f64(0.1), t507, T::from_f64(0.0041667) * t84);
-    let t515 = Real::mul_add(T::from_f64(0.2), t507, t513);
-    let t522 = t495 - Real::mul_add(-c57, t510, s56 * t511);
-    let t523 = t73 + Real::mul_add(c57, t511, s56 * t510);
-    let t526 = Real::mul_add(T::from_f64(0.3), t523, t498 + t515);
-    let t529 = Real::mul_add(-s54, t523, c55 * t522);
-    let t532 = Real::mul_add(c55, t523, s54 * t522);
-    let t533 = t122 + t526;
-    let t535 = Real::mul_add(t120, T::from_f64(0.000030000000000000004), t515);
-    let t543 = Real::mul_add(-T::from_f64(1.4999999999999958), t515, t526);
-    let t547 = t122
+    let t636 = T::from_f64(0.000030000000000000004)
+        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c57);
+    let t641 = T::from_f64(0.1) * t501;
+    let t652 = t636 / t420;
+    let t662 = T::from_f64(1.2) * t64;
+    let t664 = T::from_f64(1.2) * (T::from_f64(0.15) * t491);
+    let t667 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t669 = t501 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t670 = T::from_f64(0.8) * t669;
+    let t672 = Real::mul_add(-T::from_f64(0.1), t669, T::from_f64(0.0041667) * t84);
+    let t674 = Real::mul_add(T::from_f64(0.2), t669, t672);
+    let t679 = t664 + Real::mul_add(s56, t670, -(c57 * t510));
+    let t681 = t662 + Real::mul_add(c57, t670, s56 * t510);
+    let t684 = Real::mul_add(T::from_f64(0.3), t681, t667 + t674);
+    let t689 = -Real::mul_add(s54, t681, c55 * t679);
+    let t693 = Real::mul_add(c55, t681, -(s54 * t679));
+    let t694 = t122 + t684;
+    let t695 = t120 * T::from_f64(0.000030000000000000004) + t674;
+    let t703 = Real::mul_add(-T::from_f64(1.4999999999999958), t674, t684);
+    let t707 = t122
         + Real::mul_add(
             T::from_f64(1.5000000000000002),
-            t515,
-            T::from_f64(0.0000000000000000047704895589362195) * t526,
+            t674,
+            T::from_f64(0.0000000000000000047704895589362195) * t684,
         );
-    let t548 = T::from_f64(20.0)
+    let t708 = T::from_f64(20.0)
         + Real::mul_add(
             -T::from_f64(0.000000000000000009071958584846753),
-            t526,
-            T::from_f64(25.0) * t515,
+            t684,
+            T::from_f64(25.0) * t674,
         );
-    let t549 = T::from_f64(20.0)
+    let t709 = T::from_f64(20.0)
         - Real::mul_add(
             T::from_f64(25.000000000000004),
-            t515,
-            T::from_f64(0.00000000000000003335808724852205) * t526,
+            t674,
+            T::from_f64(0.00000000000000003335808724852205) * t684,
         );
-    let t550 = T::from_f64(0.9994442900376633) * t548;
-    let t551 = T::from_f64(0.03333333333333362) * t548;
-    let t554 = Real::mul_add(-c57, t550, s56 * t551);
-    let t557 = Real::mul_add(c57, t551, s56 * t550);
-    let t563 = Real::mul_add(s54, t551, c55 * t550);
-    let t566 = Real::mul_add(-c55, t551, s54 * t550);
-    let t570 = T::from_f64(0.9994442900376633) * t549;
-    let t571 = T::from_f64(0.03333333333333337) * t549;
-    let t574 = Real::mul_add(s56, t571, c57 * t570);
-    let t577 = Real::mul_add(-c57, t571, s56 * t570);
-    let t578 = t554 - t574;
-    let t579 = t557 + t577;
-    let t583 = Real::mul_add(
+    let t710 = T::from_f64(0.9994442900376633) * t708;
+    let t711 = T::from_f64(0.03333333333333362) * t708;
+    let t714 = Real::mul_add(-c57, t710, s56 * t711);
+    let t717 = Real::mul_add(c57, t711, s56 * t710);
+    let t723 = Real::mul_add(s54, t711, c55 * t710);
+    let t726 = Real::mul_add(-c55, t711, s54 * t710);
+    let t730 = T::from_f64(0.9994442900376633) * t709;
+    let t731 = T::from_f64(0.03333333333333337) * t709;
+    let t734 = Real::mul_add(s56, t731, c57 * t730);
+    let t737 = Real::mul_add(-c57, t731, s56 * t730);
+    let t738 = t714 - t734;
+    let t739 = t717 + t737;
+    let t743 = Real::mul_add(
         -(t188 - T::from_f64(0.0006666666666666724) * s56),
-        t554,
-        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t557,
+        t714,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t717,
     )
         + Real::mul_add(
             -(t188 + T::from_f64(0.0006666666666666674) * s56),
-            t574,
-            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t577,
+            t734,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t737,
         );
-    let t586 = Real::mul_add(-s54, t571, c55 * t570);
-    let t589 = Real::mul_add(c55, t571, s54 * t570);
-    let t595 = Real::mul_add(
+    let t746 = Real::mul_add(-s54, t731, c55 * t730);
+    let t749 = Real::mul_add(c55, t731, s54 * t730);
+    let t755 = Real::mul_add(
         -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
-        t563,
-        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t566,
+        t723,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t726,
     )
         + Real::mul_add(
             -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
-            t586,
-            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t589,
+            t746,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t749,
         );
-    let t596 = t574 - t554;
-    let t597 = -t579;
-    let t598 = -t583;
-    let t599 = T::from_f64(0.02) * t579;
-    let t603 = -(t563 + t586);
-    let t604 = -(t566 + t589);
-    let t606 = t510 - t578;
-    let t607 = t511 - t579;
-    let t611 = Real::mul_add(-T::from_f64(0.02), t578, T::from_f64(0.9810000000000001))
+    let t756 = t734 - t714;
+    let t757 = -t739;
+    let t758 = -t743;
+    let t759 = T::from_f64(0.02) * t739;
+    let t763 = -(t723 + t746);
+    let t764 = -(t726 + t749);
+    let t766 = t510 - t738;
+    let t767 = t670 - t739;
+    let t771 = Real::mul_add(-T::from_f64(0.02), t738, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t612 = Real::mul_add(
+    let t772 = Real::mul_add(
         T::from_f64(0.25),
-        t607,
-        t513 - Real::mul_add(-T::from_f64(0.25), t579, t583),
+        t767,
+        t672 - Real::mul_add(-T::from_f64(0.25), t739, t743),
     );
-    let t621 = Real::mul_add(-s56, t611, c57 * t599);
-    let t625 = t495 - Real::mul_add(-c57, t606, s56 * t607);
-    let t626 = t73 + Real::mul_add(c57, t607, s56 * t606);
-    let t630 = T::from_f64(1.7658) + Real::mul_add(c57, t611, s56 * t599)
+    let t781 = Real::mul_add(-s56, t771, c57 * t759);
+    let t786 = -(t664 + Real::mul_add(-c57, t766, s56 * t767));
+    let t787 = t662 + Real::mul_add(c57, t767, s56 * t766);
+    let t791 = T::from_f64(1.7658) + Real::mul_add(c57, t771, s56 * t759)
         - T::from_f64(5.886);
-    let t632 = Real::mul_add(T::from_f64(0.3), t626, t498 + t612) - t543;
-    let t633 = t122 - t595 - t547;
-    let t636 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c57);
-    let t643 = Real::mul_add(-T::from_f64(0.1), t501, T::from_f64(0.2) * t501);
-    let t649 = Real::mul_add(
-        T::from_f64(0.3),
-        Real::mul_add(
-            c57,
-            T::from_f64(0.8) * t501,
-            T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
-        ),
-        t643,
-    );
-    let t650 = motor_torques[0] + motor_torques[1] - t649;
-    let t652 = t636 / t420;
-    let t659 = Real::mul_add(
-        -t650,
-        t652,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - t643,
+    let t793 = Real::mul_add(T::from_f64(0.3), t787, t667 + t772) - t703;
+    let t794 = t122 - t755 - t707;
+    let t795 = t641
+        + T::from_f64(0.3)
+            * Real::mul_add(
+                c57,
+                T::from_f64(0.8) * t501,
+                T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
+            );
+    let t796 = motor_torques[0] + motor_torques[1] - t795;
+    let t801 = Real::mul_add(
+        -t652,
+        t796,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - t641,
     ) / Real::mul_add(-t420, t652 * t652, T::from_f64(0.0166867));
-    let t661 = Real::mul_add(-t652, t659, t650 / t420);
+    let t803 = Real::mul_add(-t652, t801, t796 / t420);
     Outputs {
-        generalized_forces: [t533, t535],
-        actuation: tendyn_core::distribution::Actuation::exact([t543, t547], []),
+        generalized_forces: [t694, t695],
+        actuation: tendyn_core::distribution::Actuation::exact([t703, t707], []),
         mass_matrix: [[t420, t636], [t636, T::from_f64(0.0166867)]],
-        bias: [t649, t643],
+        bias: [t795, t641],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t661, t659],
-        segment_tensions: [t548, t549],
+        forward_dynamics: [t803, t801],
+        segment_tensions: [t708, t709],
         bearings: [
-            [[t625, t626, T::from_f64(19.62)], [t621, t630, t632]],
-            [[t606, t607, T::from_f64(7.848000000000001)], [t599, t611, t612]],
+            [[t786, t787, T::from_f64(19.62)], [t781, t791, t793]],
+            [[t766, t767, T::from_f64(7.848000000000001)], [t759, t771, t772]],
             [
-                [t603, t604, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t633],
+                [t763, t764, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t794],
             ],
-            [[t596, t597, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t598]],
+            [[t756, t757, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t758]],
         ],
         base_reaction: [
-            [[t529, t532, T::from_f64(20.601000000000003)], [t169, t172, t533]],
+            [[t689, t693, T::from_f64(20.601000000000003)], [t169, t172, t694]],
         ],
     }
 }

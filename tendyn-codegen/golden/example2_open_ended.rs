@@ -28,22 +28,22 @@ pub const TENDONS: usize = 3;
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
     let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1142 = s77 * T::from_f64(0.03);
-    let t1151 = Real::mul_add(
+    let t1343 = s77 * T::from_f64(0.03);
+    let t1352 = Real::mul_add(
         qdd[0],
         c78 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
             t1105,
-            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1142)),
+            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1343)),
         ),
     );
-    let t1157 = Real::mul_add(
+    let t1358 = Real::mul_add(
         qdd[0],
         t1105,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1142)),
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1343)),
     );
-    [t1151, t1157]
+    [t1352, t1358]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -58,41 +58,41 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s77, c78) = q[1].sin_cos();
-    let t1160 = c78 * T::from_f64(0.22058823529411686);
-    let t1166 = c78 * T::from_f64(0.2647058823529412);
-    let t1184 = qd[0]
+    let t1361 = c78 * T::from_f64(0.22058823529411686);
+    let t1367 = c78 * T::from_f64(0.2647058823529412);
+    let t1385 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1191 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1199 = c78 * T::from_f64(1.279411764705882);
-    let t1204 = c78 * T::from_f64(0.2647058823529411);
-    let t1210 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1215 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1224 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1230 = T::from_f64(0.0)
+    let t1392 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1400 = c78 * T::from_f64(1.279411764705882);
+    let t1405 = c78 * T::from_f64(0.2647058823529411);
+    let t1411 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1416 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1425 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1431 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1160,
+                T::from_f64(0.6837298529411769) - t1361,
                 Real::mul_add(
                     qdd[1],
-                    t1166 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1191 - t1184,
+                    t1367 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1392 - t1385,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1199 + T::from_f64(1.517064852941176),
+                t1400 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1204 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1210 - t1215, T::from_f64(5.0) - t1224),
+                    t1405 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1411 - t1416, T::from_f64(5.0) - t1425),
                 ),
             ),
         );
-    let t1255 = Real::mul_add(
+    let t1456 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -109,26 +109,26 @@ pub fn actuation<T: Real>(
             ),
         ),
     );
-    let t1256 = t1230.max(t1255);
-    let t1267 = Real::mul_add(
+    let t1457 = t1431.max(t1456);
+    let t1468 = Real::mul_add(
         qdd[0],
-        t1160 + T::from_f64(-0.6837298529411769),
+        t1361 + T::from_f64(-0.6837298529411769),
         Real::mul_add(
             qdd[1],
-            T::from_f64(0.27010838235294077) - t1166,
-            t1184 + (t1191 + t1256),
+            T::from_f64(0.27010838235294077) - t1367,
+            t1385 + (t1392 + t1457),
         ),
     );
-    let t1285 = Real::mul_add(
+    let t1486 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1199,
+        T::from_f64(-1.517064852941176) - t1400,
         Real::mul_add(
             qdd[1],
-            T::from_f64(-0.5642266176470587) - t1204,
-            Real::mul_add(qd[0], t1215 - t1210, t1224 + t1256),
+            T::from_f64(-0.5642266176470587) - t1405,
+            Real::mul_add(qd[0], t1416 - t1411, t1425 + t1457),
         ),
     );
-    let t1314 = Real::mul_add(
+    let t1515 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -144,14 +144,14 @@ pub fn actuation<T: Real>(
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1256,
+                t1457,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
-    tendyn_core::distribution::Actuation::exact([], [t1267, t1285, t1314])
+    tendyn_core::distribution::Actuation::exact([], [t1468, t1486, t1515])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -163,8 +163,8 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
     let t1105 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1134 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    [[t1134, t1105], [t1105, T::from_f64(0.0166867)]]
+    let t1335 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    [[t1335, t1105], [t1105, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -175,10 +175,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t77 = q[1].sin();
-    let t1142 = t77 * T::from_f64(0.03);
-    let t1149 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1142));
-    let t1155 = qd[0] * (qd[0] * t1142);
-    [t1149, t1155]
+    let t1343 = t77 * T::from_f64(0.03);
+    let t1350 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1343));
+    let t1356 = qd[0] * (qd[0] * t1343);
+    [t1350, t1356]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -204,24 +204,24 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
-    let t1134 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t1142 = s77 * T::from_f64(0.03);
-    let t1317 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1142)
+    let t1335 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1343 = s77 * T::from_f64(0.03);
+    let t1518 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1343)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1319 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1134;
-    let t1459 = Real::mul_add(
-        -t1317,
-        t1319,
+    let t1520 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1335;
+    let t1660 = Real::mul_add(
+        -t1518,
+        t1520,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
-        ) - qd[0] * (qd[0] * t1142),
-    ) / Real::mul_add(-t1134, t1319 * t1319, T::from_f64(0.0166867));
-    let t1461 = Real::mul_add(-t1319, t1459, t1317 / t1134);
-    [t1461, t1459]
+        ) - qd[0] * (qd[0] * t1343),
+    ) / Real::mul_add(-t1335, t1520 * t1520, T::from_f64(0.0166867));
+    let t1662 = Real::mul_add(-t1520, t1660, t1518 / t1335);
+    [t1662, t1660]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -232,41 +232,41 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s77, c78) = q[1].sin_cos();
-    let t1160 = c78 * T::from_f64(0.22058823529411686);
-    let t1166 = c78 * T::from_f64(0.2647058823529412);
-    let t1184 = qd[0]
+    let t1361 = c78 * T::from_f64(0.22058823529411686);
+    let t1367 = c78 * T::from_f64(0.2647058823529412);
+    let t1385 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1191 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1199 = c78 * T::from_f64(1.279411764705882);
-    let t1204 = c78 * T::from_f64(0.2647058823529411);
-    let t1210 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1215 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1224 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1230 = T::from_f64(0.0)
+    let t1392 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1400 = c78 * T::from_f64(1.279411764705882);
+    let t1405 = c78 * T::from_f64(0.2647058823529411);
+    let t1411 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1416 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1425 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1431 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1160,
+                T::from_f64(0.6837298529411769) - t1361,
                 Real::mul_add(
                     qdd[1],
-                    t1166 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1191 - t1184,
+                    t1367 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1392 - t1385,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1199 + T::from_f64(1.517064852941176),
+                t1400 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1204 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1210 - t1215, T::from_f64(5.0) - t1224),
+                    t1405 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1411 - t1416, T::from_f64(5.0) - t1425),
                 ),
             ),
         );
-    let t1255 = Real::mul_add(
+    let t1456 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -283,20 +283,20 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
         ),
     );
-    let t1256 = t1230.max(t1255);
-    let t1265 = t1184 + (t1191 + t1256);
-    let t1267 = Real::mul_add(
+    let t1457 = t1431.max(t1456);
+    let t1466 = t1385 + (t1392 + t1457);
+    let t1468 = Real::mul_add(
         qdd[0],
-        t1160 + T::from_f64(-0.6837298529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1166, t1265),
+        t1361 + T::from_f64(-0.6837298529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1367, t1466),
     );
-    let t1283 = Real::mul_add(qd[0], t1215 - t1210, t1224 + t1256);
-    let t1285 = Real::mul_add(
+    let t1484 = Real::mul_add(qd[0], t1416 - t1411, t1425 + t1457);
+    let t1486 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1199,
-        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1204, t1283),
+        T::from_f64(-1.517064852941176) - t1400,
+        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1405, t1484),
     );
-    let t1314 = Real::mul_add(
+    let t1515 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -312,38 +312,37 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1256,
+                t1457,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
-    let t1371 = Real::mul_add(
+    let t1572 = Real::mul_add(
         qdd[0],
-        t1160 + T::from_f64(-0.6829798529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1166, t1265),
+        t1361 + T::from_f64(-0.6829798529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1367, t1466),
     );
-    let t1379 = Real::mul_add(
+    let t1580 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.516314852941176) - t1199,
-        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1204, t1283),
+        T::from_f64(-1.516314852941176) - t1400,
+        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1405, t1484),
     );
-    [t1371, t1267, t1379, t1285, t1314]
+    [t1572, t1468, t1580, t1486, t1515]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 255 arithmetic (111 add/sub, 138 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 248 arithmetic (106 add/sub, 135 mul, 0 div, 4 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
     let (s75, c76) = q[0].sin_cos();
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
-    let t87 = t80 - qdd[0] * T::from_f64(0.15);
-    let t94 = T::from_f64(1.2) * t87;
+    let t85 = qdd[0] * T::from_f64(0.15);
     let t104 = qd[0] + qd[1];
     let t105 = qdd[0] + qdd[1];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
@@ -368,15 +367,10 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         + c78 * T::from_f64(0.019988885800753267);
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
-    let t867 = Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t873 = t104 * t104;
-    let t876 = T::from_f64(0.25) * t105 + (c78 * t80 + s77 * t861)
-        - t105 * T::from_f64(0.125);
     let t879 = T::from_f64(0.8)
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
-    let t880 = T::from_f64(0.8) * t876;
-    let t882 = Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105);
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
     let t918 = Real::mul_add(s77, t915, c78 * t913);
@@ -385,11 +379,16 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t928 = t147 * T::from_f64(0.000025000000000000028);
     let t931 = Real::mul_add(s77, t928, c78 * t926);
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
-    let t946 = t880 - (t921 + t934);
-    let t949 = Real::mul_add(
+    let t1131 = T::from_f64(1.2) * t85;
+    let t1136 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1138 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1139 = T::from_f64(0.8) * t1138;
+    let t1141 = Real::mul_add(-T::from_f64(0.1), t1138, T::from_f64(0.0041667) * t105);
+    let t1168 = t1139 - (t921 + t934);
+    let t1171 = Real::mul_add(
         T::from_f64(0.25),
-        t946,
-        t882
+        t1168,
+        t1141
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -401,156 +400,154 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t956 = Real::mul_add(
+    let t1177 = Real::mul_add(
         T::from_f64(0.3),
-        t94 + Real::mul_add(c78, t946, s77 * (t879 + (t918 + t931))),
-        t867 + t949,
+        t1131 + Real::mul_add(c78, t1168, s77 * (t879 + (t918 + t931))),
+        t1136 + t1171,
     );
-    let t959 = Real::mul_add(
+    let t1180 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t956,
-        T::from_f64(24.999999999999975) * t949,
+        t1177,
+        T::from_f64(24.999999999999975) * t1171,
     );
-    let t962 = Real::mul_add(
+    let t1183 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t949,
-        T::from_f64(8.823529411764705) * t956,
+        t1171,
+        T::from_f64(8.823529411764705) * t1177,
     );
-    let t965 = Real::mul_add(
+    let t1186 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t949,
-        T::from_f64(11.764705882352942) * t956,
+        t1171,
+        T::from_f64(11.764705882352942) * t1177,
     );
-    let t972 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t959)
-        .max(T::from_f64(5.0) + t962)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t965));
-    let t973 = t959 + t972;
-    let t974 = t972 - t962;
-    let t976 = Real::mul_add(T::from_f64(1.5000000000000002), t972, t965);
-    let t977 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t973);
-    let t978 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t974);
-    let t979 = T::from_f64(0.9860132971832694) * t977;
-    let t980 = T::from_f64(0.16666666666666652) * t977;
-    let t983 = Real::mul_add(s77, t980, c78 * t979);
-    let t984 = s77 * t979;
-    let t985 = c78 * t980;
-    let t986 = t984 - t985;
-    let t989 = Real::mul_add(t248, t983, t244 * t986);
-    let t992 = Real::mul_add(-s75, t980, c76 * t979);
-    let t995 = Real::mul_add(c76, t980, s75 * t979);
-    let t1007 = Real::mul_add(
-        -Real::mul_add(
-            T::from_f64(0.004999999999999996),
-            s75,
-            -(c76 * T::from_f64(0.02958039891549808)),
-        ),
-        t992,
-        Real::mul_add(
-            T::from_f64(0.004999999999999996),
-            c76,
-            s75 * T::from_f64(0.02958039891549808),
-        ) * t995,
-    )
-        - Real::mul_add(
-            t973,
-            T::from_f64(0.027114427217626635),
-            t973 * T::from_f64(0.002885572782373361),
-        );
-    let t1008 = T::from_f64(0.9994442900376633) * t978;
-    let t1009 = T::from_f64(0.03333333333333337) * t978;
-    let t1012 = Real::mul_add(s77, t1009, c78 * t1008);
-    let t1013 = s77 * t1008;
-    let t1014 = c78 * t1009;
-    let t1015 = t1013 - t1014;
-    let t1016 = t292 * t1015;
-    let t1017 = t297 * t1012;
-    let t1021 = Real::mul_add(-s75, t1009, c76 * t1008);
-    let t1024 = Real::mul_add(c76, t1009, s75 * t1008);
-    let t1035 = Real::mul_add(
-        -Real::mul_add(
-            T::from_f64(0.0010000000000000009),
-            s75,
-            -(c76 * T::from_f64(0.029983328701129897)),
-        ),
-        t1021,
-        Real::mul_add(
-            T::from_f64(0.0010000000000000009),
-            c76,
-            s75 * T::from_f64(0.029983328701129897),
-        ) * t1024,
-    )
-        - Real::mul_add(
-            t974,
-            T::from_f64(0.029811016569355614),
-            t974 * T::from_f64(0.0001889834306443847),
-        );
-    let t1036 = T::from_f64(0.9733466865996102) * t976;
-    let t1037 = T::from_f64(0.22933867463984403) * t976;
-    let t1038 = c76 * t1036;
-    let t1039 = s75 * t1037;
-    let t1040 = t1039 - t1038;
-    let t1043 = Real::mul_add(c76, t1037, s75 * t1036);
-    let t1044 = Real::mul_add(
+    let t1193 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1180)
+        .max(T::from_f64(5.0) + t1183)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1186));
+    let t1194 = t1180 + t1193;
+    let t1195 = t1193 - t1183;
+    let t1197 = Real::mul_add(T::from_f64(1.5000000000000002), t1193, t1186);
+    let t1198 = t143 * T::from_f64(0.0007500000000000001) + t1194;
+    let t1199 = t147 * T::from_f64(0.0007500000000000001) + t1195;
+    let t1200 = T::from_f64(0.9860132971832694) * t1198;
+    let t1201 = T::from_f64(0.16666666666666652) * t1198;
+    let t1204 = Real::mul_add(s77, t1201, c78 * t1200);
+    let t1205 = s77 * t1200;
+    let t1206 = c78 * t1201;
+    let t1207 = t1205 - t1206;
+    let t1210 = Real::mul_add(t248, t1204, t244 * t1207);
+    let t1213 = Real::mul_add(-s75, t1201, c76 * t1200);
+    let t1216 = Real::mul_add(c76, t1201, s75 * t1200);
+    let t1228 = T::from_f64(0.9994442900376633) * t1199;
+    let t1229 = T::from_f64(0.03333333333333337) * t1199;
+    let t1232 = Real::mul_add(s77, t1229, c78 * t1228);
+    let t1233 = s77 * t1228;
+    let t1234 = c78 * t1229;
+    let t1235 = t1233 - t1234;
+    let t1236 = t292 * t1235;
+    let t1237 = t297 * t1232;
+    let t1241 = Real::mul_add(-s75, t1229, c76 * t1228);
+    let t1244 = Real::mul_add(c76, t1229, s75 * t1228);
+    let t1254 = T::from_f64(0.9733466865996102) * t1197;
+    let t1255 = T::from_f64(0.22933867463984403) * t1197;
+    let t1256 = c76 * t1254;
+    let t1257 = s75 * t1255;
+    let t1258 = t1257 - t1256;
+    let t1261 = Real::mul_add(c76, t1255, s75 * t1254);
+    let t1262 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1043;
-    let t1045 = Real::mul_add(
+    ) * t1261;
+    let t1263 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1040;
-    let t1047 = Real::mul_add(T::from_f64(0.9968453000901664), t974, -t1021);
-    let t1048 = Real::mul_add(T::from_f64(0.0793690600180332), t974, -t1024);
-    let t1049 = T::from_f64(0.0000225) * t147 - t1035;
-    let t1050 = Real::mul_add(T::from_f64(0.9506914539363203), t973, -t992);
-    let t1051 = -Real::mul_add(T::from_f64(0.31013829078726374), t973, t995);
-    let t1052 = T::from_f64(0.0000225) * t143 - t1007;
-    let t1053 = t1038 - t1039;
-    let t1054 = -t1043;
-    let t1055 = t1045 - t1044;
-    let t1058 = t1014 - t1013;
-    let t1059 = t1017 - t1016;
-    let t1064 = t985 - t984;
-    let t1065 = -t989;
-    let t1074 = t879 + (t983 + t1012);
-    let t1075 = t880 - (t986 + t1015);
-    let t1076 = Real::mul_add(-T::from_f64(0.01), t1015, T::from_f64(0.01) * t986);
-    let t1080 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t983, T::from_f64(0.01) * t1012)
+    ) * t1258;
+    let t1265 = Real::mul_add(T::from_f64(0.9968453000901664), t1195, -t1241);
+    let t1266 = Real::mul_add(T::from_f64(0.0793690600180332), t1195, -t1244);
+    let t1267 = T::from_f64(0.0000225) * t147
+        - Real::mul_add(
+            -T::from_f64(0.03),
+            t1195,
+            Real::mul_add(
+                -Real::mul_add(
+                    T::from_f64(0.0010000000000000009),
+                    s75,
+                    -(c76 * T::from_f64(0.029983328701129897)),
+                ),
+                t1241,
+                Real::mul_add(
+                    T::from_f64(0.0010000000000000009),
+                    c76,
+                    s75 * T::from_f64(0.029983328701129897),
+                ) * t1244,
+            ),
+        );
+    let t1268 = Real::mul_add(T::from_f64(0.9506914539363203), t1194, -t1213);
+    let t1269 = -Real::mul_add(T::from_f64(0.31013829078726374), t1194, t1216);
+    let t1270 = T::from_f64(0.0000225) * t143
+        - Real::mul_add(
+            -t1194,
+            T::from_f64(0.029999999999999995),
+            Real::mul_add(
+                -Real::mul_add(
+                    T::from_f64(0.004999999999999996),
+                    s75,
+                    -(c76 * T::from_f64(0.02958039891549808)),
+                ),
+                t1213,
+                Real::mul_add(
+                    T::from_f64(0.004999999999999996),
+                    c76,
+                    s75 * T::from_f64(0.02958039891549808),
+                ) * t1216,
+            ),
+        );
+    let t1271 = t1256 - t1257;
+    let t1272 = -t1261;
+    let t1273 = t1263 - t1262;
+    let t1276 = t1234 - t1233;
+    let t1277 = t1237 - t1236;
+    let t1282 = t1206 - t1205;
+    let t1283 = -t1210;
+    let t1292 = t879 + (t1204 + t1232);
+    let t1293 = t1139 - (t1207 + t1235);
+    let t1294 = Real::mul_add(-T::from_f64(0.01), t1235, T::from_f64(0.01) * t1207);
+    let t1298 = T::from_f64(0.9810000000000001)
+        - Real::mul_add(-T::from_f64(0.01), t1204, T::from_f64(0.01) * t1232)
         - T::from_f64(1.9620000000000002);
-    let t1081 = Real::mul_add(
+    let t1299 = Real::mul_add(
         T::from_f64(0.25),
-        t1075,
-        t882
-            - (Real::mul_add(-T::from_f64(0.25), t1015, t1016 - t1017)
-                + Real::mul_add(-T::from_f64(0.25), t986, t989)),
+        t1293,
+        t1141
+            - (Real::mul_add(-T::from_f64(0.25), t1235, t1236 - t1237)
+                + Real::mul_add(-T::from_f64(0.25), t1207, t1210)),
     );
-    let t1090 = Real::mul_add(-s77, t1080, c78 * t1076);
-    let t1097 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
-        - (t1040 + Real::mul_add(-c78, t1074, s77 * t1075));
-    let t1098 = t94 - (t1043 - Real::mul_add(c78, t1075, s77 * t1074));
-    let t1102 = T::from_f64(1.7658) + Real::mul_add(c78, t1080, s77 * t1076)
+    let t1308 = Real::mul_add(-s77, t1298, c78 * t1294);
+    let t1316 = -(T::from_f64(1.2) * (T::from_f64(0.15) * t860)
+        + (t1258 + Real::mul_add(-c78, t1292, s77 * t1293)));
+    let t1317 = t1131 - (t1261 - Real::mul_add(c78, t1293, s77 * t1292));
+    let t1321 = T::from_f64(1.7658) + Real::mul_add(c78, t1298, s77 * t1294)
         - T::from_f64(5.886);
-    let t1103 = Real::mul_add(
+    let t1322 = Real::mul_add(
         T::from_f64(0.3),
-        t1098,
-        t867 - (Real::mul_add(-T::from_f64(0.3), t1043, t1044 - t1045) - t1081),
+        t1317,
+        t1136 - (Real::mul_add(-T::from_f64(0.3), t1261, t1262 - t1263) - t1299),
     );
     [
-        [[t1097, t1098, T::from_f64(19.62)], [t1090, t1102, t1103]],
-        [[t1074, t1075, T::from_f64(7.848000000000001)], [t1076, t1080, t1081]],
-        [[t983, t1064, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1065]],
-        [[t1012, t1058, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1059]],
-        [[t1053, t1054, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1055]],
+        [[t1316, t1317, T::from_f64(19.62)], [t1308, t1321, t1322]],
+        [[t1292, t1293, T::from_f64(7.848000000000001)], [t1294, t1298, t1299]],
+        [[t1204, t1282, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1283]],
+        [[t1232, t1276, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1277]],
+        [[t1271, t1272, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1273]],
         [
-            [t1050, t1051, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1052],
+            [t1268, t1269, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1270],
         ],
         [
-            [t1047, t1048, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1049],
+            [t1265, t1266, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1267],
         ],
     ]
 }
@@ -558,7 +555,7 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 70 arithmetic (29 add/sub, 41 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 67 arithmetic (26 add/sub, 40 mul, 0 div, 1 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -569,7 +566,7 @@ pub fn base_reaction<T: Real>(
     let (s75, c76) = q[0].sin_cos();
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
-    let t87 = t80 - qdd[0] * T::from_f64(0.15);
+    let t85 = qdd[0] * T::from_f64(0.15);
     let t104 = qd[0] + qd[1];
     let t105 = qdd[0] + qdd[1];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
@@ -581,30 +578,33 @@ pub fn base_reaction<T: Real>(
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t873 = t104 * t104;
-    let t876 = T::from_f64(0.25) * t105 + (c78 * t80 + s77 * t861)
-        - t105 * T::from_f64(0.125);
     let t879 = T::from_f64(0.8)
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
-    let t880 = T::from_f64(0.8) * t876;
-    let t891 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
-        - Real::mul_add(-c78, t879, s77 * t880);
-    let t892 = T::from_f64(1.2) * t87 + Real::mul_add(c78, t880, s77 * t879);
-    let t898 = Real::mul_add(-s75, t892, c76 * t891);
-    let t901 = Real::mul_add(c76, t892, s75 * t891);
-    let t902 = T::from_f64(0.0000225) * (qdd[0] - t141)
+    let t1138 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1139 = T::from_f64(0.8) * t1138;
+    let t1148 = T::from_f64(1.2) * (T::from_f64(0.15) * t860)
+        + Real::mul_add(s77, t1139, -(c78 * t879));
+    let t1150 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1139, s77 * t879);
+    let t1158 = -Real::mul_add(s75, t1150, c76 * t1148);
+    let t1162 = Real::mul_add(c76, t1150, -(s75 * t1148));
+    let t1163 = T::from_f64(0.0000225) * (qdd[0] - t141)
         + T::from_f64(0.0000225) * (qdd[0] + t141)
         + Real::mul_add(
             T::from_f64(0.3),
-            t892,
-            Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
+            t1150,
+            Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t876,
-                    Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105),
+                    t1138,
+                    Real::mul_add(
+                        -T::from_f64(0.1),
+                        t1138,
+                        T::from_f64(0.0041667) * t105,
+                    ),
                 ),
         );
-    [[[t898, t901, T::from_f64(20.601000000000003)], [t197, t200, t902]]]
+    [[[t1158, t1162, T::from_f64(20.601000000000003)], [t197, t200, t1163]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -628,7 +628,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 333 arithmetic (149 add/sub, 175 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 325 arithmetic (143 add/sub, 171 mul, 3 div, 5 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -641,8 +641,7 @@ pub fn all<T: Real>(
     let (s75, c76) = q[0].sin_cos();
     let (s77, c78) = q[1].sin_cos();
     let t80 = T::from_f64(0.3) * qdd[0];
-    let t87 = t80 - qdd[0] * T::from_f64(0.15);
-    let t94 = T::from_f64(1.2) * t87;
+    let t85 = qdd[0] * T::from_f64(0.15);
     let t104 = qd[0] + qd[1];
     let t105 = qdd[0] + qdd[1];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
@@ -678,30 +677,12 @@ pub fn all<T: Real>(
             + T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6))));
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
-    let t864 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861);
-    let t867 = Real::mul_add(-t87, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
     let t868 = c78 * t861;
     let t870 = s77 * t861;
     let t873 = t104 * t104;
     let t874 = T::from_f64(0.25) * t873;
-    let t876 = T::from_f64(0.25) * t105 + (c78 * t80 + t870) - t105 * T::from_f64(0.125);
     let t877 = T::from_f64(0.125) * t873;
     let t879 = T::from_f64(0.8) * (s77 * t80 - t868 - t874 + t877);
-    let t880 = T::from_f64(0.8) * t876;
-    let t882 = Real::mul_add(-T::from_f64(0.1), t876, T::from_f64(0.0041667) * t105);
-    let t884 = Real::mul_add(T::from_f64(0.2), t876, t882);
-    let t891 = t864 - Real::mul_add(-c78, t879, s77 * t880);
-    let t892 = t94 + Real::mul_add(c78, t880, s77 * t879);
-    let t895 = Real::mul_add(T::from_f64(0.3), t892, t867 + t884);
-    let t898 = Real::mul_add(-s75, t892, c76 * t891);
-    let t901 = Real::mul_add(c76, t892, s75 * t891);
-    let t902 = t145 + t149 + t895;
-    let t906 = t149 + (t145 + t895);
-    let t908 = Real::mul_add(
-        t147,
-        T::from_f64(0.000015000000000000002),
-        Real::mul_add(-t143, T::from_f64(0.000015000000000000002), t884),
-    );
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
     let t918 = Real::mul_add(s77, t915, c78 * t913);
@@ -710,11 +691,30 @@ pub fn all<T: Real>(
     let t928 = t147 * T::from_f64(0.000025000000000000028);
     let t931 = Real::mul_add(s77, t928, c78 * t926);
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
-    let t946 = t880 - (t921 + t934);
-    let t949 = Real::mul_add(
+    let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1110 = T::from_f64(0.1) * t870;
+    let t1121 = t1105 / t777;
+    let t1131 = T::from_f64(1.2) * t85;
+    let t1133 = T::from_f64(1.2) * (T::from_f64(0.15) * t860);
+    let t1136 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1138 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1139 = T::from_f64(0.8) * t1138;
+    let t1141 = Real::mul_add(-T::from_f64(0.1), t1138, T::from_f64(0.0041667) * t105);
+    let t1143 = Real::mul_add(T::from_f64(0.2), t1138, t1141);
+    let t1148 = t1133 + Real::mul_add(s77, t1139, -(c78 * t879));
+    let t1150 = t1131 + Real::mul_add(c78, t1139, s77 * t879);
+    let t1153 = Real::mul_add(T::from_f64(0.3), t1150, t1136 + t1143);
+    let t1158 = -Real::mul_add(s75, t1150, c76 * t1148);
+    let t1162 = Real::mul_add(c76, t1150, -(s75 * t1148));
+    let t1163 = t145 + t149 + t1153;
+    let t1166 = t149 + (t145 + t1153);
+    let t1167 = t147 * T::from_f64(0.000015000000000000002)
+        + (t1143 - t143 * T::from_f64(0.000015000000000000002));
+    let t1168 = t1139 - (t921 + t934);
+    let t1171 = Real::mul_add(
         T::from_f64(0.25),
-        t946,
-        t882
+        t1168,
+        t1141
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -726,201 +726,197 @@ pub fn all<T: Real>(
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t956 = Real::mul_add(
+    let t1177 = Real::mul_add(
         T::from_f64(0.3),
-        t94 + Real::mul_add(c78, t946, s77 * (t879 + (t918 + t931))),
-        t867 + t949,
+        t1131 + Real::mul_add(c78, t1168, s77 * (t879 + (t918 + t931))),
+        t1136 + t1171,
     );
-    let t959 = Real::mul_add(
+    let t1180 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t956,
-        T::from_f64(24.999999999999975) * t949,
+        t1177,
+        T::from_f64(24.999999999999975) * t1171,
     );
-    let t962 = Real::mul_add(
+    let t1183 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t949,
-        T::from_f64(8.823529411764705) * t956,
+        t1171,
+        T::from_f64(8.823529411764705) * t1177,
     );
-    let t965 = Real::mul_add(
+    let t1186 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t949,
-        T::from_f64(11.764705882352942) * t956,
+        t1171,
+        T::from_f64(11.764705882352942) * t1177,
     );
-    let t972 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t959)
-        .max(T::from_f64(5.0) + t962)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t965));
-    let t973 = t959 + t972;
-    let t974 = t972 - t962;
-    let t976 = Real::mul_add(T::from_f64(1.5000000000000002), t972, t965);
-    let t977 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t973);
-    let t978 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t974);
-    let t979 = T::from_f64(0.9860132971832694) * t977;
-    let t980 = T::from_f64(0.16666666666666652) * t977;
-    let t983 = Real::mul_add(s77, t980, c78 * t979);
-    let t984 = s77 * t979;
-    let t985 = c78 * t980;
-    let t986 = t984 - t985;
-    let t989 = Real::mul_add(t248, t983, t244 * t986);
-    let t992 = Real::mul_add(-s75, t980, c76 * t979);
-    let t995 = Real::mul_add(c76, t980, s75 * t979);
-    let t1007 = Real::mul_add(
-        -Real::mul_add(
-            T::from_f64(0.004999999999999996),
-            s75,
-            -(c76 * T::from_f64(0.02958039891549808)),
-        ),
-        t992,
-        Real::mul_add(
-            T::from_f64(0.004999999999999996),
-            c76,
-            s75 * T::from_f64(0.02958039891549808),
-        ) * t995,
-    )
-        - Real::mul_add(
-            t973,
-            T::from_f64(0.027114427217626635),
-            t973 * T::from_f64(0.002885572782373361),
-        );
-    let t1008 = T::from_f64(0.9994442900376633) * t978;
-    let t1009 = T::from_f64(0.03333333333333337) * t978;
-    let t1012 = Real::mul_add(s77, t1009, c78 * t1008);
-    let t1013 = s77 * t1008;
-    let t1014 = c78 * t1009;
-    let t1015 = t1013 - t1014;
-    let t1016 = t292 * t1015;
-    let t1017 = t297 * t1012;
-    let t1021 = Real::mul_add(-s75, t1009, c76 * t1008);
-    let t1024 = Real::mul_add(c76, t1009, s75 * t1008);
-    let t1035 = Real::mul_add(
-        -Real::mul_add(
-            T::from_f64(0.0010000000000000009),
-            s75,
-            -(c76 * T::from_f64(0.029983328701129897)),
-        ),
-        t1021,
-        Real::mul_add(
-            T::from_f64(0.0010000000000000009),
-            c76,
-            s75 * T::from_f64(0.029983328701129897),
-        ) * t1024,
-    )
-        - Real::mul_add(
-            t974,
-            T::from_f64(0.029811016569355614),
-            t974 * T::from_f64(0.0001889834306443847),
-        );
-    let t1036 = T::from_f64(0.9733466865996102) * t976;
-    let t1037 = T::from_f64(0.22933867463984403) * t976;
-    let t1038 = c76 * t1036;
-    let t1039 = s75 * t1037;
-    let t1040 = t1039 - t1038;
-    let t1043 = Real::mul_add(c76, t1037, s75 * t1036);
-    let t1044 = Real::mul_add(
+    let t1193 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1180)
+        .max(T::from_f64(5.0) + t1183)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1186));
+    let t1194 = t1180 + t1193;
+    let t1195 = t1193 - t1183;
+    let t1197 = Real::mul_add(T::from_f64(1.5000000000000002), t1193, t1186);
+    let t1198 = t143 * T::from_f64(0.0007500000000000001) + t1194;
+    let t1199 = t147 * T::from_f64(0.0007500000000000001) + t1195;
+    let t1200 = T::from_f64(0.9860132971832694) * t1198;
+    let t1201 = T::from_f64(0.16666666666666652) * t1198;
+    let t1204 = Real::mul_add(s77, t1201, c78 * t1200);
+    let t1205 = s77 * t1200;
+    let t1206 = c78 * t1201;
+    let t1207 = t1205 - t1206;
+    let t1210 = Real::mul_add(t248, t1204, t244 * t1207);
+    let t1213 = Real::mul_add(-s75, t1201, c76 * t1200);
+    let t1216 = Real::mul_add(c76, t1201, s75 * t1200);
+    let t1228 = T::from_f64(0.9994442900376633) * t1199;
+    let t1229 = T::from_f64(0.03333333333333337) * t1199;
+    let t1232 = Real::mul_add(s77, t1229, c78 * t1228);
+    let t1233 = s77 * t1228;
+    let t1234 = c78 * t1229;
+    let t1235 = t1233 - t1234;
+    let t1236 = t292 * t1235;
+    let t1237 = t297 * t1232;
+    let t1241 = Real::mul_add(-s75, t1229, c76 * t1228);
+    let t1244 = Real::mul_add(c76, t1229, s75 * t1228);
+    let t1254 = T::from_f64(0.9733466865996102) * t1197;
+    let t1255 = T::from_f64(0.22933867463984403) * t1197;
+    let t1256 = c76 * t1254;
+    let t1257 = s75 * t1255;
+    let t1258 = t1257 - t1256;
+    let t1261 = Real::mul_add(c76, t1255, s75 * t1254);
+    let t1262 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1043;
-    let t1045 = Real::mul_add(
+    ) * t1261;
+    let t1263 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1040;
-    let t1047 = Real::mul_add(T::from_f64(0.9968453000901664), t974, -t1021);
-    let t1048 = Real::mul_add(T::from_f64(0.0793690600180332), t974, -t1024);
-    let t1049 = t149 - t1035;
-    let t1050 = Real::mul_add(T::from_f64(0.9506914539363203), t973, -t992);
-    let t1051 = -Real::mul_add(T::from_f64(0.31013829078726374), t973, t995);
-    let t1052 = t145 - t1007;
-    let t1053 = t1038 - t1039;
-    let t1054 = -t1043;
-    let t1055 = t1045 - t1044;
-    let t1058 = t1014 - t1013;
-    let t1059 = t1017 - t1016;
-    let t1064 = t985 - t984;
-    let t1065 = -t989;
-    let t1074 = t879 + (t983 + t1012);
-    let t1075 = t880 - (t986 + t1015);
-    let t1076 = Real::mul_add(-T::from_f64(0.01), t1015, T::from_f64(0.01) * t986);
-    let t1080 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t983, T::from_f64(0.01) * t1012)
+    ) * t1258;
+    let t1265 = Real::mul_add(T::from_f64(0.9968453000901664), t1195, -t1241);
+    let t1266 = Real::mul_add(T::from_f64(0.0793690600180332), t1195, -t1244);
+    let t1267 = t149
+        - Real::mul_add(
+            -T::from_f64(0.03),
+            t1195,
+            Real::mul_add(
+                -Real::mul_add(
+                    T::from_f64(0.0010000000000000009),
+                    s75,
+                    -(c76 * T::from_f64(0.029983328701129897)),
+                ),
+                t1241,
+                Real::mul_add(
+                    T::from_f64(0.0010000000000000009),
+                    c76,
+                    s75 * T::from_f64(0.029983328701129897),
+                ) * t1244,
+            ),
+        );
+    let t1268 = Real::mul_add(T::from_f64(0.9506914539363203), t1194, -t1213);
+    let t1269 = -Real::mul_add(T::from_f64(0.31013829078726374), t1194, t1216);
+    let t1270 = t145
+        - Real::mul_add(
+            -t1194,
+            T::from_f64(0.029999999999999995),
+            Real::mul_add(
+                -Real::mul_add(
+                    T::from_f64(0.004999999999999996),
+                    s75,
+                    -(c76 * T::from_f64(0.02958039891549808)),
+                ),
+                t1213,
+                Real::mul_add(
+                    T::from_f64(0.004999999999999996),
+                    c76,
+                    s75 * T::from_f64(0.02958039891549808),
+                ) * t1216,
+            ),
+        );
+    let t1271 = t1256 - t1257;
+    let t1272 = -t1261;
+    let t1273 = t1263 - t1262;
+    let t1276 = t1234 - t1233;
+    let t1277 = t1237 - t1236;
+    let t1282 = t1206 - t1205;
+    let t1283 = -t1210;
+    let t1292 = t879 + (t1204 + t1232);
+    let t1293 = t1139 - (t1207 + t1235);
+    let t1294 = Real::mul_add(-T::from_f64(0.01), t1235, T::from_f64(0.01) * t1207);
+    let t1298 = T::from_f64(0.9810000000000001)
+        - Real::mul_add(-T::from_f64(0.01), t1204, T::from_f64(0.01) * t1232)
         - T::from_f64(1.9620000000000002);
-    let t1081 = Real::mul_add(
+    let t1299 = Real::mul_add(
         T::from_f64(0.25),
-        t1075,
-        t882
-            - (Real::mul_add(-T::from_f64(0.25), t1015, t1016 - t1017)
-                + Real::mul_add(-T::from_f64(0.25), t986, t989)),
+        t1293,
+        t1141
+            - (Real::mul_add(-T::from_f64(0.25), t1235, t1236 - t1237)
+                + Real::mul_add(-T::from_f64(0.25), t1207, t1210)),
     );
-    let t1090 = Real::mul_add(-s77, t1080, c78 * t1076);
-    let t1097 = t864 - (t1040 + Real::mul_add(-c78, t1074, s77 * t1075));
-    let t1098 = t94 - (t1043 - Real::mul_add(c78, t1075, s77 * t1074));
-    let t1102 = T::from_f64(1.7658) + Real::mul_add(c78, t1080, s77 * t1076)
+    let t1308 = Real::mul_add(-s77, t1298, c78 * t1294);
+    let t1316 = -(t1133 + (t1258 + Real::mul_add(-c78, t1292, s77 * t1293)));
+    let t1317 = t1131 - (t1261 - Real::mul_add(c78, t1293, s77 * t1292));
+    let t1321 = T::from_f64(1.7658) + Real::mul_add(c78, t1298, s77 * t1294)
         - T::from_f64(5.886);
-    let t1103 = Real::mul_add(
+    let t1322 = Real::mul_add(
         T::from_f64(0.3),
-        t1098,
-        t867 - (Real::mul_add(-T::from_f64(0.3), t1043, t1044 - t1045) - t1081),
+        t1317,
+        t1136 - (Real::mul_add(-T::from_f64(0.3), t1261, t1262 - t1263) - t1299),
     );
-    let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1112 = Real::mul_add(-T::from_f64(0.1), t870, T::from_f64(0.2) * t870);
-    let t1118 = Real::mul_add(
-        T::from_f64(0.3),
-        Real::mul_add(
-            c78,
-            T::from_f64(0.8) * t870,
-            T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
-        ),
-        t1112,
-    );
-    let t1119 = T::from_f64(0.04) * tendon_tensions[2]
+    let t1323 = t1110
+        + T::from_f64(0.3)
+            * Real::mul_add(
+                c78,
+                T::from_f64(0.8) * t870,
+                T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
+            );
+    let t1324 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t1118;
-    let t1121 = t1105 / t777;
-    let t1128 = Real::mul_add(
-        -t1119,
-        t1121,
+            + tendon_tensions[1] * T::from_f64(0.03)) - t1323;
+    let t1329 = Real::mul_add(
+        -t1121,
+        t1324,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
-        ) - t1112,
+        ) - t1110,
     ) / Real::mul_add(-t777, t1121 * t1121, T::from_f64(0.0166867));
-    let t1130 = Real::mul_add(-t1121, t1128, t1119 / t777);
+    let t1331 = Real::mul_add(-t1121, t1329, t1324 / t777);
     Outputs {
-        generalized_forces: [t906, t908],
-        actuation: tendyn_core::distribution::Actuation::exact([], [t973, t974, t976]),
+        generalized_forces: [t1166, t1167],
+        actuation: tendyn_core::distribution::Actuation::exact(
+            [],
+            [t1194, t1195, t1197],
+        ),
         mass_matrix: [[t777, t1105], [t1105, T::from_f64(0.0166867)]],
-        bias: [t1118, t1112],
+        bias: [t1323, t1110],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1130, t1128],
-        segment_tensions: [t977, t973, t978, t974, t976],
+        forward_dynamics: [t1331, t1329],
+        segment_tensions: [t1198, t1194, t1199, t1195, t1197],
         bearings: [
-            [[t1097, t1098, T::from_f64(19.62)], [t1090, t1102, t1103]],
-            [[t1074, t1075, T::from_f64(7.848000000000001)], [t1076, t1080, t1081]],
+            [[t1316, t1317, T::from_f64(19.62)], [t1308, t1321, t1322]],
+            [[t1292, t1293, T::from_f64(7.848000000000001)], [t1294, t1298, t1299]],
             [
-                [t983, t1064, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1065],
+                [t1204, t1282, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1283],
             ],
             [
-                [t1012, t1058, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1059],
+                [t1232, t1276, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1277],
             ],
             [
-                [t1053, t1054, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1055],
+                [t1271, t1272, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1273],
             ],
             [
-                [t1050, t1051, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1052],
+                [t1268, t1269, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1270],
             ],
             [
-                [t1047, t1048, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1049],
+                [t1265, t1266, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1267],
             ],
         ],
         base_reaction: [
-            [[t898, t901, T::from_f64(20.601000000000003)], [t197, t200, t902]],
+            [[t1158, t1162, T::from_f64(20.601000000000003)], [t197, t200, t1163]],
         ],
     }
 }

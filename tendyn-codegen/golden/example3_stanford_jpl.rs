@@ -31,131 +31,131 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t3871 = c115 * T::from_f64(0.0000208);
-    let t3874 = T::from_f64(-0.00004) - t3871;
-    let t3876 = s114 * T::from_f64(0.0000208);
-    let t3883 = c115 * T::from_f64(0.00004);
-    let t3891 = c115 * T::from_f64(0.000009600000000000001);
-    let t3905 = Real::mul_add(
+    let t4450 = c115 * T::from_f64(0.0000208);
+    let t4453 = T::from_f64(-0.00004) - t4450;
+    let t4455 = s114 * T::from_f64(0.0000208);
+    let t4462 = c115 * T::from_f64(0.00004);
+    let t4470 = c115 * T::from_f64(0.000009600000000000001);
+    let t4484 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t3883,
+            T::from_f64(-0.00008495) - t4462,
             s114
                 * Real::mul_add(
                     c113,
-                    t3874,
-                    Real::mul_add(s112, t3876, T::from_f64(-0.000009600000000000001)),
+                    t4453,
+                    Real::mul_add(s112, t4455, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
         Real::mul_add(
             c113,
-            t3891 + T::from_f64(0.000042000000000000004),
-            t3883 + T::from_f64(0.00009551400000000001)
+            t4470 + T::from_f64(0.000042000000000000004),
+            t4462 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104)),
         ),
     );
-    let t3913 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3922 = c115 * T::from_f64(0.0000416);
-    let t3935 = s114 * (t3874 - c113 * T::from_f64(0.000009600000000000001));
-    let t3937 = qd[1]
+    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4501 = c115 * T::from_f64(0.0000416);
+    let t4514 = s114 * (t4453 - c113 * T::from_f64(0.000009600000000000001));
+    let t4516 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3913 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4492 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t3922),
-                    T::from_f64(-0.000042000000000000004) - t3891,
+                    s114 * (T::from_f64(0.00008) + t4501),
+                    T::from_f64(-0.000042000000000000004) - t4470,
                 ),
             ),
-            t3935,
+            t4514,
         );
-    let t3950 = qd[0]
+    let t4529 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3913 + (T::from_f64(-0.0000208) - t3883),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3922), -t3891),
+                    t4492 + (T::from_f64(-0.0000208) - t4462),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4501), -t4470),
                 ),
-                t3935,
+                t4514,
             ),
-            t3937,
+            t4516,
         );
-    let t3953 = Real::mul_add(
+    let t4532 = Real::mul_add(
         qdd[0],
-        t3905,
+        t4484,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3950),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t4529),
         ),
     );
-    let t3958 = t3233 + T::from_f64(0.000011224000000000001);
-    let t3962 = s114 * t3876;
-    let t3971 = c115 * T::from_f64(0.000004800000000000001);
-    let t3981 = s114
+    let t4537 = t3233 + T::from_f64(0.000011224000000000001);
+    let t4541 = s114 * t4455;
+    let t4550 = c115 * T::from_f64(0.000004800000000000001);
+    let t4560 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3998 = c115 * T::from_f64(0.003924);
-    let t4005 = s112 * (s114 * T::from_f64(0.003924));
-    let t4009 = qd[0]
+    let t4577 = c115 * T::from_f64(0.003924);
+    let t4584 = s112 * (s114 * T::from_f64(0.003924));
+    let t4588 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3883 + T::from_f64(0.00008495) - t3962,
+                    t4462 + T::from_f64(0.00008495) - t4541,
                     Real::mul_add(
                         s112,
-                        s114 * t3874,
-                        t3971 + T::from_f64(0.000021000000000000002),
+                        s114 * t4453,
+                        t4550 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t3981,
+                t4560,
             ))
-        + (Real::mul_add(c113, t3998 + T::from_f64(0.017167500000000002), -t4005)
+        + (Real::mul_add(c113, t4577 + T::from_f64(0.017167500000000002), -t4584)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238));
-    let t4012 = Real::mul_add(
+    let t4591 = Real::mul_add(
         qdd[1],
-        t3883 + T::from_f64(0.000086946),
+        t4462 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3958,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4009),
+            t4537,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4588),
         ),
     );
-    let t4034 = qd[0]
+    let t4613 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3233 + T::from_f64(0.0000104) - t3962,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3871), t3971),
+                    t3233 + T::from_f64(0.0000104) - t4541,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4450), t4550),
                 ),
-                t3981,
-            )) + (qd[1] * (qd[1] * t3238) + (c113 * t3998 - t4005));
-    let t4037 = Real::mul_add(
+                t4560,
+            )) + (qd[1] * (qd[1] * t3238) + (c113 * t4577 - t4584));
+    let t4616 = Real::mul_add(
         qdd[1],
-        t3958,
+        t4537,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4034),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4613),
         ),
     );
-    [t3953, t4012, t4037]
+    [t4532, t4591, t4616]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 307 arithmetic (129 add/sub, 174 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 302 arithmetic (126 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(
@@ -165,13 +165,12 @@ pub fn actuation<T: Real>(
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
     let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
@@ -188,31 +187,20 @@ pub fn actuation<T: Real>(
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t369 = T::from_f64(1.25) * qdd[1];
-    let t420 = T::from_f64(0.03) * t208 + T::from_f64(0.02) * t297;
     let t626 = T::from_f64(0.007998399839967993) * s114;
     let t630 = T::from_f64(0.007998399839967993) * c115;
     let t734 = T::from_f64(0.01) * s112;
     let t735 = T::from_f64(0.01) * c113;
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
-    let t2976 = Real::mul_add(
-        -T::from_f64(0.002142857142857143),
-        t2970,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
-    );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
         + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
     let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * (t153 * T::from_f64(0.025));
-    let t3011 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(c115, t2989, -(s114 * t2988)))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t3084 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
@@ -262,94 +250,98 @@ pub fn actuation<T: Real>(
         * (Real::mul_add(t237, t285, t245 * t283)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
-    let t3157 = T::from_f64(0.02) * t3011 - (t3100 + t3115);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3162 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-        + t297 * T::from_f64(0.0004)
+    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
+    let t3885 = T::from_f64(0.002142857142857143) * t2970
+        + qdd[0] * T::from_f64(0.007714285714285714);
+    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+        - t233 * t285;
+    let t3950 = T::from_f64(0.02) * t3897 - (t3100 + t3115);
+    let t3954 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+        + T::from_f64(0.0004) * t3875
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
-        - t297 * T::from_f64(0.0008);
-    let t3163 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3011
-        - t3155 + T::from_f64(0.04) * t3157;
-    let t3180 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+        - T::from_f64(0.0008) * t3875;
+    let t3955 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3897
+        - t3155 + T::from_f64(0.04) * t3950;
+    let t3969 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3163);
-    let t3182 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3955);
+    let t3971 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3162, s114 * t3158)) - T::from_f64(0.05) * t420;
-    let t3183 = t3180
+            + Real::mul_add(c115, t3954, s114 * t3158)) - T::from_f64(0.05) * t3877;
+    let t3972 = t3969
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3157, s114 * t3156)));
-    let t3187 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3950, s114 * t3156)));
+    let t3976 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3182,
+            t3971,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(-c115, t3158, s114 * t3162)
+                    - (Real::mul_add(s114, t3954, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3189 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + Real::mul_add(
-            T::from_f64(0.00006),
-            t2976,
-            T::from_f64(0.00003)
-                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                    + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3187 - T::from_f64(0.012) * Real::mul_add(T::from_f64(0.014), t2976, t420);
-    let t3194 = Real::mul_add(
+    let t3978 = T::from_f64(0.0000022215714285714285) * qdd[0]
+        + (T::from_f64(0.00003)
+            * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
+                + T::from_f64(0.004285714285714286) * t2970)
+            - T::from_f64(0.00006) * t3885) - t3976
+        - T::from_f64(0.012) * (t3877 - T::from_f64(0.014) * t3885);
+    let t3983 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3163,
+        t3955,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3189,
-            T::from_f64(0.000000000000003552713678800501) * t3183,
+            t3978,
+            T::from_f64(0.000000000000003552713678800501) * t3972,
         ),
     );
-    let t3199 = Real::mul_add(
+    let t3988 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3163,
+        t3955,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3183,
-            T::from_f64(31.18503118503118) * t3189,
+            t3972,
+            T::from_f64(31.18503118503118) * t3978,
         ),
     );
-    let t3204 = Real::mul_add(
+    let t3993 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3163,
+        t3955,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3183,
-            T::from_f64(33.26403326403328) * t3189,
+            t3972,
+            T::from_f64(33.26403326403328) * t3978,
         ),
     );
-    let t3209 = Real::mul_add(
+    let t3998 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3163,
-        Real::mul_add(-T::from_f64(50.0), t3183, T::from_f64(33.26403326403329) * t3189),
+        t3955,
+        Real::mul_add(-T::from_f64(50.0), t3972, T::from_f64(33.26403326403329) * t3978),
     );
-    let t3219 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3194))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3199))
-        .max(T::from_f64(5.0) - t3204)
-        .max(T::from_f64(5.0) - t3209);
-    let t3221 = Real::mul_add(T::from_f64(1.0666666666666669), t3219, t3194);
-    let t3223 = Real::mul_add(T::from_f64(1.0666666666666664), t3219, -t3199);
-    let t3224 = t3204 + t3219;
-    let t3225 = t3209 + t3219;
-    tendyn_core::distribution::Actuation::exact([], [t3221, t3223, t3224, t3225])
+    let t4008 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3983))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3988))
+        .max(T::from_f64(5.0) - t3993)
+        .max(T::from_f64(5.0) - t3998);
+    let t4010 = Real::mul_add(T::from_f64(1.0666666666666669), t4008, t3983);
+    let t4012 = Real::mul_add(T::from_f64(1.0666666666666664), t4008, -t3988);
+    let t4013 = t3993 + t4008;
+    let t4014 = t3998 + t4008;
+    tendyn_core::distribution::Actuation::exact([], [t4010, t4012, t4013, t4014])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -361,13 +353,13 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t3883 = c115 * T::from_f64(0.00004);
-    let t3958 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
-    let t4659 = Real::mul_add(
+    let t4462 = c115 * T::from_f64(0.00004);
+    let t4537 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
+    let t5238 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t3883,
+            T::from_f64(-0.00008495000000000003) - t4462,
             s114
                 * Real::mul_add(
                     c113,
@@ -380,21 +372,21 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
             c113,
             c115 * T::from_f64(0.000009600000000000001)
                 + T::from_f64(0.00004200000000000001),
-            t3883 + T::from_f64(0.00009551400000000003)
+            t4462 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t4661 = t3883 + T::from_f64(0.00008694600000000003);
+    let t5240 = t4462 + T::from_f64(0.00008694600000000003);
     [
         [
-            t4659,
+            t5238,
             T::from_f64(0.00000002100000000000001),
             T::from_f64(0.000000024000000000000003),
         ],
-        [T::from_f64(0.00000002100000000000001), t4661, t3958],
+        [T::from_f64(0.00000002100000000000001), t5240, t4537],
         [
             T::from_f64(0.000000024000000000000003),
-            t3958,
+            t4537,
             T::from_f64(0.000011256000000000002),
         ],
     ]
@@ -410,74 +402,74 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
     let t3238 = s114 * T::from_f64(0.00002);
-    let t3871 = c115 * T::from_f64(0.0000208);
-    let t3874 = T::from_f64(-0.00004) - t3871;
-    let t3883 = c115 * T::from_f64(0.00004);
-    let t3891 = c115 * T::from_f64(0.000009600000000000001);
-    let t3913 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3922 = c115 * T::from_f64(0.0000416);
-    let t3935 = s114 * (t3874 - c113 * T::from_f64(0.000009600000000000001));
-    let t3937 = qd[1]
+    let t4450 = c115 * T::from_f64(0.0000208);
+    let t4453 = T::from_f64(-0.00004) - t4450;
+    let t4462 = c115 * T::from_f64(0.00004);
+    let t4470 = c115 * T::from_f64(0.000009600000000000001);
+    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4501 = c115 * T::from_f64(0.0000416);
+    let t4514 = s114 * (t4453 - c113 * T::from_f64(0.000009600000000000001));
+    let t4516 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3913 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4492 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t3922),
-                    T::from_f64(-0.000042000000000000004) - t3891,
+                    s114 * (T::from_f64(0.00008) + t4501),
+                    T::from_f64(-0.000042000000000000004) - t4470,
                 ),
             ),
-            t3935,
+            t4514,
         );
-    let t3950 = qd[0]
+    let t4529 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3913 + (T::from_f64(-0.0000208) - t3883),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3922), -t3891),
+                    t4492 + (T::from_f64(-0.0000208) - t4462),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4501), -t4470),
                 ),
-                t3935,
+                t4514,
             ),
-            t3937,
+            t4516,
         );
-    let t3962 = s114 * (s114 * T::from_f64(0.0000208));
-    let t3971 = c115 * T::from_f64(0.000004800000000000001);
-    let t3981 = s114
+    let t4541 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4550 = c115 * T::from_f64(0.000004800000000000001);
+    let t4560 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t4028 = qd[0]
+    let t4607 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t3962,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3871), t3971),
+                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t4541,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4450), t4550),
                 ),
-                t3981,
+                t4560,
             ));
-    let t4662 = qd[0]
+    let t5241 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3883 + T::from_f64(0.00008495) - t3962,
+                    t4462 + T::from_f64(0.00008495) - t4541,
                     Real::mul_add(
                         s112,
-                        s114 * t3874,
-                        t3971 + T::from_f64(0.000021000000000000002),
+                        s114 * t4453,
+                        t4550 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t3981,
+                t4560,
             )) - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238);
-    let t4663 = t4028 + qd[1] * (qd[1] * t3238);
-    [t3950, t4662, t4663]
+    let t5242 = t4607 + qd[1] * (qd[1] * t3238);
+    [t4529, t5241, t5242]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -489,11 +481,11 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
 pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t3998 = c115 * T::from_f64(0.003924);
-    let t4005 = s112 * (s114 * T::from_f64(0.003924));
-    let t4007 = Real::mul_add(c113, t3998 + T::from_f64(0.017167500000000002), -t4005);
-    let t4032 = c113 * t3998 - t4005;
-    [T::from_f64(0.0), t4007, t4032]
+    let t4577 = c115 * T::from_f64(0.003924);
+    let t4584 = s112 * (s114 * T::from_f64(0.003924));
+    let t4586 = Real::mul_add(c113, t4577 + T::from_f64(0.017167500000000002), -t4584);
+    let t4611 = c113 * t4577 - t4584;
+    [T::from_f64(0.0), t4586, t4611]
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
 ///
@@ -512,20 +504,20 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t3871 = c115 * T::from_f64(0.0000208);
-    let t3883 = c115 * T::from_f64(0.00004);
-    let t3891 = c115 * T::from_f64(0.000009600000000000001);
-    let t3913 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3922 = c115 * T::from_f64(0.0000416);
-    let t3962 = s114 * (s114 * T::from_f64(0.0000208));
-    let t3971 = c115 * T::from_f64(0.000004800000000000001);
-    let t3998 = c115 * T::from_f64(0.003924);
-    let t4005 = s112 * (s114 * T::from_f64(0.003924));
-    let t4659 = Real::mul_add(
+    let t4450 = c115 * T::from_f64(0.0000208);
+    let t4462 = c115 * T::from_f64(0.00004);
+    let t4470 = c115 * T::from_f64(0.000009600000000000001);
+    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4501 = c115 * T::from_f64(0.0000416);
+    let t4541 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4550 = c115 * T::from_f64(0.000004800000000000001);
+    let t4577 = c115 * T::from_f64(0.003924);
+    let t4584 = s112 * (s114 * T::from_f64(0.003924));
+    let t5238 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t3883,
+            T::from_f64(-0.00008495000000000003) - t4462,
             s114
                 * Real::mul_add(
                     c113,
@@ -536,133 +528,132 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t3891 + T::from_f64(0.00004200000000000001),
-            t3883 + T::from_f64(0.00009551400000000003)
+            t4470 + T::from_f64(0.00004200000000000001),
+            t4462 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t4678 = t3871 + T::from_f64(0.00004);
-    let t4680 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t4678);
-    let t4682 = qd[1]
+    let t5257 = t4450 + T::from_f64(0.00004);
+    let t5259 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t5257);
+    let t5261 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3913,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t4492,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t3922),
-                    t3891 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t4501),
+                    t4470 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t4680,
+            t5259,
         );
-    let t4695 = qd[0]
+    let t5274 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t3883 - t3913,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3922), t3891),
+                    T::from_f64(0.0000208) + t4462 - t4492,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t4501), t4470),
                 ),
-                t4680,
+                t5259,
             ),
-            t4682,
+            t5261,
         );
-    let t4699 = t4695
+    let t5278 = t5274
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t4701 = T::from_f64(0.00000002100000000000001) / t4659;
-    let t4717 = s114
+    let t5280 = T::from_f64(0.00000002100000000000001) / t5238;
+    let t5296 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t4774 = T::from_f64(0.000000024000000000000003) / t4659;
-    let t4929 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
+    let t5353 = T::from_f64(0.000000024000000000000003) / t5238;
+    let t5508 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3998, t4005)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4577, t4584)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t4930 = Real::mul_add(
+    let t5509 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t3883 + t3962,
+                    T::from_f64(-0.00008495) - t4462 + t4541,
                     Real::mul_add(
                         s112,
-                        s114 * t4678,
-                        T::from_f64(-0.000021000000000000002) - t3971,
+                        s114 * t5257,
+                        T::from_f64(-0.000021000000000000002) - t4550,
                     ),
                 ),
-                t4717,
+                t5296,
             ),
-        t4929,
+        t5508,
     );
-    let t4941 = Real::mul_add(
+    let t5520 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3962 + (T::from_f64(-0.0000104) - t3233),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3871), -t3971),
+                    t4541 + (T::from_f64(-0.0000104) - t3233),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t4450), -t4550),
                 ),
-                t4717,
+                t5296,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t4005 - c113 * t3998 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t4584 - c113 * t4577 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t3238),
     );
-    let t4944 = Real::mul_add(
-        -t4659,
-        t4701 * t4701,
-        t3883 + T::from_f64(0.00008694600000000003),
+    let t5523 = Real::mul_add(
+        -t5238,
+        t5280 * t5280,
+        t4462 + T::from_f64(0.00008694600000000003),
     );
-    let t4948 = Real::mul_add(
-        -t4659,
-        t4701 * t4774,
+    let t5527 = Real::mul_add(
+        -t5238,
+        t5280 * t5353,
         t3233 + T::from_f64(0.000011224000000000001),
-    ) / t4944;
-    let t4956 = Real::mul_add(-t4699, t4701, t4930);
-    let t4962 = Real::mul_add(-t4948, t4956, Real::mul_add(-t4699, t4774, t4941))
+    ) / t5523;
+    let t5535 = Real::mul_add(-t5278, t5280, t5509);
+    let t5541 = Real::mul_add(-t5527, t5535, Real::mul_add(-t5278, t5353, t5520))
         / Real::mul_add(
-            -t4944,
-            t4948 * t4948,
-            Real::mul_add(-t4659, t4774 * t4774, T::from_f64(0.000011256000000000002)),
+            -t5523,
+            t5527 * t5527,
+            Real::mul_add(-t5238, t5353 * t5353, T::from_f64(0.000011256000000000002)),
         );
-    let t4964 = Real::mul_add(-t4948, t4962, t4956 / t4944);
-    let t4968 = Real::mul_add(
-        -t4774,
-        t4962,
-        Real::mul_add(-t4701, t4964, t4699 / t4659),
+    let t5543 = Real::mul_add(-t5527, t5541, t5535 / t5523);
+    let t5547 = Real::mul_add(
+        -t5353,
+        t5541,
+        Real::mul_add(-t5280, t5543, t5278 / t5238),
     );
-    [t4968, t4964, t4962]
+    [t5547, t5543, t5541]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: Ta#0, Ta#1, Ta#2, Tb#0, Tb#1, Tb#2, Tc#0, Tc#1, Td#0, Td#1.
 ///
-/// Operations (traced recursion): 313 arithmetic (135 add/sub, 174 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 308 arithmetic (132 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 10] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
     let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
@@ -679,31 +670,20 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t369 = T::from_f64(1.25) * qdd[1];
-    let t420 = T::from_f64(0.03) * t208 + T::from_f64(0.02) * t297;
     let t626 = T::from_f64(0.007998399839967993) * s114;
     let t630 = T::from_f64(0.007998399839967993) * c115;
     let t734 = T::from_f64(0.01) * s112;
     let t735 = T::from_f64(0.01) * c113;
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
-    let t2976 = Real::mul_add(
-        -T::from_f64(0.002142857142857143),
-        t2970,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
-    );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
         + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
     let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * (t153 * T::from_f64(0.025));
-    let t3011 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(c115, t2989, -(s114 * t2988)))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t3084 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
@@ -753,106 +733,110 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
         * (Real::mul_add(t237, t285, t245 * t283)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
-    let t3157 = T::from_f64(0.02) * t3011 - (t3100 + t3115);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3162 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-        + t297 * T::from_f64(0.0004)
+    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
+    let t3885 = T::from_f64(0.002142857142857143) * t2970
+        + qdd[0] * T::from_f64(0.007714285714285714);
+    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+        - t233 * t285;
+    let t3950 = T::from_f64(0.02) * t3897 - (t3100 + t3115);
+    let t3954 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+        + T::from_f64(0.0004) * t3875
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
-        - t297 * T::from_f64(0.0008);
-    let t3163 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3011
-        - t3155 + T::from_f64(0.04) * t3157;
-    let t3180 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+        - T::from_f64(0.0008) * t3875;
+    let t3955 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3897
+        - t3155 + T::from_f64(0.04) * t3950;
+    let t3969 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3163);
-    let t3182 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3955);
+    let t3971 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3162, s114 * t3158)) - T::from_f64(0.05) * t420;
-    let t3183 = t3180
+            + Real::mul_add(c115, t3954, s114 * t3158)) - T::from_f64(0.05) * t3877;
+    let t3972 = t3969
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3157, s114 * t3156)));
-    let t3187 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3950, s114 * t3156)));
+    let t3976 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3182,
+            t3971,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(-c115, t3158, s114 * t3162)
+                    - (Real::mul_add(s114, t3954, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3189 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + Real::mul_add(
-            T::from_f64(0.00006),
-            t2976,
-            T::from_f64(0.00003)
-                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                    + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3187 - T::from_f64(0.012) * Real::mul_add(T::from_f64(0.014), t2976, t420);
-    let t3194 = Real::mul_add(
+    let t3978 = T::from_f64(0.0000022215714285714285) * qdd[0]
+        + (T::from_f64(0.00003)
+            * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
+                + T::from_f64(0.004285714285714286) * t2970)
+            - T::from_f64(0.00006) * t3885) - t3976
+        - T::from_f64(0.012) * (t3877 - T::from_f64(0.014) * t3885);
+    let t3983 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3163,
+        t3955,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3189,
-            T::from_f64(0.000000000000003552713678800501) * t3183,
+            t3978,
+            T::from_f64(0.000000000000003552713678800501) * t3972,
         ),
     );
-    let t3199 = Real::mul_add(
+    let t3988 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3163,
+        t3955,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3183,
-            T::from_f64(31.18503118503118) * t3189,
+            t3972,
+            T::from_f64(31.18503118503118) * t3978,
         ),
     );
-    let t3204 = Real::mul_add(
+    let t3993 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3163,
+        t3955,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3183,
-            T::from_f64(33.26403326403328) * t3189,
+            t3972,
+            T::from_f64(33.26403326403328) * t3978,
         ),
     );
-    let t3209 = Real::mul_add(
+    let t3998 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3163,
-        Real::mul_add(-T::from_f64(50.0), t3183, T::from_f64(33.26403326403329) * t3189),
+        t3955,
+        Real::mul_add(-T::from_f64(50.0), t3972, T::from_f64(33.26403326403329) * t3978),
     );
-    let t3219 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3194))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3199))
-        .max(T::from_f64(5.0) - t3204)
-        .max(T::from_f64(5.0) - t3209);
-    let t3221 = Real::mul_add(T::from_f64(1.0666666666666669), t3219, t3194);
-    let t3223 = Real::mul_add(T::from_f64(1.0666666666666664), t3219, -t3199);
-    let t3224 = t3204 + t3219;
-    let t3225 = t3209 + t3219;
-    let t3226 = t3084 + t3221;
-    let t3227 = t3226 - t3086;
-    let t3228 = t3089 + t3223;
-    let t3229 = t3086 + t3228;
-    let t3230 = t3224 - t3091;
-    let t3231 = t3225 - t3092;
-    [t3227, t3226, t3221, t3229, t3228, t3223, t3230, t3224, t3231, t3225]
+    let t4008 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3983))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3988))
+        .max(T::from_f64(5.0) - t3993)
+        .max(T::from_f64(5.0) - t3998);
+    let t4010 = Real::mul_add(T::from_f64(1.0666666666666669), t4008, t3983);
+    let t4012 = Real::mul_add(T::from_f64(1.0666666666666664), t4008, -t3988);
+    let t4013 = t3993 + t4008;
+    let t4014 = t3998 + t4008;
+    let t4015 = t3084 + t4010;
+    let t4016 = t4015 - t3086;
+    let t4017 = t3089 + t4012;
+    let t4018 = t3086 + t4017;
+    let t4019 = t4013 - t3091;
+    let t4020 = t4014 - t3092;
+    [t4016, t4015, t4010, t4018, t4017, t4012, t4019, t4013, t4020, t4014]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: knuckle, proximal, distal, drum3a, drum3b, drum2, idler8, idler9, idler4, idler5, idler6, idler7.
 ///
-/// Operations (traced recursion): 603 arithmetic (276 add/sub, 316 mul, 0 div, 7 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 588 arithmetic (268 add/sub, 309 mul, 0 div, 7 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2]; 12] {
@@ -880,12 +864,8 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
-    let t300 = T::from_f64(0.02) * t297;
     let t302 = T::from_f64(0.000003) * t245;
     let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
-    let t323 = qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]);
     let t324 = T::from_f64(0.006) * qdd[0];
     let t332 = T::from_f64(0.000000049) * t322;
     let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
@@ -898,8 +878,6 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t369 = T::from_f64(1.25) * qdd[1];
     let t370 = qdd[0] + t369;
     let t376 = qdd[0] - t369;
-    let t420 = T::from_f64(0.03) * t208 + t300;
-    let t424 = T::from_f64(0.05) * t420;
     let t626 = T::from_f64(0.007998399839967993) * s114;
     let t627 = t626 - c115 * T::from_f64(0.00015999999999999828);
     let t630 = T::from_f64(0.007998399839967993) * c115;
@@ -927,7 +905,6 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         Real::mul_add(s114, t159, c115 * t157) + qd[2] * t237,
         Real::mul_add(-t245, t2017, t237 * t302),
     );
-    let t2037 = T::from_f64(0.0000000245) * t323;
     let t2038 = T::from_f64(0.0000000245) * qdd[0];
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
@@ -937,16 +914,13 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
     let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * t196;
     let t2994 = T::from_f64(0.03) * t2992;
-    let t3011 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(c115, t2989, -(s114 * t2988)))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t3012 = T::from_f64(0.02)
         * (Real::mul_add(t237, t285, t245 * t283)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264)));
-    let t3013 = T::from_f64(0.02) * t3011;
     let t3019 = T::from_f64(0.006) * t2970;
-    let t3025 = t297 * T::from_f64(0.0008);
+    let t3021 = T::from_f64(0.000000049)
+        * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
     let t3084 = t354 * T::from_f64(0.000005999999999999999);
     let t3086 = t322 * T::from_f64(0.000007000000000000001);
     let t3087 = t3084 - t3086;
@@ -967,7 +941,6 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t3128 = c113 * t3092;
     let t3129 = s112 * t3092;
     let t3131 = t3124 + t3129;
-    let t3157 = t3013 - (t3100 + t3115);
     let t3387 = Real::mul_add(
         T::from_f64(0.00006),
         t1989,
@@ -980,17 +953,9 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     ) + t208 * T::from_f64(0.00075);
     let t3389 = T::from_f64(0.0000068) * qdd[1]
         + Real::mul_add(-t153, t2000, t152 * t2001) - t2992 * T::from_f64(0.00075);
-    let t3390 = Real::mul_add(
-        T::from_f64(0.000003),
-        t249,
-        Real::mul_add(t245, t2016, -(t233 * t302)),
-    ) + t297 * T::from_f64(0.0004);
-    let t3391 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-        - T::from_f64(0.0004) * t3011;
     let t3392 = T::from_f64(0.002) * (t324 - t2971);
     let t3393 = T::from_f64(0.002) * (t118 + t3019);
     let t3394 = -t3393;
-    let t3396 = t2037 + Real::mul_add(T::from_f64(0.000000049), t323, -t2037);
     let t3397 = T::from_f64(0.002) * (T::from_f64(0.009) * qdd[0] - t2971);
     let t3398 = T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118);
     let t3399 = -t3398;
@@ -1006,10 +971,26 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         );
     let t3408 = t2027
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3411 = t3390
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3025;
-    let t3412 = T::from_f64(0.04) * t3157
-        + (t3391
+    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3876 = T::from_f64(0.02) * t3875;
+    let t3877 = T::from_f64(0.03) * t208 + t3876;
+    let t3878 = T::from_f64(0.05) * t3877;
+    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+        - t233 * t285;
+    let t3898 = T::from_f64(0.02) * t3897;
+    let t3903 = T::from_f64(0.0008) * t3875;
+    let t3950 = t3898 - (t3100 + t3115);
+    let t4055 = Real::mul_add(
+        T::from_f64(0.000003),
+        t249,
+        Real::mul_add(t245, t2016, -(t233 * t302)),
+    ) + T::from_f64(0.0004) * t3875;
+    let t4056 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
+        - T::from_f64(0.0004) * t3897;
+    let t4059 = t4055
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3903;
+    let t4060 = T::from_f64(0.04) * t3950
+        + (t4056
             - (Real::mul_add(
                 -T::from_f64(0.04),
                 t3100,
@@ -1020,263 +1001,261 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
                     t3115,
                     Real::mul_add(t692, t3112, t687 * t3115),
                 )));
-    let t3426 = T::from_f64(0.05)
+    let t4072 = T::from_f64(0.05)
         * (t2994
-            + (t3131 + Real::mul_add(c115, t3157, s114 * (t3012 - (t3112 - t3097)))))
+            + (t3131 + Real::mul_add(c115, t3950, s114 * (t3012 - (t3112 - t3097)))))
         + (t3389
             - (Real::mul_add(
                 T::from_f64(0.05),
                 t3131,
                 Real::mul_add(t735, t3128, t734 * t3129)
                     - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t3412));
-    let t3429 = Real::mul_add(
+            ) - t4060));
+    let t4075 = Real::mul_add(
         c113,
         t3388
             + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t3411, s114 * t3408)) - t424,
+                + Real::mul_add(c115, t4059, s114 * t3408)) - t3878,
         s112
             * (t2011
-                - (Real::mul_add(-c115, t3408, s114 * t3411)
+                - (Real::mul_add(s114, t4059, -(c115 * t3408))
                     - T::from_f64(0.008) * t3131)),
     );
-    let t3432 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t420);
-    let t3434 = T::from_f64(0.012) * t3432;
-    let t3435 = t3387 - (t3407 - t3429) - t3434;
-    let t3442 = Real::mul_add(
+    let t4078 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3877);
+    let t4080 = T::from_f64(0.012) * t4078;
+    let t4081 = t3387 - (t3407 - t4075) - t4080;
+    let t4088 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3412,
+        t4060,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3435,
-            T::from_f64(0.000000000000003552713678800501) * t3426,
+            t4081,
+            T::from_f64(0.000000000000003552713678800501) * t4072,
         ),
     );
-    let t3447 = Real::mul_add(
+    let t4093 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3412,
+        t4060,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3426,
-            T::from_f64(31.18503118503118) * t3435,
+            t4072,
+            T::from_f64(31.18503118503118) * t4081,
         ),
     );
-    let t3452 = Real::mul_add(
+    let t4098 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3412,
+        t4060,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3426,
-            T::from_f64(33.26403326403328) * t3435,
+            t4072,
+            T::from_f64(33.26403326403328) * t4081,
         ),
     );
-    let t3457 = Real::mul_add(
+    let t4103 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3412,
-        Real::mul_add(-T::from_f64(50.0), t3426, T::from_f64(33.26403326403329) * t3435),
+        t4060,
+        Real::mul_add(-T::from_f64(50.0), t4072, T::from_f64(33.26403326403329) * t4081),
     );
-    let t3467 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3442))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3447))
-        .max(T::from_f64(5.0) - t3452)
-        .max(T::from_f64(5.0) - t3457);
-    let t3469 = Real::mul_add(T::from_f64(1.0666666666666669), t3467, t3442);
-    let t3471 = Real::mul_add(T::from_f64(1.0666666666666664), t3467, -t3447);
-    let t3472 = t3452 + t3467;
-    let t3473 = t3457 + t3467;
-    let t3541 = t3084 + t3469;
-    let t3542 = t3541 - t3086;
-    let t3543 = t3089 + t3471;
-    let t3544 = t3086 + t3543;
-    let t3545 = t3472 - t3091;
-    let t3546 = t3473 - t3092;
-    let t3547 = T::from_f64(0.999799979995999) * t3542;
-    let t3548 = T::from_f64(0.019999999999999785) * t3542;
-    let t3551 = Real::mul_add(s114, t3548, c115 * t3547);
-    let t3552 = s114 * t3547;
-    let t3553 = c115 * t3548;
-    let t3554 = t3552 - t3553;
-    let t3557 = Real::mul_add(t631, t3551, t627 * t3554);
-    let t3560 = Real::mul_add(-s112, t3548, c113 * t3547);
-    let t3563 = Real::mul_add(c113, t3548, s112 * t3547);
-    let t3567 = t3560 - t3541;
-    let t3569 = Real::mul_add(
+    let t4113 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4088))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4093))
+        .max(T::from_f64(5.0) - t4098)
+        .max(T::from_f64(5.0) - t4103);
+    let t4115 = Real::mul_add(T::from_f64(1.0666666666666669), t4113, t4088);
+    let t4117 = Real::mul_add(T::from_f64(1.0666666666666664), t4113, -t4093);
+    let t4118 = t4098 + t4113;
+    let t4119 = t4103 + t4113;
+    let t4181 = t3084 + t4115;
+    let t4182 = t4181 - t3086;
+    let t4183 = t3089 + t4117;
+    let t4184 = t3086 + t4183;
+    let t4185 = t4118 - t3091;
+    let t4186 = t4119 - t3092;
+    let t4187 = T::from_f64(0.999799979995999) * t4182;
+    let t4188 = T::from_f64(0.019999999999999785) * t4182;
+    let t4191 = Real::mul_add(s114, t4188, c115 * t4187);
+    let t4192 = s114 * t4187;
+    let t4193 = c115 * t4188;
+    let t4194 = t4192 - t4193;
+    let t4197 = Real::mul_add(t631, t4191, t627 * t4194);
+    let t4200 = Real::mul_add(-s112, t4188, c113 * t4187);
+    let t4203 = Real::mul_add(c113, t4188, s112 * t4187);
+    let t4207 = t4200 - t4181;
+    let t4209 = Real::mul_add(
         T::from_f64(0.007),
-        t3541,
+        t4181,
         -Real::mul_add(
             t652 - s112 * T::from_f64(0.0001399999999999985),
-            t3560,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t3563,
+            t4200,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4203,
         ),
     );
-    let t3570 = c111 * t3541;
-    let t3571 = s110 * t3541;
-    let t3586 = T::from_f64(0.999799979995999) * t3544;
-    let t3587 = T::from_f64(0.02000000000000003) * t3544;
-    let t3588 = c115 * t3586;
-    let t3589 = s114 * t3587;
-    let t3590 = t3589 - t3588;
-    let t3593 = Real::mul_add(c115, t3587, s114 * t3586);
-    let t3596 = Real::mul_add(t692, t3590, t687 * t3593);
-    let t3599 = Real::mul_add(s112, t3587, c113 * t3586);
-    let t3602 = Real::mul_add(-c113, t3587, s112 * t3586);
-    let t3606 = t3599 - t3543;
-    let t3608 = Real::mul_add(
+    let t4210 = c111 * t4181;
+    let t4211 = s110 * t4181;
+    let t4224 = T::from_f64(0.999799979995999) * t4184;
+    let t4225 = T::from_f64(0.02000000000000003) * t4184;
+    let t4226 = c115 * t4224;
+    let t4227 = s114 * t4225;
+    let t4228 = t4227 - t4226;
+    let t4231 = Real::mul_add(c115, t4225, s114 * t4224);
+    let t4234 = Real::mul_add(t692, t4228, t687 * t4231);
+    let t4237 = Real::mul_add(s112, t4225, c113 * t4224);
+    let t4240 = Real::mul_add(-c113, t4225, s112 * t4224);
+    let t4244 = t4237 - t4183;
+    let t4246 = Real::mul_add(
         -T::from_f64(0.007),
-        t3543,
+        t4183,
         Real::mul_add(
             t652 + s112 * T::from_f64(0.00014000000000000023),
-            t3599,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t3602,
+            t4237,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4240,
         ),
     );
-    let t3609 = c111 * t3543;
-    let t3610 = s110 * t3543;
-    let t3625 = t3091 - t3472;
-    let t3626 = c113 * t3625;
-    let t3627 = s112 * t3625;
-    let t3630 = Real::mul_add(t735, t3626, t734 * t3627);
-    let t3631 = c111 * t3545;
-    let t3632 = s110 * t3545;
-    let t3644 = t3092 - t3473;
-    let t3645 = c113 * t3644;
-    let t3646 = s112 * t3644;
-    let t3647 = t3626 + t3645;
-    let t3648 = t3627 + t3646;
-    let t3651 = Real::mul_add(t735, t3645, t734 * t3646);
-    let t3653 = c111 * t3546;
-    let t3654 = s110 * t3546;
-    let t3664 = Real::mul_add(T::from_f64(0.99498743710662), t3473, -t3653);
-    let t3665 = Real::mul_add(T::from_f64(0.09999999999999983), t3473, -t3654);
-    let t3666 = T::from_f64(0.000000064) * t376
-        - (Real::mul_add(
-            t3473,
-            T::from_f64(0.00792),
-            t3473 * T::from_f64(0.00007999999999999972),
-        ) - Real::mul_add(t747, t3653, t745 * t3654));
-    let t3667 = Real::mul_add(T::from_f64(0.99498743710662), t3472, -t3631);
-    let t3668 = Real::mul_add(T::from_f64(0.09999999999999983), t3472, -t3632);
-    let t3669 = T::from_f64(0.000000064) * t370
-        - (Real::mul_add(
-            t3472,
-            T::from_f64(0.00792),
-            t3472 * T::from_f64(0.00007999999999999972),
-        ) - Real::mul_add(t747, t3631, t745 * t3632));
-    let t3670 = Real::mul_add(T::from_f64(0.99365172470036), t3471, -t3609);
-    let t3671 = -Real::mul_add(T::from_f64(0.11250000000000027), t3471, t3610);
-    let t3672 = T::from_f64(0.000000081) * t364
-        - (Real::mul_add(
-            T::from_f64(0.009),
-            c111 * t3609,
-            T::from_f64(0.009) * (s110 * t3610),
-        )
-            - Real::mul_add(
-                t3471,
-                T::from_f64(0.00888609375),
-                t3471 * T::from_f64(0.00011390625000000054),
-            ));
-    let t3673 = Real::mul_add(T::from_f64(0.9971835337589565), t3469, -t3570);
-    let t3674 = -Real::mul_add(T::from_f64(0.07499999999999996), t3469, t3571);
-    let t3675 = T::from_f64(0.000000036) * t354
-        - (Real::mul_add(
-            T::from_f64(0.006),
-            c111 * t3570,
-            T::from_f64(0.006) * (s110 * t3571),
-        )
-            - Real::mul_add(
-                t3469,
-                T::from_f64(0.00596625),
-                t3469 * T::from_f64(0.00003374999999999996),
-            ));
-    let t3676 = t3397 - t3606;
-    let t3677 = T::from_f64(0.019620000000000002) - t3602;
-    let t3678 = t332 - t3608;
-    let t3679 = t3606 - t3397;
-    let t3680 = t3602 - T::from_f64(0.019620000000000002);
-    let t3686 = t3392 - t3567;
-    let t3687 = T::from_f64(0.019620000000000002) - t3563;
-    let t3688 = t332 - t3569;
-    let t3689 = t3567 - t3392;
-    let t3690 = t3563 - T::from_f64(0.019620000000000002);
-    let t3701 = -t3647;
-    let t3702 = t3630 - t3651;
-    let t3707 = t3588 - t3589;
-    let t3708 = -t3593;
-    let t3713 = t3553 - t3552;
-    let t3714 = -t3557;
-    let t3724 = t3012 - (t3590 - t3551);
-    let t3725 = t3013 - (t3554 + t3593);
-    let t3726 = t2027
-        + Real::mul_add(T::from_f64(0.006), t3554, T::from_f64(0.009) * t3593);
-    let t3730 = t3390
-        - Real::mul_add(-T::from_f64(0.006), t3551, T::from_f64(0.009) * t3590) - t3025;
-    let t3731 = Real::mul_add(
+    let t4247 = c111 * t4183;
+    let t4248 = s110 * t4183;
+    let t4262 = t3091 - t4118;
+    let t4263 = c113 * t4262;
+    let t4264 = s112 * t4262;
+    let t4267 = Real::mul_add(t735, t4263, t734 * t4264);
+    let t4268 = c111 * t4185;
+    let t4269 = s110 * t4185;
+    let t4279 = t3092 - t4119;
+    let t4280 = c113 * t4279;
+    let t4281 = s112 * t4279;
+    let t4282 = t4263 + t4280;
+    let t4283 = t4264 + t4281;
+    let t4286 = Real::mul_add(t735, t4280, t734 * t4281);
+    let t4288 = c111 * t4186;
+    let t4289 = s110 * t4186;
+    let t4299 = Real::mul_add(T::from_f64(0.99498743710662), t4119, -t4288);
+    let t4300 = Real::mul_add(T::from_f64(0.09999999999999983), t4119, -t4289);
+    let t4301 = T::from_f64(0.000000064) * t376
+        - Real::mul_add(
+            T::from_f64(0.008),
+            t4119,
+            -Real::mul_add(t747, t4288, t745 * t4289),
+        );
+    let t4302 = Real::mul_add(T::from_f64(0.99498743710662), t4118, -t4268);
+    let t4303 = Real::mul_add(T::from_f64(0.09999999999999983), t4118, -t4269);
+    let t4304 = T::from_f64(0.000000064) * t370
+        - Real::mul_add(
+            T::from_f64(0.008),
+            t4118,
+            -Real::mul_add(t747, t4268, t745 * t4269),
+        );
+    let t4305 = Real::mul_add(T::from_f64(0.99365172470036), t4117, -t4247);
+    let t4306 = -Real::mul_add(T::from_f64(0.11250000000000027), t4117, t4248);
+    let t4307 = T::from_f64(0.000000081) * t364
+        - Real::mul_add(
+            -t4117,
+            T::from_f64(0.009000000000000001),
+            Real::mul_add(
+                T::from_f64(0.009),
+                c111 * t4247,
+                T::from_f64(0.009) * (s110 * t4248),
+            ),
+        );
+    let t4308 = Real::mul_add(T::from_f64(0.9971835337589565), t4115, -t4210);
+    let t4309 = -Real::mul_add(T::from_f64(0.07499999999999996), t4115, t4211);
+    let t4310 = T::from_f64(0.000000036) * t354
+        - Real::mul_add(
+            -T::from_f64(0.006),
+            t4115,
+            Real::mul_add(
+                T::from_f64(0.006),
+                c111 * t4210,
+                T::from_f64(0.006) * (s110 * t4211),
+            ),
+        );
+    let t4311 = t3397 - t4244;
+    let t4312 = T::from_f64(0.019620000000000002) - t4240;
+    let t4313 = t332 - t4246;
+    let t4314 = t4244 - t3397;
+    let t4315 = t4240 - T::from_f64(0.019620000000000002);
+    let t4321 = t3392 - t4207;
+    let t4322 = T::from_f64(0.019620000000000002) - t4203;
+    let t4323 = t332 - t4209;
+    let t4324 = t4207 - t3392;
+    let t4325 = t4203 - T::from_f64(0.019620000000000002);
+    let t4336 = -t4282;
+    let t4337 = t4267 - t4286;
+    let t4342 = t4226 - t4227;
+    let t4343 = -t4231;
+    let t4348 = t4193 - t4192;
+    let t4349 = -t4197;
+    let t4359 = t3012 - (t4228 - t4191);
+    let t4360 = t3898 - (t4194 + t4231);
+    let t4361 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4194, T::from_f64(0.009) * t4231);
+    let t4365 = t4055
+        - Real::mul_add(-T::from_f64(0.006), t4191, T::from_f64(0.009) * t4228) - t3903;
+    let t4366 = Real::mul_add(
         T::from_f64(0.04),
-        t3725,
-        t3391
-            - (Real::mul_add(-T::from_f64(0.04), t3554, t3557)
-                - Real::mul_add(T::from_f64(0.04), t3593, t3596)),
+        t4360,
+        t4056
+            - (Real::mul_add(-T::from_f64(0.04), t4194, t4197)
+                - Real::mul_add(T::from_f64(0.04), t4231, t4234)),
     );
-    let t3749 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - (t3647 + Real::mul_add(-c115, t3724, s114 * t3725));
-    let t3750 = t2994 + (t3648 + Real::mul_add(c115, t3725, s114 * t3724));
-    let t3751 = t2011
+    let t4384 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - (t4282 + Real::mul_add(-c115, t4359, s114 * t4360));
+    let t4385 = t2994 + (t4283 + Real::mul_add(c115, t4360, s114 * t4359));
+    let t4386 = t2011
         - Real::mul_add(
             -T::from_f64(0.008),
-            t3648,
-            Real::mul_add(-c115, t3726, s114 * t3730),
+            t4283,
+            Real::mul_add(-c115, t4361, s114 * t4365),
         );
-    let t3755 = t3388
+    let t4390 = t3388
         + Real::mul_add(
             T::from_f64(0.008),
-            t3647,
-            Real::mul_add(c115, t3730, s114 * t3726),
-        ) - t424;
-    let t3756 = Real::mul_add(
+            t4282,
+            Real::mul_add(c115, t4365, s114 * t4361),
+        ) - t3878;
+    let t4391 = Real::mul_add(
         T::from_f64(0.05),
-        t3750,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t3648, t3651 - t3630) - t3731),
+        t4385,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4283, t4286 - t4267) - t4366),
     );
-    let t3773 = T::from_f64(0.01) * (t3019 - t2971)
-        - (t3679 + t3689 + Real::mul_add(-c113, t3749, s112 * t3750));
-    let t3774 = T::from_f64(0.0981)
-        - (t3680 + t3690 - Real::mul_add(c113, t3750, s112 * t3749));
-    let t3775 = Real::mul_add(T::from_f64(0.009), t3680, t3396)
-        + Real::mul_add(T::from_f64(0.006), t3690, t3396)
-        - Real::mul_add(-c113, t3751, s112 * t3755);
-    let t3779 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t3679, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t3689, -t2038)
-            - Real::mul_add(c113, t3755, s112 * t3751)) - t3434;
-    let t3780 = Real::mul_add(
+    let t4408 = T::from_f64(0.01) * (t3019 - t2971)
+        - (t4314 + t4324 + Real::mul_add(-c113, t4384, s112 * t4385));
+    let t4409 = T::from_f64(0.0981)
+        - (t4315 + t4325 - Real::mul_add(c113, t4385, s112 * t4384));
+    let t4410 = Real::mul_add(T::from_f64(0.009), t4315, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4325, t3021)
+        - Real::mul_add(-c113, t4386, s112 * t4390);
+    let t4414 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4314, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4324, -t2038)
+            - Real::mul_add(c113, t4390, s112 * t4386)) - t4080;
+    let t4415 = Real::mul_add(
         T::from_f64(0.012),
-        t3774,
-        T::from_f64(-0.0005886000000000001) - (t3608 - t332 + (t3569 - t332) - t3756),
+        t4409,
+        T::from_f64(-0.0005886000000000001) - (t4246 - t332 + (t4209 - t332) - t4391),
     );
     [
-        [[t3773, t3774, t3432], [t3775, t3779, t3780]],
-        [[t3749, t3750, t420], [t3751, t3755, t3756]],
-        [[t3724, t3725, t300], [t3726, t3730, t3731]],
-        [[t3551, t3713, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t3714]],
-        [[t3707, t3708, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t3596]],
-        [[t3701, t3648, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t3702]],
-        [[t3686, t3687, t3394], [t3396, t2038, t3688]],
-        [[t3676, t3677, t3399], [t3396, t2038, t3678]],
+        [[t4408, t4409, t4078], [t4410, t4414, t4415]],
+        [[t4384, t4385, t3877], [t4386, t4390, t4391]],
+        [[t4359, t4360, t3876], [t4361, t4365, t4366]],
+        [[t4191, t4348, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4349]],
+        [[t4342, t4343, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4234]],
+        [[t4336, t4283, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4337]],
+        [[t4321, t4322, t3394], [t3021, t2038, t4323]],
+        [[t4311, t4312, t3399], [t3021, t2038, t4313]],
         [
-            [t3673, t3674, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t3675],
+            [t4308, t4309, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4310],
         ],
         [
-            [t3670, t3671, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t3672],
+            [t4305, t4306, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4307],
         ],
         [
-            [t3667, t3668, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t3669],
+            [t4302, t4303, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4304],
         ],
         [
-            [t3664, t3665, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t3666],
+            [t4299, t4300, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4301],
         ],
     ]
 }
@@ -1284,7 +1263,7 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 275 arithmetic (121 add/sub, 153 mul, 0 div, 1 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 268 arithmetic (117 add/sub, 150 mul, 0 div, 1 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -1316,10 +1295,7 @@ pub fn base_reaction<T: Real>(
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t233 * t263 + T::from_f64(0.02) * t249
-        - t233 * t283;
     let t302 = T::from_f64(0.000003) * t245;
-    let t323 = qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]);
     let t324 = T::from_f64(0.006) * qdd[0];
     let t332 = T::from_f64(0.000000049)
         * Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
@@ -1335,7 +1311,6 @@ pub fn base_reaction<T: Real>(
             )
             + (T::from_f64(0.000000064) * (qdd[0] + t369)
                 + T::from_f64(0.000000064) * (qdd[0] - t369)));
-    let t420 = T::from_f64(0.03) * t208 + T::from_f64(0.02) * t297;
     let t1989 = t324 - t118;
     let t2000 = T::from_f64(0.000001) * t152;
     let t2001 = T::from_f64(0.0000068) * t153;
@@ -1346,7 +1321,6 @@ pub fn base_reaction<T: Real>(
         Real::mul_add(s114, t159, c115 * t157) + qd[2] * t237,
         Real::mul_add(-t245, t2017, t237 * t302),
     );
-    let t2037 = T::from_f64(0.0000000245) * t323;
     let t2038 = T::from_f64(0.0000000245) * qdd[0];
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
@@ -1355,75 +1329,77 @@ pub fn base_reaction<T: Real>(
     let t2989 = t152 * t174
         + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
     let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * t196;
-    let t3011 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(c115, t2989, -(s114 * t2988)))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t3012 = T::from_f64(0.02)
         * (Real::mul_add(t237, t285, t245 * t283)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264)));
-    let t3013 = T::from_f64(0.02) * t3011;
     let t3018 = t324 - t2971;
     let t3019 = T::from_f64(0.006) * t2970;
+    let t3021 = T::from_f64(0.000000049)
+        * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
     let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
-    let t3039 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - Real::mul_add(-c115, t3012, s114 * t3013);
-    let t3040 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3013, s114 * t3012);
-    let t3396 = t2037 + Real::mul_add(T::from_f64(0.000000049), t323, -t2037);
-    let t3432 = T::from_f64(0.01) * t1989
+    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
+    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+        - t233 * t285;
+    let t3898 = T::from_f64(0.02) * t3897;
+    let t3915 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - Real::mul_add(s114, t3898, -(c115 * t3012));
+    let t3916 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3898, s114 * t3012);
+    let t4078 = T::from_f64(0.01) * t1989
         - (T::from_f64(0.002) * (t118 + t3019)
             + T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118)
-            - t420);
-    let t3483 = Real::mul_add(
+            - t3877);
+    let t4123 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
         Real::mul_add(t245, t2016, -(t233 * t302)),
-    ) + t297 * T::from_f64(0.0004) - t297 * T::from_f64(0.0008);
-    let t3489 = Real::mul_add(
+    ) + T::from_f64(0.0004) * t3875 - T::from_f64(0.0008) * t3875;
+    let t4129 = Real::mul_add(
         T::from_f64(0.000001),
         t157,
         Real::mul_add(-qd[1], t2001, t153 * t213),
-    ) - Real::mul_add(s114, t3483, -(c115 * t2027));
-    let t3491 = T::from_f64(0.0000068) * qdd[1]
+    ) - Real::mul_add(s114, t4123, -(c115 * t2027));
+    let t4131 = T::from_f64(0.0000068) * qdd[1]
         + Real::mul_add(-t153, t2000, t152 * t2001) - t2992 * T::from_f64(0.00075)
-        + (T::from_f64(0.0008) * t3011
+        + (T::from_f64(0.0008) * t3897
             + (T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-                - T::from_f64(0.0004) * t3011));
-    let t3492 = Real::mul_add(
+                - T::from_f64(0.0004) * t3897));
+    let t4132 = Real::mul_add(
         T::from_f64(0.0000068),
         t159,
         Real::mul_add(qd[1], t2000, -(t152 * t213)),
-    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t3483, s114 * t2027)
-        - T::from_f64(0.05) * t420;
-    let t3501 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3040, s112 * t3039);
-    let t3502 = T::from_f64(0.00017658) - t3396
-        + (T::from_f64(0.00011772000000000002) - t3396)
-        + Real::mul_add(-c113, t3489, s112 * t3492);
-    let t3505 = T::from_f64(0.01) * (t3019 - t2971)
-        - (Real::mul_add(-c113, t3039, s112 * t3040)
+    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t4123, s114 * t2027)
+        - T::from_f64(0.05) * t3877;
+    let t4141 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3916, s112 * t3915);
+    let t4142 = T::from_f64(0.00017658) - t3021
+        + (T::from_f64(0.00011772000000000002) - t3021)
+        + Real::mul_add(-c113, t4129, s112 * t4132);
+    let t4145 = T::from_f64(0.01) * (t3019 - t2971)
+        - (Real::mul_add(-c113, t3915, s112 * t3916)
             - (T::from_f64(0.002) * t3018 + T::from_f64(0.002) * t3022));
-    let t3507 = Real::mul_add(
+    let t4147 = Real::mul_add(
         T::from_f64(0.00006),
         t1989,
         T::from_f64(0.0000003) * qdd[0],
     )
         + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
             + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t3492, s112 * t3489));
-    let t3511 = Real::mul_add(
+            + Real::mul_add(c113, t4132, s112 * t4129));
+    let t4151 = Real::mul_add(
         T::from_f64(0.012),
-        T::from_f64(0.0981) - t3501,
+        T::from_f64(0.0981) - t4141,
         T::from_f64(-0.0005886000000000001)
-            + (t332 + t332 + (T::from_f64(0.05) * t3040 + t3491)),
+            + (t332 + t332 + (T::from_f64(0.05) * t3916 + t4131)),
     );
-    let t3513 = Real::mul_add(c111, t3505, s110 * t3432);
-    let t3515 = Real::mul_add(-c111, t3432, s110 * t3505);
-    let t3519 = Real::mul_add(-c111, t3502, s110 * t3511);
-    let t3523 = -Real::mul_add(c111, t3511, s110 * t3502);
-    let t3525 = T::from_f64(0.07848000000000001) - (t3501 - T::from_f64(0.0981));
-    let t3526 = t385 - (T::from_f64(0.012) * t3432 - t3507);
-    [[[t3513, t3515, t3525], [t3519, t3523, t3526]]]
+    let t4153 = Real::mul_add(c111, t4145, s110 * t4078);
+    let t4155 = Real::mul_add(-c111, t4078, s110 * t4145);
+    let t4159 = Real::mul_add(-c111, t4142, s110 * t4151);
+    let t4163 = -Real::mul_add(c111, t4151, s110 * t4142);
+    let t4165 = T::from_f64(0.07848000000000001) - (t4141 - T::from_f64(0.0981));
+    let t4166 = t385 - (T::from_f64(0.012) * t4078 - t4147);
+    [[[t4153, t4155, t4165], [t4159, t4163, t4166]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -1447,7 +1423,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 939 arithmetic (453 add/sub, 468 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 918 arithmetic (442 add/sub, 458 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -1498,11 +1474,8 @@ pub fn all<T: Real>(
     let t290 = Real::mul_add(t237, t285, t245 * t283);
     let t291 = t233 * t285;
     let t293 = t233 * t283;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t273 + T::from_f64(0.02) * t249 - t293;
-    let t300 = T::from_f64(0.02) * t297;
     let t302 = T::from_f64(0.000003) * t245;
     let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
-    let t323 = qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]);
     let t324 = T::from_f64(0.006) * qdd[0];
     let t332 = T::from_f64(0.000000049) * t322;
     let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
@@ -1519,8 +1492,6 @@ pub fn all<T: Real>(
     let t372 = T::from_f64(0.000000064) * t370;
     let t376 = qdd[0] - t369;
     let t378 = T::from_f64(0.000000064) * t376;
-    let t420 = T::from_f64(0.03) * t208 + t300;
-    let t424 = T::from_f64(0.05) * t420;
     let t626 = T::from_f64(0.007998399839967993) * s114;
     let t627 = t626 - c115 * T::from_f64(0.00015999999999999828);
     let t630 = T::from_f64(0.007998399839967993) * c115;
@@ -1542,9 +1513,6 @@ pub fn all<T: Real>(
     let t1644 = t183 + T::from_f64(0.05) * t158;
     let t1650 = t1644 - t158 * T::from_f64(0.025) - t204;
     let t1675 = t248 + (s114 * t156 + c115 * t158);
-    let t1695 = t273 + (t1644 + T::from_f64(0.04) * t1675) - T::from_f64(0.02) * t1675
-        - t293;
-    let t1735 = T::from_f64(0.03) * t1650 + T::from_f64(0.02) * t1695;
     let t1805 = Real::mul_add(c115, t165, -(s114 * t162));
     let t1989 = t324 - t118;
     let t2000 = T::from_f64(0.000001) * t152;
@@ -1563,7 +1531,6 @@ pub fn all<T: Real>(
         Real::mul_add(s114, t159, c115 * t157) + t246,
         t2021,
     );
-    let t2037 = T::from_f64(0.0000000245) * t323;
     let t2038 = T::from_f64(0.0000000245) * qdd[0];
     let t2746 = T::from_f64(0.0000006) * c115;
     let t2747 = s114 * T::from_f64(0.000011000000000000001);
@@ -1584,16 +1551,12 @@ pub fn all<T: Real>(
     let t2994 = T::from_f64(0.03) * t2992;
     let t3000 = c115 * t2988;
     let t3003 = s114 * t2988;
-    let t3011 = t271 + (T::from_f64(0.04) * t250 + Real::mul_add(c115, t2989, -t3003))
-        - T::from_f64(0.02) * t250 - t291;
     let t3012 = T::from_f64(0.02) * (t290 + (Real::mul_add(s114, t2989, t3000) - t269));
-    let t3013 = T::from_f64(0.02) * t3011;
     let t3018 = t324 - t2971;
     let t3019 = T::from_f64(0.006) * t2970;
+    let t3021 = T::from_f64(0.000000049)
+        * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
     let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
-    let t3025 = t297 * T::from_f64(0.0008);
-    let t3039 = t2993 - Real::mul_add(-c115, t3012, s114 * t3013);
-    let t3040 = t2994 + Real::mul_add(c115, t3013, s114 * t3012);
     let t3061 = t322 * T::from_f64(0.000000056);
     let t3084 = t354 * T::from_f64(0.000005999999999999999);
     let t3086 = t322 * T::from_f64(0.000007000000000000001);
@@ -1615,7 +1578,6 @@ pub fn all<T: Real>(
     let t3128 = c113 * t3092;
     let t3129 = s112 * t3092;
     let t3131 = t3124 + t3129;
-    let t3157 = t3013 - (t3100 + t3115);
     let t3241 = T::from_f64(0.00000022400000000000002)
         + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002));
     let t3259 = t179 + t2983;
@@ -1662,13 +1624,9 @@ pub fn all<T: Real>(
     let t3388 = Real::mul_add(T::from_f64(0.0000068), t159, t2007)
         + t208 * T::from_f64(0.00075);
     let t3389 = T::from_f64(0.0000068) * qdd[1] + t2010 - t2992 * T::from_f64(0.00075);
-    let t3390 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
-        + t297 * T::from_f64(0.0004);
-    let t3391 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3011;
     let t3392 = T::from_f64(0.002) * t3018;
     let t3393 = T::from_f64(0.002) * (t118 + t3019);
     let t3394 = -t3393;
-    let t3396 = t2037 + Real::mul_add(T::from_f64(0.000000049), t323, -t2037);
     let t3397 = T::from_f64(0.002) * t3022;
     let t3398 = T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118);
     let t3399 = -t3398;
@@ -1684,284 +1642,6 @@ pub fn all<T: Real>(
         );
     let t3408 = t2027
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3411 = t3390
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3025;
-    let t3412 = T::from_f64(0.04) * t3157
-        + (t3391
-            - (Real::mul_add(
-                -T::from_f64(0.04),
-                t3100,
-                Real::mul_add(t631, t3097, t627 * t3100),
-            )
-                - Real::mul_add(
-                    T::from_f64(0.04),
-                    t3115,
-                    Real::mul_add(t692, t3112, t687 * t3115),
-                )));
-    let t3426 = T::from_f64(0.05)
-        * (t2994
-            + (t3131 + Real::mul_add(c115, t3157, s114 * (t3012 - (t3112 - t3097)))))
-        + (t3389
-            - (Real::mul_add(
-                T::from_f64(0.05),
-                t3131,
-                Real::mul_add(t735, t3128, t734 * t3129)
-                    - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t3412));
-    let t3429 = Real::mul_add(
-        c113,
-        t3388
-            + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t3411, s114 * t3408)) - t424,
-        s112
-            * (t2011
-                - (Real::mul_add(-c115, t3408, s114 * t3411)
-                    - T::from_f64(0.008) * t3131)),
-    );
-    let t3432 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t420);
-    let t3434 = T::from_f64(0.012) * t3432;
-    let t3435 = t3387 - (t3407 - t3429) - t3434;
-    let t3442 = Real::mul_add(
-        T::from_f64(68.34719334719333),
-        t3412,
-        Real::mul_add(
-            -T::from_f64(31.185031185031185),
-            t3435,
-            T::from_f64(0.000000000000003552713678800501) * t3426,
-        ),
-    );
-    let t3447 = Real::mul_add(
-        T::from_f64(56.65280665280666),
-        t3412,
-        Real::mul_add(
-            T::from_f64(0.000000000000007105427357601002),
-            t3426,
-            T::from_f64(31.18503118503118) * t3435,
-        ),
-    );
-    let t3452 = Real::mul_add(
-        -T::from_f64(49.98700623700625),
-        t3412,
-        Real::mul_add(
-            T::from_f64(50.000000000000014),
-            t3426,
-            T::from_f64(33.26403326403328) * t3435,
-        ),
-    );
-    let t3457 = Real::mul_add(
-        T::from_f64(37.512993762993766),
-        t3412,
-        Real::mul_add(-T::from_f64(50.0), t3426, T::from_f64(33.26403326403329) * t3435),
-    );
-    let t3467 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3442))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3447))
-        .max(T::from_f64(5.0) - t3452)
-        .max(T::from_f64(5.0) - t3457);
-    let t3469 = Real::mul_add(T::from_f64(1.0666666666666669), t3467, t3442);
-    let t3471 = Real::mul_add(T::from_f64(1.0666666666666664), t3467, -t3447);
-    let t3472 = t3452 + t3467;
-    let t3473 = t3457 + t3467;
-    let t3483 = t3390 - t3025;
-    let t3484 = T::from_f64(0.0008) * t3011 + t3391;
-    let t3489 = t2011 - Real::mul_add(s114, t3483, -(c115 * t2027));
-    let t3492 = t3388 + Real::mul_add(c115, t3483, s114 * t2027) - t424;
-    let t3493 = T::from_f64(0.05) * t3040 + (t3389 + t3484);
-    let t3501 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3040, s112 * t3039);
-    let t3502 = T::from_f64(0.00017658) - t3396
-        + (T::from_f64(0.00011772000000000002) - t3396)
-        + Real::mul_add(-c113, t3489, s112 * t3492);
-    let t3505 = t3385 - (Real::mul_add(-c113, t3039, s112 * t3040) - (t3392 + t3397));
-    let t3507 = t3387
-        + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
-            + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t3492, s112 * t3489));
-    let t3511 = Real::mul_add(
-        T::from_f64(0.012),
-        T::from_f64(0.0981) - t3501,
-        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t3493),
-    );
-    let t3513 = Real::mul_add(c111, t3505, s110 * t3432);
-    let t3515 = Real::mul_add(-c111, t3432, s110 * t3505);
-    let t3519 = Real::mul_add(-c111, t3502, s110 * t3511);
-    let t3523 = -Real::mul_add(c111, t3511, s110 * t3502);
-    let t3525 = T::from_f64(0.07848000000000001) - (t3501 - T::from_f64(0.0981));
-    let t3526 = t356 + (t366 + (t372 + t378)) - (t3434 - t3507);
-    let t3536 = t364 * T::from_f64(0.000000072)
-        + (t3061 + (t3061 + t3484) - t354 * T::from_f64(0.00000004799999999999999));
-    let t3539 = t378 + (t372 + (t366 + (t356 + (t3507 - t3434))));
-    let t3540 = t370 * T::from_f64(0.00000008)
-        + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + (t332 + t3493) - t354 * T::from_f64(0.000000042)))
-        - t376 * T::from_f64(0.00000008);
-    let t3541 = t3084 + t3469;
-    let t3542 = t3541 - t3086;
-    let t3543 = t3089 + t3471;
-    let t3544 = t3086 + t3543;
-    let t3545 = t3472 - t3091;
-    let t3546 = t3473 - t3092;
-    let t3547 = T::from_f64(0.999799979995999) * t3542;
-    let t3548 = T::from_f64(0.019999999999999785) * t3542;
-    let t3551 = Real::mul_add(s114, t3548, c115 * t3547);
-    let t3552 = s114 * t3547;
-    let t3553 = c115 * t3548;
-    let t3554 = t3552 - t3553;
-    let t3557 = Real::mul_add(t631, t3551, t627 * t3554);
-    let t3560 = Real::mul_add(-s112, t3548, c113 * t3547);
-    let t3563 = Real::mul_add(c113, t3548, s112 * t3547);
-    let t3567 = t3560 - t3541;
-    let t3569 = Real::mul_add(
-        T::from_f64(0.007),
-        t3541,
-        -Real::mul_add(
-            t652 - s112 * T::from_f64(0.0001399999999999985),
-            t3560,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t3563,
-        ),
-    );
-    let t3570 = c111 * t3541;
-    let t3571 = s110 * t3541;
-    let t3586 = T::from_f64(0.999799979995999) * t3544;
-    let t3587 = T::from_f64(0.02000000000000003) * t3544;
-    let t3588 = c115 * t3586;
-    let t3589 = s114 * t3587;
-    let t3590 = t3589 - t3588;
-    let t3593 = Real::mul_add(c115, t3587, s114 * t3586);
-    let t3596 = Real::mul_add(t692, t3590, t687 * t3593);
-    let t3599 = Real::mul_add(s112, t3587, c113 * t3586);
-    let t3602 = Real::mul_add(-c113, t3587, s112 * t3586);
-    let t3606 = t3599 - t3543;
-    let t3608 = Real::mul_add(
-        -T::from_f64(0.007),
-        t3543,
-        Real::mul_add(
-            t652 + s112 * T::from_f64(0.00014000000000000023),
-            t3599,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t3602,
-        ),
-    );
-    let t3609 = c111 * t3543;
-    let t3610 = s110 * t3543;
-    let t3625 = t3091 - t3472;
-    let t3626 = c113 * t3625;
-    let t3627 = s112 * t3625;
-    let t3630 = Real::mul_add(t735, t3626, t734 * t3627);
-    let t3631 = c111 * t3545;
-    let t3632 = s110 * t3545;
-    let t3644 = t3092 - t3473;
-    let t3645 = c113 * t3644;
-    let t3646 = s112 * t3644;
-    let t3647 = t3626 + t3645;
-    let t3648 = t3627 + t3646;
-    let t3651 = Real::mul_add(t735, t3645, t734 * t3646);
-    let t3653 = c111 * t3546;
-    let t3654 = s110 * t3546;
-    let t3664 = Real::mul_add(T::from_f64(0.99498743710662), t3473, -t3653);
-    let t3665 = Real::mul_add(T::from_f64(0.09999999999999983), t3473, -t3654);
-    let t3666 = t378
-        - (Real::mul_add(
-            t3473,
-            T::from_f64(0.00792),
-            t3473 * T::from_f64(0.00007999999999999972),
-        ) - Real::mul_add(t747, t3653, t745 * t3654));
-    let t3667 = Real::mul_add(T::from_f64(0.99498743710662), t3472, -t3631);
-    let t3668 = Real::mul_add(T::from_f64(0.09999999999999983), t3472, -t3632);
-    let t3669 = t372
-        - (Real::mul_add(
-            t3472,
-            T::from_f64(0.00792),
-            t3472 * T::from_f64(0.00007999999999999972),
-        ) - Real::mul_add(t747, t3631, t745 * t3632));
-    let t3670 = Real::mul_add(T::from_f64(0.99365172470036), t3471, -t3609);
-    let t3671 = -Real::mul_add(T::from_f64(0.11250000000000027), t3471, t3610);
-    let t3672 = t366
-        - (Real::mul_add(
-            T::from_f64(0.009),
-            c111 * t3609,
-            T::from_f64(0.009) * (s110 * t3610),
-        )
-            - Real::mul_add(
-                t3471,
-                T::from_f64(0.00888609375),
-                t3471 * T::from_f64(0.00011390625000000054),
-            ));
-    let t3673 = Real::mul_add(T::from_f64(0.9971835337589565), t3469, -t3570);
-    let t3674 = -Real::mul_add(T::from_f64(0.07499999999999996), t3469, t3571);
-    let t3675 = t356
-        - (Real::mul_add(
-            T::from_f64(0.006),
-            c111 * t3570,
-            T::from_f64(0.006) * (s110 * t3571),
-        )
-            - Real::mul_add(
-                t3469,
-                T::from_f64(0.00596625),
-                t3469 * T::from_f64(0.00003374999999999996),
-            ));
-    let t3676 = t3397 - t3606;
-    let t3677 = T::from_f64(0.019620000000000002) - t3602;
-    let t3678 = t332 - t3608;
-    let t3679 = t3606 - t3397;
-    let t3680 = t3602 - T::from_f64(0.019620000000000002);
-    let t3686 = t3392 - t3567;
-    let t3687 = T::from_f64(0.019620000000000002) - t3563;
-    let t3688 = t332 - t3569;
-    let t3689 = t3567 - t3392;
-    let t3690 = t3563 - T::from_f64(0.019620000000000002);
-    let t3701 = -t3647;
-    let t3702 = t3630 - t3651;
-    let t3707 = t3588 - t3589;
-    let t3708 = -t3593;
-    let t3713 = t3553 - t3552;
-    let t3714 = -t3557;
-    let t3724 = t3012 - (t3590 - t3551);
-    let t3725 = t3013 - (t3554 + t3593);
-    let t3726 = t2027
-        + Real::mul_add(T::from_f64(0.006), t3554, T::from_f64(0.009) * t3593);
-    let t3730 = t3390
-        - Real::mul_add(-T::from_f64(0.006), t3551, T::from_f64(0.009) * t3590) - t3025;
-    let t3731 = Real::mul_add(
-        T::from_f64(0.04),
-        t3725,
-        t3391
-            - (Real::mul_add(-T::from_f64(0.04), t3554, t3557)
-                - Real::mul_add(T::from_f64(0.04), t3593, t3596)),
-    );
-    let t3749 = t2993 - (t3647 + Real::mul_add(-c115, t3724, s114 * t3725));
-    let t3750 = t2994 + (t3648 + Real::mul_add(c115, t3725, s114 * t3724));
-    let t3751 = t2011
-        - Real::mul_add(
-            -T::from_f64(0.008),
-            t3648,
-            Real::mul_add(-c115, t3726, s114 * t3730),
-        );
-    let t3755 = t3388
-        + Real::mul_add(
-            T::from_f64(0.008),
-            t3647,
-            Real::mul_add(c115, t3730, s114 * t3726),
-        ) - t424;
-    let t3756 = Real::mul_add(
-        T::from_f64(0.05),
-        t3750,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t3648, t3651 - t3630) - t3731),
-    );
-    let t3773 = t3385 - (t3679 + t3689 + Real::mul_add(-c113, t3749, s112 * t3750));
-    let t3774 = T::from_f64(0.0981)
-        - (t3680 + t3690 - Real::mul_add(c113, t3750, s112 * t3749));
-    let t3775 = Real::mul_add(T::from_f64(0.009), t3680, t3396)
-        + Real::mul_add(T::from_f64(0.006), t3690, t3396)
-        - Real::mul_add(-c113, t3751, s112 * t3755);
-    let t3779 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t3679, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t3689, -t2038)
-            - Real::mul_add(c113, t3755, s112 * t3751)) - t3434;
-    let t3780 = Real::mul_add(
-        T::from_f64(0.012),
-        t3774,
-        T::from_f64(-0.0005886000000000001) - (t3608 - t332 + (t3569 - t332) - t3756),
-    );
     let t3786 = Real::mul_add(s114, t2746, -(c115 * t2747))
         - s114 * T::from_f64(0.00002);
     let t3793 = s112
@@ -1991,29 +1671,8 @@ pub fn all<T: Real>(
         );
     let t3798 = T::from_f64(0.000000245)
         + (T::from_f64(0.012) * (t1607 + (t1607 + T::from_f64(0.000768))) + t3796);
-    let t3813 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t1695
-        - T::from_f64(0.0008) * t1695;
     let t3814 = T::from_f64(0.0008) * t3276 + (t2026 - T::from_f64(0.0004) * t3276);
     let t3823 = t3299 + (t2010 - T::from_f64(0.00075) * t3261 + t3814);
-    let t3826 = Real::mul_add(
-        c113,
-        t2007 - T::from_f64(0.0000068) * t158 + t1650 * T::from_f64(0.00075)
-            + Real::mul_add(c115, t3813, s114 * t2806) - T::from_f64(0.05) * t1735,
-        s112
-            * (Real::mul_add(T::from_f64(0.000001), t156, t2005)
-                - Real::mul_add(s114, t3813, -(c115 * t2806))),
-    );
-    let t3830 = Real::mul_add(
-        -T::from_f64(0.012),
-        t1735
-            - Real::mul_add(T::from_f64(0.000018), t2970, T::from_f64(0.000012) * t2970),
-        t3826
-            - Real::mul_add(
-                t2970,
-                T::from_f64(0.00000014400000000000002),
-                t2970 * T::from_f64(0.000000216),
-            ),
-    );
     let t3833 = T::from_f64(0.0008) * t3336 + (t2026 - T::from_f64(0.0004) * t3336);
     let t3835 = T::from_f64(0.05)
         * Real::mul_add(
@@ -2026,27 +1685,330 @@ pub fn all<T: Real>(
                     * (s114 * (t290 + (Real::mul_add(s114, t3324, t3000) - t269))),
             ),
         ) + (t2010 - T::from_f64(0.00075) * t3325 + t3833);
-    let t3836 = T::from_f64(0.008) * tendon_tensions[2]
-        - (T::from_f64(0.006) * tendon_tensions[0]
-            + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3] - t3830;
     let t3839 = T::from_f64(0.00000002100000000000001) / t3798;
     let t3840 = T::from_f64(0.000000024000000000000003) / t3798;
     let t3843 = Real::mul_add(-t3798, t3839 * t3839, t1556);
     let t3847 = Real::mul_add(-t3798, t3839 * t3840, t3241) / t3843;
-    let t3855 = Real::mul_add(
-        -t3836,
-        t3839,
+    let t3875 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+    let t3876 = T::from_f64(0.02) * t3875;
+    let t3877 = T::from_f64(0.03) * t208 + t3876;
+    let t3878 = T::from_f64(0.05) * t3877;
+    let t3881 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
+    let t3883 = Real::mul_add(T::from_f64(0.02), t3881, T::from_f64(0.03) * t1650);
+    let t3897 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
+    let t3898 = T::from_f64(0.02) * t3897;
+    let t3903 = T::from_f64(0.0008) * t3875;
+    let t3915 = t2993 - Real::mul_add(s114, t3898, -(c115 * t3012));
+    let t3916 = t2994 + Real::mul_add(c115, t3898, s114 * t3012);
+    let t3950 = t3898 - (t3100 + t3115);
+    let t4055 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
+        + T::from_f64(0.0004) * t3875;
+    let t4056 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3897;
+    let t4059 = t4055
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3903;
+    let t4060 = T::from_f64(0.04) * t3950
+        + (t4056
+            - (Real::mul_add(
+                -T::from_f64(0.04),
+                t3100,
+                Real::mul_add(t631, t3097, t627 * t3100),
+            )
+                - Real::mul_add(
+                    T::from_f64(0.04),
+                    t3115,
+                    Real::mul_add(t692, t3112, t687 * t3115),
+                )));
+    let t4072 = T::from_f64(0.05)
+        * (t2994
+            + (t3131 + Real::mul_add(c115, t3950, s114 * (t3012 - (t3112 - t3097)))))
+        + (t3389
+            - (Real::mul_add(
+                T::from_f64(0.05),
+                t3131,
+                Real::mul_add(t735, t3128, t734 * t3129)
+                    - Real::mul_add(t735, t3123, t734 * t3124),
+            ) - t4060));
+    let t4075 = Real::mul_add(
+        c113,
+        t3388
+            + (T::from_f64(0.008) * (t3123 + t3128)
+                + Real::mul_add(c115, t4059, s114 * t3408)) - t3878,
+        s112
+            * (t2011
+                - (Real::mul_add(s114, t4059, -(c115 * t3408))
+                    - T::from_f64(0.008) * t3131)),
+    );
+    let t4078 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3877);
+    let t4080 = T::from_f64(0.012) * t4078;
+    let t4081 = t3387 - (t3407 - t4075) - t4080;
+    let t4088 = Real::mul_add(
+        T::from_f64(68.34719334719333),
+        t4060,
+        Real::mul_add(
+            -T::from_f64(31.185031185031185),
+            t4081,
+            T::from_f64(0.000000000000003552713678800501) * t4072,
+        ),
+    );
+    let t4093 = Real::mul_add(
+        T::from_f64(56.65280665280666),
+        t4060,
+        Real::mul_add(
+            T::from_f64(0.000000000000007105427357601002),
+            t4072,
+            T::from_f64(31.18503118503118) * t4081,
+        ),
+    );
+    let t4098 = Real::mul_add(
+        -T::from_f64(49.98700623700625),
+        t4060,
+        Real::mul_add(
+            T::from_f64(50.000000000000014),
+            t4072,
+            T::from_f64(33.26403326403328) * t4081,
+        ),
+    );
+    let t4103 = Real::mul_add(
+        T::from_f64(37.512993762993766),
+        t4060,
+        Real::mul_add(-T::from_f64(50.0), t4072, T::from_f64(33.26403326403329) * t4081),
+    );
+    let t4113 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4088))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4093))
+        .max(T::from_f64(5.0) - t4098)
+        .max(T::from_f64(5.0) - t4103);
+    let t4115 = Real::mul_add(T::from_f64(1.0666666666666669), t4113, t4088);
+    let t4117 = Real::mul_add(T::from_f64(1.0666666666666664), t4113, -t4093);
+    let t4118 = t4098 + t4113;
+    let t4119 = t4103 + t4113;
+    let t4123 = t4055 - t3903;
+    let t4124 = T::from_f64(0.0008) * t3897 + t4056;
+    let t4129 = t2011 - Real::mul_add(s114, t4123, -(c115 * t2027));
+    let t4132 = t3388 + Real::mul_add(c115, t4123, s114 * t2027) - t3878;
+    let t4133 = T::from_f64(0.05) * t3916 + (t3389 + t4124);
+    let t4141 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3916, s112 * t3915);
+    let t4142 = T::from_f64(0.00017658) - t3021
+        + (T::from_f64(0.00011772000000000002) - t3021)
+        + Real::mul_add(-c113, t4129, s112 * t4132);
+    let t4145 = t3385 - (Real::mul_add(-c113, t3915, s112 * t3916) - (t3392 + t3397));
+    let t4147 = t3387
+        + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
+            + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
+            + Real::mul_add(c113, t4132, s112 * t4129));
+    let t4151 = Real::mul_add(
+        T::from_f64(0.012),
+        T::from_f64(0.0981) - t4141,
+        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t4133),
+    );
+    let t4153 = Real::mul_add(c111, t4145, s110 * t4078);
+    let t4155 = Real::mul_add(-c111, t4078, s110 * t4145);
+    let t4159 = Real::mul_add(-c111, t4142, s110 * t4151);
+    let t4163 = -Real::mul_add(c111, t4151, s110 * t4142);
+    let t4165 = T::from_f64(0.07848000000000001) - (t4141 - T::from_f64(0.0981));
+    let t4166 = t356 + (t366 + (t372 + t378)) - (t4080 - t4147);
+    let t4176 = t364 * T::from_f64(0.000000072)
+        + (t3061 + (t3061 + t4124) - t354 * T::from_f64(0.00000004799999999999999));
+    let t4179 = t378 + (t372 + (t366 + (t356 + (t4147 - t4080))));
+    let t4180 = t370 * T::from_f64(0.00000008)
+        + (t364 * T::from_f64(0.00000006300000000000001)
+            + (t332 + (t332 + t4133) - t354 * T::from_f64(0.000000042)))
+        - t376 * T::from_f64(0.00000008);
+    let t4181 = t3084 + t4115;
+    let t4182 = t4181 - t3086;
+    let t4183 = t3089 + t4117;
+    let t4184 = t3086 + t4183;
+    let t4185 = t4118 - t3091;
+    let t4186 = t4119 - t3092;
+    let t4187 = T::from_f64(0.999799979995999) * t4182;
+    let t4188 = T::from_f64(0.019999999999999785) * t4182;
+    let t4191 = Real::mul_add(s114, t4188, c115 * t4187);
+    let t4192 = s114 * t4187;
+    let t4193 = c115 * t4188;
+    let t4194 = t4192 - t4193;
+    let t4197 = Real::mul_add(t631, t4191, t627 * t4194);
+    let t4200 = Real::mul_add(-s112, t4188, c113 * t4187);
+    let t4203 = Real::mul_add(c113, t4188, s112 * t4187);
+    let t4207 = t4200 - t4181;
+    let t4209 = Real::mul_add(
+        T::from_f64(0.007),
+        t4181,
+        -Real::mul_add(
+            t652 - s112 * T::from_f64(0.0001399999999999985),
+            t4200,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4203,
+        ),
+    );
+    let t4210 = c111 * t4181;
+    let t4211 = s110 * t4181;
+    let t4224 = T::from_f64(0.999799979995999) * t4184;
+    let t4225 = T::from_f64(0.02000000000000003) * t4184;
+    let t4226 = c115 * t4224;
+    let t4227 = s114 * t4225;
+    let t4228 = t4227 - t4226;
+    let t4231 = Real::mul_add(c115, t4225, s114 * t4224);
+    let t4234 = Real::mul_add(t692, t4228, t687 * t4231);
+    let t4237 = Real::mul_add(s112, t4225, c113 * t4224);
+    let t4240 = Real::mul_add(-c113, t4225, s112 * t4224);
+    let t4244 = t4237 - t4183;
+    let t4246 = Real::mul_add(
+        -T::from_f64(0.007),
+        t4183,
+        Real::mul_add(
+            t652 + s112 * T::from_f64(0.00014000000000000023),
+            t4237,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4240,
+        ),
+    );
+    let t4247 = c111 * t4183;
+    let t4248 = s110 * t4183;
+    let t4262 = t3091 - t4118;
+    let t4263 = c113 * t4262;
+    let t4264 = s112 * t4262;
+    let t4267 = Real::mul_add(t735, t4263, t734 * t4264);
+    let t4268 = c111 * t4185;
+    let t4269 = s110 * t4185;
+    let t4279 = t3092 - t4119;
+    let t4280 = c113 * t4279;
+    let t4281 = s112 * t4279;
+    let t4282 = t4263 + t4280;
+    let t4283 = t4264 + t4281;
+    let t4286 = Real::mul_add(t735, t4280, t734 * t4281);
+    let t4288 = c111 * t4186;
+    let t4289 = s110 * t4186;
+    let t4299 = Real::mul_add(T::from_f64(0.99498743710662), t4119, -t4288);
+    let t4300 = Real::mul_add(T::from_f64(0.09999999999999983), t4119, -t4289);
+    let t4301 = t378
+        - Real::mul_add(
+            T::from_f64(0.008),
+            t4119,
+            -Real::mul_add(t747, t4288, t745 * t4289),
+        );
+    let t4302 = Real::mul_add(T::from_f64(0.99498743710662), t4118, -t4268);
+    let t4303 = Real::mul_add(T::from_f64(0.09999999999999983), t4118, -t4269);
+    let t4304 = t372
+        - Real::mul_add(
+            T::from_f64(0.008),
+            t4118,
+            -Real::mul_add(t747, t4268, t745 * t4269),
+        );
+    let t4305 = Real::mul_add(T::from_f64(0.99365172470036), t4117, -t4247);
+    let t4306 = -Real::mul_add(T::from_f64(0.11250000000000027), t4117, t4248);
+    let t4307 = t366
+        - Real::mul_add(
+            -t4117,
+            T::from_f64(0.009000000000000001),
+            Real::mul_add(
+                T::from_f64(0.009),
+                c111 * t4247,
+                T::from_f64(0.009) * (s110 * t4248),
+            ),
+        );
+    let t4308 = Real::mul_add(T::from_f64(0.9971835337589565), t4115, -t4210);
+    let t4309 = -Real::mul_add(T::from_f64(0.07499999999999996), t4115, t4211);
+    let t4310 = t356
+        - Real::mul_add(
+            -T::from_f64(0.006),
+            t4115,
+            Real::mul_add(
+                T::from_f64(0.006),
+                c111 * t4210,
+                T::from_f64(0.006) * (s110 * t4211),
+            ),
+        );
+    let t4311 = t3397 - t4244;
+    let t4312 = T::from_f64(0.019620000000000002) - t4240;
+    let t4313 = t332 - t4246;
+    let t4314 = t4244 - t3397;
+    let t4315 = t4240 - T::from_f64(0.019620000000000002);
+    let t4321 = t3392 - t4207;
+    let t4322 = T::from_f64(0.019620000000000002) - t4203;
+    let t4323 = t332 - t4209;
+    let t4324 = t4207 - t3392;
+    let t4325 = t4203 - T::from_f64(0.019620000000000002);
+    let t4336 = -t4282;
+    let t4337 = t4267 - t4286;
+    let t4342 = t4226 - t4227;
+    let t4343 = -t4231;
+    let t4348 = t4193 - t4192;
+    let t4349 = -t4197;
+    let t4359 = t3012 - (t4228 - t4191);
+    let t4360 = t3898 - (t4194 + t4231);
+    let t4361 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4194, T::from_f64(0.009) * t4231);
+    let t4365 = t4055
+        - Real::mul_add(-T::from_f64(0.006), t4191, T::from_f64(0.009) * t4228) - t3903;
+    let t4366 = Real::mul_add(
+        T::from_f64(0.04),
+        t4360,
+        t4056
+            - (Real::mul_add(-T::from_f64(0.04), t4194, t4197)
+                - Real::mul_add(T::from_f64(0.04), t4231, t4234)),
+    );
+    let t4384 = t2993 - (t4282 + Real::mul_add(-c115, t4359, s114 * t4360));
+    let t4385 = t2994 + (t4283 + Real::mul_add(c115, t4360, s114 * t4359));
+    let t4386 = t2011
+        - Real::mul_add(
+            -T::from_f64(0.008),
+            t4283,
+            Real::mul_add(-c115, t4361, s114 * t4365),
+        );
+    let t4390 = t3388
+        + Real::mul_add(
+            T::from_f64(0.008),
+            t4282,
+            Real::mul_add(c115, t4365, s114 * t4361),
+        ) - t3878;
+    let t4391 = Real::mul_add(
+        T::from_f64(0.05),
+        t4385,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4283, t4286 - t4267) - t4366),
+    );
+    let t4408 = t3385 - (t4314 + t4324 + Real::mul_add(-c113, t4384, s112 * t4385));
+    let t4409 = T::from_f64(0.0981)
+        - (t4315 + t4325 - Real::mul_add(c113, t4385, s112 * t4384));
+    let t4410 = Real::mul_add(T::from_f64(0.009), t4315, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4325, t3021)
+        - Real::mul_add(-c113, t4386, s112 * t4390);
+    let t4414 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4314, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4324, -t2038)
+            - Real::mul_add(c113, t4390, s112 * t4386)) - t4080;
+    let t4415 = Real::mul_add(
+        T::from_f64(0.012),
+        t4409,
+        T::from_f64(-0.0005886000000000001) - (t4246 - t332 + (t4209 - t332) - t4391),
+    );
+    let t4419 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3881
+        - T::from_f64(0.0008) * t3881;
+    let t4429 = Real::mul_add(
+        c113,
+        t2007 - T::from_f64(0.0000068) * t158 + t1650 * T::from_f64(0.00075)
+            + Real::mul_add(c115, t4419, s114 * t2806) - T::from_f64(0.05) * t3883,
+        s112
+            * (Real::mul_add(T::from_f64(0.000001), t156, t2005)
+                - Real::mul_add(s114, t4419, -(c115 * t2806))),
+    );
+    let t4431 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4429)
+        - T::from_f64(0.012) * (t3883 - T::from_f64(0.00003) * t2970);
+    let t4432 = T::from_f64(0.008) * tendon_tensions[2]
+        - (T::from_f64(0.006) * tendon_tensions[0]
+            + T::from_f64(0.009) * tendon_tensions[1])
+        + T::from_f64(0.008) * tendon_tensions[3] - t4431;
+    let t4434 = Real::mul_add(
+        -t3839,
+        t4432,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
             - T::from_f64(0.01) * tendon_tensions[3] - t3835,
     );
-    let t3862 = Real::mul_add(
+    let t4441 = Real::mul_add(
         -t3847,
-        t3855,
+        t4434,
         Real::mul_add(
-            -t3836,
-            t3840,
+            -t3840,
+            t4432,
             T::from_f64(0.008) * tendon_tensions[0]
                 - T::from_f64(0.008) * tendon_tensions[1] - t3833,
         ),
@@ -2056,17 +2018,17 @@ pub fn all<T: Real>(
             t3847 * t3847,
             Real::mul_add(-t3798, t3840 * t3840, T::from_f64(0.000011256000000000002)),
         );
-    let t3864 = Real::mul_add(-t3847, t3862, t3855 / t3843);
-    let t3868 = Real::mul_add(
+    let t4443 = Real::mul_add(-t3847, t4441, t4434 / t3843);
+    let t4447 = Real::mul_add(
         -t3840,
-        t3862,
-        Real::mul_add(-t3839, t3864, t3836 / t3798),
+        t4441,
+        Real::mul_add(-t3839, t4443, t4432 / t3798),
     );
     Outputs {
-        generalized_forces: [t3539, t3540, t3536],
+        generalized_forces: [t4179, t4180, t4176],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t3469, t3471, t3472, t3473],
+            [t4115, t4117, t4118, t4119],
         ),
         mass_matrix: [
             [
@@ -2081,56 +2043,56 @@ pub fn all<T: Real>(
                 T::from_f64(0.000011256000000000002),
             ],
         ],
-        bias: [t3830, t3823, t3814],
+        bias: [t4431, t3823, t3814],
         gravity: [T::from_f64(0.0), t3323, t3315],
-        forward_dynamics: [t3868, t3864, t3862],
+        forward_dynamics: [t4447, t4443, t4441],
         segment_tensions: [
-            t3542,
-            t3541,
-            t3469,
-            t3544,
-            t3543,
-            t3471,
-            t3545,
-            t3472,
-            t3546,
-            t3473,
+            t4182,
+            t4181,
+            t4115,
+            t4184,
+            t4183,
+            t4117,
+            t4185,
+            t4118,
+            t4186,
+            t4119,
         ],
         bearings: [
-            [[t3773, t3774, t3432], [t3775, t3779, t3780]],
-            [[t3749, t3750, t420], [t3751, t3755, t3756]],
-            [[t3724, t3725, t300], [t3726, t3730, t3731]],
+            [[t4408, t4409, t4078], [t4410, t4414, t4415]],
+            [[t4384, t4385, t3877], [t4386, t4390, t4391]],
+            [[t4359, t4360, t3876], [t4361, t4365, t4366]],
             [
-                [t3551, t3713, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3714],
+                [t4191, t4348, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4349],
             ],
             [
-                [t3707, t3708, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3596],
+                [t4342, t4343, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4234],
             ],
             [
-                [t3701, t3648, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3702],
+                [t4336, t4283, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4337],
             ],
-            [[t3686, t3687, t3394], [t3396, t2038, t3688]],
-            [[t3676, t3677, t3399], [t3396, t2038, t3678]],
+            [[t4321, t4322, t3394], [t3021, t2038, t4323]],
+            [[t4311, t4312, t3399], [t3021, t2038, t4313]],
             [
-                [t3673, t3674, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3675],
-            ],
-            [
-                [t3670, t3671, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3672],
+                [t4308, t4309, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4310],
             ],
             [
-                [t3667, t3668, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3669],
+                [t4305, t4306, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4307],
             ],
             [
-                [t3664, t3665, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t3666],
+                [t4302, t4303, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4304],
+            ],
+            [
+                [t4299, t4300, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4301],
             ],
         ],
-        base_reaction: [[[t3513, t3515, t3525], [t3519, t3523, t3526]]],
+        base_reaction: [[[t4153, t4155, t4165], [t4159, t4163, t4166]]],
     }
 }

@@ -446,6 +446,98 @@ impl Graph {
         roots.iter().map(|r| map[r.0 as usize]).collect()
     }
 
+    /// `roots` rebuilt with the like terms of each sum merged: `a y + … + b y = (a + b) y`,
+    /// `y − y = 0`. A sum reaches through the sums it alone uses (`x + (b y + z)` is the
+    /// sum `x + b y + z`), so terms that the recursion added at different levels meet: the
+    /// parallel-axis terms of a body, `m c ẍ` and `−(m c / 2) ẍ`, for one. A group of like
+    /// terms is merged only where that saves operations, counting a product as free when
+    /// it has other uses; everything else is rebuilt as it was. A pass over finished
+    /// functions, after [`Graph::shared_products`] (whose gathered numbers make like terms
+    /// recognisable), over every function at once so that what they share stays shared.
+    /// Merged numbers are summed in f64 (rounded once, where the terms rounded each) and
+    /// kept only where f32 holds them as normal numbers.
+    pub fn merged_like_terms(&mut self, roots: &[Id]) -> Vec<Id> {
+        let live = self.live(roots);
+        let mut uses = vec![0u32; self.nodes.len()];
+        for &id in &live {
+            for a in self.node(id).operands() {
+                uses[a.0 as usize] += 1;
+            }
+        }
+        for r in roots {
+            uses[r.0 as usize] += 1;
+        }
+        let mut map: Vec<Id> = (0..self.nodes.len() as u32).map(Id).collect();
+        // The terms of each sum with one use, for the sum that uses it to reach through.
+        let mut sums: NodeMap<Id, Vec<Term>> = NodeMap::default();
+        for id in live {
+            let node = self.node(id);
+            let operands: Vec<Id> = node.operands().map(|x| map[x.0 as usize]).collect();
+            let (a, b, sign) = match node {
+                Node::Add(a, b) => (a, b, 1.0),
+                Node::Sub(a, b) => (a, b, -1.0),
+                _ => {
+                    map[id.0 as usize] = self.apply(node, &operands);
+                    continue;
+                }
+            };
+            let mut terms = Vec::new();
+            for (x, sign) in [(a, 1.0), (b, sign)] {
+                match sums.get(&x) {
+                    Some(inner) => terms.extend(inner.iter().map(|t| t.times(sign))),
+                    None => terms.push(self.term(map[x.0 as usize], sign, uses[x.0 as usize] == 1)),
+                }
+            }
+            let merged = merge_like(&mut terms);
+            map[id.0 as usize] = if merged {
+                self.sum_of(&terms)
+            } else {
+                self.apply(node, &operands)
+            };
+            if uses[id.0 as usize] == 1 {
+                sums.insert(id, terms);
+            }
+        }
+        roots.iter().map(|r| map[r.0 as usize]).collect()
+    }
+
+    /// Node `x` as a term of a sum, times `sign`: `k y` as `(k, y)`, `−z` as `−1` times
+    /// `z`'s term, anything else as `(1, x)`. `alone`: `x` has no other use, so a product
+    /// in it costs a multiplication that merging would save.
+    fn term(&self, x: Id, sign: f64, alone: bool) -> Term {
+        match (self.node(x), self.scaled(x)) {
+            (_, Some((k, y))) => Term {
+                factor: sign * self.constant_value(k).unwrap_or(1.0),
+                of: y,
+                product_alone: alone,
+            },
+            // The negation's own product, if any, may be shared: not counted as saved.
+            (Node::Neg(z), None) => Term {
+                product_alone: false,
+                ..self.term(z, -sign, false)
+            },
+            _ => Term {
+                factor: sign,
+                of: x,
+                product_alone: false,
+            },
+        }
+    }
+
+    /// `Σ factor · of` over `terms`, left to right (0 for none).
+    fn sum_of(&mut self, terms: &[Term]) -> Id {
+        let mut sum: Option<Id> = None;
+        for t in terms {
+            let k = self.constant(t.factor);
+            let term = self.mul(k, t.of);
+            sum = Some(match sum {
+                Some(s) => self.add(s, term),
+                None => term,
+            });
+        }
+        sum.unwrap_or_else(|| self.constant(0.0))
+    }
+
     /// The product of `rebuilt` (the new nodes of `original`'s two factors) with its
     /// numbers gathered (see [`Graph::shared_products`]).
     fn gathered_product(&mut self, original: [Id; 2], rebuilt: &[Id], uses: &[u32]) -> Id {
@@ -579,6 +671,64 @@ impl Graph {
         }
         c
     }
+}
+
+/// One term `factor · of` of a sum ([`Graph::merged_like_terms`]).
+#[derive(Clone, Copy, Debug)]
+struct Term {
+    factor: f64,
+    of: Id,
+    /// The term is a product `factor · of` with no other use: merging saves it.
+    product_alone: bool,
+}
+
+impl Term {
+    fn times(self, sign: f64) -> Term {
+        Term {
+            factor: sign * self.factor,
+            ..self
+        }
+    }
+}
+
+/// Merges, in place, each group of `terms` with one `of` into its first, where that saves
+/// operations; whether any group was merged. A group of `n` terms, `p` of them products
+/// with no other use, costs `n` places in the sum and `p` products; merged, one place (none
+/// if the factors cancel) and one product (none for a factor of ±1 or 0).
+fn merge_like(terms: &mut Vec<Term>) -> bool {
+    let mut merged = false;
+    let mut i = 0;
+    while i < terms.len() {
+        let of = terms[i].of;
+        let group: Vec<usize> = (i..terms.len()).filter(|&j| terms[j].of == of).collect();
+        if group.len() > 1 {
+            let factor: f64 = group.iter().map(|&j| terms[j].factor).sum();
+            let alone = group.iter().filter(|&&j| terms[j].product_alone).count();
+            let places = usize::from(factor != 0.0);
+            let product = usize::from(factor != 0.0 && factor.abs() != 1.0);
+            // f32 must hold the merged number (generated code may be asked for in f32).
+            let holds = factor == 0.0
+                || (f64::from(f32::MIN_POSITIVE)..=f64::from(f32::MAX)).contains(&factor.abs());
+            if holds && alone + group.len() > places + product {
+                for &j in group[1..].iter().rev() {
+                    terms.remove(j);
+                }
+                if factor == 0.0 {
+                    terms.remove(i);
+                    merged = true;
+                    continue;
+                }
+                terms[i] = Term {
+                    factor,
+                    of,
+                    product_alone: product == 1,
+                };
+                merged = true;
+            }
+        }
+        i += 1;
+    }
+    merged
 }
 
 /// Operations of a straight-line function.
@@ -778,6 +928,58 @@ mod tests {
         let (before, after, v0, v1) = gathered(|x, y| k(2.0) * (k(3.0) * x) + y);
         assert_eq!((before.mul, after.mul), (2, 1));
         assert_eq!(v0, v1);
+    }
+
+    /// Builds `f` of inputs `x`, `y` and merges its like terms: the operation counts before
+    /// and after, and both values at `(x, y) = (0.7, -1.3)`.
+    fn merged(f: impl FnOnce(Sym, Sym) -> Sym) -> (OpCount, OpCount, f64, f64) {
+        let (mut g, root) = Graph::default().scope(|| f(Sym::input("x"), Sym::input("y")));
+        let before = g.count(&[root.0]);
+        let after = g.merged_like_terms(&[root.0])[0];
+        let inputs = [0.7, -1.3];
+        let values = (g.eval(&[root.0], &inputs)[0], g.eval(&[after], &inputs)[0]);
+        (before, g.count(&[after]), values.0, values.1)
+    }
+
+    #[test]
+    fn like_terms_added_at_different_levels_of_a_sum_are_one_product() {
+        let k = Sym::from_f64;
+        // 0.3 x + (y − 0.1 x): the inner sum has no other use, so the outer one reaches
+        // into it and sees 0.3 x and −0.1 x: 0.2 x + y.
+        let (before, after, v0, v1) = merged(|x, y| k(0.3) * x + (y - k(0.1) * x));
+        assert_eq!((before.mul, before.add), (2, 2));
+        assert_eq!((after.mul, after.add), (1, 1));
+        assert!((v0 - v1).abs() <= 4.0 * f64::EPSILON * v0.abs());
+    }
+
+    #[test]
+    fn like_terms_that_cancel_leave_the_sum() {
+        let k = Sym::from_f64;
+        // (0.5 x + y) − 0.5 x = y, with no operation left; and x + (y − x) likewise.
+        let (_, after, v0, v1) = merged(|x, y| (k(0.5) * x + y) - k(0.5) * x);
+        assert_eq!(after.arithmetic(), 0);
+        assert_eq!(v0, v1);
+        let (_, after, v0, v1) = merged(|x, y| x + (y - x));
+        assert_eq!(after.arithmetic(), 0);
+        assert_eq!(v0, v1);
+    }
+
+    #[test]
+    fn like_terms_are_left_apart_where_merging_saves_nothing() {
+        let k = Sym::from_f64;
+        // 0.3 y and 0.2 y are both used elsewhere: (0.3 + 0.2) y would trade an addition
+        // for a multiplication.
+        let (before, after, ..) = merged(|x, y| {
+            let (a, b) = (k(0.3) * y, k(0.2) * y);
+            (a + b) * (a * x + b)
+        });
+        assert_eq!(before, after);
+        // A sum with another use is not copied into its consumer: a − 0.3 x keeps `a`.
+        let (before, after, ..) = merged(|x, y| {
+            let a = k(0.3) * x + y;
+            (a - k(0.3) * x) * a
+        });
+        assert_eq!(before, after);
     }
 
     #[test]

@@ -515,7 +515,8 @@ pub(crate) fn trace_with<E: From<Unavailable>>(
         .chain(parts)
         .chain(unregrouped.iter().flatten().copied())
         .collect();
-    let mut gathered = graph.shared_products(&every).into_iter();
+    let gathered = graph.shared_products(&every);
+    let mut gathered = graph.merged_like_terms(&gathered).into_iter();
     /// One function as traced: its roots, and those with numbers gathered with their count.
     struct Trace {
         output: Output,

@@ -219,11 +219,12 @@ fn actuation_costs_the_same_whatever_is_generated_beside_it() {
         &[Output::Actuation, Output::Bearings],
     ] {
         let inside = ops_among(&text, Output::Actuation, order);
-        // Numbers gathered in products over every function at once may move a count by one
-        // (341 against 340 here, as before regrouping); another model's distribution would
-        // add its whole recursion.
+        // Numbers gathered in products and like terms merged over every function at once
+        // may move a count by a few: a product another function also uses is not merged
+        // away (328 against 325 here); another model's distribution would add its whole
+        // recursion.
         assert!(
-            alone <= inside && inside <= alone + 2,
+            alone <= inside && inside <= alone + alone / 50,
             "{order:?}: {inside} against {alone}"
         );
     }

@@ -24,23 +24,23 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t657 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
-    let t664 = T::from_f64(0.03) * s56;
-    let t673 = Real::mul_add(
+    let t725 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t732 = T::from_f64(0.03) * s56;
+    let t741 = Real::mul_add(
         qdd[0],
         c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
-            t657,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664)),
+            t725,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t732)),
         ),
     );
-    let t679 = Real::mul_add(
+    let t747 = Real::mul_add(
         qdd[0],
-        t657,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t664)),
+        t725,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t732)),
     );
-    [t673, t679]
+    [t741, t747]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -56,31 +56,31 @@ pub fn generalized_forces_derivatives<T: Real>(
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t652 = c57 * T::from_f64(0.06);
-    let t657 = t577 + T::from_f64(0.016696700000000002);
-    let t660 = s56 * T::from_f64(0.06);
-    let t662 = qd[0] * t660;
-    let t664 = T::from_f64(0.03) * s56;
-    let t673 = Real::mul_add(
+    let t720 = c57 * T::from_f64(0.06);
+    let t725 = t577 + T::from_f64(0.016696700000000002);
+    let t728 = s56 * T::from_f64(0.06);
+    let t730 = qd[0] * t728;
+    let t732 = T::from_f64(0.03) * s56;
+    let t741 = Real::mul_add(
         qdd[0],
-        t652 + T::from_f64(0.1247117),
-        Real::mul_add(qdd[1], t657, -(qd[1] * (t662 + qd[1] * t664))),
+        t720 + T::from_f64(0.1247117),
+        Real::mul_add(qdd[1], t725, -(qd[1] * (t730 + qd[1] * t732))),
     );
-    let t679 = Real::mul_add(
+    let t747 = Real::mul_add(
         qdd[0],
-        t657,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t664)),
+        t725,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t732)),
     );
-    let t697 = -(qdd[0] * t660
-        + (qdd[1] * t664 + qd[1] * (qd[0] * t652 + qd[1] * t577)));
-    let t702 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t664));
-    let t703 = qd[1] * t660;
-    let t704 = -t703;
-    let t706 = -(t662 + t703);
+    let t765 = -(qdd[0] * t728
+        + (qdd[1] * t732 + qd[1] * (qd[0] * t720 + qd[1] * t577)));
+    let t770 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t732));
+    let t771 = qd[1] * t728;
+    let t772 = -t771;
+    let t774 = -(t730 + t771);
     tendyn_core::dual::StateJacobians {
-        value: [t673, t679],
-        d_q: [[T::from_f64(0.0), t697], [T::from_f64(0.0), t702]],
-        d_qd: [[t704, t706], [t662, T::from_f64(0.0)]],
+        value: [t741, t747],
+        d_q: [[T::from_f64(0.0), t765], [T::from_f64(0.0), t770]],
+        d_qd: [[t772, t774], [t730, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -97,18 +97,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t654 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t664 = T::from_f64(0.03) * s56;
-    let t707 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t664);
-    let t711 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t654;
-    let t824 = Real::mul_add(
-        -t707,
-        t711,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t664),
-    ) / Real::mul_add(-t654, t711 * t711, T::from_f64(0.0166867));
-    let t826 = Real::mul_add(-t711, t824, t707 / t654);
-    [t826, t824]
+    let t722 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t732 = T::from_f64(0.03) * s56;
+    let t775 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t732);
+    let t779 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t722;
+    let t892 = Real::mul_add(
+        -t775,
+        t779,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t732),
+    ) / Real::mul_add(-t722, t779 * t779, T::from_f64(0.0166867));
+    let t894 = Real::mul_add(-t779, t892, t775 / t722);
+    [t894, t892]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
@@ -125,61 +125,61 @@ pub fn forward_dynamics_derivatives<T: Real>(
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t652 = c57 * T::from_f64(0.06);
-    let t654 = t652 + T::from_f64(0.1247117);
-    let t660 = s56 * T::from_f64(0.06);
-    let t662 = qd[0] * t660;
-    let t664 = T::from_f64(0.03) * s56;
-    let t703 = qd[1] * t660;
-    let t708 = (motor_torques[0] + motor_torques[1] + qd[1] * (t662 + qd[1] * t664))
-        / t654;
-    let t711 = (t577 + T::from_f64(0.0166967)) / t654;
-    let t713 = T::from_f64(0.06) * t711;
-    let t715 = s56 * t713;
-    let t717 = qd[1] * t715;
-    let t723 = T::from_f64(0.03) * t711;
-    let t733 = T::from_f64(0.6666666666666667) - t711;
-    let t744 = Real::mul_add(
-        t711,
-        t711 * (T::from_f64(-0.1247117) - t652),
+    let t720 = c57 * T::from_f64(0.06);
+    let t722 = t720 + T::from_f64(0.1247117);
+    let t728 = s56 * T::from_f64(0.06);
+    let t730 = qd[0] * t728;
+    let t732 = T::from_f64(0.03) * s56;
+    let t771 = qd[1] * t728;
+    let t776 = (motor_torques[0] + motor_torques[1] + qd[1] * (t730 + qd[1] * t732))
+        / t722;
+    let t779 = (t577 + T::from_f64(0.0166967)) / t722;
+    let t781 = T::from_f64(0.06) * t779;
+    let t783 = s56 * t781;
+    let t785 = qd[1] * t783;
+    let t791 = T::from_f64(0.03) * t779;
+    let t801 = T::from_f64(0.6666666666666667) - t779;
+    let t812 = Real::mul_add(
+        t779,
+        t779 * (T::from_f64(-0.1247117) - t720),
         T::from_f64(0.0166867),
     );
-    let t745 = (Real::mul_add(motor_torques[1], t733, -(motor_torques[0] * t711))
-        - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (qd[0] * t664 + t717)) / t744;
-    let t749 = t708 - t711 * t745;
-    let t752 = T::from_f64(0.06) * t708;
-    let t781 = Real::mul_add(
+    let t813 = (Real::mul_add(motor_torques[1], t801, -(motor_torques[0] * t779))
+        - qd[1] * (qd[1] * (s56 * t791)) - qd[0] * (qd[0] * t732 + t785)) / t812;
+    let t817 = t776 - t779 * t813;
+    let t820 = T::from_f64(0.06) * t776;
+    let t849 = Real::mul_add(
         s56,
         Real::mul_add(
             T::from_f64(0.03),
-            t708,
-            t711 * Real::mul_add(t745, T::from_f64(-0.06) + t713, -t752),
+            t776,
+            t779 * Real::mul_add(t813, T::from_f64(-0.06) + t781, -t820),
         ),
-        -(qd[1] * (qd[1] * (c57 * t723))),
-    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t713));
-    let t782 = t781 / t744;
-    let t787 = (t662 + t717) / t744;
-    let t788 = -t787;
-    let t795 = (t717 + qd[0] * t715) / t744;
-    let t796 = -t795;
-    let t797 = T::from_f64(1.0) / t654;
-    let t798 = t711 / t744;
-    let t799 = t733 / t744;
-    let t805 = -(Real::mul_add(
+        -(qd[1] * (qd[1] * (c57 * t791))),
+    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t781));
+    let t850 = t849 / t812;
+    let t855 = (t730 + t785) / t812;
+    let t856 = -t855;
+    let t863 = (t785 + qd[0] * t783) / t812;
+    let t864 = -t863;
+    let t865 = T::from_f64(1.0) / t722;
+    let t866 = t779 / t812;
+    let t867 = t801 / t812;
+    let t873 = -(Real::mul_add(
         s56,
-        Real::mul_add(t745, T::from_f64(-0.03) + t713, -t752),
-        -(qd[1] * (qd[0] * t652 + qd[1] * t577)),
-    ) / t654 + t711 * t782);
-    let t807 = Real::mul_add(t711, t787, t703 / t654);
-    let t809 = Real::mul_add(t711, t795, (t662 + t703) / t654);
-    let t811 = Real::mul_add(t711, t798, t797);
-    let t815 = t797 - t711 * t799;
-    let t816 = -t798;
+        Real::mul_add(t813, T::from_f64(-0.03) + t781, -t820),
+        -(qd[1] * (qd[0] * t720 + qd[1] * t577)),
+    ) / t722 + t779 * t850);
+    let t875 = Real::mul_add(t779, t855, t771 / t722);
+    let t877 = Real::mul_add(t779, t863, (t730 + t771) / t722);
+    let t879 = Real::mul_add(t779, t866, t865);
+    let t883 = t865 - t779 * t867;
+    let t884 = -t866;
     tendyn_core::dual::ForwardJacobians {
-        value: [t749, t745],
-        d_q: [[T::from_f64(0.0), t805], [T::from_f64(0.0), t782]],
-        d_qd: [[t807, t809], [t788, t796]],
-        d_u: [[t811, t815], [t816, t799]],
+        value: [t817, t813],
+        d_q: [[T::from_f64(0.0), t873], [T::from_f64(0.0), t850]],
+        d_qd: [[t875, t877], [t856, t864]],
+        d_u: [[t879, t883], [t884, t867]],
     }
 }
 /// Every requested output of [`all`].
@@ -213,92 +213,92 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t652 = c57 * T::from_f64(0.06);
-    let t654 = t652 + T::from_f64(0.1247117);
-    let t657 = t577 + T::from_f64(0.016696700000000002);
-    let t660 = s56 * T::from_f64(0.06);
-    let t662 = qd[0] * t660;
-    let t664 = T::from_f64(0.03) * s56;
-    let t670 = qd[1] * (t662 + qd[1] * t664);
-    let t673 = Real::mul_add(qdd[0], t654, Real::mul_add(qdd[1], t657, -t670));
-    let t676 = qd[0] * t664;
-    let t677 = qd[0] * t676;
-    let t679 = Real::mul_add(
+    let t720 = c57 * T::from_f64(0.06);
+    let t722 = t720 + T::from_f64(0.1247117);
+    let t725 = t577 + T::from_f64(0.016696700000000002);
+    let t728 = s56 * T::from_f64(0.06);
+    let t730 = qd[0] * t728;
+    let t732 = T::from_f64(0.03) * s56;
+    let t738 = qd[1] * (t730 + qd[1] * t732);
+    let t741 = Real::mul_add(qdd[0], t722, Real::mul_add(qdd[1], t725, -t738));
+    let t744 = qd[0] * t732;
+    let t745 = qd[0] * t744;
+    let t747 = Real::mul_add(
         qdd[0],
-        t657,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), t677),
+        t725,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), t745),
     );
-    let t692 = qd[1] * (qd[0] * t652 + qd[1] * t577);
-    let t697 = -(qdd[0] * t660 + (qdd[1] * t664 + t692));
-    let t700 = qd[0] * t577;
-    let t702 = Real::mul_add(qd[0], t700, -(qdd[0] * t664));
-    let t703 = qd[1] * t660;
-    let t704 = -t703;
-    let t705 = t662 + t703;
-    let t706 = -t705;
-    let t707 = motor_torques[0] + motor_torques[1] + t670;
-    let t708 = t707 / t654;
-    let t711 = (t577 + T::from_f64(0.0166967)) / t654;
-    let t713 = T::from_f64(0.06) * t711;
-    let t715 = s56 * t713;
-    let t717 = qd[1] * t715;
-    let t723 = T::from_f64(0.03) * t711;
-    let t733 = T::from_f64(0.6666666666666667) - t711;
-    let t744 = Real::mul_add(
-        t711,
-        t711 * (T::from_f64(-0.1247117) - t652),
+    let t760 = qd[1] * (qd[0] * t720 + qd[1] * t577);
+    let t765 = -(qdd[0] * t728 + (qdd[1] * t732 + t760));
+    let t768 = qd[0] * t577;
+    let t770 = Real::mul_add(qd[0], t768, -(qdd[0] * t732));
+    let t771 = qd[1] * t728;
+    let t772 = -t771;
+    let t773 = t730 + t771;
+    let t774 = -t773;
+    let t775 = motor_torques[0] + motor_torques[1] + t738;
+    let t776 = t775 / t722;
+    let t779 = (t577 + T::from_f64(0.0166967)) / t722;
+    let t781 = T::from_f64(0.06) * t779;
+    let t783 = s56 * t781;
+    let t785 = qd[1] * t783;
+    let t791 = T::from_f64(0.03) * t779;
+    let t801 = T::from_f64(0.6666666666666667) - t779;
+    let t812 = Real::mul_add(
+        t779,
+        t779 * (T::from_f64(-0.1247117) - t720),
         T::from_f64(0.0166867),
     );
-    let t745 = (Real::mul_add(motor_torques[1], t733, -(motor_torques[0] * t711))
-        - qd[1] * (qd[1] * (s56 * t723)) - qd[0] * (t676 + t717)) / t744;
-    let t749 = t708 - t711 * t745;
-    let t752 = T::from_f64(0.06) * t708;
-    let t781 = Real::mul_add(
+    let t813 = (Real::mul_add(motor_torques[1], t801, -(motor_torques[0] * t779))
+        - qd[1] * (qd[1] * (s56 * t791)) - qd[0] * (t744 + t785)) / t812;
+    let t817 = t776 - t779 * t813;
+    let t820 = T::from_f64(0.06) * t776;
+    let t849 = Real::mul_add(
         s56,
         Real::mul_add(
             T::from_f64(0.03),
-            t708,
-            t711 * Real::mul_add(t745, T::from_f64(-0.06) + t713, -t752),
+            t776,
+            t779 * Real::mul_add(t813, T::from_f64(-0.06) + t781, -t820),
         ),
-        -(qd[1] * (qd[1] * (c57 * t723))),
-    ) - qd[0] * (t700 + qd[1] * (c57 * t713));
-    let t782 = t781 / t744;
-    let t787 = (t662 + t717) / t744;
-    let t788 = -t787;
-    let t795 = (t717 + qd[0] * t715) / t744;
-    let t796 = -t795;
-    let t797 = T::from_f64(1.0) / t654;
-    let t798 = t711 / t744;
-    let t799 = t733 / t744;
-    let t805 = -(Real::mul_add(
+        -(qd[1] * (qd[1] * (c57 * t791))),
+    ) - qd[0] * (t768 + qd[1] * (c57 * t781));
+    let t850 = t849 / t812;
+    let t855 = (t730 + t785) / t812;
+    let t856 = -t855;
+    let t863 = (t785 + qd[0] * t783) / t812;
+    let t864 = -t863;
+    let t865 = T::from_f64(1.0) / t722;
+    let t866 = t779 / t812;
+    let t867 = t801 / t812;
+    let t873 = -(Real::mul_add(
         s56,
-        Real::mul_add(t745, T::from_f64(-0.03) + t713, -t752),
-        -t692,
-    ) / t654 + t711 * t782);
-    let t807 = Real::mul_add(t711, t787, t703 / t654);
-    let t809 = Real::mul_add(t711, t795, t705 / t654);
-    let t811 = Real::mul_add(t711, t798, t797);
-    let t815 = t797 - t711 * t799;
-    let t816 = -t798;
-    let t824 = Real::mul_add(
-        -t707,
-        t711,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - t677,
-    ) / Real::mul_add(-t654, t711 * t711, T::from_f64(0.0166867));
-    let t826 = Real::mul_add(-t711, t824, t708);
+        Real::mul_add(t813, T::from_f64(-0.03) + t781, -t820),
+        -t760,
+    ) / t722 + t779 * t850);
+    let t875 = Real::mul_add(t779, t855, t771 / t722);
+    let t877 = Real::mul_add(t779, t863, t773 / t722);
+    let t879 = Real::mul_add(t779, t866, t865);
+    let t883 = t865 - t779 * t867;
+    let t884 = -t866;
+    let t892 = Real::mul_add(
+        -t775,
+        t779,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - t745,
+    ) / Real::mul_add(-t722, t779 * t779, T::from_f64(0.0166867));
+    let t894 = Real::mul_add(-t779, t892, t776);
     Outputs {
-        generalized_forces: [t673, t679],
+        generalized_forces: [t741, t747],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t673, t679],
-            d_q: [[T::from_f64(0.0), t697], [T::from_f64(0.0), t702]],
-            d_qd: [[t704, t706], [t662, T::from_f64(0.0)]],
+            value: [t741, t747],
+            d_q: [[T::from_f64(0.0), t765], [T::from_f64(0.0), t770]],
+            d_qd: [[t772, t774], [t730, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t826, t824],
+        forward_dynamics: [t894, t892],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t749, t745],
-            d_q: [[T::from_f64(0.0), t805], [T::from_f64(0.0), t782]],
-            d_qd: [[t807, t809], [t788, t796]],
-            d_u: [[t811, t815], [t816, t799]],
+            value: [t817, t813],
+            d_q: [[T::from_f64(0.0), t873], [T::from_f64(0.0), t850]],
+            d_qd: [[t875, t877], [t856, t864]],
+            d_u: [[t879, t883], [t884, t867]],
         },
     }
 }

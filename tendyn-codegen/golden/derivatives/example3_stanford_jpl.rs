@@ -31,127 +31,127 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t2916 = c115 * T::from_f64(0.0000208);
-    let t2919 = T::from_f64(-0.00004) - t2916;
-    let t2921 = s114 * T::from_f64(0.0000208);
-    let t2928 = c115 * T::from_f64(0.00004);
-    let t2936 = c115 * T::from_f64(0.000009600000000000001);
-    let t2950 = Real::mul_add(
+    let t3418 = c115 * T::from_f64(0.0000208);
+    let t3421 = T::from_f64(-0.00004) - t3418;
+    let t3423 = s114 * T::from_f64(0.0000208);
+    let t3430 = c115 * T::from_f64(0.00004);
+    let t3438 = c115 * T::from_f64(0.000009600000000000001);
+    let t3452 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t2928,
+            T::from_f64(-0.00008495) - t3430,
             s114
                 * Real::mul_add(
                     c113,
-                    t2919,
-                    Real::mul_add(s112, t2921, T::from_f64(-0.000009600000000000001)),
+                    t3421,
+                    Real::mul_add(s112, t3423, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * (t2936 + T::from_f64(0.000042000000000000004))
-            + (t2928 + T::from_f64(0.00009551400000000001)
+        c113 * (t3438 + T::from_f64(0.000042000000000000004))
+            + (t3430 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t2958 = s114 * (s114 * T::from_f64(0.0000416));
-    let t2967 = c115 * T::from_f64(0.0000416);
-    let t2980 = s114 * (t2919 - c113 * T::from_f64(0.000009600000000000001));
-    let t2982 = qd[1]
+    let t3460 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3469 = c115 * T::from_f64(0.0000416);
+    let t3482 = s114 * (t3421 - c113 * T::from_f64(0.000009600000000000001));
+    let t3484 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t2958 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t3460 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t2967),
-                    T::from_f64(-0.000042000000000000004) - t2936,
+                    s114 * (T::from_f64(0.00008) + t3469),
+                    T::from_f64(-0.000042000000000000004) - t3438,
                 ),
             ),
-            t2980,
+            t3482,
         );
-    let t2995 = qd[0]
+    let t3497 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2958 + (T::from_f64(-0.0000208) - t2928),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t2967), -t2936),
+                    t3460 + (T::from_f64(-0.0000208) - t3430),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3469), -t3438),
                 ),
-                t2980,
+                t3482,
             ),
-            t2982,
+            t3484,
         );
-    let t2998 = Real::mul_add(
+    let t3500 = Real::mul_add(
         qdd[0],
-        t2950,
+        t3452,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t2995),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3497),
         ),
     );
-    let t3003 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3007 = s114 * t2921;
-    let t3016 = c115 * T::from_f64(0.000004800000000000001);
-    let t3026 = s114
+    let t3505 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3509 = s114 * t3423;
+    let t3518 = c115 * T::from_f64(0.000004800000000000001);
+    let t3528 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3043 = c115 * T::from_f64(0.003924);
-    let t3050 = s112 * (s114 * T::from_f64(0.003924));
-    let t3054 = Real::mul_add(
+    let t3545 = c115 * T::from_f64(0.003924);
+    let t3552 = s112 * (s114 * T::from_f64(0.003924));
+    let t3556 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2928 + T::from_f64(0.00008495) - t3007,
+                    t3430 + T::from_f64(0.00008495) - t3509,
                     Real::mul_add(
                         s112,
-                        s114 * t2919,
-                        t3016 + T::from_f64(0.000021000000000000002),
+                        s114 * t3421,
+                        t3518 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t3026,
+                t3528,
             ),
-        Real::mul_add(c113, t3043 + T::from_f64(0.017167500000000002), -t3050)
+        Real::mul_add(c113, t3545 + T::from_f64(0.017167500000000002), -t3552)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585),
     );
-    let t3057 = Real::mul_add(
+    let t3559 = Real::mul_add(
         qdd[1],
-        t2928 + T::from_f64(0.000086946),
+        t3430 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3003,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3054),
+            t3505,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3556),
         ),
     );
-    let t3079 = Real::mul_add(
+    let t3581 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3007,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t2916), t3016),
+                    t2580 + T::from_f64(0.0000104) - t3509,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3418), t3518),
                 ),
-                t3026,
+                t3528,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050),
+        qd[1] * (qd[1] * t2585) + (c113 * t3545 - t3552),
     );
-    let t3082 = Real::mul_add(
+    let t3584 = Real::mul_add(
         qdd[1],
-        t3003,
+        t3505,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3079),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3581),
         ),
     );
-    [t2998, t3057, t3082]
+    [t3500, t3559, t3584]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -169,195 +169,195 @@ pub fn generalized_forces_derivatives<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t2916 = c115 * T::from_f64(0.0000208);
-    let t2919 = T::from_f64(-0.00004) - t2916;
-    let t2921 = s114 * T::from_f64(0.0000208);
-    let t2928 = c115 * T::from_f64(0.00004);
-    let t2936 = c115 * T::from_f64(0.000009600000000000001);
-    let t2938 = t2936 + T::from_f64(0.000042000000000000004);
-    let t2950 = Real::mul_add(
+    let t3418 = c115 * T::from_f64(0.0000208);
+    let t3421 = T::from_f64(-0.00004) - t3418;
+    let t3423 = s114 * T::from_f64(0.0000208);
+    let t3430 = c115 * T::from_f64(0.00004);
+    let t3438 = c115 * T::from_f64(0.000009600000000000001);
+    let t3440 = t3438 + T::from_f64(0.000042000000000000004);
+    let t3452 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t2928,
+            T::from_f64(-0.00008495) - t3430,
             s114
                 * Real::mul_add(
                     c113,
-                    t2919,
-                    Real::mul_add(s112, t2921, T::from_f64(-0.000009600000000000001)),
+                    t3421,
+                    Real::mul_add(s112, t3423, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * t2938
-            + (t2928 + T::from_f64(0.00009551400000000001)
+        c113 * t3440
+            + (t3430 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t2957 = s114 * T::from_f64(0.0000416);
-    let t2958 = s114 * t2957;
-    let t2961 = c115 * T::from_f64(0.00008);
-    let t2964 = T::from_f64(-0.0001699) - t2961;
-    let t2965 = t2958 + t2964;
-    let t2967 = c115 * T::from_f64(0.0000416);
-    let t2973 = T::from_f64(-0.000042000000000000004) - t2936;
-    let t2977 = c113 * T::from_f64(0.000009600000000000001);
-    let t2980 = s114 * (t2919 - t2977);
-    let t2981 = Real::mul_add(
+    let t3459 = s114 * T::from_f64(0.0000416);
+    let t3460 = s114 * t3459;
+    let t3463 = c115 * T::from_f64(0.00008);
+    let t3466 = T::from_f64(-0.0001699) - t3463;
+    let t3467 = t3460 + t3466;
+    let t3469 = c115 * T::from_f64(0.0000416);
+    let t3475 = T::from_f64(-0.000042000000000000004) - t3438;
+    let t3479 = c113 * T::from_f64(0.000009600000000000001);
+    let t3482 = s114 * (t3421 - t3479);
+    let t3483 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t2965,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t2967), t2973),
+            t3467,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t3469), t3475),
         ),
-        t2980,
+        t3482,
     );
-    let t2983 = T::from_f64(-0.0000208) - t2928;
-    let t2992 = Real::mul_add(
+    let t3485 = T::from_f64(-0.0000208) - t3430;
+    let t3494 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t2958 + t2983,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t2967), -t2936),
+            t3460 + t3485,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3469), -t3438),
         ),
-        t2980,
+        t3482,
     );
-    let t2994 = Real::mul_add(qd[2], t2992, qd[1] * t2981);
-    let t2998 = Real::mul_add(
+    let t3496 = Real::mul_add(qd[2], t3494, qd[1] * t3483);
+    let t3500 = Real::mul_add(
         qdd[0],
-        t2950,
+        t3452,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qd[0], t2994, qdd[2] * T::from_f64(0.000000024000000000000006)),
+            Real::mul_add(qd[0], t3496, qdd[2] * T::from_f64(0.000000024000000000000006)),
         ),
     );
-    let t3003 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3007 = s114 * t2921;
-    let t3011 = t2928 + T::from_f64(0.00008495) - t3007;
-    let t3016 = c115 * T::from_f64(0.000004800000000000001);
-    let t3018 = t3016 + T::from_f64(0.000021000000000000002);
-    let t3022 = c113 * T::from_f64(0.000004800000000000001);
-    let t3026 = s114 * (t3022 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3030 = s114 * T::from_f64(0.00004);
-    let t3032 = qd[1] * t3030;
-    let t3043 = c115 * T::from_f64(0.003924);
-    let t3048 = s114 * T::from_f64(0.003924);
-    let t3050 = s112 * t3048;
-    let t3054 = Real::mul_add(
+    let t3505 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3509 = s114 * t3423;
+    let t3513 = t3430 + T::from_f64(0.00008495) - t3509;
+    let t3518 = c115 * T::from_f64(0.000004800000000000001);
+    let t3520 = t3518 + T::from_f64(0.000021000000000000002);
+    let t3524 = c113 * T::from_f64(0.000004800000000000001);
+    let t3528 = s114 * (t3524 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
+    let t3532 = s114 * T::from_f64(0.00004);
+    let t3534 = qd[1] * t3532;
+    let t3545 = c115 * T::from_f64(0.003924);
+    let t3550 = s114 * T::from_f64(0.003924);
+    let t3552 = s112 * t3550;
+    let t3556 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(c113, t3011, Real::mul_add(s112, s114 * t2919, t3018)),
-                t3026,
+                Real::mul_add(c113, t3513, Real::mul_add(s112, s114 * t3421, t3520)),
+                t3528,
             ),
-        Real::mul_add(c113, t3043 + T::from_f64(0.017167500000000002), -t3050)
-            - qd[2] * (t3032 + qd[2] * t2585),
+        Real::mul_add(c113, t3545 + T::from_f64(0.017167500000000002), -t3552)
+            - qd[2] * (t3534 + qd[2] * t2585),
     );
-    let t3057 = Real::mul_add(
+    let t3559 = Real::mul_add(
         qdd[1],
-        t2928 + T::from_f64(0.000086946),
+        t3430 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3003,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3054),
+            t3505,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3556),
         ),
     );
-    let t3079 = Real::mul_add(
+    let t3581 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3007,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t2916), t3016),
+                    t2580 + T::from_f64(0.0000104) - t3509,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3418), t3518),
                 ),
-                t3026,
+                t3528,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3043 - t3050),
+        qd[1] * (qd[1] * t2585) + (c113 * t3545 - t3552),
     );
-    let t3082 = Real::mul_add(
+    let t3584 = Real::mul_add(
         qdd[1],
-        t3003,
+        t3505,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3079),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3581),
         ),
     );
-    let t3085 = c115 * T::from_f64(0.0000832);
-    let t3094 = T::from_f64(0.000009600000000000001)
+    let t3587 = c115 * T::from_f64(0.0000832);
+    let t3596 = T::from_f64(0.000009600000000000001)
         - s112 * (s114 * T::from_f64(0.0000832));
-    let t3106 = qd[1]
+    let t3608 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 s112,
                 c115 * T::from_f64(0.00016) + T::from_f64(0.0003398),
-                s114 * Real::mul_add(c113, t3085 + T::from_f64(0.00016), t3094),
+                s114 * Real::mul_add(c113, t3587 + T::from_f64(0.00016), t3596),
             ),
-            Real::mul_add(c113, t2973, t2965),
+            Real::mul_add(c113, t3475, t3467),
         );
-    let t3118 = Real::mul_add(
+    let t3620 = Real::mul_add(
         c115,
-        T::from_f64(-0.00004) - t2977,
-        T::from_f64(-0.0000208) + t2958,
+        T::from_f64(-0.00004) - t3479,
+        T::from_f64(-0.0000208) + t3460,
     );
-    let t3119 = Real::mul_add(
+    let t3621 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(0.0000416) + t2961,
-            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3085, t3094),
+            T::from_f64(0.0000416) + t3463,
+            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3587, t3596),
         ),
-        t3118,
+        t3620,
     );
-    let t3123 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3119, t3106), qdd[0] * t2981);
-    let t3137 = qd[0]
+    let t3625 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3621, t3608), qdd[0] * t3483);
+    let t3639 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     s112,
-                    t2928 + T::from_f64(0.0000416),
-                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3085, t3094),
+                    t3430 + T::from_f64(0.0000416),
+                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3587, t3596),
                 ),
-                t3118,
+                t3620,
             ),
-            qd[1] * t3119,
+            qd[1] * t3621,
         );
-    let t3138 = Real::mul_add(qdd[0], t2992, t3137);
-    let t3141 = T::from_f64(-0.00008) - t2967;
-    let t3145 = Real::mul_add(s112, t2957, T::from_f64(-0.000004800000000000001));
-    let t3160 = c113 * t3048;
-    let t3163 = Real::mul_add(
+    let t3640 = Real::mul_add(qdd[0], t3494, t3639);
+    let t3643 = T::from_f64(-0.00008) - t3469;
+    let t3647 = Real::mul_add(s112, t3459, T::from_f64(-0.000004800000000000001));
+    let t3662 = c113 * t3550;
+    let t3665 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t2964, s114 * Real::mul_add(c113, t3141, t3145)),
-                Real::mul_add(c113, t3018, t3011),
+                Real::mul_add(s112, t3466, s114 * Real::mul_add(c113, t3643, t3647)),
+                Real::mul_add(c113, t3520, t3513),
             ),
-        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3043, -t3160),
+        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3545, -t3662),
     );
-    let t3168 = T::from_f64(-0.00004) - t2967;
-    let t3178 = Real::mul_add(
+    let t3670 = T::from_f64(-0.00004) - t3469;
+    let t3680 = Real::mul_add(
         c115,
-        T::from_f64(0.00002) + t3022,
-        T::from_f64(0.0000104) - t3007,
+        T::from_f64(0.00002) + t3524,
+        T::from_f64(0.0000104) - t3509,
     );
-    let t3181 = qd[0]
+    let t3683 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t2983, s114 * Real::mul_add(c113, t3168, t3145)),
-                t3178,
+                Real::mul_add(s112, t3485, s114 * Real::mul_add(c113, t3670, t3647)),
+                t3680,
             ));
-    let t3193 = t3160 + s112 * t3043;
-    let t3199 = t3181 - (qd[2] * (qd[1] * t2928 + qd[2] * t2580) + t3193)
-        - qdd[2] * t2585 - qdd[1] * t3030;
-    let t3200 = t3181 - t3193;
-    let t3217 = Real::mul_add(
+    let t3695 = t3662 + s112 * t3545;
+    let t3701 = t3683 - (qd[2] * (qd[1] * t3430 + qd[2] * t2580) + t3695)
+        - qdd[2] * t2585 - qdd[1] * t3532;
+    let t3702 = t3683 - t3695;
+    let t3719 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
@@ -365,50 +365,50 @@ pub fn generalized_forces_derivatives<T: Real>(
                 Real::mul_add(
                     s112,
                     T::from_f64(-0.0000208) - t2580,
-                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t2967, t3145),
+                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t3469, t3647),
                 ),
-                t3178,
+                t3680,
             ),
-        Real::mul_add(qd[1], qd[1] * t2580, -t3193),
+        Real::mul_add(qd[1], qd[1] * t2580, -t3695),
     );
-    let t3218 = t3217 - qdd[1] * t2585;
-    let t3219 = qd[0] * t2981;
-    let t3220 = qd[0] * t2992;
-    let t3234 = s114 * (t2977 + (t2916 + T::from_f64(0.00004)));
-    let t3236 = qd[0]
+    let t3720 = t3719 - qdd[1] * t2585;
+    let t3721 = qd[0] * t3483;
+    let t3722 = qd[0] * t3494;
+    let t3736 = s114 * (t3479 + (t3418 + T::from_f64(0.00004)));
+    let t3738 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t2961 + T::from_f64(0.0001699) - t2958,
-                Real::mul_add(s112, s114 * t3141, t2938),
+                t3463 + T::from_f64(0.0001699) - t3460,
+                Real::mul_add(s112, s114 * t3643, t3440),
             ),
-            t3234,
+            t3736,
         );
-    let t3237 = qd[2] * t3030;
-    let t3238 = -t3237;
-    let t3240 = -(t3032 + t3237);
-    let t3250 = qd[0]
+    let t3739 = qd[2] * t3532;
+    let t3740 = -t3739;
+    let t3742 = -(t3534 + t3739);
+    let t3752 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                T::from_f64(0.0000208) + t2928 - t2958,
-                Real::mul_add(s112, s114 * t3168, t2936),
+                T::from_f64(0.0000208) + t3430 - t3460,
+                Real::mul_add(s112, s114 * t3670, t3438),
             ),
-            t3234,
+            t3736,
         );
     tendyn_core::dual::StateJacobians {
-        value: [t2998, t3057, t3082],
+        value: [t3500, t3559, t3584],
         d_q: [
-            [T::from_f64(0.0), t3123, t3138],
-            [T::from_f64(0.0), t3163, t3199],
-            [T::from_f64(0.0), t3200, t3218],
+            [T::from_f64(0.0), t3625, t3640],
+            [T::from_f64(0.0), t3665, t3701],
+            [T::from_f64(0.0), t3702, t3720],
         ],
         d_qd: [
-            [t2994, t3219, t3220],
-            [t3236, t3238, t3240],
-            [t3250, t3032, T::from_f64(0.0)],
+            [t3496, t3721, t3722],
+            [t3738, t3740, t3742],
+            [t3752, t3534, T::from_f64(0.0)],
         ],
     }
 }
@@ -429,55 +429,55 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t2916 = c115 * T::from_f64(0.0000208);
-    let t2928 = c115 * T::from_f64(0.00004);
-    let t2936 = c115 * T::from_f64(0.000009600000000000001);
-    let t2958 = s114 * (s114 * T::from_f64(0.0000416));
-    let t2967 = c115 * T::from_f64(0.0000416);
-    let t3007 = s114 * (s114 * T::from_f64(0.0000208));
-    let t3016 = c115 * T::from_f64(0.000004800000000000001);
-    let t3043 = c115 * T::from_f64(0.003924);
-    let t3050 = s112 * (s114 * T::from_f64(0.003924));
-    let t3232 = t2916 + T::from_f64(0.00004);
-    let t3234 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3232);
-    let t3251 = qd[1]
+    let t3418 = c115 * T::from_f64(0.0000208);
+    let t3430 = c115 * T::from_f64(0.00004);
+    let t3438 = c115 * T::from_f64(0.000009600000000000001);
+    let t3460 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3469 = c115 * T::from_f64(0.0000416);
+    let t3509 = s114 * (s114 * T::from_f64(0.0000208));
+    let t3518 = c115 * T::from_f64(0.000004800000000000001);
+    let t3545 = c115 * T::from_f64(0.003924);
+    let t3552 = s112 * (s114 * T::from_f64(0.003924));
+    let t3734 = t3418 + T::from_f64(0.00004);
+    let t3736 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3734);
+    let t3753 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t2958,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3460,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t2967),
-                    t2936 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t3469),
+                    t3438 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t3234,
+            t3736,
         );
-    let t3254 = qd[0]
+    let t3756 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t2928 - t2958,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t2967), t2936),
+                    T::from_f64(0.0000208) + t3430 - t3460,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3469), t3438),
                 ),
-                t3234,
+                t3736,
             ),
-            t3251,
+            t3753,
         );
-    let t3258 = t3254
+    let t3760 = t3756
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t3284 = Real::mul_add(
+    let t3786 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t2928,
+            T::from_f64(-0.00008495000000000003) - t3430,
             s114
                 * Real::mul_add(
                     c113,
@@ -488,86 +488,86 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t2936 + T::from_f64(0.00004200000000000001),
-            t2928 + T::from_f64(0.00009551400000000003)
+            t3438 + T::from_f64(0.00004200000000000001),
+            t3430 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t3286 = T::from_f64(0.00000002100000000000001) / t3284;
-    let t3301 = s114
+    let t3788 = T::from_f64(0.00000002100000000000001) / t3786;
+    let t3803 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t3357 = T::from_f64(0.000000024000000000000003) / t3284;
-    let t4143 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
+    let t3859 = T::from_f64(0.000000024000000000000003) / t3786;
+    let t4645 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3043, t3050)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3545, t3552)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t4144 = Real::mul_add(
+    let t4646 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t2928 + t3007,
+                    T::from_f64(-0.00008495) - t3430 + t3509,
                     Real::mul_add(
                         s112,
-                        s114 * t3232,
-                        T::from_f64(-0.000021000000000000002) - t3016,
+                        s114 * t3734,
+                        T::from_f64(-0.000021000000000000002) - t3518,
                     ),
                 ),
-                t3301,
+                t3803,
             ),
-        t4143,
+        t4645,
     );
-    let t4155 = Real::mul_add(
+    let t4657 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3007 + (T::from_f64(-0.0000104) - t2580),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t2916), -t3016),
+                    t3509 + (T::from_f64(-0.0000104) - t2580),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3418), -t3518),
                 ),
-                t3301,
+                t3803,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t3050 - c113 * t3043 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t3552 - c113 * t3545 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t2585),
     );
-    let t4158 = Real::mul_add(
-        -t3284,
-        t3286 * t3286,
-        t2928 + T::from_f64(0.00008694600000000003),
+    let t4660 = Real::mul_add(
+        -t3786,
+        t3788 * t3788,
+        t3430 + T::from_f64(0.00008694600000000003),
     );
-    let t4162 = Real::mul_add(
-        -t3284,
-        t3286 * t3357,
+    let t4664 = Real::mul_add(
+        -t3786,
+        t3788 * t3859,
         t2580 + T::from_f64(0.000011224000000000001),
-    ) / t4158;
-    let t4170 = Real::mul_add(-t3258, t3286, t4144);
-    let t4176 = Real::mul_add(-t4162, t4170, Real::mul_add(-t3258, t3357, t4155))
+    ) / t4660;
+    let t4672 = Real::mul_add(-t3760, t3788, t4646);
+    let t4678 = Real::mul_add(-t4664, t4672, Real::mul_add(-t3760, t3859, t4657))
         / Real::mul_add(
-            -t4158,
-            t4162 * t4162,
-            Real::mul_add(-t3284, t3357 * t3357, T::from_f64(0.000011256000000000002)),
+            -t4660,
+            t4664 * t4664,
+            Real::mul_add(-t3786, t3859 * t3859, T::from_f64(0.000011256000000000002)),
         );
-    let t4178 = Real::mul_add(-t4162, t4176, t4170 / t4158);
-    let t4182 = Real::mul_add(
-        -t3357,
-        t4176,
-        Real::mul_add(-t3286, t4178, t3258 / t3284),
+    let t4680 = Real::mul_add(-t4664, t4678, t4672 / t4660);
+    let t4684 = Real::mul_add(
+        -t3859,
+        t4678,
+        Real::mul_add(-t3788, t4680, t3760 / t3786),
     );
-    [t4182, t4178, t4176]
+    [t4684, t4680, t4678]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
 /// Entries: `value` and each Jacobian's rows: knuckle, proximal, distal; columns of `d_q`, `d_qd`: knuckle, proximal, distal; of `d_u`: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 802 arithmetic (356 add/sub, 407 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 763 arithmetic (331 add/sub, 393 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics_derivatives<T: Real>(
@@ -665,44 +665,26 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t981 = T::from_f64(0.02) * t934;
     let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
         - Real::mul_add(t233, t981, t285 * t930);
-    let t994 = Real::mul_add(t263, t930, t888 + T::from_f64(0.04) * t948)
-        - T::from_f64(0.02) * t948 - t283 * t930;
     let t998 = T::from_f64(0.0000024) * t934;
     let t1003 = Real::mul_add(-t245, t998, t302 * t934);
-    let t1052 = T::from_f64(0.03) * t905 + T::from_f64(0.02) * t994;
     let t1112 = t173 + t173;
     let t1114 = t522 + t522;
     let t1119 = t1114 - t536 - t536;
     let t1133 = s114 * t1112;
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
-    let t1144 = t592 + (t592 + t1114) - t606 - t606;
-    let t1149 = Real::mul_add(T::from_f64(0.000003), t237, -t301);
-    let t1152 = t624 + T::from_f64(0.000003) * t233;
-    let t1183 = c115 * t1149;
-    let t1187 = s114 * t1149;
-    let t1194 = T::from_f64(0.03) * t1119 + T::from_f64(0.02) * t1144;
-    let t1253 = t592 + t592 - t606 - t606;
     let t1342 = t166 + t181;
     let t1343 = t183 + T::from_f64(0.05) * t158;
     let t1347 = t1342 - t152 * t196;
     let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
     let t1372 = t248 + (s114 * t156 + c115 * t158);
     let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
-    let t1389 = t273 + (t1343 + T::from_f64(0.04) * t1372) - T::from_f64(0.02) * t1372
-        - t293;
-    let t1429 = T::from_f64(0.03) * t1348 + T::from_f64(0.02) * t1389;
     let t1577 = s114 * T::from_f64(0.000010400000000000002);
     let t1586 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
         + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
-    let t2406 = Real::mul_add(
-        t619,
-        T::from_f64(0.0008),
-        Real::mul_add(-t619, T::from_f64(0.0004), t635),
-    );
     let t2418 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t549
             + Real::mul_add(
@@ -711,126 +693,12 @@ pub fn forward_dynamics_derivatives<T: Real>(
                 c115 * (T::from_f64(0.02) * t619),
             ));
     let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
-    let t2474 = Real::mul_add(
-        -t994,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t994,
-            T::from_f64(0.0004),
-            -(T::from_f64(0.0000024) * t948 + t302 * t930),
-        ),
-    );
-    let t2475 = Real::mul_add(
-        t993,
-        T::from_f64(0.0008),
-        Real::mul_add(-t993, T::from_f64(0.0004), Real::mul_add(t233, t998, t301 * t930)),
-    );
     let t2477 = T::from_f64(0.02)
         * (s114
             * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
                 + Real::mul_add(t237, t981, t285 * t934)));
-    let t2489 = Real::mul_add(
-        T::from_f64(0.05),
-        Real::mul_add(
-            T::from_f64(0.03),
-            t2462,
-            c115 * (T::from_f64(0.02) * t993) + t2477,
-        ),
-        Real::mul_add(
-            -T::from_f64(0.00075),
-            t2462,
-            Real::mul_add(t152, t909, s112 * t212),
-        ) + t2475,
-    );
-    let t2492 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t905,
-            T::from_f64(0.00075),
-            -(T::from_f64(0.0000058) * t863 + s112 * t213),
-        ) + Real::mul_add(c115, t2474, s114 * t1003) - T::from_f64(0.05) * t1052,
-        s112
-            * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t2474, -(c115 * t1003))),
-    );
-    let t2495 = T::from_f64(0.012) * (t1052 - T::from_f64(0.014) * t852)
-        - (Real::mul_add(
-            -t852,
-            T::from_f64(0.00006),
-            (t131 + t131 - t849) * T::from_f64(0.00003),
-        ) + t2492);
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
-    let t2503 = Real::mul_add(
-        -t1144,
-        T::from_f64(0.0008),
-        Real::mul_add(t1144, T::from_f64(0.0004), -t1152),
-    );
-    let t2520 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t1119,
-            T::from_f64(0.00075),
-            -(t554 + T::from_f64(0.0000068) * t152),
-        ) + Real::mul_add(c115, t2503, t1187) - T::from_f64(0.05) * t1194,
-        s112
-            * (Real::mul_add(T::from_f64(0.0000068), t153, -t212)
-                - Real::mul_add(s114, t2503, -t1183)),
-    );
-    let t2522 = T::from_f64(0.012) * t1194 - t2520;
-    let t2526 = Real::mul_add(
-        -t1253,
-        T::from_f64(0.0008),
-        Real::mul_add(t1253, T::from_f64(0.0004), -t1152),
-    );
-    let t2541 = t1253 * T::from_f64(0.00024)
-        - Real::mul_add(
-            c113,
-            Real::mul_add(-t1253, T::from_f64(0.001), Real::mul_add(c115, t2526, t1187)),
-            s112 * Real::mul_add(-s114, t2526, t1183),
-        );
-    let t2555 = Real::mul_add(
-        -t1389,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t1389,
-            T::from_f64(0.0004),
-            -(t308 + T::from_f64(0.0000024) * t1372),
-        ),
-    );
-    let t2556 = Real::mul_add(
-        t1388,
-        T::from_f64(0.0008),
-        Real::mul_add(-t1388, T::from_f64(0.0004), t233 * t301),
-    );
-    let t2570 = Real::mul_add(
-        T::from_f64(0.05),
-        T::from_f64(0.03) * t1347
-            + Real::mul_add(
-                T::from_f64(0.02),
-                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
-                c115 * (T::from_f64(0.02) * t1388),
-            ),
-        Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t2556,
-    );
-    let t2573 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t1348,
-            T::from_f64(0.00075),
-            -(t219 + T::from_f64(0.0000058) * t158),
-        ) + Real::mul_add(c115, t2555, t412) - T::from_f64(0.05) * t1429,
-        s112 * (t218 - Real::mul_add(s114, t2555, -t408)),
-    );
-    let t2576 = T::from_f64(0.008) * tendon_tensions[2]
-        - (T::from_f64(0.006) * tendon_tensions[0]
-            + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3]
-        - (Real::mul_add(
-            -t134,
-            T::from_f64(0.00006),
-            (qd[0] * t131 - t122) * T::from_f64(0.00003),
-        ) + t2573 - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
     let t2596 = Real::mul_add(
         c113,
@@ -880,190 +748,6 @@ pub fn forward_dynamics_derivatives<T: Real>(
         t2608 * t2608,
         Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
     );
-    let t2616 = Real::mul_add(
-        -t2576,
-        t2600,
-        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
-            + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t2570,
-    );
-    let t2623 = Real::mul_add(
-        -t2608,
-        t2616,
-        Real::mul_add(
-            -t2576,
-            t2601,
-            T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t2556,
-        ),
-    ) / t2614;
-    let t2625 = Real::mul_add(-t2608, t2623, t2616 / t2604);
-    let t2629 = Real::mul_add(
-        -t2601,
-        t2623,
-        Real::mul_add(-t2600, t2625, t2576 / t2599),
-    );
-    let t2633 = Real::mul_add(s112, t2629, t156);
-    let t2634 = Real::mul_add(c113, t2629, -t158);
-    let t2639 = t181 + Real::mul_add(T::from_f64(0.05), t2625, t166);
-    let t2640 = t183
-        - Real::mul_add(T::from_f64(0.05), t2634, T::from_f64(0.012) * t2629);
-    let t2643 = Real::mul_add(T::from_f64(0.025), t2634, t2640) - t204;
-    let t2655 = qd[2] * t237 + Real::mul_add(s114, t2634, c115 * t2633);
-    let t2656 = Real::mul_add(-s114, t2633, c115 * t2634) - t248;
-    let t2657 = t2623 + t2625;
-    let t2659 = Real::mul_add(s114, t2639, t251);
-    let t2661 = Real::mul_add(c115, t2639, -t254);
-    let t2675 = Real::mul_add(
-        T::from_f64(0.02),
-        t2656,
-        t273 + Real::mul_add(-T::from_f64(0.04), t2656, t2640),
-    ) - t293;
-    let t2684 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2675,
-        Real::mul_add(
-            T::from_f64(0.0004),
-            t2675,
-            Real::mul_add(T::from_f64(0.0000024), t2656, -t308),
-        ),
-    );
-    let t2689 = s114 * t2684;
-    let t2690 = c115 * t2684;
-    let t2701 = Real::mul_add(T::from_f64(0.05), t2633, t153 * t173);
-    let t2704 = Real::mul_add(-T::from_f64(0.025), t2633, t2701) - t153 * t194;
-    let t2710 = T::from_f64(0.04) * t2655;
-    let t2713 = T::from_f64(0.02) * t2655;
-    let t2715 = t599 + (t2701 + t2710) - t2713 - t616;
-    let t2718 = Real::mul_add(T::from_f64(0.0000024), t2655, t305);
-    let t2722 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2715,
-        Real::mul_add(T::from_f64(0.0004), t2715, -t2718),
-    );
-    let t2727 = Real::mul_add(T::from_f64(0.02), t2715, T::from_f64(0.03) * t2704);
-    let t2735 = Real::mul_add(
-        -s112,
-        Real::mul_add(
-            -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t2675, T::from_f64(0.03) * t2643),
-            Real::mul_add(
-                T::from_f64(0.00075),
-                t2643,
-                Real::mul_add(T::from_f64(0.0000058), t2634, -t219),
-            ) + (t412 + t2690),
-        ),
-        c113
-            * Real::mul_add(
-                -T::from_f64(0.05),
-                t2727,
-                Real::mul_add(
-                    T::from_f64(0.00075),
-                    t2704,
-                    -Real::mul_add(T::from_f64(0.0000058), t2633, t216),
-                ) + Real::mul_add(c115, t2722, t664),
-            ),
-    );
-    let t2738 = Real::mul_add(
-        T::from_f64(0.012),
-        t2727,
-        -(Real::mul_add(
-            s112,
-            qd[1] * t554 - t219 - Real::mul_add(s114, t2722, -t660),
-            c113 * (t218 - (t2689 - t408)),
-        ) + t2735),
-    );
-    let t2744 = t615 + (t598 - t2659);
-    let t2745 = t599 + t2710 - t2713 - t616;
-    let t2755 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2745,
-        Real::mul_add(T::from_f64(0.0004), t2745, -t2718),
-    );
-    let t2756 = Real::mul_add(
-        T::from_f64(0.0008),
-        t2744,
-        Real::mul_add(-T::from_f64(0.0004), t2744, t635),
-    );
-    let t2762 = Real::mul_add(
-        T::from_f64(0.02),
-        s114 * (t595 + t2661 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269))),
-    )
-        + Real::mul_add(
-            -T::from_f64(0.02),
-            s114
-                * (Real::mul_add(
-                    -T::from_f64(0.02),
-                    t2657,
-                    t271 + Real::mul_add(T::from_f64(0.04), t2657, t2661),
-                ) - t291),
-            c115 * (T::from_f64(0.02) * t2744),
-        );
-    let t2775 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            -T::from_f64(0.001),
-            t2745,
-            t408 + t664 + Real::mul_add(c115, t2755, -t2689),
-        ),
-        s112 * (t660 - t412 - Real::mul_add(s114, t2755, t2690)),
-    );
-    let t2777 = Real::mul_add(T::from_f64(0.00024), t2745, -t2775);
-    let t2779 = Real::mul_add(
-        t2600,
-        t2738,
-        Real::mul_add(
-            -t549,
-            T::from_f64(0.00075),
-            Real::mul_add(t153, t212, -(t152 * t554)),
-        ) + t2406 + t2418,
-    );
-    let t2786 = Real::mul_add(t2608, t2779, -Real::mul_add(t2601, t2738, t2406)) / t2614;
-    let t2788 = Real::mul_add(t2608, t2786, t2779 / t2604);
-    let t2789 = -t2788;
-    let t2793 = Real::mul_add(-t2601, t2786, Real::mul_add(t2600, t2788, t2738 / t2599));
-    let t2795 = Real::mul_add(
-        t2600,
-        t2777,
-        Real::mul_add(T::from_f64(0.05), t2762, t2756),
-    );
-    let t2802 = Real::mul_add(t2608, t2795, -Real::mul_add(t2601, t2777, t2756)) / t2614;
-    let t2804 = Real::mul_add(t2608, t2802, t2795 / t2604);
-    let t2805 = -t2804;
-    let t2809 = Real::mul_add(-t2601, t2802, Real::mul_add(t2600, t2804, t2777 / t2599));
-    let t2811 = Real::mul_add(t2495, t2600, t2489);
-    let t2818 = Real::mul_add(t2608, t2811, -Real::mul_add(t2495, t2601, t2475)) / t2614;
-    let t2820 = Real::mul_add(t2608, t2818, t2811 / t2604);
-    let t2821 = -t2820;
-    let t2825 = Real::mul_add(-t2601, t2818, Real::mul_add(t2600, t2820, t2495 / t2599));
-    let t2827 = Real::mul_add(
-        t2522,
-        t2600,
-        Real::mul_add(
-            T::from_f64(0.05),
-            Real::mul_add(
-                T::from_f64(0.02),
-                s114 * (t1141 - (c115 * t1112 + t1135)),
-                c115 * (T::from_f64(0.02) * t1133),
-            ),
-            t2502 - t2499,
-        ),
-    );
-    let t2834 = Real::mul_add(t2608, t2827, Real::mul_add(-t2522, t2601, t2499 - t2502))
-        / t2614;
-    let t2836 = Real::mul_add(t2608, t2834, t2827 / t2604);
-    let t2837 = -t2836;
-    let t2841 = Real::mul_add(-t2601, t2834, Real::mul_add(t2600, t2836, t2522 / t2599));
-    let t2843 = Real::mul_add(
-        t2541,
-        t2600,
-        T::from_f64(0.001) * (s114 * (t1141 - t1135)),
-    );
-    let t2849 = Real::mul_add(-t2541, t2601, t2608 * t2843) / t2614;
-    let t2851 = Real::mul_add(t2608, t2849, t2843 / t2604);
-    let t2852 = -t2851;
-    let t2856 = Real::mul_add(-t2601, t2849, Real::mul_add(t2600, t2851, t2541 / t2599));
     let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
     let t2865 = Real::mul_add(
         -t2608,
@@ -1101,14 +785,274 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t2907 = -t2906;
     let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
     let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
+    let t2942 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2944 = Real::mul_add(T::from_f64(0.02), t2942, T::from_f64(0.03) * t905);
+    let t2956 = t233 * T::from_f64(0.039999999999999994);
+    let t2957 = t1114 + t2956;
+    let t2960 = t237 * T::from_f64(0.0000006000000000000002);
+    let t2962 = t233 * T::from_f64(0.0000054);
+    let t2963 = c115 * t2960;
+    let t2964 = s114 * t2960;
+    let t2965 = Real::mul_add(T::from_f64(0.02), t2957, T::from_f64(0.03) * t1119);
+    let t2970 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2972 = Real::mul_add(T::from_f64(0.02), t2970, T::from_f64(0.03) * t1348);
+    let t3022 = t635 + t619 * T::from_f64(0.0004);
+    let t3069 = t302 * t930
+        + (T::from_f64(0.0000024) * t948 + T::from_f64(0.0004) * t2942);
+    let t3071 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3083 = T::from_f64(0.05)
+        * Real::mul_add(
+            T::from_f64(0.03),
+            t2462,
+            c115 * (T::from_f64(0.02) * t993) + t2477,
+        )
+        + (Real::mul_add(
+            -T::from_f64(0.00075),
+            t2462,
+            Real::mul_add(t152, t909, s112 * t212),
+        ) + t3071);
+    let t3086 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2944,
+            Real::mul_add(
+                t905,
+                T::from_f64(0.00075),
+                -(T::from_f64(0.0000058) * t863 + s112 * t213),
+            ) + (s114 * t1003 - c115 * t3069),
+        ),
+        s112 * (Real::mul_add(-qd[1], t909, c113 * t213) + (c115 * t1003 + s114 * t3069)),
+    );
+    let t3089 = T::from_f64(0.012) * (t2944 - T::from_f64(0.014) * t852)
+        - (Real::mul_add(
+            -t852,
+            T::from_f64(0.00006),
+            (t131 + t131 - t849) * T::from_f64(0.00003),
+        ) + t3086);
+    let t3097 = t2962 + T::from_f64(0.0004) * t2957;
+    let t3111 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2965,
+            Real::mul_add(
+                -t152,
+                T::from_f64(0.000012600000000000001),
+                t1119 * T::from_f64(0.00075),
+            ) + (t2964 - c115 * t3097),
+        ),
+        s112
+            * Real::mul_add(
+                t153,
+                T::from_f64(0.0000009999999999999997),
+                t2963 + s114 * t3097,
+            ),
+    );
+    let t3113 = T::from_f64(0.012) * t2965 - t3111;
+    let t3118 = t2962 + T::from_f64(0.0004) * t2956;
+    let t3133 = T::from_f64(0.00024) * t2956
+        - Real::mul_add(
+            c113,
+            Real::mul_add(-T::from_f64(0.001), t2956, t2964 - c115 * t3118),
+            s112 * (t2963 + s114 * t3118),
+        );
+    let t3140 = T::from_f64(0.0000024) * t1372 + (t308 + T::from_f64(0.0004) * t2970);
+    let t3142 = t233 * t301 + t1388 * T::from_f64(0.0004);
+    let t3154 = T::from_f64(0.05)
+        * (T::from_f64(0.03) * t1347
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
+                c115 * (T::from_f64(0.02) * t1388),
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3142);
+    let t3157 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2972,
+            Real::mul_add(
+                t1348,
+                T::from_f64(0.00075),
+                -(t219 + T::from_f64(0.0000058) * t158),
+            ) + (t412 - c115 * t3140),
+        ),
+        s112 * (t218 + (t408 + s114 * t3140)),
+    );
+    let t3160 = T::from_f64(0.008) * tendon_tensions[2]
+        - (T::from_f64(0.006) * tendon_tensions[0]
+            + T::from_f64(0.009) * tendon_tensions[1])
+        + T::from_f64(0.008) * tendon_tensions[3]
+        - Real::mul_add(
+            -T::from_f64(0.012),
+            t2972 - T::from_f64(0.014) * t134,
+            Real::mul_add(
+                -t134,
+                T::from_f64(0.00006),
+                (qd[0] * t131 - t122) * T::from_f64(0.00003),
+            ) + t3157,
+        );
+    let t3164 = Real::mul_add(
+        -t2600,
+        t3160,
+        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
+            + T::from_f64(0.01) * tendon_tensions[2]
+            - T::from_f64(0.01) * tendon_tensions[3] - t3154,
+    );
+    let t3171 = Real::mul_add(
+        -t2608,
+        t3164,
+        Real::mul_add(
+            -t2601,
+            t3160,
+            T::from_f64(0.008) * tendon_tensions[0]
+                - T::from_f64(0.008) * tendon_tensions[1] - t3142,
+        ),
+    ) / t2614;
+    let t3173 = Real::mul_add(-t2608, t3171, t3164 / t2604);
+    let t3177 = Real::mul_add(
+        -t2601,
+        t3171,
+        Real::mul_add(-t2600, t3173, t3160 / t2599),
+    );
+    let t3181 = Real::mul_add(s112, t3177, t156);
+    let t3182 = Real::mul_add(c113, t3177, -t158);
+    let t3187 = t181 + Real::mul_add(T::from_f64(0.05), t3173, t166);
+    let t3188 = t183
+        - Real::mul_add(T::from_f64(0.05), t3182, T::from_f64(0.012) * t3177);
+    let t3191 = Real::mul_add(T::from_f64(0.025), t3182, t3188) - t204;
+    let t3203 = qd[2] * t237 + Real::mul_add(s114, t3182, c115 * t3181);
+    let t3204 = Real::mul_add(-s114, t3181, c115 * t3182) - t248;
+    let t3207 = Real::mul_add(s114, t3187, t251);
+    let t3209 = Real::mul_add(c115, t3187, -t254);
+    let t3226 = t273 + t3188 - T::from_f64(0.02) * t3204 - t293;
+    let t3234 = Real::mul_add(T::from_f64(0.0000024), t3204, -t308)
+        - T::from_f64(0.0004) * t3226;
+    let t3239 = s114 * t3234;
+    let t3240 = c115 * t3234;
+    let t3251 = Real::mul_add(T::from_f64(0.05), t3181, t153 * t173);
+    let t3254 = Real::mul_add(-T::from_f64(0.025), t3181, t3251) - t153 * t194;
+    let t3260 = T::from_f64(0.04) * t3203;
+    let t3263 = T::from_f64(0.02) * t3203;
+    let t3265 = t599 + (t3251 + t3260) - t3263 - t616;
+    let t3268 = Real::mul_add(T::from_f64(0.0000024), t3203, t305);
+    let t3274 = t3268 + T::from_f64(0.0004) * t3265;
+    let t3283 = Real::mul_add(T::from_f64(0.02), t3265, T::from_f64(0.03) * t3254);
+    let t3291 = Real::mul_add(
+        -s112,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            Real::mul_add(T::from_f64(0.02), t3226, T::from_f64(0.03) * t3191),
+            Real::mul_add(
+                T::from_f64(0.00075),
+                t3191,
+                Real::mul_add(T::from_f64(0.0000058), t3182, -t219),
+            ) + (t412 + t3240),
+        ),
+        c113
+            * Real::mul_add(
+                -T::from_f64(0.05),
+                t3283,
+                Real::mul_add(
+                    T::from_f64(0.00075),
+                    t3254,
+                    -Real::mul_add(T::from_f64(0.0000058), t3181, t216),
+                ) + (t664 - c115 * t3274),
+            ),
+    );
+    let t3294 = Real::mul_add(
+        T::from_f64(0.012),
+        t3283,
+        -(Real::mul_add(
+            s112,
+            qd[1] * t554 - t219 + (t660 + s114 * t3274),
+            c113 * (t218 - (t3239 - t408)),
+        ) + t3291),
+    );
+    let t3300 = t615 + (t598 - t3207);
+    let t3301 = t599 + t3260 - t3263 - t616;
+    let t3310 = t3268 + T::from_f64(0.0004) * t3301;
+    let t3312 = t635 + T::from_f64(0.0004) * t3300;
+    let t3318 = Real::mul_add(
+        T::from_f64(0.02),
+        s114 * (t595 + t3209 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3207 - t269))),
+    )
+        + Real::mul_add(
+            -T::from_f64(0.02),
+            s114
+                * (Real::mul_add(T::from_f64(0.02), t3171 + t3173, t271 + t3209) - t291),
+            c115 * (T::from_f64(0.02) * t3300),
+        );
+    let t3334 = Real::mul_add(
+        c113,
+        Real::mul_add(-T::from_f64(0.001), t3301, t408 + t664 - (t3239 + c115 * t3310)),
+        s112 * (t660 - t412 - (t3240 - s114 * t3310)),
+    );
+    let t3336 = Real::mul_add(T::from_f64(0.00024), t3301, -t3334);
+    let t3338 = Real::mul_add(
+        t2600,
+        t3294,
+        t2418
+            + (Real::mul_add(
+                -t549,
+                T::from_f64(0.00075),
+                Real::mul_add(t153, t212, -(t152 * t554)),
+            ) + t3022),
+    );
+    let t3345 = Real::mul_add(t2608, t3338, -Real::mul_add(t2601, t3294, t3022)) / t2614;
+    let t3347 = Real::mul_add(t2608, t3345, t3338 / t2604);
+    let t3348 = -t3347;
+    let t3352 = Real::mul_add(-t2601, t3345, Real::mul_add(t2600, t3347, t3294 / t2599));
+    let t3354 = Real::mul_add(
+        t2600,
+        t3336,
+        Real::mul_add(T::from_f64(0.05), t3318, t3312),
+    );
+    let t3361 = Real::mul_add(t2608, t3354, -Real::mul_add(t2601, t3336, t3312)) / t2614;
+    let t3363 = Real::mul_add(t2608, t3361, t3354 / t2604);
+    let t3364 = -t3363;
+    let t3368 = Real::mul_add(-t2601, t3361, Real::mul_add(t2600, t3363, t3336 / t2599));
+    let t3370 = Real::mul_add(t2600, t3089, t3083);
+    let t3377 = Real::mul_add(t2608, t3370, -Real::mul_add(t2601, t3089, t3071)) / t2614;
+    let t3379 = Real::mul_add(t2608, t3377, t3370 / t2604);
+    let t3380 = -t3379;
+    let t3384 = Real::mul_add(-t2601, t3377, Real::mul_add(t2600, t3379, t3089 / t2599));
+    let t3386 = Real::mul_add(
+        t2600,
+        t3113,
+        Real::mul_add(
+            T::from_f64(0.05),
+            Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t1141 - (c115 * t1112 + t1135)),
+                c115 * (T::from_f64(0.02) * t1133),
+            ),
+            t2502 - t2499,
+        ),
+    );
+    let t3393 = Real::mul_add(t2608, t3386, Real::mul_add(-t2601, t3113, t2499 - t2502))
+        / t2614;
+    let t3395 = Real::mul_add(t2608, t3393, t3386 / t2604);
+    let t3396 = -t3395;
+    let t3400 = Real::mul_add(-t2601, t3393, Real::mul_add(t2600, t3395, t3113 / t2599));
+    let t3402 = Real::mul_add(
+        t2600,
+        t3133,
+        T::from_f64(0.001) * (s114 * (t1141 - t1135)),
+    );
+    let t3408 = Real::mul_add(-t2601, t3133, t2608 * t3402) / t2614;
+    let t3410 = Real::mul_add(t2608, t3408, t3402 / t2604);
+    let t3411 = -t3410;
+    let t3415 = Real::mul_add(-t2601, t3408, Real::mul_add(t2600, t3410, t3133 / t2599));
     tendyn_core::dual::ForwardJacobians {
-        value: [t2629, t2625, t2623],
+        value: [t3177, t3173, t3171],
         d_q: [
-            [T::from_f64(0.0), t2793, t2809],
-            [T::from_f64(0.0), t2789, t2805],
-            [T::from_f64(0.0), t2786, t2802],
+            [T::from_f64(0.0), t3352, t3368],
+            [T::from_f64(0.0), t3348, t3364],
+            [T::from_f64(0.0), t3345, t3361],
         ],
-        d_qd: [[t2825, t2841, t2856], [t2821, t2837, t2852], [t2818, t2834, t2849]],
+        d_qd: [[t3384, t3400, t3415], [t3380, t3396, t3411], [t3377, t3393, t3408]],
         d_u: [
             [t2871, t2886, t2901, t2913],
             [t2867, t2882, t2897, t2909],
@@ -1135,7 +1079,7 @@ pub struct Outputs<T> {
         [[T; 4]; 3],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 1028 arithmetic (481 add/sub, 508 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 974 arithmetic (448 add/sub, 487 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -1147,14 +1091,12 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t118 = T::from_f64(0.012) * qdd[0];
     let t120 = T::from_f64(0.012) * qd[0];
     let t122 = qd[0] * t120;
     let t130 = T::from_f64(0.002142857142857143) * qd[0];
     let t131 = qd[0] * T::from_f64(0.004285714285714286);
     let t133 = qd[0] * t131;
     let t134 = qd[0] * t130;
-    let t137 = qdd[0] * T::from_f64(0.004285714285714286) - t118 - t134;
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t156 = qd[1] * t153;
@@ -1171,7 +1113,7 @@ pub fn all<T: Real>(
     let t183 = t152 * t173;
     let t184 = t162 - t160 - Real::mul_add(qd[1], t173, t176);
     let t185 = Real::mul_add(T::from_f64(0.05), qdd[1], t166) + t181;
-    let t186 = t183 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t183 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
     let t202 = t152 * t196;
@@ -1208,11 +1150,7 @@ pub fn all<T: Real>(
     let t290 = t287 + t245 * t283;
     let t291 = t233 * t285;
     let t293 = t233 * t283;
-    let t296 = Real::mul_add(T::from_f64(0.04), t250, t257) + t271
-        - T::from_f64(0.02) * t250 - t291;
-    let t297 = t186 - T::from_f64(0.04) * t249 + t273 + T::from_f64(0.02) * t249 - t293;
     let t298 = T::from_f64(0.02) * (t253 - t269 + t290);
-    let t299 = T::from_f64(0.02) * t296;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t305 = t237 * t302;
@@ -1233,7 +1171,6 @@ pub fn all<T: Real>(
     let t376 = qdd[0] - t369;
     let t408 = c115 * t307;
     let t412 = s114 * t307;
-    let t420 = T::from_f64(0.03) * t208 + T::from_f64(0.02) * t297;
     let t522 = T::from_f64(0.05) * t152;
     let t529 = t153 * t173;
     let t530 = t166 + Real::mul_add(t153, t522, t181);
@@ -1284,119 +1221,27 @@ pub fn all<T: Real>(
     let t981 = T::from_f64(0.02) * t934;
     let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
         - Real::mul_add(t233, t981, t285 * t930);
-    let t994 = Real::mul_add(t263, t930, t888 + T::from_f64(0.04) * t948)
-        - T::from_f64(0.02) * t948 - t283 * t930;
     let t998 = T::from_f64(0.0000024) * t934;
     let t1003 = Real::mul_add(-t245, t998, t302 * t934);
-    let t1052 = T::from_f64(0.03) * t905 + T::from_f64(0.02) * t994;
-    let t1087 = T::from_f64(0.012) * (t1052 - T::from_f64(0.014) * t852);
     let t1112 = t173 + t173;
     let t1114 = t522 + t522;
     let t1119 = t1114 - t536 - t536;
     let t1133 = s114 * t1112;
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
-    let t1144 = t592 + (t592 + t1114) - t606 - t606;
-    let t1149 = Real::mul_add(T::from_f64(0.000003), t237, -t301);
-    let t1152 = t624 + T::from_f64(0.000003) * t233;
-    let t1183 = c115 * t1149;
-    let t1187 = s114 * t1149;
-    let t1194 = T::from_f64(0.03) * t1119 + T::from_f64(0.02) * t1144;
-    let t1225 = T::from_f64(0.012) * t1194;
-    let t1253 = t592 + t592 - t606 - t606;
     let t1342 = t166 + t181;
     let t1343 = t183 + T::from_f64(0.05) * t158;
     let t1347 = t1342 - t202;
     let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
     let t1372 = t248 + (s114 * t156 + c115 * t158);
     let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
-    let t1389 = t273 + (t1343 + T::from_f64(0.04) * t1372) - T::from_f64(0.02) * t1372
-        - t293;
-    let t1429 = T::from_f64(0.03) * t1348 + T::from_f64(0.02) * t1389;
     let t1577 = s114 * T::from_f64(0.000010400000000000002);
     let t1586 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
         + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
-    let t2354 = Real::mul_add(
-        -t297,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t297,
-            T::from_f64(0.0004),
-            Real::mul_add(T::from_f64(0.0000024), t249, -t308),
-        ),
-    );
-    let t2355 = Real::mul_add(
-        t296,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            -t296,
-            T::from_f64(0.0004),
-            Real::mul_add(T::from_f64(0.000003), t250, t310),
-        ),
-    );
-    let t2356 = s114 * t2354;
-    let t2357 = c115 * t2354;
-    let t2360 = t218 - (t2356 - t408);
-    let t2363 = Real::mul_add(
-        t208,
-        T::from_f64(0.00075),
-        Real::mul_add(T::from_f64(0.0000058), t159, -t219),
-    ) + (t412 + t2357) - T::from_f64(0.05) * t420;
-    let t2371 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + Real::mul_add(
-            t137,
-            T::from_f64(0.00006),
-            (Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
-                * T::from_f64(0.00003),
-        ) + Real::mul_add(c113, t2363, s112 * t2360)
-        - T::from_f64(0.012) * (T::from_f64(0.014) * t137 + t420);
-    let t2372 = t332
-        + (T::from_f64(0.05) * (T::from_f64(0.03) * t207 + (s114 * t298 + c115 * t299))
-            + (Real::mul_add(
-                -t207,
-                T::from_f64(0.00075),
-                Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
-            ) + t2355));
     let t2373 = t322 * T::from_f64(0.000000056);
-    let t2388 = Real::mul_add(
-        t364,
-        T::from_f64(0.000000072),
-        Real::mul_add(
-            -t354,
-            T::from_f64(0.00000004799999999999999),
-            t2373 + (t2355 + t2373),
-        ),
-    );
-    let t2392 = T::from_f64(0.000000064) * t376
-        + (T::from_f64(0.000000064) * t370
-            + (T::from_f64(0.000000081) * t364
-                + (T::from_f64(0.000000036) * t354 + t2371)));
-    let t2394 = Real::mul_add(
-        -t376,
-        T::from_f64(0.00000008),
-        Real::mul_add(
-            t370,
-            T::from_f64(0.00000008),
-            Real::mul_add(
-                t364,
-                T::from_f64(0.00000006300000000000001),
-                Real::mul_add(-t354, T::from_f64(0.000000042), t332 + t2372),
-            ),
-        ),
-    );
-    let t2405 = Real::mul_add(
-        -t620,
-        T::from_f64(0.0008),
-        Real::mul_add(t620, T::from_f64(0.0004), -t636),
-    );
-    let t2406 = Real::mul_add(
-        t619,
-        T::from_f64(0.0008),
-        Real::mul_add(-t619, T::from_f64(0.0004), t635),
-    );
     let t2418 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t549
             + Real::mul_add(
@@ -1404,113 +1249,13 @@ pub fn all<T: Real>(
                 s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
                 c115 * (T::from_f64(0.02) * t619),
             ));
-    let t2420 = Real::mul_add(
-        -t549,
-        T::from_f64(0.00075),
-        Real::mul_add(t153, t212, -(t152 * t554)),
-    ) + t2406 + t2418;
-    let t2425 = Real::mul_add(
-        s112,
-        t560 - Real::mul_add(s114, t2405, -t660),
-        c113 * t2360,
-    )
-        + Real::mul_add(
-            -s112,
-            t2363,
-            c113
-                * (Real::mul_add(
-                    t550,
-                    T::from_f64(0.00075),
-                    -(t216 + T::from_f64(0.0000058) * t157),
-                ) + Real::mul_add(c115, t2405, t664) - T::from_f64(0.05) * t672),
-        );
-    let t2426 = t2425 - T::from_f64(0.012) * t672;
-    let t2433 = Real::mul_add(
-        -t751,
-        T::from_f64(0.0008),
-        Real::mul_add(t751, T::from_f64(0.0004), -t636),
-    );
-    let t2434 = Real::mul_add(
-        t750,
-        T::from_f64(0.0008),
-        Real::mul_add(-t750, T::from_f64(0.0004), t635),
-    );
-    let t2449 = Real::mul_add(
-        T::from_f64(0.05),
-        Real::mul_add(c115, T::from_f64(0.02) * t750, -(s114 * t299))
-            + Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298),
-        t2434,
-    );
-    let t2455 = Real::mul_add(
-        -t751,
-        T::from_f64(0.00024),
-        Real::mul_add(
-            c113,
-            Real::mul_add(
-                -t751,
-                T::from_f64(0.001),
-                t792 + Real::mul_add(c115, t2433, -t2356),
-            ),
-            s112 * (t785 - Real::mul_add(s114, t2433, t2357)),
-        ),
-    );
     let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
-    let t2474 = Real::mul_add(
-        -t994,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t994,
-            T::from_f64(0.0004),
-            -(T::from_f64(0.0000024) * t948 + t302 * t930),
-        ),
-    );
-    let t2475 = Real::mul_add(
-        t993,
-        T::from_f64(0.0008),
-        Real::mul_add(-t993, T::from_f64(0.0004), Real::mul_add(t233, t998, t301 * t930)),
-    );
     let t2477 = T::from_f64(0.02)
         * (s114
             * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
                 + Real::mul_add(t237, t981, t285 * t934)));
-    let t2489 = Real::mul_add(
-        T::from_f64(0.05),
-        Real::mul_add(
-            T::from_f64(0.03),
-            t2462,
-            c115 * (T::from_f64(0.02) * t993) + t2477,
-        ),
-        Real::mul_add(
-            -T::from_f64(0.00075),
-            t2462,
-            Real::mul_add(t152, t909, s112 * t212),
-        ) + t2475,
-    );
-    let t2492 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t905,
-            T::from_f64(0.00075),
-            -(T::from_f64(0.0000058) * t863 + s112 * t213),
-        ) + Real::mul_add(c115, t2474, s114 * t1003) - T::from_f64(0.05) * t1052,
-        s112
-            * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t2474, -(c115 * t1003))),
-    );
-    let t2493 = Real::mul_add(
-        -t852,
-        T::from_f64(0.00006),
-        (t131 + t131 - t849) * T::from_f64(0.00003),
-    ) + t2492;
-    let t2494 = t2493 - t1087;
-    let t2495 = t1087 - t2493;
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
-    let t2503 = Real::mul_add(
-        -t1144,
-        T::from_f64(0.0008),
-        Real::mul_add(t1144, T::from_f64(0.0004), -t1152),
-    );
     let t2504 = t2502 - t2499;
     let t2517 = Real::mul_add(
         T::from_f64(0.05),
@@ -1521,75 +1266,7 @@ pub fn all<T: Real>(
         ),
         t2504,
     );
-    let t2520 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t1119,
-            T::from_f64(0.00075),
-            -(t554 + T::from_f64(0.0000068) * t152),
-        ) + Real::mul_add(c115, t2503, t1187) - T::from_f64(0.05) * t1194,
-        s112
-            * (Real::mul_add(T::from_f64(0.0000068), t153, -t212)
-                - Real::mul_add(s114, t2503, -t1183)),
-    );
-    let t2521 = t2520 - t1225;
-    let t2522 = t1225 - t2520;
-    let t2526 = Real::mul_add(
-        -t1253,
-        T::from_f64(0.0008),
-        Real::mul_add(t1253, T::from_f64(0.0004), -t1152),
-    );
     let t2534 = T::from_f64(0.001) * (s114 * (t1141 - t1135));
-    let t2538 = Real::mul_add(
-        c113,
-        Real::mul_add(-t1253, T::from_f64(0.001), Real::mul_add(c115, t2526, t1187)),
-        s112 * Real::mul_add(-s114, t2526, t1183),
-    );
-    let t2539 = t1253 * T::from_f64(0.00024);
-    let t2540 = t2538 - t2539;
-    let t2541 = t2539 - t2538;
-    let t2555 = Real::mul_add(
-        -t1389,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t1389,
-            T::from_f64(0.0004),
-            -(t308 + T::from_f64(0.0000024) * t1372),
-        ),
-    );
-    let t2556 = Real::mul_add(
-        t1388,
-        T::from_f64(0.0008),
-        Real::mul_add(-t1388, T::from_f64(0.0004), t310),
-    );
-    let t2570 = Real::mul_add(
-        T::from_f64(0.05),
-        T::from_f64(0.03) * t1347
-            + Real::mul_add(
-                T::from_f64(0.02),
-                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
-                c115 * (T::from_f64(0.02) * t1388),
-            ),
-        Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t2556,
-    );
-    let t2573 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            t1348,
-            T::from_f64(0.00075),
-            -(t219 + T::from_f64(0.0000058) * t158),
-        ) + Real::mul_add(c115, t2555, t412) - T::from_f64(0.05) * t1429,
-        s112 * (t218 - Real::mul_add(s114, t2555, -t408)),
-    );
-    let t2576 = T::from_f64(0.008) * tendon_tensions[2]
-        - (T::from_f64(0.006) * tendon_tensions[0]
-            + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3]
-        - (Real::mul_add(
-            -t134,
-            T::from_f64(0.00006),
-            (t133 - t122) * T::from_f64(0.00003),
-        ) + t2573 - T::from_f64(0.012) * (t1429 - T::from_f64(0.014) * t134));
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
     let t2596 = Real::mul_add(
         c113,
@@ -1639,169 +1316,6 @@ pub fn all<T: Real>(
         t2608 * t2608,
         Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
     );
-    let t2616 = Real::mul_add(
-        -t2576,
-        t2600,
-        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
-            + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t2570,
-    );
-    let t2623 = Real::mul_add(
-        -t2608,
-        t2616,
-        Real::mul_add(
-            -t2576,
-            t2601,
-            T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t2556,
-        ),
-    ) / t2614;
-    let t2625 = Real::mul_add(-t2608, t2623, t2616 / t2604);
-    let t2629 = Real::mul_add(
-        -t2601,
-        t2623,
-        Real::mul_add(-t2600, t2625, t2576 / t2599),
-    );
-    let t2633 = Real::mul_add(s112, t2629, t156);
-    let t2634 = Real::mul_add(c113, t2629, -t158);
-    let t2639 = t181 + Real::mul_add(T::from_f64(0.05), t2625, t166);
-    let t2640 = t183
-        - Real::mul_add(T::from_f64(0.05), t2634, T::from_f64(0.012) * t2629);
-    let t2643 = Real::mul_add(T::from_f64(0.025), t2634, t2640) - t204;
-    let t2655 = t246 + Real::mul_add(s114, t2634, c115 * t2633);
-    let t2656 = Real::mul_add(-s114, t2633, c115 * t2634) - t248;
-    let t2657 = t2623 + t2625;
-    let t2659 = Real::mul_add(s114, t2639, t251);
-    let t2661 = Real::mul_add(c115, t2639, -t254);
-    let t2675 = Real::mul_add(
-        T::from_f64(0.02),
-        t2656,
-        t273 + Real::mul_add(-T::from_f64(0.04), t2656, t2640),
-    ) - t293;
-    let t2684 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2675,
-        Real::mul_add(
-            T::from_f64(0.0004),
-            t2675,
-            Real::mul_add(T::from_f64(0.0000024), t2656, -t308),
-        ),
-    );
-    let t2689 = s114 * t2684;
-    let t2690 = c115 * t2684;
-    let t2701 = Real::mul_add(T::from_f64(0.05), t2633, t529);
-    let t2704 = Real::mul_add(-T::from_f64(0.025), t2633, t2701) - t546;
-    let t2710 = T::from_f64(0.04) * t2655;
-    let t2713 = T::from_f64(0.02) * t2655;
-    let t2715 = t599 + (t2701 + t2710) - t2713 - t616;
-    let t2718 = Real::mul_add(T::from_f64(0.0000024), t2655, t305);
-    let t2722 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2715,
-        Real::mul_add(T::from_f64(0.0004), t2715, -t2718),
-    );
-    let t2727 = Real::mul_add(T::from_f64(0.02), t2715, T::from_f64(0.03) * t2704);
-    let t2735 = Real::mul_add(
-        -s112,
-        Real::mul_add(
-            -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t2675, T::from_f64(0.03) * t2643),
-            Real::mul_add(
-                T::from_f64(0.00075),
-                t2643,
-                Real::mul_add(T::from_f64(0.0000058), t2634, -t219),
-            ) + (t412 + t2690),
-        ),
-        c113
-            * Real::mul_add(
-                -T::from_f64(0.05),
-                t2727,
-                Real::mul_add(
-                    T::from_f64(0.00075),
-                    t2704,
-                    -Real::mul_add(T::from_f64(0.0000058), t2633, t216),
-                ) + Real::mul_add(c115, t2722, t664),
-            ),
-    );
-    let t2738 = Real::mul_add(
-        T::from_f64(0.012),
-        t2727,
-        -(Real::mul_add(
-            s112,
-            t560 - Real::mul_add(s114, t2722, -t660),
-            c113 * (t218 - (t2689 - t408)),
-        ) + t2735),
-    );
-    let t2744 = t615 + (t598 - t2659);
-    let t2745 = t599 + t2710 - t2713 - t616;
-    let t2755 = Real::mul_add(
-        -T::from_f64(0.0008),
-        t2745,
-        Real::mul_add(T::from_f64(0.0004), t2745, -t2718),
-    );
-    let t2756 = Real::mul_add(
-        T::from_f64(0.0008),
-        t2744,
-        Real::mul_add(-T::from_f64(0.0004), t2744, t635),
-    );
-    let t2762 = Real::mul_add(
-        T::from_f64(0.02),
-        s114 * (t595 + t2661 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t2659 - t269))),
-    )
-        + Real::mul_add(
-            -T::from_f64(0.02),
-            s114
-                * (Real::mul_add(
-                    -T::from_f64(0.02),
-                    t2657,
-                    t271 + Real::mul_add(T::from_f64(0.04), t2657, t2661),
-                ) - t291),
-            c115 * (T::from_f64(0.02) * t2744),
-        );
-    let t2777 = Real::mul_add(
-        T::from_f64(0.00024),
-        t2745,
-        -Real::mul_add(
-            c113,
-            Real::mul_add(
-                -T::from_f64(0.001),
-                t2745,
-                t792 + Real::mul_add(c115, t2755, -t2689),
-            ),
-            s112 * (t785 - Real::mul_add(s114, t2755, t2690)),
-        ),
-    );
-    let t2779 = Real::mul_add(t2600, t2738, t2420);
-    let t2786 = Real::mul_add(t2608, t2779, -Real::mul_add(t2601, t2738, t2406)) / t2614;
-    let t2788 = Real::mul_add(t2608, t2786, t2779 / t2604);
-    let t2789 = -t2788;
-    let t2793 = Real::mul_add(-t2601, t2786, Real::mul_add(t2600, t2788, t2738 / t2599));
-    let t2795 = Real::mul_add(
-        t2600,
-        t2777,
-        Real::mul_add(T::from_f64(0.05), t2762, t2756),
-    );
-    let t2802 = Real::mul_add(t2608, t2795, -Real::mul_add(t2601, t2777, t2756)) / t2614;
-    let t2804 = Real::mul_add(t2608, t2802, t2795 / t2604);
-    let t2805 = -t2804;
-    let t2809 = Real::mul_add(-t2601, t2802, Real::mul_add(t2600, t2804, t2777 / t2599));
-    let t2811 = Real::mul_add(t2495, t2600, t2489);
-    let t2818 = Real::mul_add(t2608, t2811, -Real::mul_add(t2495, t2601, t2475)) / t2614;
-    let t2820 = Real::mul_add(t2608, t2818, t2811 / t2604);
-    let t2821 = -t2820;
-    let t2825 = Real::mul_add(-t2601, t2818, Real::mul_add(t2600, t2820, t2495 / t2599));
-    let t2827 = Real::mul_add(t2522, t2600, t2517);
-    let t2834 = Real::mul_add(t2608, t2827, Real::mul_add(-t2522, t2601, t2499 - t2502))
-        / t2614;
-    let t2836 = Real::mul_add(t2608, t2834, t2827 / t2604);
-    let t2837 = -t2836;
-    let t2841 = Real::mul_add(-t2601, t2834, Real::mul_add(t2600, t2836, t2522 / t2599));
-    let t2843 = Real::mul_add(t2541, t2600, t2534);
-    let t2849 = Real::mul_add(-t2541, t2601, t2608 * t2843) / t2614;
-    let t2851 = Real::mul_add(t2608, t2849, t2843 / t2604);
-    let t2852 = -t2851;
-    let t2856 = Real::mul_add(-t2601, t2849, Real::mul_add(t2600, t2851, t2541 / t2599));
     let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
     let t2865 = Real::mul_add(
         -t2608,
@@ -1839,30 +1353,355 @@ pub fn all<T: Real>(
     let t2907 = -t2906;
     let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
     let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
+    let t2918 = t134 + qdd[0] * T::from_f64(0.007714285714285714);
+    let t2926 = t271 + (t257 + T::from_f64(0.02) * t250) - t291;
+    let t2927 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+    let t2928 = T::from_f64(0.02) * t2926;
+    let t2934 = Real::mul_add(T::from_f64(0.02), t2927, T::from_f64(0.03) * t208);
+    let t2942 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2944 = Real::mul_add(T::from_f64(0.02), t2942, T::from_f64(0.03) * t905);
+    let t2947 = T::from_f64(0.012) * (t2944 - T::from_f64(0.014) * t852);
+    let t2956 = t233 * T::from_f64(0.039999999999999994);
+    let t2957 = t1114 + t2956;
+    let t2960 = t237 * T::from_f64(0.0000006000000000000002);
+    let t2962 = t233 * T::from_f64(0.0000054);
+    let t2963 = c115 * t2960;
+    let t2964 = s114 * t2960;
+    let t2965 = Real::mul_add(T::from_f64(0.02), t2957, T::from_f64(0.03) * t1119);
+    let t2967 = T::from_f64(0.012) * t2965;
+    let t2970 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2972 = Real::mul_add(T::from_f64(0.02), t2970, T::from_f64(0.03) * t1348);
+    let t2987 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
+        - T::from_f64(0.0004) * t2927;
+    let t2988 = Real::mul_add(T::from_f64(0.000003), t250, t310)
+        + T::from_f64(0.0004) * t2926;
+    let t2989 = s114 * t2987;
+    let t2990 = c115 * t2987;
+    let t2993 = t218 - (t2989 - t408);
+    let t2996 = Real::mul_add(
+        -T::from_f64(0.05),
+        t2934,
+        Real::mul_add(
+            t208,
+            T::from_f64(0.00075),
+            Real::mul_add(T::from_f64(0.0000058), t159, -t219),
+        ) + (t412 + t2990),
+    );
+    let t3004 = Real::mul_add(
+        -T::from_f64(0.012),
+        t2934 - T::from_f64(0.014) * t2918,
+        T::from_f64(0.0000022215714285714285) * qdd[0]
+            + ((Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
+                * T::from_f64(0.00003) - T::from_f64(0.00006) * t2918)
+            + Real::mul_add(c113, t2996, s112 * t2993),
+    );
+    let t3005 = t332
+        + Real::mul_add(
+            T::from_f64(0.05),
+            T::from_f64(0.03) * t207 + Real::mul_add(c115, t2928, s114 * t298),
+            Real::mul_add(
+                -t207,
+                T::from_f64(0.00075),
+                Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
+            ) + t2988,
+        );
+    let t3014 = t364 * T::from_f64(0.000000072)
+        + (t2373 + (t2373 + t2988) - t354 * T::from_f64(0.00000004799999999999999));
+    let t3017 = T::from_f64(0.000000064) * t376
+        + (T::from_f64(0.000000064) * t370
+            + (T::from_f64(0.000000081) * t364
+                + (T::from_f64(0.000000036) * t354 + t3004)));
+    let t3018 = t370 * T::from_f64(0.00000008)
+        + (t364 * T::from_f64(0.00000006300000000000001)
+            + (t332 + t3005 - t354 * T::from_f64(0.000000042)))
+        - t376 * T::from_f64(0.00000008);
+    let t3020 = t636 + t620 * T::from_f64(0.0004);
+    let t3022 = t635 + t619 * T::from_f64(0.0004);
+    let t3034 = t2418
+        + (Real::mul_add(
+            -t549,
+            T::from_f64(0.00075),
+            Real::mul_add(t153, t212, -(t152 * t554)),
+        ) + t3022);
+    let t3039 = Real::mul_add(s112, t560 + (t660 + s114 * t3020), c113 * t2993)
+        + Real::mul_add(
+            -s112,
+            t2996,
+            c113
+                * (Real::mul_add(
+                    t550,
+                    T::from_f64(0.00075),
+                    -(t216 + T::from_f64(0.0000058) * t157),
+                ) + (t664 - c115 * t3020) - T::from_f64(0.05) * t672),
+        );
+    let t3040 = t3039 - T::from_f64(0.012) * t672;
+    let t3042 = t636 + t751 * T::from_f64(0.0004);
+    let t3044 = t635 + t750 * T::from_f64(0.0004);
+    let t3057 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298)
+            + Real::mul_add(-s114, t2928, c115 * (T::from_f64(0.02) * t750)),
+        t3044,
+    );
+    let t3061 = Real::mul_add(
+        c113,
+        t792 - (t2989 + c115 * t3042) - t751 * T::from_f64(0.001),
+        s112 * (t785 - (t2990 - s114 * t3042)),
+    ) - t751 * T::from_f64(0.00024);
+    let t3069 = t302 * t930
+        + (T::from_f64(0.0000024) * t948 + T::from_f64(0.0004) * t2942);
+    let t3071 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3083 = T::from_f64(0.05)
+        * Real::mul_add(
+            T::from_f64(0.03),
+            t2462,
+            c115 * (T::from_f64(0.02) * t993) + t2477,
+        )
+        + (Real::mul_add(
+            -T::from_f64(0.00075),
+            t2462,
+            Real::mul_add(t152, t909, s112 * t212),
+        ) + t3071);
+    let t3086 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2944,
+            Real::mul_add(
+                t905,
+                T::from_f64(0.00075),
+                -(T::from_f64(0.0000058) * t863 + s112 * t213),
+            ) + (s114 * t1003 - c115 * t3069),
+        ),
+        s112 * (Real::mul_add(-qd[1], t909, c113 * t213) + (c115 * t1003 + s114 * t3069)),
+    );
+    let t3087 = Real::mul_add(
+        -t852,
+        T::from_f64(0.00006),
+        (t131 + t131 - t849) * T::from_f64(0.00003),
+    ) + t3086;
+    let t3088 = t3087 - t2947;
+    let t3089 = t2947 - t3087;
+    let t3097 = t2962 + T::from_f64(0.0004) * t2957;
+    let t3111 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2965,
+            Real::mul_add(
+                -t152,
+                T::from_f64(0.000012600000000000001),
+                t1119 * T::from_f64(0.00075),
+            ) + (t2964 - c115 * t3097),
+        ),
+        s112
+            * Real::mul_add(
+                t153,
+                T::from_f64(0.0000009999999999999997),
+                t2963 + s114 * t3097,
+            ),
+    );
+    let t3112 = t3111 - t2967;
+    let t3113 = t2967 - t3111;
+    let t3118 = t2962 + T::from_f64(0.0004) * t2956;
+    let t3130 = Real::mul_add(
+        c113,
+        Real::mul_add(-T::from_f64(0.001), t2956, t2964 - c115 * t3118),
+        s112 * (t2963 + s114 * t3118),
+    );
+    let t3131 = T::from_f64(0.00024) * t2956;
+    let t3132 = t3130 - t3131;
+    let t3133 = t3131 - t3130;
+    let t3140 = T::from_f64(0.0000024) * t1372 + (t308 + T::from_f64(0.0004) * t2970);
+    let t3142 = t310 + t1388 * T::from_f64(0.0004);
+    let t3154 = T::from_f64(0.05)
+        * (T::from_f64(0.03) * t1347
+            + Real::mul_add(
+                T::from_f64(0.02),
+                s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
+                c115 * (T::from_f64(0.02) * t1388),
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3142);
+    let t3157 = Real::mul_add(
+        c113,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t2972,
+            Real::mul_add(
+                t1348,
+                T::from_f64(0.00075),
+                -(t219 + T::from_f64(0.0000058) * t158),
+            ) + (t412 - c115 * t3140),
+        ),
+        s112 * (t218 + (t408 + s114 * t3140)),
+    );
+    let t3160 = T::from_f64(0.008) * tendon_tensions[2]
+        - (T::from_f64(0.006) * tendon_tensions[0]
+            + T::from_f64(0.009) * tendon_tensions[1])
+        + T::from_f64(0.008) * tendon_tensions[3]
+        - Real::mul_add(
+            -T::from_f64(0.012),
+            t2972 - T::from_f64(0.014) * t134,
+            Real::mul_add(
+                -t134,
+                T::from_f64(0.00006),
+                (t133 - t122) * T::from_f64(0.00003),
+            ) + t3157,
+        );
+    let t3164 = Real::mul_add(
+        -t2600,
+        t3160,
+        T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
+            + T::from_f64(0.01) * tendon_tensions[2]
+            - T::from_f64(0.01) * tendon_tensions[3] - t3154,
+    );
+    let t3171 = Real::mul_add(
+        -t2608,
+        t3164,
+        Real::mul_add(
+            -t2601,
+            t3160,
+            T::from_f64(0.008) * tendon_tensions[0]
+                - T::from_f64(0.008) * tendon_tensions[1] - t3142,
+        ),
+    ) / t2614;
+    let t3173 = Real::mul_add(-t2608, t3171, t3164 / t2604);
+    let t3177 = Real::mul_add(
+        -t2601,
+        t3171,
+        Real::mul_add(-t2600, t3173, t3160 / t2599),
+    );
+    let t3181 = Real::mul_add(s112, t3177, t156);
+    let t3182 = Real::mul_add(c113, t3177, -t158);
+    let t3187 = t181 + Real::mul_add(T::from_f64(0.05), t3173, t166);
+    let t3188 = t183
+        - Real::mul_add(T::from_f64(0.05), t3182, T::from_f64(0.012) * t3177);
+    let t3191 = Real::mul_add(T::from_f64(0.025), t3182, t3188) - t204;
+    let t3203 = t246 + Real::mul_add(s114, t3182, c115 * t3181);
+    let t3204 = Real::mul_add(-s114, t3181, c115 * t3182) - t248;
+    let t3207 = Real::mul_add(s114, t3187, t251);
+    let t3209 = Real::mul_add(c115, t3187, -t254);
+    let t3226 = t273 + t3188 - T::from_f64(0.02) * t3204 - t293;
+    let t3234 = Real::mul_add(T::from_f64(0.0000024), t3204, -t308)
+        - T::from_f64(0.0004) * t3226;
+    let t3239 = s114 * t3234;
+    let t3240 = c115 * t3234;
+    let t3251 = Real::mul_add(T::from_f64(0.05), t3181, t529);
+    let t3254 = Real::mul_add(-T::from_f64(0.025), t3181, t3251) - t546;
+    let t3260 = T::from_f64(0.04) * t3203;
+    let t3263 = T::from_f64(0.02) * t3203;
+    let t3265 = t599 + (t3251 + t3260) - t3263 - t616;
+    let t3268 = Real::mul_add(T::from_f64(0.0000024), t3203, t305);
+    let t3274 = t3268 + T::from_f64(0.0004) * t3265;
+    let t3283 = Real::mul_add(T::from_f64(0.02), t3265, T::from_f64(0.03) * t3254);
+    let t3291 = Real::mul_add(
+        -s112,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            Real::mul_add(T::from_f64(0.02), t3226, T::from_f64(0.03) * t3191),
+            Real::mul_add(
+                T::from_f64(0.00075),
+                t3191,
+                Real::mul_add(T::from_f64(0.0000058), t3182, -t219),
+            ) + (t412 + t3240),
+        ),
+        c113
+            * Real::mul_add(
+                -T::from_f64(0.05),
+                t3283,
+                Real::mul_add(
+                    T::from_f64(0.00075),
+                    t3254,
+                    -Real::mul_add(T::from_f64(0.0000058), t3181, t216),
+                ) + (t664 - c115 * t3274),
+            ),
+    );
+    let t3294 = Real::mul_add(
+        T::from_f64(0.012),
+        t3283,
+        -(Real::mul_add(
+            s112,
+            t560 + (t660 + s114 * t3274),
+            c113 * (t218 - (t3239 - t408)),
+        ) + t3291),
+    );
+    let t3300 = t615 + (t598 - t3207);
+    let t3301 = t599 + t3260 - t3263 - t616;
+    let t3310 = t3268 + T::from_f64(0.0004) * t3301;
+    let t3312 = t635 + T::from_f64(0.0004) * t3300;
+    let t3318 = Real::mul_add(
+        T::from_f64(0.02),
+        s114 * (t595 + t3209 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3207 - t269))),
+    )
+        + Real::mul_add(
+            -T::from_f64(0.02),
+            s114
+                * (Real::mul_add(T::from_f64(0.02), t3171 + t3173, t271 + t3209) - t291),
+            c115 * (T::from_f64(0.02) * t3300),
+        );
+    let t3336 = Real::mul_add(
+        T::from_f64(0.00024),
+        t3301,
+        -Real::mul_add(
+            c113,
+            Real::mul_add(-T::from_f64(0.001), t3301, t792 - (t3239 + c115 * t3310)),
+            s112 * (t785 - (t3240 - s114 * t3310)),
+        ),
+    );
+    let t3338 = Real::mul_add(t2600, t3294, t3034);
+    let t3345 = Real::mul_add(t2608, t3338, -Real::mul_add(t2601, t3294, t3022)) / t2614;
+    let t3347 = Real::mul_add(t2608, t3345, t3338 / t2604);
+    let t3348 = -t3347;
+    let t3352 = Real::mul_add(-t2601, t3345, Real::mul_add(t2600, t3347, t3294 / t2599));
+    let t3354 = Real::mul_add(
+        t2600,
+        t3336,
+        Real::mul_add(T::from_f64(0.05), t3318, t3312),
+    );
+    let t3361 = Real::mul_add(t2608, t3354, -Real::mul_add(t2601, t3336, t3312)) / t2614;
+    let t3363 = Real::mul_add(t2608, t3361, t3354 / t2604);
+    let t3364 = -t3363;
+    let t3368 = Real::mul_add(-t2601, t3361, Real::mul_add(t2600, t3363, t3336 / t2599));
+    let t3370 = Real::mul_add(t2600, t3089, t3083);
+    let t3377 = Real::mul_add(t2608, t3370, -Real::mul_add(t2601, t3089, t3071)) / t2614;
+    let t3379 = Real::mul_add(t2608, t3377, t3370 / t2604);
+    let t3380 = -t3379;
+    let t3384 = Real::mul_add(-t2601, t3377, Real::mul_add(t2600, t3379, t3089 / t2599));
+    let t3386 = Real::mul_add(t2600, t3113, t2517);
+    let t3393 = Real::mul_add(t2608, t3386, Real::mul_add(-t2601, t3113, t2499 - t2502))
+        / t2614;
+    let t3395 = Real::mul_add(t2608, t3393, t3386 / t2604);
+    let t3396 = -t3395;
+    let t3400 = Real::mul_add(-t2601, t3393, Real::mul_add(t2600, t3395, t3113 / t2599));
+    let t3402 = Real::mul_add(t2600, t3133, t2534);
+    let t3408 = Real::mul_add(-t2601, t3133, t2608 * t3402) / t2614;
+    let t3410 = Real::mul_add(t2608, t3408, t3402 / t2604);
+    let t3411 = -t3410;
+    let t3415 = Real::mul_add(-t2601, t3408, Real::mul_add(t2600, t3410, t3133 / t2599));
     Outputs {
-        generalized_forces: [t2392, t2394, t2388],
+        generalized_forces: [t3017, t3018, t3014],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t2392, t2394, t2388],
+            value: [t3017, t3018, t3014],
             d_q: [
-                [T::from_f64(0.0), t2426, t2455],
-                [T::from_f64(0.0), t2420, t2449],
-                [T::from_f64(0.0), t2406, t2434],
+                [T::from_f64(0.0), t3040, t3061],
+                [T::from_f64(0.0), t3034, t3057],
+                [T::from_f64(0.0), t3022, t3044],
             ],
             d_qd: [
-                [t2494, t2521, t2540],
-                [t2489, t2517, t2534],
-                [t2475, t2504, T::from_f64(0.0)],
+                [t3088, t3112, t3132],
+                [t3083, t2517, t2534],
+                [t3071, t2504, T::from_f64(0.0)],
             ],
         },
-        forward_dynamics: [t2629, t2625, t2623],
+        forward_dynamics: [t3177, t3173, t3171],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t2629, t2625, t2623],
+            value: [t3177, t3173, t3171],
             d_q: [
-                [T::from_f64(0.0), t2793, t2809],
-                [T::from_f64(0.0), t2789, t2805],
-                [T::from_f64(0.0), t2786, t2802],
+                [T::from_f64(0.0), t3352, t3368],
+                [T::from_f64(0.0), t3348, t3364],
+                [T::from_f64(0.0), t3345, t3361],
             ],
-            d_qd: [[t2825, t2841, t2856], [t2821, t2837, t2852], [t2818, t2834, t2849]],
+            d_qd: [[t3384, t3400, t3415], [t3380, t3396, t3411], [t3377, t3393, t3408]],
             d_u: [
                 [t2871, t2886, t2901, t2913],
                 [t2867, t2882, t2897, t2909],

@@ -21,7 +21,7 @@ pub const TENDONS: usize = 3;
 ///
 /// Entries: tendon t1, tendon t2, tendon t3.
 ///
-/// Operations (closed form): 10 arithmetic (3 add/sub, 6 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
+/// Operations (traced recursion): 10 arithmetic (2 add/sub, 7 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Numeric>(
@@ -29,22 +29,16 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let t30 = q[0].cos();
-    let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + t30 * T::from_f64(15.489503534923216));
-    let t99 = Real::mul_add(
-        t30,
-        T::from_f64(1.5223696228493755),
-        qdd[0] * T::from_f64(0.023733660538548376),
-    );
-    let t104 = Real::mul_add(
-        t30,
-        T::from_f64(7.0203077846917195),
-        qdd[0] * T::from_f64(0.10944622077137119),
-    );
+    let t89 = T::from_f64(0.0022565364925521848) * qdd[0]
+        + T::from_f64(0.05876696717445425)
+            * (T::from_f64(9.81) * q[0].cos()
+                + qdd[0] * T::from_f64(0.11453933004307648));
+    let t91 = -(T::from_f64(26.86799212591526) * t89);
+    let t92 = T::from_f64(2.640692450034188) * t89;
+    let t93 = T::from_f64(12.177380240452862) * t89;
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t94, t99, t104],
+        [t91, t92, t93],
         &tendyn_core::distribution::Fixed {
             null: [
                 [0.08916218038101588f64, 0.9958316182311895f64, -0.01922221945441637f64],
@@ -67,27 +61,21 @@ pub struct Outputs<T> {
     /// See [`actuation`].
     pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 3]>,
 }
-/// Every generated output at once, sharing their common work. Operations: 10 arithmetic (3 add/sub, 6 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 10 arithmetic (2 add/sub, 7 mul, 0 div, 1 neg, 0 max), 0 sin_cos, 0 sin, 1 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
-    let t30 = q[0].cos();
-    let t94 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + t30 * T::from_f64(15.489503534923216));
-    let t99 = Real::mul_add(
-        t30,
-        T::from_f64(1.5223696228493755),
-        qdd[0] * T::from_f64(0.023733660538548376),
-    );
-    let t104 = Real::mul_add(
-        t30,
-        T::from_f64(7.0203077846917195),
-        qdd[0] * T::from_f64(0.10944622077137119),
-    );
+    let t89 = T::from_f64(0.0022565364925521848) * qdd[0]
+        + T::from_f64(0.05876696717445425)
+            * (T::from_f64(9.81) * q[0].cos()
+                + qdd[0] * T::from_f64(0.11453933004307648));
+    let t91 = -(T::from_f64(26.86799212591526) * t89);
+    let t92 = T::from_f64(2.640692450034188) * t89;
+    let t93 = T::from_f64(12.177380240452862) * t89;
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],
-            [t94, t99, t104],
+            [t91, t92, t93],
             &tendyn_core::distribution::Fixed {
                 null: [
                     [

@@ -44,7 +44,7 @@ pub const TENDONS: usize = 6;
 ///
 /// Entries: tendon t1, tendon t2, tendon t3, tendon t4, tendon t5, tendon t6.
 ///
-/// Operations (traced recursion): 107 arithmetic (45 add/sub, 62 mul, 0 div, 0 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 101 arithmetic (42 add/sub, 59 mul, 0 div, 0 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Numeric>(
@@ -79,118 +79,96 @@ pub fn actuation<T: Numeric>(
         Real::mul_add(c99, t288, s98 * t106),
     );
     let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t315 = t160 * t160;
-    let t318 = T::from_f64(0.11730777334891714) * t161
-        + Real::mul_add(-s100, t299, c101 * t296)
-        - t161 * T::from_f64(0.05865388667445857);
-    let t321 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(
-            T::from_f64(0.05865388667445857),
-            t315,
-            Real::mul_add(
-                -T::from_f64(0.11730777334891714),
-                t315,
-                Real::mul_add(s100, t296, c101 * t299),
-            ),
-        );
-    let t322 = T::from_f64(0.5007304715876689) * t318;
-    let t328 = Real::mul_add(
-        t318,
-        T::from_f64(0.058739576669902656),
-        Real::mul_add(
-            -t318,
-            T::from_f64(0.029369788334951328),
-            T::from_f64(0.0005867356740067153) * t161,
-        ),
-    );
-    let t336 = Real::mul_add(
-        T::from_f64(0.6835347352950796),
-        t300,
-        Real::mul_add(c101, t322, s100 * t321),
-    );
-    let t339 = Real::mul_add(
+    let t380 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t383 = T::from_f64(0.5007304715876689)
+        * (Real::mul_add(s100, t296, c101 * t299)
+            - T::from_f64(0.05865388667445857) * (t160 * t160));
+    let t384 = T::from_f64(0.5007304715876689) * t380;
+    let t388 = T::from_f64(0.0005867356740067153) * t161
+        + T::from_f64(0.029369788334951328) * t380;
+    let t396 = T::from_f64(0.6835347352950796) * t300
+        + Real::mul_add(c101, t384, s100 * t383);
+    let t399 = Real::mul_add(
         T::from_f64(0.22861191771406145),
-        t336,
+        t396,
         Real::mul_add(
             -t300,
             T::from_f64(0.07813209332999076),
             T::from_f64(0.002994076316912913) * t129,
-        ) + t328,
+        ) + t388,
     );
-    let t345 = T::from_f64(0.17348249055745907)
+    let t405 = T::from_f64(0.17348249055745907)
         * (T::from_f64(0.6015049614594958) * t114
             + Real::mul_add(
                 c99,
-                t336,
+                t396,
                 s98
-                    * Real::mul_add(
-                        T::from_f64(0.6835347352950796),
-                        Real::mul_add(T::from_f64(0.11430595885703072), t297, t299),
-                        -Real::mul_add(-c101, t321, s100 * t322),
-                    ),
+                    * (T::from_f64(0.6835347352950796)
+                        * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
+                        - Real::mul_add(-c101, t383, s100 * t384)),
             ));
-    let t346 = Real::mul_add(
+    let t406 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),
         T::from_f64(0.0015236208157662593) * qdd[0],
-    ) + t339 + t345;
-    let t351 = Real::mul_add(
+    ) + t399 + t405;
+    let t411 = Real::mul_add(
         T::from_f64(4.467850922313987),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(5.809172465528377),
-            t346,
-            T::from_f64(20.016508221666097) * t339,
+            t406,
+            T::from_f64(20.016508221666097) * t399,
         ),
     );
-    let t356 = Real::mul_add(
+    let t416 = Real::mul_add(
         T::from_f64(6.170316129089984),
-        t328,
+        t388,
         Real::mul_add(
             T::from_f64(0.006739236891550426),
-            t339,
-            T::from_f64(11.400003889691153) * t346,
+            t399,
+            T::from_f64(11.400003889691153) * t406,
         ),
     );
-    let t361 = Real::mul_add(
+    let t421 = Real::mul_add(
         -T::from_f64(4.82564702027779),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(2.8992594498656623),
-            t346,
-            T::from_f64(13.336534908666533) * t339,
+            t406,
+            T::from_f64(13.336534908666533) * t399,
         ),
     );
-    let t366 = Real::mul_add(
+    let t426 = Real::mul_add(
         -T::from_f64(3.343664733351526),
-        t328,
+        t388,
         Real::mul_add(
             T::from_f64(2.3508975571053456),
-            t339,
-            T::from_f64(2.436491563222303) * t346,
+            t399,
+            T::from_f64(2.436491563222303) * t406,
         ),
     );
-    let t371 = Real::mul_add(
+    let t431 = Real::mul_add(
         T::from_f64(5.3821204934726845),
-        t328,
+        t388,
         -Real::mul_add(
             T::from_f64(46.92786534807541),
-            t339,
-            T::from_f64(21.466654370643287) * t346,
+            t399,
+            T::from_f64(21.466654370643287) * t406,
         ),
     );
-    let t376 = Real::mul_add(
+    let t436 = Real::mul_add(
         -T::from_f64(5.523420133271952),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(15.948011217177697),
-            t339,
-            T::from_f64(3.295669234330575) * t346,
+            t399,
+            T::from_f64(3.295669234330575) * t406,
         ),
     );
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t351, t356, t361, t366, t371, t376],
+        [t411, t416, t421, t426, t431, t436],
         &tendyn_core::distribution::Fixed {
             null: [
                 [
@@ -252,7 +230,7 @@ pub struct Outputs<T> {
     /// See [`actuation`].
     pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 6]>,
 }
-/// Every generated output at once, sharing their common work. Operations: 107 arithmetic (45 add/sub, 62 mul, 0 div, 0 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 101 arithmetic (42 add/sub, 59 mul, 0 div, 0 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
@@ -283,119 +261,97 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         Real::mul_add(c99, t288, s98 * t106),
     );
     let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t315 = t160 * t160;
-    let t318 = T::from_f64(0.11730777334891714) * t161
-        + Real::mul_add(-s100, t299, c101 * t296)
-        - t161 * T::from_f64(0.05865388667445857);
-    let t321 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(
-            T::from_f64(0.05865388667445857),
-            t315,
-            Real::mul_add(
-                -T::from_f64(0.11730777334891714),
-                t315,
-                Real::mul_add(s100, t296, c101 * t299),
-            ),
-        );
-    let t322 = T::from_f64(0.5007304715876689) * t318;
-    let t328 = Real::mul_add(
-        t318,
-        T::from_f64(0.058739576669902656),
-        Real::mul_add(
-            -t318,
-            T::from_f64(0.029369788334951328),
-            T::from_f64(0.0005867356740067153) * t161,
-        ),
-    );
-    let t336 = Real::mul_add(
-        T::from_f64(0.6835347352950796),
-        t300,
-        Real::mul_add(c101, t322, s100 * t321),
-    );
-    let t339 = Real::mul_add(
+    let t380 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t383 = T::from_f64(0.5007304715876689)
+        * (Real::mul_add(s100, t296, c101 * t299)
+            - T::from_f64(0.05865388667445857) * (t160 * t160));
+    let t384 = T::from_f64(0.5007304715876689) * t380;
+    let t388 = T::from_f64(0.0005867356740067153) * t161
+        + T::from_f64(0.029369788334951328) * t380;
+    let t396 = T::from_f64(0.6835347352950796) * t300
+        + Real::mul_add(c101, t384, s100 * t383);
+    let t399 = Real::mul_add(
         T::from_f64(0.22861191771406145),
-        t336,
+        t396,
         Real::mul_add(
             -t300,
             T::from_f64(0.07813209332999076),
             T::from_f64(0.002994076316912913) * t129,
-        ) + t328,
+        ) + t388,
     );
-    let t345 = T::from_f64(0.17348249055745907)
+    let t405 = T::from_f64(0.17348249055745907)
         * (T::from_f64(0.6015049614594958) * t114
             + Real::mul_add(
                 c99,
-                t336,
+                t396,
                 s98
-                    * Real::mul_add(
-                        T::from_f64(0.6835347352950796),
-                        Real::mul_add(T::from_f64(0.11430595885703072), t297, t299),
-                        -Real::mul_add(-c101, t321, s100 * t322),
-                    ),
+                    * (T::from_f64(0.6835347352950796)
+                        * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
+                        - Real::mul_add(-c101, t383, s100 * t384)),
             ));
-    let t346 = Real::mul_add(
+    let t406 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),
         T::from_f64(0.0015236208157662593) * qdd[0],
-    ) + t339 + t345;
-    let t351 = Real::mul_add(
+    ) + t399 + t405;
+    let t411 = Real::mul_add(
         T::from_f64(4.467850922313987),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(5.809172465528377),
-            t346,
-            T::from_f64(20.016508221666097) * t339,
+            t406,
+            T::from_f64(20.016508221666097) * t399,
         ),
     );
-    let t356 = Real::mul_add(
+    let t416 = Real::mul_add(
         T::from_f64(6.170316129089984),
-        t328,
+        t388,
         Real::mul_add(
             T::from_f64(0.006739236891550426),
-            t339,
-            T::from_f64(11.400003889691153) * t346,
+            t399,
+            T::from_f64(11.400003889691153) * t406,
         ),
     );
-    let t361 = Real::mul_add(
+    let t421 = Real::mul_add(
         -T::from_f64(4.82564702027779),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(2.8992594498656623),
-            t346,
-            T::from_f64(13.336534908666533) * t339,
+            t406,
+            T::from_f64(13.336534908666533) * t399,
         ),
     );
-    let t366 = Real::mul_add(
+    let t426 = Real::mul_add(
         -T::from_f64(3.343664733351526),
-        t328,
+        t388,
         Real::mul_add(
             T::from_f64(2.3508975571053456),
-            t339,
-            T::from_f64(2.436491563222303) * t346,
+            t399,
+            T::from_f64(2.436491563222303) * t406,
         ),
     );
-    let t371 = Real::mul_add(
+    let t431 = Real::mul_add(
         T::from_f64(5.3821204934726845),
-        t328,
+        t388,
         -Real::mul_add(
             T::from_f64(46.92786534807541),
-            t339,
-            T::from_f64(21.466654370643287) * t346,
+            t399,
+            T::from_f64(21.466654370643287) * t406,
         ),
     );
-    let t376 = Real::mul_add(
+    let t436 = Real::mul_add(
         -T::from_f64(5.523420133271952),
-        t328,
+        t388,
         Real::mul_add(
             -T::from_f64(15.948011217177697),
-            t339,
-            T::from_f64(3.295669234330575) * t346,
+            t399,
+            T::from_f64(3.295669234330575) * t406,
         ),
     );
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],
-            [t351, t356, t361, t366, t371, t376],
+            [t411, t416, t421, t426, t431, t436],
             &tendyn_core::distribution::Fixed {
                 null: [
                     [

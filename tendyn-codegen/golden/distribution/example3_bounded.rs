@@ -23,7 +23,7 @@ pub const TENDONS: usize = 4;
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 331 arithmetic (135 add/sub, 175 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 323 arithmetic (130 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Numeric>(
@@ -33,14 +33,17 @@ pub fn actuation<T: Numeric>(
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
+    let t186 = Real::mul_add(
+        t152,
+        t173,
+        -(T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159),
+    );
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
@@ -56,8 +59,6 @@ pub fn actuation<T: Numeric>(
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = Real::mul_add(t233, t263, t186 - T::from_f64(0.04) * t249)
-        + T::from_f64(0.02) * t249 - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t446 = T::from_f64(1.25) * qdd[1];
@@ -67,11 +68,6 @@ pub fn actuation<T: Numeric>(
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
-    let t1495 = Real::mul_add(
-        -T::from_f64(0.002142857142857143),
-        t1489,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
-    );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
@@ -87,9 +83,6 @@ pub fn actuation<T: Numeric>(
         T::from_f64(0.025),
         t186 + t159 * T::from_f64(0.025),
     );
-    let t1535 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(-s114, t1509, c115 * t1510))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
@@ -142,29 +135,28 @@ pub fn actuation<T: Numeric>(
                 - Real::mul_add(t245, t263, t237 * t264)),
         -(t1573 - t1558),
     );
-    let t1618 = Real::mul_add(T::from_f64(0.02), t1535, -(t1561 + t1576));
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1625 = Real::mul_add(
-        -t297,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t297,
-            T::from_f64(0.0004),
-            Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302)),
-        ) - Real::mul_add(-T::from_f64(0.006), t1558, T::from_f64(0.009) * t1573),
-    );
-    let t1626 = Real::mul_add(
+    let t1724 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t1729 = T::from_f64(0.002142857142857143) * t1489
+        + qdd[0] * T::from_f64(0.007714285714285714);
+    let t1742 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
+        - t233 * t285;
+    let t1748 = Real::mul_add(T::from_f64(0.02), t1742, -(t1561 + t1576));
+    let t1758 = T::from_f64(0.006) * t1558
+        + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+            - T::from_f64(0.0004) * t1724 - T::from_f64(0.009) * t1573);
+    let t1759 = Real::mul_add(
         T::from_f64(0.04),
-        t1618,
+        t1748,
         Real::mul_add(
-            -t1535,
-            T::from_f64(0.0004),
+            -T::from_f64(0.0004),
+            t1742,
             Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
         ) - t1616,
     );
-    let t1641 = Real::mul_add(T::from_f64(0.03), t1516, T::from_f64(0.02) * t297);
-    let t1644 = Real::mul_add(
+    let t1771 = Real::mul_add(T::from_f64(0.02), t1724, T::from_f64(0.03) * t1516);
+    let t1774 = Real::mul_add(
         -t1515,
         T::from_f64(0.00075),
         Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
@@ -174,116 +166,103 @@ pub fn actuation<T: Numeric>(
             t1592,
             Real::mul_add(t603, t1589, t602 * t1590)
                 - Real::mul_add(t603, t1584, t602 * t1585),
-        ) - t1626);
-    let t1647 = Real::mul_add(
+        ) - t1759);
+    let t1777 = Real::mul_add(
         -T::from_f64(0.05),
-        t1641,
+        t1771,
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
         )
-            + Real::mul_add(
-                T::from_f64(0.008),
-                t1584 + t1589,
-                Real::mul_add(c115, t1625, s114 * t1619),
-            ),
+            + (T::from_f64(0.008) * (t1584 + t1589)
+                + Real::mul_add(c115, t1758, s114 * t1619)),
     );
-    let t1648 = Real::mul_add(
+    let t1778 = Real::mul_add(
         T::from_f64(0.05),
-        Real::mul_add(
-            T::from_f64(0.03),
-            t1515,
-            t1592 + Real::mul_add(c115, t1618, s114 * t1617),
-        ),
-        t1644,
+        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1748, s114 * t1617)),
+        t1774,
     );
-    let t1652 = Real::mul_add(
+    let t1782 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
         T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
     )
         - Real::mul_add(
             c113,
-            t1647,
+            t1777,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - Real::mul_add(
-                        -T::from_f64(0.008),
-                        t1592,
-                        Real::mul_add(-c115, t1619, s114 * t1625),
-                    )),
+                    - (Real::mul_add(s114, t1758, -(c115 * t1619))
+                        - T::from_f64(0.008) * t1592)),
         );
-    let t1656 = Real::mul_add(
+    let t1786 = Real::mul_add(
         -T::from_f64(0.012),
-        Real::mul_add(T::from_f64(0.014), t1495, t1641),
+        t1771 - T::from_f64(0.014) * t1729,
         T::from_f64(0.0000022215714285714285) * qdd[0]
             + Real::mul_add(
-                t1495,
-                T::from_f64(0.00006),
-                Real::mul_add(
-                    T::from_f64(0.004285714285714286),
-                    t1489,
-                    T::from_f64(0.002142857142857143) * qdd[0] - t1490,
-                ) * T::from_f64(0.00003),
-            ) - t1652,
+                T::from_f64(0.00003),
+                T::from_f64(0.002142857142857143) * qdd[0]
+                    - t1489 * T::from_f64(0.007714285714285714),
+                -(T::from_f64(0.00006) * t1729),
+            ) - t1782,
     );
-    let t1661 = Real::mul_add(
+    let t1791 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t1626,
+        t1759,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t1656,
-            T::from_f64(0.000000000000003552713678800501) * t1648,
+            t1786,
+            T::from_f64(0.000000000000003552713678800501) * t1778,
         ),
     );
-    let t1666 = Real::mul_add(
+    let t1796 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t1626,
+        t1759,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t1648,
-            T::from_f64(31.18503118503118) * t1656,
+            t1778,
+            T::from_f64(31.18503118503118) * t1786,
         ),
     );
-    let t1670 = Real::mul_add(
+    let t1800 = Real::mul_add(
         T::from_f64(50.000000000000014),
-        t1648,
-        T::from_f64(33.26403326403328) * t1656,
+        t1778,
+        T::from_f64(33.26403326403328) * t1786,
     );
-    let t1671 = T::from_f64(49.98700623700625) * t1626;
-    let t1672 = t1670 - t1671;
-    let t1677 = Real::mul_add(
+    let t1801 = T::from_f64(49.98700623700625) * t1759;
+    let t1802 = t1800 - t1801;
+    let t1807 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t1626,
-        Real::mul_add(-T::from_f64(50.0), t1648, T::from_f64(33.26403326403329) * t1656),
+        t1759,
+        Real::mul_add(-T::from_f64(50.0), t1778, T::from_f64(33.26403326403329) * t1786),
     );
-    let t1687 = (T::from_f64(0.9374999999999998) * (t1661 - T::from_f64(60.0)))
-        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1666)))
-        .max(t1672 - T::from_f64(60.0))
-        .max(t1677 - T::from_f64(60.0));
-    let t1698 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1661))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1666))
-        .max(T::from_f64(5.0) - t1672)
-        .max(T::from_f64(5.0) - t1677);
-    let t1709 = t1677
+    let t1817 = (T::from_f64(0.9374999999999998) * (t1791 - T::from_f64(60.0)))
+        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1796)))
+        .max(t1802 - T::from_f64(60.0))
+        .max(t1807 - T::from_f64(60.0));
+    let t1828 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1791))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1796))
+        .max(T::from_f64(5.0) - t1802)
+        .max(T::from_f64(5.0) - t1807);
+    let t1839 = t1807
         .max(
-            t1672
-                .max(t1666.max((-t1666).max(T::from_f64(60.0).max(t1661).max(-t1661))))
-                .max(t1671 - t1670),
+            t1802
+                .max(t1796.max((-t1796).max(T::from_f64(60.0).max(t1791).max(-t1791))))
+                .max(t1801 - t1800),
         )
-        .max(-t1677);
-    let t1710 = t1687 + t1698;
-    let t1711 = (-T::from_f64(0.0).max(t1687)).max(t1698);
-    let t1713 = Real::mul_add(T::from_f64(1.0666666666666669), t1711, t1661);
-    let t1715 = Real::mul_add(T::from_f64(1.0666666666666664), t1711, -t1666);
-    let t1716 = t1672 + t1711;
-    let t1717 = t1677 + t1711;
+        .max(-t1807);
+    let t1840 = t1817 + t1828;
+    let t1841 = (-T::from_f64(0.0).max(t1817)).max(t1828);
+    let t1843 = Real::mul_add(T::from_f64(1.0666666666666669), t1841, t1791);
+    let t1845 = Real::mul_add(T::from_f64(1.0666666666666664), t1841, -t1796);
+    let t1846 = t1802 + t1841;
+    let t1847 = t1807 + t1841;
     tendyn_core::distribution::Actuation::along_line(
         [],
-        [t1713, t1715, t1716, t1717],
-        t1710,
-        t1709,
+        [t1843, t1845, t1846, t1847],
+        t1840,
+        t1839,
     )
 }
 /// Every requested output of [`all`].
@@ -292,20 +271,23 @@ pub struct Outputs<T> {
     /// See [`actuation`].
     pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 4]>,
 }
-/// Every generated output at once, sharing their common work. Operations: 331 arithmetic (135 add/sub, 175 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 323 arithmetic (130 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
+    let t186 = Real::mul_add(
+        t152,
+        t173,
+        -(T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159),
+    );
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
@@ -321,8 +303,6 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t264 = T::from_f64(0.04) * t237;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t297 = Real::mul_add(t233, t263, t186 - T::from_f64(0.04) * t249)
-        + T::from_f64(0.02) * t249 - t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
     let t302 = T::from_f64(0.000003) * t245;
     let t446 = T::from_f64(1.25) * qdd[1];
@@ -332,11 +312,6 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
-    let t1495 = Real::mul_add(
-        -T::from_f64(0.002142857142857143),
-        t1489,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
-    );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
@@ -352,9 +327,6 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         T::from_f64(0.025),
         t186 + t159 * T::from_f64(0.025),
     );
-    let t1535 = t233 * t264
-        + (T::from_f64(0.04) * t250 + Real::mul_add(-s114, t1509, c115 * t1510))
-        - T::from_f64(0.02) * t250 - t233 * t285;
     let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
         - qdd[2] * T::from_f64(1.3333333333333333))
         * T::from_f64(0.000005999999999999999);
@@ -407,29 +379,28 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
                 - Real::mul_add(t245, t263, t237 * t264)),
         -(t1573 - t1558),
     );
-    let t1618 = Real::mul_add(T::from_f64(0.02), t1535, -(t1561 + t1576));
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1625 = Real::mul_add(
-        -t297,
-        T::from_f64(0.0008),
-        Real::mul_add(
-            t297,
-            T::from_f64(0.0004),
-            Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302)),
-        ) - Real::mul_add(-T::from_f64(0.006), t1558, T::from_f64(0.009) * t1573),
-    );
-    let t1626 = Real::mul_add(
+    let t1724 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t1729 = T::from_f64(0.002142857142857143) * t1489
+        + qdd[0] * T::from_f64(0.007714285714285714);
+    let t1742 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
+        - t233 * t285;
+    let t1748 = Real::mul_add(T::from_f64(0.02), t1742, -(t1561 + t1576));
+    let t1758 = T::from_f64(0.006) * t1558
+        + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+            - T::from_f64(0.0004) * t1724 - T::from_f64(0.009) * t1573);
+    let t1759 = Real::mul_add(
         T::from_f64(0.04),
-        t1618,
+        t1748,
         Real::mul_add(
-            -t1535,
-            T::from_f64(0.0004),
+            -T::from_f64(0.0004),
+            t1742,
             Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
         ) - t1616,
     );
-    let t1641 = Real::mul_add(T::from_f64(0.03), t1516, T::from_f64(0.02) * t297);
-    let t1644 = Real::mul_add(
+    let t1771 = Real::mul_add(T::from_f64(0.02), t1724, T::from_f64(0.03) * t1516);
+    let t1774 = Real::mul_add(
         -t1515,
         T::from_f64(0.00075),
         Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
@@ -439,117 +410,104 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             t1592,
             Real::mul_add(t603, t1589, t602 * t1590)
                 - Real::mul_add(t603, t1584, t602 * t1585),
-        ) - t1626);
-    let t1647 = Real::mul_add(
+        ) - t1759);
+    let t1777 = Real::mul_add(
         -T::from_f64(0.05),
-        t1641,
+        t1771,
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
         )
-            + Real::mul_add(
-                T::from_f64(0.008),
-                t1584 + t1589,
-                Real::mul_add(c115, t1625, s114 * t1619),
-            ),
+            + (T::from_f64(0.008) * (t1584 + t1589)
+                + Real::mul_add(c115, t1758, s114 * t1619)),
     );
-    let t1648 = Real::mul_add(
+    let t1778 = Real::mul_add(
         T::from_f64(0.05),
-        Real::mul_add(
-            T::from_f64(0.03),
-            t1515,
-            t1592 + Real::mul_add(c115, t1618, s114 * t1617),
-        ),
-        t1644,
+        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1748, s114 * t1617)),
+        t1774,
     );
-    let t1652 = Real::mul_add(
+    let t1782 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
         T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
     )
         - Real::mul_add(
             c113,
-            t1647,
+            t1777,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - Real::mul_add(
-                        -T::from_f64(0.008),
-                        t1592,
-                        Real::mul_add(-c115, t1619, s114 * t1625),
-                    )),
+                    - (Real::mul_add(s114, t1758, -(c115 * t1619))
+                        - T::from_f64(0.008) * t1592)),
         );
-    let t1656 = Real::mul_add(
+    let t1786 = Real::mul_add(
         -T::from_f64(0.012),
-        Real::mul_add(T::from_f64(0.014), t1495, t1641),
+        t1771 - T::from_f64(0.014) * t1729,
         T::from_f64(0.0000022215714285714285) * qdd[0]
             + Real::mul_add(
-                t1495,
-                T::from_f64(0.00006),
-                Real::mul_add(
-                    T::from_f64(0.004285714285714286),
-                    t1489,
-                    T::from_f64(0.002142857142857143) * qdd[0] - t1490,
-                ) * T::from_f64(0.00003),
-            ) - t1652,
+                T::from_f64(0.00003),
+                T::from_f64(0.002142857142857143) * qdd[0]
+                    - t1489 * T::from_f64(0.007714285714285714),
+                -(T::from_f64(0.00006) * t1729),
+            ) - t1782,
     );
-    let t1661 = Real::mul_add(
+    let t1791 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t1626,
+        t1759,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t1656,
-            T::from_f64(0.000000000000003552713678800501) * t1648,
+            t1786,
+            T::from_f64(0.000000000000003552713678800501) * t1778,
         ),
     );
-    let t1666 = Real::mul_add(
+    let t1796 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t1626,
+        t1759,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t1648,
-            T::from_f64(31.18503118503118) * t1656,
+            t1778,
+            T::from_f64(31.18503118503118) * t1786,
         ),
     );
-    let t1670 = Real::mul_add(
+    let t1800 = Real::mul_add(
         T::from_f64(50.000000000000014),
-        t1648,
-        T::from_f64(33.26403326403328) * t1656,
+        t1778,
+        T::from_f64(33.26403326403328) * t1786,
     );
-    let t1671 = T::from_f64(49.98700623700625) * t1626;
-    let t1672 = t1670 - t1671;
-    let t1677 = Real::mul_add(
+    let t1801 = T::from_f64(49.98700623700625) * t1759;
+    let t1802 = t1800 - t1801;
+    let t1807 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t1626,
-        Real::mul_add(-T::from_f64(50.0), t1648, T::from_f64(33.26403326403329) * t1656),
+        t1759,
+        Real::mul_add(-T::from_f64(50.0), t1778, T::from_f64(33.26403326403329) * t1786),
     );
-    let t1687 = (T::from_f64(0.9374999999999998) * (t1661 - T::from_f64(60.0)))
-        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1666)))
-        .max(t1672 - T::from_f64(60.0))
-        .max(t1677 - T::from_f64(60.0));
-    let t1698 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1661))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1666))
-        .max(T::from_f64(5.0) - t1672)
-        .max(T::from_f64(5.0) - t1677);
-    let t1709 = t1677
+    let t1817 = (T::from_f64(0.9374999999999998) * (t1791 - T::from_f64(60.0)))
+        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1796)))
+        .max(t1802 - T::from_f64(60.0))
+        .max(t1807 - T::from_f64(60.0));
+    let t1828 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1791))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1796))
+        .max(T::from_f64(5.0) - t1802)
+        .max(T::from_f64(5.0) - t1807);
+    let t1839 = t1807
         .max(
-            t1672
-                .max(t1666.max((-t1666).max(T::from_f64(60.0).max(t1661).max(-t1661))))
-                .max(t1671 - t1670),
+            t1802
+                .max(t1796.max((-t1796).max(T::from_f64(60.0).max(t1791).max(-t1791))))
+                .max(t1801 - t1800),
         )
-        .max(-t1677);
-    let t1710 = t1687 + t1698;
-    let t1711 = (-T::from_f64(0.0).max(t1687)).max(t1698);
-    let t1713 = Real::mul_add(T::from_f64(1.0666666666666669), t1711, t1661);
-    let t1715 = Real::mul_add(T::from_f64(1.0666666666666664), t1711, -t1666);
-    let t1716 = t1672 + t1711;
-    let t1717 = t1677 + t1711;
+        .max(-t1807);
+    let t1840 = t1817 + t1828;
+    let t1841 = (-T::from_f64(0.0).max(t1817)).max(t1828);
+    let t1843 = Real::mul_add(T::from_f64(1.0666666666666669), t1841, t1791);
+    let t1845 = Real::mul_add(T::from_f64(1.0666666666666664), t1841, -t1796);
+    let t1846 = t1802 + t1841;
+    let t1847 = t1807 + t1841;
     Outputs {
         actuation: tendyn_core::distribution::Actuation::along_line(
             [],
-            [t1713, t1715, t1716, t1717],
-            t1710,
-            t1709,
+            [t1843, t1845, t1846, t1847],
+            t1840,
+            t1839,
         ),
     }
 }

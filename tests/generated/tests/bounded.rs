@@ -244,10 +244,13 @@ fn best_effort_error(
 }
 
 /// `all` runs the distribution once for both outputs (the tangents' routine returns the
-/// value's `Actuation`): what it returns is, bit for bit, what `actuation` and
-/// `actuation_derivatives` return on their own, best efforts included.
+/// value's `Actuation`): its `Actuation` is, bit for bit, what `actuation` returns on its
+/// own, best efforts included; its derivatives are `actuation_derivatives`' to round-off.
+/// (Not bit for bit: `all` is the cheaper of every function in its own form and every
+/// function traced, and `bounded_1x3`'s derivatives are emitted in closed form while its
+/// `all` is traced.)
 #[test]
-fn all_gives_exactly_what_actuation_and_its_derivatives_give() {
+fn all_gives_what_actuation_and_its_derivatives_give() {
     let mut exceeded = 0;
     for mech in BOUNDED {
         let n = tendyn_core::parse(mech.ron).unwrap().dof();
@@ -258,8 +261,17 @@ fn all_gives_exactly_what_actuation_and_its_derivatives_give() {
             let alone = (mech.actuation_f64)(&q, &qd, &qdd);
             assert_eq!((&tensions, status), (&alone.0, alone.1), "{}", mech.name);
             let alone = (mech.actuation_derivatives_f64)(&q, &qd, &qdd);
-            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&derivatives), bits(&alone), "{}", mech.name);
+            let size = alone.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let differ = derivatives
+                .iter()
+                .zip(&alone)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            // Two roundings of the same expressions, through the same active set.
+            assert!(
+                differ <= 64.0 * f64::EPSILON * size,
+                "{}: the derivatives differ by {differ:e} of {size:e}",
+                mech.name
+            );
             exceeded += usize::from(status == Status::MaxExceeded);
         }
     }
