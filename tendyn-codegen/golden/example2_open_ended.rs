@@ -28,22 +28,22 @@ pub const TENDONS: usize = 3;
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
     let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1343 = s77 * T::from_f64(0.03);
-    let t1352 = Real::mul_add(
+    let t1335 = s77 * T::from_f64(0.03);
+    let t1344 = Real::mul_add(
         qdd[0],
         c78 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
             t1105,
-            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1343)),
+            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1335)),
         ),
     );
-    let t1358 = Real::mul_add(
+    let t1350 = Real::mul_add(
         qdd[0],
         t1105,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1343)),
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1335)),
     );
-    [t1352, t1358]
+    [t1344, t1350]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -58,41 +58,41 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s77, c78) = q[1].sin_cos();
-    let t1361 = c78 * T::from_f64(0.22058823529411686);
-    let t1367 = c78 * T::from_f64(0.2647058823529412);
-    let t1385 = qd[0]
+    let t1353 = c78 * T::from_f64(0.22058823529411686);
+    let t1359 = c78 * T::from_f64(0.2647058823529412);
+    let t1377 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1392 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1400 = c78 * T::from_f64(1.279411764705882);
-    let t1405 = c78 * T::from_f64(0.2647058823529411);
-    let t1411 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1416 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1425 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1431 = T::from_f64(0.0)
+    let t1384 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1392 = c78 * T::from_f64(1.279411764705882);
+    let t1397 = c78 * T::from_f64(0.2647058823529411);
+    let t1403 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1408 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1417 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1423 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1361,
+                T::from_f64(0.6837298529411769) - t1353,
                 Real::mul_add(
                     qdd[1],
-                    t1367 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1392 - t1385,
+                    t1359 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1384 - t1377,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1400 + T::from_f64(1.517064852941176),
+                t1392 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1405 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1411 - t1416, T::from_f64(5.0) - t1425),
+                    t1397 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1403 - t1408, T::from_f64(5.0) - t1417),
                 ),
             ),
         );
-    let t1456 = Real::mul_add(
+    let t1448 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -109,26 +109,26 @@ pub fn actuation<T: Real>(
             ),
         ),
     );
-    let t1457 = t1431.max(t1456);
-    let t1468 = Real::mul_add(
+    let t1449 = t1423.max(t1448);
+    let t1460 = Real::mul_add(
         qdd[0],
-        t1361 + T::from_f64(-0.6837298529411769),
+        t1353 + T::from_f64(-0.6837298529411769),
         Real::mul_add(
             qdd[1],
-            T::from_f64(0.27010838235294077) - t1367,
-            t1385 + (t1392 + t1457),
+            T::from_f64(0.27010838235294077) - t1359,
+            t1377 + (t1384 + t1449),
         ),
     );
-    let t1486 = Real::mul_add(
+    let t1478 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1400,
+        T::from_f64(-1.517064852941176) - t1392,
         Real::mul_add(
             qdd[1],
-            T::from_f64(-0.5642266176470587) - t1405,
-            Real::mul_add(qd[0], t1416 - t1411, t1425 + t1457),
+            T::from_f64(-0.5642266176470587) - t1397,
+            Real::mul_add(qd[0], t1408 - t1403, t1417 + t1449),
         ),
     );
-    let t1515 = Real::mul_add(
+    let t1507 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -144,14 +144,14 @@ pub fn actuation<T: Real>(
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1457,
+                t1449,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
-    tendyn_core::distribution::Actuation::exact([], [t1468, t1486, t1515])
+    tendyn_core::distribution::Actuation::exact([], [t1460, t1478, t1507])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -163,8 +163,8 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
     let t1105 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1335 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    [[t1335, t1105], [t1105, T::from_f64(0.0166867)]]
+    let t1327 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    [[t1327, t1105], [t1105, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -175,10 +175,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t77 = q[1].sin();
-    let t1343 = t77 * T::from_f64(0.03);
-    let t1350 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1343));
-    let t1356 = qd[0] * (qd[0] * t1343);
-    [t1350, t1356]
+    let t1335 = t77 * T::from_f64(0.03);
+    let t1342 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1335));
+    let t1348 = qd[0] * (qd[0] * t1335);
+    [t1342, t1348]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -204,24 +204,24 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
-    let t1335 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t1343 = s77 * T::from_f64(0.03);
-    let t1518 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1343)
+    let t1327 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1335 = s77 * T::from_f64(0.03);
+    let t1510 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1335)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1520 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1335;
-    let t1660 = Real::mul_add(
-        -t1518,
-        t1520,
+    let t1512 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1327;
+    let t1652 = Real::mul_add(
+        -t1510,
+        t1512,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
-        ) - qd[0] * (qd[0] * t1343),
-    ) / Real::mul_add(-t1335, t1520 * t1520, T::from_f64(0.0166867));
-    let t1662 = Real::mul_add(-t1520, t1660, t1518 / t1335);
-    [t1662, t1660]
+        ) - qd[0] * (qd[0] * t1335),
+    ) / Real::mul_add(-t1327, t1512 * t1512, T::from_f64(0.0166867));
+    let t1654 = Real::mul_add(-t1512, t1652, t1510 / t1327);
+    [t1654, t1652]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -232,41 +232,41 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s77, c78) = q[1].sin_cos();
-    let t1361 = c78 * T::from_f64(0.22058823529411686);
-    let t1367 = c78 * T::from_f64(0.2647058823529412);
-    let t1385 = qd[0]
+    let t1353 = c78 * T::from_f64(0.22058823529411686);
+    let t1359 = c78 * T::from_f64(0.2647058823529412);
+    let t1377 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1392 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1400 = c78 * T::from_f64(1.279411764705882);
-    let t1405 = c78 * T::from_f64(0.2647058823529411);
-    let t1411 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1416 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1425 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1431 = T::from_f64(0.0)
+    let t1384 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1392 = c78 * T::from_f64(1.279411764705882);
+    let t1397 = c78 * T::from_f64(0.2647058823529411);
+    let t1403 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1408 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1417 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1423 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1361,
+                T::from_f64(0.6837298529411769) - t1353,
                 Real::mul_add(
                     qdd[1],
-                    t1367 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1392 - t1385,
+                    t1359 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1384 - t1377,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1400 + T::from_f64(1.517064852941176),
+                t1392 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1405 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1411 - t1416, T::from_f64(5.0) - t1425),
+                    t1397 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1403 - t1408, T::from_f64(5.0) - t1417),
                 ),
             ),
         );
-    let t1456 = Real::mul_add(
+    let t1448 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -283,20 +283,20 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
         ),
     );
-    let t1457 = t1431.max(t1456);
-    let t1466 = t1385 + (t1392 + t1457);
-    let t1468 = Real::mul_add(
+    let t1449 = t1423.max(t1448);
+    let t1458 = t1377 + (t1384 + t1449);
+    let t1460 = Real::mul_add(
         qdd[0],
-        t1361 + T::from_f64(-0.6837298529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1367, t1466),
+        t1353 + T::from_f64(-0.6837298529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1359, t1458),
     );
-    let t1484 = Real::mul_add(qd[0], t1416 - t1411, t1425 + t1457);
-    let t1486 = Real::mul_add(
+    let t1476 = Real::mul_add(qd[0], t1408 - t1403, t1417 + t1449);
+    let t1478 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1400,
-        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1405, t1484),
+        T::from_f64(-1.517064852941176) - t1392,
+        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1397, t1476),
     );
-    let t1515 = Real::mul_add(
+    let t1507 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -312,30 +312,30 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1457,
+                t1449,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
+    let t1564 = Real::mul_add(
+        qdd[0],
+        t1353 + T::from_f64(-0.6829798529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1359, t1458),
+    );
     let t1572 = Real::mul_add(
         qdd[0],
-        t1361 + T::from_f64(-0.6829798529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1367, t1466),
+        T::from_f64(-1.516314852941176) - t1392,
+        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1397, t1476),
     );
-    let t1580 = Real::mul_add(
-        qdd[0],
-        T::from_f64(-1.516314852941176) - t1400,
-        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1405, t1484),
-    );
-    [t1572, t1468, t1580, t1486, t1515]
+    [t1564, t1460, t1572, t1478, t1507]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 248 arithmetic (106 add/sub, 135 mul, 0 div, 4 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 248 arithmetic (107 add/sub, 135 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
@@ -380,15 +380,15 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t931 = Real::mul_add(s77, t928, c78 * t926);
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t1131 = T::from_f64(1.2) * t85;
-    let t1136 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1138 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1139 = T::from_f64(0.8) * t1138;
-    let t1141 = Real::mul_add(-T::from_f64(0.1), t1138, T::from_f64(0.0041667) * t105);
-    let t1168 = t1139 - (t921 + t934);
-    let t1171 = Real::mul_add(
+    let t1133 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1135 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1136 = T::from_f64(0.8) * t1135;
+    let t1138 = Real::mul_add(-T::from_f64(0.1), t1135, T::from_f64(0.0041667) * t105);
+    let t1161 = t1136 - (t921 + t934);
+    let t1164 = Real::mul_add(
         T::from_f64(0.25),
-        t1168,
-        t1141
+        t1161,
+        t1138
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -400,95 +400,95 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t1177 = Real::mul_add(
+    let t1170 = Real::mul_add(
         T::from_f64(0.3),
-        t1131 + Real::mul_add(c78, t1168, s77 * (t879 + (t918 + t931))),
-        t1136 + t1171,
+        t1131 + Real::mul_add(c78, t1161, s77 * (t879 + (t918 + t931))),
+        t1133 + t1164,
     );
-    let t1180 = Real::mul_add(
+    let t1173 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1177,
-        T::from_f64(24.999999999999975) * t1171,
+        t1170,
+        T::from_f64(24.999999999999975) * t1164,
     );
-    let t1183 = Real::mul_add(
+    let t1176 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1171,
-        T::from_f64(8.823529411764705) * t1177,
+        t1164,
+        T::from_f64(8.823529411764705) * t1170,
     );
-    let t1186 = Real::mul_add(
+    let t1179 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1171,
-        T::from_f64(11.764705882352942) * t1177,
+        t1164,
+        T::from_f64(11.764705882352942) * t1170,
     );
-    let t1193 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1180)
-        .max(T::from_f64(5.0) + t1183)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1186));
-    let t1194 = t1180 + t1193;
-    let t1195 = t1193 - t1183;
-    let t1197 = Real::mul_add(T::from_f64(1.5000000000000002), t1193, t1186);
-    let t1198 = t143 * T::from_f64(0.0007500000000000001) + t1194;
-    let t1199 = t147 * T::from_f64(0.0007500000000000001) + t1195;
-    let t1200 = T::from_f64(0.9860132971832694) * t1198;
-    let t1201 = T::from_f64(0.16666666666666652) * t1198;
-    let t1204 = Real::mul_add(s77, t1201, c78 * t1200);
-    let t1205 = s77 * t1200;
-    let t1206 = c78 * t1201;
-    let t1207 = t1205 - t1206;
-    let t1210 = Real::mul_add(t248, t1204, t244 * t1207);
-    let t1213 = Real::mul_add(-s75, t1201, c76 * t1200);
-    let t1216 = Real::mul_add(c76, t1201, s75 * t1200);
-    let t1228 = T::from_f64(0.9994442900376633) * t1199;
-    let t1229 = T::from_f64(0.03333333333333337) * t1199;
-    let t1232 = Real::mul_add(s77, t1229, c78 * t1228);
-    let t1233 = s77 * t1228;
-    let t1234 = c78 * t1229;
-    let t1235 = t1233 - t1234;
-    let t1236 = t292 * t1235;
-    let t1237 = t297 * t1232;
-    let t1241 = Real::mul_add(-s75, t1229, c76 * t1228);
-    let t1244 = Real::mul_add(c76, t1229, s75 * t1228);
-    let t1254 = T::from_f64(0.9733466865996102) * t1197;
-    let t1255 = T::from_f64(0.22933867463984403) * t1197;
-    let t1256 = c76 * t1254;
-    let t1257 = s75 * t1255;
-    let t1258 = t1257 - t1256;
-    let t1261 = Real::mul_add(c76, t1255, s75 * t1254);
-    let t1262 = Real::mul_add(
+    let t1186 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1173)
+        .max(T::from_f64(5.0) + t1176)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1179));
+    let t1187 = t1173 + t1186;
+    let t1188 = t1186 - t1176;
+    let t1190 = Real::mul_add(T::from_f64(1.5000000000000002), t1186, t1179);
+    let t1191 = t143 * T::from_f64(0.0007500000000000001) + t1187;
+    let t1192 = t147 * T::from_f64(0.0007500000000000001) + t1188;
+    let t1193 = T::from_f64(0.9860132971832694) * t1191;
+    let t1194 = T::from_f64(0.16666666666666652) * t1191;
+    let t1197 = Real::mul_add(s77, t1194, c78 * t1193);
+    let t1198 = s77 * t1193;
+    let t1199 = c78 * t1194;
+    let t1200 = t1198 - t1199;
+    let t1203 = Real::mul_add(t248, t1197, t244 * t1200);
+    let t1206 = Real::mul_add(-s75, t1194, c76 * t1193);
+    let t1209 = Real::mul_add(c76, t1194, s75 * t1193);
+    let t1221 = T::from_f64(0.9994442900376633) * t1192;
+    let t1222 = T::from_f64(0.03333333333333337) * t1192;
+    let t1225 = Real::mul_add(s77, t1222, c78 * t1221);
+    let t1226 = s77 * t1221;
+    let t1227 = c78 * t1222;
+    let t1228 = t1226 - t1227;
+    let t1229 = t292 * t1228;
+    let t1230 = t297 * t1225;
+    let t1234 = Real::mul_add(-s75, t1222, c76 * t1221);
+    let t1237 = Real::mul_add(c76, t1222, s75 * t1221);
+    let t1247 = T::from_f64(0.9733466865996102) * t1190;
+    let t1248 = T::from_f64(0.22933867463984403) * t1190;
+    let t1249 = c76 * t1247;
+    let t1250 = s75 * t1248;
+    let t1251 = t1250 - t1249;
+    let t1254 = Real::mul_add(c76, t1248, s75 * t1247);
+    let t1255 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1261;
-    let t1263 = Real::mul_add(
+    ) * t1254;
+    let t1256 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1258;
-    let t1265 = Real::mul_add(T::from_f64(0.9968453000901664), t1195, -t1241);
-    let t1266 = Real::mul_add(T::from_f64(0.0793690600180332), t1195, -t1244);
-    let t1267 = T::from_f64(0.0000225) * t147
+    ) * t1251;
+    let t1258 = Real::mul_add(T::from_f64(0.9968453000901664), t1188, -t1234);
+    let t1259 = Real::mul_add(T::from_f64(0.0793690600180332), t1188, -t1237);
+    let t1260 = T::from_f64(0.0000225) * t147
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1195,
+            t1188,
             Real::mul_add(
                 -Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     s75,
                     -(c76 * T::from_f64(0.029983328701129897)),
                 ),
-                t1241,
+                t1234,
                 Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     c76,
                     s75 * T::from_f64(0.029983328701129897),
-                ) * t1244,
+                ) * t1237,
             ),
         );
-    let t1268 = Real::mul_add(T::from_f64(0.9506914539363203), t1194, -t1213);
-    let t1269 = -Real::mul_add(T::from_f64(0.31013829078726374), t1194, t1216);
-    let t1270 = T::from_f64(0.0000225) * t143
+    let t1261 = Real::mul_add(T::from_f64(0.9506914539363203), t1187, -t1206);
+    let t1262 = -Real::mul_add(T::from_f64(0.31013829078726374), t1187, t1209);
+    let t1263 = T::from_f64(0.0000225) * t143
         - Real::mul_add(
-            -t1194,
+            -t1187,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -496,58 +496,58 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     s75,
                     -(c76 * T::from_f64(0.02958039891549808)),
                 ),
-                t1213,
+                t1206,
                 Real::mul_add(
                     T::from_f64(0.004999999999999996),
                     c76,
                     s75 * T::from_f64(0.02958039891549808),
-                ) * t1216,
+                ) * t1209,
             ),
         );
-    let t1271 = t1256 - t1257;
-    let t1272 = -t1261;
-    let t1273 = t1263 - t1262;
-    let t1276 = t1234 - t1233;
-    let t1277 = t1237 - t1236;
-    let t1282 = t1206 - t1205;
-    let t1283 = -t1210;
-    let t1292 = t879 + (t1204 + t1232);
-    let t1293 = t1139 - (t1207 + t1235);
-    let t1294 = Real::mul_add(-T::from_f64(0.01), t1235, T::from_f64(0.01) * t1207);
-    let t1298 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t1204, T::from_f64(0.01) * t1232)
+    let t1264 = t1249 - t1250;
+    let t1265 = -t1254;
+    let t1266 = t1256 - t1255;
+    let t1269 = t1227 - t1226;
+    let t1270 = t1230 - t1229;
+    let t1275 = t1199 - t1198;
+    let t1276 = -t1203;
+    let t1285 = t879 + (t1197 + t1225);
+    let t1286 = t1136 - (t1200 + t1228);
+    let t1287 = Real::mul_add(-T::from_f64(0.01), t1228, T::from_f64(0.01) * t1200);
+    let t1291 = T::from_f64(0.9810000000000001)
+        - Real::mul_add(-T::from_f64(0.01), t1197, T::from_f64(0.01) * t1225)
         - T::from_f64(1.9620000000000002);
-    let t1299 = Real::mul_add(
+    let t1292 = Real::mul_add(
         T::from_f64(0.25),
-        t1293,
-        t1141
-            - (Real::mul_add(-T::from_f64(0.25), t1235, t1236 - t1237)
-                + Real::mul_add(-T::from_f64(0.25), t1207, t1210)),
+        t1286,
+        t1138
+            - (Real::mul_add(-T::from_f64(0.25), t1228, t1229 - t1230)
+                + Real::mul_add(-T::from_f64(0.25), t1200, t1203)),
     );
-    let t1308 = Real::mul_add(-s77, t1298, c78 * t1294);
-    let t1316 = -(T::from_f64(1.2) * (T::from_f64(0.15) * t860)
-        + (t1258 + Real::mul_add(-c78, t1292, s77 * t1293)));
-    let t1317 = t1131 - (t1261 - Real::mul_add(c78, t1293, s77 * t1292));
-    let t1321 = T::from_f64(1.7658) + Real::mul_add(c78, t1298, s77 * t1294)
+    let t1301 = Real::mul_add(-s77, t1291, c78 * t1287);
+    let t1308 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - (t1251 + Real::mul_add(-c78, t1285, s77 * t1286));
+    let t1309 = t1131 - (t1254 - Real::mul_add(c78, t1286, s77 * t1285));
+    let t1313 = T::from_f64(1.7658) + Real::mul_add(c78, t1291, s77 * t1287)
         - T::from_f64(5.886);
-    let t1322 = Real::mul_add(
+    let t1314 = Real::mul_add(
         T::from_f64(0.3),
-        t1317,
-        t1136 - (Real::mul_add(-T::from_f64(0.3), t1261, t1262 - t1263) - t1299),
+        t1309,
+        t1133 - (Real::mul_add(-T::from_f64(0.3), t1254, t1255 - t1256) - t1292),
     );
     [
-        [[t1316, t1317, T::from_f64(19.62)], [t1308, t1321, t1322]],
-        [[t1292, t1293, T::from_f64(7.848000000000001)], [t1294, t1298, t1299]],
-        [[t1204, t1282, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1283]],
-        [[t1232, t1276, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1277]],
-        [[t1271, t1272, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1273]],
+        [[t1308, t1309, T::from_f64(19.62)], [t1301, t1313, t1314]],
+        [[t1285, t1286, T::from_f64(7.848000000000001)], [t1287, t1291, t1292]],
+        [[t1197, t1275, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1276]],
+        [[t1225, t1269, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1270]],
+        [[t1264, t1265, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1266]],
         [
-            [t1268, t1269, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1270],
+            [t1261, t1262, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1263],
         ],
         [
-            [t1265, t1266, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1267],
+            [t1258, t1259, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1260],
         ],
     ]
 }
@@ -555,7 +555,7 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 67 arithmetic (26 add/sub, 40 mul, 0 div, 1 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 67 arithmetic (27 add/sub, 40 mul, 0 div, 0 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -581,30 +581,30 @@ pub fn base_reaction<T: Real>(
     let t879 = T::from_f64(0.8)
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
-    let t1138 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1139 = T::from_f64(0.8) * t1138;
-    let t1148 = T::from_f64(1.2) * (T::from_f64(0.15) * t860)
-        + Real::mul_add(s77, t1139, -(c78 * t879));
-    let t1150 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1139, s77 * t879);
-    let t1158 = -Real::mul_add(s75, t1150, c76 * t1148);
-    let t1162 = Real::mul_add(c76, t1150, -(s75 * t1148));
-    let t1163 = T::from_f64(0.0000225) * (qdd[0] - t141)
+    let t1135 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1136 = T::from_f64(0.8) * t1135;
+    let t1145 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - Real::mul_add(s77, t1136, -(c78 * t879));
+    let t1146 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1136, s77 * t879);
+    let t1152 = Real::mul_add(-s75, t1146, c76 * t1145);
+    let t1155 = Real::mul_add(c76, t1146, s75 * t1145);
+    let t1156 = T::from_f64(0.0000225) * (qdd[0] - t141)
         + T::from_f64(0.0000225) * (qdd[0] + t141)
         + Real::mul_add(
             T::from_f64(0.3),
-            t1150,
+            t1146,
             Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t1138,
+                    t1135,
                     Real::mul_add(
                         -T::from_f64(0.1),
-                        t1138,
+                        t1135,
                         T::from_f64(0.0041667) * t105,
                     ),
                 ),
         );
-    [[[t1158, t1162, T::from_f64(20.601000000000003)], [t197, t200, t1163]]]
+    [[[t1152, t1155, T::from_f64(20.601000000000003)], [t197, t200, t1156]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -628,7 +628,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 325 arithmetic (143 add/sub, 171 mul, 3 div, 5 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 324 arithmetic (144 add/sub, 171 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -677,6 +677,7 @@ pub fn all<T: Real>(
             + T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6))));
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
+    let t864 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861);
     let t868 = c78 * t861;
     let t870 = s77 * t861;
     let t873 = t104 * t104;
@@ -695,26 +696,25 @@ pub fn all<T: Real>(
     let t1110 = T::from_f64(0.1) * t870;
     let t1121 = t1105 / t777;
     let t1131 = T::from_f64(1.2) * t85;
-    let t1133 = T::from_f64(1.2) * (T::from_f64(0.15) * t860);
-    let t1136 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1138 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1139 = T::from_f64(0.8) * t1138;
-    let t1141 = Real::mul_add(-T::from_f64(0.1), t1138, T::from_f64(0.0041667) * t105);
-    let t1143 = Real::mul_add(T::from_f64(0.2), t1138, t1141);
-    let t1148 = t1133 + Real::mul_add(s77, t1139, -(c78 * t879));
-    let t1150 = t1131 + Real::mul_add(c78, t1139, s77 * t879);
-    let t1153 = Real::mul_add(T::from_f64(0.3), t1150, t1136 + t1143);
-    let t1158 = -Real::mul_add(s75, t1150, c76 * t1148);
-    let t1162 = Real::mul_add(c76, t1150, -(s75 * t1148));
-    let t1163 = t145 + t149 + t1153;
-    let t1166 = t149 + (t145 + t1153);
-    let t1167 = t147 * T::from_f64(0.000015000000000000002)
-        + (t1143 - t143 * T::from_f64(0.000015000000000000002));
-    let t1168 = t1139 - (t921 + t934);
-    let t1171 = Real::mul_add(
+    let t1133 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1135 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1136 = T::from_f64(0.8) * t1135;
+    let t1138 = Real::mul_add(-T::from_f64(0.1), t1135, T::from_f64(0.0041667) * t105);
+    let t1140 = Real::mul_add(T::from_f64(0.2), t1135, t1138);
+    let t1145 = t864 - Real::mul_add(s77, t1136, -(c78 * t879));
+    let t1146 = t1131 + Real::mul_add(c78, t1136, s77 * t879);
+    let t1149 = Real::mul_add(T::from_f64(0.3), t1146, t1133 + t1140);
+    let t1152 = Real::mul_add(-s75, t1146, c76 * t1145);
+    let t1155 = Real::mul_add(c76, t1146, s75 * t1145);
+    let t1156 = t145 + t149 + t1149;
+    let t1159 = t149 + (t145 + t1149);
+    let t1160 = t147 * T::from_f64(0.000015000000000000002)
+        + (t1140 - t143 * T::from_f64(0.000015000000000000002));
+    let t1161 = t1136 - (t921 + t934);
+    let t1164 = Real::mul_add(
         T::from_f64(0.25),
-        t1168,
-        t1141
+        t1161,
+        t1138
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -726,95 +726,95 @@ pub fn all<T: Real>(
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t1177 = Real::mul_add(
+    let t1170 = Real::mul_add(
         T::from_f64(0.3),
-        t1131 + Real::mul_add(c78, t1168, s77 * (t879 + (t918 + t931))),
-        t1136 + t1171,
+        t1131 + Real::mul_add(c78, t1161, s77 * (t879 + (t918 + t931))),
+        t1133 + t1164,
     );
-    let t1180 = Real::mul_add(
+    let t1173 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1177,
-        T::from_f64(24.999999999999975) * t1171,
+        t1170,
+        T::from_f64(24.999999999999975) * t1164,
     );
-    let t1183 = Real::mul_add(
+    let t1176 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1171,
-        T::from_f64(8.823529411764705) * t1177,
+        t1164,
+        T::from_f64(8.823529411764705) * t1170,
     );
-    let t1186 = Real::mul_add(
+    let t1179 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1171,
-        T::from_f64(11.764705882352942) * t1177,
+        t1164,
+        T::from_f64(11.764705882352942) * t1170,
     );
-    let t1193 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1180)
-        .max(T::from_f64(5.0) + t1183)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1186));
-    let t1194 = t1180 + t1193;
-    let t1195 = t1193 - t1183;
-    let t1197 = Real::mul_add(T::from_f64(1.5000000000000002), t1193, t1186);
-    let t1198 = t143 * T::from_f64(0.0007500000000000001) + t1194;
-    let t1199 = t147 * T::from_f64(0.0007500000000000001) + t1195;
-    let t1200 = T::from_f64(0.9860132971832694) * t1198;
-    let t1201 = T::from_f64(0.16666666666666652) * t1198;
-    let t1204 = Real::mul_add(s77, t1201, c78 * t1200);
-    let t1205 = s77 * t1200;
-    let t1206 = c78 * t1201;
-    let t1207 = t1205 - t1206;
-    let t1210 = Real::mul_add(t248, t1204, t244 * t1207);
-    let t1213 = Real::mul_add(-s75, t1201, c76 * t1200);
-    let t1216 = Real::mul_add(c76, t1201, s75 * t1200);
-    let t1228 = T::from_f64(0.9994442900376633) * t1199;
-    let t1229 = T::from_f64(0.03333333333333337) * t1199;
-    let t1232 = Real::mul_add(s77, t1229, c78 * t1228);
-    let t1233 = s77 * t1228;
-    let t1234 = c78 * t1229;
-    let t1235 = t1233 - t1234;
-    let t1236 = t292 * t1235;
-    let t1237 = t297 * t1232;
-    let t1241 = Real::mul_add(-s75, t1229, c76 * t1228);
-    let t1244 = Real::mul_add(c76, t1229, s75 * t1228);
-    let t1254 = T::from_f64(0.9733466865996102) * t1197;
-    let t1255 = T::from_f64(0.22933867463984403) * t1197;
-    let t1256 = c76 * t1254;
-    let t1257 = s75 * t1255;
-    let t1258 = t1257 - t1256;
-    let t1261 = Real::mul_add(c76, t1255, s75 * t1254);
-    let t1262 = Real::mul_add(
+    let t1186 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1173)
+        .max(T::from_f64(5.0) + t1176)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1179));
+    let t1187 = t1173 + t1186;
+    let t1188 = t1186 - t1176;
+    let t1190 = Real::mul_add(T::from_f64(1.5000000000000002), t1186, t1179);
+    let t1191 = t143 * T::from_f64(0.0007500000000000001) + t1187;
+    let t1192 = t147 * T::from_f64(0.0007500000000000001) + t1188;
+    let t1193 = T::from_f64(0.9860132971832694) * t1191;
+    let t1194 = T::from_f64(0.16666666666666652) * t1191;
+    let t1197 = Real::mul_add(s77, t1194, c78 * t1193);
+    let t1198 = s77 * t1193;
+    let t1199 = c78 * t1194;
+    let t1200 = t1198 - t1199;
+    let t1203 = Real::mul_add(t248, t1197, t244 * t1200);
+    let t1206 = Real::mul_add(-s75, t1194, c76 * t1193);
+    let t1209 = Real::mul_add(c76, t1194, s75 * t1193);
+    let t1221 = T::from_f64(0.9994442900376633) * t1192;
+    let t1222 = T::from_f64(0.03333333333333337) * t1192;
+    let t1225 = Real::mul_add(s77, t1222, c78 * t1221);
+    let t1226 = s77 * t1221;
+    let t1227 = c78 * t1222;
+    let t1228 = t1226 - t1227;
+    let t1229 = t292 * t1228;
+    let t1230 = t297 * t1225;
+    let t1234 = Real::mul_add(-s75, t1222, c76 * t1221);
+    let t1237 = Real::mul_add(c76, t1222, s75 * t1221);
+    let t1247 = T::from_f64(0.9733466865996102) * t1190;
+    let t1248 = T::from_f64(0.22933867463984403) * t1190;
+    let t1249 = c76 * t1247;
+    let t1250 = s75 * t1248;
+    let t1251 = t1250 - t1249;
+    let t1254 = Real::mul_add(c76, t1248, s75 * t1247);
+    let t1255 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1261;
-    let t1263 = Real::mul_add(
+    ) * t1254;
+    let t1256 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1258;
-    let t1265 = Real::mul_add(T::from_f64(0.9968453000901664), t1195, -t1241);
-    let t1266 = Real::mul_add(T::from_f64(0.0793690600180332), t1195, -t1244);
-    let t1267 = t149
+    ) * t1251;
+    let t1258 = Real::mul_add(T::from_f64(0.9968453000901664), t1188, -t1234);
+    let t1259 = Real::mul_add(T::from_f64(0.0793690600180332), t1188, -t1237);
+    let t1260 = t149
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1195,
+            t1188,
             Real::mul_add(
                 -Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     s75,
                     -(c76 * T::from_f64(0.029983328701129897)),
                 ),
-                t1241,
+                t1234,
                 Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     c76,
                     s75 * T::from_f64(0.029983328701129897),
-                ) * t1244,
+                ) * t1237,
             ),
         );
-    let t1268 = Real::mul_add(T::from_f64(0.9506914539363203), t1194, -t1213);
-    let t1269 = -Real::mul_add(T::from_f64(0.31013829078726374), t1194, t1216);
-    let t1270 = t145
+    let t1261 = Real::mul_add(T::from_f64(0.9506914539363203), t1187, -t1206);
+    let t1262 = -Real::mul_add(T::from_f64(0.31013829078726374), t1187, t1209);
+    let t1263 = t145
         - Real::mul_add(
-            -t1194,
+            -t1187,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -822,101 +822,101 @@ pub fn all<T: Real>(
                     s75,
                     -(c76 * T::from_f64(0.02958039891549808)),
                 ),
-                t1213,
+                t1206,
                 Real::mul_add(
                     T::from_f64(0.004999999999999996),
                     c76,
                     s75 * T::from_f64(0.02958039891549808),
-                ) * t1216,
+                ) * t1209,
             ),
         );
-    let t1271 = t1256 - t1257;
-    let t1272 = -t1261;
-    let t1273 = t1263 - t1262;
-    let t1276 = t1234 - t1233;
-    let t1277 = t1237 - t1236;
-    let t1282 = t1206 - t1205;
-    let t1283 = -t1210;
-    let t1292 = t879 + (t1204 + t1232);
-    let t1293 = t1139 - (t1207 + t1235);
-    let t1294 = Real::mul_add(-T::from_f64(0.01), t1235, T::from_f64(0.01) * t1207);
-    let t1298 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t1204, T::from_f64(0.01) * t1232)
+    let t1264 = t1249 - t1250;
+    let t1265 = -t1254;
+    let t1266 = t1256 - t1255;
+    let t1269 = t1227 - t1226;
+    let t1270 = t1230 - t1229;
+    let t1275 = t1199 - t1198;
+    let t1276 = -t1203;
+    let t1285 = t879 + (t1197 + t1225);
+    let t1286 = t1136 - (t1200 + t1228);
+    let t1287 = Real::mul_add(-T::from_f64(0.01), t1228, T::from_f64(0.01) * t1200);
+    let t1291 = T::from_f64(0.9810000000000001)
+        - Real::mul_add(-T::from_f64(0.01), t1197, T::from_f64(0.01) * t1225)
         - T::from_f64(1.9620000000000002);
-    let t1299 = Real::mul_add(
+    let t1292 = Real::mul_add(
         T::from_f64(0.25),
-        t1293,
-        t1141
-            - (Real::mul_add(-T::from_f64(0.25), t1235, t1236 - t1237)
-                + Real::mul_add(-T::from_f64(0.25), t1207, t1210)),
+        t1286,
+        t1138
+            - (Real::mul_add(-T::from_f64(0.25), t1228, t1229 - t1230)
+                + Real::mul_add(-T::from_f64(0.25), t1200, t1203)),
     );
-    let t1308 = Real::mul_add(-s77, t1298, c78 * t1294);
-    let t1316 = -(t1133 + (t1258 + Real::mul_add(-c78, t1292, s77 * t1293)));
-    let t1317 = t1131 - (t1261 - Real::mul_add(c78, t1293, s77 * t1292));
-    let t1321 = T::from_f64(1.7658) + Real::mul_add(c78, t1298, s77 * t1294)
+    let t1301 = Real::mul_add(-s77, t1291, c78 * t1287);
+    let t1308 = t864 - (t1251 + Real::mul_add(-c78, t1285, s77 * t1286));
+    let t1309 = t1131 - (t1254 - Real::mul_add(c78, t1286, s77 * t1285));
+    let t1313 = T::from_f64(1.7658) + Real::mul_add(c78, t1291, s77 * t1287)
         - T::from_f64(5.886);
-    let t1322 = Real::mul_add(
+    let t1314 = Real::mul_add(
         T::from_f64(0.3),
-        t1317,
-        t1136 - (Real::mul_add(-T::from_f64(0.3), t1261, t1262 - t1263) - t1299),
+        t1309,
+        t1133 - (Real::mul_add(-T::from_f64(0.3), t1254, t1255 - t1256) - t1292),
     );
-    let t1323 = t1110
+    let t1315 = t1110
         + T::from_f64(0.3)
             * Real::mul_add(
                 c78,
                 T::from_f64(0.8) * t870,
                 T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
             );
-    let t1324 = T::from_f64(0.04) * tendon_tensions[2]
+    let t1316 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t1323;
-    let t1329 = Real::mul_add(
+            + tendon_tensions[1] * T::from_f64(0.03)) - t1315;
+    let t1321 = Real::mul_add(
         -t1121,
-        t1324,
+        t1316,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
         ) - t1110,
     ) / Real::mul_add(-t777, t1121 * t1121, T::from_f64(0.0166867));
-    let t1331 = Real::mul_add(-t1121, t1329, t1324 / t777);
+    let t1323 = Real::mul_add(-t1121, t1321, t1316 / t777);
     Outputs {
-        generalized_forces: [t1166, t1167],
+        generalized_forces: [t1159, t1160],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t1194, t1195, t1197],
+            [t1187, t1188, t1190],
         ),
         mass_matrix: [[t777, t1105], [t1105, T::from_f64(0.0166867)]],
-        bias: [t1323, t1110],
+        bias: [t1315, t1110],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1331, t1329],
-        segment_tensions: [t1198, t1194, t1199, t1195, t1197],
+        forward_dynamics: [t1323, t1321],
+        segment_tensions: [t1191, t1187, t1192, t1188, t1190],
         bearings: [
-            [[t1316, t1317, T::from_f64(19.62)], [t1308, t1321, t1322]],
-            [[t1292, t1293, T::from_f64(7.848000000000001)], [t1294, t1298, t1299]],
+            [[t1308, t1309, T::from_f64(19.62)], [t1301, t1313, t1314]],
+            [[t1285, t1286, T::from_f64(7.848000000000001)], [t1287, t1291, t1292]],
             [
-                [t1204, t1282, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1283],
+                [t1197, t1275, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1276],
             ],
             [
-                [t1232, t1276, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1277],
-            ],
-            [
-                [t1271, t1272, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1273],
-            ],
-            [
-                [t1268, t1269, T::from_f64(0.49050000000000005)],
+                [t1225, t1269, T::from_f64(0.0)],
                 [T::from_f64(0.0), T::from_f64(0.0), t1270],
             ],
             [
-                [t1265, t1266, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1267],
+                [t1264, t1265, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1266],
+            ],
+            [
+                [t1261, t1262, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1263],
+            ],
+            [
+                [t1258, t1259, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1260],
             ],
         ],
         base_reaction: [
-            [[t1158, t1162, T::from_f64(20.601000000000003)], [t197, t200, t1163]],
+            [[t1152, t1155, T::from_f64(20.601000000000003)], [t197, t200, t1156]],
         ],
     }
 }

@@ -31,131 +31,131 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4450 = c115 * T::from_f64(0.0000208);
-    let t4453 = T::from_f64(-0.00004) - t4450;
-    let t4455 = s114 * T::from_f64(0.0000208);
-    let t4462 = c115 * T::from_f64(0.00004);
-    let t4470 = c115 * T::from_f64(0.000009600000000000001);
-    let t4484 = Real::mul_add(
+    let t4437 = c115 * T::from_f64(0.0000208);
+    let t4440 = T::from_f64(-0.00004) - t4437;
+    let t4442 = s114 * T::from_f64(0.0000208);
+    let t4449 = c115 * T::from_f64(0.00004);
+    let t4457 = c115 * T::from_f64(0.000009600000000000001);
+    let t4471 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t4462,
+            T::from_f64(-0.00008495) - t4449,
             s114
                 * Real::mul_add(
                     c113,
-                    t4453,
-                    Real::mul_add(s112, t4455, T::from_f64(-0.000009600000000000001)),
+                    t4440,
+                    Real::mul_add(s112, t4442, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
         Real::mul_add(
             c113,
-            t4470 + T::from_f64(0.000042000000000000004),
-            t4462 + T::from_f64(0.00009551400000000001)
+            t4457 + T::from_f64(0.000042000000000000004),
+            t4449 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104)),
         ),
     );
-    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4501 = c115 * T::from_f64(0.0000416);
-    let t4514 = s114 * (t4453 - c113 * T::from_f64(0.000009600000000000001));
-    let t4516 = qd[1]
+    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4488 = c115 * T::from_f64(0.0000416);
+    let t4501 = s114 * (t4440 - c113 * T::from_f64(0.000009600000000000001));
+    let t4503 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t4492 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4479 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t4501),
-                    T::from_f64(-0.000042000000000000004) - t4470,
+                    s114 * (T::from_f64(0.00008) + t4488),
+                    T::from_f64(-0.000042000000000000004) - t4457,
                 ),
             ),
-            t4514,
+            t4501,
         );
-    let t4529 = qd[0]
+    let t4516 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4492 + (T::from_f64(-0.0000208) - t4462),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4501), -t4470),
+                    t4479 + (T::from_f64(-0.0000208) - t4449),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4488), -t4457),
                 ),
-                t4514,
+                t4501,
             ),
-            t4516,
+            t4503,
         );
-    let t4532 = Real::mul_add(
+    let t4519 = Real::mul_add(
         qdd[0],
-        t4484,
+        t4471,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t4529),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t4516),
         ),
     );
-    let t4537 = t3233 + T::from_f64(0.000011224000000000001);
-    let t4541 = s114 * t4455;
-    let t4550 = c115 * T::from_f64(0.000004800000000000001);
-    let t4560 = s114
+    let t4524 = t3233 + T::from_f64(0.000011224000000000001);
+    let t4528 = s114 * t4442;
+    let t4537 = c115 * T::from_f64(0.000004800000000000001);
+    let t4547 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t4577 = c115 * T::from_f64(0.003924);
-    let t4584 = s112 * (s114 * T::from_f64(0.003924));
-    let t4588 = qd[0]
+    let t4564 = c115 * T::from_f64(0.003924);
+    let t4571 = s112 * (s114 * T::from_f64(0.003924));
+    let t4575 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4462 + T::from_f64(0.00008495) - t4541,
+                    t4449 + T::from_f64(0.00008495) - t4528,
                     Real::mul_add(
                         s112,
-                        s114 * t4453,
-                        t4550 + T::from_f64(0.000021000000000000002),
+                        s114 * t4440,
+                        t4537 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t4560,
+                t4547,
             ))
-        + (Real::mul_add(c113, t4577 + T::from_f64(0.017167500000000002), -t4584)
+        + (Real::mul_add(c113, t4564 + T::from_f64(0.017167500000000002), -t4571)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238));
-    let t4591 = Real::mul_add(
+    let t4578 = Real::mul_add(
         qdd[1],
-        t4462 + T::from_f64(0.000086946),
+        t4449 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t4537,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4588),
+            t4524,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4575),
         ),
     );
-    let t4613 = qd[0]
+    let t4600 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3233 + T::from_f64(0.0000104) - t4541,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4450), t4550),
+                    t3233 + T::from_f64(0.0000104) - t4528,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4437), t4537),
                 ),
-                t4560,
-            )) + (qd[1] * (qd[1] * t3238) + (c113 * t4577 - t4584));
-    let t4616 = Real::mul_add(
+                t4547,
+            )) + (qd[1] * (qd[1] * t3238) + (c113 * t4564 - t4571));
+    let t4603 = Real::mul_add(
         qdd[1],
-        t4537,
+        t4524,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4613),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4600),
         ),
     );
-    [t4532, t4591, t4616]
+    [t4519, t4578, t4603]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 302 arithmetic (126 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 303 arithmetic (127 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(
@@ -165,12 +165,13 @@ pub fn actuation<T: Real>(
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
+    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
     let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
@@ -196,6 +197,11 @@ pub fn actuation<T: Real>(
     let t735 = T::from_f64(0.01) * c113;
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
+    let t2976 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t2970,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
@@ -252,96 +258,96 @@ pub fn actuation<T: Real>(
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
-    let t3885 = T::from_f64(0.002142857142857143) * t2970
-        + qdd[0] * T::from_f64(0.007714285714285714);
-    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
+    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3950 = T::from_f64(0.02) * t3897 - (t3100 + t3115);
-    let t3954 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-        + T::from_f64(0.0004) * t3875
+    let t3937 = T::from_f64(0.02) * t3884 - (t3100 + t3115);
+    let t3941 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+        + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
-        - T::from_f64(0.0008) * t3875;
-    let t3955 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3897
-        - t3155 + T::from_f64(0.04) * t3950;
-    let t3969 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+        - T::from_f64(0.0008) * t3871;
+    let t3942 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3884
+        - t3155 + T::from_f64(0.04) * t3937;
+    let t3956 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3955);
-    let t3971 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3942);
+    let t3958 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3954, s114 * t3158)) - T::from_f64(0.05) * t3877;
-    let t3972 = t3969
+            + Real::mul_add(c115, t3941, s114 * t3158)) - T::from_f64(0.05) * t3873;
+    let t3959 = t3956
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3950, s114 * t3156)));
-    let t3976 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3937, s114 * t3156)));
+    let t3963 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3971,
+            t3958,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3954, -(c115 * t3158))
+                    - (Real::mul_add(s114, t3941, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3978 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + (T::from_f64(0.00003)
-            * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                + T::from_f64(0.004285714285714286) * t2970)
-            - T::from_f64(0.00006) * t3885) - t3976
-        - T::from_f64(0.012) * (t3877 - T::from_f64(0.014) * t3885);
-    let t3983 = Real::mul_add(
+    let t3965 = T::from_f64(0.0000022215714285714285) * qdd[0]
+        + Real::mul_add(
+            T::from_f64(0.00006),
+            t2976,
+            T::from_f64(0.00003)
+                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
+                    + T::from_f64(0.004285714285714286) * t2970),
+        ) - t3963 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3970 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3955,
+        t3942,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3978,
-            T::from_f64(0.000000000000003552713678800501) * t3972,
+            t3965,
+            T::from_f64(0.000000000000003552713678800501) * t3959,
         ),
     );
-    let t3988 = Real::mul_add(
+    let t3975 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3955,
+        t3942,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3972,
-            T::from_f64(31.18503118503118) * t3978,
+            t3959,
+            T::from_f64(31.18503118503118) * t3965,
         ),
     );
-    let t3993 = Real::mul_add(
+    let t3980 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3955,
+        t3942,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3972,
-            T::from_f64(33.26403326403328) * t3978,
+            t3959,
+            T::from_f64(33.26403326403328) * t3965,
         ),
     );
-    let t3998 = Real::mul_add(
+    let t3985 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3955,
-        Real::mul_add(-T::from_f64(50.0), t3972, T::from_f64(33.26403326403329) * t3978),
+        t3942,
+        Real::mul_add(-T::from_f64(50.0), t3959, T::from_f64(33.26403326403329) * t3965),
     );
-    let t4008 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3983))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3988))
-        .max(T::from_f64(5.0) - t3993)
-        .max(T::from_f64(5.0) - t3998);
-    let t4010 = Real::mul_add(T::from_f64(1.0666666666666669), t4008, t3983);
-    let t4012 = Real::mul_add(T::from_f64(1.0666666666666664), t4008, -t3988);
-    let t4013 = t3993 + t4008;
-    let t4014 = t3998 + t4008;
-    tendyn_core::distribution::Actuation::exact([], [t4010, t4012, t4013, t4014])
+    let t3995 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3970))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3975))
+        .max(T::from_f64(5.0) - t3980)
+        .max(T::from_f64(5.0) - t3985);
+    let t3997 = Real::mul_add(T::from_f64(1.0666666666666669), t3995, t3970);
+    let t3999 = Real::mul_add(T::from_f64(1.0666666666666664), t3995, -t3975);
+    let t4000 = t3980 + t3995;
+    let t4001 = t3985 + t3995;
+    tendyn_core::distribution::Actuation::exact([], [t3997, t3999, t4000, t4001])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -353,13 +359,13 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t4462 = c115 * T::from_f64(0.00004);
-    let t4537 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
-    let t5238 = Real::mul_add(
+    let t4449 = c115 * T::from_f64(0.00004);
+    let t4524 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
+    let t5225 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t4462,
+            T::from_f64(-0.00008495000000000003) - t4449,
             s114
                 * Real::mul_add(
                     c113,
@@ -372,21 +378,21 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
             c113,
             c115 * T::from_f64(0.000009600000000000001)
                 + T::from_f64(0.00004200000000000001),
-            t4462 + T::from_f64(0.00009551400000000003)
+            t4449 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t5240 = t4462 + T::from_f64(0.00008694600000000003);
+    let t5227 = t4449 + T::from_f64(0.00008694600000000003);
     [
         [
-            t5238,
+            t5225,
             T::from_f64(0.00000002100000000000001),
             T::from_f64(0.000000024000000000000003),
         ],
-        [T::from_f64(0.00000002100000000000001), t5240, t4537],
+        [T::from_f64(0.00000002100000000000001), t5227, t4524],
         [
             T::from_f64(0.000000024000000000000003),
-            t4537,
+            t4524,
             T::from_f64(0.000011256000000000002),
         ],
     ]
@@ -402,74 +408,74 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4450 = c115 * T::from_f64(0.0000208);
-    let t4453 = T::from_f64(-0.00004) - t4450;
-    let t4462 = c115 * T::from_f64(0.00004);
-    let t4470 = c115 * T::from_f64(0.000009600000000000001);
-    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4501 = c115 * T::from_f64(0.0000416);
-    let t4514 = s114 * (t4453 - c113 * T::from_f64(0.000009600000000000001));
-    let t4516 = qd[1]
+    let t4437 = c115 * T::from_f64(0.0000208);
+    let t4440 = T::from_f64(-0.00004) - t4437;
+    let t4449 = c115 * T::from_f64(0.00004);
+    let t4457 = c115 * T::from_f64(0.000009600000000000001);
+    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4488 = c115 * T::from_f64(0.0000416);
+    let t4501 = s114 * (t4440 - c113 * T::from_f64(0.000009600000000000001));
+    let t4503 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t4492 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4479 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t4501),
-                    T::from_f64(-0.000042000000000000004) - t4470,
+                    s114 * (T::from_f64(0.00008) + t4488),
+                    T::from_f64(-0.000042000000000000004) - t4457,
                 ),
             ),
-            t4514,
+            t4501,
         );
-    let t4529 = qd[0]
+    let t4516 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4492 + (T::from_f64(-0.0000208) - t4462),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4501), -t4470),
+                    t4479 + (T::from_f64(-0.0000208) - t4449),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4488), -t4457),
                 ),
-                t4514,
+                t4501,
             ),
-            t4516,
+            t4503,
         );
-    let t4541 = s114 * (s114 * T::from_f64(0.0000208));
-    let t4550 = c115 * T::from_f64(0.000004800000000000001);
-    let t4560 = s114
+    let t4528 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4537 = c115 * T::from_f64(0.000004800000000000001);
+    let t4547 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t4607 = qd[0]
+    let t4594 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t4541,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4450), t4550),
+                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t4528,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4437), t4537),
                 ),
-                t4560,
+                t4547,
             ));
-    let t5241 = qd[0]
+    let t5228 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4462 + T::from_f64(0.00008495) - t4541,
+                    t4449 + T::from_f64(0.00008495) - t4528,
                     Real::mul_add(
                         s112,
-                        s114 * t4453,
-                        t4550 + T::from_f64(0.000021000000000000002),
+                        s114 * t4440,
+                        t4537 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t4560,
+                t4547,
             )) - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238);
-    let t5242 = t4607 + qd[1] * (qd[1] * t3238);
-    [t4529, t5241, t5242]
+    let t5229 = t4594 + qd[1] * (qd[1] * t3238);
+    [t4516, t5228, t5229]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -481,11 +487,11 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
 pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t4577 = c115 * T::from_f64(0.003924);
-    let t4584 = s112 * (s114 * T::from_f64(0.003924));
-    let t4586 = Real::mul_add(c113, t4577 + T::from_f64(0.017167500000000002), -t4584);
-    let t4611 = c113 * t4577 - t4584;
-    [T::from_f64(0.0), t4586, t4611]
+    let t4564 = c115 * T::from_f64(0.003924);
+    let t4571 = s112 * (s114 * T::from_f64(0.003924));
+    let t4573 = Real::mul_add(c113, t4564 + T::from_f64(0.017167500000000002), -t4571);
+    let t4598 = c113 * t4564 - t4571;
+    [T::from_f64(0.0), t4573, t4598]
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
 ///
@@ -504,20 +510,20 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4450 = c115 * T::from_f64(0.0000208);
-    let t4462 = c115 * T::from_f64(0.00004);
-    let t4470 = c115 * T::from_f64(0.000009600000000000001);
-    let t4492 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4501 = c115 * T::from_f64(0.0000416);
-    let t4541 = s114 * (s114 * T::from_f64(0.0000208));
-    let t4550 = c115 * T::from_f64(0.000004800000000000001);
-    let t4577 = c115 * T::from_f64(0.003924);
-    let t4584 = s112 * (s114 * T::from_f64(0.003924));
-    let t5238 = Real::mul_add(
+    let t4437 = c115 * T::from_f64(0.0000208);
+    let t4449 = c115 * T::from_f64(0.00004);
+    let t4457 = c115 * T::from_f64(0.000009600000000000001);
+    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4488 = c115 * T::from_f64(0.0000416);
+    let t4528 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4537 = c115 * T::from_f64(0.000004800000000000001);
+    let t4564 = c115 * T::from_f64(0.003924);
+    let t4571 = s112 * (s114 * T::from_f64(0.003924));
+    let t5225 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t4462,
+            T::from_f64(-0.00008495000000000003) - t4449,
             s114
                 * Real::mul_add(
                     c113,
@@ -528,132 +534,133 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t4470 + T::from_f64(0.00004200000000000001),
-            t4462 + T::from_f64(0.00009551400000000003)
+            t4457 + T::from_f64(0.00004200000000000001),
+            t4449 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t5257 = t4450 + T::from_f64(0.00004);
-    let t5259 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t5257);
-    let t5261 = qd[1]
+    let t5244 = t4437 + T::from_f64(0.00004);
+    let t5246 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t5244);
+    let t5248 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t4492,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t4479,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t4501),
-                    t4470 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t4488),
+                    t4457 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t5259,
+            t5246,
         );
-    let t5274 = qd[0]
+    let t5261 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t4462 - t4492,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t4501), t4470),
+                    T::from_f64(0.0000208) + t4449 - t4479,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t4488), t4457),
                 ),
-                t5259,
+                t5246,
             ),
-            t5261,
+            t5248,
         );
-    let t5278 = t5274
+    let t5265 = t5261
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t5280 = T::from_f64(0.00000002100000000000001) / t5238;
-    let t5296 = s114
+    let t5267 = T::from_f64(0.00000002100000000000001) / t5225;
+    let t5283 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t5353 = T::from_f64(0.000000024000000000000003) / t5238;
-    let t5508 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
+    let t5340 = T::from_f64(0.000000024000000000000003) / t5225;
+    let t5495 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4577, t4584)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4564, t4571)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t5509 = Real::mul_add(
+    let t5496 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t4462 + t4541,
+                    T::from_f64(-0.00008495) - t4449 + t4528,
                     Real::mul_add(
                         s112,
-                        s114 * t5257,
-                        T::from_f64(-0.000021000000000000002) - t4550,
+                        s114 * t5244,
+                        T::from_f64(-0.000021000000000000002) - t4537,
                     ),
                 ),
-                t5296,
+                t5283,
             ),
-        t5508,
+        t5495,
     );
-    let t5520 = Real::mul_add(
+    let t5507 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4541 + (T::from_f64(-0.0000104) - t3233),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t4450), -t4550),
+                    t4528 + (T::from_f64(-0.0000104) - t3233),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t4437), -t4537),
                 ),
-                t5296,
+                t5283,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t4584 - c113 * t4577 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t4571 - c113 * t4564 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t3238),
     );
-    let t5523 = Real::mul_add(
-        -t5238,
-        t5280 * t5280,
-        t4462 + T::from_f64(0.00008694600000000003),
+    let t5510 = Real::mul_add(
+        -t5225,
+        t5267 * t5267,
+        t4449 + T::from_f64(0.00008694600000000003),
     );
-    let t5527 = Real::mul_add(
-        -t5238,
-        t5280 * t5353,
+    let t5514 = Real::mul_add(
+        -t5225,
+        t5267 * t5340,
         t3233 + T::from_f64(0.000011224000000000001),
-    ) / t5523;
-    let t5535 = Real::mul_add(-t5278, t5280, t5509);
-    let t5541 = Real::mul_add(-t5527, t5535, Real::mul_add(-t5278, t5353, t5520))
+    ) / t5510;
+    let t5522 = Real::mul_add(-t5265, t5267, t5496);
+    let t5528 = Real::mul_add(-t5514, t5522, Real::mul_add(-t5265, t5340, t5507))
         / Real::mul_add(
-            -t5523,
-            t5527 * t5527,
-            Real::mul_add(-t5238, t5353 * t5353, T::from_f64(0.000011256000000000002)),
+            -t5510,
+            t5514 * t5514,
+            Real::mul_add(-t5225, t5340 * t5340, T::from_f64(0.000011256000000000002)),
         );
-    let t5543 = Real::mul_add(-t5527, t5541, t5535 / t5523);
-    let t5547 = Real::mul_add(
-        -t5353,
-        t5541,
-        Real::mul_add(-t5280, t5543, t5278 / t5238),
+    let t5530 = Real::mul_add(-t5514, t5528, t5522 / t5510);
+    let t5534 = Real::mul_add(
+        -t5340,
+        t5528,
+        Real::mul_add(-t5267, t5530, t5265 / t5225),
     );
-    [t5547, t5543, t5541]
+    [t5534, t5530, t5528]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: Ta#0, Ta#1, Ta#2, Tb#0, Tb#1, Tb#2, Tc#0, Tc#1, Td#0, Td#1.
 ///
-/// Operations (traced recursion): 308 arithmetic (132 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 309 arithmetic (133 add/sub, 172 mul, 0 div, 0 neg, 4 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 10] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
+    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
     let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
@@ -679,6 +686,11 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
     let t735 = T::from_f64(0.01) * c113;
     let t2970 = qd[0] * qd[0];
     let t2971 = T::from_f64(0.012) * t2970;
+    let t2976 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t2970,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
@@ -735,102 +747,102 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
-    let t3885 = T::from_f64(0.002142857142857143) * t2970
-        + qdd[0] * T::from_f64(0.007714285714285714);
-    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
+    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3950 = T::from_f64(0.02) * t3897 - (t3100 + t3115);
-    let t3954 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-        + T::from_f64(0.0004) * t3875
+    let t3937 = T::from_f64(0.02) * t3884 - (t3100 + t3115);
+    let t3941 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+        + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
-        - T::from_f64(0.0008) * t3875;
-    let t3955 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3897
-        - t3155 + T::from_f64(0.04) * t3950;
-    let t3969 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+        - T::from_f64(0.0008) * t3871;
+    let t3942 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3884
+        - t3155 + T::from_f64(0.04) * t3937;
+    let t3956 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3955);
-    let t3971 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3942);
+    let t3958 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3954, s114 * t3158)) - T::from_f64(0.05) * t3877;
-    let t3972 = t3969
+            + Real::mul_add(c115, t3941, s114 * t3158)) - T::from_f64(0.05) * t3873;
+    let t3959 = t3956
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3950, s114 * t3156)));
-    let t3976 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3937, s114 * t3156)));
+    let t3963 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3971,
+            t3958,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3954, -(c115 * t3158))
+                    - (Real::mul_add(s114, t3941, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3978 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + (T::from_f64(0.00003)
-            * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                + T::from_f64(0.004285714285714286) * t2970)
-            - T::from_f64(0.00006) * t3885) - t3976
-        - T::from_f64(0.012) * (t3877 - T::from_f64(0.014) * t3885);
-    let t3983 = Real::mul_add(
+    let t3965 = T::from_f64(0.0000022215714285714285) * qdd[0]
+        + Real::mul_add(
+            T::from_f64(0.00006),
+            t2976,
+            T::from_f64(0.00003)
+                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
+                    + T::from_f64(0.004285714285714286) * t2970),
+        ) - t3963 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3970 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3955,
+        t3942,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3978,
-            T::from_f64(0.000000000000003552713678800501) * t3972,
+            t3965,
+            T::from_f64(0.000000000000003552713678800501) * t3959,
         ),
     );
-    let t3988 = Real::mul_add(
+    let t3975 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3955,
+        t3942,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3972,
-            T::from_f64(31.18503118503118) * t3978,
+            t3959,
+            T::from_f64(31.18503118503118) * t3965,
         ),
     );
-    let t3993 = Real::mul_add(
+    let t3980 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3955,
+        t3942,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3972,
-            T::from_f64(33.26403326403328) * t3978,
+            t3959,
+            T::from_f64(33.26403326403328) * t3965,
         ),
     );
-    let t3998 = Real::mul_add(
+    let t3985 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3955,
-        Real::mul_add(-T::from_f64(50.0), t3972, T::from_f64(33.26403326403329) * t3978),
+        t3942,
+        Real::mul_add(-T::from_f64(50.0), t3959, T::from_f64(33.26403326403329) * t3965),
     );
-    let t4008 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3983))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3988))
-        .max(T::from_f64(5.0) - t3993)
-        .max(T::from_f64(5.0) - t3998);
-    let t4010 = Real::mul_add(T::from_f64(1.0666666666666669), t4008, t3983);
-    let t4012 = Real::mul_add(T::from_f64(1.0666666666666664), t4008, -t3988);
-    let t4013 = t3993 + t4008;
-    let t4014 = t3998 + t4008;
-    let t4015 = t3084 + t4010;
-    let t4016 = t4015 - t3086;
-    let t4017 = t3089 + t4012;
-    let t4018 = t3086 + t4017;
-    let t4019 = t4013 - t3091;
-    let t4020 = t4014 - t3092;
-    [t4016, t4015, t4010, t4018, t4017, t4012, t4019, t4013, t4020, t4014]
+    let t3995 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3970))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3975))
+        .max(T::from_f64(5.0) - t3980)
+        .max(T::from_f64(5.0) - t3985);
+    let t3997 = Real::mul_add(T::from_f64(1.0666666666666669), t3995, t3970);
+    let t3999 = Real::mul_add(T::from_f64(1.0666666666666664), t3995, -t3975);
+    let t4000 = t3980 + t3995;
+    let t4001 = t3985 + t3995;
+    let t4002 = t3084 + t3997;
+    let t4003 = t4002 - t3086;
+    let t4004 = t3089 + t3999;
+    let t4005 = t3086 + t4004;
+    let t4006 = t4000 - t3091;
+    let t4007 = t4001 - t3092;
+    [t4003, t4002, t3997, t4005, t4004, t3999, t4006, t4000, t4007, t4001]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -971,26 +983,26 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         );
     let t3408 = t2027
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t3876 = T::from_f64(0.02) * t3875;
-    let t3877 = T::from_f64(0.03) * t208 + t3876;
-    let t3878 = T::from_f64(0.05) * t3877;
-    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3872 = T::from_f64(0.02) * t3871;
+    let t3873 = T::from_f64(0.03) * t208 + t3872;
+    let t3874 = T::from_f64(0.05) * t3873;
+    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3898 = T::from_f64(0.02) * t3897;
-    let t3903 = T::from_f64(0.0008) * t3875;
-    let t3950 = t3898 - (t3100 + t3115);
-    let t4055 = Real::mul_add(
+    let t3885 = T::from_f64(0.02) * t3884;
+    let t3890 = T::from_f64(0.0008) * t3871;
+    let t3937 = t3885 - (t3100 + t3115);
+    let t4042 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
         Real::mul_add(t245, t2016, -(t233 * t302)),
-    ) + T::from_f64(0.0004) * t3875;
-    let t4056 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-        - T::from_f64(0.0004) * t3897;
-    let t4059 = t4055
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3903;
-    let t4060 = T::from_f64(0.04) * t3950
-        + (t4056
+    ) + T::from_f64(0.0004) * t3871;
+    let t4043 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
+        - T::from_f64(0.0004) * t3884;
+    let t4046 = t4042
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3890;
+    let t4047 = T::from_f64(0.04) * t3937
+        + (t4043
             - (Real::mul_add(
                 -T::from_f64(0.04),
                 t3100,
@@ -1001,261 +1013,261 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
                     t3115,
                     Real::mul_add(t692, t3112, t687 * t3115),
                 )));
-    let t4072 = T::from_f64(0.05)
+    let t4059 = T::from_f64(0.05)
         * (t2994
-            + (t3131 + Real::mul_add(c115, t3950, s114 * (t3012 - (t3112 - t3097)))))
+            + (t3131 + Real::mul_add(c115, t3937, s114 * (t3012 - (t3112 - t3097)))))
         + (t3389
             - (Real::mul_add(
                 T::from_f64(0.05),
                 t3131,
                 Real::mul_add(t735, t3128, t734 * t3129)
                     - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t4060));
-    let t4075 = Real::mul_add(
+            ) - t4047));
+    let t4062 = Real::mul_add(
         c113,
         t3388
             + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t4059, s114 * t3408)) - t3878,
+                + Real::mul_add(c115, t4046, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4059, -(c115 * t3408))
+                - (Real::mul_add(s114, t4046, -(c115 * t3408))
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4078 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3877);
-    let t4080 = T::from_f64(0.012) * t4078;
-    let t4081 = t3387 - (t3407 - t4075) - t4080;
-    let t4088 = Real::mul_add(
+    let t4065 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4067 = T::from_f64(0.012) * t4065;
+    let t4068 = t3387 - (t3407 - t4062) - t4067;
+    let t4075 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t4060,
+        t4047,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t4081,
-            T::from_f64(0.000000000000003552713678800501) * t4072,
+            t4068,
+            T::from_f64(0.000000000000003552713678800501) * t4059,
         ),
     );
-    let t4093 = Real::mul_add(
+    let t4080 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t4060,
+        t4047,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t4072,
-            T::from_f64(31.18503118503118) * t4081,
+            t4059,
+            T::from_f64(31.18503118503118) * t4068,
         ),
     );
-    let t4098 = Real::mul_add(
+    let t4085 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t4060,
+        t4047,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t4072,
-            T::from_f64(33.26403326403328) * t4081,
+            t4059,
+            T::from_f64(33.26403326403328) * t4068,
         ),
     );
-    let t4103 = Real::mul_add(
+    let t4090 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t4060,
-        Real::mul_add(-T::from_f64(50.0), t4072, T::from_f64(33.26403326403329) * t4081),
+        t4047,
+        Real::mul_add(-T::from_f64(50.0), t4059, T::from_f64(33.26403326403329) * t4068),
     );
-    let t4113 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4088))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4093))
-        .max(T::from_f64(5.0) - t4098)
-        .max(T::from_f64(5.0) - t4103);
-    let t4115 = Real::mul_add(T::from_f64(1.0666666666666669), t4113, t4088);
-    let t4117 = Real::mul_add(T::from_f64(1.0666666666666664), t4113, -t4093);
-    let t4118 = t4098 + t4113;
-    let t4119 = t4103 + t4113;
-    let t4181 = t3084 + t4115;
-    let t4182 = t4181 - t3086;
-    let t4183 = t3089 + t4117;
-    let t4184 = t3086 + t4183;
-    let t4185 = t4118 - t3091;
-    let t4186 = t4119 - t3092;
-    let t4187 = T::from_f64(0.999799979995999) * t4182;
-    let t4188 = T::from_f64(0.019999999999999785) * t4182;
-    let t4191 = Real::mul_add(s114, t4188, c115 * t4187);
-    let t4192 = s114 * t4187;
-    let t4193 = c115 * t4188;
-    let t4194 = t4192 - t4193;
-    let t4197 = Real::mul_add(t631, t4191, t627 * t4194);
-    let t4200 = Real::mul_add(-s112, t4188, c113 * t4187);
-    let t4203 = Real::mul_add(c113, t4188, s112 * t4187);
-    let t4207 = t4200 - t4181;
-    let t4209 = Real::mul_add(
+    let t4100 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4075))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4080))
+        .max(T::from_f64(5.0) - t4085)
+        .max(T::from_f64(5.0) - t4090);
+    let t4102 = Real::mul_add(T::from_f64(1.0666666666666669), t4100, t4075);
+    let t4104 = Real::mul_add(T::from_f64(1.0666666666666664), t4100, -t4080);
+    let t4105 = t4085 + t4100;
+    let t4106 = t4090 + t4100;
+    let t4168 = t3084 + t4102;
+    let t4169 = t4168 - t3086;
+    let t4170 = t3089 + t4104;
+    let t4171 = t3086 + t4170;
+    let t4172 = t4105 - t3091;
+    let t4173 = t4106 - t3092;
+    let t4174 = T::from_f64(0.999799979995999) * t4169;
+    let t4175 = T::from_f64(0.019999999999999785) * t4169;
+    let t4178 = Real::mul_add(s114, t4175, c115 * t4174);
+    let t4179 = s114 * t4174;
+    let t4180 = c115 * t4175;
+    let t4181 = t4179 - t4180;
+    let t4184 = Real::mul_add(t631, t4178, t627 * t4181);
+    let t4187 = Real::mul_add(-s112, t4175, c113 * t4174);
+    let t4190 = Real::mul_add(c113, t4175, s112 * t4174);
+    let t4194 = t4187 - t4168;
+    let t4196 = Real::mul_add(
         T::from_f64(0.007),
-        t4181,
+        t4168,
         -Real::mul_add(
             t652 - s112 * T::from_f64(0.0001399999999999985),
-            t4200,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4203,
+            t4187,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4190,
         ),
     );
-    let t4210 = c111 * t4181;
-    let t4211 = s110 * t4181;
-    let t4224 = T::from_f64(0.999799979995999) * t4184;
-    let t4225 = T::from_f64(0.02000000000000003) * t4184;
-    let t4226 = c115 * t4224;
-    let t4227 = s114 * t4225;
-    let t4228 = t4227 - t4226;
-    let t4231 = Real::mul_add(c115, t4225, s114 * t4224);
-    let t4234 = Real::mul_add(t692, t4228, t687 * t4231);
-    let t4237 = Real::mul_add(s112, t4225, c113 * t4224);
-    let t4240 = Real::mul_add(-c113, t4225, s112 * t4224);
-    let t4244 = t4237 - t4183;
-    let t4246 = Real::mul_add(
+    let t4197 = c111 * t4168;
+    let t4198 = s110 * t4168;
+    let t4211 = T::from_f64(0.999799979995999) * t4171;
+    let t4212 = T::from_f64(0.02000000000000003) * t4171;
+    let t4213 = c115 * t4211;
+    let t4214 = s114 * t4212;
+    let t4215 = t4214 - t4213;
+    let t4218 = Real::mul_add(c115, t4212, s114 * t4211);
+    let t4221 = Real::mul_add(t692, t4215, t687 * t4218);
+    let t4224 = Real::mul_add(s112, t4212, c113 * t4211);
+    let t4227 = Real::mul_add(-c113, t4212, s112 * t4211);
+    let t4231 = t4224 - t4170;
+    let t4233 = Real::mul_add(
         -T::from_f64(0.007),
-        t4183,
+        t4170,
         Real::mul_add(
             t652 + s112 * T::from_f64(0.00014000000000000023),
-            t4237,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4240,
+            t4224,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4227,
         ),
     );
-    let t4247 = c111 * t4183;
-    let t4248 = s110 * t4183;
-    let t4262 = t3091 - t4118;
-    let t4263 = c113 * t4262;
-    let t4264 = s112 * t4262;
-    let t4267 = Real::mul_add(t735, t4263, t734 * t4264);
-    let t4268 = c111 * t4185;
-    let t4269 = s110 * t4185;
-    let t4279 = t3092 - t4119;
-    let t4280 = c113 * t4279;
-    let t4281 = s112 * t4279;
-    let t4282 = t4263 + t4280;
-    let t4283 = t4264 + t4281;
-    let t4286 = Real::mul_add(t735, t4280, t734 * t4281);
-    let t4288 = c111 * t4186;
-    let t4289 = s110 * t4186;
-    let t4299 = Real::mul_add(T::from_f64(0.99498743710662), t4119, -t4288);
-    let t4300 = Real::mul_add(T::from_f64(0.09999999999999983), t4119, -t4289);
-    let t4301 = T::from_f64(0.000000064) * t376
+    let t4234 = c111 * t4170;
+    let t4235 = s110 * t4170;
+    let t4249 = t3091 - t4105;
+    let t4250 = c113 * t4249;
+    let t4251 = s112 * t4249;
+    let t4254 = Real::mul_add(t735, t4250, t734 * t4251);
+    let t4255 = c111 * t4172;
+    let t4256 = s110 * t4172;
+    let t4266 = t3092 - t4106;
+    let t4267 = c113 * t4266;
+    let t4268 = s112 * t4266;
+    let t4269 = t4250 + t4267;
+    let t4270 = t4251 + t4268;
+    let t4273 = Real::mul_add(t735, t4267, t734 * t4268);
+    let t4275 = c111 * t4173;
+    let t4276 = s110 * t4173;
+    let t4286 = Real::mul_add(T::from_f64(0.99498743710662), t4106, -t4275);
+    let t4287 = Real::mul_add(T::from_f64(0.09999999999999983), t4106, -t4276);
+    let t4288 = T::from_f64(0.000000064) * t376
         - Real::mul_add(
             T::from_f64(0.008),
-            t4119,
-            -Real::mul_add(t747, t4288, t745 * t4289),
+            t4106,
+            -Real::mul_add(t747, t4275, t745 * t4276),
         );
-    let t4302 = Real::mul_add(T::from_f64(0.99498743710662), t4118, -t4268);
-    let t4303 = Real::mul_add(T::from_f64(0.09999999999999983), t4118, -t4269);
-    let t4304 = T::from_f64(0.000000064) * t370
+    let t4289 = Real::mul_add(T::from_f64(0.99498743710662), t4105, -t4255);
+    let t4290 = Real::mul_add(T::from_f64(0.09999999999999983), t4105, -t4256);
+    let t4291 = T::from_f64(0.000000064) * t370
         - Real::mul_add(
             T::from_f64(0.008),
-            t4118,
-            -Real::mul_add(t747, t4268, t745 * t4269),
+            t4105,
+            -Real::mul_add(t747, t4255, t745 * t4256),
         );
-    let t4305 = Real::mul_add(T::from_f64(0.99365172470036), t4117, -t4247);
-    let t4306 = -Real::mul_add(T::from_f64(0.11250000000000027), t4117, t4248);
-    let t4307 = T::from_f64(0.000000081) * t364
+    let t4292 = Real::mul_add(T::from_f64(0.99365172470036), t4104, -t4234);
+    let t4293 = -Real::mul_add(T::from_f64(0.11250000000000027), t4104, t4235);
+    let t4294 = T::from_f64(0.000000081) * t364
         - Real::mul_add(
-            -t4117,
+            -t4104,
             T::from_f64(0.009000000000000001),
             Real::mul_add(
                 T::from_f64(0.009),
-                c111 * t4247,
-                T::from_f64(0.009) * (s110 * t4248),
+                c111 * t4234,
+                T::from_f64(0.009) * (s110 * t4235),
             ),
         );
-    let t4308 = Real::mul_add(T::from_f64(0.9971835337589565), t4115, -t4210);
-    let t4309 = -Real::mul_add(T::from_f64(0.07499999999999996), t4115, t4211);
-    let t4310 = T::from_f64(0.000000036) * t354
+    let t4295 = Real::mul_add(T::from_f64(0.9971835337589565), t4102, -t4197);
+    let t4296 = -Real::mul_add(T::from_f64(0.07499999999999996), t4102, t4198);
+    let t4297 = T::from_f64(0.000000036) * t354
         - Real::mul_add(
             -T::from_f64(0.006),
-            t4115,
+            t4102,
             Real::mul_add(
                 T::from_f64(0.006),
-                c111 * t4210,
-                T::from_f64(0.006) * (s110 * t4211),
+                c111 * t4197,
+                T::from_f64(0.006) * (s110 * t4198),
             ),
         );
-    let t4311 = t3397 - t4244;
-    let t4312 = T::from_f64(0.019620000000000002) - t4240;
-    let t4313 = t332 - t4246;
-    let t4314 = t4244 - t3397;
-    let t4315 = t4240 - T::from_f64(0.019620000000000002);
-    let t4321 = t3392 - t4207;
-    let t4322 = T::from_f64(0.019620000000000002) - t4203;
-    let t4323 = t332 - t4209;
-    let t4324 = t4207 - t3392;
-    let t4325 = t4203 - T::from_f64(0.019620000000000002);
-    let t4336 = -t4282;
-    let t4337 = t4267 - t4286;
-    let t4342 = t4226 - t4227;
-    let t4343 = -t4231;
-    let t4348 = t4193 - t4192;
-    let t4349 = -t4197;
-    let t4359 = t3012 - (t4228 - t4191);
-    let t4360 = t3898 - (t4194 + t4231);
-    let t4361 = t2027
-        + Real::mul_add(T::from_f64(0.006), t4194, T::from_f64(0.009) * t4231);
-    let t4365 = t4055
-        - Real::mul_add(-T::from_f64(0.006), t4191, T::from_f64(0.009) * t4228) - t3903;
-    let t4366 = Real::mul_add(
+    let t4298 = t3397 - t4231;
+    let t4299 = T::from_f64(0.019620000000000002) - t4227;
+    let t4300 = t332 - t4233;
+    let t4301 = t4231 - t3397;
+    let t4302 = t4227 - T::from_f64(0.019620000000000002);
+    let t4308 = t3392 - t4194;
+    let t4309 = T::from_f64(0.019620000000000002) - t4190;
+    let t4310 = t332 - t4196;
+    let t4311 = t4194 - t3392;
+    let t4312 = t4190 - T::from_f64(0.019620000000000002);
+    let t4323 = -t4269;
+    let t4324 = t4254 - t4273;
+    let t4329 = t4213 - t4214;
+    let t4330 = -t4218;
+    let t4335 = t4180 - t4179;
+    let t4336 = -t4184;
+    let t4346 = t3012 - (t4215 - t4178);
+    let t4347 = t3885 - (t4181 + t4218);
+    let t4348 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4181, T::from_f64(0.009) * t4218);
+    let t4352 = t4042
+        - Real::mul_add(-T::from_f64(0.006), t4178, T::from_f64(0.009) * t4215) - t3890;
+    let t4353 = Real::mul_add(
         T::from_f64(0.04),
-        t4360,
-        t4056
-            - (Real::mul_add(-T::from_f64(0.04), t4194, t4197)
-                - Real::mul_add(T::from_f64(0.04), t4231, t4234)),
+        t4347,
+        t4043
+            - (Real::mul_add(-T::from_f64(0.04), t4181, t4184)
+                - Real::mul_add(T::from_f64(0.04), t4218, t4221)),
     );
-    let t4384 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - (t4282 + Real::mul_add(-c115, t4359, s114 * t4360));
-    let t4385 = t2994 + (t4283 + Real::mul_add(c115, t4360, s114 * t4359));
-    let t4386 = t2011
+    let t4371 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - (t4269 + Real::mul_add(-c115, t4346, s114 * t4347));
+    let t4372 = t2994 + (t4270 + Real::mul_add(c115, t4347, s114 * t4346));
+    let t4373 = t2011
         - Real::mul_add(
             -T::from_f64(0.008),
-            t4283,
-            Real::mul_add(-c115, t4361, s114 * t4365),
+            t4270,
+            Real::mul_add(-c115, t4348, s114 * t4352),
         );
-    let t4390 = t3388
+    let t4377 = t3388
         + Real::mul_add(
             T::from_f64(0.008),
-            t4282,
-            Real::mul_add(c115, t4365, s114 * t4361),
-        ) - t3878;
-    let t4391 = Real::mul_add(
+            t4269,
+            Real::mul_add(c115, t4352, s114 * t4348),
+        ) - t3874;
+    let t4378 = Real::mul_add(
         T::from_f64(0.05),
-        t4385,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t4283, t4286 - t4267) - t4366),
+        t4372,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4270, t4273 - t4254) - t4353),
     );
-    let t4408 = T::from_f64(0.01) * (t3019 - t2971)
-        - (t4314 + t4324 + Real::mul_add(-c113, t4384, s112 * t4385));
-    let t4409 = T::from_f64(0.0981)
-        - (t4315 + t4325 - Real::mul_add(c113, t4385, s112 * t4384));
-    let t4410 = Real::mul_add(T::from_f64(0.009), t4315, t3021)
-        + Real::mul_add(T::from_f64(0.006), t4325, t3021)
-        - Real::mul_add(-c113, t4386, s112 * t4390);
-    let t4414 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t4314, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t4324, -t2038)
-            - Real::mul_add(c113, t4390, s112 * t4386)) - t4080;
-    let t4415 = Real::mul_add(
+    let t4395 = T::from_f64(0.01) * (t3019 - t2971)
+        - (t4301 + t4311 + Real::mul_add(-c113, t4371, s112 * t4372));
+    let t4396 = T::from_f64(0.0981)
+        - (t4302 + t4312 - Real::mul_add(c113, t4372, s112 * t4371));
+    let t4397 = Real::mul_add(T::from_f64(0.009), t4302, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4312, t3021)
+        - Real::mul_add(-c113, t4373, s112 * t4377);
+    let t4401 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4301, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4311, -t2038)
+            - Real::mul_add(c113, t4377, s112 * t4373)) - t4067;
+    let t4402 = Real::mul_add(
         T::from_f64(0.012),
-        t4409,
-        T::from_f64(-0.0005886000000000001) - (t4246 - t332 + (t4209 - t332) - t4391),
+        t4396,
+        T::from_f64(-0.0005886000000000001) - (t4233 - t332 + (t4196 - t332) - t4378),
     );
     [
-        [[t4408, t4409, t4078], [t4410, t4414, t4415]],
-        [[t4384, t4385, t3877], [t4386, t4390, t4391]],
-        [[t4359, t4360, t3876], [t4361, t4365, t4366]],
-        [[t4191, t4348, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4349]],
-        [[t4342, t4343, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4234]],
-        [[t4336, t4283, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4337]],
-        [[t4321, t4322, t3394], [t3021, t2038, t4323]],
-        [[t4311, t4312, t3399], [t3021, t2038, t4313]],
+        [[t4395, t4396, t4065], [t4397, t4401, t4402]],
+        [[t4371, t4372, t3873], [t4373, t4377, t4378]],
+        [[t4346, t4347, t3872], [t4348, t4352, t4353]],
+        [[t4178, t4335, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4336]],
+        [[t4329, t4330, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4221]],
+        [[t4323, t4270, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4324]],
+        [[t4308, t4309, t3394], [t3021, t2038, t4310]],
+        [[t4298, t4299, t3399], [t3021, t2038, t4300]],
         [
-            [t4308, t4309, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4310],
+            [t4295, t4296, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4297],
         ],
         [
-            [t4305, t4306, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4307],
+            [t4292, t4293, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4294],
         ],
         [
-            [t4302, t4303, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4304],
+            [t4289, t4290, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4291],
         ],
         [
-            [t4299, t4300, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4301],
+            [t4286, t4287, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4288],
         ],
     ]
 }
@@ -1338,68 +1350,68 @@ pub fn base_reaction<T: Real>(
     let t3021 = T::from_f64(0.000000049)
         * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
     let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
-    let t3875 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t3877 = Real::mul_add(T::from_f64(0.02), t3875, T::from_f64(0.03) * t208);
-    let t3897 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
+    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3898 = T::from_f64(0.02) * t3897;
-    let t3915 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - Real::mul_add(s114, t3898, -(c115 * t3012));
-    let t3916 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3898, s114 * t3012);
-    let t4078 = T::from_f64(0.01) * t1989
+    let t3885 = T::from_f64(0.02) * t3884;
+    let t3902 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - Real::mul_add(s114, t3885, -(c115 * t3012));
+    let t3903 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3885, s114 * t3012);
+    let t4065 = T::from_f64(0.01) * t1989
         - (T::from_f64(0.002) * (t118 + t3019)
             + T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118)
-            - t3877);
-    let t4123 = Real::mul_add(
+            - t3873);
+    let t4110 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
         Real::mul_add(t245, t2016, -(t233 * t302)),
-    ) + T::from_f64(0.0004) * t3875 - T::from_f64(0.0008) * t3875;
-    let t4129 = Real::mul_add(
+    ) + T::from_f64(0.0004) * t3871 - T::from_f64(0.0008) * t3871;
+    let t4116 = Real::mul_add(
         T::from_f64(0.000001),
         t157,
         Real::mul_add(-qd[1], t2001, t153 * t213),
-    ) - Real::mul_add(s114, t4123, -(c115 * t2027));
-    let t4131 = T::from_f64(0.0000068) * qdd[1]
+    ) - Real::mul_add(s114, t4110, -(c115 * t2027));
+    let t4118 = T::from_f64(0.0000068) * qdd[1]
         + Real::mul_add(-t153, t2000, t152 * t2001) - t2992 * T::from_f64(0.00075)
-        + (T::from_f64(0.0008) * t3897
+        + (T::from_f64(0.0008) * t3884
             + (T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-                - T::from_f64(0.0004) * t3897));
-    let t4132 = Real::mul_add(
+                - T::from_f64(0.0004) * t3884));
+    let t4119 = Real::mul_add(
         T::from_f64(0.0000068),
         t159,
         Real::mul_add(qd[1], t2000, -(t152 * t213)),
-    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t4123, s114 * t2027)
-        - T::from_f64(0.05) * t3877;
-    let t4141 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3916, s112 * t3915);
-    let t4142 = T::from_f64(0.00017658) - t3021
+    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t4110, s114 * t2027)
+        - T::from_f64(0.05) * t3873;
+    let t4128 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3903, s112 * t3902);
+    let t4129 = T::from_f64(0.00017658) - t3021
         + (T::from_f64(0.00011772000000000002) - t3021)
-        + Real::mul_add(-c113, t4129, s112 * t4132);
-    let t4145 = T::from_f64(0.01) * (t3019 - t2971)
-        - (Real::mul_add(-c113, t3915, s112 * t3916)
+        + Real::mul_add(-c113, t4116, s112 * t4119);
+    let t4132 = T::from_f64(0.01) * (t3019 - t2971)
+        - (Real::mul_add(-c113, t3902, s112 * t3903)
             - (T::from_f64(0.002) * t3018 + T::from_f64(0.002) * t3022));
-    let t4147 = Real::mul_add(
+    let t4134 = Real::mul_add(
         T::from_f64(0.00006),
         t1989,
         T::from_f64(0.0000003) * qdd[0],
     )
         + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
             + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t4132, s112 * t4129));
-    let t4151 = Real::mul_add(
+            + Real::mul_add(c113, t4119, s112 * t4116));
+    let t4138 = Real::mul_add(
         T::from_f64(0.012),
-        T::from_f64(0.0981) - t4141,
+        T::from_f64(0.0981) - t4128,
         T::from_f64(-0.0005886000000000001)
-            + (t332 + t332 + (T::from_f64(0.05) * t3916 + t4131)),
+            + (t332 + t332 + (T::from_f64(0.05) * t3903 + t4118)),
     );
-    let t4153 = Real::mul_add(c111, t4145, s110 * t4078);
-    let t4155 = Real::mul_add(-c111, t4078, s110 * t4145);
-    let t4159 = Real::mul_add(-c111, t4142, s110 * t4151);
-    let t4163 = -Real::mul_add(c111, t4151, s110 * t4142);
-    let t4165 = T::from_f64(0.07848000000000001) - (t4141 - T::from_f64(0.0981));
-    let t4166 = t385 - (T::from_f64(0.012) * t4078 - t4147);
-    [[[t4153, t4155, t4165], [t4159, t4163, t4166]]]
+    let t4140 = Real::mul_add(c111, t4132, s110 * t4065);
+    let t4142 = Real::mul_add(-c111, t4065, s110 * t4132);
+    let t4146 = Real::mul_add(-c111, t4129, s110 * t4138);
+    let t4150 = -Real::mul_add(c111, t4138, s110 * t4129);
+    let t4152 = T::from_f64(0.07848000000000001) - (t4128 - T::from_f64(0.0981));
+    let t4153 = t385 - (T::from_f64(0.012) * t4065 - t4134);
+    [[[t4140, t4142, t4152], [t4146, t4150, t4153]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -1689,25 +1701,25 @@ pub fn all<T: Real>(
     let t3840 = T::from_f64(0.000000024000000000000003) / t3798;
     let t3843 = Real::mul_add(-t3798, t3839 * t3839, t1556);
     let t3847 = Real::mul_add(-t3798, t3839 * t3840, t3241) / t3843;
-    let t3875 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
-    let t3876 = T::from_f64(0.02) * t3875;
-    let t3877 = T::from_f64(0.03) * t208 + t3876;
-    let t3878 = T::from_f64(0.05) * t3877;
-    let t3881 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
-    let t3883 = Real::mul_add(T::from_f64(0.02), t3881, T::from_f64(0.03) * t1650);
-    let t3897 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
-    let t3898 = T::from_f64(0.02) * t3897;
-    let t3903 = T::from_f64(0.0008) * t3875;
-    let t3915 = t2993 - Real::mul_add(s114, t3898, -(c115 * t3012));
-    let t3916 = t2994 + Real::mul_add(c115, t3898, s114 * t3012);
-    let t3950 = t3898 - (t3100 + t3115);
-    let t4055 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
-        + T::from_f64(0.0004) * t3875;
-    let t4056 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3897;
-    let t4059 = t4055
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3903;
-    let t4060 = T::from_f64(0.04) * t3950
-        + (t4056
+    let t3871 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+    let t3872 = T::from_f64(0.02) * t3871;
+    let t3873 = T::from_f64(0.03) * t208 + t3872;
+    let t3874 = T::from_f64(0.05) * t3873;
+    let t3877 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
+    let t3879 = Real::mul_add(T::from_f64(0.02), t3877, T::from_f64(0.03) * t1650);
+    let t3884 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
+    let t3885 = T::from_f64(0.02) * t3884;
+    let t3890 = T::from_f64(0.0008) * t3871;
+    let t3902 = t2993 - Real::mul_add(s114, t3885, -(c115 * t3012));
+    let t3903 = t2994 + Real::mul_add(c115, t3885, s114 * t3012);
+    let t3937 = t3885 - (t3100 + t3115);
+    let t4042 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
+        + T::from_f64(0.0004) * t3871;
+    let t4043 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3884;
+    let t4046 = t4042
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3890;
+    let t4047 = T::from_f64(0.04) * t3937
+        + (t4043
             - (Real::mul_add(
                 -T::from_f64(0.04),
                 t3100,
@@ -1718,297 +1730,297 @@ pub fn all<T: Real>(
                     t3115,
                     Real::mul_add(t692, t3112, t687 * t3115),
                 )));
-    let t4072 = T::from_f64(0.05)
+    let t4059 = T::from_f64(0.05)
         * (t2994
-            + (t3131 + Real::mul_add(c115, t3950, s114 * (t3012 - (t3112 - t3097)))))
+            + (t3131 + Real::mul_add(c115, t3937, s114 * (t3012 - (t3112 - t3097)))))
         + (t3389
             - (Real::mul_add(
                 T::from_f64(0.05),
                 t3131,
                 Real::mul_add(t735, t3128, t734 * t3129)
                     - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t4060));
-    let t4075 = Real::mul_add(
+            ) - t4047));
+    let t4062 = Real::mul_add(
         c113,
         t3388
             + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t4059, s114 * t3408)) - t3878,
+                + Real::mul_add(c115, t4046, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4059, -(c115 * t3408))
+                - (Real::mul_add(s114, t4046, -(c115 * t3408))
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4078 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3877);
-    let t4080 = T::from_f64(0.012) * t4078;
-    let t4081 = t3387 - (t3407 - t4075) - t4080;
-    let t4088 = Real::mul_add(
+    let t4065 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4067 = T::from_f64(0.012) * t4065;
+    let t4068 = t3387 - (t3407 - t4062) - t4067;
+    let t4075 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t4060,
+        t4047,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t4081,
-            T::from_f64(0.000000000000003552713678800501) * t4072,
+            t4068,
+            T::from_f64(0.000000000000003552713678800501) * t4059,
         ),
     );
-    let t4093 = Real::mul_add(
+    let t4080 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t4060,
+        t4047,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t4072,
-            T::from_f64(31.18503118503118) * t4081,
+            t4059,
+            T::from_f64(31.18503118503118) * t4068,
         ),
     );
-    let t4098 = Real::mul_add(
+    let t4085 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t4060,
+        t4047,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t4072,
-            T::from_f64(33.26403326403328) * t4081,
+            t4059,
+            T::from_f64(33.26403326403328) * t4068,
         ),
     );
-    let t4103 = Real::mul_add(
+    let t4090 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t4060,
-        Real::mul_add(-T::from_f64(50.0), t4072, T::from_f64(33.26403326403329) * t4081),
+        t4047,
+        Real::mul_add(-T::from_f64(50.0), t4059, T::from_f64(33.26403326403329) * t4068),
     );
-    let t4113 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4088))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4093))
-        .max(T::from_f64(5.0) - t4098)
-        .max(T::from_f64(5.0) - t4103);
-    let t4115 = Real::mul_add(T::from_f64(1.0666666666666669), t4113, t4088);
-    let t4117 = Real::mul_add(T::from_f64(1.0666666666666664), t4113, -t4093);
-    let t4118 = t4098 + t4113;
-    let t4119 = t4103 + t4113;
-    let t4123 = t4055 - t3903;
-    let t4124 = T::from_f64(0.0008) * t3897 + t4056;
-    let t4129 = t2011 - Real::mul_add(s114, t4123, -(c115 * t2027));
-    let t4132 = t3388 + Real::mul_add(c115, t4123, s114 * t2027) - t3878;
-    let t4133 = T::from_f64(0.05) * t3916 + (t3389 + t4124);
-    let t4141 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3916, s112 * t3915);
-    let t4142 = T::from_f64(0.00017658) - t3021
+    let t4100 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4075))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4080))
+        .max(T::from_f64(5.0) - t4085)
+        .max(T::from_f64(5.0) - t4090);
+    let t4102 = Real::mul_add(T::from_f64(1.0666666666666669), t4100, t4075);
+    let t4104 = Real::mul_add(T::from_f64(1.0666666666666664), t4100, -t4080);
+    let t4105 = t4085 + t4100;
+    let t4106 = t4090 + t4100;
+    let t4110 = t4042 - t3890;
+    let t4111 = T::from_f64(0.0008) * t3884 + t4043;
+    let t4116 = t2011 - Real::mul_add(s114, t4110, -(c115 * t2027));
+    let t4119 = t3388 + Real::mul_add(c115, t4110, s114 * t2027) - t3874;
+    let t4120 = T::from_f64(0.05) * t3903 + (t3389 + t4111);
+    let t4128 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3903, s112 * t3902);
+    let t4129 = T::from_f64(0.00017658) - t3021
         + (T::from_f64(0.00011772000000000002) - t3021)
-        + Real::mul_add(-c113, t4129, s112 * t4132);
-    let t4145 = t3385 - (Real::mul_add(-c113, t3915, s112 * t3916) - (t3392 + t3397));
-    let t4147 = t3387
+        + Real::mul_add(-c113, t4116, s112 * t4119);
+    let t4132 = t3385 - (Real::mul_add(-c113, t3902, s112 * t3903) - (t3392 + t3397));
+    let t4134 = t3387
         + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
             + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t4132, s112 * t4129));
-    let t4151 = Real::mul_add(
+            + Real::mul_add(c113, t4119, s112 * t4116));
+    let t4138 = Real::mul_add(
         T::from_f64(0.012),
-        T::from_f64(0.0981) - t4141,
-        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t4133),
+        T::from_f64(0.0981) - t4128,
+        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t4120),
     );
-    let t4153 = Real::mul_add(c111, t4145, s110 * t4078);
-    let t4155 = Real::mul_add(-c111, t4078, s110 * t4145);
-    let t4159 = Real::mul_add(-c111, t4142, s110 * t4151);
-    let t4163 = -Real::mul_add(c111, t4151, s110 * t4142);
-    let t4165 = T::from_f64(0.07848000000000001) - (t4141 - T::from_f64(0.0981));
-    let t4166 = t356 + (t366 + (t372 + t378)) - (t4080 - t4147);
-    let t4176 = t364 * T::from_f64(0.000000072)
-        + (t3061 + (t3061 + t4124) - t354 * T::from_f64(0.00000004799999999999999));
-    let t4179 = t378 + (t372 + (t366 + (t356 + (t4147 - t4080))));
-    let t4180 = t370 * T::from_f64(0.00000008)
+    let t4140 = Real::mul_add(c111, t4132, s110 * t4065);
+    let t4142 = Real::mul_add(-c111, t4065, s110 * t4132);
+    let t4146 = Real::mul_add(-c111, t4129, s110 * t4138);
+    let t4150 = -Real::mul_add(c111, t4138, s110 * t4129);
+    let t4152 = T::from_f64(0.07848000000000001) - (t4128 - T::from_f64(0.0981));
+    let t4153 = t356 + (t366 + (t372 + t378)) - (t4067 - t4134);
+    let t4163 = t364 * T::from_f64(0.000000072)
+        + (t3061 + (t3061 + t4111) - t354 * T::from_f64(0.00000004799999999999999));
+    let t4166 = t378 + (t372 + (t366 + (t356 + (t4134 - t4067))));
+    let t4167 = t370 * T::from_f64(0.00000008)
         + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + (t332 + t4133) - t354 * T::from_f64(0.000000042)))
+            + (t332 + (t332 + t4120) - t354 * T::from_f64(0.000000042)))
         - t376 * T::from_f64(0.00000008);
-    let t4181 = t3084 + t4115;
-    let t4182 = t4181 - t3086;
-    let t4183 = t3089 + t4117;
-    let t4184 = t3086 + t4183;
-    let t4185 = t4118 - t3091;
-    let t4186 = t4119 - t3092;
-    let t4187 = T::from_f64(0.999799979995999) * t4182;
-    let t4188 = T::from_f64(0.019999999999999785) * t4182;
-    let t4191 = Real::mul_add(s114, t4188, c115 * t4187);
-    let t4192 = s114 * t4187;
-    let t4193 = c115 * t4188;
-    let t4194 = t4192 - t4193;
-    let t4197 = Real::mul_add(t631, t4191, t627 * t4194);
-    let t4200 = Real::mul_add(-s112, t4188, c113 * t4187);
-    let t4203 = Real::mul_add(c113, t4188, s112 * t4187);
-    let t4207 = t4200 - t4181;
-    let t4209 = Real::mul_add(
+    let t4168 = t3084 + t4102;
+    let t4169 = t4168 - t3086;
+    let t4170 = t3089 + t4104;
+    let t4171 = t3086 + t4170;
+    let t4172 = t4105 - t3091;
+    let t4173 = t4106 - t3092;
+    let t4174 = T::from_f64(0.999799979995999) * t4169;
+    let t4175 = T::from_f64(0.019999999999999785) * t4169;
+    let t4178 = Real::mul_add(s114, t4175, c115 * t4174);
+    let t4179 = s114 * t4174;
+    let t4180 = c115 * t4175;
+    let t4181 = t4179 - t4180;
+    let t4184 = Real::mul_add(t631, t4178, t627 * t4181);
+    let t4187 = Real::mul_add(-s112, t4175, c113 * t4174);
+    let t4190 = Real::mul_add(c113, t4175, s112 * t4174);
+    let t4194 = t4187 - t4168;
+    let t4196 = Real::mul_add(
         T::from_f64(0.007),
-        t4181,
+        t4168,
         -Real::mul_add(
             t652 - s112 * T::from_f64(0.0001399999999999985),
-            t4200,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4203,
+            t4187,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4190,
         ),
     );
-    let t4210 = c111 * t4181;
-    let t4211 = s110 * t4181;
-    let t4224 = T::from_f64(0.999799979995999) * t4184;
-    let t4225 = T::from_f64(0.02000000000000003) * t4184;
-    let t4226 = c115 * t4224;
-    let t4227 = s114 * t4225;
-    let t4228 = t4227 - t4226;
-    let t4231 = Real::mul_add(c115, t4225, s114 * t4224);
-    let t4234 = Real::mul_add(t692, t4228, t687 * t4231);
-    let t4237 = Real::mul_add(s112, t4225, c113 * t4224);
-    let t4240 = Real::mul_add(-c113, t4225, s112 * t4224);
-    let t4244 = t4237 - t4183;
-    let t4246 = Real::mul_add(
+    let t4197 = c111 * t4168;
+    let t4198 = s110 * t4168;
+    let t4211 = T::from_f64(0.999799979995999) * t4171;
+    let t4212 = T::from_f64(0.02000000000000003) * t4171;
+    let t4213 = c115 * t4211;
+    let t4214 = s114 * t4212;
+    let t4215 = t4214 - t4213;
+    let t4218 = Real::mul_add(c115, t4212, s114 * t4211);
+    let t4221 = Real::mul_add(t692, t4215, t687 * t4218);
+    let t4224 = Real::mul_add(s112, t4212, c113 * t4211);
+    let t4227 = Real::mul_add(-c113, t4212, s112 * t4211);
+    let t4231 = t4224 - t4170;
+    let t4233 = Real::mul_add(
         -T::from_f64(0.007),
-        t4183,
+        t4170,
         Real::mul_add(
             t652 + s112 * T::from_f64(0.00014000000000000023),
-            t4237,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4240,
+            t4224,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4227,
         ),
     );
-    let t4247 = c111 * t4183;
-    let t4248 = s110 * t4183;
-    let t4262 = t3091 - t4118;
-    let t4263 = c113 * t4262;
-    let t4264 = s112 * t4262;
-    let t4267 = Real::mul_add(t735, t4263, t734 * t4264);
-    let t4268 = c111 * t4185;
-    let t4269 = s110 * t4185;
-    let t4279 = t3092 - t4119;
-    let t4280 = c113 * t4279;
-    let t4281 = s112 * t4279;
-    let t4282 = t4263 + t4280;
-    let t4283 = t4264 + t4281;
-    let t4286 = Real::mul_add(t735, t4280, t734 * t4281);
-    let t4288 = c111 * t4186;
-    let t4289 = s110 * t4186;
-    let t4299 = Real::mul_add(T::from_f64(0.99498743710662), t4119, -t4288);
-    let t4300 = Real::mul_add(T::from_f64(0.09999999999999983), t4119, -t4289);
-    let t4301 = t378
+    let t4234 = c111 * t4170;
+    let t4235 = s110 * t4170;
+    let t4249 = t3091 - t4105;
+    let t4250 = c113 * t4249;
+    let t4251 = s112 * t4249;
+    let t4254 = Real::mul_add(t735, t4250, t734 * t4251);
+    let t4255 = c111 * t4172;
+    let t4256 = s110 * t4172;
+    let t4266 = t3092 - t4106;
+    let t4267 = c113 * t4266;
+    let t4268 = s112 * t4266;
+    let t4269 = t4250 + t4267;
+    let t4270 = t4251 + t4268;
+    let t4273 = Real::mul_add(t735, t4267, t734 * t4268);
+    let t4275 = c111 * t4173;
+    let t4276 = s110 * t4173;
+    let t4286 = Real::mul_add(T::from_f64(0.99498743710662), t4106, -t4275);
+    let t4287 = Real::mul_add(T::from_f64(0.09999999999999983), t4106, -t4276);
+    let t4288 = t378
         - Real::mul_add(
             T::from_f64(0.008),
-            t4119,
-            -Real::mul_add(t747, t4288, t745 * t4289),
+            t4106,
+            -Real::mul_add(t747, t4275, t745 * t4276),
         );
-    let t4302 = Real::mul_add(T::from_f64(0.99498743710662), t4118, -t4268);
-    let t4303 = Real::mul_add(T::from_f64(0.09999999999999983), t4118, -t4269);
-    let t4304 = t372
+    let t4289 = Real::mul_add(T::from_f64(0.99498743710662), t4105, -t4255);
+    let t4290 = Real::mul_add(T::from_f64(0.09999999999999983), t4105, -t4256);
+    let t4291 = t372
         - Real::mul_add(
             T::from_f64(0.008),
-            t4118,
-            -Real::mul_add(t747, t4268, t745 * t4269),
+            t4105,
+            -Real::mul_add(t747, t4255, t745 * t4256),
         );
-    let t4305 = Real::mul_add(T::from_f64(0.99365172470036), t4117, -t4247);
-    let t4306 = -Real::mul_add(T::from_f64(0.11250000000000027), t4117, t4248);
-    let t4307 = t366
+    let t4292 = Real::mul_add(T::from_f64(0.99365172470036), t4104, -t4234);
+    let t4293 = -Real::mul_add(T::from_f64(0.11250000000000027), t4104, t4235);
+    let t4294 = t366
         - Real::mul_add(
-            -t4117,
+            -t4104,
             T::from_f64(0.009000000000000001),
             Real::mul_add(
                 T::from_f64(0.009),
-                c111 * t4247,
-                T::from_f64(0.009) * (s110 * t4248),
+                c111 * t4234,
+                T::from_f64(0.009) * (s110 * t4235),
             ),
         );
-    let t4308 = Real::mul_add(T::from_f64(0.9971835337589565), t4115, -t4210);
-    let t4309 = -Real::mul_add(T::from_f64(0.07499999999999996), t4115, t4211);
-    let t4310 = t356
+    let t4295 = Real::mul_add(T::from_f64(0.9971835337589565), t4102, -t4197);
+    let t4296 = -Real::mul_add(T::from_f64(0.07499999999999996), t4102, t4198);
+    let t4297 = t356
         - Real::mul_add(
             -T::from_f64(0.006),
-            t4115,
+            t4102,
             Real::mul_add(
                 T::from_f64(0.006),
-                c111 * t4210,
-                T::from_f64(0.006) * (s110 * t4211),
+                c111 * t4197,
+                T::from_f64(0.006) * (s110 * t4198),
             ),
         );
-    let t4311 = t3397 - t4244;
-    let t4312 = T::from_f64(0.019620000000000002) - t4240;
-    let t4313 = t332 - t4246;
-    let t4314 = t4244 - t3397;
-    let t4315 = t4240 - T::from_f64(0.019620000000000002);
-    let t4321 = t3392 - t4207;
-    let t4322 = T::from_f64(0.019620000000000002) - t4203;
-    let t4323 = t332 - t4209;
-    let t4324 = t4207 - t3392;
-    let t4325 = t4203 - T::from_f64(0.019620000000000002);
-    let t4336 = -t4282;
-    let t4337 = t4267 - t4286;
-    let t4342 = t4226 - t4227;
-    let t4343 = -t4231;
-    let t4348 = t4193 - t4192;
-    let t4349 = -t4197;
-    let t4359 = t3012 - (t4228 - t4191);
-    let t4360 = t3898 - (t4194 + t4231);
-    let t4361 = t2027
-        + Real::mul_add(T::from_f64(0.006), t4194, T::from_f64(0.009) * t4231);
-    let t4365 = t4055
-        - Real::mul_add(-T::from_f64(0.006), t4191, T::from_f64(0.009) * t4228) - t3903;
-    let t4366 = Real::mul_add(
+    let t4298 = t3397 - t4231;
+    let t4299 = T::from_f64(0.019620000000000002) - t4227;
+    let t4300 = t332 - t4233;
+    let t4301 = t4231 - t3397;
+    let t4302 = t4227 - T::from_f64(0.019620000000000002);
+    let t4308 = t3392 - t4194;
+    let t4309 = T::from_f64(0.019620000000000002) - t4190;
+    let t4310 = t332 - t4196;
+    let t4311 = t4194 - t3392;
+    let t4312 = t4190 - T::from_f64(0.019620000000000002);
+    let t4323 = -t4269;
+    let t4324 = t4254 - t4273;
+    let t4329 = t4213 - t4214;
+    let t4330 = -t4218;
+    let t4335 = t4180 - t4179;
+    let t4336 = -t4184;
+    let t4346 = t3012 - (t4215 - t4178);
+    let t4347 = t3885 - (t4181 + t4218);
+    let t4348 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4181, T::from_f64(0.009) * t4218);
+    let t4352 = t4042
+        - Real::mul_add(-T::from_f64(0.006), t4178, T::from_f64(0.009) * t4215) - t3890;
+    let t4353 = Real::mul_add(
         T::from_f64(0.04),
-        t4360,
-        t4056
-            - (Real::mul_add(-T::from_f64(0.04), t4194, t4197)
-                - Real::mul_add(T::from_f64(0.04), t4231, t4234)),
+        t4347,
+        t4043
+            - (Real::mul_add(-T::from_f64(0.04), t4181, t4184)
+                - Real::mul_add(T::from_f64(0.04), t4218, t4221)),
     );
-    let t4384 = t2993 - (t4282 + Real::mul_add(-c115, t4359, s114 * t4360));
-    let t4385 = t2994 + (t4283 + Real::mul_add(c115, t4360, s114 * t4359));
-    let t4386 = t2011
+    let t4371 = t2993 - (t4269 + Real::mul_add(-c115, t4346, s114 * t4347));
+    let t4372 = t2994 + (t4270 + Real::mul_add(c115, t4347, s114 * t4346));
+    let t4373 = t2011
         - Real::mul_add(
             -T::from_f64(0.008),
-            t4283,
-            Real::mul_add(-c115, t4361, s114 * t4365),
+            t4270,
+            Real::mul_add(-c115, t4348, s114 * t4352),
         );
-    let t4390 = t3388
+    let t4377 = t3388
         + Real::mul_add(
             T::from_f64(0.008),
-            t4282,
-            Real::mul_add(c115, t4365, s114 * t4361),
-        ) - t3878;
-    let t4391 = Real::mul_add(
+            t4269,
+            Real::mul_add(c115, t4352, s114 * t4348),
+        ) - t3874;
+    let t4378 = Real::mul_add(
         T::from_f64(0.05),
-        t4385,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t4283, t4286 - t4267) - t4366),
+        t4372,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4270, t4273 - t4254) - t4353),
     );
-    let t4408 = t3385 - (t4314 + t4324 + Real::mul_add(-c113, t4384, s112 * t4385));
-    let t4409 = T::from_f64(0.0981)
-        - (t4315 + t4325 - Real::mul_add(c113, t4385, s112 * t4384));
-    let t4410 = Real::mul_add(T::from_f64(0.009), t4315, t3021)
-        + Real::mul_add(T::from_f64(0.006), t4325, t3021)
-        - Real::mul_add(-c113, t4386, s112 * t4390);
-    let t4414 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t4314, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t4324, -t2038)
-            - Real::mul_add(c113, t4390, s112 * t4386)) - t4080;
-    let t4415 = Real::mul_add(
+    let t4395 = t3385 - (t4301 + t4311 + Real::mul_add(-c113, t4371, s112 * t4372));
+    let t4396 = T::from_f64(0.0981)
+        - (t4302 + t4312 - Real::mul_add(c113, t4372, s112 * t4371));
+    let t4397 = Real::mul_add(T::from_f64(0.009), t4302, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4312, t3021)
+        - Real::mul_add(-c113, t4373, s112 * t4377);
+    let t4401 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4301, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4311, -t2038)
+            - Real::mul_add(c113, t4377, s112 * t4373)) - t4067;
+    let t4402 = Real::mul_add(
         T::from_f64(0.012),
-        t4409,
-        T::from_f64(-0.0005886000000000001) - (t4246 - t332 + (t4209 - t332) - t4391),
+        t4396,
+        T::from_f64(-0.0005886000000000001) - (t4233 - t332 + (t4196 - t332) - t4378),
     );
-    let t4419 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3881
-        - T::from_f64(0.0008) * t3881;
-    let t4429 = Real::mul_add(
+    let t4406 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3877
+        - T::from_f64(0.0008) * t3877;
+    let t4416 = Real::mul_add(
         c113,
         t2007 - T::from_f64(0.0000068) * t158 + t1650 * T::from_f64(0.00075)
-            + Real::mul_add(c115, t4419, s114 * t2806) - T::from_f64(0.05) * t3883,
+            + Real::mul_add(c115, t4406, s114 * t2806) - T::from_f64(0.05) * t3879,
         s112
             * (Real::mul_add(T::from_f64(0.000001), t156, t2005)
-                - Real::mul_add(s114, t4419, -(c115 * t2806))),
+                - Real::mul_add(s114, t4406, -(c115 * t2806))),
     );
-    let t4431 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4429)
-        - T::from_f64(0.012) * (t3883 - T::from_f64(0.00003) * t2970);
-    let t4432 = T::from_f64(0.008) * tendon_tensions[2]
+    let t4418 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4416)
+        - T::from_f64(0.012) * (t3879 - T::from_f64(0.00003) * t2970);
+    let t4419 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3] - t4431;
-    let t4434 = Real::mul_add(
+        + T::from_f64(0.008) * tendon_tensions[3] - t4418;
+    let t4421 = Real::mul_add(
         -t3839,
-        t4432,
+        t4419,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
             - T::from_f64(0.01) * tendon_tensions[3] - t3835,
     );
-    let t4441 = Real::mul_add(
+    let t4428 = Real::mul_add(
         -t3847,
-        t4434,
+        t4421,
         Real::mul_add(
             -t3840,
-            t4432,
+            t4419,
             T::from_f64(0.008) * tendon_tensions[0]
                 - T::from_f64(0.008) * tendon_tensions[1] - t3833,
         ),
@@ -2018,17 +2030,17 @@ pub fn all<T: Real>(
             t3847 * t3847,
             Real::mul_add(-t3798, t3840 * t3840, T::from_f64(0.000011256000000000002)),
         );
-    let t4443 = Real::mul_add(-t3847, t4441, t4434 / t3843);
-    let t4447 = Real::mul_add(
+    let t4430 = Real::mul_add(-t3847, t4428, t4421 / t3843);
+    let t4434 = Real::mul_add(
         -t3840,
-        t4441,
-        Real::mul_add(-t3839, t4443, t4432 / t3798),
+        t4428,
+        Real::mul_add(-t3839, t4430, t4419 / t3798),
     );
     Outputs {
-        generalized_forces: [t4179, t4180, t4176],
+        generalized_forces: [t4166, t4167, t4163],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t4115, t4117, t4118, t4119],
+            [t4102, t4104, t4105, t4106],
         ),
         mass_matrix: [
             [
@@ -2043,56 +2055,56 @@ pub fn all<T: Real>(
                 T::from_f64(0.000011256000000000002),
             ],
         ],
-        bias: [t4431, t3823, t3814],
+        bias: [t4418, t3823, t3814],
         gravity: [T::from_f64(0.0), t3323, t3315],
-        forward_dynamics: [t4447, t4443, t4441],
+        forward_dynamics: [t4434, t4430, t4428],
         segment_tensions: [
-            t4182,
-            t4181,
-            t4115,
-            t4184,
-            t4183,
-            t4117,
-            t4185,
-            t4118,
-            t4186,
-            t4119,
+            t4169,
+            t4168,
+            t4102,
+            t4171,
+            t4170,
+            t4104,
+            t4172,
+            t4105,
+            t4173,
+            t4106,
         ],
         bearings: [
-            [[t4408, t4409, t4078], [t4410, t4414, t4415]],
-            [[t4384, t4385, t3877], [t4386, t4390, t4391]],
-            [[t4359, t4360, t3876], [t4361, t4365, t4366]],
+            [[t4395, t4396, t4065], [t4397, t4401, t4402]],
+            [[t4371, t4372, t3873], [t4373, t4377, t4378]],
+            [[t4346, t4347, t3872], [t4348, t4352, t4353]],
             [
-                [t4191, t4348, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4349],
+                [t4178, t4335, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4336],
             ],
             [
-                [t4342, t4343, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4234],
+                [t4329, t4330, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4221],
             ],
             [
-                [t4336, t4283, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4337],
+                [t4323, t4270, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4324],
             ],
-            [[t4321, t4322, t3394], [t3021, t2038, t4323]],
-            [[t4311, t4312, t3399], [t3021, t2038, t4313]],
+            [[t4308, t4309, t3394], [t3021, t2038, t4310]],
+            [[t4298, t4299, t3399], [t3021, t2038, t4300]],
             [
-                [t4308, t4309, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4310],
-            ],
-            [
-                [t4305, t4306, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4307],
+                [t4295, t4296, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4297],
             ],
             [
-                [t4302, t4303, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4304],
+                [t4292, t4293, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4294],
             ],
             [
-                [t4299, t4300, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4301],
+                [t4289, t4290, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4291],
+            ],
+            [
+                [t4286, t4287, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4288],
             ],
         ],
-        base_reaction: [[[t4153, t4155, t4165], [t4159, t4163, t4166]]],
+        base_reaction: [[[t4140, t4142, t4152], [t4146, t4150, t4153]]],
     }
 }

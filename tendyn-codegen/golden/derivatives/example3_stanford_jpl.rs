@@ -31,127 +31,127 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3418 = c115 * T::from_f64(0.0000208);
-    let t3421 = T::from_f64(-0.00004) - t3418;
-    let t3423 = s114 * T::from_f64(0.0000208);
-    let t3430 = c115 * T::from_f64(0.00004);
-    let t3438 = c115 * T::from_f64(0.000009600000000000001);
-    let t3452 = Real::mul_add(
+    let t3343 = c115 * T::from_f64(0.0000208);
+    let t3346 = T::from_f64(-0.00004) - t3343;
+    let t3348 = s114 * T::from_f64(0.0000208);
+    let t3355 = c115 * T::from_f64(0.00004);
+    let t3363 = c115 * T::from_f64(0.000009600000000000001);
+    let t3377 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t3430,
+            T::from_f64(-0.00008495) - t3355,
             s114
                 * Real::mul_add(
                     c113,
-                    t3421,
-                    Real::mul_add(s112, t3423, T::from_f64(-0.000009600000000000001)),
+                    t3346,
+                    Real::mul_add(s112, t3348, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * (t3438 + T::from_f64(0.000042000000000000004))
-            + (t3430 + T::from_f64(0.00009551400000000001)
+        c113 * (t3363 + T::from_f64(0.000042000000000000004))
+            + (t3355 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t3460 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3469 = c115 * T::from_f64(0.0000416);
-    let t3482 = s114 * (t3421 - c113 * T::from_f64(0.000009600000000000001));
-    let t3484 = qd[1]
+    let t3385 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3394 = c115 * T::from_f64(0.0000416);
+    let t3407 = s114 * (t3346 - c113 * T::from_f64(0.000009600000000000001));
+    let t3409 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3460 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t3385 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t3469),
-                    T::from_f64(-0.000042000000000000004) - t3438,
+                    s114 * (T::from_f64(0.00008) + t3394),
+                    T::from_f64(-0.000042000000000000004) - t3363,
                 ),
             ),
-            t3482,
+            t3407,
         );
-    let t3497 = qd[0]
+    let t3422 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3460 + (T::from_f64(-0.0000208) - t3430),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3469), -t3438),
+                    t3385 + (T::from_f64(-0.0000208) - t3355),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3394), -t3363),
                 ),
-                t3482,
+                t3407,
             ),
-            t3484,
+            t3409,
         );
-    let t3500 = Real::mul_add(
+    let t3425 = Real::mul_add(
         qdd[0],
-        t3452,
+        t3377,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3497),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3422),
         ),
     );
-    let t3505 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3509 = s114 * t3423;
-    let t3518 = c115 * T::from_f64(0.000004800000000000001);
-    let t3528 = s114
+    let t3430 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3434 = s114 * t3348;
+    let t3443 = c115 * T::from_f64(0.000004800000000000001);
+    let t3453 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3545 = c115 * T::from_f64(0.003924);
-    let t3552 = s112 * (s114 * T::from_f64(0.003924));
-    let t3556 = Real::mul_add(
+    let t3470 = c115 * T::from_f64(0.003924);
+    let t3477 = s112 * (s114 * T::from_f64(0.003924));
+    let t3481 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3430 + T::from_f64(0.00008495) - t3509,
+                    t3355 + T::from_f64(0.00008495) - t3434,
                     Real::mul_add(
                         s112,
-                        s114 * t3421,
-                        t3518 + T::from_f64(0.000021000000000000002),
+                        s114 * t3346,
+                        t3443 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t3528,
+                t3453,
             ),
-        Real::mul_add(c113, t3545 + T::from_f64(0.017167500000000002), -t3552)
+        Real::mul_add(c113, t3470 + T::from_f64(0.017167500000000002), -t3477)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585),
     );
-    let t3559 = Real::mul_add(
+    let t3484 = Real::mul_add(
         qdd[1],
-        t3430 + T::from_f64(0.000086946),
+        t3355 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3505,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3556),
+            t3430,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3481),
         ),
     );
-    let t3581 = Real::mul_add(
+    let t3506 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3509,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3418), t3518),
+                    t2580 + T::from_f64(0.0000104) - t3434,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3343), t3443),
                 ),
-                t3528,
+                t3453,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3545 - t3552),
+        qd[1] * (qd[1] * t2585) + (c113 * t3470 - t3477),
     );
-    let t3584 = Real::mul_add(
+    let t3509 = Real::mul_add(
         qdd[1],
-        t3505,
+        t3430,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3581),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3506),
         ),
     );
-    [t3500, t3559, t3584]
+    [t3425, t3484, t3509]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -169,195 +169,195 @@ pub fn generalized_forces_derivatives<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3418 = c115 * T::from_f64(0.0000208);
-    let t3421 = T::from_f64(-0.00004) - t3418;
-    let t3423 = s114 * T::from_f64(0.0000208);
-    let t3430 = c115 * T::from_f64(0.00004);
-    let t3438 = c115 * T::from_f64(0.000009600000000000001);
-    let t3440 = t3438 + T::from_f64(0.000042000000000000004);
-    let t3452 = Real::mul_add(
+    let t3343 = c115 * T::from_f64(0.0000208);
+    let t3346 = T::from_f64(-0.00004) - t3343;
+    let t3348 = s114 * T::from_f64(0.0000208);
+    let t3355 = c115 * T::from_f64(0.00004);
+    let t3363 = c115 * T::from_f64(0.000009600000000000001);
+    let t3365 = t3363 + T::from_f64(0.000042000000000000004);
+    let t3377 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t3430,
+            T::from_f64(-0.00008495) - t3355,
             s114
                 * Real::mul_add(
                     c113,
-                    t3421,
-                    Real::mul_add(s112, t3423, T::from_f64(-0.000009600000000000001)),
+                    t3346,
+                    Real::mul_add(s112, t3348, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * t3440
-            + (t3430 + T::from_f64(0.00009551400000000001)
+        c113 * t3365
+            + (t3355 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t3459 = s114 * T::from_f64(0.0000416);
-    let t3460 = s114 * t3459;
-    let t3463 = c115 * T::from_f64(0.00008);
-    let t3466 = T::from_f64(-0.0001699) - t3463;
-    let t3467 = t3460 + t3466;
-    let t3469 = c115 * T::from_f64(0.0000416);
-    let t3475 = T::from_f64(-0.000042000000000000004) - t3438;
-    let t3479 = c113 * T::from_f64(0.000009600000000000001);
-    let t3482 = s114 * (t3421 - t3479);
-    let t3483 = Real::mul_add(
+    let t3384 = s114 * T::from_f64(0.0000416);
+    let t3385 = s114 * t3384;
+    let t3388 = c115 * T::from_f64(0.00008);
+    let t3391 = T::from_f64(-0.0001699) - t3388;
+    let t3392 = t3385 + t3391;
+    let t3394 = c115 * T::from_f64(0.0000416);
+    let t3400 = T::from_f64(-0.000042000000000000004) - t3363;
+    let t3404 = c113 * T::from_f64(0.000009600000000000001);
+    let t3407 = s114 * (t3346 - t3404);
+    let t3408 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t3467,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t3469), t3475),
+            t3392,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t3394), t3400),
         ),
-        t3482,
+        t3407,
     );
-    let t3485 = T::from_f64(-0.0000208) - t3430;
-    let t3494 = Real::mul_add(
+    let t3410 = T::from_f64(-0.0000208) - t3355;
+    let t3419 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t3460 + t3485,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3469), -t3438),
+            t3385 + t3410,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3394), -t3363),
         ),
-        t3482,
+        t3407,
     );
-    let t3496 = Real::mul_add(qd[2], t3494, qd[1] * t3483);
-    let t3500 = Real::mul_add(
+    let t3421 = Real::mul_add(qd[2], t3419, qd[1] * t3408);
+    let t3425 = Real::mul_add(
         qdd[0],
-        t3452,
+        t3377,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qd[0], t3496, qdd[2] * T::from_f64(0.000000024000000000000006)),
+            Real::mul_add(qd[0], t3421, qdd[2] * T::from_f64(0.000000024000000000000006)),
         ),
     );
-    let t3505 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3509 = s114 * t3423;
-    let t3513 = t3430 + T::from_f64(0.00008495) - t3509;
-    let t3518 = c115 * T::from_f64(0.000004800000000000001);
-    let t3520 = t3518 + T::from_f64(0.000021000000000000002);
-    let t3524 = c113 * T::from_f64(0.000004800000000000001);
-    let t3528 = s114 * (t3524 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3532 = s114 * T::from_f64(0.00004);
-    let t3534 = qd[1] * t3532;
-    let t3545 = c115 * T::from_f64(0.003924);
-    let t3550 = s114 * T::from_f64(0.003924);
-    let t3552 = s112 * t3550;
-    let t3556 = Real::mul_add(
+    let t3430 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3434 = s114 * t3348;
+    let t3438 = t3355 + T::from_f64(0.00008495) - t3434;
+    let t3443 = c115 * T::from_f64(0.000004800000000000001);
+    let t3445 = t3443 + T::from_f64(0.000021000000000000002);
+    let t3449 = c113 * T::from_f64(0.000004800000000000001);
+    let t3453 = s114 * (t3449 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
+    let t3457 = s114 * T::from_f64(0.00004);
+    let t3459 = qd[1] * t3457;
+    let t3470 = c115 * T::from_f64(0.003924);
+    let t3475 = s114 * T::from_f64(0.003924);
+    let t3477 = s112 * t3475;
+    let t3481 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(c113, t3513, Real::mul_add(s112, s114 * t3421, t3520)),
-                t3528,
+                Real::mul_add(c113, t3438, Real::mul_add(s112, s114 * t3346, t3445)),
+                t3453,
             ),
-        Real::mul_add(c113, t3545 + T::from_f64(0.017167500000000002), -t3552)
-            - qd[2] * (t3534 + qd[2] * t2585),
+        Real::mul_add(c113, t3470 + T::from_f64(0.017167500000000002), -t3477)
+            - qd[2] * (t3459 + qd[2] * t2585),
     );
-    let t3559 = Real::mul_add(
+    let t3484 = Real::mul_add(
         qdd[1],
-        t3430 + T::from_f64(0.000086946),
+        t3355 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3505,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3556),
+            t3430,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3481),
         ),
     );
-    let t3581 = Real::mul_add(
+    let t3506 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3509,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3418), t3518),
+                    t2580 + T::from_f64(0.0000104) - t3434,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3343), t3443),
                 ),
-                t3528,
+                t3453,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3545 - t3552),
+        qd[1] * (qd[1] * t2585) + (c113 * t3470 - t3477),
     );
-    let t3584 = Real::mul_add(
+    let t3509 = Real::mul_add(
         qdd[1],
-        t3505,
+        t3430,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3581),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3506),
         ),
     );
-    let t3587 = c115 * T::from_f64(0.0000832);
-    let t3596 = T::from_f64(0.000009600000000000001)
+    let t3512 = c115 * T::from_f64(0.0000832);
+    let t3521 = T::from_f64(0.000009600000000000001)
         - s112 * (s114 * T::from_f64(0.0000832));
-    let t3608 = qd[1]
+    let t3533 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 s112,
                 c115 * T::from_f64(0.00016) + T::from_f64(0.0003398),
-                s114 * Real::mul_add(c113, t3587 + T::from_f64(0.00016), t3596),
+                s114 * Real::mul_add(c113, t3512 + T::from_f64(0.00016), t3521),
             ),
-            Real::mul_add(c113, t3475, t3467),
+            Real::mul_add(c113, t3400, t3392),
         );
-    let t3620 = Real::mul_add(
+    let t3545 = Real::mul_add(
         c115,
-        T::from_f64(-0.00004) - t3479,
-        T::from_f64(-0.0000208) + t3460,
+        T::from_f64(-0.00004) - t3404,
+        T::from_f64(-0.0000208) + t3385,
     );
-    let t3621 = Real::mul_add(
+    let t3546 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(0.0000416) + t3463,
-            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3587, t3596),
+            T::from_f64(0.0000416) + t3388,
+            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3512, t3521),
         ),
-        t3620,
+        t3545,
     );
-    let t3625 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3621, t3608), qdd[0] * t3483);
-    let t3639 = qd[0]
+    let t3550 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3546, t3533), qdd[0] * t3408);
+    let t3564 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     s112,
-                    t3430 + T::from_f64(0.0000416),
-                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3587, t3596),
+                    t3355 + T::from_f64(0.0000416),
+                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3512, t3521),
                 ),
-                t3620,
+                t3545,
             ),
-            qd[1] * t3621,
+            qd[1] * t3546,
         );
-    let t3640 = Real::mul_add(qdd[0], t3494, t3639);
-    let t3643 = T::from_f64(-0.00008) - t3469;
-    let t3647 = Real::mul_add(s112, t3459, T::from_f64(-0.000004800000000000001));
-    let t3662 = c113 * t3550;
-    let t3665 = Real::mul_add(
+    let t3565 = Real::mul_add(qdd[0], t3419, t3564);
+    let t3568 = T::from_f64(-0.00008) - t3394;
+    let t3572 = Real::mul_add(s112, t3384, T::from_f64(-0.000004800000000000001));
+    let t3587 = c113 * t3475;
+    let t3590 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t3466, s114 * Real::mul_add(c113, t3643, t3647)),
-                Real::mul_add(c113, t3520, t3513),
+                Real::mul_add(s112, t3391, s114 * Real::mul_add(c113, t3568, t3572)),
+                Real::mul_add(c113, t3445, t3438),
             ),
-        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3545, -t3662),
+        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3470, -t3587),
     );
-    let t3670 = T::from_f64(-0.00004) - t3469;
-    let t3680 = Real::mul_add(
+    let t3595 = T::from_f64(-0.00004) - t3394;
+    let t3605 = Real::mul_add(
         c115,
-        T::from_f64(0.00002) + t3524,
-        T::from_f64(0.0000104) - t3509,
+        T::from_f64(0.00002) + t3449,
+        T::from_f64(0.0000104) - t3434,
     );
-    let t3683 = qd[0]
+    let t3608 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t3485, s114 * Real::mul_add(c113, t3670, t3647)),
-                t3680,
+                Real::mul_add(s112, t3410, s114 * Real::mul_add(c113, t3595, t3572)),
+                t3605,
             ));
-    let t3695 = t3662 + s112 * t3545;
-    let t3701 = t3683 - (qd[2] * (qd[1] * t3430 + qd[2] * t2580) + t3695)
-        - qdd[2] * t2585 - qdd[1] * t3532;
-    let t3702 = t3683 - t3695;
-    let t3719 = Real::mul_add(
+    let t3620 = t3587 + s112 * t3470;
+    let t3626 = t3608 - (qd[2] * (qd[1] * t3355 + qd[2] * t2580) + t3620)
+        - qdd[2] * t2585 - qdd[1] * t3457;
+    let t3627 = t3608 - t3620;
+    let t3644 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
@@ -365,50 +365,50 @@ pub fn generalized_forces_derivatives<T: Real>(
                 Real::mul_add(
                     s112,
                     T::from_f64(-0.0000208) - t2580,
-                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t3469, t3647),
+                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t3394, t3572),
                 ),
-                t3680,
+                t3605,
             ),
-        Real::mul_add(qd[1], qd[1] * t2580, -t3695),
+        Real::mul_add(qd[1], qd[1] * t2580, -t3620),
     );
-    let t3720 = t3719 - qdd[1] * t2585;
-    let t3721 = qd[0] * t3483;
-    let t3722 = qd[0] * t3494;
-    let t3736 = s114 * (t3479 + (t3418 + T::from_f64(0.00004)));
-    let t3738 = qd[0]
+    let t3645 = t3644 - qdd[1] * t2585;
+    let t3646 = qd[0] * t3408;
+    let t3647 = qd[0] * t3419;
+    let t3661 = s114 * (t3404 + (t3343 + T::from_f64(0.00004)));
+    let t3663 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3463 + T::from_f64(0.0001699) - t3460,
-                Real::mul_add(s112, s114 * t3643, t3440),
+                t3388 + T::from_f64(0.0001699) - t3385,
+                Real::mul_add(s112, s114 * t3568, t3365),
             ),
-            t3736,
+            t3661,
         );
-    let t3739 = qd[2] * t3532;
-    let t3740 = -t3739;
-    let t3742 = -(t3534 + t3739);
-    let t3752 = qd[0]
+    let t3664 = qd[2] * t3457;
+    let t3665 = -t3664;
+    let t3667 = -(t3459 + t3664);
+    let t3677 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                T::from_f64(0.0000208) + t3430 - t3460,
-                Real::mul_add(s112, s114 * t3670, t3438),
+                T::from_f64(0.0000208) + t3355 - t3385,
+                Real::mul_add(s112, s114 * t3595, t3363),
             ),
-            t3736,
+            t3661,
         );
     tendyn_core::dual::StateJacobians {
-        value: [t3500, t3559, t3584],
+        value: [t3425, t3484, t3509],
         d_q: [
-            [T::from_f64(0.0), t3625, t3640],
-            [T::from_f64(0.0), t3665, t3701],
-            [T::from_f64(0.0), t3702, t3720],
+            [T::from_f64(0.0), t3550, t3565],
+            [T::from_f64(0.0), t3590, t3626],
+            [T::from_f64(0.0), t3627, t3645],
         ],
         d_qd: [
-            [t3496, t3721, t3722],
-            [t3738, t3740, t3742],
-            [t3752, t3534, T::from_f64(0.0)],
+            [t3421, t3646, t3647],
+            [t3663, t3665, t3667],
+            [t3677, t3459, T::from_f64(0.0)],
         ],
     }
 }
@@ -429,55 +429,55 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3418 = c115 * T::from_f64(0.0000208);
-    let t3430 = c115 * T::from_f64(0.00004);
-    let t3438 = c115 * T::from_f64(0.000009600000000000001);
-    let t3460 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3469 = c115 * T::from_f64(0.0000416);
-    let t3509 = s114 * (s114 * T::from_f64(0.0000208));
-    let t3518 = c115 * T::from_f64(0.000004800000000000001);
-    let t3545 = c115 * T::from_f64(0.003924);
-    let t3552 = s112 * (s114 * T::from_f64(0.003924));
-    let t3734 = t3418 + T::from_f64(0.00004);
-    let t3736 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3734);
-    let t3753 = qd[1]
+    let t3343 = c115 * T::from_f64(0.0000208);
+    let t3355 = c115 * T::from_f64(0.00004);
+    let t3363 = c115 * T::from_f64(0.000009600000000000001);
+    let t3385 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3394 = c115 * T::from_f64(0.0000416);
+    let t3434 = s114 * (s114 * T::from_f64(0.0000208));
+    let t3443 = c115 * T::from_f64(0.000004800000000000001);
+    let t3470 = c115 * T::from_f64(0.003924);
+    let t3477 = s112 * (s114 * T::from_f64(0.003924));
+    let t3659 = t3343 + T::from_f64(0.00004);
+    let t3661 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3659);
+    let t3678 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3460,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3385,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t3469),
-                    t3438 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t3394),
+                    t3363 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t3736,
+            t3661,
         );
-    let t3756 = qd[0]
+    let t3681 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t3430 - t3460,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3469), t3438),
+                    T::from_f64(0.0000208) + t3355 - t3385,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3394), t3363),
                 ),
-                t3736,
+                t3661,
             ),
-            t3753,
+            t3678,
         );
-    let t3760 = t3756
+    let t3685 = t3681
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t3786 = Real::mul_add(
+    let t3711 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t3430,
+            T::from_f64(-0.00008495000000000003) - t3355,
             s114
                 * Real::mul_add(
                     c113,
@@ -488,86 +488,86 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t3438 + T::from_f64(0.00004200000000000001),
-            t3430 + T::from_f64(0.00009551400000000003)
+            t3363 + T::from_f64(0.00004200000000000001),
+            t3355 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t3788 = T::from_f64(0.00000002100000000000001) / t3786;
-    let t3803 = s114
+    let t3713 = T::from_f64(0.00000002100000000000001) / t3711;
+    let t3728 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t3859 = T::from_f64(0.000000024000000000000003) / t3786;
-    let t4645 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
+    let t3784 = T::from_f64(0.000000024000000000000003) / t3711;
+    let t4570 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3545, t3552)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3470, t3477)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t4646 = Real::mul_add(
+    let t4571 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t3430 + t3509,
+                    T::from_f64(-0.00008495) - t3355 + t3434,
                     Real::mul_add(
                         s112,
-                        s114 * t3734,
-                        T::from_f64(-0.000021000000000000002) - t3518,
+                        s114 * t3659,
+                        T::from_f64(-0.000021000000000000002) - t3443,
                     ),
                 ),
-                t3803,
+                t3728,
             ),
-        t4645,
+        t4570,
     );
-    let t4657 = Real::mul_add(
+    let t4582 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3509 + (T::from_f64(-0.0000104) - t2580),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3418), -t3518),
+                    t3434 + (T::from_f64(-0.0000104) - t2580),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3343), -t3443),
                 ),
-                t3803,
+                t3728,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t3552 - c113 * t3545 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t3477 - c113 * t3470 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t2585),
     );
-    let t4660 = Real::mul_add(
-        -t3786,
-        t3788 * t3788,
-        t3430 + T::from_f64(0.00008694600000000003),
+    let t4585 = Real::mul_add(
+        -t3711,
+        t3713 * t3713,
+        t3355 + T::from_f64(0.00008694600000000003),
     );
-    let t4664 = Real::mul_add(
-        -t3786,
-        t3788 * t3859,
+    let t4589 = Real::mul_add(
+        -t3711,
+        t3713 * t3784,
         t2580 + T::from_f64(0.000011224000000000001),
-    ) / t4660;
-    let t4672 = Real::mul_add(-t3760, t3788, t4646);
-    let t4678 = Real::mul_add(-t4664, t4672, Real::mul_add(-t3760, t3859, t4657))
+    ) / t4585;
+    let t4597 = Real::mul_add(-t3685, t3713, t4571);
+    let t4603 = Real::mul_add(-t4589, t4597, Real::mul_add(-t3685, t3784, t4582))
         / Real::mul_add(
-            -t4660,
-            t4664 * t4664,
-            Real::mul_add(-t3786, t3859 * t3859, T::from_f64(0.000011256000000000002)),
+            -t4585,
+            t4589 * t4589,
+            Real::mul_add(-t3711, t3784 * t3784, T::from_f64(0.000011256000000000002)),
         );
-    let t4680 = Real::mul_add(-t4664, t4678, t4672 / t4660);
-    let t4684 = Real::mul_add(
-        -t3859,
-        t4678,
-        Real::mul_add(-t3788, t4680, t3760 / t3786),
+    let t4605 = Real::mul_add(-t4589, t4603, t4597 / t4585);
+    let t4609 = Real::mul_add(
+        -t3784,
+        t4603,
+        Real::mul_add(-t3713, t4605, t3685 / t3711),
     );
-    [t4684, t4680, t4678]
+    [t4609, t4605, t4603]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
 /// Entries: `value` and each Jacobian's rows: knuckle, proximal, distal; columns of `d_q`, `d_qd`: knuckle, proximal, distal; of `d_u`: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 763 arithmetic (331 add/sub, 393 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 775 arithmetic (337 add/sub, 399 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics_derivatives<T: Real>(
@@ -785,22 +785,29 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t2907 = -t2906;
     let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
     let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
-    let t2942 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
-    let t2944 = Real::mul_add(T::from_f64(0.02), t2942, T::from_f64(0.03) * t905);
-    let t2956 = t233 * T::from_f64(0.039999999999999994);
-    let t2957 = t1114 + t2956;
-    let t2960 = t237 * T::from_f64(0.0000006000000000000002);
-    let t2962 = t233 * T::from_f64(0.0000054);
-    let t2963 = c115 * t2960;
-    let t2964 = s114 * t2960;
-    let t2965 = Real::mul_add(T::from_f64(0.02), t2957, T::from_f64(0.03) * t1119);
-    let t2970 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
-    let t2972 = Real::mul_add(T::from_f64(0.02), t2970, T::from_f64(0.03) * t1348);
-    let t3022 = t635 + t619 * T::from_f64(0.0004);
-    let t3069 = t302 * t930
-        + (T::from_f64(0.0000024) * t948 + T::from_f64(0.0004) * t2942);
-    let t3071 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3083 = T::from_f64(0.05)
+    let t2934 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2936 = Real::mul_add(T::from_f64(0.02), t2934, T::from_f64(0.03) * t905);
+    let t2948 = t233 * T::from_f64(0.039999999999999994);
+    let t2949 = t1114 + t2948;
+    let t2952 = t237 * T::from_f64(0.0000006000000000000002);
+    let t2954 = t233 * T::from_f64(0.0000054);
+    let t2955 = c115 * t2952;
+    let t2956 = s114 * t2952;
+    let t2957 = Real::mul_add(T::from_f64(0.02), t2949, T::from_f64(0.03) * t1119);
+    let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
+    let t3006 = t635 + t619 * T::from_f64(0.0004);
+    let t3029 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2934,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2934,
+            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+        ),
+    );
+    let t3030 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3039 = T::from_f64(0.05)
         * Real::mul_add(
             T::from_f64(0.03),
             t2462,
@@ -810,217 +817,247 @@ pub fn forward_dynamics_derivatives<T: Real>(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3071);
-    let t3086 = Real::mul_add(
+        ) + t3030);
+    let t3042 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2944,
+            t2936,
             Real::mul_add(
                 t905,
                 T::from_f64(0.00075),
                 -(T::from_f64(0.0000058) * t863 + s112 * t213),
-            ) + (s114 * t1003 - c115 * t3069),
+            ) + Real::mul_add(c115, t3029, s114 * t1003),
         ),
-        s112 * (Real::mul_add(-qd[1], t909, c113 * t213) + (c115 * t1003 + s114 * t3069)),
+        s112
+            * (Real::mul_add(-qd[1], t909, c113 * t213)
+                - Real::mul_add(s114, t3029, -(c115 * t1003))),
     );
-    let t3089 = T::from_f64(0.012) * (t2944 - T::from_f64(0.014) * t852)
+    let t3045 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852)
         - (Real::mul_add(
             -t852,
             T::from_f64(0.00006),
             (t131 + t131 - t849) * T::from_f64(0.00003),
-        ) + t3086);
-    let t3097 = t2962 + T::from_f64(0.0004) * t2957;
-    let t3111 = Real::mul_add(
+        ) + t3042);
+    let t3050 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2949,
+        Real::mul_add(T::from_f64(0.0004), t2949, -t2954),
+    );
+    let t3060 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2965,
+            t2957,
             Real::mul_add(
                 -t152,
                 T::from_f64(0.000012600000000000001),
                 t1119 * T::from_f64(0.00075),
-            ) + (t2964 - c115 * t3097),
+            ) + Real::mul_add(c115, t3050, t2956),
         ),
         s112
             * Real::mul_add(
                 t153,
                 T::from_f64(0.0000009999999999999997),
-                t2963 + s114 * t3097,
+                -Real::mul_add(s114, t3050, -t2955),
             ),
     );
-    let t3113 = T::from_f64(0.012) * t2965 - t3111;
-    let t3118 = t2962 + T::from_f64(0.0004) * t2956;
-    let t3133 = T::from_f64(0.00024) * t2956
+    let t3062 = T::from_f64(0.012) * t2957 - t3060;
+    let t3066 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2948,
+        Real::mul_add(T::from_f64(0.0004), t2948, -t2954),
+    );
+    let t3078 = T::from_f64(0.00024) * t2948
         - Real::mul_add(
             c113,
-            Real::mul_add(-T::from_f64(0.001), t2956, t2964 - c115 * t3118),
-            s112 * (t2963 + s114 * t3118),
+            Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3066, t2956)),
+            s112 * Real::mul_add(-s114, t3066, t2955),
         );
-    let t3140 = T::from_f64(0.0000024) * t1372 + (t308 + T::from_f64(0.0004) * t2970);
-    let t3142 = t233 * t301 + t1388 * T::from_f64(0.0004);
-    let t3154 = T::from_f64(0.05)
+    let t3082 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2962,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2962,
+            -(t308 + T::from_f64(0.0000024) * t1372),
+        ),
+    );
+    let t3083 = t233 * t301 + t1388 * T::from_f64(0.0004);
+    let t3092 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t1347
             + Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3142);
-    let t3157 = Real::mul_add(
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3083);
+    let t3095 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2972,
+            t2964,
             Real::mul_add(
                 t1348,
                 T::from_f64(0.00075),
                 -(t219 + T::from_f64(0.0000058) * t158),
-            ) + (t412 - c115 * t3140),
+            ) + Real::mul_add(c115, t3082, t412),
         ),
-        s112 * (t218 + (t408 + s114 * t3140)),
+        s112 * (t218 - Real::mul_add(s114, t3082, -t408)),
     );
-    let t3160 = T::from_f64(0.008) * tendon_tensions[2]
+    let t3098 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
         - Real::mul_add(
             -T::from_f64(0.012),
-            t2972 - T::from_f64(0.014) * t134,
+            t2964 - T::from_f64(0.014) * t134,
             Real::mul_add(
                 -t134,
                 T::from_f64(0.00006),
                 (qd[0] * t131 - t122) * T::from_f64(0.00003),
-            ) + t3157,
+            ) + t3095,
         );
-    let t3164 = Real::mul_add(
+    let t3102 = Real::mul_add(
         -t2600,
-        t3160,
+        t3098,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t3154,
+            - T::from_f64(0.01) * tendon_tensions[3] - t3092,
     );
-    let t3171 = Real::mul_add(
+    let t3109 = Real::mul_add(
         -t2608,
-        t3164,
+        t3102,
         Real::mul_add(
             -t2601,
-            t3160,
+            t3098,
             T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t3142,
+                - T::from_f64(0.008) * tendon_tensions[1] - t3083,
         ),
     ) / t2614;
-    let t3173 = Real::mul_add(-t2608, t3171, t3164 / t2604);
-    let t3177 = Real::mul_add(
+    let t3111 = Real::mul_add(-t2608, t3109, t3102 / t2604);
+    let t3115 = Real::mul_add(
         -t2601,
-        t3171,
-        Real::mul_add(-t2600, t3173, t3160 / t2599),
+        t3109,
+        Real::mul_add(-t2600, t3111, t3098 / t2599),
     );
-    let t3181 = Real::mul_add(s112, t3177, t156);
-    let t3182 = Real::mul_add(c113, t3177, -t158);
-    let t3187 = t181 + Real::mul_add(T::from_f64(0.05), t3173, t166);
-    let t3188 = t183
-        - Real::mul_add(T::from_f64(0.05), t3182, T::from_f64(0.012) * t3177);
-    let t3191 = Real::mul_add(T::from_f64(0.025), t3182, t3188) - t204;
-    let t3203 = qd[2] * t237 + Real::mul_add(s114, t3182, c115 * t3181);
-    let t3204 = Real::mul_add(-s114, t3181, c115 * t3182) - t248;
-    let t3207 = Real::mul_add(s114, t3187, t251);
-    let t3209 = Real::mul_add(c115, t3187, -t254);
-    let t3226 = t273 + t3188 - T::from_f64(0.02) * t3204 - t293;
-    let t3234 = Real::mul_add(T::from_f64(0.0000024), t3204, -t308)
-        - T::from_f64(0.0004) * t3226;
-    let t3239 = s114 * t3234;
-    let t3240 = c115 * t3234;
-    let t3251 = Real::mul_add(T::from_f64(0.05), t3181, t153 * t173);
-    let t3254 = Real::mul_add(-T::from_f64(0.025), t3181, t3251) - t153 * t194;
-    let t3260 = T::from_f64(0.04) * t3203;
-    let t3263 = T::from_f64(0.02) * t3203;
-    let t3265 = t599 + (t3251 + t3260) - t3263 - t616;
-    let t3268 = Real::mul_add(T::from_f64(0.0000024), t3203, t305);
-    let t3274 = t3268 + T::from_f64(0.0004) * t3265;
-    let t3283 = Real::mul_add(T::from_f64(0.02), t3265, T::from_f64(0.03) * t3254);
-    let t3291 = Real::mul_add(
+    let t3119 = Real::mul_add(s112, t3115, t156);
+    let t3120 = Real::mul_add(c113, t3115, -t158);
+    let t3125 = t181 + Real::mul_add(T::from_f64(0.05), t3111, t166);
+    let t3126 = t183
+        - Real::mul_add(T::from_f64(0.05), t3120, T::from_f64(0.012) * t3115);
+    let t3129 = Real::mul_add(T::from_f64(0.025), t3120, t3126) - t204;
+    let t3141 = qd[2] * t237 + Real::mul_add(s114, t3120, c115 * t3119);
+    let t3142 = Real::mul_add(-s114, t3119, c115 * t3120) - t248;
+    let t3145 = Real::mul_add(s114, t3125, t251);
+    let t3147 = Real::mul_add(c115, t3125, -t254);
+    let t3163 = Real::mul_add(-T::from_f64(0.02), t3142, t273 + t3126) - t293;
+    let t3170 = Real::mul_add(T::from_f64(0.0000024), t3142, -t308)
+        - T::from_f64(0.0004) * t3163;
+    let t3175 = s114 * t3170;
+    let t3176 = c115 * t3170;
+    let t3187 = Real::mul_add(T::from_f64(0.05), t3119, t153 * t173);
+    let t3190 = Real::mul_add(-T::from_f64(0.025), t3119, t3187) - t153 * t194;
+    let t3196 = T::from_f64(0.04) * t3141;
+    let t3199 = T::from_f64(0.02) * t3141;
+    let t3201 = t599 + (t3187 + t3196) - t3199 - t616;
+    let t3204 = Real::mul_add(T::from_f64(0.0000024), t3141, t305);
+    let t3208 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t3201,
+        Real::mul_add(T::from_f64(0.0004), t3201, -t3204),
+    );
+    let t3213 = Real::mul_add(T::from_f64(0.02), t3201, T::from_f64(0.03) * t3190);
+    let t3221 = Real::mul_add(
         -s112,
         Real::mul_add(
             -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t3226, T::from_f64(0.03) * t3191),
+            Real::mul_add(T::from_f64(0.02), t3163, T::from_f64(0.03) * t3129),
             Real::mul_add(
                 T::from_f64(0.00075),
-                t3191,
-                Real::mul_add(T::from_f64(0.0000058), t3182, -t219),
-            ) + (t412 + t3240),
+                t3129,
+                Real::mul_add(T::from_f64(0.0000058), t3120, -t219),
+            ) + (t412 + t3176),
         ),
         c113
             * Real::mul_add(
                 -T::from_f64(0.05),
-                t3283,
+                t3213,
                 Real::mul_add(
                     T::from_f64(0.00075),
-                    t3254,
-                    -Real::mul_add(T::from_f64(0.0000058), t3181, t216),
-                ) + (t664 - c115 * t3274),
+                    t3190,
+                    -Real::mul_add(T::from_f64(0.0000058), t3119, t216),
+                ) + Real::mul_add(c115, t3208, t664),
             ),
     );
-    let t3294 = Real::mul_add(
+    let t3224 = Real::mul_add(
         T::from_f64(0.012),
-        t3283,
+        t3213,
         -(Real::mul_add(
             s112,
-            qd[1] * t554 - t219 + (t660 + s114 * t3274),
-            c113 * (t218 - (t3239 - t408)),
-        ) + t3291),
+            qd[1] * t554 - t219 - Real::mul_add(s114, t3208, -t660),
+            c113 * (t218 - (t3175 - t408)),
+        ) + t3221),
     );
-    let t3300 = t615 + (t598 - t3207);
-    let t3301 = t599 + t3260 - t3263 - t616;
-    let t3310 = t3268 + T::from_f64(0.0004) * t3301;
-    let t3312 = t635 + T::from_f64(0.0004) * t3300;
-    let t3318 = Real::mul_add(
+    let t3230 = t615 + (t598 - t3145);
+    let t3231 = t599 + t3196 - t3199 - t616;
+    let t3239 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t3231,
+        Real::mul_add(T::from_f64(0.0004), t3231, -t3204),
+    );
+    let t3240 = t635 + T::from_f64(0.0004) * t3230;
+    let t3246 = Real::mul_add(
         T::from_f64(0.02),
-        s114 * (t595 + t3209 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t3207 - t269))),
+        s114 * (t595 + t3147 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3145 - t269))),
     )
         + Real::mul_add(
             -T::from_f64(0.02),
             s114
-                * (Real::mul_add(T::from_f64(0.02), t3171 + t3173, t271 + t3209) - t291),
-            c115 * (T::from_f64(0.02) * t3300),
+                * (Real::mul_add(T::from_f64(0.02), t3109 + t3111, t271 + t3147) - t291),
+            c115 * (T::from_f64(0.02) * t3230),
         );
-    let t3334 = Real::mul_add(
+    let t3259 = Real::mul_add(
         c113,
-        Real::mul_add(-T::from_f64(0.001), t3301, t408 + t664 - (t3239 + c115 * t3310)),
-        s112 * (t660 - t412 - (t3240 - s114 * t3310)),
+        Real::mul_add(
+            -T::from_f64(0.001),
+            t3231,
+            t408 + t664 + Real::mul_add(c115, t3239, -t3175),
+        ),
+        s112 * (t660 - t412 - Real::mul_add(s114, t3239, t3176)),
     );
-    let t3336 = Real::mul_add(T::from_f64(0.00024), t3301, -t3334);
-    let t3338 = Real::mul_add(
+    let t3261 = Real::mul_add(T::from_f64(0.00024), t3231, -t3259);
+    let t3263 = Real::mul_add(
         t2600,
-        t3294,
+        t3224,
         t2418
             + (Real::mul_add(
                 -t549,
                 T::from_f64(0.00075),
                 Real::mul_add(t153, t212, -(t152 * t554)),
-            ) + t3022),
+            ) + t3006),
     );
-    let t3345 = Real::mul_add(t2608, t3338, -Real::mul_add(t2601, t3294, t3022)) / t2614;
-    let t3347 = Real::mul_add(t2608, t3345, t3338 / t2604);
-    let t3348 = -t3347;
-    let t3352 = Real::mul_add(-t2601, t3345, Real::mul_add(t2600, t3347, t3294 / t2599));
-    let t3354 = Real::mul_add(
+    let t3270 = Real::mul_add(t2608, t3263, -Real::mul_add(t2601, t3224, t3006)) / t2614;
+    let t3272 = Real::mul_add(t2608, t3270, t3263 / t2604);
+    let t3273 = -t3272;
+    let t3277 = Real::mul_add(-t2601, t3270, Real::mul_add(t2600, t3272, t3224 / t2599));
+    let t3279 = Real::mul_add(
         t2600,
-        t3336,
-        Real::mul_add(T::from_f64(0.05), t3318, t3312),
+        t3261,
+        Real::mul_add(T::from_f64(0.05), t3246, t3240),
     );
-    let t3361 = Real::mul_add(t2608, t3354, -Real::mul_add(t2601, t3336, t3312)) / t2614;
-    let t3363 = Real::mul_add(t2608, t3361, t3354 / t2604);
-    let t3364 = -t3363;
-    let t3368 = Real::mul_add(-t2601, t3361, Real::mul_add(t2600, t3363, t3336 / t2599));
-    let t3370 = Real::mul_add(t2600, t3089, t3083);
-    let t3377 = Real::mul_add(t2608, t3370, -Real::mul_add(t2601, t3089, t3071)) / t2614;
-    let t3379 = Real::mul_add(t2608, t3377, t3370 / t2604);
-    let t3380 = -t3379;
-    let t3384 = Real::mul_add(-t2601, t3377, Real::mul_add(t2600, t3379, t3089 / t2599));
-    let t3386 = Real::mul_add(
+    let t3286 = Real::mul_add(t2608, t3279, -Real::mul_add(t2601, t3261, t3240)) / t2614;
+    let t3288 = Real::mul_add(t2608, t3286, t3279 / t2604);
+    let t3289 = -t3288;
+    let t3293 = Real::mul_add(-t2601, t3286, Real::mul_add(t2600, t3288, t3261 / t2599));
+    let t3295 = Real::mul_add(t2600, t3045, t3039);
+    let t3302 = Real::mul_add(t2608, t3295, -Real::mul_add(t2601, t3045, t3030)) / t2614;
+    let t3304 = Real::mul_add(t2608, t3302, t3295 / t2604);
+    let t3305 = -t3304;
+    let t3309 = Real::mul_add(-t2601, t3302, Real::mul_add(t2600, t3304, t3045 / t2599));
+    let t3311 = Real::mul_add(
         t2600,
-        t3113,
+        t3062,
         Real::mul_add(
             T::from_f64(0.05),
             Real::mul_add(
@@ -1031,28 +1068,28 @@ pub fn forward_dynamics_derivatives<T: Real>(
             t2502 - t2499,
         ),
     );
-    let t3393 = Real::mul_add(t2608, t3386, Real::mul_add(-t2601, t3113, t2499 - t2502))
+    let t3318 = Real::mul_add(t2608, t3311, Real::mul_add(-t2601, t3062, t2499 - t2502))
         / t2614;
-    let t3395 = Real::mul_add(t2608, t3393, t3386 / t2604);
-    let t3396 = -t3395;
-    let t3400 = Real::mul_add(-t2601, t3393, Real::mul_add(t2600, t3395, t3113 / t2599));
-    let t3402 = Real::mul_add(
+    let t3320 = Real::mul_add(t2608, t3318, t3311 / t2604);
+    let t3321 = -t3320;
+    let t3325 = Real::mul_add(-t2601, t3318, Real::mul_add(t2600, t3320, t3062 / t2599));
+    let t3327 = Real::mul_add(
         t2600,
-        t3133,
+        t3078,
         T::from_f64(0.001) * (s114 * (t1141 - t1135)),
     );
-    let t3408 = Real::mul_add(-t2601, t3133, t2608 * t3402) / t2614;
-    let t3410 = Real::mul_add(t2608, t3408, t3402 / t2604);
-    let t3411 = -t3410;
-    let t3415 = Real::mul_add(-t2601, t3408, Real::mul_add(t2600, t3410, t3133 / t2599));
+    let t3333 = Real::mul_add(-t2601, t3078, t2608 * t3327) / t2614;
+    let t3335 = Real::mul_add(t2608, t3333, t3327 / t2604);
+    let t3336 = -t3335;
+    let t3340 = Real::mul_add(-t2601, t3333, Real::mul_add(t2600, t3335, t3078 / t2599));
     tendyn_core::dual::ForwardJacobians {
-        value: [t3177, t3173, t3171],
+        value: [t3115, t3111, t3109],
         d_q: [
-            [T::from_f64(0.0), t3352, t3368],
-            [T::from_f64(0.0), t3348, t3364],
-            [T::from_f64(0.0), t3345, t3361],
+            [T::from_f64(0.0), t3277, t3293],
+            [T::from_f64(0.0), t3273, t3289],
+            [T::from_f64(0.0), t3270, t3286],
         ],
-        d_qd: [[t3384, t3400, t3415], [t3380, t3396, t3411], [t3377, t3393, t3408]],
+        d_qd: [[t3309, t3325, t3340], [t3305, t3321, t3336], [t3302, t3318, t3333]],
         d_u: [
             [t2871, t2886, t2901, t2913],
             [t2867, t2882, t2897, t2909],
@@ -1079,7 +1116,7 @@ pub struct Outputs<T> {
         [[T; 4]; 3],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 974 arithmetic (448 add/sub, 487 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 991 arithmetic (457 add/sub, 495 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -1091,12 +1128,14 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
+    let t118 = T::from_f64(0.012) * qdd[0];
     let t120 = T::from_f64(0.012) * qd[0];
     let t122 = qd[0] * t120;
     let t130 = T::from_f64(0.002142857142857143) * qd[0];
     let t131 = qd[0] * T::from_f64(0.004285714285714286);
     let t133 = qd[0] * t131;
     let t134 = qd[0] * t130;
+    let t137 = qdd[0] * T::from_f64(0.004285714285714286) - t118 - t134;
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t156 = qd[1] * t153;
@@ -1113,7 +1152,7 @@ pub fn all<T: Real>(
     let t183 = t152 * t173;
     let t184 = t162 - t160 - Real::mul_add(qd[1], t173, t176);
     let t185 = Real::mul_add(T::from_f64(0.05), qdd[1], t166) + t181;
-    let t186 = t183 - (T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159);
+    let t186 = t183 - (t118 + T::from_f64(0.05) * t159);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
     let t202 = t152 * t196;
@@ -1242,6 +1281,11 @@ pub fn all<T: Real>(
     let t1655 = T::from_f64(-0.00006)
         + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
     let t2373 = t322 * T::from_f64(0.000000056);
+    let t2405 = Real::mul_add(
+        -t620,
+        T::from_f64(0.0008),
+        Real::mul_add(t620, T::from_f64(0.0004), -t636),
+    );
     let t2418 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t549
             + Real::mul_add(
@@ -1249,6 +1293,11 @@ pub fn all<T: Real>(
                 s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
                 c115 * (T::from_f64(0.02) * t619),
             ));
+    let t2433 = Real::mul_add(
+        -t751,
+        T::from_f64(0.0008),
+        Real::mul_add(t751, T::from_f64(0.0004), -t636),
+    );
     let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
     let t2477 = T::from_f64(0.02)
         * (s114
@@ -1353,105 +1402,116 @@ pub fn all<T: Real>(
     let t2907 = -t2906;
     let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
     let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
-    let t2918 = t134 + qdd[0] * T::from_f64(0.007714285714285714);
-    let t2926 = t271 + (t257 + T::from_f64(0.02) * t250) - t291;
-    let t2927 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
-    let t2928 = T::from_f64(0.02) * t2926;
-    let t2934 = Real::mul_add(T::from_f64(0.02), t2927, T::from_f64(0.03) * t208);
-    let t2942 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
-    let t2944 = Real::mul_add(T::from_f64(0.02), t2942, T::from_f64(0.03) * t905);
-    let t2947 = T::from_f64(0.012) * (t2944 - T::from_f64(0.014) * t852);
-    let t2956 = t233 * T::from_f64(0.039999999999999994);
-    let t2957 = t1114 + t2956;
-    let t2960 = t237 * T::from_f64(0.0000006000000000000002);
-    let t2962 = t233 * T::from_f64(0.0000054);
-    let t2963 = c115 * t2960;
-    let t2964 = s114 * t2960;
-    let t2965 = Real::mul_add(T::from_f64(0.02), t2957, T::from_f64(0.03) * t1119);
-    let t2967 = T::from_f64(0.012) * t2965;
-    let t2970 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
-    let t2972 = Real::mul_add(T::from_f64(0.02), t2970, T::from_f64(0.03) * t1348);
-    let t2987 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
-        - T::from_f64(0.0004) * t2927;
-    let t2988 = Real::mul_add(T::from_f64(0.000003), t250, t310)
-        + T::from_f64(0.0004) * t2926;
-    let t2989 = s114 * t2987;
-    let t2990 = c115 * t2987;
-    let t2993 = t218 - (t2989 - t408);
-    let t2996 = Real::mul_add(
+    let t2918 = t271 + (t257 + T::from_f64(0.02) * t250) - t291;
+    let t2919 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+    let t2920 = T::from_f64(0.02) * t2918;
+    let t2926 = Real::mul_add(T::from_f64(0.02), t2919, T::from_f64(0.03) * t208);
+    let t2934 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2936 = Real::mul_add(T::from_f64(0.02), t2934, T::from_f64(0.03) * t905);
+    let t2939 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852);
+    let t2948 = t233 * T::from_f64(0.039999999999999994);
+    let t2949 = t1114 + t2948;
+    let t2952 = t237 * T::from_f64(0.0000006000000000000002);
+    let t2954 = t233 * T::from_f64(0.0000054);
+    let t2955 = c115 * t2952;
+    let t2956 = s114 * t2952;
+    let t2957 = Real::mul_add(T::from_f64(0.02), t2949, T::from_f64(0.03) * t1119);
+    let t2959 = T::from_f64(0.012) * t2957;
+    let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
+    let t2974 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
+        - T::from_f64(0.0004) * t2919;
+    let t2975 = Real::mul_add(T::from_f64(0.000003), t250, t310)
+        + T::from_f64(0.0004) * t2918;
+    let t2976 = s114 * t2974;
+    let t2977 = c115 * t2974;
+    let t2980 = t218 - (t2976 - t408);
+    let t2983 = Real::mul_add(
         -T::from_f64(0.05),
-        t2934,
+        t2926,
         Real::mul_add(
             t208,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -t219),
-        ) + (t412 + t2990),
+        ) + (t412 + t2977),
     );
-    let t3004 = Real::mul_add(
+    let t2991 = Real::mul_add(
         -T::from_f64(0.012),
-        t2934 - T::from_f64(0.014) * t2918,
+        T::from_f64(0.014) * t137 + t2926,
         T::from_f64(0.0000022215714285714285) * qdd[0]
-            + ((Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
-                * T::from_f64(0.00003) - T::from_f64(0.00006) * t2918)
-            + Real::mul_add(c113, t2996, s112 * t2993),
+            + Real::mul_add(
+                t137,
+                T::from_f64(0.00006),
+                (Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
+                    * T::from_f64(0.00003),
+            ) + Real::mul_add(c113, t2983, s112 * t2980),
     );
-    let t3005 = t332
+    let t2992 = t332
         + Real::mul_add(
             T::from_f64(0.05),
-            T::from_f64(0.03) * t207 + Real::mul_add(c115, t2928, s114 * t298),
+            T::from_f64(0.03) * t207 + Real::mul_add(c115, t2920, s114 * t298),
             Real::mul_add(
                 -t207,
                 T::from_f64(0.00075),
                 Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
-            ) + t2988,
+            ) + t2975,
         );
-    let t3014 = t364 * T::from_f64(0.000000072)
-        + (t2373 + (t2373 + t2988) - t354 * T::from_f64(0.00000004799999999999999));
-    let t3017 = T::from_f64(0.000000064) * t376
+    let t3001 = t364 * T::from_f64(0.000000072)
+        + (t2373 + (t2373 + t2975) - t354 * T::from_f64(0.00000004799999999999999));
+    let t3004 = T::from_f64(0.000000064) * t376
         + (T::from_f64(0.000000064) * t370
             + (T::from_f64(0.000000081) * t364
-                + (T::from_f64(0.000000036) * t354 + t3004)));
-    let t3018 = t370 * T::from_f64(0.00000008)
+                + (T::from_f64(0.000000036) * t354 + t2991)));
+    let t3005 = t370 * T::from_f64(0.00000008)
         + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + t3005 - t354 * T::from_f64(0.000000042)))
+            + (t332 + t2992 - t354 * T::from_f64(0.000000042)))
         - t376 * T::from_f64(0.00000008);
-    let t3020 = t636 + t620 * T::from_f64(0.0004);
-    let t3022 = t635 + t619 * T::from_f64(0.0004);
-    let t3034 = t2418
+    let t3006 = t635 + t619 * T::from_f64(0.0004);
+    let t3008 = t2418
         + (Real::mul_add(
             -t549,
             T::from_f64(0.00075),
             Real::mul_add(t153, t212, -(t152 * t554)),
-        ) + t3022);
-    let t3039 = Real::mul_add(s112, t560 + (t660 + s114 * t3020), c113 * t2993)
+        ) + t3006);
+    let t3011 = Real::mul_add(
+        c113,
+        t2980,
+        s112 * (t560 - Real::mul_add(s114, t2405, -t660)),
+    )
         + Real::mul_add(
             -s112,
-            t2996,
+            t2983,
             c113
                 * (Real::mul_add(
                     t550,
                     T::from_f64(0.00075),
                     -(t216 + T::from_f64(0.0000058) * t157),
-                ) + (t664 - c115 * t3020) - T::from_f64(0.05) * t672),
+                ) + Real::mul_add(c115, t2405, t664) - T::from_f64(0.05) * t672),
         );
-    let t3040 = t3039 - T::from_f64(0.012) * t672;
-    let t3042 = t636 + t751 * T::from_f64(0.0004);
-    let t3044 = t635 + t750 * T::from_f64(0.0004);
-    let t3057 = Real::mul_add(
+    let t3012 = t3011 - T::from_f64(0.012) * t672;
+    let t3013 = t635 + t750 * T::from_f64(0.0004);
+    let t3021 = Real::mul_add(
         T::from_f64(0.05),
         Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298)
-            + Real::mul_add(-s114, t2928, c115 * (T::from_f64(0.02) * t750)),
-        t3044,
+            + Real::mul_add(-s114, t2920, c115 * (T::from_f64(0.02) * t750)),
+        t3013,
     );
-    let t3061 = Real::mul_add(
+    let t3025 = Real::mul_add(
         c113,
-        t792 - (t2989 + c115 * t3042) - t751 * T::from_f64(0.001),
-        s112 * (t785 - (t2990 - s114 * t3042)),
+        t792 + (c115 * t2433 - t2976) - t751 * T::from_f64(0.001),
+        s112 * (t785 - (s114 * t2433 + t2977)),
     ) - t751 * T::from_f64(0.00024);
-    let t3069 = t302 * t930
-        + (T::from_f64(0.0000024) * t948 + T::from_f64(0.0004) * t2942);
-    let t3071 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3083 = T::from_f64(0.05)
+    let t3029 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2934,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2934,
+            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+        ),
+    );
+    let t3030 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3039 = T::from_f64(0.05)
         * Real::mul_add(
             T::from_f64(0.03),
             t2462,
@@ -1461,247 +1521,277 @@ pub fn all<T: Real>(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3071);
-    let t3086 = Real::mul_add(
+        ) + t3030);
+    let t3042 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2944,
+            t2936,
             Real::mul_add(
                 t905,
                 T::from_f64(0.00075),
                 -(T::from_f64(0.0000058) * t863 + s112 * t213),
-            ) + (s114 * t1003 - c115 * t3069),
+            ) + Real::mul_add(c115, t3029, s114 * t1003),
         ),
-        s112 * (Real::mul_add(-qd[1], t909, c113 * t213) + (c115 * t1003 + s114 * t3069)),
+        s112
+            * (Real::mul_add(-qd[1], t909, c113 * t213)
+                - Real::mul_add(s114, t3029, -(c115 * t1003))),
     );
-    let t3087 = Real::mul_add(
+    let t3043 = Real::mul_add(
         -t852,
         T::from_f64(0.00006),
         (t131 + t131 - t849) * T::from_f64(0.00003),
-    ) + t3086;
-    let t3088 = t3087 - t2947;
-    let t3089 = t2947 - t3087;
-    let t3097 = t2962 + T::from_f64(0.0004) * t2957;
-    let t3111 = Real::mul_add(
+    ) + t3042;
+    let t3044 = t3043 - t2939;
+    let t3045 = t2939 - t3043;
+    let t3050 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2949,
+        Real::mul_add(T::from_f64(0.0004), t2949, -t2954),
+    );
+    let t3060 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2965,
+            t2957,
             Real::mul_add(
                 -t152,
                 T::from_f64(0.000012600000000000001),
                 t1119 * T::from_f64(0.00075),
-            ) + (t2964 - c115 * t3097),
+            ) + Real::mul_add(c115, t3050, t2956),
         ),
         s112
             * Real::mul_add(
                 t153,
                 T::from_f64(0.0000009999999999999997),
-                t2963 + s114 * t3097,
+                -Real::mul_add(s114, t3050, -t2955),
             ),
     );
-    let t3112 = t3111 - t2967;
-    let t3113 = t2967 - t3111;
-    let t3118 = t2962 + T::from_f64(0.0004) * t2956;
-    let t3130 = Real::mul_add(
-        c113,
-        Real::mul_add(-T::from_f64(0.001), t2956, t2964 - c115 * t3118),
-        s112 * (t2963 + s114 * t3118),
+    let t3061 = t3060 - t2959;
+    let t3062 = t2959 - t3060;
+    let t3066 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2948,
+        Real::mul_add(T::from_f64(0.0004), t2948, -t2954),
     );
-    let t3131 = T::from_f64(0.00024) * t2956;
-    let t3132 = t3130 - t3131;
-    let t3133 = t3131 - t3130;
-    let t3140 = T::from_f64(0.0000024) * t1372 + (t308 + T::from_f64(0.0004) * t2970);
-    let t3142 = t310 + t1388 * T::from_f64(0.0004);
-    let t3154 = T::from_f64(0.05)
+    let t3075 = Real::mul_add(
+        c113,
+        Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3066, t2956)),
+        s112 * Real::mul_add(-s114, t3066, t2955),
+    );
+    let t3076 = T::from_f64(0.00024) * t2948;
+    let t3077 = t3075 - t3076;
+    let t3078 = t3076 - t3075;
+    let t3082 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t2962,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t2962,
+            -(t308 + T::from_f64(0.0000024) * t1372),
+        ),
+    );
+    let t3083 = t310 + t1388 * T::from_f64(0.0004);
+    let t3092 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t1347
             + Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3142);
-    let t3157 = Real::mul_add(
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3083);
+    let t3095 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
-            t2972,
+            t2964,
             Real::mul_add(
                 t1348,
                 T::from_f64(0.00075),
                 -(t219 + T::from_f64(0.0000058) * t158),
-            ) + (t412 - c115 * t3140),
+            ) + Real::mul_add(c115, t3082, t412),
         ),
-        s112 * (t218 + (t408 + s114 * t3140)),
+        s112 * (t218 - Real::mul_add(s114, t3082, -t408)),
     );
-    let t3160 = T::from_f64(0.008) * tendon_tensions[2]
+    let t3098 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
         - Real::mul_add(
             -T::from_f64(0.012),
-            t2972 - T::from_f64(0.014) * t134,
+            t2964 - T::from_f64(0.014) * t134,
             Real::mul_add(
                 -t134,
                 T::from_f64(0.00006),
                 (t133 - t122) * T::from_f64(0.00003),
-            ) + t3157,
+            ) + t3095,
         );
-    let t3164 = Real::mul_add(
+    let t3102 = Real::mul_add(
         -t2600,
-        t3160,
+        t3098,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t3154,
+            - T::from_f64(0.01) * tendon_tensions[3] - t3092,
     );
-    let t3171 = Real::mul_add(
+    let t3109 = Real::mul_add(
         -t2608,
-        t3164,
+        t3102,
         Real::mul_add(
             -t2601,
-            t3160,
+            t3098,
             T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t3142,
+                - T::from_f64(0.008) * tendon_tensions[1] - t3083,
         ),
     ) / t2614;
-    let t3173 = Real::mul_add(-t2608, t3171, t3164 / t2604);
-    let t3177 = Real::mul_add(
+    let t3111 = Real::mul_add(-t2608, t3109, t3102 / t2604);
+    let t3115 = Real::mul_add(
         -t2601,
-        t3171,
-        Real::mul_add(-t2600, t3173, t3160 / t2599),
+        t3109,
+        Real::mul_add(-t2600, t3111, t3098 / t2599),
     );
-    let t3181 = Real::mul_add(s112, t3177, t156);
-    let t3182 = Real::mul_add(c113, t3177, -t158);
-    let t3187 = t181 + Real::mul_add(T::from_f64(0.05), t3173, t166);
-    let t3188 = t183
-        - Real::mul_add(T::from_f64(0.05), t3182, T::from_f64(0.012) * t3177);
-    let t3191 = Real::mul_add(T::from_f64(0.025), t3182, t3188) - t204;
-    let t3203 = t246 + Real::mul_add(s114, t3182, c115 * t3181);
-    let t3204 = Real::mul_add(-s114, t3181, c115 * t3182) - t248;
-    let t3207 = Real::mul_add(s114, t3187, t251);
-    let t3209 = Real::mul_add(c115, t3187, -t254);
-    let t3226 = t273 + t3188 - T::from_f64(0.02) * t3204 - t293;
-    let t3234 = Real::mul_add(T::from_f64(0.0000024), t3204, -t308)
-        - T::from_f64(0.0004) * t3226;
-    let t3239 = s114 * t3234;
-    let t3240 = c115 * t3234;
-    let t3251 = Real::mul_add(T::from_f64(0.05), t3181, t529);
-    let t3254 = Real::mul_add(-T::from_f64(0.025), t3181, t3251) - t546;
-    let t3260 = T::from_f64(0.04) * t3203;
-    let t3263 = T::from_f64(0.02) * t3203;
-    let t3265 = t599 + (t3251 + t3260) - t3263 - t616;
-    let t3268 = Real::mul_add(T::from_f64(0.0000024), t3203, t305);
-    let t3274 = t3268 + T::from_f64(0.0004) * t3265;
-    let t3283 = Real::mul_add(T::from_f64(0.02), t3265, T::from_f64(0.03) * t3254);
-    let t3291 = Real::mul_add(
+    let t3119 = Real::mul_add(s112, t3115, t156);
+    let t3120 = Real::mul_add(c113, t3115, -t158);
+    let t3125 = t181 + Real::mul_add(T::from_f64(0.05), t3111, t166);
+    let t3126 = t183
+        - Real::mul_add(T::from_f64(0.05), t3120, T::from_f64(0.012) * t3115);
+    let t3129 = Real::mul_add(T::from_f64(0.025), t3120, t3126) - t204;
+    let t3141 = t246 + Real::mul_add(s114, t3120, c115 * t3119);
+    let t3142 = Real::mul_add(-s114, t3119, c115 * t3120) - t248;
+    let t3145 = Real::mul_add(s114, t3125, t251);
+    let t3147 = Real::mul_add(c115, t3125, -t254);
+    let t3163 = Real::mul_add(-T::from_f64(0.02), t3142, t273 + t3126) - t293;
+    let t3170 = Real::mul_add(T::from_f64(0.0000024), t3142, -t308)
+        - T::from_f64(0.0004) * t3163;
+    let t3175 = s114 * t3170;
+    let t3176 = c115 * t3170;
+    let t3187 = Real::mul_add(T::from_f64(0.05), t3119, t529);
+    let t3190 = Real::mul_add(-T::from_f64(0.025), t3119, t3187) - t546;
+    let t3196 = T::from_f64(0.04) * t3141;
+    let t3199 = T::from_f64(0.02) * t3141;
+    let t3201 = t599 + (t3187 + t3196) - t3199 - t616;
+    let t3204 = Real::mul_add(T::from_f64(0.0000024), t3141, t305);
+    let t3208 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t3201,
+        Real::mul_add(T::from_f64(0.0004), t3201, -t3204),
+    );
+    let t3213 = Real::mul_add(T::from_f64(0.02), t3201, T::from_f64(0.03) * t3190);
+    let t3221 = Real::mul_add(
         -s112,
         Real::mul_add(
             -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t3226, T::from_f64(0.03) * t3191),
+            Real::mul_add(T::from_f64(0.02), t3163, T::from_f64(0.03) * t3129),
             Real::mul_add(
                 T::from_f64(0.00075),
-                t3191,
-                Real::mul_add(T::from_f64(0.0000058), t3182, -t219),
-            ) + (t412 + t3240),
+                t3129,
+                Real::mul_add(T::from_f64(0.0000058), t3120, -t219),
+            ) + (t412 + t3176),
         ),
         c113
             * Real::mul_add(
                 -T::from_f64(0.05),
-                t3283,
+                t3213,
                 Real::mul_add(
                     T::from_f64(0.00075),
-                    t3254,
-                    -Real::mul_add(T::from_f64(0.0000058), t3181, t216),
-                ) + (t664 - c115 * t3274),
+                    t3190,
+                    -Real::mul_add(T::from_f64(0.0000058), t3119, t216),
+                ) + Real::mul_add(c115, t3208, t664),
             ),
     );
-    let t3294 = Real::mul_add(
+    let t3224 = Real::mul_add(
         T::from_f64(0.012),
-        t3283,
+        t3213,
         -(Real::mul_add(
             s112,
-            t560 + (t660 + s114 * t3274),
-            c113 * (t218 - (t3239 - t408)),
-        ) + t3291),
+            t560 - Real::mul_add(s114, t3208, -t660),
+            c113 * (t218 - (t3175 - t408)),
+        ) + t3221),
     );
-    let t3300 = t615 + (t598 - t3207);
-    let t3301 = t599 + t3260 - t3263 - t616;
-    let t3310 = t3268 + T::from_f64(0.0004) * t3301;
-    let t3312 = t635 + T::from_f64(0.0004) * t3300;
-    let t3318 = Real::mul_add(
+    let t3230 = t615 + (t598 - t3145);
+    let t3231 = t599 + t3196 - t3199 - t616;
+    let t3239 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t3231,
+        Real::mul_add(T::from_f64(0.0004), t3231, -t3204),
+    );
+    let t3240 = t635 + T::from_f64(0.0004) * t3230;
+    let t3246 = Real::mul_add(
         T::from_f64(0.02),
-        s114 * (t595 + t3209 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t3207 - t269))),
+        s114 * (t595 + t3147 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3145 - t269))),
     )
         + Real::mul_add(
             -T::from_f64(0.02),
             s114
-                * (Real::mul_add(T::from_f64(0.02), t3171 + t3173, t271 + t3209) - t291),
-            c115 * (T::from_f64(0.02) * t3300),
+                * (Real::mul_add(T::from_f64(0.02), t3109 + t3111, t271 + t3147) - t291),
+            c115 * (T::from_f64(0.02) * t3230),
         );
-    let t3336 = Real::mul_add(
+    let t3261 = Real::mul_add(
         T::from_f64(0.00024),
-        t3301,
+        t3231,
         -Real::mul_add(
             c113,
-            Real::mul_add(-T::from_f64(0.001), t3301, t792 - (t3239 + c115 * t3310)),
-            s112 * (t785 - (t3240 - s114 * t3310)),
+            Real::mul_add(
+                -T::from_f64(0.001),
+                t3231,
+                t792 + Real::mul_add(c115, t3239, -t3175),
+            ),
+            s112 * (t785 - Real::mul_add(s114, t3239, t3176)),
         ),
     );
-    let t3338 = Real::mul_add(t2600, t3294, t3034);
-    let t3345 = Real::mul_add(t2608, t3338, -Real::mul_add(t2601, t3294, t3022)) / t2614;
-    let t3347 = Real::mul_add(t2608, t3345, t3338 / t2604);
-    let t3348 = -t3347;
-    let t3352 = Real::mul_add(-t2601, t3345, Real::mul_add(t2600, t3347, t3294 / t2599));
-    let t3354 = Real::mul_add(
+    let t3263 = Real::mul_add(t2600, t3224, t3008);
+    let t3270 = Real::mul_add(t2608, t3263, -Real::mul_add(t2601, t3224, t3006)) / t2614;
+    let t3272 = Real::mul_add(t2608, t3270, t3263 / t2604);
+    let t3273 = -t3272;
+    let t3277 = Real::mul_add(-t2601, t3270, Real::mul_add(t2600, t3272, t3224 / t2599));
+    let t3279 = Real::mul_add(
         t2600,
-        t3336,
-        Real::mul_add(T::from_f64(0.05), t3318, t3312),
+        t3261,
+        Real::mul_add(T::from_f64(0.05), t3246, t3240),
     );
-    let t3361 = Real::mul_add(t2608, t3354, -Real::mul_add(t2601, t3336, t3312)) / t2614;
-    let t3363 = Real::mul_add(t2608, t3361, t3354 / t2604);
-    let t3364 = -t3363;
-    let t3368 = Real::mul_add(-t2601, t3361, Real::mul_add(t2600, t3363, t3336 / t2599));
-    let t3370 = Real::mul_add(t2600, t3089, t3083);
-    let t3377 = Real::mul_add(t2608, t3370, -Real::mul_add(t2601, t3089, t3071)) / t2614;
-    let t3379 = Real::mul_add(t2608, t3377, t3370 / t2604);
-    let t3380 = -t3379;
-    let t3384 = Real::mul_add(-t2601, t3377, Real::mul_add(t2600, t3379, t3089 / t2599));
-    let t3386 = Real::mul_add(t2600, t3113, t2517);
-    let t3393 = Real::mul_add(t2608, t3386, Real::mul_add(-t2601, t3113, t2499 - t2502))
+    let t3286 = Real::mul_add(t2608, t3279, -Real::mul_add(t2601, t3261, t3240)) / t2614;
+    let t3288 = Real::mul_add(t2608, t3286, t3279 / t2604);
+    let t3289 = -t3288;
+    let t3293 = Real::mul_add(-t2601, t3286, Real::mul_add(t2600, t3288, t3261 / t2599));
+    let t3295 = Real::mul_add(t2600, t3045, t3039);
+    let t3302 = Real::mul_add(t2608, t3295, -Real::mul_add(t2601, t3045, t3030)) / t2614;
+    let t3304 = Real::mul_add(t2608, t3302, t3295 / t2604);
+    let t3305 = -t3304;
+    let t3309 = Real::mul_add(-t2601, t3302, Real::mul_add(t2600, t3304, t3045 / t2599));
+    let t3311 = Real::mul_add(t2600, t3062, t2517);
+    let t3318 = Real::mul_add(t2608, t3311, Real::mul_add(-t2601, t3062, t2499 - t2502))
         / t2614;
-    let t3395 = Real::mul_add(t2608, t3393, t3386 / t2604);
-    let t3396 = -t3395;
-    let t3400 = Real::mul_add(-t2601, t3393, Real::mul_add(t2600, t3395, t3113 / t2599));
-    let t3402 = Real::mul_add(t2600, t3133, t2534);
-    let t3408 = Real::mul_add(-t2601, t3133, t2608 * t3402) / t2614;
-    let t3410 = Real::mul_add(t2608, t3408, t3402 / t2604);
-    let t3411 = -t3410;
-    let t3415 = Real::mul_add(-t2601, t3408, Real::mul_add(t2600, t3410, t3133 / t2599));
+    let t3320 = Real::mul_add(t2608, t3318, t3311 / t2604);
+    let t3321 = -t3320;
+    let t3325 = Real::mul_add(-t2601, t3318, Real::mul_add(t2600, t3320, t3062 / t2599));
+    let t3327 = Real::mul_add(t2600, t3078, t2534);
+    let t3333 = Real::mul_add(-t2601, t3078, t2608 * t3327) / t2614;
+    let t3335 = Real::mul_add(t2608, t3333, t3327 / t2604);
+    let t3336 = -t3335;
+    let t3340 = Real::mul_add(-t2601, t3333, Real::mul_add(t2600, t3335, t3078 / t2599));
     Outputs {
-        generalized_forces: [t3017, t3018, t3014],
+        generalized_forces: [t3004, t3005, t3001],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t3017, t3018, t3014],
+            value: [t3004, t3005, t3001],
             d_q: [
-                [T::from_f64(0.0), t3040, t3061],
-                [T::from_f64(0.0), t3034, t3057],
-                [T::from_f64(0.0), t3022, t3044],
+                [T::from_f64(0.0), t3012, t3025],
+                [T::from_f64(0.0), t3008, t3021],
+                [T::from_f64(0.0), t3006, t3013],
             ],
             d_qd: [
-                [t3088, t3112, t3132],
-                [t3083, t2517, t2534],
-                [t3071, t2504, T::from_f64(0.0)],
+                [t3044, t3061, t3077],
+                [t3039, t2517, t2534],
+                [t3030, t2504, T::from_f64(0.0)],
             ],
         },
-        forward_dynamics: [t3177, t3173, t3171],
+        forward_dynamics: [t3115, t3111, t3109],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t3177, t3173, t3171],
+            value: [t3115, t3111, t3109],
             d_q: [
-                [T::from_f64(0.0), t3352, t3368],
-                [T::from_f64(0.0), t3348, t3364],
-                [T::from_f64(0.0), t3345, t3361],
+                [T::from_f64(0.0), t3277, t3293],
+                [T::from_f64(0.0), t3273, t3289],
+                [T::from_f64(0.0), t3270, t3286],
             ],
-            d_qd: [[t3384, t3400, t3415], [t3380, t3396, t3411], [t3377, t3393, t3408]],
+            d_qd: [[t3309, t3325, t3340], [t3305, t3321, t3336], [t3302, t3318, t3333]],
             d_u: [
                 [t2871, t2886, t2901, t2913],
                 [t2867, t2882, t2897, t2909],

@@ -68,27 +68,27 @@ pub fn actuation_derivatives<T: Numeric>(
     qdd: &[T; 1],
 ) -> tendyn_core::dual::ActuationJacobians<[T; 3], [[T; 1]; 3]> {
     let (s29, c30) = q[0].sin_cos();
-    let t174 = -(qdd[0] * T::from_f64(0.24148052699609443)
+    let t166 = -(qdd[0] * T::from_f64(0.24148052699609443)
         + c30 * T::from_f64(15.489503534923216));
-    let t178 = Real::mul_add(
+    let t170 = Real::mul_add(
         c30,
         T::from_f64(1.5223696228493755),
         qdd[0] * T::from_f64(0.023733660538548376),
     );
-    let t182 = Real::mul_add(
+    let t174 = Real::mul_add(
         c30,
         T::from_f64(7.0203077846917195),
         qdd[0] * T::from_f64(0.10944622077137119),
     );
-    let t183 = s29 * T::from_f64(15.489503534923216);
-    let t186 = -(s29 * T::from_f64(1.5223696228493755));
-    let t189 = -(s29 * T::from_f64(7.0203077846917195));
+    let t175 = s29 * T::from_f64(15.489503534923216);
+    let t178 = -(s29 * T::from_f64(1.5223696228493755));
+    let t181 = -(s29 * T::from_f64(7.0203077846917195));
     {
         let (actuation, tangents) = tendyn_core::distribution::Actuation::bounded_with_tangents(
             [],
-            [t174, t178, t182],
+            [t166, t170, t174],
             &[
-                [t183, t186, t189],
+                [t175, t178, t181],
                 [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
                 [
                     T::from_f64(-0.24148052699609443),
@@ -162,26 +162,30 @@ pub struct Outputs<T> {
         [[T; 1]; 3],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 16 arithmetic (2 add/sub, 11 mul, 0 div, 3 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 17 arithmetic (3 add/sub, 12 mul, 0 div, 2 neg, 0 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
     let (s29, c30) = q[0].sin_cos();
-    let t141 = s29 * T::from_f64(0.5765039479813963);
+    let t144 = Real::mul_add(
+        -s29,
+        T::from_f64(1.1530078959627925),
+        s29 * T::from_f64(0.5765039479813963),
+    );
+    let t146 = -(T::from_f64(26.86799212591526) * t144);
+    let t147 = T::from_f64(2.640692450034188) * t144;
+    let t148 = T::from_f64(12.177380240452862) * t144;
     let t153 = T::from_f64(0.0022565364925521848) * qdd[0]
         + T::from_f64(0.05876696717445425)
             * (T::from_f64(9.81) * c30 + qdd[0] * T::from_f64(0.11453933004307648));
     let t155 = -(T::from_f64(26.86799212591526) * t153);
     let t156 = T::from_f64(2.640692450034188) * t153;
     let t157 = T::from_f64(12.177380240452862) * t153;
-    let t160 = T::from_f64(26.86799212591526) * t141;
-    let t163 = -(T::from_f64(2.640692450034188) * t141);
-    let t165 = -(T::from_f64(12.177380240452862) * t141);
     let actuation_and_tangents = tendyn_core::distribution::Actuation::bounded_with_tangents(
         [],
         [t155, t156, t157],
         &[
-            [t160, t163, t165],
+            [t146, t147, t148],
             [T::from_f64(0.0), T::from_f64(0.0), T::from_f64(0.0)],
             [
                 T::from_f64(-0.24148052699609443),

@@ -79,96 +79,96 @@ pub fn actuation<T: Numeric>(
         Real::mul_add(c99, t288, s98 * t106),
     );
     let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t380 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
-    let t383 = T::from_f64(0.5007304715876689)
+    let t378 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t380 = T::from_f64(0.5007304715876689)
         * (Real::mul_add(s100, t296, c101 * t299)
             - T::from_f64(0.05865388667445857) * (t160 * t160));
-    let t384 = T::from_f64(0.5007304715876689) * t380;
-    let t388 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t380;
-    let t396 = T::from_f64(0.6835347352950796) * t300
-        + Real::mul_add(c101, t384, s100 * t383);
-    let t399 = Real::mul_add(
+    let t381 = T::from_f64(0.5007304715876689) * t378;
+    let t385 = T::from_f64(0.0005867356740067153) * t161
+        + T::from_f64(0.029369788334951328) * t378;
+    let t393 = T::from_f64(0.6835347352950796) * t300
+        + Real::mul_add(c101, t381, s100 * t380);
+    let t396 = Real::mul_add(
         T::from_f64(0.22861191771406145),
-        t396,
+        t393,
         Real::mul_add(
             -t300,
             T::from_f64(0.07813209332999076),
             T::from_f64(0.002994076316912913) * t129,
-        ) + t388,
+        ) + t385,
     );
-    let t405 = T::from_f64(0.17348249055745907)
+    let t402 = T::from_f64(0.17348249055745907)
         * (T::from_f64(0.6015049614594958) * t114
             + Real::mul_add(
                 c99,
-                t396,
+                t393,
                 s98
                     * (T::from_f64(0.6835347352950796)
                         * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
-                        - Real::mul_add(-c101, t383, s100 * t384)),
+                        - Real::mul_add(-c101, t380, s100 * t381)),
             ));
-    let t406 = Real::mul_add(
+    let t403 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),
         T::from_f64(0.0015236208157662593) * qdd[0],
-    ) + t399 + t405;
-    let t411 = Real::mul_add(
+    ) + t396 + t402;
+    let t408 = Real::mul_add(
         T::from_f64(4.467850922313987),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(5.809172465528377),
-            t406,
-            T::from_f64(20.016508221666097) * t399,
+            t403,
+            T::from_f64(20.016508221666097) * t396,
         ),
     );
-    let t416 = Real::mul_add(
+    let t413 = Real::mul_add(
         T::from_f64(6.170316129089984),
-        t388,
+        t385,
         Real::mul_add(
             T::from_f64(0.006739236891550426),
-            t399,
-            T::from_f64(11.400003889691153) * t406,
+            t396,
+            T::from_f64(11.400003889691153) * t403,
         ),
     );
-    let t421 = Real::mul_add(
+    let t418 = Real::mul_add(
         -T::from_f64(4.82564702027779),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(2.8992594498656623),
-            t406,
-            T::from_f64(13.336534908666533) * t399,
+            t403,
+            T::from_f64(13.336534908666533) * t396,
         ),
     );
-    let t426 = Real::mul_add(
+    let t423 = Real::mul_add(
         -T::from_f64(3.343664733351526),
-        t388,
+        t385,
         Real::mul_add(
             T::from_f64(2.3508975571053456),
-            t399,
-            T::from_f64(2.436491563222303) * t406,
+            t396,
+            T::from_f64(2.436491563222303) * t403,
         ),
     );
-    let t431 = Real::mul_add(
+    let t428 = Real::mul_add(
         T::from_f64(5.3821204934726845),
-        t388,
+        t385,
         -Real::mul_add(
             T::from_f64(46.92786534807541),
-            t399,
-            T::from_f64(21.466654370643287) * t406,
+            t396,
+            T::from_f64(21.466654370643287) * t403,
         ),
     );
-    let t436 = Real::mul_add(
+    let t433 = Real::mul_add(
         -T::from_f64(5.523420133271952),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(15.948011217177697),
-            t399,
-            T::from_f64(3.295669234330575) * t406,
+            t396,
+            T::from_f64(3.295669234330575) * t403,
         ),
     );
     tendyn_core::distribution::Actuation::bounded(
         [],
-        [t411, t416, t421, t426, t431, t436],
+        [t408, t413, t418, t423, t428, t433],
         &tendyn_core::distribution::Fixed {
             null: [
                 [
@@ -261,97 +261,97 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         Real::mul_add(c99, t288, s98 * t106),
     );
     let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t380 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
-    let t383 = T::from_f64(0.5007304715876689)
+    let t378 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t380 = T::from_f64(0.5007304715876689)
         * (Real::mul_add(s100, t296, c101 * t299)
             - T::from_f64(0.05865388667445857) * (t160 * t160));
-    let t384 = T::from_f64(0.5007304715876689) * t380;
-    let t388 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t380;
-    let t396 = T::from_f64(0.6835347352950796) * t300
-        + Real::mul_add(c101, t384, s100 * t383);
-    let t399 = Real::mul_add(
+    let t381 = T::from_f64(0.5007304715876689) * t378;
+    let t385 = T::from_f64(0.0005867356740067153) * t161
+        + T::from_f64(0.029369788334951328) * t378;
+    let t393 = T::from_f64(0.6835347352950796) * t300
+        + Real::mul_add(c101, t381, s100 * t380);
+    let t396 = Real::mul_add(
         T::from_f64(0.22861191771406145),
-        t396,
+        t393,
         Real::mul_add(
             -t300,
             T::from_f64(0.07813209332999076),
             T::from_f64(0.002994076316912913) * t129,
-        ) + t388,
+        ) + t385,
     );
-    let t405 = T::from_f64(0.17348249055745907)
+    let t402 = T::from_f64(0.17348249055745907)
         * (T::from_f64(0.6015049614594958) * t114
             + Real::mul_add(
                 c99,
-                t396,
+                t393,
                 s98
                     * (T::from_f64(0.6835347352950796)
                         * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
-                        - Real::mul_add(-c101, t383, s100 * t384)),
+                        - Real::mul_add(-c101, t380, s100 * t381)),
             ));
-    let t406 = Real::mul_add(
+    let t403 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),
         T::from_f64(0.0015236208157662593) * qdd[0],
-    ) + t399 + t405;
-    let t411 = Real::mul_add(
+    ) + t396 + t402;
+    let t408 = Real::mul_add(
         T::from_f64(4.467850922313987),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(5.809172465528377),
-            t406,
-            T::from_f64(20.016508221666097) * t399,
+            t403,
+            T::from_f64(20.016508221666097) * t396,
         ),
     );
-    let t416 = Real::mul_add(
+    let t413 = Real::mul_add(
         T::from_f64(6.170316129089984),
-        t388,
+        t385,
         Real::mul_add(
             T::from_f64(0.006739236891550426),
-            t399,
-            T::from_f64(11.400003889691153) * t406,
+            t396,
+            T::from_f64(11.400003889691153) * t403,
         ),
     );
-    let t421 = Real::mul_add(
+    let t418 = Real::mul_add(
         -T::from_f64(4.82564702027779),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(2.8992594498656623),
-            t406,
-            T::from_f64(13.336534908666533) * t399,
+            t403,
+            T::from_f64(13.336534908666533) * t396,
         ),
     );
-    let t426 = Real::mul_add(
+    let t423 = Real::mul_add(
         -T::from_f64(3.343664733351526),
-        t388,
+        t385,
         Real::mul_add(
             T::from_f64(2.3508975571053456),
-            t399,
-            T::from_f64(2.436491563222303) * t406,
+            t396,
+            T::from_f64(2.436491563222303) * t403,
         ),
     );
-    let t431 = Real::mul_add(
+    let t428 = Real::mul_add(
         T::from_f64(5.3821204934726845),
-        t388,
+        t385,
         -Real::mul_add(
             T::from_f64(46.92786534807541),
-            t399,
-            T::from_f64(21.466654370643287) * t406,
+            t396,
+            T::from_f64(21.466654370643287) * t403,
         ),
     );
-    let t436 = Real::mul_add(
+    let t433 = Real::mul_add(
         -T::from_f64(5.523420133271952),
-        t388,
+        t385,
         Real::mul_add(
             -T::from_f64(15.948011217177697),
-            t399,
-            T::from_f64(3.295669234330575) * t406,
+            t396,
+            T::from_f64(3.295669234330575) * t403,
         ),
     );
     Outputs {
         actuation: tendyn_core::distribution::Actuation::bounded(
             [],
-            [t411, t416, t421, t426, t431, t436],
+            [t408, t413, t418, t423, t428, t433],
             &tendyn_core::distribution::Fixed {
                 null: [
                     [

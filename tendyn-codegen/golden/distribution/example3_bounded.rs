@@ -23,7 +23,7 @@ pub const TENDONS: usize = 4;
 ///
 /// Entries: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 323 arithmetic (130 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 324 arithmetic (131 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Numeric>(
@@ -33,17 +33,14 @@ pub fn actuation<T: Numeric>(
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 4]> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
+    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(
-        t152,
-        t173,
-        -(T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159),
-    );
+    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
@@ -68,6 +65,11 @@ pub fn actuation<T: Numeric>(
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
+    let t1495 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t1489,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
@@ -137,26 +139,24 @@ pub fn actuation<T: Numeric>(
     );
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1724 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t1729 = T::from_f64(0.002142857142857143) * t1489
-        + qdd[0] * T::from_f64(0.007714285714285714);
-    let t1742 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
+    let t1720 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t1731 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
         - t233 * t285;
-    let t1748 = Real::mul_add(T::from_f64(0.02), t1742, -(t1561 + t1576));
-    let t1758 = T::from_f64(0.006) * t1558
+    let t1737 = Real::mul_add(T::from_f64(0.02), t1731, -(t1561 + t1576));
+    let t1744 = T::from_f64(0.006) * t1558
         + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-            - T::from_f64(0.0004) * t1724 - T::from_f64(0.009) * t1573);
-    let t1759 = Real::mul_add(
+            - T::from_f64(0.0004) * t1720 - T::from_f64(0.009) * t1573);
+    let t1745 = Real::mul_add(
         T::from_f64(0.04),
-        t1748,
+        t1737,
         Real::mul_add(
             -T::from_f64(0.0004),
-            t1742,
+            t1731,
             Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
         ) - t1616,
     );
-    let t1771 = Real::mul_add(T::from_f64(0.02), t1724, T::from_f64(0.03) * t1516);
-    let t1774 = Real::mul_add(
+    let t1757 = Real::mul_add(T::from_f64(0.02), t1720, T::from_f64(0.03) * t1516);
+    let t1760 = Real::mul_add(
         -t1515,
         T::from_f64(0.00075),
         Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
@@ -166,103 +166,106 @@ pub fn actuation<T: Numeric>(
             t1592,
             Real::mul_add(t603, t1589, t602 * t1590)
                 - Real::mul_add(t603, t1584, t602 * t1585),
-        ) - t1759);
-    let t1777 = Real::mul_add(
+        ) - t1745);
+    let t1763 = Real::mul_add(
         -T::from_f64(0.05),
-        t1771,
+        t1757,
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
         )
             + (T::from_f64(0.008) * (t1584 + t1589)
-                + Real::mul_add(c115, t1758, s114 * t1619)),
+                + Real::mul_add(c115, t1744, s114 * t1619)),
     );
-    let t1778 = Real::mul_add(
+    let t1764 = Real::mul_add(
         T::from_f64(0.05),
-        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1748, s114 * t1617)),
-        t1774,
+        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1737, s114 * t1617)),
+        t1760,
     );
-    let t1782 = Real::mul_add(
+    let t1768 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
         T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
     )
         - Real::mul_add(
             c113,
-            t1777,
+            t1763,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t1758, -(c115 * t1619))
+                    - (Real::mul_add(s114, t1744, -(c115 * t1619))
                         - T::from_f64(0.008) * t1592)),
         );
-    let t1786 = Real::mul_add(
+    let t1772 = Real::mul_add(
         -T::from_f64(0.012),
-        t1771 - T::from_f64(0.014) * t1729,
+        T::from_f64(0.014) * t1495 + t1757,
         T::from_f64(0.0000022215714285714285) * qdd[0]
             + Real::mul_add(
                 T::from_f64(0.00003),
-                T::from_f64(0.002142857142857143) * qdd[0]
-                    - t1489 * T::from_f64(0.007714285714285714),
-                -(T::from_f64(0.00006) * t1729),
-            ) - t1782,
+                Real::mul_add(
+                    -t1489,
+                    T::from_f64(0.007714285714285714),
+                    T::from_f64(0.002142857142857143) * qdd[0],
+                ),
+                t1495 * T::from_f64(0.00006),
+            ) - t1768,
     );
-    let t1791 = Real::mul_add(
+    let t1777 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t1759,
+        t1745,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t1786,
-            T::from_f64(0.000000000000003552713678800501) * t1778,
+            t1772,
+            T::from_f64(0.000000000000003552713678800501) * t1764,
         ),
     );
-    let t1796 = Real::mul_add(
+    let t1782 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t1759,
+        t1745,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t1778,
-            T::from_f64(31.18503118503118) * t1786,
+            t1764,
+            T::from_f64(31.18503118503118) * t1772,
         ),
     );
-    let t1800 = Real::mul_add(
+    let t1786 = Real::mul_add(
         T::from_f64(50.000000000000014),
-        t1778,
-        T::from_f64(33.26403326403328) * t1786,
+        t1764,
+        T::from_f64(33.26403326403328) * t1772,
     );
-    let t1801 = T::from_f64(49.98700623700625) * t1759;
-    let t1802 = t1800 - t1801;
-    let t1807 = Real::mul_add(
+    let t1787 = T::from_f64(49.98700623700625) * t1745;
+    let t1788 = t1786 - t1787;
+    let t1793 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t1759,
-        Real::mul_add(-T::from_f64(50.0), t1778, T::from_f64(33.26403326403329) * t1786),
+        t1745,
+        Real::mul_add(-T::from_f64(50.0), t1764, T::from_f64(33.26403326403329) * t1772),
     );
-    let t1817 = (T::from_f64(0.9374999999999998) * (t1791 - T::from_f64(60.0)))
-        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1796)))
-        .max(t1802 - T::from_f64(60.0))
-        .max(t1807 - T::from_f64(60.0));
-    let t1828 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1791))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1796))
-        .max(T::from_f64(5.0) - t1802)
-        .max(T::from_f64(5.0) - t1807);
-    let t1839 = t1807
+    let t1803 = (T::from_f64(0.9374999999999998) * (t1777 - T::from_f64(60.0)))
+        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1782)))
+        .max(t1788 - T::from_f64(60.0))
+        .max(t1793 - T::from_f64(60.0));
+    let t1814 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1777))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1782))
+        .max(T::from_f64(5.0) - t1788)
+        .max(T::from_f64(5.0) - t1793);
+    let t1825 = t1793
         .max(
-            t1802
-                .max(t1796.max((-t1796).max(T::from_f64(60.0).max(t1791).max(-t1791))))
-                .max(t1801 - t1800),
+            t1788
+                .max(t1782.max((-t1782).max(T::from_f64(60.0).max(t1777).max(-t1777))))
+                .max(t1787 - t1786),
         )
-        .max(-t1807);
-    let t1840 = t1817 + t1828;
-    let t1841 = (-T::from_f64(0.0).max(t1817)).max(t1828);
-    let t1843 = Real::mul_add(T::from_f64(1.0666666666666669), t1841, t1791);
-    let t1845 = Real::mul_add(T::from_f64(1.0666666666666664), t1841, -t1796);
-    let t1846 = t1802 + t1841;
-    let t1847 = t1807 + t1841;
+        .max(-t1793);
+    let t1826 = t1803 + t1814;
+    let t1827 = (-T::from_f64(0.0).max(t1803)).max(t1814);
+    let t1829 = Real::mul_add(T::from_f64(1.0666666666666669), t1827, t1777);
+    let t1831 = Real::mul_add(T::from_f64(1.0666666666666664), t1827, -t1782);
+    let t1832 = t1788 + t1827;
+    let t1833 = t1793 + t1827;
     tendyn_core::distribution::Actuation::along_line(
         [],
-        [t1843, t1845, t1846, t1847],
-        t1840,
-        t1839,
+        [t1829, t1831, t1832, t1833],
+        t1826,
+        t1825,
     )
 }
 /// Every requested output of [`all`].
@@ -271,23 +274,20 @@ pub struct Outputs<T> {
     /// See [`actuation`].
     pub actuation: tendyn_core::distribution::Actuation<[T; 0], [T; 4]>,
 }
-/// Every generated output at once, sharing their common work. Operations: 323 arithmetic (130 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 324 arithmetic (131 add/sub, 172 mul, 0 div, 5 neg, 16 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
+    let t118 = T::from_f64(0.012) * qdd[0];
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t158 = qd[1] * t152;
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(
-        t152,
-        t173,
-        -(T::from_f64(0.012) * qdd[0] + T::from_f64(0.05) * t159),
-    );
+    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
@@ -312,6 +312,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t603 = T::from_f64(0.01) * c113;
     let t1489 = qd[0] * qd[0];
     let t1490 = T::from_f64(0.012) * t1489;
+    let t1495 = Real::mul_add(
+        -T::from_f64(0.002142857142857143),
+        t1489,
+        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+    );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t1510 = t152 * t174
@@ -381,26 +386,24 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     );
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1724 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t1729 = T::from_f64(0.002142857142857143) * t1489
-        + qdd[0] * T::from_f64(0.007714285714285714);
-    let t1742 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
+    let t1720 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t1731 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
         - t233 * t285;
-    let t1748 = Real::mul_add(T::from_f64(0.02), t1742, -(t1561 + t1576));
-    let t1758 = T::from_f64(0.006) * t1558
+    let t1737 = Real::mul_add(T::from_f64(0.02), t1731, -(t1561 + t1576));
+    let t1744 = T::from_f64(0.006) * t1558
         + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-            - T::from_f64(0.0004) * t1724 - T::from_f64(0.009) * t1573);
-    let t1759 = Real::mul_add(
+            - T::from_f64(0.0004) * t1720 - T::from_f64(0.009) * t1573);
+    let t1745 = Real::mul_add(
         T::from_f64(0.04),
-        t1748,
+        t1737,
         Real::mul_add(
             -T::from_f64(0.0004),
-            t1742,
+            t1731,
             Real::mul_add(t233, t301, T::from_f64(0.000003) * t250),
         ) - t1616,
     );
-    let t1771 = Real::mul_add(T::from_f64(0.02), t1724, T::from_f64(0.03) * t1516);
-    let t1774 = Real::mul_add(
+    let t1757 = Real::mul_add(T::from_f64(0.02), t1720, T::from_f64(0.03) * t1516);
+    let t1760 = Real::mul_add(
         -t1515,
         T::from_f64(0.00075),
         Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1]),
@@ -410,104 +413,107 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             t1592,
             Real::mul_add(t603, t1589, t602 * t1590)
                 - Real::mul_add(t603, t1584, t602 * t1585),
-        ) - t1759);
-    let t1777 = Real::mul_add(
+        ) - t1745);
+    let t1763 = Real::mul_add(
         -T::from_f64(0.05),
-        t1771,
+        t1757,
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
         )
             + (T::from_f64(0.008) * (t1584 + t1589)
-                + Real::mul_add(c115, t1758, s114 * t1619)),
+                + Real::mul_add(c115, t1744, s114 * t1619)),
     );
-    let t1778 = Real::mul_add(
+    let t1764 = Real::mul_add(
         T::from_f64(0.05),
-        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1748, s114 * t1617)),
-        t1774,
+        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1737, s114 * t1617)),
+        t1760,
     );
-    let t1782 = Real::mul_add(
+    let t1768 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t1555, c113 * t1554) - t1544,
         T::from_f64(0.009) * (Real::mul_add(s112, t1570, c113 * t1569) - t1549),
     )
         - Real::mul_add(
             c113,
-            t1777,
+            t1763,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t1758, -(c115 * t1619))
+                    - (Real::mul_add(s114, t1744, -(c115 * t1619))
                         - T::from_f64(0.008) * t1592)),
         );
-    let t1786 = Real::mul_add(
+    let t1772 = Real::mul_add(
         -T::from_f64(0.012),
-        t1771 - T::from_f64(0.014) * t1729,
+        T::from_f64(0.014) * t1495 + t1757,
         T::from_f64(0.0000022215714285714285) * qdd[0]
             + Real::mul_add(
                 T::from_f64(0.00003),
-                T::from_f64(0.002142857142857143) * qdd[0]
-                    - t1489 * T::from_f64(0.007714285714285714),
-                -(T::from_f64(0.00006) * t1729),
-            ) - t1782,
+                Real::mul_add(
+                    -t1489,
+                    T::from_f64(0.007714285714285714),
+                    T::from_f64(0.002142857142857143) * qdd[0],
+                ),
+                t1495 * T::from_f64(0.00006),
+            ) - t1768,
     );
-    let t1791 = Real::mul_add(
+    let t1777 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t1759,
+        t1745,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t1786,
-            T::from_f64(0.000000000000003552713678800501) * t1778,
+            t1772,
+            T::from_f64(0.000000000000003552713678800501) * t1764,
         ),
     );
-    let t1796 = Real::mul_add(
+    let t1782 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t1759,
+        t1745,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t1778,
-            T::from_f64(31.18503118503118) * t1786,
+            t1764,
+            T::from_f64(31.18503118503118) * t1772,
         ),
     );
-    let t1800 = Real::mul_add(
+    let t1786 = Real::mul_add(
         T::from_f64(50.000000000000014),
-        t1778,
-        T::from_f64(33.26403326403328) * t1786,
+        t1764,
+        T::from_f64(33.26403326403328) * t1772,
     );
-    let t1801 = T::from_f64(49.98700623700625) * t1759;
-    let t1802 = t1800 - t1801;
-    let t1807 = Real::mul_add(
+    let t1787 = T::from_f64(49.98700623700625) * t1745;
+    let t1788 = t1786 - t1787;
+    let t1793 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t1759,
-        Real::mul_add(-T::from_f64(50.0), t1778, T::from_f64(33.26403326403329) * t1786),
+        t1745,
+        Real::mul_add(-T::from_f64(50.0), t1764, T::from_f64(33.26403326403329) * t1772),
     );
-    let t1817 = (T::from_f64(0.9374999999999998) * (t1791 - T::from_f64(60.0)))
-        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1796)))
-        .max(t1802 - T::from_f64(60.0))
-        .max(t1807 - T::from_f64(60.0));
-    let t1828 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1791))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1796))
-        .max(T::from_f64(5.0) - t1802)
-        .max(T::from_f64(5.0) - t1807);
-    let t1839 = t1807
+    let t1803 = (T::from_f64(0.9374999999999998) * (t1777 - T::from_f64(60.0)))
+        .max(-(T::from_f64(0.9375000000000002) * (T::from_f64(60.0) + t1782)))
+        .max(t1788 - T::from_f64(60.0))
+        .max(t1793 - T::from_f64(60.0));
+    let t1814 = (T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t1777))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t1782))
+        .max(T::from_f64(5.0) - t1788)
+        .max(T::from_f64(5.0) - t1793);
+    let t1825 = t1793
         .max(
-            t1802
-                .max(t1796.max((-t1796).max(T::from_f64(60.0).max(t1791).max(-t1791))))
-                .max(t1801 - t1800),
+            t1788
+                .max(t1782.max((-t1782).max(T::from_f64(60.0).max(t1777).max(-t1777))))
+                .max(t1787 - t1786),
         )
-        .max(-t1807);
-    let t1840 = t1817 + t1828;
-    let t1841 = (-T::from_f64(0.0).max(t1817)).max(t1828);
-    let t1843 = Real::mul_add(T::from_f64(1.0666666666666669), t1841, t1791);
-    let t1845 = Real::mul_add(T::from_f64(1.0666666666666664), t1841, -t1796);
-    let t1846 = t1802 + t1841;
-    let t1847 = t1807 + t1841;
+        .max(-t1793);
+    let t1826 = t1803 + t1814;
+    let t1827 = (-T::from_f64(0.0).max(t1803)).max(t1814);
+    let t1829 = Real::mul_add(T::from_f64(1.0666666666666669), t1827, t1777);
+    let t1831 = Real::mul_add(T::from_f64(1.0666666666666664), t1827, -t1782);
+    let t1832 = t1788 + t1827;
+    let t1833 = t1793 + t1827;
     Outputs {
         actuation: tendyn_core::distribution::Actuation::along_line(
             [],
-            [t1843, t1845, t1846, t1847],
-            t1840,
-            t1839,
+            [t1829, t1831, t1832, t1833],
+            t1826,
+            t1825,
         ),
     }
 }
