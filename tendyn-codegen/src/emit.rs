@@ -659,20 +659,8 @@ fn shaped(f: &Function, values: Vec<Expr>, core: &syn::Path) -> Expr {
                 // The many-dimensional distribution of the minimal-norm tensions, by the
                 // fixed-size routine of tendyn-core.
                 (StatusFrom::Solve, Some(dist)) => {
-                    let rows = dist.null.iter().map(|r| f64_array(r));
-                    let (floor, max, target, inverse_length) = (
-                        f64_array(&dist.floor),
-                        f64_array(&dist.max),
-                        f64_array(&dist.target),
-                        f64_array(&dist.inverse_length),
-                    );
-                    parse_quote!(#actuation::bounded(#m, #t_, &#core::distribution::Fixed {
-                        null: [#(#rows),*],
-                        floor: #floor,
-                        max: #max,
-                        target: #target,
-                        inverse_length: #inverse_length,
-                    }))
+                    let problem = fixed_problem(dist, core);
+                    parse_quote!(#actuation::bounded(#m, #t_, &#problem))
                 }
                 // The same over the state's null space (guides with capstan friction): the
                 // basis, target and normals' lengths are traced values.
@@ -801,21 +789,37 @@ fn distributed_call(
             ))
         }
         _ => {
-            let rows = dist.null.iter().map(|r| f64_array(r));
-            let (target, inverse_length) =
-                (f64_array(&dist.target), f64_array(&dist.inverse_length));
+            let problem = fixed_problem(dist, core);
             quote!(#actuation::bounded_with_tangents(
-                [#(#m),*], [#(#t0),*], &[#(#t0_tangents),*], &#core::distribution::Fixed {
-                    null: [#(#rows),*],
-                    floor: #floor,
-                    max: #max,
-                    target: #target,
-                    inverse_length: #inverse_length,
-                }
+                [#(#m),*], [#(#t0),*], &[#(#t0_tangents),*], &#problem
             ))
         }
     };
     parse_quote!(#call)
+}
+
+/// The `tendyn_core::distribution::Fixed` problem of a constant null space, its facets a
+/// promoted constant (`&[Facet { .. }, ..]`).
+fn fixed_problem(dist: &crate::outputs::Distribution, core: &syn::Path) -> TokenStream {
+    let rows = dist.null.iter().map(|r| f64_array(r));
+    let (floor, max, target, inverse_length) = (
+        f64_array(&dist.floor),
+        f64_array(&dist.max),
+        f64_array(&dist.target),
+        f64_array(&dist.inverse_length),
+    );
+    let facets = dist.facets.iter().map(|(normal, support)| {
+        let (normal, support) = (f64_array(normal), f64_literal(*support));
+        quote!(#core::distribution::Facet { normal: #normal, support: #support })
+    });
+    quote!(#core::distribution::Fixed {
+        null: [#(#rows),*],
+        floor: #floor,
+        max: #max,
+        target: #target,
+        inverse_length: #inverse_length,
+        facets: &[#(#facets),*],
+    })
 }
 
 /// `actuation_derivatives` over several null directions from `pair`, the value of
@@ -932,18 +936,21 @@ fn one_distribution(functions: &[Function], values: &[Vec<Expr>]) -> Option<OneD
 /// `[x₀, x₁, …]` of `f64` constants written exactly (`f64::INFINITY` for an absent maximum),
 /// as the emitted constants outside the expression graph take them.
 fn f64_array(values: &[f64]) -> TokenStream {
-    let cells = values.iter().map(|&x| {
-        if x == f64::INFINITY {
-            return quote!(f64::INFINITY);
-        }
-        let l = Literal::f64_suffixed(x.abs());
-        if x < 0.0 {
-            quote!(-#l)
-        } else {
-            quote!(#l)
-        }
-    });
+    let cells = values.iter().map(|&x| f64_literal(x));
     quote!([#(#cells),*])
+}
+
+/// An `f64` constant written exactly, as [`f64_array`] writes each.
+fn f64_literal(x: f64) -> TokenStream {
+    if x == f64::INFINITY {
+        return quote!(f64::INFINITY);
+    }
+    let l = Literal::f64_suffixed(x.abs());
+    if x < 0.0 {
+        quote!(-#l)
+    } else {
+        quote!(#l)
+    }
 }
 
 /// `[elem; len]`

@@ -187,6 +187,9 @@ pub struct Distribution {
     pub target: Vec<f64>,
     /// `1 / |n_k|` of each tendon's row of the basis (`Problem::inverse_length`).
     pub inverse_length: Vec<f64>,
+    /// The facets of the minimal-norm tensions the bounds allow, normals over the tendons
+    /// and supports (`tension::facets`), where the basis is a constant; none where not.
+    pub facets: Vec<(Vec<f64>, f64)>,
 }
 
 /// Why an output cannot be generated for a mechanism.
@@ -642,6 +645,11 @@ fn distribution_constants(model: &Model<f64>, constant: bool) -> Distribution {
         target: (0..d).map(|i| problem.target(i)).collect(),
         inverse_length: if constant {
             (0..k).map(|j| problem.inverse_length(j)).collect()
+        } else {
+            Vec::new()
+        },
+        facets: if constant {
+            tension::facets(&problem)
         } else {
             Vec::new()
         },

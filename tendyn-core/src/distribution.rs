@@ -465,6 +465,16 @@ pub trait Problem<T> {
     /// bounds ([`inverse_length`]): the first step of a run needs it, and it is a constant
     /// of the problem.
     fn inverse_length(&self, k: usize) -> T;
+    /// How many facets of the minimal-norm tensions the bounds allow are known ([`Facet`]):
+    /// none by default (a null space computed at the state has none at hand).
+    fn facets(&self) -> usize {
+        0
+    }
+    /// Facet `i < facets()`: its normal over the tendons (`‖w‖₁ = 1`) and its support.
+    fn facet(&self, i: usize) -> (&[f64], f64) {
+        let _ = i;
+        (&[], f64::INFINITY)
+    }
     /// The largest floor or finite maximum: the bounds' part of the size that round-off
     /// is measured against ([`solve`]'s tolerance).
     fn bound_size(&self) -> f64 {
@@ -507,6 +517,12 @@ impl<T, P: Problem<T>> Problem<T> for &P {
     }
     fn bound_size(&self) -> f64 {
         (**self).bound_size()
+    }
+    fn facets(&self) -> usize {
+        (**self).facets()
+    }
+    fn facet(&self, i: usize) -> (&[f64], f64) {
+        (**self).facet(i)
     }
 }
 
@@ -555,9 +571,29 @@ pub struct Fixed<const K: usize, const D: usize> {
     pub target: [f64; D],
     /// `1 / |n_k|` of each tendon's normal ([`inverse_length`] of `null[·][k]`).
     pub inverse_length: [f64; K],
+    /// Facets of the tensions the bounds allow, as normals over the tendons with `‖w‖₁ =
+    /// 1` and their supports `max {wᵀT : floor ≤ T ≤ max}` (see [`Facet`]).
+    pub facets: &'static [Facet<K>],
+}
+
+/// A facet of the set of minimal-norm tensions the bounds allow: `wᵀT₀ ≤ support` holds
+/// wherever some tensions within the bounds produce the motion (`w ⟂ null`, so `wᵀT = wᵀT₀`
+/// for every `T = T₀ + N λ`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Facet<const K: usize> {
+    /// `w`, with `‖w‖₁ = 1`.
+    pub normal: [f64; K],
+    /// `max {wᵀT : floor ≤ T ≤ max}`.
+    pub support: f64,
 }
 
 impl<T: Real, const K: usize, const D: usize> Problem<T> for Fixed<K, D> {
+    fn facets(&self) -> usize {
+        self.facets.len()
+    }
+    fn facet(&self, i: usize) -> (&[f64], f64) {
+        (&self.facets[i].normal, self.facets[i].support)
+    }
     fn tendons(&self) -> usize {
         K
     }
@@ -753,6 +789,23 @@ fn solve_counted<T: Numeric, P: Problem<T>>(
     (status, active)
 }
 
+/// The normal of the first facet `p` knows ([`Problem::facets`]) that `t0` lies beyond by
+/// more than `margin`: `wᵀT₀ − support > margin`, `‖w‖₁ = 1`.
+#[inline(always)]
+fn beyond_a_facet<'p, T: Numeric, P: Problem<T>>(
+    p: &'p P,
+    t0: &[T],
+    margin: T,
+) -> Option<&'p [f64]> {
+    (0..p.facets()).find_map(|i| {
+        let (w, support) = p.facet(i);
+        let along = t0.iter().zip(w).fold(T::from_f64(-support), |s, (t, w)| {
+            T::from_f64(*w).mul_add(*t, s)
+        });
+        (along > margin).then_some(w)
+    })
+}
+
 /// `4 (K + d) u`: the bound violation that round-off allows, per unit of size.
 fn tolerance_factor<T: Numeric>(tendons: usize, directions: usize) -> f64 {
     4.0 * (tendons + directions) as f64 * T::unit_roundoff()
@@ -832,6 +885,23 @@ fn project<T: Numeric, P: Problem<T>>(
             // out not to be, and go on with every bound.
             floors_only.copy_from_slice(lambda);
             with_max = true;
+            // Where the problem knows the facets of the tensions its bounds allow (generated
+            // code's constant null space), a state beyond one has none: the floors' optimum
+            // is the best effort at once, without the steps that would show the maxima
+            // empty (3.6 on average at the 3×6 benchmark's infeasible states). Beyond by
+            // more than twice the round-off allowance: once for the bounds' (a tension that
+            // far past its bound counts as within it) and once for the facet's (its normal
+            // is orthogonal to the basis to about an ulp, and `wᵀT₀` rounds), so that the
+            // steps would never have found tensions where the facet says there are none.
+            if let Some(w) = beyond_a_facet(p, t0, threshold * T::from_f64(-2.0)) {
+                if let Some(c) = certificate {
+                    for (c, w) in c.iter_mut().zip(w) {
+                        *c = T::from_f64(*w);
+                    }
+                }
+                tensions_at(p, t0, floors_only, t);
+                return (Status::MaxExceeded, 0);
+            }
         }
         let next = match (floor, max) {
             (Some(f), Some(m)) if with_max && m.1 < f.1 => Some(m),
@@ -1314,7 +1384,78 @@ mod tests {
                 1.0 / (4.0 / 6.0f64).sqrt(),
                 1.0 / (0.5 + 1.0 / 6.0f64).sqrt(),
             ],
+            facets: &[],
         }
+    }
+
+    /// A state beyond a facet gets, at once, what the method's steps would have found: the
+    /// same status and, bit for bit, the same tensions (the floors' optimum where the
+    /// maxima cannot be met), with the facet's normal as the certificate. On seeded random
+    /// 3 × 6 systems, two tendons without a maximum, with and without their facets.
+    #[test]
+    fn a_facet_decides_at_once_what_the_steps_would() {
+        use core::array::from_fn;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let (mut exceeded, mut by_facet) = (0, 0);
+        for _ in 0..40 {
+            let e: Vec<Vec<f64>> = (0..3)
+                .map(|_| (0..6).map(|_| rng.random_range(-1.0..1.0)).collect())
+                .collect();
+            let (_, null) = crate::linalg::pseudo_inverse_and_null_space_of_rows(&e);
+            let without = Fixed::<6, 3> {
+                null: from_fn(|d| from_fn(|k| null[d][k])),
+                floor: from_fn(|_| rng.random_range(0.5..5.0)),
+                max: from_fn(|k| {
+                    if k < 2 {
+                        f64::INFINITY
+                    } else {
+                        rng.random_range(20.0..80.0)
+                    }
+                }),
+                target: [0.0; 3],
+                inverse_length: from_fn(|k| inverse_length((0..3).map(|d| null[d][k]))),
+                facets: &[],
+            };
+            let facets: Vec<Facet<6>> = crate::tension::facets(&without)
+                .into_iter()
+                .map(|(w, support)| Facet {
+                    normal: from_fn(|k| w[k]),
+                    support,
+                })
+                .collect();
+            let with = Fixed {
+                facets: Vec::leak(facets),
+                ..without
+            };
+            for _ in 0..100 {
+                // Minimal-norm tensions: a random vector with its null-space part removed.
+                let x: [f64; 6] = from_fn(|_| rng.random_range(-60.0..60.0));
+                let t0: [f64; 6] =
+                    from_fn(|k| x[k] - (0..3).map(|d| null[d][k] * dot(&null[d], &x)).sum::<f64>());
+                let run = |p: &Fixed<6, 3>| {
+                    let mut buffers = Buffers::<f64, 3>::new();
+                    let (mut t, mut w) = ([0.0; 6], [0.0; 6]);
+                    let status = solve(p, &t0, &mut buffers.work(), &mut t, Some(&mut w));
+                    (status, t.map(f64::to_bits), w)
+                };
+                let ((status, tensions, w), (alone, expected, steps)) = (run(&with), run(&without));
+                assert_eq!((status, tensions), (alone, expected));
+                if status == Status::MaxExceeded {
+                    exceeded += 1;
+                    by_facet += usize::from(w != steps);
+                    // Along the certificate the motion needs more than the bounds give.
+                    let most: f64 = (0..6)
+                        .map(|k| (w[k] * with.floor[k]).max(w[k] * with.max[k]))
+                        .sum();
+                    assert!(most < dot(&w, &t0), "{most} against {}", dot(&w, &t0));
+                }
+            }
+        }
+        assert!(
+            exceeded > 300 && by_facet > exceeded / 2,
+            "{by_facet} of {exceeded}"
+        );
     }
 
     #[test]

@@ -17,8 +17,10 @@
 //!   bounds cannot meet is explained).
 
 use crate::distribution::{self, Line, LineResult, Problem, Status, Work};
+use crate::double_double::DoubleDouble;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
+use crate::linalg;
 use crate::model::{
     BodyKind, Eliminated, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown,
 };
@@ -689,6 +691,83 @@ pub fn bounds<'m, T: Real>(
     system: &'m TensionSystem<T>,
 ) -> impl Problem<T> + 'm {
     Bounds::new(model, system)
+}
+
+/// Subsets of `d + 1` tendons beyond which [`facets`] tries none: each facet found costs a
+/// run `K` multiply-adds where the floors are met and a maximum is not.
+const FACET_CANDIDATES: usize = 64;
+
+/// The facets of the minimal-norm tensions that `problem`'s bounds allow, for a null space
+/// that is a constant (generated code's [`distribution::Facet`]s), as normals `w` over the
+/// tendons with `‖w‖₁ = 1` and their supports.
+///
+/// By Farkas' lemma, no tensions within the bounds produce the motion exactly when
+/// `wᵀT₀ > c(w) = max {wᵀT : floor ≤ T ≤ max}` for some `w` orthogonal to the null space
+/// (`wᵀT = wᵀT₀` for every `T = T₀ + N λ`). On that space of dimension `K − d`, `wᵀT₀ −
+/// c(w)` is linear wherever the signs of `w` are fixed, so it is positive somewhere exactly
+/// when it is at an edge of such a region: a `w` that vanishes on all but `d + 1` tendons,
+/// the null vector of the basis restricted to them. Each is computed in double-double
+/// from the `f64` basis the problem holds (so that, rounded, it is orthogonal to that basis
+/// to about one ulp), taken with both signs, and kept where its support is finite (a tendon
+/// with no maximum that `w` would raise gives none). Subsets whose restricted basis has a
+/// null space of more than one dimension are passed over. None where there are more than
+/// `FACET_CANDIDATES` subsets: the distribution then finds such states by its own steps.
+pub fn facets<P: Problem<f64>>(problem: &P) -> Vec<(Vec<f64>, f64)> {
+    let (k, d) = (problem.tendons(), problem.directions());
+    let mut subsets = Vec::new();
+    let mut subset: Vec<usize> = (0..=d).collect();
+    if d + 1 > k {
+        return Vec::new();
+    }
+    // Every (d + 1)-subset of the tendons in lexicographic order, up to the limit.
+    loop {
+        if subsets.len() == FACET_CANDIDATES {
+            return Vec::new();
+        }
+        subsets.push(subset.clone());
+        let Some(i) = (0..=d).rev().find(|&i| subset[i] < k - 1 - (d - i)) else {
+            break;
+        };
+        subset[i] += 1;
+        for j in i + 1..=d {
+            subset[j] = subset[j - 1] + 1;
+        }
+    }
+    let mut found: Vec<(Vec<f64>, f64)> = Vec::new();
+    for subset in subsets {
+        let rows: Vec<Vec<DoubleDouble>> = (0..d)
+            .map(|i| subset.iter().map(|&t| problem.null(i, t).into()).collect())
+            .collect();
+        let (_, null) = linalg::pseudo_inverse_and_null_space_of_rows(&rows);
+        let [along] = null.as_slice() else {
+            continue;
+        };
+        let norm: DoubleDouble = along.iter().map(|x| x.abs()).sum();
+        // (A zero or non-finite null vector gives no facet.)
+        if !norm.to_f64().is_normal() {
+            continue;
+        }
+        for sign in [1.0, -1.0] {
+            let mut w = vec![0.0; k];
+            for (&t, x) in subset.iter().zip(along) {
+                w[t] = (*x / norm * sign).to_f64();
+            }
+            let support: f64 = (0..k)
+                .map(|t| match w[t] {
+                    x if x > 0.0 => x * problem.max(t),
+                    x if x < 0.0 => x * problem.floor(t),
+                    _ => 0.0,
+                })
+                .sum();
+            let known = found
+                .iter()
+                .any(|(v, _)| v.iter().zip(&w).all(|(a, b)| (a - b).abs() <= 1e-12));
+            if support.is_finite() && !known {
+                found.push((w, support));
+            }
+        }
+    }
+    found
 }
 
 struct Bounds<'m, T> {
