@@ -24,23 +24,23 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t802 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
-    let t809 = T::from_f64(0.03) * s56;
-    let t818 = Real::mul_add(
+    let t812 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t819 = T::from_f64(0.03) * s56;
+    let t828 = Real::mul_add(
         qdd[0],
         c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
-            t802,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t809)),
+            t812,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t819)),
         ),
     );
-    let t824 = Real::mul_add(
+    let t834 = Real::mul_add(
         qdd[0],
-        t802,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t809)),
+        t812,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t819)),
     );
-    [t818, t824]
+    [t828, t834]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -55,7 +55,7 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 2], [T; 0]> {
     let (s56, c57) = q[1].sin_cos();
-    let t849 = Real::mul_add(
+    let t859 = Real::mul_add(
         qdd[1],
         T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993),
         -(qd[0]
@@ -63,16 +63,16 @@ pub fn actuation<T: Real>(
                 + qd[1] * (s56 * T::from_f64(0.06)))
             + qd[1] * (qd[1] * (T::from_f64(0.03) * s56))),
     );
-    let t850 = Real::mul_add(
+    let t860 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c57,
             T::from_f64(0.015000000000000126),
             T::from_f64(0.09966665000000006),
         ),
-        t849,
+        t859,
     );
-    let t862 = Real::mul_add(
+    let t872 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c57,
@@ -85,7 +85,7 @@ pub fn actuation<T: Real>(
             qdd[1] * T::from_f64(0.025030050000000005),
         ),
     );
-    tendyn_core::distribution::Actuation::exact([t850, t862], [])
+    tendyn_core::distribution::Actuation::exact([t860, t872], [])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -96,9 +96,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t57 = q[1].cos();
-    let t799 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t864 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
-    [[t799, t864], [t864, T::from_f64(0.0166867)]]
+    let t792 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
+    let t809 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    [[t809, t792], [t792, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -109,10 +109,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t56 = q[1].sin();
-    let t809 = T::from_f64(0.03) * t56;
-    let t816 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t809));
-    let t822 = qd[0] * (qd[0] * t809);
-    [t816, t822]
+    let t819 = T::from_f64(0.03) * t56;
+    let t826 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t819));
+    let t832 = qd[0] * (qd[0] * t819);
+    [t826, t832]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -138,18 +138,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t799 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t809 = T::from_f64(0.03) * s56;
-    let t865 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t809);
-    let t867 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t799;
-    let t1017 = Real::mul_add(
-        -t865,
-        t867,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t809),
-    ) / Real::mul_add(-t799, t867 * t867, T::from_f64(0.0166867));
-    let t1019 = Real::mul_add(-t867, t1017, t865 / t799);
-    [t1019, t1017]
+    let t809 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t819 = T::from_f64(0.03) * s56;
+    let t873 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t819);
+    let t875 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t809;
+    let t1024 = Real::mul_add(
+        -t873,
+        t875,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t819),
+    ) / Real::mul_add(-t809, t875 * t875, T::from_f64(0.0166867));
+    let t1026 = Real::mul_add(-t875, t1024, t873 / t809);
+    [t1026, t1024]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -160,7 +160,7 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t918 = Real::mul_add(
+    let t926 = Real::mul_add(
         qdd[0],
         Real::mul_add(c57, T::from_f64(0.75), T::from_f64(0.4166675)),
         Real::mul_add(
@@ -169,19 +169,19 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
             Real::mul_add(qd[0], qd[0] * (s56 * T::from_f64(0.75)), T::from_f64(20.0)),
         ),
     );
-    let t937 = Real::mul_add(
+    let t945 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001),
         T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
             - qdd[1] * T::from_f64(0.4166675000000001),
     );
-    [t918, t937]
+    [t926, t945]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, pulley3, drum2.
 ///
-/// Operations (traced recursion): 161 arithmetic (70 add/sub, 87 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 160 arithmetic (69 add/sub, 87 mul, 0 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 4] {
@@ -204,100 +204,99 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
     let t662 = T::from_f64(1.2) * t64;
-    let t664 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t666 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
-    let t667 = T::from_f64(0.8) * t666;
-    let t669 = Real::mul_add(-T::from_f64(0.1), t666, T::from_f64(0.0041667) * t84);
-    let t671 = Real::mul_add(T::from_f64(0.2), t666, t669);
-    let t680 = Real::mul_add(
+    let t666 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t668 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t669 = T::from_f64(0.8) * t668;
+    let t671 = Real::mul_add(-T::from_f64(0.1), t668, T::from_f64(0.0041667) * t84);
+    let t673 = Real::mul_add(T::from_f64(0.2), t668, t671);
+    let t682 = Real::mul_add(
         T::from_f64(0.3),
-        t662 + Real::mul_add(c57, t667, s56 * t510),
-        t664 + t671,
+        t662 + Real::mul_add(c57, t669, s56 * t510),
+        t666 + t673,
     );
-    let t701 = T::from_f64(20.0)
+    let t703 = T::from_f64(20.0)
         + Real::mul_add(
             -T::from_f64(0.000000000000000009071958584846753),
-            t680,
-            T::from_f64(25.0) * t671,
+            t682,
+            T::from_f64(25.0) * t673,
         );
-    let t702 = T::from_f64(20.0)
+    let t704 = T::from_f64(20.0)
         - Real::mul_add(
             T::from_f64(25.000000000000004),
-            t671,
-            T::from_f64(0.00000000000000003335808724852205) * t680,
+            t673,
+            T::from_f64(0.00000000000000003335808724852205) * t682,
         );
-    let t703 = T::from_f64(0.9994442900376633) * t701;
-    let t704 = T::from_f64(0.03333333333333362) * t701;
-    let t707 = Real::mul_add(-c57, t703, s56 * t704);
-    let t710 = Real::mul_add(c57, t704, s56 * t703);
-    let t716 = Real::mul_add(s54, t704, c55 * t703);
-    let t719 = Real::mul_add(-c55, t704, s54 * t703);
-    let t723 = T::from_f64(0.9994442900376633) * t702;
-    let t724 = T::from_f64(0.03333333333333337) * t702;
-    let t727 = Real::mul_add(s56, t724, c57 * t723);
-    let t730 = Real::mul_add(-c57, t724, s56 * t723);
-    let t731 = t707 - t727;
-    let t732 = t710 + t730;
-    let t736 = Real::mul_add(
+    let t705 = T::from_f64(0.9994442900376633) * t703;
+    let t706 = T::from_f64(0.03333333333333362) * t703;
+    let t709 = Real::mul_add(-c57, t705, s56 * t706);
+    let t712 = Real::mul_add(c57, t706, s56 * t705);
+    let t718 = Real::mul_add(s54, t706, c55 * t705);
+    let t721 = Real::mul_add(-c55, t706, s54 * t705);
+    let t725 = T::from_f64(0.9994442900376633) * t704;
+    let t726 = T::from_f64(0.03333333333333337) * t704;
+    let t729 = Real::mul_add(s56, t726, c57 * t725);
+    let t732 = Real::mul_add(-c57, t726, s56 * t725);
+    let t733 = t709 - t729;
+    let t734 = t712 + t732;
+    let t738 = Real::mul_add(
         -(t188 - T::from_f64(0.0006666666666666724) * s56),
-        t707,
-        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t710,
+        t709,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t712,
     )
         + Real::mul_add(
             -(t188 + T::from_f64(0.0006666666666666674) * s56),
-            t727,
-            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t730,
+            t729,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t732,
         );
-    let t739 = Real::mul_add(-s54, t724, c55 * t723);
-    let t742 = Real::mul_add(c55, t724, s54 * t723);
-    let t748 = Real::mul_add(
+    let t741 = Real::mul_add(-s54, t726, c55 * t725);
+    let t744 = Real::mul_add(c55, t726, s54 * t725);
+    let t750 = Real::mul_add(
         -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
-        t716,
-        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t719,
+        t718,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t721,
     )
         + Real::mul_add(
             -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
-            t739,
-            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t742,
+            t741,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t744,
         );
-    let t749 = t727 - t707;
-    let t750 = -t732;
-    let t751 = -t736;
-    let t752 = T::from_f64(0.02) * t732;
-    let t756 = -(t716 + t739);
-    let t757 = -(t719 + t742);
-    let t759 = t510 - t731;
-    let t760 = t667 - t732;
-    let t764 = Real::mul_add(-T::from_f64(0.02), t731, T::from_f64(0.9810000000000001))
+    let t751 = t729 - t709;
+    let t752 = -t734;
+    let t753 = -t738;
+    let t754 = T::from_f64(0.02) * t734;
+    let t758 = -(t718 + t741);
+    let t759 = -(t721 + t744);
+    let t761 = t510 - t733;
+    let t762 = t669 - t734;
+    let t766 = Real::mul_add(-T::from_f64(0.02), t733, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t765 = Real::mul_add(
+    let t767 = Real::mul_add(
         T::from_f64(0.25),
-        t760,
-        t669 - Real::mul_add(-T::from_f64(0.25), t732, t736),
+        t762,
+        t671 - Real::mul_add(-T::from_f64(0.25), t734, t738),
     );
-    let t774 = Real::mul_add(-s56, t764, c57 * t752);
-    let t778 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
-        - Real::mul_add(-c57, t759, s56 * t760);
-    let t779 = t662 + Real::mul_add(c57, t760, s56 * t759);
-    let t783 = T::from_f64(1.7658) + Real::mul_add(c57, t764, s56 * t752)
-        - T::from_f64(5.886);
-    let t785 = Real::mul_add(T::from_f64(0.3), t779, t664 + t765)
-        - Real::mul_add(-T::from_f64(1.4999999999999958), t671, t680);
-    let t786 = t122 - t748
+    let t776 = Real::mul_add(-s56, t766, c57 * t754);
+    let t780 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
+        - Real::mul_add(-c57, t761, s56 * t762);
+    let t781 = t662 + Real::mul_add(c57, t762, s56 * t761);
+    let t787 = c57 * t766 + (s56 * t754 - T::from_f64(4.1202000000000005));
+    let t789 = Real::mul_add(T::from_f64(0.3), t781, t666 + t767)
+        - Real::mul_add(-T::from_f64(1.4999999999999958), t673, t682);
+    let t790 = t122 - t750
         - (t122
             + Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t671,
-                T::from_f64(0.0000000000000000047704895589362195) * t680,
+                t673,
+                T::from_f64(0.0000000000000000047704895589362195) * t682,
             ));
     [
-        [[t778, t779, T::from_f64(19.62)], [t774, t783, t785]],
-        [[t759, t760, T::from_f64(7.848000000000001)], [t752, t764, t765]],
+        [[t780, t781, T::from_f64(19.62)], [t776, t787, t789]],
+        [[t761, t762, T::from_f64(7.848000000000001)], [t754, t766, t767]],
         [
-            [t756, t757, T::from_f64(0.9810000000000001)],
-            [T::from_f64(0.0), T::from_f64(0.0), t786],
+            [t758, t759, T::from_f64(0.9810000000000001)],
+            [T::from_f64(0.0), T::from_f64(0.0), t790],
         ],
-        [[t749, t750, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t751]],
+        [[t751, t752, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t753]],
     ]
 }
 /// Total force (N) and moment about the base origin (N·m) of the base on the mechanism, base frame.
@@ -329,26 +328,26 @@ pub fn base_reaction<T: Real>(
     let t510 = T::from_f64(0.8)
         * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
-    let t666 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
-    let t667 = T::from_f64(0.8) * t666;
-    let t676 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
-        - Real::mul_add(s56, t667, -(c57 * t510));
-    let t677 = T::from_f64(1.2) * t64 + Real::mul_add(c57, t667, s56 * t510);
-    let t683 = Real::mul_add(-s54, t677, c55 * t676);
-    let t686 = Real::mul_add(c55, t677, s54 * t676);
-    let t687 = T::from_f64(0.000045)
+    let t668 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t669 = T::from_f64(0.8) * t668;
+    let t678 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
+        - Real::mul_add(s56, t669, -(c57 * t510));
+    let t679 = T::from_f64(1.2) * t64 + Real::mul_add(c57, t669, s56 * t510);
+    let t685 = Real::mul_add(-s54, t679, c55 * t678);
+    let t688 = Real::mul_add(c55, t679, s54 * t678);
+    let t689 = T::from_f64(0.000045)
         * Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0])
         + Real::mul_add(
             T::from_f64(0.3),
-            t677,
+            t679,
             Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t666,
-                    Real::mul_add(-T::from_f64(0.1), t666, T::from_f64(0.0041667) * t84),
+                    t668,
+                    Real::mul_add(-T::from_f64(0.1), t668, T::from_f64(0.0041667) * t84),
                 ),
         );
-    [[[t683, t686, T::from_f64(20.601000000000003)], [t169, t172, t687]]]
+    [[[t685, t688, T::from_f64(20.601000000000003)], [t169, t172, t689]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -372,7 +371,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 218 arithmetic (97 add/sub, 114 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 215 arithmetic (94 add/sub, 114 mul, 3 div, 4 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -400,9 +399,6 @@ pub fn all<T: Real>(
     let t191 = T::from_f64(0.029983328701129897) * s54;
     let t195 = T::from_f64(0.029983328701129897) * c55;
     let t402 = T::from_f64(-0.18) + T::from_f64(0.1) * c57;
-    let t420 = T::from_f64(0.000045)
-        + (T::from_f64(0.0526667)
-            + T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6))));
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
     let t495 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492);
@@ -412,131 +408,131 @@ pub fn all<T: Real>(
     let t505 = T::from_f64(0.25) * t504;
     let t508 = T::from_f64(0.125) * t504;
     let t510 = T::from_f64(0.8) * (s56 * t59 - t499 - t505 + t508);
-    let t636 = T::from_f64(0.000030000000000000004)
-        + (T::from_f64(0.0166667) + T::from_f64(0.03) * c57);
     let t641 = T::from_f64(0.1) * t501;
-    let t652 = t636 / t420;
     let t662 = T::from_f64(1.2) * t64;
-    let t664 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t666 = t501 + (c57 * t59 + t84 * T::from_f64(0.125));
-    let t667 = T::from_f64(0.8) * t666;
-    let t669 = Real::mul_add(-T::from_f64(0.1), t666, T::from_f64(0.0041667) * t84);
-    let t671 = Real::mul_add(T::from_f64(0.2), t666, t669);
-    let t676 = t495 - Real::mul_add(s56, t667, -(c57 * t510));
-    let t677 = t662 + Real::mul_add(c57, t667, s56 * t510);
-    let t680 = Real::mul_add(T::from_f64(0.3), t677, t664 + t671);
-    let t683 = Real::mul_add(-s54, t677, c55 * t676);
-    let t686 = Real::mul_add(c55, t677, s54 * t676);
-    let t687 = t122 + t680;
-    let t688 = t120 * T::from_f64(0.000030000000000000004) + t671;
-    let t696 = Real::mul_add(-T::from_f64(1.4999999999999958), t671, t680);
-    let t700 = t122
+    let t664 = T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6)))
+        + T::from_f64(0.0527117);
+    let t666 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t668 = t501 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t669 = T::from_f64(0.8) * t668;
+    let t671 = Real::mul_add(-T::from_f64(0.1), t668, T::from_f64(0.0041667) * t84);
+    let t673 = Real::mul_add(T::from_f64(0.2), t668, t671);
+    let t678 = t495 - Real::mul_add(s56, t669, -(c57 * t510));
+    let t679 = t662 + Real::mul_add(c57, t669, s56 * t510);
+    let t682 = Real::mul_add(T::from_f64(0.3), t679, t666 + t673);
+    let t685 = Real::mul_add(-s54, t679, c55 * t678);
+    let t688 = Real::mul_add(c55, t679, s54 * t678);
+    let t689 = t122 + t682;
+    let t690 = t120 * T::from_f64(0.000030000000000000004) + t673;
+    let t698 = Real::mul_add(-T::from_f64(1.4999999999999958), t673, t682);
+    let t702 = t122
         + Real::mul_add(
             T::from_f64(1.5000000000000002),
-            t671,
-            T::from_f64(0.0000000000000000047704895589362195) * t680,
+            t673,
+            T::from_f64(0.0000000000000000047704895589362195) * t682,
         );
-    let t701 = T::from_f64(20.0)
+    let t703 = T::from_f64(20.0)
         + Real::mul_add(
             -T::from_f64(0.000000000000000009071958584846753),
-            t680,
-            T::from_f64(25.0) * t671,
+            t682,
+            T::from_f64(25.0) * t673,
         );
-    let t702 = T::from_f64(20.0)
+    let t704 = T::from_f64(20.0)
         - Real::mul_add(
             T::from_f64(25.000000000000004),
-            t671,
-            T::from_f64(0.00000000000000003335808724852205) * t680,
+            t673,
+            T::from_f64(0.00000000000000003335808724852205) * t682,
         );
-    let t703 = T::from_f64(0.9994442900376633) * t701;
-    let t704 = T::from_f64(0.03333333333333362) * t701;
-    let t707 = Real::mul_add(-c57, t703, s56 * t704);
-    let t710 = Real::mul_add(c57, t704, s56 * t703);
-    let t716 = Real::mul_add(s54, t704, c55 * t703);
-    let t719 = Real::mul_add(-c55, t704, s54 * t703);
-    let t723 = T::from_f64(0.9994442900376633) * t702;
-    let t724 = T::from_f64(0.03333333333333337) * t702;
-    let t727 = Real::mul_add(s56, t724, c57 * t723);
-    let t730 = Real::mul_add(-c57, t724, s56 * t723);
-    let t731 = t707 - t727;
-    let t732 = t710 + t730;
-    let t736 = Real::mul_add(
+    let t705 = T::from_f64(0.9994442900376633) * t703;
+    let t706 = T::from_f64(0.03333333333333362) * t703;
+    let t709 = Real::mul_add(-c57, t705, s56 * t706);
+    let t712 = Real::mul_add(c57, t706, s56 * t705);
+    let t718 = Real::mul_add(s54, t706, c55 * t705);
+    let t721 = Real::mul_add(-c55, t706, s54 * t705);
+    let t725 = T::from_f64(0.9994442900376633) * t704;
+    let t726 = T::from_f64(0.03333333333333337) * t704;
+    let t729 = Real::mul_add(s56, t726, c57 * t725);
+    let t732 = Real::mul_add(-c57, t726, s56 * t725);
+    let t733 = t709 - t729;
+    let t734 = t712 + t732;
+    let t738 = Real::mul_add(
         -(t188 - T::from_f64(0.0006666666666666724) * s56),
-        t707,
-        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t710,
+        t709,
+        Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t712,
     )
         + Real::mul_add(
             -(t188 + T::from_f64(0.0006666666666666674) * s56),
-            t727,
-            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t730,
+            t729,
+            Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t732,
         );
-    let t739 = Real::mul_add(-s54, t724, c55 * t723);
-    let t742 = Real::mul_add(c55, t724, s54 * t723);
-    let t748 = Real::mul_add(
+    let t741 = Real::mul_add(-s54, t726, c55 * t725);
+    let t744 = Real::mul_add(c55, t726, s54 * t725);
+    let t750 = Real::mul_add(
         -Real::mul_add(T::from_f64(0.0010000000000000085), s54, t195),
-        t716,
-        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t719,
+        t718,
+        Real::mul_add(T::from_f64(0.0010000000000000085), c55, -t191) * t721,
     )
         + Real::mul_add(
             -Real::mul_add(T::from_f64(0.0010000000000000009), s54, -t195),
-            t739,
-            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t742,
+            t741,
+            Real::mul_add(T::from_f64(0.0010000000000000009), c55, t191) * t744,
         );
-    let t749 = t727 - t707;
-    let t750 = -t732;
-    let t751 = -t736;
-    let t752 = T::from_f64(0.02) * t732;
-    let t756 = -(t716 + t739);
-    let t757 = -(t719 + t742);
-    let t759 = t510 - t731;
-    let t760 = t667 - t732;
-    let t764 = Real::mul_add(-T::from_f64(0.02), t731, T::from_f64(0.9810000000000001))
+    let t751 = t729 - t709;
+    let t752 = -t734;
+    let t753 = -t738;
+    let t754 = T::from_f64(0.02) * t734;
+    let t758 = -(t718 + t741);
+    let t759 = -(t721 + t744);
+    let t761 = t510 - t733;
+    let t762 = t669 - t734;
+    let t766 = Real::mul_add(-T::from_f64(0.02), t733, T::from_f64(0.9810000000000001))
         - T::from_f64(1.9620000000000002);
-    let t765 = Real::mul_add(
+    let t767 = Real::mul_add(
         T::from_f64(0.25),
-        t760,
-        t669 - Real::mul_add(-T::from_f64(0.25), t732, t736),
+        t762,
+        t671 - Real::mul_add(-T::from_f64(0.25), t734, t738),
     );
-    let t774 = Real::mul_add(-s56, t764, c57 * t752);
-    let t778 = t495 - Real::mul_add(-c57, t759, s56 * t760);
-    let t779 = t662 + Real::mul_add(c57, t760, s56 * t759);
-    let t783 = T::from_f64(1.7658) + Real::mul_add(c57, t764, s56 * t752)
-        - T::from_f64(5.886);
-    let t785 = Real::mul_add(T::from_f64(0.3), t779, t664 + t765) - t696;
-    let t786 = t122 - t748 - t700;
-    let t787 = t641
+    let t776 = Real::mul_add(-s56, t766, c57 * t754);
+    let t780 = t495 - Real::mul_add(-c57, t761, s56 * t762);
+    let t781 = t662 + Real::mul_add(c57, t762, s56 * t761);
+    let t787 = c57 * t766 + (s56 * t754 - T::from_f64(4.1202000000000005));
+    let t789 = Real::mul_add(T::from_f64(0.3), t781, t666 + t767) - t698;
+    let t790 = t122 - t750 - t702;
+    let t792 = T::from_f64(0.03) * c57 + T::from_f64(0.0166967);
+    let t793 = t641
         + T::from_f64(0.3)
             * Real::mul_add(
                 c57,
                 T::from_f64(0.8) * t501,
                 T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
             );
-    let t788 = motor_torques[0] + motor_torques[1] - t787;
-    let t793 = Real::mul_add(
-        -t652,
-        t788,
+    let t794 = motor_torques[0] + motor_torques[1] - t793;
+    let t796 = t792 / t664;
+    let t803 = Real::mul_add(
+        -t794,
+        t796,
         T::from_f64(0.6666666666666667) * motor_torques[1] - t641,
-    ) / Real::mul_add(-t420, t652 * t652, T::from_f64(0.0166867));
-    let t795 = Real::mul_add(-t652, t793, t788 / t420);
+    ) / Real::mul_add(-t664, t796 * t796, T::from_f64(0.0166867));
+    let t805 = Real::mul_add(-t796, t803, t794 / t664);
     Outputs {
-        generalized_forces: [t687, t688],
-        actuation: tendyn_core::distribution::Actuation::exact([t696, t700], []),
-        mass_matrix: [[t420, t636], [t636, T::from_f64(0.0166867)]],
-        bias: [t787, t641],
+        generalized_forces: [t689, t690],
+        actuation: tendyn_core::distribution::Actuation::exact([t698, t702], []),
+        mass_matrix: [[t664, t792], [t792, T::from_f64(0.0166867)]],
+        bias: [t793, t641],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t795, t793],
-        segment_tensions: [t701, t702],
+        forward_dynamics: [t805, t803],
+        segment_tensions: [t703, t704],
         bearings: [
-            [[t778, t779, T::from_f64(19.62)], [t774, t783, t785]],
-            [[t759, t760, T::from_f64(7.848000000000001)], [t752, t764, t765]],
+            [[t780, t781, T::from_f64(19.62)], [t776, t787, t789]],
+            [[t761, t762, T::from_f64(7.848000000000001)], [t754, t766, t767]],
             [
-                [t756, t757, T::from_f64(0.9810000000000001)],
-                [T::from_f64(0.0), T::from_f64(0.0), t786],
+                [t758, t759, T::from_f64(0.9810000000000001)],
+                [T::from_f64(0.0), T::from_f64(0.0), t790],
             ],
-            [[t749, t750, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t751]],
+            [[t751, t752, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t753]],
         ],
         base_reaction: [
-            [[t683, t686, T::from_f64(20.601000000000003)], [t169, t172, t687]],
+            [[t685, t688, T::from_f64(20.601000000000003)], [t169, t172, t689]],
         ],
     }
 }

@@ -28,22 +28,22 @@ pub const TENDONS: usize = 3;
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
     let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1335 = s77 * T::from_f64(0.03);
-    let t1344 = Real::mul_add(
+    let t1344 = s77 * T::from_f64(0.03);
+    let t1353 = Real::mul_add(
         qdd[0],
         c78 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
             t1105,
-            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1335)),
+            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1344)),
         ),
     );
-    let t1350 = Real::mul_add(
+    let t1359 = Real::mul_add(
         qdd[0],
         t1105,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1335)),
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t1344)),
     );
-    [t1344, t1350]
+    [t1353, t1359]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -58,41 +58,41 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s77, c78) = q[1].sin_cos();
-    let t1353 = c78 * T::from_f64(0.22058823529411686);
-    let t1359 = c78 * T::from_f64(0.2647058823529412);
-    let t1377 = qd[0]
+    let t1362 = c78 * T::from_f64(0.22058823529411686);
+    let t1368 = c78 * T::from_f64(0.2647058823529412);
+    let t1386 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1384 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1392 = c78 * T::from_f64(1.279411764705882);
-    let t1397 = c78 * T::from_f64(0.2647058823529411);
-    let t1403 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1408 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1417 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1423 = T::from_f64(0.0)
+    let t1393 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1401 = c78 * T::from_f64(1.279411764705882);
+    let t1406 = c78 * T::from_f64(0.2647058823529411);
+    let t1412 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1417 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1426 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1432 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1353,
+                T::from_f64(0.6837298529411769) - t1362,
                 Real::mul_add(
                     qdd[1],
-                    t1359 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1384 - t1377,
+                    t1368 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1393 - t1386,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1392 + T::from_f64(1.517064852941176),
+                t1401 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1397 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1403 - t1408, T::from_f64(5.0) - t1417),
+                    t1406 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1412 - t1417, T::from_f64(5.0) - t1426),
                 ),
             ),
         );
-    let t1448 = Real::mul_add(
+    let t1457 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -109,26 +109,26 @@ pub fn actuation<T: Real>(
             ),
         ),
     );
-    let t1449 = t1423.max(t1448);
-    let t1460 = Real::mul_add(
+    let t1458 = t1432.max(t1457);
+    let t1469 = Real::mul_add(
         qdd[0],
-        t1353 + T::from_f64(-0.6837298529411769),
+        t1362 + T::from_f64(-0.6837298529411769),
         Real::mul_add(
             qdd[1],
-            T::from_f64(0.27010838235294077) - t1359,
-            t1377 + (t1384 + t1449),
+            T::from_f64(0.27010838235294077) - t1368,
+            t1386 + (t1393 + t1458),
         ),
     );
-    let t1478 = Real::mul_add(
+    let t1487 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1392,
+        T::from_f64(-1.517064852941176) - t1401,
         Real::mul_add(
             qdd[1],
-            T::from_f64(-0.5642266176470587) - t1397,
-            Real::mul_add(qd[0], t1408 - t1403, t1417 + t1449),
+            T::from_f64(-0.5642266176470587) - t1406,
+            Real::mul_add(qd[0], t1417 - t1412, t1426 + t1458),
         ),
     );
-    let t1507 = Real::mul_add(
+    let t1516 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -144,14 +144,14 @@ pub fn actuation<T: Real>(
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1449,
+                t1458,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
-    tendyn_core::distribution::Actuation::exact([], [t1460, t1478, t1507])
+    tendyn_core::distribution::Actuation::exact([], [t1469, t1487, t1516])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -163,8 +163,8 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
     let t1105 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1327 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    [[t1327, t1105], [t1105, T::from_f64(0.0166867)]]
+    let t1336 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    [[t1336, t1105], [t1105, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -175,10 +175,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t77 = q[1].sin();
-    let t1335 = t77 * T::from_f64(0.03);
-    let t1342 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1335));
-    let t1348 = qd[0] * (qd[0] * t1335);
-    [t1342, t1348]
+    let t1344 = t77 * T::from_f64(0.03);
+    let t1351 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1344));
+    let t1357 = qd[0] * (qd[0] * t1344);
+    [t1351, t1357]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -204,24 +204,24 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
-    let t1327 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t1335 = s77 * T::from_f64(0.03);
-    let t1510 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1335)
+    let t1336 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1344 = s77 * T::from_f64(0.03);
+    let t1519 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1344)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1512 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1327;
-    let t1652 = Real::mul_add(
-        -t1510,
-        t1512,
+    let t1521 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1336;
+    let t1660 = Real::mul_add(
+        -t1519,
+        t1521,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
-        ) - qd[0] * (qd[0] * t1335),
-    ) / Real::mul_add(-t1327, t1512 * t1512, T::from_f64(0.0166867));
-    let t1654 = Real::mul_add(-t1512, t1652, t1510 / t1327);
-    [t1654, t1652]
+        ) - qd[0] * (qd[0] * t1344),
+    ) / Real::mul_add(-t1336, t1521 * t1521, T::from_f64(0.0166867));
+    let t1662 = Real::mul_add(-t1521, t1660, t1519 / t1336);
+    [t1662, t1660]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -232,41 +232,41 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s77, c78) = q[1].sin_cos();
-    let t1353 = c78 * T::from_f64(0.22058823529411686);
-    let t1359 = c78 * T::from_f64(0.2647058823529412);
-    let t1377 = qd[0]
+    let t1362 = c78 * T::from_f64(0.22058823529411686);
+    let t1368 = c78 * T::from_f64(0.2647058823529412);
+    let t1386 = qd[0]
         * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
             + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
-    let t1384 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
-    let t1392 = c78 * T::from_f64(1.279411764705882);
-    let t1397 = c78 * T::from_f64(0.2647058823529411);
-    let t1403 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
-    let t1408 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
-    let t1417 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
-    let t1423 = T::from_f64(0.0)
+    let t1393 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
+    let t1401 = c78 * T::from_f64(1.279411764705882);
+    let t1406 = c78 * T::from_f64(0.2647058823529411);
+    let t1412 = qd[0] * (s77 * T::from_f64(0.7499999999999998));
+    let t1417 = qd[1] * (s77 * T::from_f64(0.5294117647058822));
+    let t1426 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529411)));
+    let t1432 = T::from_f64(0.0)
         .max(
             Real::mul_add(
                 qdd[0],
-                T::from_f64(0.6837298529411769) - t1353,
+                T::from_f64(0.6837298529411769) - t1362,
                 Real::mul_add(
                     qdd[1],
-                    t1359 + T::from_f64(-0.27010838235294077),
-                    T::from_f64(5.0) - t1384 - t1377,
+                    t1368 + T::from_f64(-0.27010838235294077),
+                    T::from_f64(5.0) - t1393 - t1386,
                 ),
             ),
         )
         .max(
             Real::mul_add(
                 qdd[0],
-                t1392 + T::from_f64(1.517064852941176),
+                t1401 + T::from_f64(1.517064852941176),
                 Real::mul_add(
                     qdd[1],
-                    t1397 + T::from_f64(0.5642266176470587),
-                    Real::mul_add(qd[0], t1403 - t1408, T::from_f64(5.0) - t1417),
+                    t1406 + T::from_f64(0.5642266176470587),
+                    Real::mul_add(qd[0], t1412 - t1417, T::from_f64(5.0) - t1426),
                 ),
             ),
         );
-    let t1448 = Real::mul_add(
+    let t1457 = Real::mul_add(
         qdd[0],
         T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
         Real::mul_add(
@@ -283,20 +283,20 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
         ),
     );
-    let t1449 = t1423.max(t1448);
-    let t1458 = t1377 + (t1384 + t1449);
-    let t1460 = Real::mul_add(
+    let t1458 = t1432.max(t1457);
+    let t1467 = t1386 + (t1393 + t1458);
+    let t1469 = Real::mul_add(
         qdd[0],
-        t1353 + T::from_f64(-0.6837298529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1359, t1458),
+        t1362 + T::from_f64(-0.6837298529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.27010838235294077) - t1368, t1467),
     );
-    let t1476 = Real::mul_add(qd[0], t1408 - t1403, t1417 + t1449);
-    let t1478 = Real::mul_add(
+    let t1485 = Real::mul_add(qd[0], t1417 - t1412, t1426 + t1458);
+    let t1487 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.517064852941176) - t1392,
-        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1397, t1476),
+        T::from_f64(-1.517064852941176) - t1401,
+        Real::mul_add(qdd[1], T::from_f64(-0.5642266176470587) - t1406, t1485),
     );
-    let t1507 = Real::mul_add(
+    let t1516 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c78,
@@ -312,30 +312,30 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ),
             Real::mul_add(
                 T::from_f64(1.5000000000000002),
-                t1449,
+                t1458,
                 -(qd[1]
                     * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
                         + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
             ),
         ),
     );
-    let t1564 = Real::mul_add(
+    let t1573 = Real::mul_add(
         qdd[0],
-        t1353 + T::from_f64(-0.6829798529411769),
-        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1359, t1458),
+        t1362 + T::from_f64(-0.6829798529411769),
+        Real::mul_add(qdd[1], T::from_f64(0.26960838235294077) - t1368, t1467),
     );
-    let t1572 = Real::mul_add(
+    let t1581 = Real::mul_add(
         qdd[0],
-        T::from_f64(-1.516314852941176) - t1392,
-        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1397, t1476),
+        T::from_f64(-1.516314852941176) - t1401,
+        Real::mul_add(qdd[1], T::from_f64(-0.5637266176470587) - t1406, t1485),
     );
-    [t1564, t1460, t1572, t1478, t1507]
+    [t1573, t1469, t1581, t1487, t1516]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 248 arithmetic (107 add/sub, 135 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 246 arithmetic (105 add/sub, 135 mul, 0 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
@@ -380,15 +380,15 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t931 = Real::mul_add(s77, t928, c78 * t926);
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t1131 = T::from_f64(1.2) * t85;
-    let t1133 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1135 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1136 = T::from_f64(0.8) * t1135;
-    let t1138 = Real::mul_add(-T::from_f64(0.1), t1135, T::from_f64(0.0041667) * t105);
-    let t1161 = t1136 - (t921 + t934);
-    let t1164 = Real::mul_add(
+    let t1135 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1137 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1138 = T::from_f64(0.8) * t1137;
+    let t1140 = Real::mul_add(-T::from_f64(0.1), t1137, T::from_f64(0.0041667) * t105);
+    let t1163 = t1138 - (t921 + t934);
+    let t1166 = Real::mul_add(
         T::from_f64(0.25),
-        t1161,
-        t1138
+        t1163,
+        t1140
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -400,95 +400,95 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t1170 = Real::mul_add(
+    let t1172 = Real::mul_add(
         T::from_f64(0.3),
-        t1131 + Real::mul_add(c78, t1161, s77 * (t879 + (t918 + t931))),
-        t1133 + t1164,
+        t1131 + Real::mul_add(c78, t1163, s77 * (t879 + (t918 + t931))),
+        t1135 + t1166,
     );
-    let t1173 = Real::mul_add(
+    let t1175 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1170,
-        T::from_f64(24.999999999999975) * t1164,
+        t1172,
+        T::from_f64(24.999999999999975) * t1166,
     );
-    let t1176 = Real::mul_add(
+    let t1178 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1164,
-        T::from_f64(8.823529411764705) * t1170,
+        t1166,
+        T::from_f64(8.823529411764705) * t1172,
     );
-    let t1179 = Real::mul_add(
+    let t1181 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1164,
-        T::from_f64(11.764705882352942) * t1170,
+        t1166,
+        T::from_f64(11.764705882352942) * t1172,
     );
-    let t1186 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1173)
-        .max(T::from_f64(5.0) + t1176)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1179));
-    let t1187 = t1173 + t1186;
-    let t1188 = t1186 - t1176;
-    let t1190 = Real::mul_add(T::from_f64(1.5000000000000002), t1186, t1179);
-    let t1191 = t143 * T::from_f64(0.0007500000000000001) + t1187;
-    let t1192 = t147 * T::from_f64(0.0007500000000000001) + t1188;
-    let t1193 = T::from_f64(0.9860132971832694) * t1191;
-    let t1194 = T::from_f64(0.16666666666666652) * t1191;
-    let t1197 = Real::mul_add(s77, t1194, c78 * t1193);
-    let t1198 = s77 * t1193;
-    let t1199 = c78 * t1194;
-    let t1200 = t1198 - t1199;
-    let t1203 = Real::mul_add(t248, t1197, t244 * t1200);
-    let t1206 = Real::mul_add(-s75, t1194, c76 * t1193);
-    let t1209 = Real::mul_add(c76, t1194, s75 * t1193);
-    let t1221 = T::from_f64(0.9994442900376633) * t1192;
-    let t1222 = T::from_f64(0.03333333333333337) * t1192;
-    let t1225 = Real::mul_add(s77, t1222, c78 * t1221);
-    let t1226 = s77 * t1221;
-    let t1227 = c78 * t1222;
-    let t1228 = t1226 - t1227;
-    let t1229 = t292 * t1228;
-    let t1230 = t297 * t1225;
-    let t1234 = Real::mul_add(-s75, t1222, c76 * t1221);
-    let t1237 = Real::mul_add(c76, t1222, s75 * t1221);
-    let t1247 = T::from_f64(0.9733466865996102) * t1190;
-    let t1248 = T::from_f64(0.22933867463984403) * t1190;
-    let t1249 = c76 * t1247;
-    let t1250 = s75 * t1248;
-    let t1251 = t1250 - t1249;
-    let t1254 = Real::mul_add(c76, t1248, s75 * t1247);
-    let t1255 = Real::mul_add(
+    let t1188 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1175)
+        .max(T::from_f64(5.0) + t1178)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1181));
+    let t1189 = t1175 + t1188;
+    let t1190 = t1188 - t1178;
+    let t1192 = Real::mul_add(T::from_f64(1.5000000000000002), t1188, t1181);
+    let t1193 = t143 * T::from_f64(0.0007500000000000001) + t1189;
+    let t1194 = t147 * T::from_f64(0.0007500000000000001) + t1190;
+    let t1195 = T::from_f64(0.9860132971832694) * t1193;
+    let t1196 = T::from_f64(0.16666666666666652) * t1193;
+    let t1199 = Real::mul_add(s77, t1196, c78 * t1195);
+    let t1200 = s77 * t1195;
+    let t1201 = c78 * t1196;
+    let t1202 = t1200 - t1201;
+    let t1205 = Real::mul_add(t248, t1199, t244 * t1202);
+    let t1208 = Real::mul_add(-s75, t1196, c76 * t1195);
+    let t1211 = Real::mul_add(c76, t1196, s75 * t1195);
+    let t1223 = T::from_f64(0.9994442900376633) * t1194;
+    let t1224 = T::from_f64(0.03333333333333337) * t1194;
+    let t1227 = Real::mul_add(s77, t1224, c78 * t1223);
+    let t1228 = s77 * t1223;
+    let t1229 = c78 * t1224;
+    let t1230 = t1228 - t1229;
+    let t1231 = t292 * t1230;
+    let t1232 = t297 * t1227;
+    let t1236 = Real::mul_add(-s75, t1224, c76 * t1223);
+    let t1239 = Real::mul_add(c76, t1224, s75 * t1223);
+    let t1249 = T::from_f64(0.9733466865996102) * t1192;
+    let t1250 = T::from_f64(0.22933867463984403) * t1192;
+    let t1251 = c76 * t1249;
+    let t1252 = s75 * t1250;
+    let t1253 = t1252 - t1251;
+    let t1256 = Real::mul_add(c76, t1250, s75 * t1249);
+    let t1257 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1254;
-    let t1256 = Real::mul_add(
+    ) * t1256;
+    let t1258 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1251;
-    let t1258 = Real::mul_add(T::from_f64(0.9968453000901664), t1188, -t1234);
-    let t1259 = Real::mul_add(T::from_f64(0.0793690600180332), t1188, -t1237);
-    let t1260 = T::from_f64(0.0000225) * t147
+    ) * t1253;
+    let t1260 = Real::mul_add(T::from_f64(0.9968453000901664), t1190, -t1236);
+    let t1261 = Real::mul_add(T::from_f64(0.0793690600180332), t1190, -t1239);
+    let t1262 = T::from_f64(0.0000225) * t147
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1188,
+            t1190,
             Real::mul_add(
                 -Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     s75,
                     -(c76 * T::from_f64(0.029983328701129897)),
                 ),
-                t1234,
+                t1236,
                 Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     c76,
                     s75 * T::from_f64(0.029983328701129897),
-                ) * t1237,
+                ) * t1239,
             ),
         );
-    let t1261 = Real::mul_add(T::from_f64(0.9506914539363203), t1187, -t1206);
-    let t1262 = -Real::mul_add(T::from_f64(0.31013829078726374), t1187, t1209);
-    let t1263 = T::from_f64(0.0000225) * t143
+    let t1263 = Real::mul_add(T::from_f64(0.9506914539363203), t1189, -t1208);
+    let t1264 = -Real::mul_add(T::from_f64(0.31013829078726374), t1189, t1211);
+    let t1265 = T::from_f64(0.0000225) * t143
         - Real::mul_add(
-            -t1187,
+            -t1189,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -496,58 +496,56 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     s75,
                     -(c76 * T::from_f64(0.02958039891549808)),
                 ),
-                t1206,
+                t1208,
                 Real::mul_add(
                     T::from_f64(0.004999999999999996),
                     c76,
                     s75 * T::from_f64(0.02958039891549808),
-                ) * t1209,
+                ) * t1211,
             ),
         );
-    let t1264 = t1249 - t1250;
-    let t1265 = -t1254;
-    let t1266 = t1256 - t1255;
-    let t1269 = t1227 - t1226;
-    let t1270 = t1230 - t1229;
-    let t1275 = t1199 - t1198;
-    let t1276 = -t1203;
-    let t1285 = t879 + (t1197 + t1225);
-    let t1286 = t1136 - (t1200 + t1228);
-    let t1287 = Real::mul_add(-T::from_f64(0.01), t1228, T::from_f64(0.01) * t1200);
-    let t1291 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t1197, T::from_f64(0.01) * t1225)
-        - T::from_f64(1.9620000000000002);
-    let t1292 = Real::mul_add(
+    let t1266 = t1251 - t1252;
+    let t1267 = -t1256;
+    let t1268 = t1258 - t1257;
+    let t1271 = t1229 - t1228;
+    let t1272 = t1232 - t1231;
+    let t1277 = t1201 - t1200;
+    let t1278 = -t1205;
+    let t1287 = t879 + (t1199 + t1227);
+    let t1288 = t1138 - (t1202 + t1230);
+    let t1289 = Real::mul_add(-T::from_f64(0.01), t1230, T::from_f64(0.01) * t1202);
+    let t1294 = T::from_f64(0.01) * t1199 - T::from_f64(0.9810000000000001)
+        - T::from_f64(0.01) * t1227;
+    let t1295 = Real::mul_add(
         T::from_f64(0.25),
-        t1286,
-        t1138
-            - (Real::mul_add(-T::from_f64(0.25), t1228, t1229 - t1230)
-                + Real::mul_add(-T::from_f64(0.25), t1200, t1203)),
+        t1288,
+        t1140
+            - (Real::mul_add(-T::from_f64(0.25), t1230, t1231 - t1232)
+                + Real::mul_add(-T::from_f64(0.25), t1202, t1205)),
     );
-    let t1301 = Real::mul_add(-s77, t1291, c78 * t1287);
-    let t1308 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
-        - (t1251 + Real::mul_add(-c78, t1285, s77 * t1286));
-    let t1309 = t1131 - (t1254 - Real::mul_add(c78, t1286, s77 * t1285));
-    let t1313 = T::from_f64(1.7658) + Real::mul_add(c78, t1291, s77 * t1287)
-        - T::from_f64(5.886);
-    let t1314 = Real::mul_add(
+    let t1304 = Real::mul_add(-s77, t1294, c78 * t1289);
+    let t1311 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - (t1253 + Real::mul_add(-c78, t1287, s77 * t1288));
+    let t1312 = t1131 - (t1256 - Real::mul_add(c78, t1288, s77 * t1287));
+    let t1318 = c78 * t1294 + (s77 * t1289 - T::from_f64(4.1202000000000005));
+    let t1319 = Real::mul_add(
         T::from_f64(0.3),
-        t1309,
-        t1133 - (Real::mul_add(-T::from_f64(0.3), t1254, t1255 - t1256) - t1292),
+        t1312,
+        t1135 - (Real::mul_add(-T::from_f64(0.3), t1256, t1257 - t1258) - t1295),
     );
     [
-        [[t1308, t1309, T::from_f64(19.62)], [t1301, t1313, t1314]],
-        [[t1285, t1286, T::from_f64(7.848000000000001)], [t1287, t1291, t1292]],
-        [[t1197, t1275, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1276]],
-        [[t1225, t1269, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1270]],
-        [[t1264, t1265, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1266]],
+        [[t1311, t1312, T::from_f64(19.62)], [t1304, t1318, t1319]],
+        [[t1287, t1288, T::from_f64(7.848000000000001)], [t1289, t1294, t1295]],
+        [[t1199, t1277, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1278]],
+        [[t1227, t1271, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1272]],
+        [[t1266, t1267, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1268]],
         [
-            [t1261, t1262, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1263],
+            [t1263, t1264, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1265],
         ],
         [
-            [t1258, t1259, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1260],
+            [t1260, t1261, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1262],
         ],
     ]
 }
@@ -581,30 +579,30 @@ pub fn base_reaction<T: Real>(
     let t879 = T::from_f64(0.8)
         * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
-    let t1135 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1136 = T::from_f64(0.8) * t1135;
-    let t1145 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
-        - Real::mul_add(s77, t1136, -(c78 * t879));
-    let t1146 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1136, s77 * t879);
-    let t1152 = Real::mul_add(-s75, t1146, c76 * t1145);
-    let t1155 = Real::mul_add(c76, t1146, s75 * t1145);
-    let t1156 = T::from_f64(0.0000225) * (qdd[0] - t141)
+    let t1137 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1138 = T::from_f64(0.8) * t1137;
+    let t1147 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
+        - Real::mul_add(s77, t1138, -(c78 * t879));
+    let t1148 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1138, s77 * t879);
+    let t1154 = Real::mul_add(-s75, t1148, c76 * t1147);
+    let t1157 = Real::mul_add(c76, t1148, s75 * t1147);
+    let t1158 = T::from_f64(0.0000225) * (qdd[0] - t141)
         + T::from_f64(0.0000225) * (qdd[0] + t141)
         + Real::mul_add(
             T::from_f64(0.3),
-            t1146,
+            t1148,
             Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t1135,
+                    t1137,
                     Real::mul_add(
                         -T::from_f64(0.1),
-                        t1135,
+                        t1137,
                         T::from_f64(0.0041667) * t105,
                     ),
                 ),
         );
-    [[[t1152, t1155, T::from_f64(20.601000000000003)], [t197, t200, t1156]]]
+    [[[t1154, t1157, T::from_f64(20.601000000000003)], [t197, t200, t1158]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -628,7 +626,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 324 arithmetic (144 add/sub, 171 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 321 arithmetic (141 add/sub, 171 mul, 3 div, 3 neg, 3 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -672,9 +670,6 @@ pub fn all<T: Real>(
     let t297 = T::from_f64(0.0006666666666666674) * s77
         + c78 * T::from_f64(0.019988885800753267);
     let t759 = T::from_f64(-0.18) + T::from_f64(0.1) * c78;
-    let t777 = T::from_f64(0.000045)
-        + (T::from_f64(0.0526667)
-            + T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6))));
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t864 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861);
@@ -694,27 +689,28 @@ pub fn all<T: Real>(
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
     let t1110 = T::from_f64(0.1) * t870;
-    let t1121 = t1105 / t777;
     let t1131 = T::from_f64(1.2) * t85;
-    let t1133 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1135 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
-    let t1136 = T::from_f64(0.8) * t1135;
-    let t1138 = Real::mul_add(-T::from_f64(0.1), t1135, T::from_f64(0.0041667) * t105);
-    let t1140 = Real::mul_add(T::from_f64(0.2), t1135, t1138);
-    let t1145 = t864 - Real::mul_add(s77, t1136, -(c78 * t879));
-    let t1146 = t1131 + Real::mul_add(c78, t1136, s77 * t879);
-    let t1149 = Real::mul_add(T::from_f64(0.3), t1146, t1133 + t1140);
-    let t1152 = Real::mul_add(-s75, t1146, c76 * t1145);
-    let t1155 = Real::mul_add(c76, t1146, s75 * t1145);
-    let t1156 = t145 + t149 + t1149;
-    let t1159 = t149 + (t145 + t1149);
-    let t1160 = t147 * T::from_f64(0.000015000000000000002)
-        + (t1140 - t143 * T::from_f64(0.000015000000000000002));
-    let t1161 = t1136 - (t921 + t934);
-    let t1164 = Real::mul_add(
+    let t1133 = T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6)))
+        + T::from_f64(0.0527117);
+    let t1135 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1137 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1138 = T::from_f64(0.8) * t1137;
+    let t1140 = Real::mul_add(-T::from_f64(0.1), t1137, T::from_f64(0.0041667) * t105);
+    let t1142 = Real::mul_add(T::from_f64(0.2), t1137, t1140);
+    let t1147 = t864 - Real::mul_add(s77, t1138, -(c78 * t879));
+    let t1148 = t1131 + Real::mul_add(c78, t1138, s77 * t879);
+    let t1151 = Real::mul_add(T::from_f64(0.3), t1148, t1135 + t1142);
+    let t1154 = Real::mul_add(-s75, t1148, c76 * t1147);
+    let t1157 = Real::mul_add(c76, t1148, s75 * t1147);
+    let t1158 = t145 + t149 + t1151;
+    let t1161 = t149 + (t145 + t1151);
+    let t1162 = t147 * T::from_f64(0.000015000000000000002)
+        + (t1142 - t143 * T::from_f64(0.000015000000000000002));
+    let t1163 = t1138 - (t921 + t934);
+    let t1166 = Real::mul_add(
         T::from_f64(0.25),
-        t1161,
-        t1138
+        t1163,
+        t1140
             - (Real::mul_add(
                 -T::from_f64(0.25),
                 t934,
@@ -726,95 +722,95 @@ pub fn all<T: Real>(
                     Real::mul_add(t248, t918, t244 * t921),
                 )),
     );
-    let t1170 = Real::mul_add(
+    let t1172 = Real::mul_add(
         T::from_f64(0.3),
-        t1131 + Real::mul_add(c78, t1161, s77 * (t879 + (t918 + t931))),
-        t1133 + t1164,
+        t1131 + Real::mul_add(c78, t1163, s77 * (t879 + (t918 + t931))),
+        t1135 + t1166,
     );
-    let t1173 = Real::mul_add(
+    let t1175 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1170,
-        T::from_f64(24.999999999999975) * t1164,
+        t1172,
+        T::from_f64(24.999999999999975) * t1166,
     );
-    let t1176 = Real::mul_add(
+    let t1178 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1164,
-        T::from_f64(8.823529411764705) * t1170,
+        t1166,
+        T::from_f64(8.823529411764705) * t1172,
     );
-    let t1179 = Real::mul_add(
+    let t1181 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1164,
-        T::from_f64(11.764705882352942) * t1170,
+        t1166,
+        T::from_f64(11.764705882352942) * t1172,
     );
-    let t1186 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1173)
-        .max(T::from_f64(5.0) + t1176)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1179));
-    let t1187 = t1173 + t1186;
-    let t1188 = t1186 - t1176;
-    let t1190 = Real::mul_add(T::from_f64(1.5000000000000002), t1186, t1179);
-    let t1191 = t143 * T::from_f64(0.0007500000000000001) + t1187;
-    let t1192 = t147 * T::from_f64(0.0007500000000000001) + t1188;
-    let t1193 = T::from_f64(0.9860132971832694) * t1191;
-    let t1194 = T::from_f64(0.16666666666666652) * t1191;
-    let t1197 = Real::mul_add(s77, t1194, c78 * t1193);
-    let t1198 = s77 * t1193;
-    let t1199 = c78 * t1194;
-    let t1200 = t1198 - t1199;
-    let t1203 = Real::mul_add(t248, t1197, t244 * t1200);
-    let t1206 = Real::mul_add(-s75, t1194, c76 * t1193);
-    let t1209 = Real::mul_add(c76, t1194, s75 * t1193);
-    let t1221 = T::from_f64(0.9994442900376633) * t1192;
-    let t1222 = T::from_f64(0.03333333333333337) * t1192;
-    let t1225 = Real::mul_add(s77, t1222, c78 * t1221);
-    let t1226 = s77 * t1221;
-    let t1227 = c78 * t1222;
-    let t1228 = t1226 - t1227;
-    let t1229 = t292 * t1228;
-    let t1230 = t297 * t1225;
-    let t1234 = Real::mul_add(-s75, t1222, c76 * t1221);
-    let t1237 = Real::mul_add(c76, t1222, s75 * t1221);
-    let t1247 = T::from_f64(0.9733466865996102) * t1190;
-    let t1248 = T::from_f64(0.22933867463984403) * t1190;
-    let t1249 = c76 * t1247;
-    let t1250 = s75 * t1248;
-    let t1251 = t1250 - t1249;
-    let t1254 = Real::mul_add(c76, t1248, s75 * t1247);
-    let t1255 = Real::mul_add(
+    let t1188 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1175)
+        .max(T::from_f64(5.0) + t1178)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1181));
+    let t1189 = t1175 + t1188;
+    let t1190 = t1188 - t1178;
+    let t1192 = Real::mul_add(T::from_f64(1.5000000000000002), t1188, t1181);
+    let t1193 = t143 * T::from_f64(0.0007500000000000001) + t1189;
+    let t1194 = t147 * T::from_f64(0.0007500000000000001) + t1190;
+    let t1195 = T::from_f64(0.9860132971832694) * t1193;
+    let t1196 = T::from_f64(0.16666666666666652) * t1193;
+    let t1199 = Real::mul_add(s77, t1196, c78 * t1195);
+    let t1200 = s77 * t1195;
+    let t1201 = c78 * t1196;
+    let t1202 = t1200 - t1201;
+    let t1205 = Real::mul_add(t248, t1199, t244 * t1202);
+    let t1208 = Real::mul_add(-s75, t1196, c76 * t1195);
+    let t1211 = Real::mul_add(c76, t1196, s75 * t1195);
+    let t1223 = T::from_f64(0.9994442900376633) * t1194;
+    let t1224 = T::from_f64(0.03333333333333337) * t1194;
+    let t1227 = Real::mul_add(s77, t1224, c78 * t1223);
+    let t1228 = s77 * t1223;
+    let t1229 = c78 * t1224;
+    let t1230 = t1228 - t1229;
+    let t1231 = t292 * t1230;
+    let t1232 = t297 * t1227;
+    let t1236 = Real::mul_add(-s75, t1224, c76 * t1223);
+    let t1239 = Real::mul_add(c76, t1224, s75 * t1223);
+    let t1249 = T::from_f64(0.9733466865996102) * t1192;
+    let t1250 = T::from_f64(0.22933867463984403) * t1192;
+    let t1251 = c76 * t1249;
+    let t1252 = s75 * t1250;
+    let t1253 = t1252 - t1251;
+    let t1256 = Real::mul_add(c76, t1250, s75 * t1249);
+    let t1257 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1254;
-    let t1256 = Real::mul_add(
+    ) * t1256;
+    let t1258 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         c76,
         -(T::from_f64(0.009173546985593762) * s75),
-    ) * t1251;
-    let t1258 = Real::mul_add(T::from_f64(0.9968453000901664), t1188, -t1234);
-    let t1259 = Real::mul_add(T::from_f64(0.0793690600180332), t1188, -t1237);
-    let t1260 = t149
+    ) * t1253;
+    let t1260 = Real::mul_add(T::from_f64(0.9968453000901664), t1190, -t1236);
+    let t1261 = Real::mul_add(T::from_f64(0.0793690600180332), t1190, -t1239);
+    let t1262 = t149
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1188,
+            t1190,
             Real::mul_add(
                 -Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     s75,
                     -(c76 * T::from_f64(0.029983328701129897)),
                 ),
-                t1234,
+                t1236,
                 Real::mul_add(
                     T::from_f64(0.0010000000000000009),
                     c76,
                     s75 * T::from_f64(0.029983328701129897),
-                ) * t1237,
+                ) * t1239,
             ),
         );
-    let t1261 = Real::mul_add(T::from_f64(0.9506914539363203), t1187, -t1206);
-    let t1262 = -Real::mul_add(T::from_f64(0.31013829078726374), t1187, t1209);
-    let t1263 = t145
+    let t1263 = Real::mul_add(T::from_f64(0.9506914539363203), t1189, -t1208);
+    let t1264 = -Real::mul_add(T::from_f64(0.31013829078726374), t1189, t1211);
+    let t1265 = t145
         - Real::mul_add(
-            -t1187,
+            -t1189,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -822,101 +818,100 @@ pub fn all<T: Real>(
                     s75,
                     -(c76 * T::from_f64(0.02958039891549808)),
                 ),
-                t1206,
+                t1208,
                 Real::mul_add(
                     T::from_f64(0.004999999999999996),
                     c76,
                     s75 * T::from_f64(0.02958039891549808),
-                ) * t1209,
+                ) * t1211,
             ),
         );
-    let t1264 = t1249 - t1250;
-    let t1265 = -t1254;
-    let t1266 = t1256 - t1255;
-    let t1269 = t1227 - t1226;
-    let t1270 = t1230 - t1229;
-    let t1275 = t1199 - t1198;
-    let t1276 = -t1203;
-    let t1285 = t879 + (t1197 + t1225);
-    let t1286 = t1136 - (t1200 + t1228);
-    let t1287 = Real::mul_add(-T::from_f64(0.01), t1228, T::from_f64(0.01) * t1200);
-    let t1291 = T::from_f64(0.9810000000000001)
-        - Real::mul_add(-T::from_f64(0.01), t1197, T::from_f64(0.01) * t1225)
-        - T::from_f64(1.9620000000000002);
-    let t1292 = Real::mul_add(
+    let t1266 = t1251 - t1252;
+    let t1267 = -t1256;
+    let t1268 = t1258 - t1257;
+    let t1271 = t1229 - t1228;
+    let t1272 = t1232 - t1231;
+    let t1277 = t1201 - t1200;
+    let t1278 = -t1205;
+    let t1287 = t879 + (t1199 + t1227);
+    let t1288 = t1138 - (t1202 + t1230);
+    let t1289 = Real::mul_add(-T::from_f64(0.01), t1230, T::from_f64(0.01) * t1202);
+    let t1294 = T::from_f64(0.01) * t1199 - T::from_f64(0.9810000000000001)
+        - T::from_f64(0.01) * t1227;
+    let t1295 = Real::mul_add(
         T::from_f64(0.25),
-        t1286,
-        t1138
-            - (Real::mul_add(-T::from_f64(0.25), t1228, t1229 - t1230)
-                + Real::mul_add(-T::from_f64(0.25), t1200, t1203)),
+        t1288,
+        t1140
+            - (Real::mul_add(-T::from_f64(0.25), t1230, t1231 - t1232)
+                + Real::mul_add(-T::from_f64(0.25), t1202, t1205)),
     );
-    let t1301 = Real::mul_add(-s77, t1291, c78 * t1287);
-    let t1308 = t864 - (t1251 + Real::mul_add(-c78, t1285, s77 * t1286));
-    let t1309 = t1131 - (t1254 - Real::mul_add(c78, t1286, s77 * t1285));
-    let t1313 = T::from_f64(1.7658) + Real::mul_add(c78, t1291, s77 * t1287)
-        - T::from_f64(5.886);
-    let t1314 = Real::mul_add(
+    let t1304 = Real::mul_add(-s77, t1294, c78 * t1289);
+    let t1311 = t864 - (t1253 + Real::mul_add(-c78, t1287, s77 * t1288));
+    let t1312 = t1131 - (t1256 - Real::mul_add(c78, t1288, s77 * t1287));
+    let t1318 = c78 * t1294 + (s77 * t1289 - T::from_f64(4.1202000000000005));
+    let t1319 = Real::mul_add(
         T::from_f64(0.3),
-        t1309,
-        t1133 - (Real::mul_add(-T::from_f64(0.3), t1254, t1255 - t1256) - t1292),
+        t1312,
+        t1135 - (Real::mul_add(-T::from_f64(0.3), t1256, t1257 - t1258) - t1295),
     );
-    let t1315 = t1110
+    let t1320 = t1110
         + T::from_f64(0.3)
             * Real::mul_add(
                 c78,
                 T::from_f64(0.8) * t870,
                 T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
             );
-    let t1316 = T::from_f64(0.04) * tendon_tensions[2]
+    let t1321 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t1315;
-    let t1321 = Real::mul_add(
-        -t1121,
-        t1316,
+            + tendon_tensions[1] * T::from_f64(0.03)) - t1320;
+    let t1323 = t1105 / t1133;
+    let t1330 = Real::mul_add(
+        -t1321,
+        t1323,
         Real::mul_add(
             T::from_f64(0.02),
             tendon_tensions[0],
             -(T::from_f64(0.02) * tendon_tensions[1]),
         ) - t1110,
-    ) / Real::mul_add(-t777, t1121 * t1121, T::from_f64(0.0166867));
-    let t1323 = Real::mul_add(-t1121, t1321, t1316 / t777);
+    ) / Real::mul_add(-t1133, t1323 * t1323, T::from_f64(0.0166867));
+    let t1332 = Real::mul_add(-t1323, t1330, t1321 / t1133);
     Outputs {
-        generalized_forces: [t1159, t1160],
+        generalized_forces: [t1161, t1162],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t1187, t1188, t1190],
+            [t1189, t1190, t1192],
         ),
-        mass_matrix: [[t777, t1105], [t1105, T::from_f64(0.0166867)]],
-        bias: [t1315, t1110],
+        mass_matrix: [[t1133, t1105], [t1105, T::from_f64(0.0166867)]],
+        bias: [t1320, t1110],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1323, t1321],
-        segment_tensions: [t1191, t1187, t1192, t1188, t1190],
+        forward_dynamics: [t1332, t1330],
+        segment_tensions: [t1193, t1189, t1194, t1190, t1192],
         bearings: [
-            [[t1308, t1309, T::from_f64(19.62)], [t1301, t1313, t1314]],
-            [[t1285, t1286, T::from_f64(7.848000000000001)], [t1287, t1291, t1292]],
+            [[t1311, t1312, T::from_f64(19.62)], [t1304, t1318, t1319]],
+            [[t1287, t1288, T::from_f64(7.848000000000001)], [t1289, t1294, t1295]],
             [
-                [t1197, t1275, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1276],
+                [t1199, t1277, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1278],
             ],
             [
-                [t1225, t1269, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1270],
+                [t1227, t1271, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1272],
             ],
             [
-                [t1264, t1265, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1266],
+                [t1266, t1267, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1268],
             ],
             [
-                [t1261, t1262, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1263],
+                [t1263, t1264, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1265],
             ],
             [
-                [t1258, t1259, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1260],
+                [t1260, t1261, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1262],
             ],
         ],
         base_reaction: [
-            [[t1152, t1155, T::from_f64(20.601000000000003)], [t197, t200, t1156]],
+            [[t1154, t1157, T::from_f64(20.601000000000003)], [t197, t200, t1158]],
         ],
     }
 }

@@ -31,125 +31,125 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4437 = c115 * T::from_f64(0.0000208);
-    let t4440 = T::from_f64(-0.00004) - t4437;
-    let t4442 = s114 * T::from_f64(0.0000208);
-    let t4449 = c115 * T::from_f64(0.00004);
-    let t4457 = c115 * T::from_f64(0.000009600000000000001);
-    let t4471 = Real::mul_add(
+    let t4011 = t3233 + T::from_f64(0.000011224000000000001);
+    let t4481 = c115 * T::from_f64(0.0000208);
+    let t4484 = T::from_f64(-0.00004) - t4481;
+    let t4486 = s114 * T::from_f64(0.0000208);
+    let t4493 = c115 * T::from_f64(0.00004);
+    let t4501 = c115 * T::from_f64(0.000009600000000000001);
+    let t4515 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t4449,
+            T::from_f64(-0.00008495) - t4493,
             s114
                 * Real::mul_add(
                     c113,
-                    t4440,
-                    Real::mul_add(s112, t4442, T::from_f64(-0.000009600000000000001)),
+                    t4484,
+                    Real::mul_add(s112, t4486, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
         Real::mul_add(
             c113,
-            t4457 + T::from_f64(0.000042000000000000004),
-            t4449 + T::from_f64(0.00009551400000000001)
+            t4501 + T::from_f64(0.000042000000000000004),
+            t4493 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104)),
         ),
     );
-    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4488 = c115 * T::from_f64(0.0000416);
-    let t4501 = s114 * (t4440 - c113 * T::from_f64(0.000009600000000000001));
-    let t4503 = qd[1]
+    let t4523 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4532 = c115 * T::from_f64(0.0000416);
+    let t4545 = s114 * (t4484 - c113 * T::from_f64(0.000009600000000000001));
+    let t4547 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t4479 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4523 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t4488),
-                    T::from_f64(-0.000042000000000000004) - t4457,
+                    s114 * (T::from_f64(0.00008) + t4532),
+                    T::from_f64(-0.000042000000000000004) - t4501,
                 ),
             ),
-            t4501,
+            t4545,
         );
-    let t4516 = qd[0]
+    let t4560 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4479 + (T::from_f64(-0.0000208) - t4449),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4488), -t4457),
+                    t4523 + (T::from_f64(-0.0000208) - t4493),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4532), -t4501),
                 ),
-                t4501,
+                t4545,
             ),
-            t4503,
+            t4547,
         );
-    let t4519 = Real::mul_add(
+    let t4563 = Real::mul_add(
         qdd[0],
-        t4471,
+        t4515,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t4516),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t4560),
         ),
     );
-    let t4524 = t3233 + T::from_f64(0.000011224000000000001);
-    let t4528 = s114 * t4442;
-    let t4537 = c115 * T::from_f64(0.000004800000000000001);
-    let t4547 = s114
+    let t4570 = s114 * t4486;
+    let t4579 = c115 * T::from_f64(0.000004800000000000001);
+    let t4589 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t4564 = c115 * T::from_f64(0.003924);
-    let t4571 = s112 * (s114 * T::from_f64(0.003924));
-    let t4575 = qd[0]
+    let t4606 = c115 * T::from_f64(0.003924);
+    let t4613 = s112 * (s114 * T::from_f64(0.003924));
+    let t4617 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4449 + T::from_f64(0.00008495) - t4528,
+                    t4493 + T::from_f64(0.00008495) - t4570,
                     Real::mul_add(
                         s112,
-                        s114 * t4440,
-                        t4537 + T::from_f64(0.000021000000000000002),
+                        s114 * t4484,
+                        t4579 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t4547,
+                t4589,
             ))
-        + (Real::mul_add(c113, t4564 + T::from_f64(0.017167500000000002), -t4571)
+        + (Real::mul_add(c113, t4606 + T::from_f64(0.017167500000000002), -t4613)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238));
-    let t4578 = Real::mul_add(
+    let t4620 = Real::mul_add(
         qdd[1],
-        t4449 + T::from_f64(0.000086946),
+        t4493 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t4524,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4575),
+            t4011,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t4617),
         ),
     );
-    let t4600 = qd[0]
+    let t4642 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3233 + T::from_f64(0.0000104) - t4528,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4437), t4537),
+                    t3233 + T::from_f64(0.0000104) - t4570,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4481), t4579),
                 ),
-                t4547,
-            )) + (qd[1] * (qd[1] * t3238) + (c113 * t4564 - t4571));
-    let t4603 = Real::mul_add(
+                t4589,
+            )) + (qd[1] * (qd[1] * t3238) + (c113 * t4606 - t4613));
+    let t4645 = Real::mul_add(
         qdd[1],
-        t4524,
+        t4011,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4600),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t4642),
         ),
     );
-    [t4519, t4578, t4603]
+    [t4563, t4620, t4645]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -260,94 +260,94 @@ pub fn actuation<T: Real>(
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
     let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3937 = T::from_f64(0.02) * t3884 - (t3100 + t3115);
-    let t3941 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+    let t3939 = T::from_f64(0.02) * t3886 - (t3100 + t3115);
+    let t3943 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
         + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
         - T::from_f64(0.0008) * t3871;
-    let t3942 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3884
-        - t3155 + T::from_f64(0.04) * t3937;
-    let t3956 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+    let t3944 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3886
+        - t3155 + T::from_f64(0.04) * t3939;
+    let t3958 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3942);
-    let t3958 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3944);
+    let t3960 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3941, s114 * t3158)) - T::from_f64(0.05) * t3873;
-    let t3959 = t3956
+            + Real::mul_add(c115, t3943, s114 * t3158)) - T::from_f64(0.05) * t3873;
+    let t3961 = t3958
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3937, s114 * t3156)));
-    let t3963 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3939, s114 * t3156)));
+    let t3965 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3958,
+            t3960,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3941, -(c115 * t3158))
+                    - (Real::mul_add(s114, t3943, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3965 = T::from_f64(0.0000022215714285714285) * qdd[0]
+    let t3967 = T::from_f64(0.0000022215714285714285) * qdd[0]
         + Real::mul_add(
             T::from_f64(0.00006),
             t2976,
             T::from_f64(0.00003)
                 * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
                     + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3963 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
-    let t3970 = Real::mul_add(
+        ) - t3965 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3972 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3942,
+        t3944,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3965,
-            T::from_f64(0.000000000000003552713678800501) * t3959,
+            t3967,
+            T::from_f64(0.000000000000003552713678800501) * t3961,
         ),
     );
-    let t3975 = Real::mul_add(
+    let t3977 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3942,
+        t3944,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3959,
-            T::from_f64(31.18503118503118) * t3965,
+            t3961,
+            T::from_f64(31.18503118503118) * t3967,
         ),
     );
-    let t3980 = Real::mul_add(
+    let t3982 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3942,
+        t3944,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3959,
-            T::from_f64(33.26403326403328) * t3965,
+            t3961,
+            T::from_f64(33.26403326403328) * t3967,
         ),
     );
-    let t3985 = Real::mul_add(
+    let t3987 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3942,
-        Real::mul_add(-T::from_f64(50.0), t3959, T::from_f64(33.26403326403329) * t3965),
+        t3944,
+        Real::mul_add(-T::from_f64(50.0), t3961, T::from_f64(33.26403326403329) * t3967),
     );
-    let t3995 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3970))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3975))
-        .max(T::from_f64(5.0) - t3980)
-        .max(T::from_f64(5.0) - t3985);
-    let t3997 = Real::mul_add(T::from_f64(1.0666666666666669), t3995, t3970);
-    let t3999 = Real::mul_add(T::from_f64(1.0666666666666664), t3995, -t3975);
-    let t4000 = t3980 + t3995;
-    let t4001 = t3985 + t3995;
-    tendyn_core::distribution::Actuation::exact([], [t3997, t3999, t4000, t4001])
+    let t3997 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3972))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3977))
+        .max(T::from_f64(5.0) - t3982)
+        .max(T::from_f64(5.0) - t3987);
+    let t3999 = Real::mul_add(T::from_f64(1.0666666666666669), t3997, t3972);
+    let t4001 = Real::mul_add(T::from_f64(1.0666666666666664), t3997, -t3977);
+    let t4002 = t3982 + t3997;
+    let t4003 = t3987 + t3997;
+    tendyn_core::distribution::Actuation::exact([], [t3999, t4001, t4002, t4003])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -359,13 +359,13 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t4449 = c115 * T::from_f64(0.00004);
-    let t4524 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
-    let t5225 = Real::mul_add(
+    let t4011 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
+    let t4493 = c115 * T::from_f64(0.00004);
+    let t5267 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t4449,
+            T::from_f64(-0.00008495000000000003) - t4493,
             s114
                 * Real::mul_add(
                     c113,
@@ -378,21 +378,21 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
             c113,
             c115 * T::from_f64(0.000009600000000000001)
                 + T::from_f64(0.00004200000000000001),
-            t4449 + T::from_f64(0.00009551400000000003)
+            t4493 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t5227 = t4449 + T::from_f64(0.00008694600000000003);
+    let t5269 = t4493 + T::from_f64(0.00008694600000000003);
     [
         [
-            t5225,
+            t5267,
             T::from_f64(0.00000002100000000000001),
             T::from_f64(0.000000024000000000000003),
         ],
-        [T::from_f64(0.00000002100000000000001), t5227, t4524],
+        [T::from_f64(0.00000002100000000000001), t5269, t4011],
         [
             T::from_f64(0.000000024000000000000003),
-            t4524,
+            t4011,
             T::from_f64(0.000011256000000000002),
         ],
     ]
@@ -408,74 +408,74 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4437 = c115 * T::from_f64(0.0000208);
-    let t4440 = T::from_f64(-0.00004) - t4437;
-    let t4449 = c115 * T::from_f64(0.00004);
-    let t4457 = c115 * T::from_f64(0.000009600000000000001);
-    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4488 = c115 * T::from_f64(0.0000416);
-    let t4501 = s114 * (t4440 - c113 * T::from_f64(0.000009600000000000001));
-    let t4503 = qd[1]
+    let t4481 = c115 * T::from_f64(0.0000208);
+    let t4484 = T::from_f64(-0.00004) - t4481;
+    let t4493 = c115 * T::from_f64(0.00004);
+    let t4501 = c115 * T::from_f64(0.000009600000000000001);
+    let t4523 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4532 = c115 * T::from_f64(0.0000416);
+    let t4545 = s114 * (t4484 - c113 * T::from_f64(0.000009600000000000001));
+    let t4547 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t4479 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t4523 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t4488),
-                    T::from_f64(-0.000042000000000000004) - t4457,
+                    s114 * (T::from_f64(0.00008) + t4532),
+                    T::from_f64(-0.000042000000000000004) - t4501,
                 ),
             ),
-            t4501,
+            t4545,
         );
-    let t4516 = qd[0]
+    let t4560 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4479 + (T::from_f64(-0.0000208) - t4449),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4488), -t4457),
+                    t4523 + (T::from_f64(-0.0000208) - t4493),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t4532), -t4501),
                 ),
-                t4501,
+                t4545,
             ),
-            t4503,
+            t4547,
         );
-    let t4528 = s114 * (s114 * T::from_f64(0.0000208));
-    let t4537 = c115 * T::from_f64(0.000004800000000000001);
-    let t4547 = s114
+    let t4570 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4579 = c115 * T::from_f64(0.000004800000000000001);
+    let t4589 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t4594 = qd[0]
+    let t4636 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t4528,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4437), t4537),
+                    c115 * T::from_f64(0.00002) + T::from_f64(0.0000104) - t4570,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t4481), t4579),
                 ),
-                t4547,
+                t4589,
             ));
-    let t5228 = qd[0]
+    let t5270 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4449 + T::from_f64(0.00008495) - t4528,
+                    t4493 + T::from_f64(0.00008495) - t4570,
                     Real::mul_add(
                         s112,
-                        s114 * t4440,
-                        t4537 + T::from_f64(0.000021000000000000002),
+                        s114 * t4484,
+                        t4579 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t4547,
+                t4589,
             )) - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238);
-    let t5229 = t4594 + qd[1] * (qd[1] * t3238);
-    [t4516, t5228, t5229]
+    let t5271 = t4636 + qd[1] * (qd[1] * t3238);
+    [t4560, t5270, t5271]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -487,11 +487,11 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
 pub fn gravity<T: Real>(q: &[T; 3]) -> [T; 3] {
     let (s112, c113) = q[1].sin_cos();
     let (s114, c115) = q[2].sin_cos();
-    let t4564 = c115 * T::from_f64(0.003924);
-    let t4571 = s112 * (s114 * T::from_f64(0.003924));
-    let t4573 = Real::mul_add(c113, t4564 + T::from_f64(0.017167500000000002), -t4571);
-    let t4598 = c113 * t4564 - t4571;
-    [T::from_f64(0.0), t4573, t4598]
+    let t4606 = c115 * T::from_f64(0.003924);
+    let t4613 = s112 * (s114 * T::from_f64(0.003924));
+    let t4615 = Real::mul_add(c113, t4606 + T::from_f64(0.017167500000000002), -t4613);
+    let t4640 = c113 * t4606 - t4613;
+    [T::from_f64(0.0), t4615, t4640]
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
 ///
@@ -510,20 +510,20 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t3233 = c115 * T::from_f64(0.00002);
     let t3238 = s114 * T::from_f64(0.00002);
-    let t4437 = c115 * T::from_f64(0.0000208);
-    let t4449 = c115 * T::from_f64(0.00004);
-    let t4457 = c115 * T::from_f64(0.000009600000000000001);
-    let t4479 = s114 * (s114 * T::from_f64(0.0000416));
-    let t4488 = c115 * T::from_f64(0.0000416);
-    let t4528 = s114 * (s114 * T::from_f64(0.0000208));
-    let t4537 = c115 * T::from_f64(0.000004800000000000001);
-    let t4564 = c115 * T::from_f64(0.003924);
-    let t4571 = s112 * (s114 * T::from_f64(0.003924));
-    let t5225 = Real::mul_add(
+    let t4481 = c115 * T::from_f64(0.0000208);
+    let t4493 = c115 * T::from_f64(0.00004);
+    let t4501 = c115 * T::from_f64(0.000009600000000000001);
+    let t4523 = s114 * (s114 * T::from_f64(0.0000416));
+    let t4532 = c115 * T::from_f64(0.0000416);
+    let t4570 = s114 * (s114 * T::from_f64(0.0000208));
+    let t4579 = c115 * T::from_f64(0.000004800000000000001);
+    let t4606 = c115 * T::from_f64(0.003924);
+    let t4613 = s112 * (s114 * T::from_f64(0.003924));
+    let t5267 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t4449,
+            T::from_f64(-0.00008495000000000003) - t4493,
             s114
                 * Real::mul_add(
                     c113,
@@ -534,115 +534,115 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t4457 + T::from_f64(0.00004200000000000001),
-            t4449 + T::from_f64(0.00009551400000000003)
+            t4501 + T::from_f64(0.00004200000000000001),
+            t4493 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t5244 = t4437 + T::from_f64(0.00004);
-    let t5246 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t5244);
-    let t5248 = qd[1]
+    let t5286 = t4481 + T::from_f64(0.00004);
+    let t5288 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t5286);
+    let t5290 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t4479,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t4523,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t4488),
-                    t4457 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t4532),
+                    t4501 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t5246,
+            t5288,
         );
-    let t5261 = qd[0]
+    let t5303 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t4449 - t4479,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t4488), t4457),
+                    T::from_f64(0.0000208) + t4493 - t4523,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t4532), t4501),
                 ),
-                t5246,
+                t5288,
             ),
-            t5248,
+            t5290,
         );
-    let t5265 = t5261
+    let t5307 = t5303
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t5267 = T::from_f64(0.00000002100000000000001) / t5225;
-    let t5283 = s114
+    let t5309 = T::from_f64(0.00000002100000000000001) / t5267;
+    let t5325 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t5340 = T::from_f64(0.000000024000000000000003) / t5225;
-    let t5495 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
+    let t5382 = T::from_f64(0.000000024000000000000003) / t5267;
+    let t5537 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4564, t4571)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4606, t4613)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t5496 = Real::mul_add(
+    let t5538 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t4449 + t4528,
+                    T::from_f64(-0.00008495) - t4493 + t4570,
                     Real::mul_add(
                         s112,
-                        s114 * t5244,
-                        T::from_f64(-0.000021000000000000002) - t4537,
+                        s114 * t5286,
+                        T::from_f64(-0.000021000000000000002) - t4579,
                     ),
                 ),
-                t5283,
+                t5325,
             ),
-        t5495,
+        t5537,
     );
-    let t5507 = Real::mul_add(
+    let t5549 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t4528 + (T::from_f64(-0.0000104) - t3233),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t4437), -t4537),
+                    t4570 + (T::from_f64(-0.0000104) - t3233),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t4481), -t4579),
                 ),
-                t5283,
+                t5325,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t4571 - c113 * t4564 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t4613 - c113 * t4606 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t3238),
     );
-    let t5510 = Real::mul_add(
-        -t5225,
-        t5267 * t5267,
-        t4449 + T::from_f64(0.00008694600000000003),
+    let t5552 = Real::mul_add(
+        -t5267,
+        t5309 * t5309,
+        t4493 + T::from_f64(0.00008694600000000003),
     );
-    let t5514 = Real::mul_add(
-        -t5225,
-        t5267 * t5340,
+    let t5556 = Real::mul_add(
+        -t5267,
+        t5309 * t5382,
         t3233 + T::from_f64(0.000011224000000000001),
-    ) / t5510;
-    let t5522 = Real::mul_add(-t5265, t5267, t5496);
-    let t5528 = Real::mul_add(-t5514, t5522, Real::mul_add(-t5265, t5340, t5507))
+    ) / t5552;
+    let t5564 = Real::mul_add(-t5307, t5309, t5538);
+    let t5570 = Real::mul_add(-t5556, t5564, Real::mul_add(-t5307, t5382, t5549))
         / Real::mul_add(
-            -t5510,
-            t5514 * t5514,
-            Real::mul_add(-t5225, t5340 * t5340, T::from_f64(0.000011256000000000002)),
+            -t5552,
+            t5556 * t5556,
+            Real::mul_add(-t5267, t5382 * t5382, T::from_f64(0.000011256000000000002)),
         );
-    let t5530 = Real::mul_add(-t5514, t5528, t5522 / t5510);
-    let t5534 = Real::mul_add(
-        -t5340,
-        t5528,
-        Real::mul_add(-t5267, t5530, t5265 / t5225),
+    let t5572 = Real::mul_add(-t5556, t5570, t5564 / t5552);
+    let t5576 = Real::mul_add(
+        -t5382,
+        t5570,
+        Real::mul_add(-t5309, t5572, t5307 / t5267),
     );
-    [t5534, t5530, t5528]
+    [t5576, t5572, t5570]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
@@ -749,100 +749,100 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
     let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3937 = T::from_f64(0.02) * t3884 - (t3100 + t3115);
-    let t3941 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
+    let t3939 = T::from_f64(0.02) * t3886 - (t3100 + t3115);
+    let t3943 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
         + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
         - T::from_f64(0.0008) * t3871;
-    let t3942 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3884
-        - t3155 + T::from_f64(0.04) * t3937;
-    let t3956 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+    let t3944 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3886
+        - t3155 + T::from_f64(0.04) * t3939;
+    let t3958 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
             t3131,
             Real::mul_add(t735, t3128, t734 * t3129)
                 - Real::mul_add(t735, t3123, t734 * t3124),
-        ) - t3942);
-    let t3958 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
+        ) - t3944);
+    let t3960 = Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213))
         + t208 * T::from_f64(0.00075)
         + (T::from_f64(0.008) * (t3123 + t3128)
-            + Real::mul_add(c115, t3941, s114 * t3158)) - T::from_f64(0.05) * t3873;
-    let t3959 = t3956
+            + Real::mul_add(c115, t3943, s114 * t3158)) - T::from_f64(0.05) * t3873;
+    let t3961 = t3958
         + T::from_f64(0.05)
             * (T::from_f64(0.03) * t2992
-                + (t3131 + Real::mul_add(c115, t3937, s114 * t3156)));
-    let t3963 = Real::mul_add(
+                + (t3131 + Real::mul_add(c115, t3939, s114 * t3156)));
+    let t3965 = Real::mul_add(
         T::from_f64(0.006),
         Real::mul_add(-s112, t3094, c113 * t3093) - t3084,
         T::from_f64(0.009) * (Real::mul_add(s112, t3109, c113 * t3108) - t3089),
     )
         - Real::mul_add(
             c113,
-            t3958,
+            t3960,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3941, -(c115 * t3158))
+                    - (Real::mul_add(s114, t3943, -(c115 * t3158))
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3965 = T::from_f64(0.0000022215714285714285) * qdd[0]
+    let t3967 = T::from_f64(0.0000022215714285714285) * qdd[0]
         + Real::mul_add(
             T::from_f64(0.00006),
             t2976,
             T::from_f64(0.00003)
                 * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
                     + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3963 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
-    let t3970 = Real::mul_add(
+        ) - t3965 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3972 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t3942,
+        t3944,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t3965,
-            T::from_f64(0.000000000000003552713678800501) * t3959,
+            t3967,
+            T::from_f64(0.000000000000003552713678800501) * t3961,
         ),
     );
-    let t3975 = Real::mul_add(
+    let t3977 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t3942,
+        t3944,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t3959,
-            T::from_f64(31.18503118503118) * t3965,
+            t3961,
+            T::from_f64(31.18503118503118) * t3967,
         ),
     );
-    let t3980 = Real::mul_add(
+    let t3982 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t3942,
+        t3944,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t3959,
-            T::from_f64(33.26403326403328) * t3965,
+            t3961,
+            T::from_f64(33.26403326403328) * t3967,
         ),
     );
-    let t3985 = Real::mul_add(
+    let t3987 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t3942,
-        Real::mul_add(-T::from_f64(50.0), t3959, T::from_f64(33.26403326403329) * t3965),
+        t3944,
+        Real::mul_add(-T::from_f64(50.0), t3961, T::from_f64(33.26403326403329) * t3967),
     );
-    let t3995 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3970))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3975))
-        .max(T::from_f64(5.0) - t3980)
-        .max(T::from_f64(5.0) - t3985);
-    let t3997 = Real::mul_add(T::from_f64(1.0666666666666669), t3995, t3970);
-    let t3999 = Real::mul_add(T::from_f64(1.0666666666666664), t3995, -t3975);
-    let t4000 = t3980 + t3995;
-    let t4001 = t3985 + t3995;
-    let t4002 = t3084 + t3997;
-    let t4003 = t4002 - t3086;
-    let t4004 = t3089 + t3999;
-    let t4005 = t3086 + t4004;
-    let t4006 = t4000 - t3091;
-    let t4007 = t4001 - t3092;
-    [t4003, t4002, t3997, t4005, t4004, t3999, t4006, t4000, t4007, t4001]
+    let t3997 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t3972))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t3977))
+        .max(T::from_f64(5.0) - t3982)
+        .max(T::from_f64(5.0) - t3987);
+    let t3999 = Real::mul_add(T::from_f64(1.0666666666666669), t3997, t3972);
+    let t4001 = Real::mul_add(T::from_f64(1.0666666666666664), t3997, -t3977);
+    let t4002 = t3982 + t3997;
+    let t4003 = t3987 + t3997;
+    let t4004 = t3084 + t3999;
+    let t4005 = t4004 - t3086;
+    let t4006 = t3089 + t4001;
+    let t4007 = t3086 + t4006;
+    let t4008 = t4002 - t3091;
+    let t4009 = t4003 - t3092;
+    [t4005, t4004, t3999, t4007, t4006, t4001, t4008, t4002, t4009, t4003]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -987,22 +987,22 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t3872 = T::from_f64(0.02) * t3871;
     let t3873 = T::from_f64(0.03) * t208 + t3872;
     let t3874 = T::from_f64(0.05) * t3873;
-    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3885 = T::from_f64(0.02) * t3884;
-    let t3890 = T::from_f64(0.0008) * t3871;
-    let t3937 = t3885 - (t3100 + t3115);
-    let t4042 = Real::mul_add(
+    let t3887 = T::from_f64(0.02) * t3886;
+    let t3892 = T::from_f64(0.0008) * t3871;
+    let t3939 = t3887 - (t3100 + t3115);
+    let t4065 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
         Real::mul_add(t245, t2016, -(t233 * t302)),
     ) + T::from_f64(0.0004) * t3871;
-    let t4043 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-        - T::from_f64(0.0004) * t3884;
-    let t4046 = t4042
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3890;
-    let t4047 = T::from_f64(0.04) * t3937
-        + (t4043
+    let t4066 = T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
+        - T::from_f64(0.0004) * t3886;
+    let t4069 = t4065
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3892;
+    let t4070 = T::from_f64(0.04) * t3939
+        + (t4066
             - (Real::mul_add(
                 -T::from_f64(0.04),
                 t3100,
@@ -1013,261 +1013,261 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
                     t3115,
                     Real::mul_add(t692, t3112, t687 * t3115),
                 )));
-    let t4059 = T::from_f64(0.05)
+    let t4082 = T::from_f64(0.05)
         * (t2994
-            + (t3131 + Real::mul_add(c115, t3937, s114 * (t3012 - (t3112 - t3097)))))
+            + (t3131 + Real::mul_add(c115, t3939, s114 * (t3012 - (t3112 - t3097)))))
         + (t3389
             - (Real::mul_add(
                 T::from_f64(0.05),
                 t3131,
                 Real::mul_add(t735, t3128, t734 * t3129)
                     - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t4047));
-    let t4062 = Real::mul_add(
+            ) - t4070));
+    let t4085 = Real::mul_add(
         c113,
         t3388
             + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t4046, s114 * t3408)) - t3874,
+                + Real::mul_add(c115, t4069, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4046, -(c115 * t3408))
+                - (Real::mul_add(s114, t4069, -(c115 * t3408))
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4065 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
-    let t4067 = T::from_f64(0.012) * t4065;
-    let t4068 = t3387 - (t3407 - t4062) - t4067;
-    let t4075 = Real::mul_add(
+    let t4088 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4090 = T::from_f64(0.012) * t4088;
+    let t4091 = t3387 - (t3407 - t4085) - t4090;
+    let t4098 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t4047,
+        t4070,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t4068,
-            T::from_f64(0.000000000000003552713678800501) * t4059,
+            t4091,
+            T::from_f64(0.000000000000003552713678800501) * t4082,
         ),
     );
-    let t4080 = Real::mul_add(
+    let t4103 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t4047,
+        t4070,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t4059,
-            T::from_f64(31.18503118503118) * t4068,
+            t4082,
+            T::from_f64(31.18503118503118) * t4091,
         ),
     );
-    let t4085 = Real::mul_add(
+    let t4108 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t4047,
+        t4070,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t4059,
-            T::from_f64(33.26403326403328) * t4068,
+            t4082,
+            T::from_f64(33.26403326403328) * t4091,
         ),
     );
-    let t4090 = Real::mul_add(
+    let t4113 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t4047,
-        Real::mul_add(-T::from_f64(50.0), t4059, T::from_f64(33.26403326403329) * t4068),
+        t4070,
+        Real::mul_add(-T::from_f64(50.0), t4082, T::from_f64(33.26403326403329) * t4091),
     );
-    let t4100 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4075))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4080))
-        .max(T::from_f64(5.0) - t4085)
-        .max(T::from_f64(5.0) - t4090);
-    let t4102 = Real::mul_add(T::from_f64(1.0666666666666669), t4100, t4075);
-    let t4104 = Real::mul_add(T::from_f64(1.0666666666666664), t4100, -t4080);
-    let t4105 = t4085 + t4100;
-    let t4106 = t4090 + t4100;
-    let t4168 = t3084 + t4102;
-    let t4169 = t4168 - t3086;
-    let t4170 = t3089 + t4104;
-    let t4171 = t3086 + t4170;
-    let t4172 = t4105 - t3091;
-    let t4173 = t4106 - t3092;
-    let t4174 = T::from_f64(0.999799979995999) * t4169;
-    let t4175 = T::from_f64(0.019999999999999785) * t4169;
-    let t4178 = Real::mul_add(s114, t4175, c115 * t4174);
-    let t4179 = s114 * t4174;
-    let t4180 = c115 * t4175;
-    let t4181 = t4179 - t4180;
-    let t4184 = Real::mul_add(t631, t4178, t627 * t4181);
-    let t4187 = Real::mul_add(-s112, t4175, c113 * t4174);
-    let t4190 = Real::mul_add(c113, t4175, s112 * t4174);
-    let t4194 = t4187 - t4168;
-    let t4196 = Real::mul_add(
+    let t4123 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4098))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4103))
+        .max(T::from_f64(5.0) - t4108)
+        .max(T::from_f64(5.0) - t4113);
+    let t4125 = Real::mul_add(T::from_f64(1.0666666666666669), t4123, t4098);
+    let t4127 = Real::mul_add(T::from_f64(1.0666666666666664), t4123, -t4103);
+    let t4128 = t4108 + t4123;
+    let t4129 = t4113 + t4123;
+    let t4193 = t3084 + t4125;
+    let t4194 = t4193 - t3086;
+    let t4195 = t3089 + t4127;
+    let t4196 = t3086 + t4195;
+    let t4197 = t4128 - t3091;
+    let t4198 = t4129 - t3092;
+    let t4199 = T::from_f64(0.999799979995999) * t4194;
+    let t4200 = T::from_f64(0.019999999999999785) * t4194;
+    let t4203 = Real::mul_add(s114, t4200, c115 * t4199);
+    let t4204 = s114 * t4199;
+    let t4205 = c115 * t4200;
+    let t4206 = t4204 - t4205;
+    let t4209 = Real::mul_add(t631, t4203, t627 * t4206);
+    let t4212 = Real::mul_add(-s112, t4200, c113 * t4199);
+    let t4215 = Real::mul_add(c113, t4200, s112 * t4199);
+    let t4219 = t4212 - t4193;
+    let t4221 = Real::mul_add(
         T::from_f64(0.007),
-        t4168,
+        t4193,
         -Real::mul_add(
             t652 - s112 * T::from_f64(0.0001399999999999985),
-            t4187,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4190,
+            t4212,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4215,
         ),
     );
-    let t4197 = c111 * t4168;
-    let t4198 = s110 * t4168;
-    let t4211 = T::from_f64(0.999799979995999) * t4171;
-    let t4212 = T::from_f64(0.02000000000000003) * t4171;
-    let t4213 = c115 * t4211;
-    let t4214 = s114 * t4212;
-    let t4215 = t4214 - t4213;
-    let t4218 = Real::mul_add(c115, t4212, s114 * t4211);
-    let t4221 = Real::mul_add(t692, t4215, t687 * t4218);
-    let t4224 = Real::mul_add(s112, t4212, c113 * t4211);
-    let t4227 = Real::mul_add(-c113, t4212, s112 * t4211);
-    let t4231 = t4224 - t4170;
-    let t4233 = Real::mul_add(
+    let t4222 = c111 * t4193;
+    let t4223 = s110 * t4193;
+    let t4236 = T::from_f64(0.999799979995999) * t4196;
+    let t4237 = T::from_f64(0.02000000000000003) * t4196;
+    let t4238 = c115 * t4236;
+    let t4239 = s114 * t4237;
+    let t4240 = t4239 - t4238;
+    let t4243 = Real::mul_add(c115, t4237, s114 * t4236);
+    let t4246 = Real::mul_add(t692, t4240, t687 * t4243);
+    let t4249 = Real::mul_add(s112, t4237, c113 * t4236);
+    let t4252 = Real::mul_add(-c113, t4237, s112 * t4236);
+    let t4256 = t4249 - t4195;
+    let t4258 = Real::mul_add(
         -T::from_f64(0.007),
-        t4170,
+        t4195,
         Real::mul_add(
             t652 + s112 * T::from_f64(0.00014000000000000023),
-            t4224,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4227,
+            t4249,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4252,
         ),
     );
-    let t4234 = c111 * t4170;
-    let t4235 = s110 * t4170;
-    let t4249 = t3091 - t4105;
-    let t4250 = c113 * t4249;
-    let t4251 = s112 * t4249;
-    let t4254 = Real::mul_add(t735, t4250, t734 * t4251);
-    let t4255 = c111 * t4172;
-    let t4256 = s110 * t4172;
-    let t4266 = t3092 - t4106;
-    let t4267 = c113 * t4266;
-    let t4268 = s112 * t4266;
-    let t4269 = t4250 + t4267;
-    let t4270 = t4251 + t4268;
-    let t4273 = Real::mul_add(t735, t4267, t734 * t4268);
-    let t4275 = c111 * t4173;
-    let t4276 = s110 * t4173;
-    let t4286 = Real::mul_add(T::from_f64(0.99498743710662), t4106, -t4275);
-    let t4287 = Real::mul_add(T::from_f64(0.09999999999999983), t4106, -t4276);
-    let t4288 = T::from_f64(0.000000064) * t376
+    let t4259 = c111 * t4195;
+    let t4260 = s110 * t4195;
+    let t4274 = t3091 - t4128;
+    let t4275 = c113 * t4274;
+    let t4276 = s112 * t4274;
+    let t4279 = Real::mul_add(t735, t4275, t734 * t4276);
+    let t4280 = c111 * t4197;
+    let t4281 = s110 * t4197;
+    let t4291 = t3092 - t4129;
+    let t4292 = c113 * t4291;
+    let t4293 = s112 * t4291;
+    let t4294 = t4275 + t4292;
+    let t4295 = t4276 + t4293;
+    let t4298 = Real::mul_add(t735, t4292, t734 * t4293);
+    let t4300 = c111 * t4198;
+    let t4301 = s110 * t4198;
+    let t4311 = Real::mul_add(T::from_f64(0.99498743710662), t4129, -t4300);
+    let t4312 = Real::mul_add(T::from_f64(0.09999999999999983), t4129, -t4301);
+    let t4313 = T::from_f64(0.000000064) * t376
         - Real::mul_add(
             T::from_f64(0.008),
-            t4106,
-            -Real::mul_add(t747, t4275, t745 * t4276),
+            t4129,
+            -Real::mul_add(t747, t4300, t745 * t4301),
         );
-    let t4289 = Real::mul_add(T::from_f64(0.99498743710662), t4105, -t4255);
-    let t4290 = Real::mul_add(T::from_f64(0.09999999999999983), t4105, -t4256);
-    let t4291 = T::from_f64(0.000000064) * t370
+    let t4314 = Real::mul_add(T::from_f64(0.99498743710662), t4128, -t4280);
+    let t4315 = Real::mul_add(T::from_f64(0.09999999999999983), t4128, -t4281);
+    let t4316 = T::from_f64(0.000000064) * t370
         - Real::mul_add(
             T::from_f64(0.008),
-            t4105,
-            -Real::mul_add(t747, t4255, t745 * t4256),
+            t4128,
+            -Real::mul_add(t747, t4280, t745 * t4281),
         );
-    let t4292 = Real::mul_add(T::from_f64(0.99365172470036), t4104, -t4234);
-    let t4293 = -Real::mul_add(T::from_f64(0.11250000000000027), t4104, t4235);
-    let t4294 = T::from_f64(0.000000081) * t364
+    let t4317 = Real::mul_add(T::from_f64(0.99365172470036), t4127, -t4259);
+    let t4318 = -Real::mul_add(T::from_f64(0.11250000000000027), t4127, t4260);
+    let t4319 = T::from_f64(0.000000081) * t364
         - Real::mul_add(
-            -t4104,
+            -t4127,
             T::from_f64(0.009000000000000001),
             Real::mul_add(
                 T::from_f64(0.009),
-                c111 * t4234,
-                T::from_f64(0.009) * (s110 * t4235),
+                c111 * t4259,
+                T::from_f64(0.009) * (s110 * t4260),
             ),
         );
-    let t4295 = Real::mul_add(T::from_f64(0.9971835337589565), t4102, -t4197);
-    let t4296 = -Real::mul_add(T::from_f64(0.07499999999999996), t4102, t4198);
-    let t4297 = T::from_f64(0.000000036) * t354
+    let t4320 = Real::mul_add(T::from_f64(0.9971835337589565), t4125, -t4222);
+    let t4321 = -Real::mul_add(T::from_f64(0.07499999999999996), t4125, t4223);
+    let t4322 = T::from_f64(0.000000036) * t354
         - Real::mul_add(
             -T::from_f64(0.006),
-            t4102,
+            t4125,
             Real::mul_add(
                 T::from_f64(0.006),
-                c111 * t4197,
-                T::from_f64(0.006) * (s110 * t4198),
+                c111 * t4222,
+                T::from_f64(0.006) * (s110 * t4223),
             ),
         );
-    let t4298 = t3397 - t4231;
-    let t4299 = T::from_f64(0.019620000000000002) - t4227;
-    let t4300 = t332 - t4233;
-    let t4301 = t4231 - t3397;
-    let t4302 = t4227 - T::from_f64(0.019620000000000002);
-    let t4308 = t3392 - t4194;
-    let t4309 = T::from_f64(0.019620000000000002) - t4190;
-    let t4310 = t332 - t4196;
-    let t4311 = t4194 - t3392;
-    let t4312 = t4190 - T::from_f64(0.019620000000000002);
-    let t4323 = -t4269;
-    let t4324 = t4254 - t4273;
-    let t4329 = t4213 - t4214;
-    let t4330 = -t4218;
-    let t4335 = t4180 - t4179;
-    let t4336 = -t4184;
-    let t4346 = t3012 - (t4215 - t4178);
-    let t4347 = t3885 - (t4181 + t4218);
-    let t4348 = t2027
-        + Real::mul_add(T::from_f64(0.006), t4181, T::from_f64(0.009) * t4218);
-    let t4352 = t4042
-        - Real::mul_add(-T::from_f64(0.006), t4178, T::from_f64(0.009) * t4215) - t3890;
-    let t4353 = Real::mul_add(
+    let t4323 = t3397 - t4256;
+    let t4324 = T::from_f64(0.019620000000000002) - t4252;
+    let t4325 = t332 - t4258;
+    let t4326 = t4256 - t3397;
+    let t4327 = t4252 - T::from_f64(0.019620000000000002);
+    let t4333 = t3392 - t4219;
+    let t4334 = T::from_f64(0.019620000000000002) - t4215;
+    let t4335 = t332 - t4221;
+    let t4336 = t4219 - t3392;
+    let t4337 = t4215 - T::from_f64(0.019620000000000002);
+    let t4348 = -t4294;
+    let t4349 = t4279 - t4298;
+    let t4354 = t4238 - t4239;
+    let t4355 = -t4243;
+    let t4360 = t4205 - t4204;
+    let t4361 = -t4209;
+    let t4371 = t3012 - (t4240 - t4203);
+    let t4372 = t3887 - (t4206 + t4243);
+    let t4373 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4206, T::from_f64(0.009) * t4243);
+    let t4377 = t4065
+        - Real::mul_add(-T::from_f64(0.006), t4203, T::from_f64(0.009) * t4240) - t3892;
+    let t4378 = Real::mul_add(
         T::from_f64(0.04),
-        t4347,
-        t4043
-            - (Real::mul_add(-T::from_f64(0.04), t4181, t4184)
-                - Real::mul_add(T::from_f64(0.04), t4218, t4221)),
+        t4372,
+        t4066
+            - (Real::mul_add(-T::from_f64(0.04), t4206, t4209)
+                - Real::mul_add(T::from_f64(0.04), t4243, t4246)),
     );
-    let t4371 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - (t4269 + Real::mul_add(-c115, t4346, s114 * t4347));
-    let t4372 = t2994 + (t4270 + Real::mul_add(c115, t4347, s114 * t4346));
-    let t4373 = t2011
+    let t4396 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - (t4294 + Real::mul_add(-c115, t4371, s114 * t4372));
+    let t4397 = t2994 + (t4295 + Real::mul_add(c115, t4372, s114 * t4371));
+    let t4398 = t2011
         - Real::mul_add(
             -T::from_f64(0.008),
-            t4270,
-            Real::mul_add(-c115, t4348, s114 * t4352),
+            t4295,
+            Real::mul_add(-c115, t4373, s114 * t4377),
         );
-    let t4377 = t3388
+    let t4402 = t3388
         + Real::mul_add(
             T::from_f64(0.008),
-            t4269,
-            Real::mul_add(c115, t4352, s114 * t4348),
+            t4294,
+            Real::mul_add(c115, t4377, s114 * t4373),
         ) - t3874;
-    let t4378 = Real::mul_add(
+    let t4403 = Real::mul_add(
         T::from_f64(0.05),
-        t4372,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t4270, t4273 - t4254) - t4353),
+        t4397,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4295, t4298 - t4279) - t4378),
     );
-    let t4395 = T::from_f64(0.01) * (t3019 - t2971)
-        - (t4301 + t4311 + Real::mul_add(-c113, t4371, s112 * t4372));
-    let t4396 = T::from_f64(0.0981)
-        - (t4302 + t4312 - Real::mul_add(c113, t4372, s112 * t4371));
-    let t4397 = Real::mul_add(T::from_f64(0.009), t4302, t3021)
-        + Real::mul_add(T::from_f64(0.006), t4312, t3021)
-        - Real::mul_add(-c113, t4373, s112 * t4377);
-    let t4401 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t4301, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t4311, -t2038)
-            - Real::mul_add(c113, t4377, s112 * t4373)) - t4067;
-    let t4402 = Real::mul_add(
+    let t4420 = T::from_f64(0.01) * (t3019 - t2971)
+        - (t4326 + t4336 + Real::mul_add(-c113, t4396, s112 * t4397));
+    let t4421 = T::from_f64(0.0981)
+        - (t4327 + t4337 - Real::mul_add(c113, t4397, s112 * t4396));
+    let t4422 = Real::mul_add(T::from_f64(0.009), t4327, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4337, t3021)
+        - Real::mul_add(-c113, t4398, s112 * t4402);
+    let t4426 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4326, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4336, -t2038)
+            - Real::mul_add(c113, t4402, s112 * t4398)) - t4090;
+    let t4427 = Real::mul_add(
         T::from_f64(0.012),
-        t4396,
-        T::from_f64(-0.0005886000000000001) - (t4233 - t332 + (t4196 - t332) - t4378),
+        t4421,
+        T::from_f64(-0.0005886000000000001) - (t4258 - t332 + (t4221 - t332) - t4403),
     );
     [
-        [[t4395, t4396, t4065], [t4397, t4401, t4402]],
-        [[t4371, t4372, t3873], [t4373, t4377, t4378]],
-        [[t4346, t4347, t3872], [t4348, t4352, t4353]],
-        [[t4178, t4335, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4336]],
-        [[t4329, t4330, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4221]],
-        [[t4323, t4270, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4324]],
-        [[t4308, t4309, t3394], [t3021, t2038, t4310]],
-        [[t4298, t4299, t3399], [t3021, t2038, t4300]],
+        [[t4420, t4421, t4088], [t4422, t4426, t4427]],
+        [[t4396, t4397, t3873], [t4398, t4402, t4403]],
+        [[t4371, t4372, t3872], [t4373, t4377, t4378]],
+        [[t4203, t4360, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4361]],
+        [[t4354, t4355, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4246]],
+        [[t4348, t4295, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t4349]],
+        [[t4333, t4334, t3394], [t3021, t2038, t4335]],
+        [[t4323, t4324, t3399], [t3021, t2038, t4325]],
         [
-            [t4295, t4296, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4297],
+            [t4320, t4321, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4322],
         ],
         [
-            [t4292, t4293, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4294],
+            [t4317, t4318, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4319],
         ],
         [
-            [t4289, t4290, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4291],
+            [t4314, t4315, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4316],
         ],
         [
-            [t4286, t4287, T::from_f64(0.019620000000000002)],
-            [T::from_f64(0.0), T::from_f64(0.0), t4288],
+            [t4311, t4312, T::from_f64(0.019620000000000002)],
+            [T::from_f64(0.0), T::from_f64(0.0), t4313],
         ],
     ]
 }
@@ -1275,7 +1275,7 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
 ///
 /// Entries: force, moment about the base origin.
 ///
-/// Operations (traced recursion): 268 arithmetic (117 add/sub, 150 mul, 0 div, 1 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 266 arithmetic (115 add/sub, 150 mul, 0 div, 1 neg, 0 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn base_reaction<T: Real>(
@@ -1352,66 +1352,65 @@ pub fn base_reaction<T: Real>(
     let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
     let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3884 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
+    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
         - t233 * t285;
-    let t3885 = T::from_f64(0.02) * t3884;
-    let t3902 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - Real::mul_add(s114, t3885, -(c115 * t3012));
-    let t3903 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3885, s114 * t3012);
-    let t4065 = T::from_f64(0.01) * t1989
+    let t3887 = T::from_f64(0.02) * t3886;
+    let t3904 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+        - Real::mul_add(s114, t3887, -(c115 * t3012));
+    let t3905 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3887, s114 * t3012);
+    let t4088 = T::from_f64(0.01) * t1989
         - (T::from_f64(0.002) * (t118 + t3019)
             + T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118)
             - t3873);
-    let t4110 = Real::mul_add(
+    let t4134 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
         Real::mul_add(t245, t2016, -(t233 * t302)),
     ) + T::from_f64(0.0004) * t3871 - T::from_f64(0.0008) * t3871;
-    let t4116 = Real::mul_add(
+    let t4140 = Real::mul_add(
         T::from_f64(0.000001),
         t157,
         Real::mul_add(-qd[1], t2001, t153 * t213),
-    ) - Real::mul_add(s114, t4110, -(c115 * t2027));
-    let t4118 = T::from_f64(0.0000068) * qdd[1]
+    ) - Real::mul_add(s114, t4134, -(c115 * t2027));
+    let t4142 = T::from_f64(0.0000068) * qdd[1]
         + Real::mul_add(-t153, t2000, t152 * t2001) - t2992 * T::from_f64(0.00075)
-        + (T::from_f64(0.0008) * t3884
+        + (T::from_f64(0.0008) * t3886
             + (T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-                - T::from_f64(0.0004) * t3884));
-    let t4119 = Real::mul_add(
+                - T::from_f64(0.0004) * t3886));
+    let t4143 = Real::mul_add(
         T::from_f64(0.0000068),
         t159,
         Real::mul_add(qd[1], t2000, -(t152 * t213)),
-    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t4110, s114 * t2027)
+    ) + t208 * T::from_f64(0.00075) + Real::mul_add(c115, t4134, s114 * t2027)
         - T::from_f64(0.05) * t3873;
-    let t4128 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3903, s112 * t3902);
-    let t4129 = T::from_f64(0.00017658) - t3021
-        + (T::from_f64(0.00011772000000000002) - t3021)
-        + Real::mul_add(-c113, t4116, s112 * t4119);
-    let t4132 = T::from_f64(0.01) * (t3019 - t2971)
-        - (Real::mul_add(-c113, t3902, s112 * t3903)
+    let t4152 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3905, s112 * t3904);
+    let t4153 = T::from_f64(0.0002943) - t3021 - t3021
+        + Real::mul_add(-c113, t4140, s112 * t4143);
+    let t4156 = T::from_f64(0.01) * (t3019 - t2971)
+        - (Real::mul_add(-c113, t3904, s112 * t3905)
             - (T::from_f64(0.002) * t3018 + T::from_f64(0.002) * t3022));
-    let t4134 = Real::mul_add(
+    let t4158 = Real::mul_add(
         T::from_f64(0.00006),
         t1989,
         T::from_f64(0.0000003) * qdd[0],
     )
         + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
             + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t4119, s112 * t4116));
-    let t4138 = Real::mul_add(
+            + Real::mul_add(c113, t4143, s112 * t4140));
+    let t4162 = Real::mul_add(
         T::from_f64(0.012),
-        T::from_f64(0.0981) - t4128,
+        T::from_f64(0.0981) - t4152,
         T::from_f64(-0.0005886000000000001)
-            + (t332 + t332 + (T::from_f64(0.05) * t3903 + t4118)),
+            + (t332 + t332 + (T::from_f64(0.05) * t3905 + t4142)),
     );
-    let t4140 = Real::mul_add(c111, t4132, s110 * t4065);
-    let t4142 = Real::mul_add(-c111, t4065, s110 * t4132);
-    let t4146 = Real::mul_add(-c111, t4129, s110 * t4138);
-    let t4150 = -Real::mul_add(c111, t4138, s110 * t4129);
-    let t4152 = T::from_f64(0.07848000000000001) - (t4128 - T::from_f64(0.0981));
-    let t4153 = t385 - (T::from_f64(0.012) * t4065 - t4134);
-    [[[t4140, t4142, t4152], [t4146, t4150, t4153]]]
+    let t4164 = Real::mul_add(c111, t4156, s110 * t4088);
+    let t4166 = Real::mul_add(-c111, t4088, s110 * t4156);
+    let t4170 = Real::mul_add(-c111, t4153, s110 * t4162);
+    let t4174 = -Real::mul_add(c111, t4162, s110 * t4153);
+    let t4177 = T::from_f64(0.17658000000000001) - t4152;
+    let t4178 = t385 - (T::from_f64(0.012) * t4088 - t4158);
+    [[[t4164, t4166, t4177], [t4170, t4174, t4178]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -1435,7 +1434,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 918 arithmetic (442 add/sub, 458 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 913 arithmetic (437 add/sub, 458 mul, 6 div, 8 neg, 4 max), 3 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -1519,7 +1518,6 @@ pub fn all<T: Real>(
     let t1538 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
     let t1542 = t1538 + T::from_f64(0.0025000000000000005);
     let t1544 = T::from_f64(0.05) * (t1538 + t1542);
-    let t1556 = T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1544);
     let t1607 = T::from_f64(-0.00006)
         + Real::mul_add(c113, t1542, -(s112 * (s114 * T::from_f64(0.0004))));
     let t1644 = t183 + T::from_f64(0.05) * t158;
@@ -1590,8 +1588,6 @@ pub fn all<T: Real>(
     let t3128 = c113 * t3092;
     let t3129 = s112 * t3092;
     let t3131 = t3124 + t3129;
-    let t3241 = T::from_f64(0.00000022400000000000002)
-        + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002));
     let t3259 = t179 + t2983;
     let t3260 = t181 + t2985;
     let t3261 = t3260 - t202;
@@ -1665,24 +1661,6 @@ pub fn all<T: Real>(
                     - Real::mul_add(T::from_f64(0.05), t1538, T::from_f64(0.05) * t1542)
                     + (T::from_f64(0.000001) + Real::mul_add(s114, t2747, c115 * t2746))),
         );
-    let t3796 = T::from_f64(0.0000009430000000000001)
-        + Real::mul_add(
-            c113,
-            Real::mul_add(
-                c113,
-                t1544
-                    + (T::from_f64(0.00002555)
-                        + Real::mul_add(
-                            T::from_f64(0.000011000000000000001),
-                            c115 * c115,
-                            T::from_f64(0.0000006) * (s114 * s114),
-                        )),
-                s112 * t3786,
-            ),
-            t3793,
-        );
-    let t3798 = T::from_f64(0.000000245)
-        + (T::from_f64(0.012) * (t1607 + (t1607 + T::from_f64(0.000768))) + t3796);
     let t3814 = T::from_f64(0.0008) * t3276 + (t2026 - T::from_f64(0.0004) * t3276);
     let t3823 = t3299 + (t2010 - T::from_f64(0.00075) * t3261 + t3814);
     let t3833 = T::from_f64(0.0008) * t3336 + (t2026 - T::from_f64(0.0004) * t3336);
@@ -1697,29 +1675,27 @@ pub fn all<T: Real>(
                     * (s114 * (t290 + (Real::mul_add(s114, t3324, t3000) - t269))),
             ),
         ) + (t2010 - T::from_f64(0.00075) * t3325 + t3833);
-    let t3839 = T::from_f64(0.00000002100000000000001) / t3798;
-    let t3840 = T::from_f64(0.000000024000000000000003) / t3798;
-    let t3843 = Real::mul_add(-t3798, t3839 * t3839, t1556);
-    let t3847 = Real::mul_add(-t3798, t3839 * t3840, t3241) / t3843;
     let t3871 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
     let t3872 = T::from_f64(0.02) * t3871;
     let t3873 = T::from_f64(0.03) * t208 + t3872;
     let t3874 = T::from_f64(0.05) * t3873;
-    let t3877 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
-    let t3879 = Real::mul_add(T::from_f64(0.02), t3877, T::from_f64(0.03) * t1650);
-    let t3884 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
-    let t3885 = T::from_f64(0.02) * t3884;
-    let t3890 = T::from_f64(0.0008) * t3871;
-    let t3902 = t2993 - Real::mul_add(s114, t3885, -(c115 * t3012));
-    let t3903 = t2994 + Real::mul_add(c115, t3885, s114 * t3012);
-    let t3937 = t3885 - (t3100 + t3115);
-    let t4042 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
+    let t3876 = t1544 + T::from_f64(0.000036946);
+    let t3879 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
+    let t3881 = Real::mul_add(T::from_f64(0.02), t3879, T::from_f64(0.03) * t1650);
+    let t3886 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
+    let t3887 = T::from_f64(0.02) * t3886;
+    let t3892 = T::from_f64(0.0008) * t3871;
+    let t3904 = t2993 - Real::mul_add(s114, t3887, -(c115 * t3012));
+    let t3905 = t2994 + Real::mul_add(c115, t3887, s114 * t3012);
+    let t3939 = t3887 - (t3100 + t3115);
+    let t4011 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
+    let t4065 = Real::mul_add(T::from_f64(0.000003), t249, t2023)
         + T::from_f64(0.0004) * t3871;
-    let t4043 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3884;
-    let t4046 = t4042
-        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3890;
-    let t4047 = T::from_f64(0.04) * t3937
-        + (t4043
+    let t4066 = T::from_f64(0.000003) * t250 + t2026 - T::from_f64(0.0004) * t3886;
+    let t4069 = t4065
+        - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112) - t3892;
+    let t4070 = T::from_f64(0.04) * t3939
+        + (t4066
             - (Real::mul_add(
                 -T::from_f64(0.04),
                 t3100,
@@ -1730,381 +1706,399 @@ pub fn all<T: Real>(
                     t3115,
                     Real::mul_add(t692, t3112, t687 * t3115),
                 )));
-    let t4059 = T::from_f64(0.05)
+    let t4082 = T::from_f64(0.05)
         * (t2994
-            + (t3131 + Real::mul_add(c115, t3937, s114 * (t3012 - (t3112 - t3097)))))
+            + (t3131 + Real::mul_add(c115, t3939, s114 * (t3012 - (t3112 - t3097)))))
         + (t3389
             - (Real::mul_add(
                 T::from_f64(0.05),
                 t3131,
                 Real::mul_add(t735, t3128, t734 * t3129)
                     - Real::mul_add(t735, t3123, t734 * t3124),
-            ) - t4047));
-    let t4062 = Real::mul_add(
+            ) - t4070));
+    let t4085 = Real::mul_add(
         c113,
         t3388
             + (T::from_f64(0.008) * (t3123 + t3128)
-                + Real::mul_add(c115, t4046, s114 * t3408)) - t3874,
+                + Real::mul_add(c115, t4069, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4046, -(c115 * t3408))
+                - (Real::mul_add(s114, t4069, -(c115 * t3408))
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4065 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
-    let t4067 = T::from_f64(0.012) * t4065;
-    let t4068 = t3387 - (t3407 - t4062) - t4067;
-    let t4075 = Real::mul_add(
+    let t4088 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4090 = T::from_f64(0.012) * t4088;
+    let t4091 = t3387 - (t3407 - t4085) - t4090;
+    let t4098 = Real::mul_add(
         T::from_f64(68.34719334719333),
-        t4047,
+        t4070,
         Real::mul_add(
             -T::from_f64(31.185031185031185),
-            t4068,
-            T::from_f64(0.000000000000003552713678800501) * t4059,
+            t4091,
+            T::from_f64(0.000000000000003552713678800501) * t4082,
         ),
     );
-    let t4080 = Real::mul_add(
+    let t4103 = Real::mul_add(
         T::from_f64(56.65280665280666),
-        t4047,
+        t4070,
         Real::mul_add(
             T::from_f64(0.000000000000007105427357601002),
-            t4059,
-            T::from_f64(31.18503118503118) * t4068,
+            t4082,
+            T::from_f64(31.18503118503118) * t4091,
         ),
     );
-    let t4085 = Real::mul_add(
+    let t4108 = Real::mul_add(
         -T::from_f64(49.98700623700625),
-        t4047,
+        t4070,
         Real::mul_add(
             T::from_f64(50.000000000000014),
-            t4059,
-            T::from_f64(33.26403326403328) * t4068,
+            t4082,
+            T::from_f64(33.26403326403328) * t4091,
         ),
     );
-    let t4090 = Real::mul_add(
+    let t4113 = Real::mul_add(
         T::from_f64(37.512993762993766),
-        t4047,
-        Real::mul_add(-T::from_f64(50.0), t4059, T::from_f64(33.26403326403329) * t4068),
+        t4070,
+        Real::mul_add(-T::from_f64(50.0), t4082, T::from_f64(33.26403326403329) * t4091),
     );
-    let t4100 = T::from_f64(0.0)
-        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4075))
-        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4080))
-        .max(T::from_f64(5.0) - t4085)
-        .max(T::from_f64(5.0) - t4090);
-    let t4102 = Real::mul_add(T::from_f64(1.0666666666666669), t4100, t4075);
-    let t4104 = Real::mul_add(T::from_f64(1.0666666666666664), t4100, -t4080);
-    let t4105 = t4085 + t4100;
-    let t4106 = t4090 + t4100;
-    let t4110 = t4042 - t3890;
-    let t4111 = T::from_f64(0.0008) * t3884 + t4043;
-    let t4116 = t2011 - Real::mul_add(s114, t4110, -(c115 * t2027));
-    let t4119 = t3388 + Real::mul_add(c115, t4110, s114 * t2027) - t3874;
-    let t4120 = T::from_f64(0.05) * t3903 + (t3389 + t4111);
-    let t4128 = T::from_f64(-0.039240000000000004)
-        - Real::mul_add(c113, t3903, s112 * t3902);
-    let t4129 = T::from_f64(0.00017658) - t3021
-        + (T::from_f64(0.00011772000000000002) - t3021)
-        + Real::mul_add(-c113, t4116, s112 * t4119);
-    let t4132 = t3385 - (Real::mul_add(-c113, t3902, s112 * t3903) - (t3392 + t3397));
-    let t4134 = t3387
+    let t4123 = T::from_f64(0.0)
+        .max(T::from_f64(0.9374999999999998) * (T::from_f64(5.0) - t4098))
+        .max(T::from_f64(0.9375000000000002) * (T::from_f64(5.0) + t4103))
+        .max(T::from_f64(5.0) - t4108)
+        .max(T::from_f64(5.0) - t4113);
+    let t4125 = Real::mul_add(T::from_f64(1.0666666666666669), t4123, t4098);
+    let t4127 = Real::mul_add(T::from_f64(1.0666666666666664), t4123, -t4103);
+    let t4128 = t4108 + t4123;
+    let t4129 = t4113 + t4123;
+    let t4134 = t4065 - t3892;
+    let t4135 = T::from_f64(0.0008) * t3886 + t4066;
+    let t4140 = t2011 - Real::mul_add(s114, t4134, -(c115 * t2027));
+    let t4143 = t3388 + Real::mul_add(c115, t4134, s114 * t2027) - t3874;
+    let t4144 = T::from_f64(0.05) * t3905 + (t3389 + t4135);
+    let t4152 = T::from_f64(-0.039240000000000004)
+        - Real::mul_add(c113, t3905, s112 * t3904);
+    let t4153 = T::from_f64(0.0002943) - t3021 - t3021
+        + Real::mul_add(-c113, t4140, s112 * t4143);
+    let t4156 = t3385 - (Real::mul_add(-c113, t3904, s112 * t3905) - (t3392 + t3397));
+    let t4158 = t3387
         + (Real::mul_add(T::from_f64(0.000018), t3022, t2038)
             + Real::mul_add(T::from_f64(0.000012), t3018, t2038)
-            + Real::mul_add(c113, t4119, s112 * t4116));
-    let t4138 = Real::mul_add(
+            + Real::mul_add(c113, t4143, s112 * t4140));
+    let t4162 = Real::mul_add(
         T::from_f64(0.012),
-        T::from_f64(0.0981) - t4128,
-        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t4120),
+        T::from_f64(0.0981) - t4152,
+        T::from_f64(-0.0005886000000000001) + (t332 + t332 + t4144),
     );
-    let t4140 = Real::mul_add(c111, t4132, s110 * t4065);
-    let t4142 = Real::mul_add(-c111, t4065, s110 * t4132);
-    let t4146 = Real::mul_add(-c111, t4129, s110 * t4138);
-    let t4150 = -Real::mul_add(c111, t4138, s110 * t4129);
-    let t4152 = T::from_f64(0.07848000000000001) - (t4128 - T::from_f64(0.0981));
-    let t4153 = t356 + (t366 + (t372 + t378)) - (t4067 - t4134);
-    let t4163 = t364 * T::from_f64(0.000000072)
-        + (t3061 + (t3061 + t4111) - t354 * T::from_f64(0.00000004799999999999999));
-    let t4166 = t378 + (t372 + (t366 + (t356 + (t4134 - t4067))));
-    let t4167 = t370 * T::from_f64(0.00000008)
+    let t4164 = Real::mul_add(c111, t4156, s110 * t4088);
+    let t4166 = Real::mul_add(-c111, t4088, s110 * t4156);
+    let t4170 = Real::mul_add(-c111, t4153, s110 * t4162);
+    let t4174 = -Real::mul_add(c111, t4162, s110 * t4153);
+    let t4177 = T::from_f64(0.17658000000000001) - t4152;
+    let t4178 = t356 + (t366 + (t372 + t378)) - (t4090 - t4158);
+    let t4188 = t364 * T::from_f64(0.000000072)
+        + (t3061 + (t3061 + t4135) - t354 * T::from_f64(0.00000004799999999999999));
+    let t4191 = t378 + (t372 + (t366 + (t356 + (t4158 - t4090))));
+    let t4192 = t370 * T::from_f64(0.00000008)
         + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + (t332 + t4120) - t354 * T::from_f64(0.000000042)))
+            + (t332 + (t332 + t4144) - t354 * T::from_f64(0.000000042)))
         - t376 * T::from_f64(0.00000008);
-    let t4168 = t3084 + t4102;
-    let t4169 = t4168 - t3086;
-    let t4170 = t3089 + t4104;
-    let t4171 = t3086 + t4170;
-    let t4172 = t4105 - t3091;
-    let t4173 = t4106 - t3092;
-    let t4174 = T::from_f64(0.999799979995999) * t4169;
-    let t4175 = T::from_f64(0.019999999999999785) * t4169;
-    let t4178 = Real::mul_add(s114, t4175, c115 * t4174);
-    let t4179 = s114 * t4174;
-    let t4180 = c115 * t4175;
-    let t4181 = t4179 - t4180;
-    let t4184 = Real::mul_add(t631, t4178, t627 * t4181);
-    let t4187 = Real::mul_add(-s112, t4175, c113 * t4174);
-    let t4190 = Real::mul_add(c113, t4175, s112 * t4174);
-    let t4194 = t4187 - t4168;
-    let t4196 = Real::mul_add(
+    let t4193 = t3084 + t4125;
+    let t4194 = t4193 - t3086;
+    let t4195 = t3089 + t4127;
+    let t4196 = t3086 + t4195;
+    let t4197 = t4128 - t3091;
+    let t4198 = t4129 - t3092;
+    let t4199 = T::from_f64(0.999799979995999) * t4194;
+    let t4200 = T::from_f64(0.019999999999999785) * t4194;
+    let t4203 = Real::mul_add(s114, t4200, c115 * t4199);
+    let t4204 = s114 * t4199;
+    let t4205 = c115 * t4200;
+    let t4206 = t4204 - t4205;
+    let t4209 = Real::mul_add(t631, t4203, t627 * t4206);
+    let t4212 = Real::mul_add(-s112, t4200, c113 * t4199);
+    let t4215 = Real::mul_add(c113, t4200, s112 * t4199);
+    let t4219 = t4212 - t4193;
+    let t4221 = Real::mul_add(
         T::from_f64(0.007),
-        t4168,
+        t4193,
         -Real::mul_add(
             t652 - s112 * T::from_f64(0.0001399999999999985),
-            t4187,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4190,
+            t4212,
+            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4215,
         ),
     );
-    let t4197 = c111 * t4168;
-    let t4198 = s110 * t4168;
-    let t4211 = T::from_f64(0.999799979995999) * t4171;
-    let t4212 = T::from_f64(0.02000000000000003) * t4171;
-    let t4213 = c115 * t4211;
-    let t4214 = s114 * t4212;
-    let t4215 = t4214 - t4213;
-    let t4218 = Real::mul_add(c115, t4212, s114 * t4211);
-    let t4221 = Real::mul_add(t692, t4215, t687 * t4218);
-    let t4224 = Real::mul_add(s112, t4212, c113 * t4211);
-    let t4227 = Real::mul_add(-c113, t4212, s112 * t4211);
-    let t4231 = t4224 - t4170;
-    let t4233 = Real::mul_add(
+    let t4222 = c111 * t4193;
+    let t4223 = s110 * t4193;
+    let t4236 = T::from_f64(0.999799979995999) * t4196;
+    let t4237 = T::from_f64(0.02000000000000003) * t4196;
+    let t4238 = c115 * t4236;
+    let t4239 = s114 * t4237;
+    let t4240 = t4239 - t4238;
+    let t4243 = Real::mul_add(c115, t4237, s114 * t4236);
+    let t4246 = Real::mul_add(t692, t4240, t687 * t4243);
+    let t4249 = Real::mul_add(s112, t4237, c113 * t4236);
+    let t4252 = Real::mul_add(-c113, t4237, s112 * t4236);
+    let t4256 = t4249 - t4195;
+    let t4258 = Real::mul_add(
         -T::from_f64(0.007),
-        t4170,
+        t4195,
         Real::mul_add(
             t652 + s112 * T::from_f64(0.00014000000000000023),
-            t4224,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4227,
+            t4249,
+            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4252,
         ),
     );
-    let t4234 = c111 * t4170;
-    let t4235 = s110 * t4170;
-    let t4249 = t3091 - t4105;
-    let t4250 = c113 * t4249;
-    let t4251 = s112 * t4249;
-    let t4254 = Real::mul_add(t735, t4250, t734 * t4251);
-    let t4255 = c111 * t4172;
-    let t4256 = s110 * t4172;
-    let t4266 = t3092 - t4106;
-    let t4267 = c113 * t4266;
-    let t4268 = s112 * t4266;
-    let t4269 = t4250 + t4267;
-    let t4270 = t4251 + t4268;
-    let t4273 = Real::mul_add(t735, t4267, t734 * t4268);
-    let t4275 = c111 * t4173;
-    let t4276 = s110 * t4173;
-    let t4286 = Real::mul_add(T::from_f64(0.99498743710662), t4106, -t4275);
-    let t4287 = Real::mul_add(T::from_f64(0.09999999999999983), t4106, -t4276);
-    let t4288 = t378
+    let t4259 = c111 * t4195;
+    let t4260 = s110 * t4195;
+    let t4274 = t3091 - t4128;
+    let t4275 = c113 * t4274;
+    let t4276 = s112 * t4274;
+    let t4279 = Real::mul_add(t735, t4275, t734 * t4276);
+    let t4280 = c111 * t4197;
+    let t4281 = s110 * t4197;
+    let t4291 = t3092 - t4129;
+    let t4292 = c113 * t4291;
+    let t4293 = s112 * t4291;
+    let t4294 = t4275 + t4292;
+    let t4295 = t4276 + t4293;
+    let t4298 = Real::mul_add(t735, t4292, t734 * t4293);
+    let t4300 = c111 * t4198;
+    let t4301 = s110 * t4198;
+    let t4311 = Real::mul_add(T::from_f64(0.99498743710662), t4129, -t4300);
+    let t4312 = Real::mul_add(T::from_f64(0.09999999999999983), t4129, -t4301);
+    let t4313 = t378
         - Real::mul_add(
             T::from_f64(0.008),
-            t4106,
-            -Real::mul_add(t747, t4275, t745 * t4276),
+            t4129,
+            -Real::mul_add(t747, t4300, t745 * t4301),
         );
-    let t4289 = Real::mul_add(T::from_f64(0.99498743710662), t4105, -t4255);
-    let t4290 = Real::mul_add(T::from_f64(0.09999999999999983), t4105, -t4256);
-    let t4291 = t372
+    let t4314 = Real::mul_add(T::from_f64(0.99498743710662), t4128, -t4280);
+    let t4315 = Real::mul_add(T::from_f64(0.09999999999999983), t4128, -t4281);
+    let t4316 = t372
         - Real::mul_add(
             T::from_f64(0.008),
-            t4105,
-            -Real::mul_add(t747, t4255, t745 * t4256),
+            t4128,
+            -Real::mul_add(t747, t4280, t745 * t4281),
         );
-    let t4292 = Real::mul_add(T::from_f64(0.99365172470036), t4104, -t4234);
-    let t4293 = -Real::mul_add(T::from_f64(0.11250000000000027), t4104, t4235);
-    let t4294 = t366
+    let t4317 = Real::mul_add(T::from_f64(0.99365172470036), t4127, -t4259);
+    let t4318 = -Real::mul_add(T::from_f64(0.11250000000000027), t4127, t4260);
+    let t4319 = t366
         - Real::mul_add(
-            -t4104,
+            -t4127,
             T::from_f64(0.009000000000000001),
             Real::mul_add(
                 T::from_f64(0.009),
-                c111 * t4234,
-                T::from_f64(0.009) * (s110 * t4235),
+                c111 * t4259,
+                T::from_f64(0.009) * (s110 * t4260),
             ),
         );
-    let t4295 = Real::mul_add(T::from_f64(0.9971835337589565), t4102, -t4197);
-    let t4296 = -Real::mul_add(T::from_f64(0.07499999999999996), t4102, t4198);
-    let t4297 = t356
+    let t4320 = Real::mul_add(T::from_f64(0.9971835337589565), t4125, -t4222);
+    let t4321 = -Real::mul_add(T::from_f64(0.07499999999999996), t4125, t4223);
+    let t4322 = t356
         - Real::mul_add(
             -T::from_f64(0.006),
-            t4102,
+            t4125,
             Real::mul_add(
                 T::from_f64(0.006),
-                c111 * t4197,
-                T::from_f64(0.006) * (s110 * t4198),
+                c111 * t4222,
+                T::from_f64(0.006) * (s110 * t4223),
             ),
         );
-    let t4298 = t3397 - t4231;
-    let t4299 = T::from_f64(0.019620000000000002) - t4227;
-    let t4300 = t332 - t4233;
-    let t4301 = t4231 - t3397;
-    let t4302 = t4227 - T::from_f64(0.019620000000000002);
-    let t4308 = t3392 - t4194;
-    let t4309 = T::from_f64(0.019620000000000002) - t4190;
-    let t4310 = t332 - t4196;
-    let t4311 = t4194 - t3392;
-    let t4312 = t4190 - T::from_f64(0.019620000000000002);
-    let t4323 = -t4269;
-    let t4324 = t4254 - t4273;
-    let t4329 = t4213 - t4214;
-    let t4330 = -t4218;
-    let t4335 = t4180 - t4179;
-    let t4336 = -t4184;
-    let t4346 = t3012 - (t4215 - t4178);
-    let t4347 = t3885 - (t4181 + t4218);
-    let t4348 = t2027
-        + Real::mul_add(T::from_f64(0.006), t4181, T::from_f64(0.009) * t4218);
-    let t4352 = t4042
-        - Real::mul_add(-T::from_f64(0.006), t4178, T::from_f64(0.009) * t4215) - t3890;
-    let t4353 = Real::mul_add(
+    let t4323 = t3397 - t4256;
+    let t4324 = T::from_f64(0.019620000000000002) - t4252;
+    let t4325 = t332 - t4258;
+    let t4326 = t4256 - t3397;
+    let t4327 = t4252 - T::from_f64(0.019620000000000002);
+    let t4333 = t3392 - t4219;
+    let t4334 = T::from_f64(0.019620000000000002) - t4215;
+    let t4335 = t332 - t4221;
+    let t4336 = t4219 - t3392;
+    let t4337 = t4215 - T::from_f64(0.019620000000000002);
+    let t4348 = -t4294;
+    let t4349 = t4279 - t4298;
+    let t4354 = t4238 - t4239;
+    let t4355 = -t4243;
+    let t4360 = t4205 - t4204;
+    let t4361 = -t4209;
+    let t4371 = t3012 - (t4240 - t4203);
+    let t4372 = t3887 - (t4206 + t4243);
+    let t4373 = t2027
+        + Real::mul_add(T::from_f64(0.006), t4206, T::from_f64(0.009) * t4243);
+    let t4377 = t4065
+        - Real::mul_add(-T::from_f64(0.006), t4203, T::from_f64(0.009) * t4240) - t3892;
+    let t4378 = Real::mul_add(
         T::from_f64(0.04),
-        t4347,
-        t4043
-            - (Real::mul_add(-T::from_f64(0.04), t4181, t4184)
-                - Real::mul_add(T::from_f64(0.04), t4218, t4221)),
+        t4372,
+        t4066
+            - (Real::mul_add(-T::from_f64(0.04), t4206, t4209)
+                - Real::mul_add(T::from_f64(0.04), t4243, t4246)),
     );
-    let t4371 = t2993 - (t4269 + Real::mul_add(-c115, t4346, s114 * t4347));
-    let t4372 = t2994 + (t4270 + Real::mul_add(c115, t4347, s114 * t4346));
-    let t4373 = t2011
+    let t4396 = t2993 - (t4294 + Real::mul_add(-c115, t4371, s114 * t4372));
+    let t4397 = t2994 + (t4295 + Real::mul_add(c115, t4372, s114 * t4371));
+    let t4398 = t2011
         - Real::mul_add(
             -T::from_f64(0.008),
-            t4270,
-            Real::mul_add(-c115, t4348, s114 * t4352),
+            t4295,
+            Real::mul_add(-c115, t4373, s114 * t4377),
         );
-    let t4377 = t3388
+    let t4402 = t3388
         + Real::mul_add(
             T::from_f64(0.008),
-            t4269,
-            Real::mul_add(c115, t4352, s114 * t4348),
+            t4294,
+            Real::mul_add(c115, t4377, s114 * t4373),
         ) - t3874;
-    let t4378 = Real::mul_add(
+    let t4403 = Real::mul_add(
         T::from_f64(0.05),
-        t4372,
-        t3389 - (Real::mul_add(T::from_f64(0.05), t4270, t4273 - t4254) - t4353),
+        t4397,
+        t3389 - (Real::mul_add(T::from_f64(0.05), t4295, t4298 - t4279) - t4378),
     );
-    let t4395 = t3385 - (t4301 + t4311 + Real::mul_add(-c113, t4371, s112 * t4372));
-    let t4396 = T::from_f64(0.0981)
-        - (t4302 + t4312 - Real::mul_add(c113, t4372, s112 * t4371));
-    let t4397 = Real::mul_add(T::from_f64(0.009), t4302, t3021)
-        + Real::mul_add(T::from_f64(0.006), t4312, t3021)
-        - Real::mul_add(-c113, t4373, s112 * t4377);
-    let t4401 = t3387
-        - (Real::mul_add(T::from_f64(0.009), t4301, -t2038)
-            + Real::mul_add(T::from_f64(0.006), t4311, -t2038)
-            - Real::mul_add(c113, t4377, s112 * t4373)) - t4067;
-    let t4402 = Real::mul_add(
+    let t4420 = t3385 - (t4326 + t4336 + Real::mul_add(-c113, t4396, s112 * t4397));
+    let t4421 = T::from_f64(0.0981)
+        - (t4327 + t4337 - Real::mul_add(c113, t4397, s112 * t4396));
+    let t4422 = Real::mul_add(T::from_f64(0.009), t4327, t3021)
+        + Real::mul_add(T::from_f64(0.006), t4337, t3021)
+        - Real::mul_add(-c113, t4398, s112 * t4402);
+    let t4426 = t3387
+        - (Real::mul_add(T::from_f64(0.009), t4326, -t2038)
+            + Real::mul_add(T::from_f64(0.006), t4336, -t2038)
+            - Real::mul_add(c113, t4402, s112 * t4398)) - t4090;
+    let t4427 = Real::mul_add(
         T::from_f64(0.012),
-        t4396,
-        T::from_f64(-0.0005886000000000001) - (t4233 - t332 + (t4196 - t332) - t4378),
+        t4421,
+        T::from_f64(-0.0005886000000000001) - (t4258 - t332 + (t4221 - t332) - t4403),
     );
-    let t4406 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3877
-        - T::from_f64(0.0008) * t3877;
-    let t4416 = Real::mul_add(
+    let t4431 = c113
+        * Real::mul_add(
+            c113,
+            t1544
+                + (T::from_f64(0.00002555)
+                    + Real::mul_add(
+                        T::from_f64(0.000011000000000000001),
+                        c115 * c115,
+                        T::from_f64(0.0000006) * (s114 * s114),
+                    )),
+            s112 * t3786,
+        )
+        + (t3793
+            + (T::from_f64(0.012) * (t1607 + (t1607 + T::from_f64(0.000768)))
+                + T::from_f64(0.000001188)));
+    let t4435 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3879
+        - T::from_f64(0.0008) * t3879;
+    let t4445 = Real::mul_add(
         c113,
         t2007 - T::from_f64(0.0000068) * t158 + t1650 * T::from_f64(0.00075)
-            + Real::mul_add(c115, t4406, s114 * t2806) - T::from_f64(0.05) * t3879,
+            + Real::mul_add(c115, t4435, s114 * t2806) - T::from_f64(0.05) * t3881,
         s112
             * (Real::mul_add(T::from_f64(0.000001), t156, t2005)
-                - Real::mul_add(s114, t4406, -(c115 * t2806))),
+                - Real::mul_add(s114, t4435, -(c115 * t2806))),
     );
-    let t4418 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4416)
-        - T::from_f64(0.012) * (t3879 - T::from_f64(0.00003) * t2970);
-    let t4419 = T::from_f64(0.008) * tendon_tensions[2]
+    let t4447 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4445)
+        - T::from_f64(0.012) * (t3881 - T::from_f64(0.00003) * t2970);
+    let t4448 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
-        + T::from_f64(0.008) * tendon_tensions[3] - t4418;
-    let t4421 = Real::mul_add(
-        -t3839,
-        t4419,
+        + T::from_f64(0.008) * tendon_tensions[3] - t4447;
+    let t4449 = T::from_f64(0.00000002100000000000001) / t4431;
+    let t4450 = T::from_f64(0.000000024000000000000003) / t4431;
+    let t4453 = Real::mul_add(-t4431, t4449 * t4449, t3876);
+    let t4457 = Real::mul_add(-t4431, t4449 * t4450, t4011) / t4453;
+    let t4465 = Real::mul_add(
+        -t4448,
+        t4449,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
             - T::from_f64(0.01) * tendon_tensions[3] - t3835,
     );
-    let t4428 = Real::mul_add(
-        -t3847,
-        t4421,
+    let t4472 = Real::mul_add(
+        -t4457,
+        t4465,
         Real::mul_add(
-            -t3840,
-            t4419,
+            -t4448,
+            t4450,
             T::from_f64(0.008) * tendon_tensions[0]
                 - T::from_f64(0.008) * tendon_tensions[1] - t3833,
         ),
     )
         / Real::mul_add(
-            -t3843,
-            t3847 * t3847,
-            Real::mul_add(-t3798, t3840 * t3840, T::from_f64(0.000011256000000000002)),
+            -t4453,
+            t4457 * t4457,
+            Real::mul_add(-t4431, t4450 * t4450, T::from_f64(0.000011256000000000002)),
         );
-    let t4430 = Real::mul_add(-t3847, t4428, t4421 / t3843);
-    let t4434 = Real::mul_add(
-        -t3840,
-        t4428,
-        Real::mul_add(-t3839, t4430, t4419 / t3798),
+    let t4474 = Real::mul_add(-t4457, t4472, t4465 / t4453);
+    let t4478 = Real::mul_add(
+        -t4450,
+        t4472,
+        Real::mul_add(-t4449, t4474, t4448 / t4431),
     );
     Outputs {
-        generalized_forces: [t4166, t4167, t4163],
+        generalized_forces: [t4191, t4192, t4188],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t4102, t4104, t4105, t4106],
+            [t4125, t4127, t4128, t4129],
         ),
         mass_matrix: [
             [
-                t3798,
+                t4431,
                 T::from_f64(0.00000002100000000000001),
                 T::from_f64(0.000000024000000000000003),
             ],
-            [T::from_f64(0.00000002100000000000001), t1556, t3241],
+            [T::from_f64(0.00000002100000000000001), t3876, t4011],
             [
                 T::from_f64(0.000000024000000000000003),
-                t3241,
+                t4011,
                 T::from_f64(0.000011256000000000002),
             ],
         ],
-        bias: [t4418, t3823, t3814],
+        bias: [t4447, t3823, t3814],
         gravity: [T::from_f64(0.0), t3323, t3315],
-        forward_dynamics: [t4434, t4430, t4428],
+        forward_dynamics: [t4478, t4474, t4472],
         segment_tensions: [
-            t4169,
-            t4168,
-            t4102,
-            t4171,
-            t4170,
-            t4104,
-            t4172,
-            t4105,
-            t4173,
-            t4106,
+            t4194,
+            t4193,
+            t4125,
+            t4196,
+            t4195,
+            t4127,
+            t4197,
+            t4128,
+            t4198,
+            t4129,
         ],
         bearings: [
-            [[t4395, t4396, t4065], [t4397, t4401, t4402]],
-            [[t4371, t4372, t3873], [t4373, t4377, t4378]],
-            [[t4346, t4347, t3872], [t4348, t4352, t4353]],
+            [[t4420, t4421, t4088], [t4422, t4426, t4427]],
+            [[t4396, t4397, t3873], [t4398, t4402, t4403]],
+            [[t4371, t4372, t3872], [t4373, t4377, t4378]],
             [
-                [t4178, t4335, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4336],
+                [t4203, t4360, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4361],
             ],
             [
-                [t4329, t4330, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4221],
+                [t4354, t4355, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4246],
             ],
             [
-                [t4323, t4270, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4324],
+                [t4348, t4295, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4349],
             ],
-            [[t4308, t4309, t3394], [t3021, t2038, t4310]],
-            [[t4298, t4299, t3399], [t3021, t2038, t4300]],
+            [[t4333, t4334, t3394], [t3021, t2038, t4335]],
+            [[t4323, t4324, t3399], [t3021, t2038, t4325]],
             [
-                [t4295, t4296, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4297],
-            ],
-            [
-                [t4292, t4293, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4294],
+                [t4320, t4321, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4322],
             ],
             [
-                [t4289, t4290, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4291],
+                [t4317, t4318, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4319],
             ],
             [
-                [t4286, t4287, T::from_f64(0.019620000000000002)],
-                [T::from_f64(0.0), T::from_f64(0.0), t4288],
+                [t4314, t4315, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4316],
+            ],
+            [
+                [t4311, t4312, T::from_f64(0.019620000000000002)],
+                [T::from_f64(0.0), T::from_f64(0.0), t4313],
             ],
         ],
-        base_reaction: [[[t4140, t4142, t4152], [t4146, t4150, t4153]]],
+        base_reaction: [[[t4164, t4166, t4177], [t4170, t4174, t4178]]],
     }
 }

@@ -456,8 +456,9 @@ impl Graph {
     /// an operation (tested on random graphs, root by root). A pass over finished
     /// functions, after [`Graph::shared_products`] (whose gathered numbers make like terms
     /// recognisable), over every function at once so that what they share stays shared.
-    /// Merged numbers are summed in f64 (rounded once, where the terms rounded each) and
-    /// kept only where f32 holds them as normal numbers.
+    /// Numbers in a sum are summed the same way (`(x + 1) + 2 = x + 3`). Merged factors
+    /// are summed in f64 and kept only where f32 holds them as normal numbers (or they
+    /// cancel).
     pub fn merged_like_terms(&mut self, roots: &[Id]) -> Vec<Id> {
         let live = self.live(roots);
         let mut uses = vec![0u32; self.nodes.len()];
@@ -470,6 +471,7 @@ impl Graph {
             uses[r.0 as usize] += 1;
         }
         let mut map: Vec<Id> = (0..self.nodes.len() as u32).map(Id).collect();
+        let one = self.constant(1.0);
         // The terms of each sum with one use, for the sum that uses it to reach through.
         let mut sums: NodeMap<Id, Vec<Term>> = NodeMap::default();
         for id in live {
@@ -487,7 +489,10 @@ impl Graph {
             for (x, sign) in [(a, 1.0), (b, sign)] {
                 match sums.get(&x) {
                     Some(inner) => terms.extend(inner.iter().map(|t| t.times(sign))),
-                    None => terms.push(self.term(map[x.0 as usize], sign, uses[x.0 as usize] == 1)),
+                    None => {
+                        let alone = uses[x.0 as usize] == 1;
+                        terms.push(self.term(map[x.0 as usize], sign, alone, one));
+                    }
                 }
             }
             let mut merged = terms.clone();
@@ -510,10 +515,21 @@ impl Graph {
         roots.iter().map(|r| map[r.0 as usize]).collect()
     }
 
-    /// Node `x` as a term of a sum, times `sign`: `k y` as `(k, y)`, `−z` as `−1` times
-    /// `z`'s term, anything else as `(1, x)`. `alone`: `x` has no other use, so a product
-    /// in it costs a multiplication that merging would save.
-    fn term(&self, x: Id, sign: f64, alone: bool) -> Term {
+    /// Node `x` as a term of a sum, times `sign`: `k y` as `(k, y)`, a number `c` as `(c,
+    /// one)` (`one` the node of 1, so that numbers are summed as factors are, and held to
+    /// f32's range as they are), `−z` as `−1` times `z`'s term, anything else as `(1, x)`.
+    /// `alone`: `x` has no other use, so a product in it costs a multiplication that
+    /// merging would save.
+    fn term(&self, x: Id, sign: f64, alone: bool, one: Id) -> Term {
+        if let Some(c) = self.constant_value(x) {
+            // Numbers merged cost no product (`c · 1` folds): counted as one saved, so
+            // that numbers are always summed.
+            return Term {
+                factor: sign * c,
+                of: one,
+                product_alone: true,
+            };
+        }
         match (self.node(x), self.scaled(x)) {
             (_, Some((k, y))) => Term {
                 factor: sign * self.constant_value(k).unwrap_or(1.0),
@@ -523,7 +539,7 @@ impl Graph {
             // The negation's own product, if any, may be shared: not counted as saved.
             (Node::Neg(z), None) => Term {
                 product_alone: false,
-                ..self.term(z, -sign, false)
+                ..self.term(z, -sign, false, one)
             },
             _ => Term {
                 factor: sign,
@@ -1020,12 +1036,13 @@ mod tests {
                     let mut pick = || pool[rng.random_range(0..pool.len())];
                     let (a, b) = (pick(), pick());
                     let k = Sym::from_f64(numbers[rng.random_range(0..numbers.len())]);
-                    pool.push(match rng.random_range(0..6) {
+                    pool.push(match rng.random_range(0..7) {
                         0 => a + b,
                         1 => a - b,
                         2 => k * a + b,
                         3 => a - k * b,
                         4 => a * b,
+                        5 => a + k,
                         _ => -a,
                     });
                 }

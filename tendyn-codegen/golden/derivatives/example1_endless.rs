@@ -24,23 +24,23 @@ pub const TENDONS: usize = 0;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t725 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
-    let t732 = T::from_f64(0.03) * s56;
-    let t741 = Real::mul_add(
+    let t755 = T::from_f64(0.03) * c57 + T::from_f64(0.016696700000000002);
+    let t762 = T::from_f64(0.03) * s56;
+    let t771 = Real::mul_add(
         qdd[0],
         c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
         Real::mul_add(
             qdd[1],
-            t725,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t732)),
+            t755,
+            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t762)),
         ),
     );
-    let t747 = Real::mul_add(
+    let t777 = Real::mul_add(
         qdd[0],
-        t725,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t732)),
+        t755,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t762)),
     );
-    [t741, t747]
+    [t771, t777]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -56,31 +56,31 @@ pub fn generalized_forces_derivatives<T: Real>(
 ) -> tendyn_core::dual::StateJacobians<[T; 2], [[T; 2]; 2]> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t720 = c57 * T::from_f64(0.06);
-    let t725 = t577 + T::from_f64(0.016696700000000002);
-    let t728 = s56 * T::from_f64(0.06);
-    let t730 = qd[0] * t728;
-    let t732 = T::from_f64(0.03) * s56;
-    let t741 = Real::mul_add(
+    let t750 = c57 * T::from_f64(0.06);
+    let t755 = t577 + T::from_f64(0.016696700000000002);
+    let t758 = s56 * T::from_f64(0.06);
+    let t760 = qd[0] * t758;
+    let t762 = T::from_f64(0.03) * s56;
+    let t771 = Real::mul_add(
         qdd[0],
-        t720 + T::from_f64(0.1247117),
-        Real::mul_add(qdd[1], t725, -(qd[1] * (t730 + qd[1] * t732))),
+        t750 + T::from_f64(0.1247117),
+        Real::mul_add(qdd[1], t755, -(qd[1] * (t760 + qd[1] * t762))),
     );
-    let t747 = Real::mul_add(
+    let t777 = Real::mul_add(
         qdd[0],
-        t725,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t732)),
+        t755,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t762)),
     );
-    let t765 = -(qdd[0] * t728
-        + (qdd[1] * t732 + qd[1] * (qd[0] * t720 + qd[1] * t577)));
-    let t770 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t732));
-    let t771 = qd[1] * t728;
-    let t772 = -t771;
-    let t774 = -(t730 + t771);
+    let t795 = -(qdd[0] * t758
+        + (qdd[1] * t762 + qd[1] * (qd[0] * t750 + qd[1] * t577)));
+    let t800 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t762));
+    let t801 = qd[1] * t758;
+    let t802 = -t801;
+    let t804 = -(t760 + t801);
     tendyn_core::dual::StateJacobians {
-        value: [t741, t747],
-        d_q: [[T::from_f64(0.0), t765], [T::from_f64(0.0), t770]],
-        d_qd: [[t772, t774], [t730, T::from_f64(0.0)]],
+        value: [t771, t777],
+        d_q: [[T::from_f64(0.0), t795], [T::from_f64(0.0), t800]],
+        d_qd: [[t802, t804], [t760, T::from_f64(0.0)]],
     }
 }
 /// Joint accelerations `q̈` (rad/s²) from motor torques and tendon tensions (file order); `M` is factorized by an unrolled `L D Lᵀ` without checks.
@@ -97,18 +97,18 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t722 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
-    let t732 = T::from_f64(0.03) * s56;
-    let t775 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t732);
-    let t779 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t722;
-    let t892 = Real::mul_add(
-        -t775,
-        t779,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t732),
-    ) / Real::mul_add(-t722, t779 * t779, T::from_f64(0.0166867));
-    let t894 = Real::mul_add(-t779, t892, t775 / t722);
-    [t894, t892]
+    let t752 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t762 = T::from_f64(0.03) * s56;
+    let t805 = motor_torques[0] + motor_torques[1]
+        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t762);
+    let t807 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t752;
+    let t920 = Real::mul_add(
+        -t805,
+        t807,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t762),
+    ) / Real::mul_add(-t752, t807 * t807, T::from_f64(0.0166867));
+    let t922 = Real::mul_add(-t807, t920, t805 / t752);
+    [t922, t920]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
@@ -125,61 +125,61 @@ pub fn forward_dynamics_derivatives<T: Real>(
 ) -> tendyn_core::dual::ForwardJacobians<[T; 2], [[T; 2]; 2], [[T; 2]; 2]> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t720 = c57 * T::from_f64(0.06);
-    let t722 = t720 + T::from_f64(0.1247117);
-    let t728 = s56 * T::from_f64(0.06);
-    let t730 = qd[0] * t728;
-    let t732 = T::from_f64(0.03) * s56;
-    let t771 = qd[1] * t728;
-    let t776 = (motor_torques[0] + motor_torques[1] + qd[1] * (t730 + qd[1] * t732))
-        / t722;
-    let t779 = (t577 + T::from_f64(0.0166967)) / t722;
-    let t781 = T::from_f64(0.06) * t779;
-    let t783 = s56 * t781;
-    let t785 = qd[1] * t783;
-    let t791 = T::from_f64(0.03) * t779;
-    let t801 = T::from_f64(0.6666666666666667) - t779;
-    let t812 = Real::mul_add(
-        t779,
-        t779 * (T::from_f64(-0.1247117) - t720),
+    let t750 = c57 * T::from_f64(0.06);
+    let t752 = t750 + T::from_f64(0.1247117);
+    let t758 = s56 * T::from_f64(0.06);
+    let t760 = qd[0] * t758;
+    let t762 = T::from_f64(0.03) * s56;
+    let t801 = qd[1] * t758;
+    let t806 = (motor_torques[0] + motor_torques[1] + qd[1] * (t760 + qd[1] * t762))
+        / t752;
+    let t807 = (t577 + T::from_f64(0.0166967)) / t752;
+    let t809 = T::from_f64(0.06) * t807;
+    let t811 = s56 * t809;
+    let t813 = qd[1] * t811;
+    let t819 = T::from_f64(0.03) * t807;
+    let t829 = T::from_f64(0.6666666666666667) - t807;
+    let t840 = Real::mul_add(
+        t807,
+        t807 * (T::from_f64(-0.1247117) - t750),
         T::from_f64(0.0166867),
     );
-    let t813 = (Real::mul_add(motor_torques[1], t801, -(motor_torques[0] * t779))
-        - qd[1] * (qd[1] * (s56 * t791)) - qd[0] * (qd[0] * t732 + t785)) / t812;
-    let t817 = t776 - t779 * t813;
-    let t820 = T::from_f64(0.06) * t776;
-    let t849 = Real::mul_add(
+    let t841 = (Real::mul_add(motor_torques[1], t829, -(motor_torques[0] * t807))
+        - qd[1] * (qd[1] * (s56 * t819)) - qd[0] * (qd[0] * t762 + t813)) / t840;
+    let t845 = t806 - t807 * t841;
+    let t848 = T::from_f64(0.06) * t806;
+    let t877 = Real::mul_add(
         s56,
         Real::mul_add(
             T::from_f64(0.03),
-            t776,
-            t779 * Real::mul_add(t813, T::from_f64(-0.06) + t781, -t820),
+            t806,
+            t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
         ),
-        -(qd[1] * (qd[1] * (c57 * t791))),
-    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t781));
-    let t850 = t849 / t812;
-    let t855 = (t730 + t785) / t812;
-    let t856 = -t855;
-    let t863 = (t785 + qd[0] * t783) / t812;
-    let t864 = -t863;
-    let t865 = T::from_f64(1.0) / t722;
-    let t866 = t779 / t812;
-    let t867 = t801 / t812;
-    let t873 = -(Real::mul_add(
+        -(qd[1] * (qd[1] * (c57 * t819))),
+    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t809));
+    let t878 = t877 / t840;
+    let t883 = (t760 + t813) / t840;
+    let t884 = -t883;
+    let t891 = (t813 + qd[0] * t811) / t840;
+    let t892 = -t891;
+    let t893 = T::from_f64(1.0) / t752;
+    let t894 = t807 / t840;
+    let t895 = t829 / t840;
+    let t901 = -(Real::mul_add(
         s56,
-        Real::mul_add(t813, T::from_f64(-0.03) + t781, -t820),
-        -(qd[1] * (qd[0] * t720 + qd[1] * t577)),
-    ) / t722 + t779 * t850);
-    let t875 = Real::mul_add(t779, t855, t771 / t722);
-    let t877 = Real::mul_add(t779, t863, (t730 + t771) / t722);
-    let t879 = Real::mul_add(t779, t866, t865);
-    let t883 = t865 - t779 * t867;
-    let t884 = -t866;
+        Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848),
+        -(qd[1] * (qd[0] * t750 + qd[1] * t577)),
+    ) / t752 + t807 * t878);
+    let t903 = Real::mul_add(t807, t883, t801 / t752);
+    let t905 = Real::mul_add(t807, t891, (t760 + t801) / t752);
+    let t907 = Real::mul_add(t807, t894, t893);
+    let t911 = t893 - t807 * t895;
+    let t912 = -t894;
     tendyn_core::dual::ForwardJacobians {
-        value: [t817, t813],
-        d_q: [[T::from_f64(0.0), t873], [T::from_f64(0.0), t850]],
-        d_qd: [[t875, t877], [t856, t864]],
-        d_u: [[t879, t883], [t884, t867]],
+        value: [t845, t841],
+        d_q: [[T::from_f64(0.0), t901], [T::from_f64(0.0), t878]],
+        d_qd: [[t903, t905], [t884, t892]],
+        d_u: [[t907, t911], [t912, t895]],
     }
 }
 /// Every requested output of [`all`].
@@ -213,92 +213,92 @@ pub fn all<T: Real>(
 ) -> Outputs<T> {
     let (s56, c57) = q[1].sin_cos();
     let t577 = T::from_f64(0.03) * c57;
-    let t720 = c57 * T::from_f64(0.06);
-    let t722 = t720 + T::from_f64(0.1247117);
-    let t725 = t577 + T::from_f64(0.016696700000000002);
-    let t728 = s56 * T::from_f64(0.06);
-    let t730 = qd[0] * t728;
-    let t732 = T::from_f64(0.03) * s56;
-    let t738 = qd[1] * (t730 + qd[1] * t732);
-    let t741 = Real::mul_add(qdd[0], t722, Real::mul_add(qdd[1], t725, -t738));
-    let t744 = qd[0] * t732;
-    let t745 = qd[0] * t744;
-    let t747 = Real::mul_add(
+    let t750 = c57 * T::from_f64(0.06);
+    let t752 = t750 + T::from_f64(0.1247117);
+    let t755 = t577 + T::from_f64(0.016696700000000002);
+    let t758 = s56 * T::from_f64(0.06);
+    let t760 = qd[0] * t758;
+    let t762 = T::from_f64(0.03) * s56;
+    let t768 = qd[1] * (t760 + qd[1] * t762);
+    let t771 = Real::mul_add(qdd[0], t752, Real::mul_add(qdd[1], t755, -t768));
+    let t774 = qd[0] * t762;
+    let t775 = qd[0] * t774;
+    let t777 = Real::mul_add(
         qdd[0],
-        t725,
-        Real::mul_add(qdd[1], T::from_f64(0.0166867), t745),
+        t755,
+        Real::mul_add(qdd[1], T::from_f64(0.0166867), t775),
     );
-    let t760 = qd[1] * (qd[0] * t720 + qd[1] * t577);
-    let t765 = -(qdd[0] * t728 + (qdd[1] * t732 + t760));
-    let t768 = qd[0] * t577;
-    let t770 = Real::mul_add(qd[0], t768, -(qdd[0] * t732));
-    let t771 = qd[1] * t728;
-    let t772 = -t771;
-    let t773 = t730 + t771;
-    let t774 = -t773;
-    let t775 = motor_torques[0] + motor_torques[1] + t738;
-    let t776 = t775 / t722;
-    let t779 = (t577 + T::from_f64(0.0166967)) / t722;
-    let t781 = T::from_f64(0.06) * t779;
-    let t783 = s56 * t781;
-    let t785 = qd[1] * t783;
-    let t791 = T::from_f64(0.03) * t779;
-    let t801 = T::from_f64(0.6666666666666667) - t779;
-    let t812 = Real::mul_add(
-        t779,
-        t779 * (T::from_f64(-0.1247117) - t720),
+    let t790 = qd[1] * (qd[0] * t750 + qd[1] * t577);
+    let t795 = -(qdd[0] * t758 + (qdd[1] * t762 + t790));
+    let t798 = qd[0] * t577;
+    let t800 = Real::mul_add(qd[0], t798, -(qdd[0] * t762));
+    let t801 = qd[1] * t758;
+    let t802 = -t801;
+    let t803 = t760 + t801;
+    let t804 = -t803;
+    let t805 = motor_torques[0] + motor_torques[1] + t768;
+    let t806 = t805 / t752;
+    let t807 = (t577 + T::from_f64(0.0166967)) / t752;
+    let t809 = T::from_f64(0.06) * t807;
+    let t811 = s56 * t809;
+    let t813 = qd[1] * t811;
+    let t819 = T::from_f64(0.03) * t807;
+    let t829 = T::from_f64(0.6666666666666667) - t807;
+    let t840 = Real::mul_add(
+        t807,
+        t807 * (T::from_f64(-0.1247117) - t750),
         T::from_f64(0.0166867),
     );
-    let t813 = (Real::mul_add(motor_torques[1], t801, -(motor_torques[0] * t779))
-        - qd[1] * (qd[1] * (s56 * t791)) - qd[0] * (t744 + t785)) / t812;
-    let t817 = t776 - t779 * t813;
-    let t820 = T::from_f64(0.06) * t776;
-    let t849 = Real::mul_add(
+    let t841 = (Real::mul_add(motor_torques[1], t829, -(motor_torques[0] * t807))
+        - qd[1] * (qd[1] * (s56 * t819)) - qd[0] * (t774 + t813)) / t840;
+    let t845 = t806 - t807 * t841;
+    let t848 = T::from_f64(0.06) * t806;
+    let t877 = Real::mul_add(
         s56,
         Real::mul_add(
             T::from_f64(0.03),
-            t776,
-            t779 * Real::mul_add(t813, T::from_f64(-0.06) + t781, -t820),
+            t806,
+            t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
         ),
-        -(qd[1] * (qd[1] * (c57 * t791))),
-    ) - qd[0] * (t768 + qd[1] * (c57 * t781));
-    let t850 = t849 / t812;
-    let t855 = (t730 + t785) / t812;
-    let t856 = -t855;
-    let t863 = (t785 + qd[0] * t783) / t812;
-    let t864 = -t863;
-    let t865 = T::from_f64(1.0) / t722;
-    let t866 = t779 / t812;
-    let t867 = t801 / t812;
-    let t873 = -(Real::mul_add(
+        -(qd[1] * (qd[1] * (c57 * t819))),
+    ) - qd[0] * (t798 + qd[1] * (c57 * t809));
+    let t878 = t877 / t840;
+    let t883 = (t760 + t813) / t840;
+    let t884 = -t883;
+    let t891 = (t813 + qd[0] * t811) / t840;
+    let t892 = -t891;
+    let t893 = T::from_f64(1.0) / t752;
+    let t894 = t807 / t840;
+    let t895 = t829 / t840;
+    let t901 = -(Real::mul_add(
         s56,
-        Real::mul_add(t813, T::from_f64(-0.03) + t781, -t820),
-        -t760,
-    ) / t722 + t779 * t850);
-    let t875 = Real::mul_add(t779, t855, t771 / t722);
-    let t877 = Real::mul_add(t779, t863, t773 / t722);
-    let t879 = Real::mul_add(t779, t866, t865);
-    let t883 = t865 - t779 * t867;
-    let t884 = -t866;
-    let t892 = Real::mul_add(
-        -t775,
-        t779,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - t745,
-    ) / Real::mul_add(-t722, t779 * t779, T::from_f64(0.0166867));
-    let t894 = Real::mul_add(-t779, t892, t776);
+        Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848),
+        -t790,
+    ) / t752 + t807 * t878);
+    let t903 = Real::mul_add(t807, t883, t801 / t752);
+    let t905 = Real::mul_add(t807, t891, t803 / t752);
+    let t907 = Real::mul_add(t807, t894, t893);
+    let t911 = t893 - t807 * t895;
+    let t912 = -t894;
+    let t920 = Real::mul_add(
+        -t805,
+        t807,
+        T::from_f64(0.6666666666666667) * motor_torques[1] - t775,
+    ) / Real::mul_add(-t752, t807 * t807, T::from_f64(0.0166867));
+    let t922 = Real::mul_add(-t807, t920, t806);
     Outputs {
-        generalized_forces: [t741, t747],
+        generalized_forces: [t771, t777],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t741, t747],
-            d_q: [[T::from_f64(0.0), t765], [T::from_f64(0.0), t770]],
-            d_qd: [[t772, t774], [t730, T::from_f64(0.0)]],
+            value: [t771, t777],
+            d_q: [[T::from_f64(0.0), t795], [T::from_f64(0.0), t800]],
+            d_qd: [[t802, t804], [t760, T::from_f64(0.0)]],
         },
-        forward_dynamics: [t894, t892],
+        forward_dynamics: [t922, t920],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t817, t813],
-            d_q: [[T::from_f64(0.0), t873], [T::from_f64(0.0), t850]],
-            d_qd: [[t875, t877], [t856, t864]],
-            d_u: [[t879, t883], [t884, t867]],
+            value: [t845, t841],
+            d_q: [[T::from_f64(0.0), t901], [T::from_f64(0.0), t878]],
+            d_qd: [[t903, t905], [t884, t892]],
+            d_u: [[t907, t911], [t912, t895]],
         },
     }
 }

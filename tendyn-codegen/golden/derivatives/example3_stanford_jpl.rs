@@ -31,127 +31,127 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3343 = c115 * T::from_f64(0.0000208);
-    let t3346 = T::from_f64(-0.00004) - t3343;
-    let t3348 = s114 * T::from_f64(0.0000208);
-    let t3355 = c115 * T::from_f64(0.00004);
-    let t3363 = c115 * T::from_f64(0.000009600000000000001);
-    let t3377 = Real::mul_add(
+    let t3104 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3423 = c115 * T::from_f64(0.0000208);
+    let t3426 = T::from_f64(-0.00004) - t3423;
+    let t3428 = s114 * T::from_f64(0.0000208);
+    let t3435 = c115 * T::from_f64(0.00004);
+    let t3443 = c115 * T::from_f64(0.000009600000000000001);
+    let t3457 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t3355,
+            T::from_f64(-0.00008495) - t3435,
             s114
                 * Real::mul_add(
                     c113,
-                    t3346,
-                    Real::mul_add(s112, t3348, T::from_f64(-0.000009600000000000001)),
+                    t3426,
+                    Real::mul_add(s112, t3428, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * (t3363 + T::from_f64(0.000042000000000000004))
-            + (t3355 + T::from_f64(0.00009551400000000001)
+        c113 * (t3443 + T::from_f64(0.000042000000000000004))
+            + (t3435 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t3385 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3394 = c115 * T::from_f64(0.0000416);
-    let t3407 = s114 * (t3346 - c113 * T::from_f64(0.000009600000000000001));
-    let t3409 = qd[1]
+    let t3465 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3474 = c115 * T::from_f64(0.0000416);
+    let t3487 = s114 * (t3426 - c113 * T::from_f64(0.000009600000000000001));
+    let t3489 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3385 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
+                t3465 + (T::from_f64(-0.0001699) - c115 * T::from_f64(0.00008)),
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(0.00008) + t3394),
-                    T::from_f64(-0.000042000000000000004) - t3363,
+                    s114 * (T::from_f64(0.00008) + t3474),
+                    T::from_f64(-0.000042000000000000004) - t3443,
                 ),
             ),
-            t3407,
+            t3487,
         );
-    let t3422 = qd[0]
+    let t3502 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3385 + (T::from_f64(-0.0000208) - t3355),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3394), -t3363),
+                    t3465 + (T::from_f64(-0.0000208) - t3435),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3474), -t3443),
                 ),
-                t3407,
+                t3487,
             ),
-            t3409,
+            t3489,
         );
-    let t3425 = Real::mul_add(
+    let t3505 = Real::mul_add(
         qdd[0],
-        t3377,
+        t3457,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3422),
+            Real::mul_add(qdd[2], T::from_f64(0.000000024000000000000006), t3502),
         ),
     );
-    let t3430 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3434 = s114 * t3348;
-    let t3443 = c115 * T::from_f64(0.000004800000000000001);
-    let t3453 = s114
+    let t3512 = s114 * t3428;
+    let t3521 = c115 * T::from_f64(0.000004800000000000001);
+    let t3531 = s114
         * (c113 * T::from_f64(0.000004800000000000001)
             + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3470 = c115 * T::from_f64(0.003924);
-    let t3477 = s112 * (s114 * T::from_f64(0.003924));
-    let t3481 = Real::mul_add(
+    let t3548 = c115 * T::from_f64(0.003924);
+    let t3555 = s112 * (s114 * T::from_f64(0.003924));
+    let t3559 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3355 + T::from_f64(0.00008495) - t3434,
+                    t3435 + T::from_f64(0.00008495) - t3512,
                     Real::mul_add(
                         s112,
-                        s114 * t3346,
-                        t3443 + T::from_f64(0.000021000000000000002),
+                        s114 * t3426,
+                        t3521 + T::from_f64(0.000021000000000000002),
                     ),
                 ),
-                t3453,
+                t3531,
             ),
-        Real::mul_add(c113, t3470 + T::from_f64(0.017167500000000002), -t3477)
+        Real::mul_add(c113, t3548 + T::from_f64(0.017167500000000002), -t3555)
             - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585),
     );
-    let t3484 = Real::mul_add(
+    let t3562 = Real::mul_add(
         qdd[1],
-        t3355 + T::from_f64(0.000086946),
+        t3435 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3430,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3481),
+            t3104,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3559),
         ),
     );
-    let t3506 = Real::mul_add(
+    let t3584 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3434,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3343), t3443),
+                    t2580 + T::from_f64(0.0000104) - t3512,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3423), t3521),
                 ),
-                t3453,
+                t3531,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3470 - t3477),
+        qd[1] * (qd[1] * t2585) + (c113 * t3548 - t3555),
     );
-    let t3509 = Real::mul_add(
+    let t3587 = Real::mul_add(
         qdd[1],
-        t3430,
+        t3104,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3506),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3584),
         ),
     );
-    [t3425, t3484, t3509]
+    [t3505, t3562, t3587]
 }
 /// `Q` as `generalized_forces` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂Q_i/∂q_k` and `d_qd[i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `M`), by dual numbers through the same recursion.
 ///
@@ -169,195 +169,195 @@ pub fn generalized_forces_derivatives<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3343 = c115 * T::from_f64(0.0000208);
-    let t3346 = T::from_f64(-0.00004) - t3343;
-    let t3348 = s114 * T::from_f64(0.0000208);
-    let t3355 = c115 * T::from_f64(0.00004);
-    let t3363 = c115 * T::from_f64(0.000009600000000000001);
-    let t3365 = t3363 + T::from_f64(0.000042000000000000004);
-    let t3377 = Real::mul_add(
+    let t3104 = t2580 + T::from_f64(0.000011224000000000001);
+    let t3423 = c115 * T::from_f64(0.0000208);
+    let t3426 = T::from_f64(-0.00004) - t3423;
+    let t3428 = s114 * T::from_f64(0.0000208);
+    let t3435 = c115 * T::from_f64(0.00004);
+    let t3443 = c115 * T::from_f64(0.000009600000000000001);
+    let t3445 = t3443 + T::from_f64(0.000042000000000000004);
+    let t3457 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495) - t3355,
+            T::from_f64(-0.00008495) - t3435,
             s114
                 * Real::mul_add(
                     c113,
-                    t3346,
-                    Real::mul_add(s112, t3348, T::from_f64(-0.000009600000000000001)),
+                    t3426,
+                    Real::mul_add(s112, t3428, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * t3365
-            + (t3355 + T::from_f64(0.00009551400000000001)
+        c113 * t3445
+            + (t3435 + T::from_f64(0.00009551400000000001)
                 - s114 * (s114 * T::from_f64(0.0000104))),
     );
-    let t3384 = s114 * T::from_f64(0.0000416);
-    let t3385 = s114 * t3384;
-    let t3388 = c115 * T::from_f64(0.00008);
-    let t3391 = T::from_f64(-0.0001699) - t3388;
-    let t3392 = t3385 + t3391;
-    let t3394 = c115 * T::from_f64(0.0000416);
-    let t3400 = T::from_f64(-0.000042000000000000004) - t3363;
-    let t3404 = c113 * T::from_f64(0.000009600000000000001);
-    let t3407 = s114 * (t3346 - t3404);
-    let t3408 = Real::mul_add(
+    let t3464 = s114 * T::from_f64(0.0000416);
+    let t3465 = s114 * t3464;
+    let t3468 = c115 * T::from_f64(0.00008);
+    let t3471 = T::from_f64(-0.0001699) - t3468;
+    let t3472 = t3465 + t3471;
+    let t3474 = c115 * T::from_f64(0.0000416);
+    let t3480 = T::from_f64(-0.000042000000000000004) - t3443;
+    let t3484 = c113 * T::from_f64(0.000009600000000000001);
+    let t3487 = s114 * (t3426 - t3484);
+    let t3488 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t3392,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t3394), t3400),
+            t3472,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00008) + t3474), t3480),
         ),
-        t3407,
+        t3487,
     );
-    let t3410 = T::from_f64(-0.0000208) - t3355;
-    let t3419 = Real::mul_add(
+    let t3490 = T::from_f64(-0.0000208) - t3435;
+    let t3499 = Real::mul_add(
         s112,
         Real::mul_add(
             c113,
-            t3385 + t3410,
-            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3394), -t3363),
+            t3465 + t3490,
+            Real::mul_add(s112, s114 * (T::from_f64(0.00004) + t3474), -t3443),
         ),
-        t3407,
+        t3487,
     );
-    let t3421 = Real::mul_add(qd[2], t3419, qd[1] * t3408);
-    let t3425 = Real::mul_add(
+    let t3501 = Real::mul_add(qd[2], t3499, qd[1] * t3488);
+    let t3505 = Real::mul_add(
         qdd[0],
-        t3377,
+        t3457,
         Real::mul_add(
             qdd[1],
             T::from_f64(0.000000021000000000000006),
-            Real::mul_add(qd[0], t3421, qdd[2] * T::from_f64(0.000000024000000000000006)),
+            Real::mul_add(qd[0], t3501, qdd[2] * T::from_f64(0.000000024000000000000006)),
         ),
     );
-    let t3430 = t2580 + T::from_f64(0.000011224000000000001);
-    let t3434 = s114 * t3348;
-    let t3438 = t3355 + T::from_f64(0.00008495) - t3434;
-    let t3443 = c115 * T::from_f64(0.000004800000000000001);
-    let t3445 = t3443 + T::from_f64(0.000021000000000000002);
-    let t3449 = c113 * T::from_f64(0.000004800000000000001);
-    let t3453 = s114 * (t3449 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
-    let t3457 = s114 * T::from_f64(0.00004);
-    let t3459 = qd[1] * t3457;
-    let t3470 = c115 * T::from_f64(0.003924);
-    let t3475 = s114 * T::from_f64(0.003924);
-    let t3477 = s112 * t3475;
-    let t3481 = Real::mul_add(
+    let t3512 = s114 * t3428;
+    let t3516 = t3435 + T::from_f64(0.00008495) - t3512;
+    let t3521 = c115 * T::from_f64(0.000004800000000000001);
+    let t3523 = t3521 + T::from_f64(0.000021000000000000002);
+    let t3527 = c113 * T::from_f64(0.000004800000000000001);
+    let t3531 = s114 * (t3527 + (T::from_f64(0.00002) + c115 * T::from_f64(0.0000104)));
+    let t3535 = s114 * T::from_f64(0.00004);
+    let t3537 = qd[1] * t3535;
+    let t3548 = c115 * T::from_f64(0.003924);
+    let t3553 = s114 * T::from_f64(0.003924);
+    let t3555 = s112 * t3553;
+    let t3559 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(c113, t3438, Real::mul_add(s112, s114 * t3346, t3445)),
-                t3453,
+                Real::mul_add(c113, t3516, Real::mul_add(s112, s114 * t3426, t3523)),
+                t3531,
             ),
-        Real::mul_add(c113, t3470 + T::from_f64(0.017167500000000002), -t3477)
-            - qd[2] * (t3459 + qd[2] * t2585),
+        Real::mul_add(c113, t3548 + T::from_f64(0.017167500000000002), -t3555)
+            - qd[2] * (t3537 + qd[2] * t2585),
     );
-    let t3484 = Real::mul_add(
+    let t3562 = Real::mul_add(
         qdd[1],
-        t3355 + T::from_f64(0.000086946),
+        t3435 + T::from_f64(0.000086946),
         Real::mul_add(
             qdd[2],
-            t3430,
-            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3481),
+            t3104,
+            Real::mul_add(qdd[0], T::from_f64(0.000000021000000000000006), t3559),
         ),
     );
-    let t3506 = Real::mul_add(
+    let t3584 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t2580 + T::from_f64(0.0000104) - t3434,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3343), t3443),
+                    t2580 + T::from_f64(0.0000104) - t3512,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00002) - t3423), t3521),
                 ),
-                t3453,
+                t3531,
             ),
-        qd[1] * (qd[1] * t2585) + (c113 * t3470 - t3477),
+        qd[1] * (qd[1] * t2585) + (c113 * t3548 - t3555),
     );
-    let t3509 = Real::mul_add(
+    let t3587 = Real::mul_add(
         qdd[1],
-        t3430,
+        t3104,
         Real::mul_add(
             qdd[0],
             T::from_f64(0.000000024000000000000006),
-            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3506),
+            Real::mul_add(qdd[2], T::from_f64(0.000011256), t3584),
         ),
     );
-    let t3512 = c115 * T::from_f64(0.0000832);
-    let t3521 = T::from_f64(0.000009600000000000001)
+    let t3590 = c115 * T::from_f64(0.0000832);
+    let t3599 = T::from_f64(0.000009600000000000001)
         - s112 * (s114 * T::from_f64(0.0000832));
-    let t3533 = qd[1]
+    let t3611 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 s112,
                 c115 * T::from_f64(0.00016) + T::from_f64(0.0003398),
-                s114 * Real::mul_add(c113, t3512 + T::from_f64(0.00016), t3521),
+                s114 * Real::mul_add(c113, t3590 + T::from_f64(0.00016), t3599),
             ),
-            Real::mul_add(c113, t3400, t3392),
+            Real::mul_add(c113, t3480, t3472),
         );
-    let t3545 = Real::mul_add(
+    let t3623 = Real::mul_add(
         c115,
-        T::from_f64(-0.00004) - t3404,
-        T::from_f64(-0.0000208) + t3385,
+        T::from_f64(-0.00004) - t3484,
+        T::from_f64(-0.0000208) + t3465,
     );
-    let t3546 = Real::mul_add(
+    let t3624 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(0.0000416) + t3388,
-            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3512, t3521),
+            T::from_f64(0.0000416) + t3468,
+            s114 * Real::mul_add(c113, T::from_f64(0.00008) + t3590, t3599),
         ),
-        t3545,
+        t3623,
     );
-    let t3550 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3546, t3533), qdd[0] * t3408);
-    let t3564 = qd[0]
+    let t3628 = Real::mul_add(qd[0], Real::mul_add(qd[2], t3624, t3611), qdd[0] * t3488);
+    let t3642 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     s112,
-                    t3355 + T::from_f64(0.0000416),
-                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3512, t3521),
+                    t3435 + T::from_f64(0.0000416),
+                    s114 * Real::mul_add(c113, T::from_f64(0.00004) + t3590, t3599),
                 ),
-                t3545,
+                t3623,
             ),
-            qd[1] * t3546,
+            qd[1] * t3624,
         );
-    let t3565 = Real::mul_add(qdd[0], t3419, t3564);
-    let t3568 = T::from_f64(-0.00008) - t3394;
-    let t3572 = Real::mul_add(s112, t3384, T::from_f64(-0.000004800000000000001));
-    let t3587 = c113 * t3475;
-    let t3590 = Real::mul_add(
+    let t3643 = Real::mul_add(qdd[0], t3499, t3642);
+    let t3646 = T::from_f64(-0.00008) - t3474;
+    let t3650 = Real::mul_add(s112, t3464, T::from_f64(-0.000004800000000000001));
+    let t3665 = c113 * t3553;
+    let t3668 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t3391, s114 * Real::mul_add(c113, t3568, t3572)),
-                Real::mul_add(c113, t3445, t3438),
+                Real::mul_add(s112, t3471, s114 * Real::mul_add(c113, t3646, t3650)),
+                Real::mul_add(c113, t3523, t3516),
             ),
-        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3470, -t3587),
+        Real::mul_add(s112, T::from_f64(-0.017167500000000002) - t3548, -t3665),
     );
-    let t3595 = T::from_f64(-0.00004) - t3394;
-    let t3605 = Real::mul_add(
+    let t3673 = T::from_f64(-0.00004) - t3474;
+    let t3683 = Real::mul_add(
         c115,
-        T::from_f64(0.00002) + t3449,
-        T::from_f64(0.0000104) - t3434,
+        T::from_f64(0.00002) + t3527,
+        T::from_f64(0.0000104) - t3512,
     );
-    let t3608 = qd[0]
+    let t3686 = qd[0]
         * (qd[0]
             * Real::mul_add(
                 s112,
-                Real::mul_add(s112, t3410, s114 * Real::mul_add(c113, t3595, t3572)),
-                t3605,
+                Real::mul_add(s112, t3490, s114 * Real::mul_add(c113, t3673, t3650)),
+                t3683,
             ));
-    let t3620 = t3587 + s112 * t3470;
-    let t3626 = t3608 - (qd[2] * (qd[1] * t3355 + qd[2] * t2580) + t3620)
-        - qdd[2] * t2585 - qdd[1] * t3457;
-    let t3627 = t3608 - t3620;
-    let t3644 = Real::mul_add(
+    let t3698 = t3665 + s112 * t3548;
+    let t3704 = t3686 - (qd[2] * (qd[1] * t3435 + qd[2] * t2580) + t3698)
+        - qdd[2] * t2585 - qdd[1] * t3535;
+    let t3705 = t3686 - t3698;
+    let t3722 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
@@ -365,50 +365,50 @@ pub fn generalized_forces_derivatives<T: Real>(
                 Real::mul_add(
                     s112,
                     T::from_f64(-0.0000208) - t2580,
-                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t3394, t3572),
+                    s114 * Real::mul_add(c113, T::from_f64(-0.00002) - t3474, t3650),
                 ),
-                t3605,
+                t3683,
             ),
-        Real::mul_add(qd[1], qd[1] * t2580, -t3620),
+        Real::mul_add(qd[1], qd[1] * t2580, -t3698),
     );
-    let t3645 = t3644 - qdd[1] * t2585;
-    let t3646 = qd[0] * t3408;
-    let t3647 = qd[0] * t3419;
-    let t3661 = s114 * (t3404 + (t3343 + T::from_f64(0.00004)));
-    let t3663 = qd[0]
+    let t3723 = t3722 - qdd[1] * t2585;
+    let t3724 = qd[0] * t3488;
+    let t3725 = qd[0] * t3499;
+    let t3739 = s114 * (t3484 + (t3423 + T::from_f64(0.00004)));
+    let t3741 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                t3388 + T::from_f64(0.0001699) - t3385,
-                Real::mul_add(s112, s114 * t3568, t3365),
+                t3468 + T::from_f64(0.0001699) - t3465,
+                Real::mul_add(s112, s114 * t3646, t3445),
             ),
-            t3661,
+            t3739,
         );
-    let t3664 = qd[2] * t3457;
-    let t3665 = -t3664;
-    let t3667 = -(t3459 + t3664);
-    let t3677 = qd[0]
+    let t3742 = qd[2] * t3535;
+    let t3743 = -t3742;
+    let t3745 = -(t3537 + t3742);
+    let t3755 = qd[0]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                T::from_f64(0.0000208) + t3355 - t3385,
-                Real::mul_add(s112, s114 * t3595, t3363),
+                T::from_f64(0.0000208) + t3435 - t3465,
+                Real::mul_add(s112, s114 * t3673, t3443),
             ),
-            t3661,
+            t3739,
         );
     tendyn_core::dual::StateJacobians {
-        value: [t3425, t3484, t3509],
+        value: [t3505, t3562, t3587],
         d_q: [
-            [T::from_f64(0.0), t3550, t3565],
-            [T::from_f64(0.0), t3590, t3626],
-            [T::from_f64(0.0), t3627, t3645],
+            [T::from_f64(0.0), t3628, t3643],
+            [T::from_f64(0.0), t3668, t3704],
+            [T::from_f64(0.0), t3705, t3723],
         ],
         d_qd: [
-            [t3421, t3646, t3647],
-            [t3663, t3665, t3667],
-            [t3677, t3459, T::from_f64(0.0)],
+            [t3501, t3724, t3725],
+            [t3741, t3743, t3745],
+            [t3755, t3537, T::from_f64(0.0)],
         ],
     }
 }
@@ -429,55 +429,55 @@ pub fn forward_dynamics<T: Real>(
     let (s114, c115) = q[2].sin_cos();
     let t2580 = c115 * T::from_f64(0.00002);
     let t2585 = s114 * T::from_f64(0.00002);
-    let t3343 = c115 * T::from_f64(0.0000208);
-    let t3355 = c115 * T::from_f64(0.00004);
-    let t3363 = c115 * T::from_f64(0.000009600000000000001);
-    let t3385 = s114 * (s114 * T::from_f64(0.0000416));
-    let t3394 = c115 * T::from_f64(0.0000416);
-    let t3434 = s114 * (s114 * T::from_f64(0.0000208));
-    let t3443 = c115 * T::from_f64(0.000004800000000000001);
-    let t3470 = c115 * T::from_f64(0.003924);
-    let t3477 = s112 * (s114 * T::from_f64(0.003924));
-    let t3659 = t3343 + T::from_f64(0.00004);
-    let t3661 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3659);
-    let t3678 = qd[1]
+    let t3423 = c115 * T::from_f64(0.0000208);
+    let t3435 = c115 * T::from_f64(0.00004);
+    let t3443 = c115 * T::from_f64(0.000009600000000000001);
+    let t3465 = s114 * (s114 * T::from_f64(0.0000416));
+    let t3474 = c115 * T::from_f64(0.0000416);
+    let t3512 = s114 * (s114 * T::from_f64(0.0000208));
+    let t3521 = c115 * T::from_f64(0.000004800000000000001);
+    let t3548 = c115 * T::from_f64(0.003924);
+    let t3555 = s112 * (s114 * T::from_f64(0.003924));
+    let t3737 = t3423 + T::from_f64(0.00004);
+    let t3739 = s114 * (c113 * T::from_f64(0.000009600000000000001) + t3737);
+    let t3756 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 c113,
-                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3385,
+                c115 * T::from_f64(0.00008) + T::from_f64(0.0001699) - t3465,
                 Real::mul_add(
                     s112,
-                    s114 * (T::from_f64(-0.00008) - t3394),
-                    t3363 + T::from_f64(0.000042000000000000004),
+                    s114 * (T::from_f64(-0.00008) - t3474),
+                    t3443 + T::from_f64(0.000042000000000000004),
                 ),
             ),
-            t3661,
+            t3739,
         );
-    let t3681 = qd[0]
+    let t3759 = qd[0]
         * Real::mul_add(
             qd[2],
             Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(0.0000208) + t3355 - t3385,
-                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3394), t3363),
+                    T::from_f64(0.0000208) + t3435 - t3465,
+                    Real::mul_add(s112, s114 * (T::from_f64(-0.00004) - t3474), t3443),
                 ),
-                t3661,
+                t3739,
             ),
-            t3678,
+            t3756,
         );
-    let t3685 = t3681
+    let t3763 = t3759
         + (T::from_f64(0.008) * tendon_tensions[2]
             + T::from_f64(0.008) * tendon_tensions[3]
             - T::from_f64(0.009) * tendon_tensions[1]
             - T::from_f64(0.006) * tendon_tensions[0]);
-    let t3711 = Real::mul_add(
+    let t3789 = Real::mul_add(
         s112,
         Real::mul_add(
             s112,
-            T::from_f64(-0.00008495000000000003) - t3355,
+            T::from_f64(-0.00008495000000000003) - t3435,
             s114
                 * Real::mul_add(
                     c113,
@@ -488,86 +488,86 @@ pub fn forward_dynamics<T: Real>(
         ),
         Real::mul_add(
             c113,
-            t3363 + T::from_f64(0.00004200000000000001),
-            t3355 + T::from_f64(0.00009551400000000003)
+            t3443 + T::from_f64(0.00004200000000000001),
+            t3435 + T::from_f64(0.00009551400000000003)
                 - s114 * (s114 * T::from_f64(0.000010400000000000002)),
         ),
     );
-    let t3713 = T::from_f64(0.00000002100000000000001) / t3711;
-    let t3728 = s114
+    let t3791 = T::from_f64(0.00000002100000000000001) / t3789;
+    let t3806 = s114
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
-    let t3784 = T::from_f64(0.000000024000000000000003) / t3711;
-    let t4570 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
+    let t3862 = T::from_f64(0.000000024000000000000003) / t3789;
+    let t4648 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
-                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3470, t3477)
+                + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3548, t3555)
                     - T::from_f64(0.01) * tendon_tensions[3])
                 - T::from_f64(0.007) * tendon_tensions[1]));
-    let t4571 = Real::mul_add(
+    let t4649 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    T::from_f64(-0.00008495) - t3355 + t3434,
+                    T::from_f64(-0.00008495) - t3435 + t3512,
                     Real::mul_add(
                         s112,
-                        s114 * t3659,
-                        T::from_f64(-0.000021000000000000002) - t3443,
+                        s114 * t3737,
+                        T::from_f64(-0.000021000000000000002) - t3521,
                     ),
                 ),
-                t3728,
+                t3806,
             ),
-        t4570,
+        t4648,
     );
-    let t4582 = Real::mul_add(
+    let t4660 = Real::mul_add(
         qd[0],
         qd[0]
             * Real::mul_add(
                 s112,
                 Real::mul_add(
                     c113,
-                    t3434 + (T::from_f64(-0.0000104) - t2580),
-                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3343), -t3443),
+                    t3512 + (T::from_f64(-0.0000104) - t2580),
+                    Real::mul_add(s112, s114 * (T::from_f64(0.00002) + t3423), -t3521),
                 ),
-                t3728,
+                t3806,
             ),
         T::from_f64(0.008) * tendon_tensions[0]
-            + (t3477 - c113 * t3470 - T::from_f64(0.008) * tendon_tensions[1])
+            + (t3555 - c113 * t3548 - T::from_f64(0.008) * tendon_tensions[1])
             - qd[1] * (qd[1] * t2585),
     );
-    let t4585 = Real::mul_add(
-        -t3711,
-        t3713 * t3713,
-        t3355 + T::from_f64(0.00008694600000000003),
+    let t4663 = Real::mul_add(
+        -t3789,
+        t3791 * t3791,
+        t3435 + T::from_f64(0.00008694600000000003),
     );
-    let t4589 = Real::mul_add(
-        -t3711,
-        t3713 * t3784,
+    let t4667 = Real::mul_add(
+        -t3789,
+        t3791 * t3862,
         t2580 + T::from_f64(0.000011224000000000001),
-    ) / t4585;
-    let t4597 = Real::mul_add(-t3685, t3713, t4571);
-    let t4603 = Real::mul_add(-t4589, t4597, Real::mul_add(-t3685, t3784, t4582))
+    ) / t4663;
+    let t4675 = Real::mul_add(-t3763, t3791, t4649);
+    let t4681 = Real::mul_add(-t4667, t4675, Real::mul_add(-t3763, t3862, t4660))
         / Real::mul_add(
-            -t4585,
-            t4589 * t4589,
-            Real::mul_add(-t3711, t3784 * t3784, T::from_f64(0.000011256000000000002)),
+            -t4663,
+            t4667 * t4667,
+            Real::mul_add(-t3789, t3862 * t3862, T::from_f64(0.000011256000000000002)),
         );
-    let t4605 = Real::mul_add(-t4589, t4603, t4597 / t4585);
-    let t4609 = Real::mul_add(
-        -t3784,
-        t4603,
-        Real::mul_add(-t3713, t4605, t3685 / t3711),
+    let t4683 = Real::mul_add(-t4667, t4681, t4675 / t4663);
+    let t4687 = Real::mul_add(
+        -t3862,
+        t4681,
+        Real::mul_add(-t3791, t4683, t3763 / t3789),
     );
-    [t4609, t4605, t4603]
+    [t4687, t4683, t4681]
 }
 /// `q̈` as `forward_dynamics` computes it (`value`) with its exact derivatives `d_q[i][k] = ∂q̈_i/∂q_k`, `d_qd[i][k] = ∂q̈_i/∂q̇_k` and `d_u[i][k] = ∂q̈_i/∂u_k` (`u`: motor torques, then tendon tensions, file order), by dual numbers through the same recursion.
 ///
 /// Entries: `value` and each Jacobian's rows: knuckle, proximal, distal; columns of `d_q`, `d_qd`: knuckle, proximal, distal; of `d_u`: tendon Ta, tendon Tb, tendon Tc, tendon Td.
 ///
-/// Operations (traced recursion): 775 arithmetic (337 add/sub, 399 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Operations (traced recursion): 772 arithmetic (334 add/sub, 399 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics_derivatives<T: Real>(
@@ -700,91 +700,6 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2596 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            -s112,
-            t2586,
-            c113
-                * (t1592
-                    + Real::mul_add(
-                        T::from_f64(0.000010400000000000002),
-                        c115 * c115,
-                        T::from_f64(0.00002455),
-                    )),
-        ),
-        s112
-            * Real::mul_add(
-                -c113,
-                t2586,
-                s112
-                    * (s114 * t1577
-                        + (t1592
-                            - Real::mul_add(
-                                T::from_f64(0.05),
-                                t1586,
-                                T::from_f64(0.05) * t1590,
-                            ))),
-            ),
-    );
-    let t2599 = T::from_f64(0.000000245)
-        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
-            + (T::from_f64(0.000002543) + t2596));
-    let t2600 = T::from_f64(0.00000002100000000000001) / t2599;
-    let t2601 = T::from_f64(0.000000024000000000000003) / t2599;
-    let t2604 = Real::mul_add(
-        -t2599,
-        t2600 * t2600,
-        T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592),
-    );
-    let t2608 = Real::mul_add(
-        -t2599,
-        t2600 * t2601,
-        T::from_f64(0.00000022400000000000002)
-            + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002)),
-    ) / t2604;
-    let t2614 = Real::mul_add(
-        -t2604,
-        t2608 * t2608,
-        Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
-    );
-    let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
-    let t2865 = Real::mul_add(
-        -t2608,
-        t2858,
-        Real::mul_add(T::from_f64(0.006), t2601, T::from_f64(0.008)),
-    ) / t2614;
-    let t2867 = Real::mul_add(-t2608, t2865, t2858 / t2604);
-    let t2871 = Real::mul_add(
-        -t2601,
-        t2865,
-        Real::mul_add(-t2600, t2867, T::from_f64(-0.006) / t2599),
-    );
-    let t2873 = Real::mul_add(T::from_f64(0.009), t2600, T::from_f64(-0.007));
-    let t2880 = Real::mul_add(
-        -t2608,
-        t2873,
-        Real::mul_add(T::from_f64(0.009), t2601, T::from_f64(-0.008)),
-    ) / t2614;
-    let t2882 = Real::mul_add(-t2608, t2880, t2873 / t2604);
-    let t2886 = Real::mul_add(
-        -t2601,
-        t2880,
-        Real::mul_add(-t2600, t2882, T::from_f64(-0.009) / t2599),
-    );
-    let t2887 = T::from_f64(0.008) * t2600;
-    let t2888 = T::from_f64(0.01) - t2887;
-    let t2889 = T::from_f64(0.008) * t2601;
-    let t2892 = T::from_f64(0.008) / t2599;
-    let t2894 = Real::mul_add(t2608, t2888, t2889) / t2614;
-    let t2895 = -t2894;
-    let t2897 = Real::mul_add(t2608, t2894, t2888 / t2604);
-    let t2901 = Real::mul_add(t2601, t2894, Real::mul_add(-t2600, t2897, t2892));
-    let t2902 = T::from_f64(-0.01) - t2887;
-    let t2906 = Real::mul_add(t2608, t2902, t2889) / t2614;
-    let t2907 = -t2906;
-    let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
-    let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
     let t2934 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
     let t2936 = Real::mul_add(T::from_f64(0.02), t2934, T::from_f64(0.03) * t905);
     let t2948 = t233 * T::from_f64(0.039999999999999994);
@@ -796,8 +711,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t2957 = Real::mul_add(T::from_f64(0.02), t2949, T::from_f64(0.03) * t1119);
     let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
     let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
-    let t3006 = t635 + t619 * T::from_f64(0.0004);
-    let t3029 = Real::mul_add(
+    let t3008 = t635 + t619 * T::from_f64(0.0004);
+    let t3031 = Real::mul_add(
         -T::from_f64(0.0008),
         t2934,
         Real::mul_add(
@@ -806,8 +721,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
             -(T::from_f64(0.0000024) * t948 + t302 * t930),
         ),
     );
-    let t3030 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3039 = T::from_f64(0.05)
+    let t3032 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3041 = T::from_f64(0.05)
         * Real::mul_add(
             T::from_f64(0.03),
             t2462,
@@ -817,8 +732,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3030);
-    let t3042 = Real::mul_add(
+        ) + t3032);
+    let t3044 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -827,24 +742,24 @@ pub fn forward_dynamics_derivatives<T: Real>(
                 t905,
                 T::from_f64(0.00075),
                 -(T::from_f64(0.0000058) * t863 + s112 * t213),
-            ) + Real::mul_add(c115, t3029, s114 * t1003),
+            ) + Real::mul_add(c115, t3031, s114 * t1003),
         ),
         s112
             * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t3029, -(c115 * t1003))),
+                - Real::mul_add(s114, t3031, -(c115 * t1003))),
     );
-    let t3045 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852)
+    let t3047 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852)
         - (Real::mul_add(
             -t852,
             T::from_f64(0.00006),
             (t131 + t131 - t849) * T::from_f64(0.00003),
-        ) + t3042);
-    let t3050 = Real::mul_add(
+        ) + t3044);
+    let t3052 = Real::mul_add(
         -T::from_f64(0.0008),
         t2949,
         Real::mul_add(T::from_f64(0.0004), t2949, -t2954),
     );
-    let t3060 = Real::mul_add(
+    let t3062 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -853,28 +768,28 @@ pub fn forward_dynamics_derivatives<T: Real>(
                 -t152,
                 T::from_f64(0.000012600000000000001),
                 t1119 * T::from_f64(0.00075),
-            ) + Real::mul_add(c115, t3050, t2956),
+            ) + Real::mul_add(c115, t3052, t2956),
         ),
         s112
             * Real::mul_add(
                 t153,
                 T::from_f64(0.0000009999999999999997),
-                -Real::mul_add(s114, t3050, -t2955),
+                -Real::mul_add(s114, t3052, -t2955),
             ),
     );
-    let t3062 = T::from_f64(0.012) * t2957 - t3060;
-    let t3066 = Real::mul_add(
+    let t3064 = T::from_f64(0.012) * t2957 - t3062;
+    let t3068 = Real::mul_add(
         -T::from_f64(0.0008),
         t2948,
         Real::mul_add(T::from_f64(0.0004), t2948, -t2954),
     );
-    let t3078 = T::from_f64(0.00024) * t2948
+    let t3080 = T::from_f64(0.00024) * t2948
         - Real::mul_add(
             c113,
-            Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3066, t2956)),
-            s112 * Real::mul_add(-s114, t3066, t2955),
+            Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3068, t2956)),
+            s112 * Real::mul_add(-s114, t3068, t2955),
         );
-    let t3082 = Real::mul_add(
+    let t3084 = Real::mul_add(
         -T::from_f64(0.0008),
         t2962,
         Real::mul_add(
@@ -883,15 +798,15 @@ pub fn forward_dynamics_derivatives<T: Real>(
             -(t308 + T::from_f64(0.0000024) * t1372),
         ),
     );
-    let t3083 = t233 * t301 + t1388 * T::from_f64(0.0004);
-    let t3092 = T::from_f64(0.05)
+    let t3085 = t233 * t301 + t1388 * T::from_f64(0.0004);
+    let t3094 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t1347
             + Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3083);
-    let t3095 = Real::mul_add(
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3085);
+    let t3097 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -900,11 +815,11 @@ pub fn forward_dynamics_derivatives<T: Real>(
                 t1348,
                 T::from_f64(0.00075),
                 -(t219 + T::from_f64(0.0000058) * t158),
-            ) + Real::mul_add(c115, t3082, t412),
+            ) + Real::mul_add(c115, t3084, t412),
         ),
-        s112 * (t218 - Real::mul_add(s114, t3082, -t408)),
+        s112 * (t218 - Real::mul_add(s114, t3084, -t408)),
     );
-    let t3098 = T::from_f64(0.008) * tendon_tensions[2]
+    let t3100 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
@@ -915,149 +830,189 @@ pub fn forward_dynamics_derivatives<T: Real>(
                 -t134,
                 T::from_f64(0.00006),
                 (qd[0] * t131 - t122) * T::from_f64(0.00003),
-            ) + t3095,
+            ) + t3097,
         );
-    let t3102 = Real::mul_add(
-        -t2600,
-        t3098,
+    let t3107 = s112
+        * Real::mul_add(
+            -c113,
+            t2586,
+            s112
+                * (s114 * t1577
+                    + (t1592
+                        - Real::mul_add(
+                            T::from_f64(0.05),
+                            t1586,
+                            T::from_f64(0.05) * t1590,
+                        ))),
+        )
+        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
+            + T::from_f64(0.0000027880000000000002));
+    let t3108 = c113
+        * Real::mul_add(
+            -s112,
+            t2586,
+            c113
+                * (t1592
+                    + Real::mul_add(
+                        T::from_f64(0.000010400000000000002),
+                        c115 * c115,
+                        T::from_f64(0.00002455),
+                    )),
+        ) + t3107;
+    let t3109 = T::from_f64(0.00000002100000000000001) / t3108;
+    let t3110 = T::from_f64(0.000000024000000000000003) / t3108;
+    let t3113 = Real::mul_add(-t3108, t3109 * t3109, t1592 + T::from_f64(0.000036946));
+    let t3117 = Real::mul_add(
+        -t3108,
+        t3109 * t3110,
+        c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001),
+    ) / t3113;
+    let t3123 = Real::mul_add(
+        -t3113,
+        t3117 * t3117,
+        Real::mul_add(-t3108, t3110 * t3110, T::from_f64(0.000011256000000000002)),
+    );
+    let t3125 = Real::mul_add(
+        -t3100,
+        t3109,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t3092,
+            - T::from_f64(0.01) * tendon_tensions[3] - t3094,
     );
-    let t3109 = Real::mul_add(
-        -t2608,
-        t3102,
+    let t3132 = Real::mul_add(
+        -t3117,
+        t3125,
         Real::mul_add(
-            -t2601,
-            t3098,
+            -t3100,
+            t3110,
             T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t3083,
+                - T::from_f64(0.008) * tendon_tensions[1] - t3085,
         ),
-    ) / t2614;
-    let t3111 = Real::mul_add(-t2608, t3109, t3102 / t2604);
-    let t3115 = Real::mul_add(
-        -t2601,
-        t3109,
-        Real::mul_add(-t2600, t3111, t3098 / t2599),
+    ) / t3123;
+    let t3134 = Real::mul_add(-t3117, t3132, t3125 / t3113);
+    let t3138 = Real::mul_add(
+        -t3110,
+        t3132,
+        Real::mul_add(-t3109, t3134, t3100 / t3108),
     );
-    let t3119 = Real::mul_add(s112, t3115, t156);
-    let t3120 = Real::mul_add(c113, t3115, -t158);
-    let t3125 = t181 + Real::mul_add(T::from_f64(0.05), t3111, t166);
-    let t3126 = t183
-        - Real::mul_add(T::from_f64(0.05), t3120, T::from_f64(0.012) * t3115);
-    let t3129 = Real::mul_add(T::from_f64(0.025), t3120, t3126) - t204;
-    let t3141 = qd[2] * t237 + Real::mul_add(s114, t3120, c115 * t3119);
-    let t3142 = Real::mul_add(-s114, t3119, c115 * t3120) - t248;
-    let t3145 = Real::mul_add(s114, t3125, t251);
-    let t3147 = Real::mul_add(c115, t3125, -t254);
-    let t3163 = Real::mul_add(-T::from_f64(0.02), t3142, t273 + t3126) - t293;
-    let t3170 = Real::mul_add(T::from_f64(0.0000024), t3142, -t308)
-        - T::from_f64(0.0004) * t3163;
-    let t3175 = s114 * t3170;
-    let t3176 = c115 * t3170;
-    let t3187 = Real::mul_add(T::from_f64(0.05), t3119, t153 * t173);
-    let t3190 = Real::mul_add(-T::from_f64(0.025), t3119, t3187) - t153 * t194;
-    let t3196 = T::from_f64(0.04) * t3141;
-    let t3199 = T::from_f64(0.02) * t3141;
-    let t3201 = t599 + (t3187 + t3196) - t3199 - t616;
-    let t3204 = Real::mul_add(T::from_f64(0.0000024), t3141, t305);
-    let t3208 = Real::mul_add(
+    let t3142 = Real::mul_add(s112, t3138, t156);
+    let t3143 = Real::mul_add(c113, t3138, -t158);
+    let t3148 = t181 + Real::mul_add(T::from_f64(0.05), t3134, t166);
+    let t3149 = t183
+        - Real::mul_add(T::from_f64(0.05), t3143, T::from_f64(0.012) * t3138);
+    let t3152 = Real::mul_add(T::from_f64(0.025), t3143, t3149) - t204;
+    let t3164 = qd[2] * t237 + Real::mul_add(s114, t3143, c115 * t3142);
+    let t3165 = Real::mul_add(-s114, t3142, c115 * t3143) - t248;
+    let t3168 = Real::mul_add(s114, t3148, t251);
+    let t3170 = Real::mul_add(c115, t3148, -t254);
+    let t3186 = Real::mul_add(-T::from_f64(0.02), t3165, t273 + t3149) - t293;
+    let t3193 = Real::mul_add(T::from_f64(0.0000024), t3165, -t308)
+        - T::from_f64(0.0004) * t3186;
+    let t3198 = s114 * t3193;
+    let t3199 = c115 * t3193;
+    let t3210 = Real::mul_add(T::from_f64(0.05), t3142, t153 * t173);
+    let t3213 = Real::mul_add(-T::from_f64(0.025), t3142, t3210) - t153 * t194;
+    let t3219 = T::from_f64(0.04) * t3164;
+    let t3222 = T::from_f64(0.02) * t3164;
+    let t3224 = t599 + (t3210 + t3219) - t3222 - t616;
+    let t3227 = Real::mul_add(T::from_f64(0.0000024), t3164, t305);
+    let t3231 = Real::mul_add(
         -T::from_f64(0.0008),
-        t3201,
-        Real::mul_add(T::from_f64(0.0004), t3201, -t3204),
+        t3224,
+        Real::mul_add(T::from_f64(0.0004), t3224, -t3227),
     );
-    let t3213 = Real::mul_add(T::from_f64(0.02), t3201, T::from_f64(0.03) * t3190);
-    let t3221 = Real::mul_add(
+    let t3236 = Real::mul_add(T::from_f64(0.02), t3224, T::from_f64(0.03) * t3213);
+    let t3244 = Real::mul_add(
         -s112,
         Real::mul_add(
             -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t3163, T::from_f64(0.03) * t3129),
+            Real::mul_add(T::from_f64(0.02), t3186, T::from_f64(0.03) * t3152),
             Real::mul_add(
                 T::from_f64(0.00075),
-                t3129,
-                Real::mul_add(T::from_f64(0.0000058), t3120, -t219),
-            ) + (t412 + t3176),
+                t3152,
+                Real::mul_add(T::from_f64(0.0000058), t3143, -t219),
+            ) + (t412 + t3199),
         ),
         c113
             * Real::mul_add(
                 -T::from_f64(0.05),
-                t3213,
+                t3236,
                 Real::mul_add(
                     T::from_f64(0.00075),
-                    t3190,
-                    -Real::mul_add(T::from_f64(0.0000058), t3119, t216),
-                ) + Real::mul_add(c115, t3208, t664),
+                    t3213,
+                    -Real::mul_add(T::from_f64(0.0000058), t3142, t216),
+                ) + Real::mul_add(c115, t3231, t664),
             ),
     );
-    let t3224 = Real::mul_add(
+    let t3247 = Real::mul_add(
         T::from_f64(0.012),
-        t3213,
+        t3236,
         -(Real::mul_add(
             s112,
-            qd[1] * t554 - t219 - Real::mul_add(s114, t3208, -t660),
-            c113 * (t218 - (t3175 - t408)),
-        ) + t3221),
+            qd[1] * t554 - t219 - Real::mul_add(s114, t3231, -t660),
+            c113 * (t218 - (t3198 - t408)),
+        ) + t3244),
     );
-    let t3230 = t615 + (t598 - t3145);
-    let t3231 = t599 + t3196 - t3199 - t616;
-    let t3239 = Real::mul_add(
+    let t3253 = t615 + (t598 - t3168);
+    let t3254 = t599 + t3219 - t3222 - t616;
+    let t3262 = Real::mul_add(
         -T::from_f64(0.0008),
-        t3231,
-        Real::mul_add(T::from_f64(0.0004), t3231, -t3204),
+        t3254,
+        Real::mul_add(T::from_f64(0.0004), t3254, -t3227),
     );
-    let t3240 = t635 + T::from_f64(0.0004) * t3230;
-    let t3246 = Real::mul_add(
+    let t3263 = t635 + T::from_f64(0.0004) * t3253;
+    let t3269 = Real::mul_add(
         T::from_f64(0.02),
-        s114 * (t595 + t3147 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t3145 - t269))),
+        s114 * (t595 + t3170 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3168 - t269))),
     )
         + Real::mul_add(
             -T::from_f64(0.02),
             s114
-                * (Real::mul_add(T::from_f64(0.02), t3109 + t3111, t271 + t3147) - t291),
-            c115 * (T::from_f64(0.02) * t3230),
+                * (Real::mul_add(T::from_f64(0.02), t3132 + t3134, t271 + t3170) - t291),
+            c115 * (T::from_f64(0.02) * t3253),
         );
-    let t3259 = Real::mul_add(
+    let t3282 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.001),
-            t3231,
-            t408 + t664 + Real::mul_add(c115, t3239, -t3175),
+            t3254,
+            t408 + t664 + Real::mul_add(c115, t3262, -t3198),
         ),
-        s112 * (t660 - t412 - Real::mul_add(s114, t3239, t3176)),
+        s112 * (t660 - t412 - Real::mul_add(s114, t3262, t3199)),
     );
-    let t3261 = Real::mul_add(T::from_f64(0.00024), t3231, -t3259);
-    let t3263 = Real::mul_add(
-        t2600,
-        t3224,
+    let t3284 = Real::mul_add(T::from_f64(0.00024), t3254, -t3282);
+    let t3286 = Real::mul_add(
+        t3109,
+        t3247,
         t2418
             + (Real::mul_add(
                 -t549,
                 T::from_f64(0.00075),
                 Real::mul_add(t153, t212, -(t152 * t554)),
-            ) + t3006),
+            ) + t3008),
     );
-    let t3270 = Real::mul_add(t2608, t3263, -Real::mul_add(t2601, t3224, t3006)) / t2614;
-    let t3272 = Real::mul_add(t2608, t3270, t3263 / t2604);
-    let t3273 = -t3272;
-    let t3277 = Real::mul_add(-t2601, t3270, Real::mul_add(t2600, t3272, t3224 / t2599));
-    let t3279 = Real::mul_add(
-        t2600,
-        t3261,
-        Real::mul_add(T::from_f64(0.05), t3246, t3240),
+    let t3293 = Real::mul_add(t3117, t3286, -Real::mul_add(t3110, t3247, t3008)) / t3123;
+    let t3295 = Real::mul_add(t3117, t3293, t3286 / t3113);
+    let t3296 = -t3295;
+    let t3300 = Real::mul_add(-t3110, t3293, Real::mul_add(t3109, t3295, t3247 / t3108));
+    let t3302 = Real::mul_add(
+        t3109,
+        t3284,
+        Real::mul_add(T::from_f64(0.05), t3269, t3263),
     );
-    let t3286 = Real::mul_add(t2608, t3279, -Real::mul_add(t2601, t3261, t3240)) / t2614;
-    let t3288 = Real::mul_add(t2608, t3286, t3279 / t2604);
-    let t3289 = -t3288;
-    let t3293 = Real::mul_add(-t2601, t3286, Real::mul_add(t2600, t3288, t3261 / t2599));
-    let t3295 = Real::mul_add(t2600, t3045, t3039);
-    let t3302 = Real::mul_add(t2608, t3295, -Real::mul_add(t2601, t3045, t3030)) / t2614;
-    let t3304 = Real::mul_add(t2608, t3302, t3295 / t2604);
-    let t3305 = -t3304;
-    let t3309 = Real::mul_add(-t2601, t3302, Real::mul_add(t2600, t3304, t3045 / t2599));
-    let t3311 = Real::mul_add(
-        t2600,
-        t3062,
+    let t3309 = Real::mul_add(t3117, t3302, -Real::mul_add(t3110, t3284, t3263)) / t3123;
+    let t3311 = Real::mul_add(t3117, t3309, t3302 / t3113);
+    let t3312 = -t3311;
+    let t3316 = Real::mul_add(-t3110, t3309, Real::mul_add(t3109, t3311, t3284 / t3108));
+    let t3318 = Real::mul_add(t3047, t3109, t3041);
+    let t3325 = Real::mul_add(t3117, t3318, -Real::mul_add(t3047, t3110, t3032)) / t3123;
+    let t3327 = Real::mul_add(t3117, t3325, t3318 / t3113);
+    let t3328 = -t3327;
+    let t3332 = Real::mul_add(-t3110, t3325, Real::mul_add(t3109, t3327, t3047 / t3108));
+    let t3334 = Real::mul_add(
+        t3064,
+        t3109,
         Real::mul_add(
             T::from_f64(0.05),
             Real::mul_add(
@@ -1068,32 +1023,69 @@ pub fn forward_dynamics_derivatives<T: Real>(
             t2502 - t2499,
         ),
     );
-    let t3318 = Real::mul_add(t2608, t3311, Real::mul_add(-t2601, t3062, t2499 - t2502))
-        / t2614;
-    let t3320 = Real::mul_add(t2608, t3318, t3311 / t2604);
-    let t3321 = -t3320;
-    let t3325 = Real::mul_add(-t2601, t3318, Real::mul_add(t2600, t3320, t3062 / t2599));
-    let t3327 = Real::mul_add(
-        t2600,
-        t3078,
+    let t3341 = Real::mul_add(t3117, t3334, Real::mul_add(-t3064, t3110, t2499 - t2502))
+        / t3123;
+    let t3343 = Real::mul_add(t3117, t3341, t3334 / t3113);
+    let t3344 = -t3343;
+    let t3348 = Real::mul_add(-t3110, t3341, Real::mul_add(t3109, t3343, t3064 / t3108));
+    let t3350 = Real::mul_add(
+        t3080,
+        t3109,
         T::from_f64(0.001) * (s114 * (t1141 - t1135)),
     );
-    let t3333 = Real::mul_add(-t2601, t3078, t2608 * t3327) / t2614;
-    let t3335 = Real::mul_add(t2608, t3333, t3327 / t2604);
-    let t3336 = -t3335;
-    let t3340 = Real::mul_add(-t2601, t3333, Real::mul_add(t2600, t3335, t3078 / t2599));
+    let t3356 = Real::mul_add(-t3080, t3110, t3117 * t3350) / t3123;
+    let t3358 = Real::mul_add(t3117, t3356, t3350 / t3113);
+    let t3359 = -t3358;
+    let t3363 = Real::mul_add(-t3110, t3356, Real::mul_add(t3109, t3358, t3080 / t3108));
+    let t3365 = Real::mul_add(T::from_f64(0.006), t3109, T::from_f64(0.007));
+    let t3372 = Real::mul_add(
+        -t3117,
+        t3365,
+        Real::mul_add(T::from_f64(0.006), t3110, T::from_f64(0.008)),
+    ) / t3123;
+    let t3374 = Real::mul_add(-t3117, t3372, t3365 / t3113);
+    let t3378 = Real::mul_add(
+        -t3110,
+        t3372,
+        Real::mul_add(-t3109, t3374, T::from_f64(-0.006) / t3108),
+    );
+    let t3380 = Real::mul_add(T::from_f64(0.009), t3109, T::from_f64(-0.007));
+    let t3387 = Real::mul_add(
+        -t3117,
+        t3380,
+        Real::mul_add(T::from_f64(0.009), t3110, T::from_f64(-0.008)),
+    ) / t3123;
+    let t3389 = Real::mul_add(-t3117, t3387, t3380 / t3113);
+    let t3393 = Real::mul_add(
+        -t3110,
+        t3387,
+        Real::mul_add(-t3109, t3389, T::from_f64(-0.009) / t3108),
+    );
+    let t3394 = T::from_f64(0.008) * t3109;
+    let t3395 = T::from_f64(0.01) - t3394;
+    let t3396 = T::from_f64(0.008) * t3110;
+    let t3399 = T::from_f64(0.008) / t3108;
+    let t3401 = Real::mul_add(t3117, t3395, t3396) / t3123;
+    let t3402 = -t3401;
+    let t3404 = Real::mul_add(t3117, t3401, t3395 / t3113);
+    let t3408 = Real::mul_add(t3110, t3401, Real::mul_add(-t3109, t3404, t3399));
+    let t3409 = T::from_f64(-0.01) - t3394;
+    let t3413 = Real::mul_add(t3117, t3409, t3396) / t3123;
+    let t3414 = -t3413;
+    let t3416 = Real::mul_add(t3117, t3413, t3409 / t3113);
+    let t3420 = Real::mul_add(t3110, t3413, Real::mul_add(-t3109, t3416, t3399));
     tendyn_core::dual::ForwardJacobians {
-        value: [t3115, t3111, t3109],
+        value: [t3138, t3134, t3132],
         d_q: [
-            [T::from_f64(0.0), t3277, t3293],
-            [T::from_f64(0.0), t3273, t3289],
-            [T::from_f64(0.0), t3270, t3286],
+            [T::from_f64(0.0), t3300, t3316],
+            [T::from_f64(0.0), t3296, t3312],
+            [T::from_f64(0.0), t3293, t3309],
         ],
-        d_qd: [[t3309, t3325, t3340], [t3305, t3321, t3336], [t3302, t3318, t3333]],
+        d_qd: [[t3332, t3348, t3363], [t3328, t3344, t3359], [t3325, t3341, t3356]],
         d_u: [
-            [t2871, t2886, t2901, t2913],
-            [t2867, t2882, t2897, t2909],
-            [t2865, t2880, t2895, t2907],
+            [t3378, t3393, t3408, t3420],
+            [t3374, t3389, t3404, t3416],
+            [t3372, t3387, t3402, t3414],
         ],
     }
 }
@@ -1116,7 +1108,7 @@ pub struct Outputs<T> {
         [[T; 4]; 3],
     >,
 }
-/// Every generated output at once, sharing their common work. Operations: 991 arithmetic (457 add/sub, 495 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
+/// Every generated output at once, sharing their common work. Operations: 988 arithmetic (454 add/sub, 495 mul, 32 div, 7 neg, 0 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -1317,91 +1309,6 @@ pub fn all<T: Real>(
     );
     let t2534 = T::from_f64(0.001) * (s114 * (t1141 - t1135));
     let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2596 = Real::mul_add(
-        c113,
-        Real::mul_add(
-            -s112,
-            t2586,
-            c113
-                * (t1592
-                    + Real::mul_add(
-                        T::from_f64(0.000010400000000000002),
-                        c115 * c115,
-                        T::from_f64(0.00002455),
-                    )),
-        ),
-        s112
-            * Real::mul_add(
-                -c113,
-                t2586,
-                s112
-                    * (s114 * t1577
-                        + (t1592
-                            - Real::mul_add(
-                                T::from_f64(0.05),
-                                t1586,
-                                T::from_f64(0.05) * t1590,
-                            ))),
-            ),
-    );
-    let t2599 = T::from_f64(0.000000245)
-        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
-            + (T::from_f64(0.000002543) + t2596));
-    let t2600 = T::from_f64(0.00000002100000000000001) / t2599;
-    let t2601 = T::from_f64(0.000000024000000000000003) / t2599;
-    let t2604 = Real::mul_add(
-        -t2599,
-        t2600 * t2600,
-        T::from_f64(0.000000396) + (T::from_f64(0.00003655) + t1592),
-    );
-    let t2608 = Real::mul_add(
-        -t2599,
-        t2600 * t2601,
-        T::from_f64(0.00000022400000000000002)
-            + (T::from_f64(0.000011000000000000001) + c115 * T::from_f64(0.00002)),
-    ) / t2604;
-    let t2614 = Real::mul_add(
-        -t2604,
-        t2608 * t2608,
-        Real::mul_add(-t2599, t2601 * t2601, T::from_f64(0.000011256000000000002)),
-    );
-    let t2858 = Real::mul_add(T::from_f64(0.006), t2600, T::from_f64(0.007));
-    let t2865 = Real::mul_add(
-        -t2608,
-        t2858,
-        Real::mul_add(T::from_f64(0.006), t2601, T::from_f64(0.008)),
-    ) / t2614;
-    let t2867 = Real::mul_add(-t2608, t2865, t2858 / t2604);
-    let t2871 = Real::mul_add(
-        -t2601,
-        t2865,
-        Real::mul_add(-t2600, t2867, T::from_f64(-0.006) / t2599),
-    );
-    let t2873 = Real::mul_add(T::from_f64(0.009), t2600, T::from_f64(-0.007));
-    let t2880 = Real::mul_add(
-        -t2608,
-        t2873,
-        Real::mul_add(T::from_f64(0.009), t2601, T::from_f64(-0.008)),
-    ) / t2614;
-    let t2882 = Real::mul_add(-t2608, t2880, t2873 / t2604);
-    let t2886 = Real::mul_add(
-        -t2601,
-        t2880,
-        Real::mul_add(-t2600, t2882, T::from_f64(-0.009) / t2599),
-    );
-    let t2887 = T::from_f64(0.008) * t2600;
-    let t2888 = T::from_f64(0.01) - t2887;
-    let t2889 = T::from_f64(0.008) * t2601;
-    let t2892 = T::from_f64(0.008) / t2599;
-    let t2894 = Real::mul_add(t2608, t2888, t2889) / t2614;
-    let t2895 = -t2894;
-    let t2897 = Real::mul_add(t2608, t2894, t2888 / t2604);
-    let t2901 = Real::mul_add(t2601, t2894, Real::mul_add(-t2600, t2897, t2892));
-    let t2902 = T::from_f64(-0.01) - t2887;
-    let t2906 = Real::mul_add(t2608, t2902, t2889) / t2614;
-    let t2907 = -t2906;
-    let t2909 = Real::mul_add(t2608, t2906, t2902 / t2604);
-    let t2913 = Real::mul_add(t2601, t2906, Real::mul_add(-t2600, t2909, t2892));
     let t2918 = t271 + (t257 + T::from_f64(0.02) * t250) - t291;
     let t2919 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
     let t2920 = T::from_f64(0.02) * t2918;
@@ -1419,23 +1326,23 @@ pub fn all<T: Real>(
     let t2959 = T::from_f64(0.012) * t2957;
     let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
     let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
-    let t2974 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
+    let t2976 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
         - T::from_f64(0.0004) * t2919;
-    let t2975 = Real::mul_add(T::from_f64(0.000003), t250, t310)
+    let t2977 = Real::mul_add(T::from_f64(0.000003), t250, t310)
         + T::from_f64(0.0004) * t2918;
-    let t2976 = s114 * t2974;
-    let t2977 = c115 * t2974;
-    let t2980 = t218 - (t2976 - t408);
-    let t2983 = Real::mul_add(
+    let t2978 = s114 * t2976;
+    let t2979 = c115 * t2976;
+    let t2982 = t218 - (t2978 - t408);
+    let t2985 = Real::mul_add(
         -T::from_f64(0.05),
         t2926,
         Real::mul_add(
             t208,
             T::from_f64(0.00075),
             Real::mul_add(T::from_f64(0.0000058), t159, -t219),
-        ) + (t412 + t2977),
+        ) + (t412 + t2979),
     );
-    let t2991 = Real::mul_add(
+    let t2993 = Real::mul_add(
         -T::from_f64(0.012),
         T::from_f64(0.014) * t137 + t2926,
         T::from_f64(0.0000022215714285714285) * qdd[0]
@@ -1444,9 +1351,9 @@ pub fn all<T: Real>(
                 T::from_f64(0.00006),
                 (Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
                     * T::from_f64(0.00003),
-            ) + Real::mul_add(c113, t2983, s112 * t2980),
+            ) + Real::mul_add(c113, t2985, s112 * t2982),
     );
-    let t2992 = t332
+    let t2994 = t332
         + Real::mul_add(
             T::from_f64(0.05),
             T::from_f64(0.03) * t207 + Real::mul_add(c115, t2920, s114 * t298),
@@ -1454,33 +1361,33 @@ pub fn all<T: Real>(
                 -t207,
                 T::from_f64(0.00075),
                 Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
-            ) + t2975,
+            ) + t2977,
         );
-    let t3001 = t364 * T::from_f64(0.000000072)
-        + (t2373 + (t2373 + t2975) - t354 * T::from_f64(0.00000004799999999999999));
-    let t3004 = T::from_f64(0.000000064) * t376
+    let t3003 = t364 * T::from_f64(0.000000072)
+        + (t2373 + (t2373 + t2977) - t354 * T::from_f64(0.00000004799999999999999));
+    let t3006 = T::from_f64(0.000000064) * t376
         + (T::from_f64(0.000000064) * t370
             + (T::from_f64(0.000000081) * t364
-                + (T::from_f64(0.000000036) * t354 + t2991)));
-    let t3005 = t370 * T::from_f64(0.00000008)
+                + (T::from_f64(0.000000036) * t354 + t2993)));
+    let t3007 = t370 * T::from_f64(0.00000008)
         + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + t2992 - t354 * T::from_f64(0.000000042)))
+            + (t332 + t2994 - t354 * T::from_f64(0.000000042)))
         - t376 * T::from_f64(0.00000008);
-    let t3006 = t635 + t619 * T::from_f64(0.0004);
-    let t3008 = t2418
+    let t3008 = t635 + t619 * T::from_f64(0.0004);
+    let t3010 = t2418
         + (Real::mul_add(
             -t549,
             T::from_f64(0.00075),
             Real::mul_add(t153, t212, -(t152 * t554)),
-        ) + t3006);
-    let t3011 = Real::mul_add(
+        ) + t3008);
+    let t3013 = Real::mul_add(
         c113,
-        t2980,
+        t2982,
         s112 * (t560 - Real::mul_add(s114, t2405, -t660)),
     )
         + Real::mul_add(
             -s112,
-            t2983,
+            t2985,
             c113
                 * (Real::mul_add(
                     t550,
@@ -1488,20 +1395,20 @@ pub fn all<T: Real>(
                     -(t216 + T::from_f64(0.0000058) * t157),
                 ) + Real::mul_add(c115, t2405, t664) - T::from_f64(0.05) * t672),
         );
-    let t3012 = t3011 - T::from_f64(0.012) * t672;
-    let t3013 = t635 + t750 * T::from_f64(0.0004);
-    let t3021 = Real::mul_add(
+    let t3014 = t3013 - T::from_f64(0.012) * t672;
+    let t3015 = t635 + t750 * T::from_f64(0.0004);
+    let t3023 = Real::mul_add(
         T::from_f64(0.05),
         Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298)
             + Real::mul_add(-s114, t2920, c115 * (T::from_f64(0.02) * t750)),
-        t3013,
+        t3015,
     );
-    let t3025 = Real::mul_add(
+    let t3027 = Real::mul_add(
         c113,
-        t792 + (c115 * t2433 - t2976) - t751 * T::from_f64(0.001),
-        s112 * (t785 - (s114 * t2433 + t2977)),
+        t792 + (c115 * t2433 - t2978) - t751 * T::from_f64(0.001),
+        s112 * (t785 - (s114 * t2433 + t2979)),
     ) - t751 * T::from_f64(0.00024);
-    let t3029 = Real::mul_add(
+    let t3031 = Real::mul_add(
         -T::from_f64(0.0008),
         t2934,
         Real::mul_add(
@@ -1510,8 +1417,8 @@ pub fn all<T: Real>(
             -(T::from_f64(0.0000024) * t948 + t302 * t930),
         ),
     );
-    let t3030 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3039 = T::from_f64(0.05)
+    let t3032 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
+    let t3041 = T::from_f64(0.05)
         * Real::mul_add(
             T::from_f64(0.03),
             t2462,
@@ -1521,8 +1428,8 @@ pub fn all<T: Real>(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3030);
-    let t3042 = Real::mul_add(
+        ) + t3032);
+    let t3044 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -1531,25 +1438,25 @@ pub fn all<T: Real>(
                 t905,
                 T::from_f64(0.00075),
                 -(T::from_f64(0.0000058) * t863 + s112 * t213),
-            ) + Real::mul_add(c115, t3029, s114 * t1003),
+            ) + Real::mul_add(c115, t3031, s114 * t1003),
         ),
         s112
             * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t3029, -(c115 * t1003))),
+                - Real::mul_add(s114, t3031, -(c115 * t1003))),
     );
-    let t3043 = Real::mul_add(
+    let t3045 = Real::mul_add(
         -t852,
         T::from_f64(0.00006),
         (t131 + t131 - t849) * T::from_f64(0.00003),
-    ) + t3042;
-    let t3044 = t3043 - t2939;
-    let t3045 = t2939 - t3043;
-    let t3050 = Real::mul_add(
+    ) + t3044;
+    let t3046 = t3045 - t2939;
+    let t3047 = t2939 - t3045;
+    let t3052 = Real::mul_add(
         -T::from_f64(0.0008),
         t2949,
         Real::mul_add(T::from_f64(0.0004), t2949, -t2954),
     );
-    let t3060 = Real::mul_add(
+    let t3062 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -1558,31 +1465,31 @@ pub fn all<T: Real>(
                 -t152,
                 T::from_f64(0.000012600000000000001),
                 t1119 * T::from_f64(0.00075),
-            ) + Real::mul_add(c115, t3050, t2956),
+            ) + Real::mul_add(c115, t3052, t2956),
         ),
         s112
             * Real::mul_add(
                 t153,
                 T::from_f64(0.0000009999999999999997),
-                -Real::mul_add(s114, t3050, -t2955),
+                -Real::mul_add(s114, t3052, -t2955),
             ),
     );
-    let t3061 = t3060 - t2959;
-    let t3062 = t2959 - t3060;
-    let t3066 = Real::mul_add(
+    let t3063 = t3062 - t2959;
+    let t3064 = t2959 - t3062;
+    let t3068 = Real::mul_add(
         -T::from_f64(0.0008),
         t2948,
         Real::mul_add(T::from_f64(0.0004), t2948, -t2954),
     );
-    let t3075 = Real::mul_add(
+    let t3077 = Real::mul_add(
         c113,
-        Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3066, t2956)),
-        s112 * Real::mul_add(-s114, t3066, t2955),
+        Real::mul_add(-T::from_f64(0.001), t2948, Real::mul_add(c115, t3068, t2956)),
+        s112 * Real::mul_add(-s114, t3068, t2955),
     );
-    let t3076 = T::from_f64(0.00024) * t2948;
-    let t3077 = t3075 - t3076;
-    let t3078 = t3076 - t3075;
-    let t3082 = Real::mul_add(
+    let t3078 = T::from_f64(0.00024) * t2948;
+    let t3079 = t3077 - t3078;
+    let t3080 = t3078 - t3077;
+    let t3084 = Real::mul_add(
         -T::from_f64(0.0008),
         t2962,
         Real::mul_add(
@@ -1591,15 +1498,15 @@ pub fn all<T: Real>(
             -(t308 + T::from_f64(0.0000024) * t1372),
         ),
     );
-    let t3083 = t310 + t1388 * T::from_f64(0.0004);
-    let t3092 = T::from_f64(0.05)
+    let t3085 = t310 + t1388 * T::from_f64(0.0004);
+    let t3094 = T::from_f64(0.05)
         * (T::from_f64(0.03) * t1347
             + Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3083);
-    let t3095 = Real::mul_add(
+            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3085);
+    let t3097 = Real::mul_add(
         c113,
         Real::mul_add(
             -T::from_f64(0.05),
@@ -1608,11 +1515,11 @@ pub fn all<T: Real>(
                 t1348,
                 T::from_f64(0.00075),
                 -(t219 + T::from_f64(0.0000058) * t158),
-            ) + Real::mul_add(c115, t3082, t412),
+            ) + Real::mul_add(c115, t3084, t412),
         ),
-        s112 * (t218 - Real::mul_add(s114, t3082, -t408)),
+        s112 * (t218 - Real::mul_add(s114, t3084, -t408)),
     );
-    let t3098 = T::from_f64(0.008) * tendon_tensions[2]
+    let t3100 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])
         + T::from_f64(0.008) * tendon_tensions[3]
@@ -1623,179 +1530,256 @@ pub fn all<T: Real>(
                 -t134,
                 T::from_f64(0.00006),
                 (t133 - t122) * T::from_f64(0.00003),
-            ) + t3095,
+            ) + t3097,
         );
-    let t3102 = Real::mul_add(
-        -t2600,
-        t3098,
+    let t3107 = s112
+        * Real::mul_add(
+            -c113,
+            t2586,
+            s112
+                * (s114 * t1577
+                    + (t1592
+                        - Real::mul_add(
+                            T::from_f64(0.05),
+                            t1586,
+                            T::from_f64(0.05) * t1590,
+                        ))),
+        )
+        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
+            + T::from_f64(0.0000027880000000000002));
+    let t3108 = c113
+        * Real::mul_add(
+            -s112,
+            t2586,
+            c113
+                * (t1592
+                    + Real::mul_add(
+                        T::from_f64(0.000010400000000000002),
+                        c115 * c115,
+                        T::from_f64(0.00002455),
+                    )),
+        ) + t3107;
+    let t3109 = T::from_f64(0.00000002100000000000001) / t3108;
+    let t3110 = T::from_f64(0.000000024000000000000003) / t3108;
+    let t3113 = Real::mul_add(-t3108, t3109 * t3109, t1592 + T::from_f64(0.000036946));
+    let t3117 = Real::mul_add(
+        -t3108,
+        t3109 * t3110,
+        c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001),
+    ) / t3113;
+    let t3123 = Real::mul_add(
+        -t3113,
+        t3117 * t3117,
+        Real::mul_add(-t3108, t3110 * t3110, T::from_f64(0.000011256000000000002)),
+    );
+    let t3125 = Real::mul_add(
+        -t3100,
+        t3109,
         T::from_f64(0.007) * tendon_tensions[0] - T::from_f64(0.007) * tendon_tensions[1]
             + T::from_f64(0.01) * tendon_tensions[2]
-            - T::from_f64(0.01) * tendon_tensions[3] - t3092,
+            - T::from_f64(0.01) * tendon_tensions[3] - t3094,
     );
-    let t3109 = Real::mul_add(
-        -t2608,
-        t3102,
+    let t3132 = Real::mul_add(
+        -t3117,
+        t3125,
         Real::mul_add(
-            -t2601,
-            t3098,
+            -t3100,
+            t3110,
             T::from_f64(0.008) * tendon_tensions[0]
-                - T::from_f64(0.008) * tendon_tensions[1] - t3083,
+                - T::from_f64(0.008) * tendon_tensions[1] - t3085,
         ),
-    ) / t2614;
-    let t3111 = Real::mul_add(-t2608, t3109, t3102 / t2604);
-    let t3115 = Real::mul_add(
-        -t2601,
-        t3109,
-        Real::mul_add(-t2600, t3111, t3098 / t2599),
+    ) / t3123;
+    let t3134 = Real::mul_add(-t3117, t3132, t3125 / t3113);
+    let t3138 = Real::mul_add(
+        -t3110,
+        t3132,
+        Real::mul_add(-t3109, t3134, t3100 / t3108),
     );
-    let t3119 = Real::mul_add(s112, t3115, t156);
-    let t3120 = Real::mul_add(c113, t3115, -t158);
-    let t3125 = t181 + Real::mul_add(T::from_f64(0.05), t3111, t166);
-    let t3126 = t183
-        - Real::mul_add(T::from_f64(0.05), t3120, T::from_f64(0.012) * t3115);
-    let t3129 = Real::mul_add(T::from_f64(0.025), t3120, t3126) - t204;
-    let t3141 = t246 + Real::mul_add(s114, t3120, c115 * t3119);
-    let t3142 = Real::mul_add(-s114, t3119, c115 * t3120) - t248;
-    let t3145 = Real::mul_add(s114, t3125, t251);
-    let t3147 = Real::mul_add(c115, t3125, -t254);
-    let t3163 = Real::mul_add(-T::from_f64(0.02), t3142, t273 + t3126) - t293;
-    let t3170 = Real::mul_add(T::from_f64(0.0000024), t3142, -t308)
-        - T::from_f64(0.0004) * t3163;
-    let t3175 = s114 * t3170;
-    let t3176 = c115 * t3170;
-    let t3187 = Real::mul_add(T::from_f64(0.05), t3119, t529);
-    let t3190 = Real::mul_add(-T::from_f64(0.025), t3119, t3187) - t546;
-    let t3196 = T::from_f64(0.04) * t3141;
-    let t3199 = T::from_f64(0.02) * t3141;
-    let t3201 = t599 + (t3187 + t3196) - t3199 - t616;
-    let t3204 = Real::mul_add(T::from_f64(0.0000024), t3141, t305);
-    let t3208 = Real::mul_add(
+    let t3142 = Real::mul_add(s112, t3138, t156);
+    let t3143 = Real::mul_add(c113, t3138, -t158);
+    let t3148 = t181 + Real::mul_add(T::from_f64(0.05), t3134, t166);
+    let t3149 = t183
+        - Real::mul_add(T::from_f64(0.05), t3143, T::from_f64(0.012) * t3138);
+    let t3152 = Real::mul_add(T::from_f64(0.025), t3143, t3149) - t204;
+    let t3164 = t246 + Real::mul_add(s114, t3143, c115 * t3142);
+    let t3165 = Real::mul_add(-s114, t3142, c115 * t3143) - t248;
+    let t3168 = Real::mul_add(s114, t3148, t251);
+    let t3170 = Real::mul_add(c115, t3148, -t254);
+    let t3186 = Real::mul_add(-T::from_f64(0.02), t3165, t273 + t3149) - t293;
+    let t3193 = Real::mul_add(T::from_f64(0.0000024), t3165, -t308)
+        - T::from_f64(0.0004) * t3186;
+    let t3198 = s114 * t3193;
+    let t3199 = c115 * t3193;
+    let t3210 = Real::mul_add(T::from_f64(0.05), t3142, t529);
+    let t3213 = Real::mul_add(-T::from_f64(0.025), t3142, t3210) - t546;
+    let t3219 = T::from_f64(0.04) * t3164;
+    let t3222 = T::from_f64(0.02) * t3164;
+    let t3224 = t599 + (t3210 + t3219) - t3222 - t616;
+    let t3227 = Real::mul_add(T::from_f64(0.0000024), t3164, t305);
+    let t3231 = Real::mul_add(
         -T::from_f64(0.0008),
-        t3201,
-        Real::mul_add(T::from_f64(0.0004), t3201, -t3204),
+        t3224,
+        Real::mul_add(T::from_f64(0.0004), t3224, -t3227),
     );
-    let t3213 = Real::mul_add(T::from_f64(0.02), t3201, T::from_f64(0.03) * t3190);
-    let t3221 = Real::mul_add(
+    let t3236 = Real::mul_add(T::from_f64(0.02), t3224, T::from_f64(0.03) * t3213);
+    let t3244 = Real::mul_add(
         -s112,
         Real::mul_add(
             -T::from_f64(0.05),
-            Real::mul_add(T::from_f64(0.02), t3163, T::from_f64(0.03) * t3129),
+            Real::mul_add(T::from_f64(0.02), t3186, T::from_f64(0.03) * t3152),
             Real::mul_add(
                 T::from_f64(0.00075),
-                t3129,
-                Real::mul_add(T::from_f64(0.0000058), t3120, -t219),
-            ) + (t412 + t3176),
+                t3152,
+                Real::mul_add(T::from_f64(0.0000058), t3143, -t219),
+            ) + (t412 + t3199),
         ),
         c113
             * Real::mul_add(
                 -T::from_f64(0.05),
-                t3213,
+                t3236,
                 Real::mul_add(
                     T::from_f64(0.00075),
-                    t3190,
-                    -Real::mul_add(T::from_f64(0.0000058), t3119, t216),
-                ) + Real::mul_add(c115, t3208, t664),
+                    t3213,
+                    -Real::mul_add(T::from_f64(0.0000058), t3142, t216),
+                ) + Real::mul_add(c115, t3231, t664),
             ),
     );
-    let t3224 = Real::mul_add(
+    let t3247 = Real::mul_add(
         T::from_f64(0.012),
-        t3213,
+        t3236,
         -(Real::mul_add(
             s112,
-            t560 - Real::mul_add(s114, t3208, -t660),
-            c113 * (t218 - (t3175 - t408)),
-        ) + t3221),
+            t560 - Real::mul_add(s114, t3231, -t660),
+            c113 * (t218 - (t3198 - t408)),
+        ) + t3244),
     );
-    let t3230 = t615 + (t598 - t3145);
-    let t3231 = t599 + t3196 - t3199 - t616;
-    let t3239 = Real::mul_add(
+    let t3253 = t615 + (t598 - t3168);
+    let t3254 = t599 + t3219 - t3222 - t616;
+    let t3262 = Real::mul_add(
         -T::from_f64(0.0008),
-        t3231,
-        Real::mul_add(T::from_f64(0.0004), t3231, -t3204),
+        t3254,
+        Real::mul_add(T::from_f64(0.0004), t3254, -t3227),
     );
-    let t3240 = t635 + T::from_f64(0.0004) * t3230;
-    let t3246 = Real::mul_add(
+    let t3263 = t635 + T::from_f64(0.0004) * t3253;
+    let t3269 = Real::mul_add(
         T::from_f64(0.02),
-        s114 * (t595 + t3147 - t610),
-        T::from_f64(0.02) * (c115 * (t290 + (t3145 - t269))),
+        s114 * (t595 + t3170 - t610),
+        T::from_f64(0.02) * (c115 * (t290 + (t3168 - t269))),
     )
         + Real::mul_add(
             -T::from_f64(0.02),
             s114
-                * (Real::mul_add(T::from_f64(0.02), t3109 + t3111, t271 + t3147) - t291),
-            c115 * (T::from_f64(0.02) * t3230),
+                * (Real::mul_add(T::from_f64(0.02), t3132 + t3134, t271 + t3170) - t291),
+            c115 * (T::from_f64(0.02) * t3253),
         );
-    let t3261 = Real::mul_add(
+    let t3284 = Real::mul_add(
         T::from_f64(0.00024),
-        t3231,
+        t3254,
         -Real::mul_add(
             c113,
             Real::mul_add(
                 -T::from_f64(0.001),
-                t3231,
-                t792 + Real::mul_add(c115, t3239, -t3175),
+                t3254,
+                t792 + Real::mul_add(c115, t3262, -t3198),
             ),
-            s112 * (t785 - Real::mul_add(s114, t3239, t3176)),
+            s112 * (t785 - Real::mul_add(s114, t3262, t3199)),
         ),
     );
-    let t3263 = Real::mul_add(t2600, t3224, t3008);
-    let t3270 = Real::mul_add(t2608, t3263, -Real::mul_add(t2601, t3224, t3006)) / t2614;
-    let t3272 = Real::mul_add(t2608, t3270, t3263 / t2604);
-    let t3273 = -t3272;
-    let t3277 = Real::mul_add(-t2601, t3270, Real::mul_add(t2600, t3272, t3224 / t2599));
-    let t3279 = Real::mul_add(
-        t2600,
-        t3261,
-        Real::mul_add(T::from_f64(0.05), t3246, t3240),
+    let t3286 = Real::mul_add(t3109, t3247, t3010);
+    let t3293 = Real::mul_add(t3117, t3286, -Real::mul_add(t3110, t3247, t3008)) / t3123;
+    let t3295 = Real::mul_add(t3117, t3293, t3286 / t3113);
+    let t3296 = -t3295;
+    let t3300 = Real::mul_add(-t3110, t3293, Real::mul_add(t3109, t3295, t3247 / t3108));
+    let t3302 = Real::mul_add(
+        t3109,
+        t3284,
+        Real::mul_add(T::from_f64(0.05), t3269, t3263),
     );
-    let t3286 = Real::mul_add(t2608, t3279, -Real::mul_add(t2601, t3261, t3240)) / t2614;
-    let t3288 = Real::mul_add(t2608, t3286, t3279 / t2604);
-    let t3289 = -t3288;
-    let t3293 = Real::mul_add(-t2601, t3286, Real::mul_add(t2600, t3288, t3261 / t2599));
-    let t3295 = Real::mul_add(t2600, t3045, t3039);
-    let t3302 = Real::mul_add(t2608, t3295, -Real::mul_add(t2601, t3045, t3030)) / t2614;
-    let t3304 = Real::mul_add(t2608, t3302, t3295 / t2604);
-    let t3305 = -t3304;
-    let t3309 = Real::mul_add(-t2601, t3302, Real::mul_add(t2600, t3304, t3045 / t2599));
-    let t3311 = Real::mul_add(t2600, t3062, t2517);
-    let t3318 = Real::mul_add(t2608, t3311, Real::mul_add(-t2601, t3062, t2499 - t2502))
-        / t2614;
-    let t3320 = Real::mul_add(t2608, t3318, t3311 / t2604);
-    let t3321 = -t3320;
-    let t3325 = Real::mul_add(-t2601, t3318, Real::mul_add(t2600, t3320, t3062 / t2599));
-    let t3327 = Real::mul_add(t2600, t3078, t2534);
-    let t3333 = Real::mul_add(-t2601, t3078, t2608 * t3327) / t2614;
-    let t3335 = Real::mul_add(t2608, t3333, t3327 / t2604);
-    let t3336 = -t3335;
-    let t3340 = Real::mul_add(-t2601, t3333, Real::mul_add(t2600, t3335, t3078 / t2599));
+    let t3309 = Real::mul_add(t3117, t3302, -Real::mul_add(t3110, t3284, t3263)) / t3123;
+    let t3311 = Real::mul_add(t3117, t3309, t3302 / t3113);
+    let t3312 = -t3311;
+    let t3316 = Real::mul_add(-t3110, t3309, Real::mul_add(t3109, t3311, t3284 / t3108));
+    let t3318 = Real::mul_add(t3047, t3109, t3041);
+    let t3325 = Real::mul_add(t3117, t3318, -Real::mul_add(t3047, t3110, t3032)) / t3123;
+    let t3327 = Real::mul_add(t3117, t3325, t3318 / t3113);
+    let t3328 = -t3327;
+    let t3332 = Real::mul_add(-t3110, t3325, Real::mul_add(t3109, t3327, t3047 / t3108));
+    let t3334 = Real::mul_add(t3064, t3109, t2517);
+    let t3341 = Real::mul_add(t3117, t3334, Real::mul_add(-t3064, t3110, t2499 - t2502))
+        / t3123;
+    let t3343 = Real::mul_add(t3117, t3341, t3334 / t3113);
+    let t3344 = -t3343;
+    let t3348 = Real::mul_add(-t3110, t3341, Real::mul_add(t3109, t3343, t3064 / t3108));
+    let t3350 = Real::mul_add(t3080, t3109, t2534);
+    let t3356 = Real::mul_add(-t3080, t3110, t3117 * t3350) / t3123;
+    let t3358 = Real::mul_add(t3117, t3356, t3350 / t3113);
+    let t3359 = -t3358;
+    let t3363 = Real::mul_add(-t3110, t3356, Real::mul_add(t3109, t3358, t3080 / t3108));
+    let t3365 = Real::mul_add(T::from_f64(0.006), t3109, T::from_f64(0.007));
+    let t3372 = Real::mul_add(
+        -t3117,
+        t3365,
+        Real::mul_add(T::from_f64(0.006), t3110, T::from_f64(0.008)),
+    ) / t3123;
+    let t3374 = Real::mul_add(-t3117, t3372, t3365 / t3113);
+    let t3378 = Real::mul_add(
+        -t3110,
+        t3372,
+        Real::mul_add(-t3109, t3374, T::from_f64(-0.006) / t3108),
+    );
+    let t3380 = Real::mul_add(T::from_f64(0.009), t3109, T::from_f64(-0.007));
+    let t3387 = Real::mul_add(
+        -t3117,
+        t3380,
+        Real::mul_add(T::from_f64(0.009), t3110, T::from_f64(-0.008)),
+    ) / t3123;
+    let t3389 = Real::mul_add(-t3117, t3387, t3380 / t3113);
+    let t3393 = Real::mul_add(
+        -t3110,
+        t3387,
+        Real::mul_add(-t3109, t3389, T::from_f64(-0.009) / t3108),
+    );
+    let t3394 = T::from_f64(0.008) * t3109;
+    let t3395 = T::from_f64(0.01) - t3394;
+    let t3396 = T::from_f64(0.008) * t3110;
+    let t3399 = T::from_f64(0.008) / t3108;
+    let t3401 = Real::mul_add(t3117, t3395, t3396) / t3123;
+    let t3402 = -t3401;
+    let t3404 = Real::mul_add(t3117, t3401, t3395 / t3113);
+    let t3408 = Real::mul_add(t3110, t3401, Real::mul_add(-t3109, t3404, t3399));
+    let t3409 = T::from_f64(-0.01) - t3394;
+    let t3413 = Real::mul_add(t3117, t3409, t3396) / t3123;
+    let t3414 = -t3413;
+    let t3416 = Real::mul_add(t3117, t3413, t3409 / t3113);
+    let t3420 = Real::mul_add(t3110, t3413, Real::mul_add(-t3109, t3416, t3399));
     Outputs {
-        generalized_forces: [t3004, t3005, t3001],
+        generalized_forces: [t3006, t3007, t3003],
         generalized_forces_derivatives: tendyn_core::dual::StateJacobians {
-            value: [t3004, t3005, t3001],
+            value: [t3006, t3007, t3003],
             d_q: [
-                [T::from_f64(0.0), t3012, t3025],
-                [T::from_f64(0.0), t3008, t3021],
-                [T::from_f64(0.0), t3006, t3013],
+                [T::from_f64(0.0), t3014, t3027],
+                [T::from_f64(0.0), t3010, t3023],
+                [T::from_f64(0.0), t3008, t3015],
             ],
             d_qd: [
-                [t3044, t3061, t3077],
-                [t3039, t2517, t2534],
-                [t3030, t2504, T::from_f64(0.0)],
+                [t3046, t3063, t3079],
+                [t3041, t2517, t2534],
+                [t3032, t2504, T::from_f64(0.0)],
             ],
         },
-        forward_dynamics: [t3115, t3111, t3109],
+        forward_dynamics: [t3138, t3134, t3132],
         forward_dynamics_derivatives: tendyn_core::dual::ForwardJacobians {
-            value: [t3115, t3111, t3109],
+            value: [t3138, t3134, t3132],
             d_q: [
-                [T::from_f64(0.0), t3277, t3293],
-                [T::from_f64(0.0), t3273, t3289],
-                [T::from_f64(0.0), t3270, t3286],
+                [T::from_f64(0.0), t3300, t3316],
+                [T::from_f64(0.0), t3296, t3312],
+                [T::from_f64(0.0), t3293, t3309],
             ],
-            d_qd: [[t3309, t3325, t3340], [t3305, t3321, t3336], [t3302, t3318, t3333]],
+            d_qd: [[t3332, t3348, t3363], [t3328, t3344, t3359], [t3325, t3341, t3356]],
             d_u: [
-                [t2871, t2886, t2901, t2913],
-                [t2867, t2882, t2897, t2909],
-                [t2865, t2880, t2895, t2907],
+                [t3378, t3393, t3408, t3420],
+                [t3374, t3389, t3404, t3416],
+                [t3372, t3387, t3402, t3414],
             ],
         },
     }
