@@ -424,16 +424,7 @@ impl Graph {
     /// in f64 is rounded where the expansion's double-double one is not, and equal
     /// coefficients of two outputs would then differ in their last bit and not be shared).
     pub fn shared_products(&mut self, roots: &[Id]) -> Vec<Id> {
-        let live = self.live(roots);
-        let mut uses = vec![0u32; self.nodes.len()];
-        for &id in &live {
-            for a in self.node(id).operands() {
-                uses[a.0 as usize] += 1;
-            }
-        }
-        for r in roots {
-            uses[r.0 as usize] += 1;
-        }
+        let (live, uses) = self.live_with_uses(roots);
         let mut map: Vec<Id> = (0..self.nodes.len() as u32).map(Id).collect();
         for id in live {
             let node = self.node(id);
@@ -460,16 +451,7 @@ impl Graph {
     /// are summed in f64 and kept only where f32 holds them as normal numbers (or they
     /// cancel).
     pub fn merged_like_terms(&mut self, roots: &[Id]) -> Vec<Id> {
-        let live = self.live(roots);
-        let mut uses = vec![0u32; self.nodes.len()];
-        for &id in &live {
-            for a in self.node(id).operands() {
-                uses[a.0 as usize] += 1;
-            }
-        }
-        for r in roots {
-            uses[r.0 as usize] += 1;
-        }
+        let (live, uses) = self.live_with_uses(roots);
         let mut map: Vec<Id> = (0..self.nodes.len() as u32).map(Id).collect();
         let one = self.constant(1.0);
         // The terms of each sum with one use, for the sum that uses it to reach through.
@@ -662,6 +644,22 @@ impl Graph {
             }
         }
         mark
+    }
+
+    /// [`Graph::live`], and how many times each node (by index) is used: as an operand of a
+    /// live node, or as a root (a root used inside the graph too is used more than once).
+    fn live_with_uses(&self, roots: &[Id]) -> (Vec<Id>, Vec<u32>) {
+        let live = self.live(roots);
+        let mut uses = vec![0u32; self.nodes.len()];
+        for &id in &live {
+            for a in self.node(id).operands() {
+                uses[a.0 as usize] += 1;
+            }
+        }
+        for r in roots {
+            uses[r.0 as usize] += 1;
+        }
+        (live, uses)
     }
 
     /// Every node the given roots depend on, in index (evaluation) order.
