@@ -748,7 +748,8 @@ impl<'a, T> Work<'a, T> {
 /// into `tensions`. On [`Status::MaxExceeded`], `certificate` (if given, `K` entries)
 /// receives a vector `w` over the tendons with `max {wᵀT : floor ≤ T ≤ max} < wᵀT₀`:
 /// along `w` the motion needs more than the bounded tendons can give. Entries `w_k > 0`
-/// belong to tendons at their maximum, `w_k < 0` to tendons at their floor.
+/// belong to tendons whose maximum blocks, `w_k < 0` to tendons whose floor does (in the
+/// certificate `w`'s bounds are reached; the best effort returned keeps the floors only).
 #[inline(always)]
 pub fn solve<T: Numeric, P: Problem<T>>(
     problem: &P,
@@ -797,6 +798,9 @@ fn beyond_a_facet<'p, T: Numeric, P: Problem<T>>(
     t0: &[T],
     margin: T,
 ) -> Option<&'p [f64]> {
+    if !facets_decide::<T>() {
+        return None;
+    }
     (0..p.facets()).find_map(|i| {
         let (w, support) = p.facet(i);
         let along = t0.iter().zip(w).fold(T::from_f64(-support), |s, (t, w)| {
@@ -804,6 +808,21 @@ fn beyond_a_facet<'p, T: Numeric, P: Problem<T>>(
         });
         (along > margin).then_some(w)
     })
+}
+
+/// How many round-off allowances (`4 (K + d) u` times the largest tension or bound at the
+/// floors' optimum) beyond a facet a state must lie for the facet to decide it (see
+/// [`project`]): `2²⁴`, so that the steps would call it feasible only if their tensions
+/// rose to `2²⁴` times everything at that point; in `f64` that leaves the states within
+/// about `7e-8` of that size of a facet to the steps. In a scalar of short precision
+/// (`f32`) as many allowances would be tens of times the tensions' size, so there no facet
+/// decides anything (`facets_decide`).
+const FACET_MARGIN: f64 = (1u64 << 24) as f64;
+
+/// Whether facets decide states in scalar `T`: where `u ≤ 2⁻³⁰` (`f64`, double-double).
+#[inline(always)]
+fn facets_decide<T: Numeric>() -> bool {
+    T::unit_roundoff() <= 1.0 / (1u64 << 30) as f64
 }
 
 /// `4 (K + d) u`: the bound violation that round-off allows, per unit of size.
@@ -889,11 +908,12 @@ fn project<T: Numeric, P: Problem<T>>(
             // code's constant null space), a state beyond one has none: the floors' optimum
             // is the best effort at once, without the steps that would show the maxima
             // empty (3.6 on average at the 3×6 benchmark's infeasible states). Beyond by
-            // more than twice the round-off allowance: once for the bounds' (a tension that
-            // far past its bound counts as within it) and once for the facet's (its normal
-            // is orthogonal to the basis to about an ulp, and `wᵀT₀` rounds), so that the
-            // steps would never have found tensions where the facet says there are none.
-            if let Some(w) = beyond_a_facet(p, t0, threshold * T::from_f64(-2.0)) {
+            // more than `FACET_MARGIN` round-off allowances, not one or two: the steps'
+            // allowance grows with the largest tension they reach, and a tendon without a
+            // maximum can rise far above every tension and bound at this point (a review
+            // found 6.6× to 10⁵×); within it of a facet the steps could still call the
+            // state feasible, to round-off, and so they decide it there.
+            if let Some(w) = beyond_a_facet(p, t0, threshold * T::from_f64(-FACET_MARGIN)) {
                 if let Some(c) = certificate {
                     for (c, w) in c.iter_mut().zip(w) {
                         *c = T::from_f64(*w);

@@ -709,9 +709,11 @@ const FACET_CANDIDATES: usize = 64;
 /// the null vector of the basis restricted to them. Each is computed in double-double
 /// from the `f64` basis the problem holds (so that, rounded, it is orthogonal to that basis
 /// to about one ulp), taken with both signs, and kept where its support is finite (a tendon
-/// with no maximum that `w` would raise gives none). Subsets whose restricted basis has a
-/// null space of more than one dimension are passed over. None where there are more than
-/// `FACET_CANDIDATES` subsets: the distribution then finds such states by its own steps.
+/// with no maximum that `w` would raise gives none). Where the restricted basis has lower
+/// rank, its null space has more than one dimension and the one vector taken from it is
+/// still orthogonal to the basis: a valid inequality, if not an edge. None where there are
+/// more than `FACET_CANDIDATES` subsets: the distribution then finds such states by its own
+/// steps.
 pub fn facets<P: Problem<f64>>(problem: &P) -> Vec<(Vec<f64>, f64)> {
     let (k, d) = (problem.tendons(), problem.directions());
     let mut subsets = Vec::new();
@@ -743,7 +745,7 @@ pub fn facets<P: Problem<f64>>(problem: &P) -> Vec<(Vec<f64>, f64)> {
             continue;
         };
         let norm: DoubleDouble = along.iter().map(|x| x.abs()).sum();
-        // (A zero or non-finite null vector gives no facet.)
+        // (A non-finite null vector, from a non-finite basis, gives no facet.)
         if !norm.to_f64().is_normal() {
             continue;
         }
