@@ -1408,6 +1408,75 @@ mod tests {
         }
     }
 
+    /// A state a few round-off allowances beyond a facet that the steps call feasible, to
+    /// round-off, is left to them (a review's reproducer: tendon 2, which has no maximum,
+    /// rises to 2,359 N, and the steps' allowance with it, while the facet's excess is
+    /// 2.4e-12 against tensions of 264 N at the floors' optimum).
+    #[test]
+    fn a_state_within_the_steps_allowance_of_a_facet_is_theirs_to_decide() {
+        use core::array::from_fn;
+        let null = [
+            [
+                -0.0972390156742235,
+                0.06083589232711231,
+                0.9898619533169797,
+                -0.0837668276286371,
+            ],
+            [
+                -0.3632418561462206,
+                0.9194797812560288,
+                -0.08149900830052521,
+                0.12637324657871363,
+            ],
+        ];
+        let without = Fixed::<4, 2> {
+            null,
+            floor: [
+                2.4151545549176445,
+                4.09854442555112,
+                3.3503393386239653,
+                1.2163635301299032,
+            ],
+            max: [
+                f64::INFINITY,
+                66.27883691099393,
+                f64::INFINITY,
+                44.00436533405569,
+            ],
+            target: [-23.407739306292278, -3.4567150011464562],
+            inverse_length: from_fn(|k| inverse_length((0..2).map(|d| null[d][k]))),
+            facets: &[],
+        };
+        let facets: Vec<Facet<4>> = crate::tension::facets(&without)
+            .into_iter()
+            .map(|(w, support)| Facet {
+                normal: from_fn(|k| w[k]),
+                support,
+            })
+            .collect();
+        let with = Fixed {
+            facets: Vec::leak(facets),
+            ..without
+        };
+        let t0 = [
+            4639917473877081617u64,
+            4629496646545927410,
+            4630298538714497643,
+            4643326834752384848,
+        ]
+        .map(f64::from_bits);
+        let beyond = with.facets.iter().any(|f| dot(&f.normal, &t0) > f.support);
+        assert!(beyond, "the state lies beyond a facet");
+        let run = |p: &Fixed<4, 2>| {
+            let mut buffers = Buffers::<f64, 2>::new();
+            let mut t = [0.0; 4];
+            let status = solve(p, &t0, &mut buffers.work(), &mut t, None);
+            (status, t.map(f64::to_bits))
+        };
+        assert_eq!(run(&without).0, Status::Feasible);
+        assert_eq!(run(&with), run(&without));
+    }
+
     /// A state beyond a facet gets, at once, what the method's steps would have found: the
     /// same status and, bit for bit, the same tensions (the floors' optimum where the
     /// maxima cannot be met), with the facet's normal as the certificate. On seeded random
