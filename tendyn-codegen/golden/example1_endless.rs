@@ -28,11 +28,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
     let t819 = T::from_f64(0.03) * s56;
     let t828 = Real::mul_add(
         qdd[0],
-        c57 * T::from_f64(0.06) + T::from_f64(0.1247117),
+        Real::mul_add(c57, T::from_f64(0.06), T::from_f64(0.1247117)),
         Real::mul_add(
             qdd[1],
             t812,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t819)),
+            -(qd[1] * Real::mul_add(qd[0], s56 * T::from_f64(0.06), qd[1] * t819)),
         ),
     );
     let t834 = Real::mul_add(
@@ -58,10 +58,16 @@ pub fn actuation<T: Real>(
     let t859 = Real::mul_add(
         qdd[1],
         T::from_f64(0.03) * c57 + T::from_f64(-0.00833334999999993),
-        -(qd[0]
-            * (qd[0] * (s56 * T::from_f64(0.04499999999999987))
-                + qd[1] * (s56 * T::from_f64(0.06)))
-            + qd[1] * (qd[1] * (T::from_f64(0.03) * s56))),
+        -Real::mul_add(
+            qd[1],
+            qd[1] * (T::from_f64(0.03) * s56),
+            qd[0]
+                * Real::mul_add(
+                    qd[1],
+                    s56 * T::from_f64(0.06),
+                    qd[0] * (s56 * T::from_f64(0.04499999999999987)),
+                ),
+        ),
     );
     let t860 = Real::mul_add(
         qdd[0],
@@ -97,7 +103,7 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t57 = q[1].cos();
     let t792 = T::from_f64(0.03) * t57 + T::from_f64(0.0166967);
-    let t809 = t57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t809 = Real::mul_add(t57, T::from_f64(0.06), T::from_f64(0.1247117));
     [[t809, t792], [t792, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
@@ -110,7 +116,7 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t56 = q[1].sin();
     let t819 = T::from_f64(0.03) * t56;
-    let t826 = -(qd[1] * (qd[0] * (t56 * T::from_f64(0.06)) + qd[1] * t819));
+    let t826 = -(qd[1] * Real::mul_add(qd[0], t56 * T::from_f64(0.06), qd[1] * t819));
     let t832 = qd[0] * (qd[0] * t819);
     [t826, t832]
 }
@@ -138,10 +144,10 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 0],
 ) -> [T; 2] {
     let (s56, c57) = q[1].sin_cos();
-    let t809 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t809 = Real::mul_add(c57, T::from_f64(0.06), T::from_f64(0.1247117));
     let t819 = T::from_f64(0.03) * s56;
     let t873 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t819);
+        + qd[1] * Real::mul_add(qd[0], s56 * T::from_f64(0.06), qd[1] * t819);
     let t875 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t809;
     let t1024 = Real::mul_add(
         -t873,
@@ -171,9 +177,20 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2
     );
     let t945 = Real::mul_add(
         qdd[0],
-        T::from_f64(-0.4166675000000001) - c57 * T::from_f64(0.7500000000000001),
-        T::from_f64(20.0) - qd[0] * (qd[0] * (s56 * T::from_f64(0.7500000000000001)))
-            - qdd[1] * T::from_f64(0.4166675000000001),
+        Real::mul_add(
+            -c57,
+            T::from_f64(0.7500000000000001),
+            T::from_f64(-0.4166675000000001),
+        ),
+        Real::mul_add(
+            -qdd[1],
+            T::from_f64(0.4166675000000001),
+            Real::mul_add(
+                -qd[0],
+                qd[0] * (s56 * T::from_f64(0.7500000000000001)),
+                T::from_f64(20.0),
+            ),
+        ),
     );
     [t926, t945]
 }
@@ -201,11 +218,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t492 = T::from_f64(0.3) * t491;
     let t504 = t83 * t83;
     let t510 = T::from_f64(0.8)
-        * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
+        * (Real::mul_add(s56, t59, -(c57 * t492)) - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
     let t662 = T::from_f64(1.2) * t64;
     let t666 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t668 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t668 = s56 * t492 + Real::mul_add(t84, T::from_f64(0.125), c57 * t59);
     let t669 = T::from_f64(0.8) * t668;
     let t671 = Real::mul_add(-T::from_f64(0.1), t668, T::from_f64(0.0041667) * t84);
     let t673 = Real::mul_add(T::from_f64(0.2), t668, t671);
@@ -239,12 +256,12 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t733 = t709 - t729;
     let t734 = t712 + t732;
     let t738 = Real::mul_add(
-        -(t188 - T::from_f64(0.0006666666666666724) * s56),
+        -Real::mul_add(-T::from_f64(0.0006666666666666724), s56, t188),
         t709,
         Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t712,
     )
         + Real::mul_add(
-            -(t188 + T::from_f64(0.0006666666666666674) * s56),
+            -Real::mul_add(T::from_f64(0.0006666666666666674), s56, t188),
             t729,
             Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t732,
         );
@@ -279,7 +296,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t780 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
         - Real::mul_add(-c57, t761, s56 * t762);
     let t781 = t662 + Real::mul_add(c57, t762, s56 * t761);
-    let t787 = c57 * t766 + (s56 * t754 - T::from_f64(4.1202000000000005));
+    let t787 = Real::mul_add(
+        c57,
+        t766,
+        Real::mul_add(s56, t754, -T::from_f64(4.1202000000000005)),
+    );
     let t789 = Real::mul_add(T::from_f64(0.3), t781, t666 + t767)
         - Real::mul_add(-T::from_f64(1.4999999999999958), t673, t682);
     let t790 = t122 - t750
@@ -318,20 +339,20 @@ pub fn base_reaction<T: Real>(
     let t83 = qd[0] + qd[1];
     let t84 = qdd[0] + qdd[1];
     let t139 = s56 * T::from_f64(0.9810000000000001);
-    let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
+    let t154 = Real::mul_add(-c57, T::from_f64(0.9810000000000001), T::from_f64(1.7658))
         - T::from_f64(5.886);
-    let t169 = c55 * t139 - s54 * t154;
+    let t169 = Real::mul_add(-s54, t154, c55 * t139);
     let t172 = Real::mul_add(c55, t154, s54 * t139);
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
     let t504 = t83 * t83;
     let t510 = T::from_f64(0.8)
-        * (s56 * t59 - c57 * t492 - T::from_f64(0.25) * t504
+        * (Real::mul_add(s56, t59, -(c57 * t492)) - T::from_f64(0.25) * t504
             + T::from_f64(0.125) * t504);
-    let t668 = s56 * t492 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t668 = s56 * t492 + Real::mul_add(t84, T::from_f64(0.125), c57 * t59);
     let t669 = T::from_f64(0.8) * t668;
     let t678 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492)
-        - Real::mul_add(s56, t669, -(c57 * t510));
+        - Real::mul_add(-c57, t510, s56 * t669);
     let t679 = T::from_f64(1.2) * t64 + Real::mul_add(c57, t669, s56 * t510);
     let t685 = Real::mul_add(-s54, t679, c55 * t678);
     let t688 = Real::mul_add(c55, t679, s54 * t678);
@@ -390,15 +411,15 @@ pub fn all<T: Real>(
     let t120 = Real::mul_add(T::from_f64(0.6666666666666667), qdd[1], qdd[0]);
     let t122 = T::from_f64(0.000045) * t120;
     let t139 = s56 * T::from_f64(0.9810000000000001);
-    let t154 = T::from_f64(1.7658) - c57 * T::from_f64(0.9810000000000001)
+    let t154 = Real::mul_add(-c57, T::from_f64(0.9810000000000001), T::from_f64(1.7658))
         - T::from_f64(5.886);
-    let t169 = c55 * t139 - s54 * t154;
+    let t169 = Real::mul_add(-s54, t154, c55 * t139);
     let t172 = Real::mul_add(c55, t154, s54 * t139);
     let t184 = T::from_f64(0.019988885800753267) * s56;
     let t188 = T::from_f64(0.019988885800753267) * c57;
     let t191 = T::from_f64(0.029983328701129897) * s54;
     let t195 = T::from_f64(0.029983328701129897) * c55;
-    let t402 = T::from_f64(-0.18) + T::from_f64(0.1) * c57;
+    let t402 = Real::mul_add(T::from_f64(0.1), c57, T::from_f64(-0.18));
     let t491 = qd[0] * qd[0];
     let t492 = T::from_f64(0.3) * t491;
     let t495 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t491, -t492);
@@ -407,23 +428,26 @@ pub fn all<T: Real>(
     let t504 = t83 * t83;
     let t505 = T::from_f64(0.25) * t504;
     let t508 = T::from_f64(0.125) * t504;
-    let t510 = T::from_f64(0.8) * (s56 * t59 - t499 - t505 + t508);
+    let t510 = T::from_f64(0.8) * (Real::mul_add(s56, t59, -t499) - t505 + t508);
     let t641 = T::from_f64(0.1) * t501;
     let t662 = T::from_f64(1.2) * t64;
-    let t664 = T::from_f64(0.3) * (t402 + (t402 + T::from_f64(0.6)))
-        + T::from_f64(0.0527117);
+    let t664 = Real::mul_add(
+        T::from_f64(0.3),
+        t402 + (t402 + T::from_f64(0.6)),
+        T::from_f64(0.0527117),
+    );
     let t666 = Real::mul_add(-t64, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t668 = t501 + (c57 * t59 + t84 * T::from_f64(0.125));
+    let t668 = t501 + Real::mul_add(t84, T::from_f64(0.125), c57 * t59);
     let t669 = T::from_f64(0.8) * t668;
     let t671 = Real::mul_add(-T::from_f64(0.1), t668, T::from_f64(0.0041667) * t84);
     let t673 = Real::mul_add(T::from_f64(0.2), t668, t671);
-    let t678 = t495 - Real::mul_add(s56, t669, -(c57 * t510));
+    let t678 = t495 - Real::mul_add(-c57, t510, s56 * t669);
     let t679 = t662 + Real::mul_add(c57, t669, s56 * t510);
     let t682 = Real::mul_add(T::from_f64(0.3), t679, t666 + t673);
     let t685 = Real::mul_add(-s54, t679, c55 * t678);
     let t688 = Real::mul_add(c55, t679, s54 * t678);
     let t689 = t122 + t682;
-    let t690 = t120 * T::from_f64(0.000030000000000000004) + t673;
+    let t690 = Real::mul_add(t120, T::from_f64(0.000030000000000000004), t673);
     let t698 = Real::mul_add(-T::from_f64(1.4999999999999958), t673, t682);
     let t702 = t122
         + Real::mul_add(
@@ -456,12 +480,12 @@ pub fn all<T: Real>(
     let t733 = t709 - t729;
     let t734 = t712 + t732;
     let t738 = Real::mul_add(
-        -(t188 - T::from_f64(0.0006666666666666724) * s56),
+        -Real::mul_add(-T::from_f64(0.0006666666666666724), s56, t188),
         t709,
         Real::mul_add(T::from_f64(0.0006666666666666724), c57, t184) * t712,
     )
         + Real::mul_add(
-            -(t188 + T::from_f64(0.0006666666666666674) * s56),
+            -Real::mul_add(T::from_f64(0.0006666666666666674), s56, t188),
             t729,
             Real::mul_add(T::from_f64(0.0006666666666666674), c57, -t184) * t732,
         );
@@ -495,17 +519,23 @@ pub fn all<T: Real>(
     let t776 = Real::mul_add(-s56, t766, c57 * t754);
     let t780 = t495 - Real::mul_add(-c57, t761, s56 * t762);
     let t781 = t662 + Real::mul_add(c57, t762, s56 * t761);
-    let t787 = c57 * t766 + (s56 * t754 - T::from_f64(4.1202000000000005));
+    let t787 = Real::mul_add(
+        c57,
+        t766,
+        Real::mul_add(s56, t754, -T::from_f64(4.1202000000000005)),
+    );
     let t789 = Real::mul_add(T::from_f64(0.3), t781, t666 + t767) - t698;
     let t790 = t122 - t750 - t702;
     let t792 = T::from_f64(0.03) * c57 + T::from_f64(0.0166967);
-    let t793 = t641
-        + T::from_f64(0.3)
-            * Real::mul_add(
-                c57,
-                T::from_f64(0.8) * t501,
-                T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
-            );
+    let t793 = Real::mul_add(
+        T::from_f64(0.3),
+        Real::mul_add(
+            c57,
+            T::from_f64(0.8) * t501,
+            T::from_f64(0.8) * (s56 * (t508 - (t499 + t505))),
+        ),
+        t641,
+    );
     let t794 = motor_torques[0] + motor_torques[1] - t793;
     let t796 = t792 / t664;
     let t803 = Real::mul_add(

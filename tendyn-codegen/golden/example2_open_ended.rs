@@ -31,11 +31,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
     let t1344 = s77 * T::from_f64(0.03);
     let t1353 = Real::mul_add(
         qdd[0],
-        c78 * T::from_f64(0.06) + T::from_f64(0.1247117),
+        Real::mul_add(c78, T::from_f64(0.06), T::from_f64(0.1247117)),
         Real::mul_add(
             qdd[1],
             t1105,
-            -(qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1344)),
+            -(qd[1] * Real::mul_add(qd[1], t1344, qd[0] * (s77 * T::from_f64(0.06)))),
         ),
     );
     let t1359 = Real::mul_add(
@@ -61,8 +61,11 @@ pub fn actuation<T: Real>(
     let t1362 = c78 * T::from_f64(0.22058823529411686);
     let t1368 = c78 * T::from_f64(0.2647058823529412);
     let t1386 = qd[0]
-        * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
-            + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
+        * Real::mul_add(
+            qd[1],
+            s77 * T::from_f64(0.5294117647058824),
+            qd[0] * (s77 * T::from_f64(0.7499999999999992)),
+        );
     let t1393 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
     let t1401 = c78 * T::from_f64(1.279411764705882);
     let t1406 = c78 * T::from_f64(0.2647058823529411);
@@ -94,10 +97,18 @@ pub fn actuation<T: Real>(
         );
     let t1457 = Real::mul_add(
         qdd[0],
-        T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
+        Real::mul_add(
+            -c78,
+            T::from_f64(0.47058823529411764),
+            T::from_f64(-0.9781309803921567),
+        ),
         Real::mul_add(
             qdd[1],
-            T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588),
+            Real::mul_add(
+                -c78,
+                T::from_f64(0.2352941176470588),
+                T::from_f64(-0.13071921568627454),
+            ),
             Real::mul_add(
                 qd[1],
                 Real::mul_add(
@@ -143,11 +154,13 @@ pub fn actuation<T: Real>(
                 T::from_f64(0.19607882352941183),
             ),
             Real::mul_add(
-                T::from_f64(1.5000000000000002),
-                t1458,
-                -(qd[1]
-                    * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
+                -qd[1],
+                Real::mul_add(
+                    qd[1],
+                    s77 * T::from_f64(0.35294117647058826),
+                    qd[0] * (s77 * T::from_f64(0.7058823529411765)),
+                ),
+                T::from_f64(1.5000000000000002) * t1458,
             ),
         ),
     );
@@ -163,7 +176,7 @@ pub fn actuation<T: Real>(
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
     let t1105 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1336 = t78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1336 = Real::mul_add(t78, T::from_f64(0.06), T::from_f64(0.1247117));
     [[t1336, t1105], [t1105, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
@@ -176,7 +189,8 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t77 = q[1].sin();
     let t1344 = t77 * T::from_f64(0.03);
-    let t1351 = -(qd[1] * (qd[0] * (t77 * T::from_f64(0.06)) + qd[1] * t1344));
+    let t1351 = -(qd[1]
+        * Real::mul_add(qd[1], t1344, qd[0] * (t77 * T::from_f64(0.06))));
     let t1357 = qd[0] * (qd[0] * t1344);
     [t1351, t1357]
 }
@@ -204,9 +218,9 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
-    let t1336 = c78 * T::from_f64(0.06) + T::from_f64(0.1247117);
+    let t1336 = Real::mul_add(c78, T::from_f64(0.06), T::from_f64(0.1247117));
     let t1344 = s77 * T::from_f64(0.03);
-    let t1519 = qd[1] * (qd[0] * (s77 * T::from_f64(0.06)) + qd[1] * t1344)
+    let t1519 = qd[1] * Real::mul_add(qd[1], t1344, qd[0] * (s77 * T::from_f64(0.06)))
         + (T::from_f64(0.04) * tendon_tensions[2]
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
@@ -215,9 +229,9 @@ pub fn forward_dynamics<T: Real>(
         -t1519,
         t1521,
         Real::mul_add(
-            T::from_f64(0.02),
-            tendon_tensions[0],
-            -(T::from_f64(0.02) * tendon_tensions[1]),
+            -T::from_f64(0.02),
+            tendon_tensions[1],
+            T::from_f64(0.02) * tendon_tensions[0],
         ) - qd[0] * (qd[0] * t1344),
     ) / Real::mul_add(-t1336, t1521 * t1521, T::from_f64(0.0166867));
     let t1662 = Real::mul_add(-t1521, t1660, t1519 / t1336);
@@ -235,8 +249,11 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
     let t1362 = c78 * T::from_f64(0.22058823529411686);
     let t1368 = c78 * T::from_f64(0.2647058823529412);
     let t1386 = qd[0]
-        * (qd[0] * (s77 * T::from_f64(0.7499999999999992))
-            + qd[1] * (s77 * T::from_f64(0.5294117647058824)));
+        * Real::mul_add(
+            qd[1],
+            s77 * T::from_f64(0.5294117647058824),
+            qd[0] * (s77 * T::from_f64(0.7499999999999992)),
+        );
     let t1393 = qd[1] * (qd[1] * (s77 * T::from_f64(0.2647058823529412)));
     let t1401 = c78 * T::from_f64(1.279411764705882);
     let t1406 = c78 * T::from_f64(0.2647058823529411);
@@ -268,10 +285,18 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
         );
     let t1457 = Real::mul_add(
         qdd[0],
-        T::from_f64(-0.9781309803921567) - c78 * T::from_f64(0.47058823529411764),
+        Real::mul_add(
+            -c78,
+            T::from_f64(0.47058823529411764),
+            T::from_f64(-0.9781309803921567),
+        ),
         Real::mul_add(
             qdd[1],
-            T::from_f64(-0.13071921568627454) - c78 * T::from_f64(0.2352941176470588),
+            Real::mul_add(
+                -c78,
+                T::from_f64(0.2352941176470588),
+                T::from_f64(-0.13071921568627454),
+            ),
             Real::mul_add(
                 qd[1],
                 Real::mul_add(
@@ -311,11 +336,13 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
                 T::from_f64(0.19607882352941183),
             ),
             Real::mul_add(
-                T::from_f64(1.5000000000000002),
-                t1458,
-                -(qd[1]
-                    * (qd[0] * (s77 * T::from_f64(0.7058823529411765))
-                        + qd[1] * (s77 * T::from_f64(0.35294117647058826)))),
+                -qd[1],
+                Real::mul_add(
+                    qd[1],
+                    s77 * T::from_f64(0.35294117647058826),
+                    qd[0] * (s77 * T::from_f64(0.7058823529411765)),
+                ),
+                T::from_f64(1.5000000000000002) * t1458,
             ),
         ),
     );
@@ -349,9 +376,9 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t143 = qdd[0] - t141;
     let t147 = qdd[0] + t141;
     let t244 = Real::mul_add(
-        T::from_f64(0.019720265943665386),
-        s77,
-        -(c78 * T::from_f64(0.0033333333333333305)),
+        -c78,
+        T::from_f64(0.0033333333333333305),
+        T::from_f64(0.019720265943665386) * s77,
     );
     let t248 = Real::mul_add(
         T::from_f64(0.019720265943665386),
@@ -359,17 +386,20 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         s77 * T::from_f64(0.0033333333333333305),
     );
     let t292 = Real::mul_add(
-        T::from_f64(0.0006666666666666674),
-        c78,
-        -(s77 * T::from_f64(0.019988885800753267)),
+        -s77,
+        T::from_f64(0.019988885800753267),
+        T::from_f64(0.0006666666666666674) * c78,
     );
-    let t297 = T::from_f64(0.0006666666666666674) * s77
-        + c78 * T::from_f64(0.019988885800753267);
+    let t297 = Real::mul_add(
+        c78,
+        T::from_f64(0.019988885800753267),
+        T::from_f64(0.0006666666666666674) * s77,
+    );
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t873 = t104 * t104;
     let t879 = T::from_f64(0.8)
-        * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
+        * (Real::mul_add(s77, t80, -(c78 * t861)) - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
@@ -381,7 +411,7 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t934 = Real::mul_add(-c78, t928, s77 * t926);
     let t1131 = T::from_f64(1.2) * t85;
     let t1135 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1137 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1137 = s77 * t861 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
     let t1138 = T::from_f64(0.8) * t1137;
     let t1140 = Real::mul_add(-T::from_f64(0.1), t1137, T::from_f64(0.0041667) * t105);
     let t1163 = t1138 - (t921 + t934);
@@ -427,8 +457,8 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t1189 = t1175 + t1188;
     let t1190 = t1188 - t1178;
     let t1192 = Real::mul_add(T::from_f64(1.5000000000000002), t1188, t1181);
-    let t1193 = t143 * T::from_f64(0.0007500000000000001) + t1189;
-    let t1194 = t147 * T::from_f64(0.0007500000000000001) + t1190;
+    let t1193 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t1189);
+    let t1194 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t1190);
     let t1195 = T::from_f64(0.9860132971832694) * t1193;
     let t1196 = T::from_f64(0.16666666666666652) * t1193;
     let t1199 = Real::mul_add(s77, t1196, c78 * t1195);
@@ -460,9 +490,9 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         T::from_f64(0.009173546985593762) * c76,
     ) * t1256;
     let t1258 = Real::mul_add(
-        T::from_f64(0.03893386746398441),
-        c76,
-        -(T::from_f64(0.009173546985593762) * s75),
+        -T::from_f64(0.009173546985593762),
+        s75,
+        T::from_f64(0.03893386746398441) * c76,
     ) * t1253;
     let t1260 = Real::mul_add(T::from_f64(0.9968453000901664), t1190, -t1236);
     let t1261 = Real::mul_add(T::from_f64(0.0793690600180332), t1190, -t1239);
@@ -472,15 +502,15 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             t1190,
             Real::mul_add(
                 -Real::mul_add(
-                    T::from_f64(0.0010000000000000009),
-                    s75,
-                    -(c76 * T::from_f64(0.029983328701129897)),
+                    -c76,
+                    T::from_f64(0.029983328701129897),
+                    T::from_f64(0.0010000000000000009) * s75,
                 ),
                 t1236,
                 Real::mul_add(
-                    T::from_f64(0.0010000000000000009),
-                    c76,
-                    s75 * T::from_f64(0.029983328701129897),
+                    s75,
+                    T::from_f64(0.029983328701129897),
+                    T::from_f64(0.0010000000000000009) * c76,
                 ) * t1239,
             ),
         );
@@ -492,15 +522,15 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
-                    T::from_f64(0.004999999999999996),
-                    s75,
-                    -(c76 * T::from_f64(0.02958039891549808)),
+                    -c76,
+                    T::from_f64(0.02958039891549808),
+                    T::from_f64(0.004999999999999996) * s75,
                 ),
                 t1208,
                 Real::mul_add(
-                    T::from_f64(0.004999999999999996),
-                    c76,
-                    s75 * T::from_f64(0.02958039891549808),
+                    s75,
+                    T::from_f64(0.02958039891549808),
+                    T::from_f64(0.004999999999999996) * c76,
                 ) * t1211,
             ),
         );
@@ -514,8 +544,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t1287 = t879 + (t1199 + t1227);
     let t1288 = t1138 - (t1202 + t1230);
     let t1289 = Real::mul_add(-T::from_f64(0.01), t1230, T::from_f64(0.01) * t1202);
-    let t1294 = T::from_f64(0.01) * t1199 - T::from_f64(0.9810000000000001)
-        - T::from_f64(0.01) * t1227;
+    let t1294 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1227,
+        Real::mul_add(T::from_f64(0.01), t1199, -T::from_f64(0.9810000000000001)),
+    );
     let t1295 = Real::mul_add(
         T::from_f64(0.25),
         t1288,
@@ -527,7 +560,11 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t1311 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
         - (t1253 + Real::mul_add(-c78, t1287, s77 * t1288));
     let t1312 = t1131 - (t1256 - Real::mul_add(c78, t1288, s77 * t1287));
-    let t1318 = c78 * t1294 + (s77 * t1289 - T::from_f64(4.1202000000000005));
+    let t1318 = Real::mul_add(
+        c78,
+        t1294,
+        Real::mul_add(s77, t1289, -T::from_f64(4.1202000000000005)),
+    );
     let t1319 = Real::mul_add(
         T::from_f64(0.3),
         t1312,
@@ -569,20 +606,20 @@ pub fn base_reaction<T: Real>(
     let t105 = qdd[0] + qdd[1];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
     let t168 = s77 * T::from_f64(0.9810000000000001);
-    let t182 = T::from_f64(1.7658) - c78 * T::from_f64(0.9810000000000001)
+    let t182 = Real::mul_add(-c78, T::from_f64(0.9810000000000001), T::from_f64(1.7658))
         - T::from_f64(5.886);
-    let t197 = c76 * t168 - s75 * t182;
+    let t197 = Real::mul_add(-s75, t182, c76 * t168);
     let t200 = Real::mul_add(c76, t182, s75 * t168);
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t873 = t104 * t104;
     let t879 = T::from_f64(0.8)
-        * (s77 * t80 - c78 * t861 - T::from_f64(0.25) * t873
+        * (Real::mul_add(s77, t80, -(c78 * t861)) - T::from_f64(0.25) * t873
             + T::from_f64(0.125) * t873);
-    let t1137 = s77 * t861 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1137 = s77 * t861 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
     let t1138 = T::from_f64(0.8) * t1137;
     let t1147 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861)
-        - Real::mul_add(s77, t1138, -(c78 * t879));
+        - Real::mul_add(-c78, t879, s77 * t1138);
     let t1148 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1138, s77 * t879);
     let t1154 = Real::mul_add(-s75, t1148, c76 * t1147);
     let t1157 = Real::mul_add(c76, t1148, s75 * t1147);
@@ -648,14 +685,14 @@ pub fn all<T: Real>(
     let t147 = qdd[0] + t141;
     let t149 = T::from_f64(0.0000225) * t147;
     let t168 = s77 * T::from_f64(0.9810000000000001);
-    let t182 = T::from_f64(1.7658) - c78 * T::from_f64(0.9810000000000001)
+    let t182 = Real::mul_add(-c78, T::from_f64(0.9810000000000001), T::from_f64(1.7658))
         - T::from_f64(5.886);
-    let t197 = c76 * t168 - s75 * t182;
+    let t197 = Real::mul_add(-s75, t182, c76 * t168);
     let t200 = Real::mul_add(c76, t182, s75 * t168);
     let t244 = Real::mul_add(
-        T::from_f64(0.019720265943665386),
-        s77,
-        -(c78 * T::from_f64(0.0033333333333333305)),
+        -c78,
+        T::from_f64(0.0033333333333333305),
+        T::from_f64(0.019720265943665386) * s77,
     );
     let t248 = Real::mul_add(
         T::from_f64(0.019720265943665386),
@@ -663,13 +700,16 @@ pub fn all<T: Real>(
         s77 * T::from_f64(0.0033333333333333305),
     );
     let t292 = Real::mul_add(
-        T::from_f64(0.0006666666666666674),
-        c78,
-        -(s77 * T::from_f64(0.019988885800753267)),
+        -s77,
+        T::from_f64(0.019988885800753267),
+        T::from_f64(0.0006666666666666674) * c78,
     );
-    let t297 = T::from_f64(0.0006666666666666674) * s77
-        + c78 * T::from_f64(0.019988885800753267);
-    let t759 = T::from_f64(-0.18) + T::from_f64(0.1) * c78;
+    let t297 = Real::mul_add(
+        c78,
+        T::from_f64(0.019988885800753267),
+        T::from_f64(0.0006666666666666674) * s77,
+    );
+    let t759 = Real::mul_add(T::from_f64(0.1), c78, T::from_f64(-0.18));
     let t860 = qd[0] * qd[0];
     let t861 = T::from_f64(0.3) * t860;
     let t864 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t860, -t861);
@@ -678,7 +718,7 @@ pub fn all<T: Real>(
     let t873 = t104 * t104;
     let t874 = T::from_f64(0.25) * t873;
     let t877 = T::from_f64(0.125) * t873;
-    let t879 = T::from_f64(0.8) * (s77 * t80 - t868 - t874 + t877);
+    let t879 = T::from_f64(0.8) * (Real::mul_add(s77, t80, -t868) - t874 + t877);
     let t913 = t143 * T::from_f64(0.0007395099728874521);
     let t915 = t143 * T::from_f64(0.00012499999999999992);
     let t918 = Real::mul_add(s77, t915, c78 * t913);
@@ -690,22 +730,28 @@ pub fn all<T: Real>(
     let t1105 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
     let t1110 = T::from_f64(0.1) * t870;
     let t1131 = T::from_f64(1.2) * t85;
-    let t1133 = T::from_f64(0.3) * (t759 + (t759 + T::from_f64(0.6)))
-        + T::from_f64(0.0527117);
+    let t1133 = Real::mul_add(
+        T::from_f64(0.3),
+        t759 + (t759 + T::from_f64(0.6)),
+        T::from_f64(0.0527117),
+    );
     let t1135 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1137 = t870 + (c78 * t80 + t105 * T::from_f64(0.125));
+    let t1137 = t870 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
     let t1138 = T::from_f64(0.8) * t1137;
     let t1140 = Real::mul_add(-T::from_f64(0.1), t1137, T::from_f64(0.0041667) * t105);
     let t1142 = Real::mul_add(T::from_f64(0.2), t1137, t1140);
-    let t1147 = t864 - Real::mul_add(s77, t1138, -(c78 * t879));
+    let t1147 = t864 - Real::mul_add(-c78, t879, s77 * t1138);
     let t1148 = t1131 + Real::mul_add(c78, t1138, s77 * t879);
     let t1151 = Real::mul_add(T::from_f64(0.3), t1148, t1135 + t1142);
     let t1154 = Real::mul_add(-s75, t1148, c76 * t1147);
     let t1157 = Real::mul_add(c76, t1148, s75 * t1147);
     let t1158 = t145 + t149 + t1151;
     let t1161 = t149 + (t145 + t1151);
-    let t1162 = t147 * T::from_f64(0.000015000000000000002)
-        + (t1142 - t143 * T::from_f64(0.000015000000000000002));
+    let t1162 = Real::mul_add(
+        t147,
+        T::from_f64(0.000015000000000000002),
+        Real::mul_add(-t143, T::from_f64(0.000015000000000000002), t1142),
+    );
     let t1163 = t1138 - (t921 + t934);
     let t1166 = Real::mul_add(
         T::from_f64(0.25),
@@ -749,8 +795,8 @@ pub fn all<T: Real>(
     let t1189 = t1175 + t1188;
     let t1190 = t1188 - t1178;
     let t1192 = Real::mul_add(T::from_f64(1.5000000000000002), t1188, t1181);
-    let t1193 = t143 * T::from_f64(0.0007500000000000001) + t1189;
-    let t1194 = t147 * T::from_f64(0.0007500000000000001) + t1190;
+    let t1193 = Real::mul_add(t143, T::from_f64(0.0007500000000000001), t1189);
+    let t1194 = Real::mul_add(t147, T::from_f64(0.0007500000000000001), t1190);
     let t1195 = T::from_f64(0.9860132971832694) * t1193;
     let t1196 = T::from_f64(0.16666666666666652) * t1193;
     let t1199 = Real::mul_add(s77, t1196, c78 * t1195);
@@ -782,9 +828,9 @@ pub fn all<T: Real>(
         T::from_f64(0.009173546985593762) * c76,
     ) * t1256;
     let t1258 = Real::mul_add(
-        T::from_f64(0.03893386746398441),
-        c76,
-        -(T::from_f64(0.009173546985593762) * s75),
+        -T::from_f64(0.009173546985593762),
+        s75,
+        T::from_f64(0.03893386746398441) * c76,
     ) * t1253;
     let t1260 = Real::mul_add(T::from_f64(0.9968453000901664), t1190, -t1236);
     let t1261 = Real::mul_add(T::from_f64(0.0793690600180332), t1190, -t1239);
@@ -794,15 +840,15 @@ pub fn all<T: Real>(
             t1190,
             Real::mul_add(
                 -Real::mul_add(
-                    T::from_f64(0.0010000000000000009),
-                    s75,
-                    -(c76 * T::from_f64(0.029983328701129897)),
+                    -c76,
+                    T::from_f64(0.029983328701129897),
+                    T::from_f64(0.0010000000000000009) * s75,
                 ),
                 t1236,
                 Real::mul_add(
-                    T::from_f64(0.0010000000000000009),
-                    c76,
-                    s75 * T::from_f64(0.029983328701129897),
+                    s75,
+                    T::from_f64(0.029983328701129897),
+                    T::from_f64(0.0010000000000000009) * c76,
                 ) * t1239,
             ),
         );
@@ -814,15 +860,15 @@ pub fn all<T: Real>(
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
-                    T::from_f64(0.004999999999999996),
-                    s75,
-                    -(c76 * T::from_f64(0.02958039891549808)),
+                    -c76,
+                    T::from_f64(0.02958039891549808),
+                    T::from_f64(0.004999999999999996) * s75,
                 ),
                 t1208,
                 Real::mul_add(
-                    T::from_f64(0.004999999999999996),
-                    c76,
-                    s75 * T::from_f64(0.02958039891549808),
+                    s75,
+                    T::from_f64(0.02958039891549808),
+                    T::from_f64(0.004999999999999996) * c76,
                 ) * t1211,
             ),
         );
@@ -836,8 +882,11 @@ pub fn all<T: Real>(
     let t1287 = t879 + (t1199 + t1227);
     let t1288 = t1138 - (t1202 + t1230);
     let t1289 = Real::mul_add(-T::from_f64(0.01), t1230, T::from_f64(0.01) * t1202);
-    let t1294 = T::from_f64(0.01) * t1199 - T::from_f64(0.9810000000000001)
-        - T::from_f64(0.01) * t1227;
+    let t1294 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1227,
+        Real::mul_add(T::from_f64(0.01), t1199, -T::from_f64(0.9810000000000001)),
+    );
     let t1295 = Real::mul_add(
         T::from_f64(0.25),
         t1288,
@@ -848,19 +897,25 @@ pub fn all<T: Real>(
     let t1304 = Real::mul_add(-s77, t1294, c78 * t1289);
     let t1311 = t864 - (t1253 + Real::mul_add(-c78, t1287, s77 * t1288));
     let t1312 = t1131 - (t1256 - Real::mul_add(c78, t1288, s77 * t1287));
-    let t1318 = c78 * t1294 + (s77 * t1289 - T::from_f64(4.1202000000000005));
+    let t1318 = Real::mul_add(
+        c78,
+        t1294,
+        Real::mul_add(s77, t1289, -T::from_f64(4.1202000000000005)),
+    );
     let t1319 = Real::mul_add(
         T::from_f64(0.3),
         t1312,
         t1135 - (Real::mul_add(-T::from_f64(0.3), t1256, t1257 - t1258) - t1295),
     );
-    let t1320 = t1110
-        + T::from_f64(0.3)
-            * Real::mul_add(
-                c78,
-                T::from_f64(0.8) * t870,
-                T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
-            );
+    let t1320 = Real::mul_add(
+        T::from_f64(0.3),
+        Real::mul_add(
+            c78,
+            T::from_f64(0.8) * t870,
+            T::from_f64(0.8) * (s77 * (t877 - (t868 + t874))),
+        ),
+        t1110,
+    );
     let t1321 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
             + tendon_tensions[1] * T::from_f64(0.03)) - t1320;
@@ -869,9 +924,9 @@ pub fn all<T: Real>(
         -t1321,
         t1323,
         Real::mul_add(
-            T::from_f64(0.02),
-            tendon_tensions[0],
-            -(T::from_f64(0.02) * tendon_tensions[1]),
+            -T::from_f64(0.02),
+            tendon_tensions[1],
+            T::from_f64(0.02) * tendon_tensions[0],
         ) - t1110,
     ) / Real::mul_add(-t1133, t1323 * t1323, T::from_f64(0.0166867));
     let t1332 = Real::mul_add(-t1323, t1330, t1321 / t1133);

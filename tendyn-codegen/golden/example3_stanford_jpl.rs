@@ -52,8 +52,11 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
         Real::mul_add(
             c113,
             t4501 + T::from_f64(0.000042000000000000004),
-            t4493 + T::from_f64(0.00009551400000000001)
-                - s114 * (s114 * T::from_f64(0.0000104)),
+            Real::mul_add(
+                -s114,
+                s114 * T::from_f64(0.0000104),
+                t4493 + T::from_f64(0.00009551400000000001),
+            ),
         ),
     );
     let t4523 = s114 * (s114 * T::from_f64(0.0000416));
@@ -119,7 +122,8 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
                 t4589,
             ))
         + (Real::mul_add(c113, t4606 + T::from_f64(0.017167500000000002), -t4613)
-            - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238));
+            - qd[2]
+                * Real::mul_add(qd[2], t3238, qd[1] * (s114 * T::from_f64(0.00004))));
     let t4620 = Real::mul_add(
         qdd[1],
         t4493 + T::from_f64(0.000086946),
@@ -171,17 +175,18 @@ pub fn actuation<T: Real>(
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
-    let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
+    let t186 = t152 * t173 - Real::mul_add(T::from_f64(0.05), t159, t118);
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186)
+        - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t249 = Real::mul_add(
-        c115,
-        t159,
-        -(s114 * Real::mul_add(qdd[0], s112, qd[1] * t153)),
+        -s114,
+        Real::mul_add(qdd[0], s112, qd[1] * t153),
+        c115 * t159,
     ) - qd[2] * t233;
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
@@ -200,16 +205,23 @@ pub fn actuation<T: Real>(
     let t2976 = Real::mul_add(
         -T::from_f64(0.002142857142857143),
         t2970,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+        Real::mul_add(qdd[0], T::from_f64(0.004285714285714286), -t118),
     );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
-    let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * (t153 * T::from_f64(0.025));
-    let t3084 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333))
-        * T::from_f64(0.000005999999999999999);
+        + Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            T::from_f64(9.81) * c113 + s112 * t2971,
+        );
+    let t2992 = Real::mul_add(-qdd[1], T::from_f64(0.025), t2989)
+        - t152 * (t153 * T::from_f64(0.025));
+    let t3084 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    ) * T::from_f64(0.000005999999999999999);
     let t3086 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t3087 = t3084 - t3086;
@@ -238,38 +250,42 @@ pub fn actuation<T: Real>(
         -T::from_f64(0.04),
         t3100,
         Real::mul_add(
-            s114 * T::from_f64(0.00015999999999999828) + t630,
+            Real::mul_add(s114, T::from_f64(0.00015999999999999828), t630),
             t3097,
-            (t626 - c115 * T::from_f64(0.00015999999999999828)) * t3100,
+            Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t626) * t3100,
         ),
     )
         - Real::mul_add(
             T::from_f64(0.04),
             t3115,
             Real::mul_add(
-                s114 * T::from_f64(0.00016000000000000026) - t630,
+                Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t630),
                 t3112,
-                (t626 + c115 * T::from_f64(0.00016000000000000026)) * t3115,
+                Real::mul_add(c115, T::from_f64(0.00016000000000000026), t626) * t3115,
             ),
         );
     let t3156 = T::from_f64(0.02)
-        * (Real::mul_add(t237, t285, t245 * t283)
+        * (Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3871 = t233 * t263 + Real::mul_add(-T::from_f64(0.02), t249, t186)
+        - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
-        - t233 * t285;
+    let t3886 = Real::mul_add(
+        c115,
+        t2989,
+        Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+    ) - s114 * t2988 - t233 * t285;
     let t3939 = T::from_f64(0.02) * t3886 - (t3100 + t3115);
     let t3943 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
         + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
         - T::from_f64(0.0008) * t3871;
-    let t3944 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3886
-        - t3155 + T::from_f64(0.04) * t3939;
-    let t3958 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+    let t3944 = Real::mul_add(t233, t301, T::from_f64(0.000003) * t250)
+        - T::from_f64(0.0004) * t3886 - t3155 + T::from_f64(0.04) * t3939;
+    let t3958 = Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1])
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
@@ -295,17 +311,27 @@ pub fn actuation<T: Real>(
             t3960,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3943, -(c115 * t3158))
+                    - (Real::mul_add(-c115, t3158, s114 * t3943)
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3967 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + Real::mul_add(
-            T::from_f64(0.00006),
-            t2976,
-            T::from_f64(0.00003)
-                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                    + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3965 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3967 = Real::mul_add(
+        -T::from_f64(0.012),
+        Real::mul_add(T::from_f64(0.014), t2976, t3873),
+        Real::mul_add(
+            T::from_f64(0.0000022215714285714285),
+            qdd[0],
+            Real::mul_add(
+                T::from_f64(0.00006),
+                t2976,
+                T::from_f64(0.00003)
+                    * Real::mul_add(
+                        T::from_f64(0.004285714285714286),
+                        t2970,
+                        Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t2971),
+                    ),
+            ),
+        ) - t3965,
+    );
     let t3972 = Real::mul_add(
         T::from_f64(68.34719334719333),
         t3944,
@@ -369,17 +395,27 @@ pub fn mass_matrix<T: Real>(q: &[T; 3]) -> [[T; 3]; 3] {
             s114
                 * Real::mul_add(
                     c113,
-                    T::from_f64(-0.00004) - c115 * T::from_f64(0.000020800000000000004),
-                    T::from_f64(-0.000009600000000000001)
-                        + s112 * (s114 * T::from_f64(0.000020800000000000004)),
+                    Real::mul_add(
+                        -c115,
+                        T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.00004),
+                    ),
+                    Real::mul_add(
+                        s112,
+                        s114 * T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.000009600000000000001),
+                    ),
                 ),
         ),
         Real::mul_add(
             c113,
             c115 * T::from_f64(0.000009600000000000001)
                 + T::from_f64(0.00004200000000000001),
-            t4493 + T::from_f64(0.00009551400000000003)
-                - s114 * (s114 * T::from_f64(0.000010400000000000002)),
+            Real::mul_add(
+                -s114,
+                s114 * T::from_f64(0.000010400000000000002),
+                t4493 + T::from_f64(0.00009551400000000003),
+            ),
         ),
     );
     let t5269 = t4493 + T::from_f64(0.00008694600000000003);
@@ -473,7 +509,8 @@ pub fn bias<T: Real>(q: &[T; 3], qd: &[T; 3]) -> [T; 3] {
                     ),
                 ),
                 t4589,
-            )) - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238);
+            ))
+        - qd[2] * Real::mul_add(qd[2], t3238, qd[1] * (s114 * T::from_f64(0.00004)));
     let t5271 = t4636 + qd[1] * (qd[1] * t3238);
     [t4560, t5270, t5271]
 }
@@ -527,16 +564,26 @@ pub fn forward_dynamics<T: Real>(
             s114
                 * Real::mul_add(
                     c113,
-                    T::from_f64(-0.00004) - c115 * T::from_f64(0.000020800000000000004),
-                    T::from_f64(-0.000009600000000000001)
-                        + s112 * (s114 * T::from_f64(0.000020800000000000004)),
+                    Real::mul_add(
+                        -c115,
+                        T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.00004),
+                    ),
+                    Real::mul_add(
+                        s112,
+                        s114 * T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.000009600000000000001),
+                    ),
                 ),
         ),
         Real::mul_add(
             c113,
             t4501 + T::from_f64(0.00004200000000000001),
-            t4493 + T::from_f64(0.00009551400000000003)
-                - s114 * (s114 * T::from_f64(0.000010400000000000002)),
+            Real::mul_add(
+                -s114,
+                s114 * T::from_f64(0.000010400000000000002),
+                t4493 + T::from_f64(0.00009551400000000003),
+            ),
         ),
     );
     let t5286 = t4481 + T::from_f64(0.00004);
@@ -579,7 +626,8 @@ pub fn forward_dynamics<T: Real>(
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
     let t5382 = T::from_f64(0.000000024000000000000003) / t5267;
-    let t5537 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t3238)
+    let t5537 = qd[2]
+        * Real::mul_add(qd[2], t3238, qd[1] * (s114 * T::from_f64(0.00004)))
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
                 + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t4606, t4613)
@@ -660,17 +708,18 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
-    let t208 = t186 + t159 * T::from_f64(0.025) - t152 * (qd[1] * T::from_f64(0.025));
+    let t186 = t152 * t173 - Real::mul_add(T::from_f64(0.05), t159, t118);
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186)
+        - t152 * (qd[1] * T::from_f64(0.025));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t249 = Real::mul_add(
-        c115,
-        t159,
-        -(s114 * Real::mul_add(qdd[0], s112, qd[1] * t153)),
+        -s114,
+        Real::mul_add(qdd[0], s112, qd[1] * t153),
+        c115 * t159,
     ) - qd[2] * t233;
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
@@ -689,16 +738,23 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
     let t2976 = Real::mul_add(
         -T::from_f64(0.002142857142857143),
         t2970,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+        Real::mul_add(qdd[0], T::from_f64(0.004285714285714286), -t118),
     );
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
-    let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * (t153 * T::from_f64(0.025));
-    let t3084 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333))
-        * T::from_f64(0.000005999999999999999);
+        + Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            T::from_f64(9.81) * c113 + s112 * t2971,
+        );
+    let t2992 = Real::mul_add(-qdd[1], T::from_f64(0.025), t2989)
+        - t152 * (t153 * T::from_f64(0.025));
+    let t3084 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    ) * T::from_f64(0.000005999999999999999);
     let t3086 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t3087 = t3084 - t3086;
@@ -727,38 +783,42 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
         -T::from_f64(0.04),
         t3100,
         Real::mul_add(
-            s114 * T::from_f64(0.00015999999999999828) + t630,
+            Real::mul_add(s114, T::from_f64(0.00015999999999999828), t630),
             t3097,
-            (t626 - c115 * T::from_f64(0.00015999999999999828)) * t3100,
+            Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t626) * t3100,
         ),
     )
         - Real::mul_add(
             T::from_f64(0.04),
             t3115,
             Real::mul_add(
-                s114 * T::from_f64(0.00016000000000000026) - t630,
+                Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t630),
                 t3112,
-                (t626 + c115 * T::from_f64(0.00016000000000000026)) * t3115,
+                Real::mul_add(c115, T::from_f64(0.00016000000000000026), t626) * t3115,
             ),
         );
     let t3156 = T::from_f64(0.02)
-        * (Real::mul_add(t237, t285, t245 * t283)
+        * (Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264))) - (t3112 - t3097);
     let t3158 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3871 = t233 * t263 + Real::mul_add(-T::from_f64(0.02), t249, t186)
+        - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
-        - t233 * t285;
+    let t3886 = Real::mul_add(
+        c115,
+        t2989,
+        Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+    ) - s114 * t2988 - t233 * t285;
     let t3939 = T::from_f64(0.02) * t3886 - (t3100 + t3115);
     let t3943 = Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
         + T::from_f64(0.0004) * t3871
         - Real::mul_add(-T::from_f64(0.006), t3097, T::from_f64(0.009) * t3112)
         - T::from_f64(0.0008) * t3871;
-    let t3944 = T::from_f64(0.000003) * t250 + t233 * t301 - T::from_f64(0.0004) * t3886
-        - t3155 + T::from_f64(0.04) * t3939;
-    let t3958 = T::from_f64(0.0000068) * qdd[1] + t152 * t212
+    let t3944 = Real::mul_add(t233, t301, T::from_f64(0.000003) * t250)
+        - T::from_f64(0.0004) * t3886 - t3155 + T::from_f64(0.04) * t3939;
+    let t3958 = Real::mul_add(t152, t212, T::from_f64(0.0000068) * qdd[1])
         - t2992 * T::from_f64(0.00075)
         - (Real::mul_add(
             T::from_f64(0.05),
@@ -784,17 +844,27 @@ pub fn segment_tensions<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T; 1
             t3960,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t3943, -(c115 * t3158))
+                    - (Real::mul_add(-c115, t3158, s114 * t3943)
                         - T::from_f64(0.008) * t3131)),
         );
-    let t3967 = T::from_f64(0.0000022215714285714285) * qdd[0]
-        + Real::mul_add(
-            T::from_f64(0.00006),
-            t2976,
-            T::from_f64(0.00003)
-                * (T::from_f64(0.002142857142857143) * qdd[0] - t2971
-                    + T::from_f64(0.004285714285714286) * t2970),
-        ) - t3965 - T::from_f64(0.012) * (T::from_f64(0.014) * t2976 + t3873);
+    let t3967 = Real::mul_add(
+        -T::from_f64(0.012),
+        Real::mul_add(T::from_f64(0.014), t2976, t3873),
+        Real::mul_add(
+            T::from_f64(0.0000022215714285714285),
+            qdd[0],
+            Real::mul_add(
+                T::from_f64(0.00006),
+                t2976,
+                T::from_f64(0.00003)
+                    * Real::mul_add(
+                        T::from_f64(0.004285714285714286),
+                        t2970,
+                        Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t2971),
+                    ),
+            ),
+        ) - t3965,
+    );
     let t3972 = Real::mul_add(
         T::from_f64(68.34719334719333),
         t3944,
@@ -862,15 +932,15 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - Real::mul_add(T::from_f64(0.05), t159, t118);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
-    let t208 = t186 + t159 * T::from_f64(0.025) - t152 * t194;
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186) - t152 * t194;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
-    let t249 = Real::mul_add(c115, t159, -(s114 * t157)) - qd[2] * t233;
+    let t249 = Real::mul_add(-s114, t157, c115 * t159) - qd[2] * t233;
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
@@ -880,8 +950,11 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
     let t324 = T::from_f64(0.006) * qdd[0];
     let t332 = T::from_f64(0.000000049) * t322;
-    let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333);
+    let t354 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    );
     let t364 = Real::mul_add(
         T::from_f64(0.888888888888889),
         qdd[2],
@@ -891,13 +964,13 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t370 = qdd[0] + t369;
     let t376 = qdd[0] - t369;
     let t626 = T::from_f64(0.007998399839967993) * s114;
-    let t627 = t626 - c115 * T::from_f64(0.00015999999999999828);
+    let t627 = Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t626);
     let t630 = T::from_f64(0.007998399839967993) * c115;
-    let t631 = s114 * T::from_f64(0.00015999999999999828) + t630;
+    let t631 = Real::mul_add(s114, T::from_f64(0.00015999999999999828), t630);
     let t646 = T::from_f64(0.006998599859971993) * s112;
     let t652 = T::from_f64(0.006998599859971993) * c113;
-    let t687 = t626 + c115 * T::from_f64(0.00016000000000000026);
-    let t692 = s114 * T::from_f64(0.00016000000000000026) - t630;
+    let t687 = Real::mul_add(c115, T::from_f64(0.00016000000000000026), t626);
+    let t692 = Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t630);
     let t734 = T::from_f64(0.01) * s112;
     let t735 = T::from_f64(0.01) * c113;
     let t745 = T::from_f64(0.008) * s110;
@@ -923,11 +996,15 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
-    let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * t196;
+        + Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            T::from_f64(9.81) * c113 + s112 * t2971,
+        );
+    let t2992 = Real::mul_add(-qdd[1], T::from_f64(0.025), t2989) - t152 * t196;
     let t2994 = T::from_f64(0.03) * t2992;
     let t3012 = T::from_f64(0.02)
-        * (Real::mul_add(t237, t285, t245 * t283)
+        * (Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264)));
     let t3019 = T::from_f64(0.006) * t2970;
@@ -968,7 +1045,7 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
     let t3392 = T::from_f64(0.002) * (t324 - t2971);
     let t3393 = T::from_f64(0.002) * (t118 + t3019);
     let t3394 = -t3393;
-    let t3397 = T::from_f64(0.002) * (T::from_f64(0.009) * qdd[0] - t2971);
+    let t3397 = T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), qdd[0], -t2971);
     let t3398 = T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118);
     let t3399 = -t3398;
     let t3407 = Real::mul_add(
@@ -983,12 +1060,16 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         );
     let t3408 = t2027
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3871 = t233 * t263 + Real::mul_add(-T::from_f64(0.02), t249, t186)
+        - t233 * t283;
     let t3872 = T::from_f64(0.02) * t3871;
-    let t3873 = T::from_f64(0.03) * t208 + t3872;
+    let t3873 = Real::mul_add(T::from_f64(0.03), t208, t3872);
     let t3874 = T::from_f64(0.05) * t3873;
-    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
-        - t233 * t285;
+    let t3886 = Real::mul_add(
+        c115,
+        t2989,
+        Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+    ) - s114 * t2988 - t233 * t285;
     let t3887 = T::from_f64(0.02) * t3886;
     let t3892 = T::from_f64(0.0008) * t3871;
     let t3939 = t3887 - (t3100 + t3115);
@@ -1030,10 +1111,10 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
                 + Real::mul_add(c115, t4069, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4069, -(c115 * t3408))
+                - (Real::mul_add(-c115, t3408, s114 * t4069)
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4088 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4088 = Real::mul_add(T::from_f64(0.01), t1989, -(t3393 + t3398 - t3873));
     let t4090 = T::from_f64(0.012) * t4088;
     let t4091 = t3387 - (t3407 - t4085) - t4090;
     let t4098 = Real::mul_add(
@@ -1097,9 +1178,9 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         T::from_f64(0.007),
         t4193,
         -Real::mul_add(
-            t652 - s112 * T::from_f64(0.0001399999999999985),
+            Real::mul_add(-s112, T::from_f64(0.0001399999999999985), t652),
             t4212,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4215,
+            Real::mul_add(c113, T::from_f64(0.0001399999999999985), t646) * t4215,
         ),
     );
     let t4222 = c111 * t4193;
@@ -1118,9 +1199,9 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
         -T::from_f64(0.007),
         t4195,
         Real::mul_add(
-            t652 + s112 * T::from_f64(0.00014000000000000023),
+            Real::mul_add(s112, T::from_f64(0.00014000000000000023), t652),
             t4249,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4252,
+            Real::mul_add(-c113, T::from_f64(0.00014000000000000023), t646) * t4252,
         ),
     );
     let t4259 = c111 * t4195;
@@ -1208,7 +1289,7 @@ pub fn bearings<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [[[T; 3]; 2];
             - (Real::mul_add(-T::from_f64(0.04), t4206, t4209)
                 - Real::mul_add(T::from_f64(0.04), t4243, t4246)),
     );
-    let t4396 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
+    let t4396 = T::from_f64(0.03) * (Real::mul_add(qd[1], t194, t153 * t196) + t2988)
         - (t4294 + Real::mul_add(-c115, t4371, s114 * t4372));
     let t4397 = t2994 + (t4295 + Real::mul_add(c115, t4372, s114 * t4371));
     let t4398 = t2011
@@ -1293,15 +1374,15 @@ pub fn base_reaction<T: Real>(
     let t159 = Real::mul_add(qdd[0], c113, -(qd[1] * t152));
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = t152 * t173 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t152 * t173 - Real::mul_add(T::from_f64(0.05), t159, t118);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
-    let t208 = t186 + t159 * T::from_f64(0.025) - t152 * t194;
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186) - t152 * t194;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
-    let t249 = Real::mul_add(c115, t159, -(s114 * t157)) - qd[2] * t233;
+    let t249 = Real::mul_add(-s114, t157, c115 * t159) - qd[2] * t233;
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
@@ -1313,8 +1394,11 @@ pub fn base_reaction<T: Real>(
         * Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
     let t369 = T::from_f64(1.25) * qdd[1];
     let t385 = T::from_f64(0.000000036)
-        * (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-            - qdd[2] * T::from_f64(1.3333333333333333))
+        * Real::mul_add(
+            -qdd[2],
+            T::from_f64(1.3333333333333333),
+            Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+        )
         + (T::from_f64(0.000000081)
             * Real::mul_add(
                 T::from_f64(0.888888888888889),
@@ -1339,29 +1423,40 @@ pub fn base_reaction<T: Real>(
     let t2988 = T::from_f64(9.81) * s112 - c113 * t2971
         - Real::mul_add(qd[1], t173, t153 * t174);
     let t2989 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1] + (T::from_f64(9.81) * c113 + s112 * t2971));
-    let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t152 * t196;
+        + Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            T::from_f64(9.81) * c113 + s112 * t2971,
+        );
+    let t2992 = Real::mul_add(-qdd[1], T::from_f64(0.025), t2989) - t152 * t196;
     let t3012 = T::from_f64(0.02)
-        * (Real::mul_add(t237, t285, t245 * t283)
+        * (Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t2989, c115 * t2988)
                 - Real::mul_add(t245, t263, t237 * t264)));
     let t3018 = t324 - t2971;
     let t3019 = T::from_f64(0.006) * t2970;
     let t3021 = T::from_f64(0.000000049)
         * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
-    let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
-    let t3871 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
+    let t3022 = Real::mul_add(T::from_f64(0.009), qdd[0], -t2971);
+    let t3871 = t233 * t263 + Real::mul_add(-T::from_f64(0.02), t249, t186)
+        - t233 * t283;
     let t3873 = Real::mul_add(T::from_f64(0.02), t3871, T::from_f64(0.03) * t208);
-    let t3886 = c115 * t2989 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t2988
-        - t233 * t285;
+    let t3886 = Real::mul_add(
+        c115,
+        t2989,
+        Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+    ) - s114 * t2988 - t233 * t285;
     let t3887 = T::from_f64(0.02) * t3886;
-    let t3904 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988)
-        - Real::mul_add(s114, t3887, -(c115 * t3012));
+    let t3904 = T::from_f64(0.03) * (Real::mul_add(qd[1], t194, t153 * t196) + t2988)
+        - Real::mul_add(-c115, t3012, s114 * t3887);
     let t3905 = T::from_f64(0.03) * t2992 + Real::mul_add(c115, t3887, s114 * t3012);
-    let t4088 = T::from_f64(0.01) * t1989
-        - (T::from_f64(0.002) * (t118 + t3019)
+    let t4088 = Real::mul_add(
+        T::from_f64(0.01),
+        t1989,
+        -(T::from_f64(0.002) * (t118 + t3019)
             + T::from_f64(0.002) * Real::mul_add(T::from_f64(0.009), t2970, t118)
-            - t3873);
+            - t3873),
+    );
     let t4134 = Real::mul_add(
         T::from_f64(0.000003),
         t249,
@@ -1371,12 +1466,15 @@ pub fn base_reaction<T: Real>(
         T::from_f64(0.000001),
         t157,
         Real::mul_add(-qd[1], t2001, t153 * t213),
-    ) - Real::mul_add(s114, t4134, -(c115 * t2027));
+    ) - Real::mul_add(-c115, t2027, s114 * t4134);
     let t4142 = T::from_f64(0.0000068) * qdd[1]
         + Real::mul_add(-t153, t2000, t152 * t2001) - t2992 * T::from_f64(0.00075)
-        + (T::from_f64(0.0008) * t3886
-            + (T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
-                - T::from_f64(0.0004) * t3886));
+        + Real::mul_add(
+            T::from_f64(0.0008),
+            t3886,
+            T::from_f64(0.000003) * t250 + Real::mul_add(-t237, t2016, t233 * t2017)
+                - T::from_f64(0.0004) * t3886,
+        );
     let t4143 = Real::mul_add(
         T::from_f64(0.0000068),
         t159,
@@ -1402,7 +1500,7 @@ pub fn base_reaction<T: Real>(
         T::from_f64(0.012),
         T::from_f64(0.0981) - t4152,
         T::from_f64(-0.0005886000000000001)
-            + (t332 + t332 + (T::from_f64(0.05) * t3905 + t4142)),
+            + (t332 + t332 + Real::mul_add(T::from_f64(0.05), t3905, t4142)),
     );
     let t4164 = Real::mul_add(c111, t4156, s110 * t4088);
     let t4166 = Real::mul_add(-c111, t4088, s110 * t4156);
@@ -1461,19 +1559,19 @@ pub fn all<T: Real>(
     let t179 = Real::mul_add(qd[1], t173, t153 * t174);
     let t181 = t152 * t174;
     let t183 = t152 * t173;
-    let t186 = t183 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t183 - Real::mul_add(T::from_f64(0.05), t159, t118);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
     let t202 = t152 * t196;
     let t204 = t152 * t194;
-    let t208 = t186 + t159 * T::from_f64(0.025) - t204;
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186) - t204;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t246 = qd[2] * t237;
     let t248 = qd[2] * t233;
-    let t249 = Real::mul_add(c115, t159, -(s114 * t157)) - t248;
+    let t249 = Real::mul_add(-s114, t157, c115 * t159) - t248;
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
     let t264 = T::from_f64(0.04) * t237;
@@ -1482,15 +1580,18 @@ pub fn all<T: Real>(
     let t273 = t233 * t263;
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
-    let t290 = Real::mul_add(t237, t285, t245 * t283);
+    let t290 = Real::mul_add(t245, t283, t237 * t285);
     let t291 = t233 * t285;
     let t293 = t233 * t283;
     let t302 = T::from_f64(0.000003) * t245;
     let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
     let t324 = T::from_f64(0.006) * qdd[0];
     let t332 = T::from_f64(0.000000049) * t322;
-    let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333);
+    let t354 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    );
     let t356 = T::from_f64(0.000000036) * t354;
     let t364 = Real::mul_add(
         T::from_f64(0.888888888888889),
@@ -1504,26 +1605,26 @@ pub fn all<T: Real>(
     let t376 = qdd[0] - t369;
     let t378 = T::from_f64(0.000000064) * t376;
     let t626 = T::from_f64(0.007998399839967993) * s114;
-    let t627 = t626 - c115 * T::from_f64(0.00015999999999999828);
+    let t627 = Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t626);
     let t630 = T::from_f64(0.007998399839967993) * c115;
-    let t631 = s114 * T::from_f64(0.00015999999999999828) + t630;
+    let t631 = Real::mul_add(s114, T::from_f64(0.00015999999999999828), t630);
     let t646 = T::from_f64(0.006998599859971993) * s112;
     let t652 = T::from_f64(0.006998599859971993) * c113;
-    let t687 = t626 + c115 * T::from_f64(0.00016000000000000026);
-    let t692 = s114 * T::from_f64(0.00016000000000000026) - t630;
+    let t687 = Real::mul_add(c115, T::from_f64(0.00016000000000000026), t626);
+    let t692 = Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t630);
     let t734 = T::from_f64(0.01) * s112;
     let t735 = T::from_f64(0.01) * c113;
     let t745 = T::from_f64(0.008) * s110;
     let t747 = T::from_f64(0.008) * c111;
-    let t1538 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
+    let t1538 = Real::mul_add(c115, T::from_f64(0.0004), T::from_f64(-0.00075));
     let t1542 = t1538 + T::from_f64(0.0025000000000000005);
     let t1544 = T::from_f64(0.05) * (t1538 + t1542);
     let t1607 = T::from_f64(-0.00006)
-        + Real::mul_add(c113, t1542, -(s112 * (s114 * T::from_f64(0.0004))));
-    let t1644 = t183 + T::from_f64(0.05) * t158;
-    let t1650 = t1644 - t158 * T::from_f64(0.025) - t204;
-    let t1675 = t248 + (s114 * t156 + c115 * t158);
-    let t1805 = Real::mul_add(c115, t165, -(s114 * t162));
+        + Real::mul_add(-s112, s114 * T::from_f64(0.0004), c113 * t1542);
+    let t1644 = Real::mul_add(T::from_f64(0.05), t158, t183);
+    let t1650 = Real::mul_add(-t158, T::from_f64(0.025), t1644) - t204;
+    let t1675 = t248 + Real::mul_add(c115, t158, s114 * t156);
+    let t1805 = Real::mul_add(-s114, t162, c115 * t165);
     let t1989 = t324 - t118;
     let t2000 = T::from_f64(0.000001) * t152;
     let t2001 = T::from_f64(0.0000068) * t153;
@@ -1546,7 +1647,7 @@ pub fn all<T: Real>(
     let t2747 = s114 * T::from_f64(0.000011000000000000001);
     let t2806 = Real::mul_add(
         T::from_f64(0.0000006),
-        t246 + Real::mul_add(c115, t156, -(s114 * t158)),
+        t246 + Real::mul_add(-s114, t158, c115 * t156),
         t2021,
     );
     let t2970 = qd[0] * qd[0];
@@ -1555,9 +1656,9 @@ pub fn all<T: Real>(
     let t2985 = s112 * t2971;
     let t2986 = t165 + t2985;
     let t2988 = t162 - t2983 - t179;
-    let t2989 = t181 + (T::from_f64(0.05) * qdd[1] + t2986);
-    let t2992 = t2989 - qdd[1] * T::from_f64(0.025) - t202;
-    let t2993 = T::from_f64(0.03) * (Real::mul_add(t153, t196, qd[1] * t194) + t2988);
+    let t2989 = t181 + Real::mul_add(T::from_f64(0.05), qdd[1], t2986);
+    let t2992 = Real::mul_add(-qdd[1], T::from_f64(0.025), t2989) - t202;
+    let t2993 = T::from_f64(0.03) * (Real::mul_add(qd[1], t194, t153 * t196) + t2988);
     let t2994 = T::from_f64(0.03) * t2992;
     let t3000 = c115 * t2988;
     let t3003 = s114 * t2988;
@@ -1566,7 +1667,7 @@ pub fn all<T: Real>(
     let t3019 = T::from_f64(0.006) * t2970;
     let t3021 = T::from_f64(0.000000049)
         * (qd[0] * Real::mul_add(T::from_f64(1.1428571428571428), qd[2], qd[1]));
-    let t3022 = T::from_f64(0.009) * qdd[0] - t2971;
+    let t3022 = Real::mul_add(T::from_f64(0.009), qdd[0], -t2971);
     let t3061 = t322 * T::from_f64(0.000000056);
     let t3084 = t354 * T::from_f64(0.000005999999999999999);
     let t3086 = t322 * T::from_f64(0.000007000000000000001);
@@ -1650,8 +1751,7 @@ pub fn all<T: Real>(
         );
     let t3408 = t2027
         + Real::mul_add(T::from_f64(0.006), t3100, T::from_f64(0.009) * t3115);
-    let t3786 = Real::mul_add(s114, t2746, -(c115 * t2747))
-        - s114 * T::from_f64(0.00002);
+    let t3786 = Real::mul_add(-c115, t2747, s114 * t2746) - s114 * T::from_f64(0.00002);
     let t3793 = s112
         * Real::mul_add(
             c113,
@@ -1661,11 +1761,20 @@ pub fn all<T: Real>(
                     - Real::mul_add(T::from_f64(0.05), t1538, T::from_f64(0.05) * t1542)
                     + (T::from_f64(0.000001) + Real::mul_add(s114, t2747, c115 * t2746))),
         );
-    let t3814 = T::from_f64(0.0008) * t3276 + (t2026 - T::from_f64(0.0004) * t3276);
-    let t3823 = t3299 + (t2010 - T::from_f64(0.00075) * t3261 + t3814);
-    let t3833 = T::from_f64(0.0008) * t3336 + (t2026 - T::from_f64(0.0004) * t3336);
-    let t3835 = T::from_f64(0.05)
-        * Real::mul_add(
+    let t3814 = Real::mul_add(
+        T::from_f64(0.0008),
+        t3276,
+        Real::mul_add(-T::from_f64(0.0004), t3276, t2026),
+    );
+    let t3823 = t3299 + (Real::mul_add(-T::from_f64(0.00075), t3261, t2010) + t3814);
+    let t3833 = Real::mul_add(
+        T::from_f64(0.0008),
+        t3336,
+        Real::mul_add(-T::from_f64(0.0004), t3336, t2026),
+    );
+    let t3835 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
             T::from_f64(0.03),
             t3325,
             Real::mul_add(
@@ -1674,18 +1783,21 @@ pub fn all<T: Real>(
                 T::from_f64(0.02)
                     * (s114 * (t290 + (Real::mul_add(s114, t3324, t3000) - t269))),
             ),
-        ) + (t2010 - T::from_f64(0.00075) * t3325 + t3833);
-    let t3871 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+        ),
+        Real::mul_add(-T::from_f64(0.00075), t3325, t2010) + t3833,
+    );
+    let t3871 = t273 + Real::mul_add(-T::from_f64(0.02), t249, t186) - t293;
     let t3872 = T::from_f64(0.02) * t3871;
-    let t3873 = T::from_f64(0.03) * t208 + t3872;
+    let t3873 = Real::mul_add(T::from_f64(0.03), t208, t3872);
     let t3874 = T::from_f64(0.05) * t3873;
     let t3876 = t1544 + T::from_f64(0.000036946);
-    let t3879 = T::from_f64(0.02) * t1675 + (t273 + t1644) - t293;
+    let t3879 = Real::mul_add(T::from_f64(0.02), t1675, t273 + t1644) - t293;
     let t3881 = Real::mul_add(T::from_f64(0.02), t3879, T::from_f64(0.03) * t1650);
-    let t3886 = c115 * t2989 + (t271 + T::from_f64(0.02) * t250) - t3003 - t291;
+    let t3886 = Real::mul_add(c115, t2989, Real::mul_add(T::from_f64(0.02), t250, t271))
+        - t3003 - t291;
     let t3887 = T::from_f64(0.02) * t3886;
     let t3892 = T::from_f64(0.0008) * t3871;
-    let t3904 = t2993 - Real::mul_add(s114, t3887, -(c115 * t3012));
+    let t3904 = t2993 - Real::mul_add(-c115, t3012, s114 * t3887);
     let t3905 = t2994 + Real::mul_add(c115, t3887, s114 * t3012);
     let t3939 = t3887 - (t3100 + t3115);
     let t4011 = c115 * T::from_f64(0.00002) + T::from_f64(0.000011224000000000001);
@@ -1723,10 +1835,10 @@ pub fn all<T: Real>(
                 + Real::mul_add(c115, t4069, s114 * t3408)) - t3874,
         s112
             * (t2011
-                - (Real::mul_add(s114, t4069, -(c115 * t3408))
+                - (Real::mul_add(-c115, t3408, s114 * t4069)
                     - T::from_f64(0.008) * t3131)),
     );
-    let t4088 = T::from_f64(0.01) * t1989 - (t3393 + t3398 - t3873);
+    let t4088 = Real::mul_add(T::from_f64(0.01), t1989, -(t3393 + t3398 - t3873));
     let t4090 = T::from_f64(0.012) * t4088;
     let t4091 = t3387 - (t3407 - t4085) - t4090;
     let t4098 = Real::mul_add(
@@ -1771,10 +1883,10 @@ pub fn all<T: Real>(
     let t4128 = t4108 + t4123;
     let t4129 = t4113 + t4123;
     let t4134 = t4065 - t3892;
-    let t4135 = T::from_f64(0.0008) * t3886 + t4066;
-    let t4140 = t2011 - Real::mul_add(s114, t4134, -(c115 * t2027));
+    let t4135 = Real::mul_add(T::from_f64(0.0008), t3886, t4066);
+    let t4140 = t2011 - Real::mul_add(-c115, t2027, s114 * t4134);
     let t4143 = t3388 + Real::mul_add(c115, t4134, s114 * t2027) - t3874;
-    let t4144 = T::from_f64(0.05) * t3905 + (t3389 + t4135);
+    let t4144 = Real::mul_add(T::from_f64(0.05), t3905, t3389 + t4135);
     let t4152 = T::from_f64(-0.039240000000000004)
         - Real::mul_add(c113, t3905, s112 * t3904);
     let t4153 = T::from_f64(0.0002943) - t3021 - t3021
@@ -1795,13 +1907,29 @@ pub fn all<T: Real>(
     let t4174 = -Real::mul_add(c111, t4162, s110 * t4153);
     let t4177 = T::from_f64(0.17658000000000001) - t4152;
     let t4178 = t356 + (t366 + (t372 + t378)) - (t4090 - t4158);
-    let t4188 = t364 * T::from_f64(0.000000072)
-        + (t3061 + (t3061 + t4135) - t354 * T::from_f64(0.00000004799999999999999));
+    let t4188 = Real::mul_add(
+        t364,
+        T::from_f64(0.000000072),
+        Real::mul_add(
+            -t354,
+            T::from_f64(0.00000004799999999999999),
+            t3061 + (t3061 + t4135),
+        ),
+    );
     let t4191 = t378 + (t372 + (t366 + (t356 + (t4158 - t4090))));
-    let t4192 = t370 * T::from_f64(0.00000008)
-        + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + (t332 + t4144) - t354 * T::from_f64(0.000000042)))
-        - t376 * T::from_f64(0.00000008);
+    let t4192 = Real::mul_add(
+        -t376,
+        T::from_f64(0.00000008),
+        Real::mul_add(
+            t370,
+            T::from_f64(0.00000008),
+            Real::mul_add(
+                t364,
+                T::from_f64(0.00000006300000000000001),
+                Real::mul_add(-t354, T::from_f64(0.000000042), t332 + (t332 + t4144)),
+            ),
+        ),
+    );
     let t4193 = t3084 + t4125;
     let t4194 = t4193 - t3086;
     let t4195 = t3089 + t4127;
@@ -1822,9 +1950,9 @@ pub fn all<T: Real>(
         T::from_f64(0.007),
         t4193,
         -Real::mul_add(
-            t652 - s112 * T::from_f64(0.0001399999999999985),
+            Real::mul_add(-s112, T::from_f64(0.0001399999999999985), t652),
             t4212,
-            (c113 * T::from_f64(0.0001399999999999985) + t646) * t4215,
+            Real::mul_add(c113, T::from_f64(0.0001399999999999985), t646) * t4215,
         ),
     );
     let t4222 = c111 * t4193;
@@ -1843,9 +1971,9 @@ pub fn all<T: Real>(
         -T::from_f64(0.007),
         t4195,
         Real::mul_add(
-            t652 + s112 * T::from_f64(0.00014000000000000023),
+            Real::mul_add(s112, T::from_f64(0.00014000000000000023), t652),
             t4249,
-            (t646 - c113 * T::from_f64(0.00014000000000000023)) * t4252,
+            Real::mul_add(-c113, T::from_f64(0.00014000000000000023), t646) * t4252,
         ),
     );
     let t4259 = c111 * t4195;
@@ -1967,8 +2095,9 @@ pub fn all<T: Real>(
         t4421,
         T::from_f64(-0.0005886000000000001) - (t4258 - t332 + (t4221 - t332) - t4403),
     );
-    let t4431 = c113
-        * Real::mul_add(
+    let t4431 = Real::mul_add(
+        c113,
+        Real::mul_add(
             c113,
             t1544
                 + (T::from_f64(0.00002555)
@@ -1978,22 +2107,43 @@ pub fn all<T: Real>(
                         T::from_f64(0.0000006) * (s114 * s114),
                     )),
             s112 * t3786,
-        )
-        + (t3793
-            + (T::from_f64(0.012) * (t1607 + (t1607 + T::from_f64(0.000768)))
-                + T::from_f64(0.000001188)));
-    let t4435 = t2023 - T::from_f64(0.000003) * t1675 + T::from_f64(0.0004) * t3879
-        - T::from_f64(0.0008) * t3879;
+        ),
+        t3793
+            + Real::mul_add(
+                T::from_f64(0.012),
+                t1607 + (t1607 + T::from_f64(0.000768)),
+                T::from_f64(0.000001188),
+            ),
+    );
+    let t4435 = Real::mul_add(
+        -T::from_f64(0.0008),
+        t3879,
+        Real::mul_add(
+            T::from_f64(0.0004),
+            t3879,
+            Real::mul_add(-T::from_f64(0.000003), t1675, t2023),
+        ),
+    );
     let t4445 = Real::mul_add(
         c113,
-        t2007 - T::from_f64(0.0000068) * t158 + t1650 * T::from_f64(0.00075)
-            + Real::mul_add(c115, t4435, s114 * t2806) - T::from_f64(0.05) * t3881,
+        Real::mul_add(
+            -T::from_f64(0.05),
+            t3881,
+            Real::mul_add(
+                t1650,
+                T::from_f64(0.00075),
+                Real::mul_add(-T::from_f64(0.0000068), t158, t2007),
+            ) + Real::mul_add(c115, t4435, s114 * t2806),
+        ),
         s112
             * (Real::mul_add(T::from_f64(0.000001), t156, t2005)
-                - Real::mul_add(s114, t4435, -(c115 * t2806))),
+                - Real::mul_add(-c115, t2806, s114 * t4435)),
     );
-    let t4447 = Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4445)
-        - T::from_f64(0.012) * (t3881 - T::from_f64(0.00003) * t2970);
+    let t4447 = Real::mul_add(
+        -T::from_f64(0.012),
+        Real::mul_add(-T::from_f64(0.00003), t2970, t3881),
+        Real::mul_add(-t2970, T::from_f64(0.00000036000000000000005), t4445),
+    );
     let t4448 = T::from_f64(0.008) * tendon_tensions[2]
         - (T::from_f64(0.006) * tendon_tensions[0]
             + T::from_f64(0.009) * tendon_tensions[1])

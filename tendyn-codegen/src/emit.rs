@@ -293,17 +293,19 @@ struct Atoms<'g> {
     scalar: Scalar,
     exprs: Vec<OnceCell<(Expr, u8)>>,
     /// The products that may become a `Real::mul_add` with their one consumer: those with
-    /// exactly one in the whole graph. Decided for the graph, not per function, so that
-    /// every function rounds a shared subexpression alike (`all` gives, bit for bit, what
-    /// the functions it gathers give).
+    /// exactly one among the nodes any emitted function computes. Decided for them all, not
+    /// per function, so that every function rounds a shared subexpression alike (`all`
+    /// gives, bit for bit, what the functions it gathers give); nodes no function computes
+    /// (left behind by the passes over finished functions) are not consumers.
     fusible: Vec<bool>,
 }
 
 impl<'g> Atoms<'g> {
-    fn new(g: &'g Graph, scalar: Scalar) -> Self {
+    /// The atoms of `g` for functions whose results are `roots`.
+    fn new(g: &'g Graph, roots: &[Id], scalar: Scalar) -> Self {
         let mut consumers = vec![0u32; g.nodes.len()];
-        for node in &g.nodes {
-            for operand in node.operands() {
+        for id in g.live(roots) {
+            for operand in g.node(id).operands() {
                 consumers[operand.0 as usize] += 1;
             }
         }
@@ -1217,7 +1219,11 @@ pub fn emit_file(
         item.sig.output = syn::ReturnType::Type(Default::default(), Box::new(ret));
         item
     };
-    let atoms = Atoms::new(&traced.graph, scalar);
+    let emitted: Vec<Id> = (traced.functions.iter())
+        .flat_map(|f| f.results.iter().copied())
+        .chain(traced.all.iter().copied())
+        .collect();
+    let atoms = Atoms::new(&traced.graph, &emitted, scalar);
     for f in &traced.functions {
         let mut body = Body::new(&atoms);
         body.bind(&f.results);

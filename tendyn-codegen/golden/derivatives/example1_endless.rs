@@ -32,7 +32,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
         Real::mul_add(
             qdd[1],
             t755,
-            -(qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t762)),
+            -(qd[1] * Real::mul_add(qd[1], t762, qd[0] * (s56 * T::from_f64(0.06)))),
         ),
     );
     let t777 = Real::mul_add(
@@ -64,16 +64,19 @@ pub fn generalized_forces_derivatives<T: Real>(
     let t771 = Real::mul_add(
         qdd[0],
         t750 + T::from_f64(0.1247117),
-        Real::mul_add(qdd[1], t755, -(qd[1] * (t760 + qd[1] * t762))),
+        Real::mul_add(qdd[1], t755, -(qd[1] * Real::mul_add(qd[1], t762, t760))),
     );
     let t777 = Real::mul_add(
         qdd[0],
         t755,
         Real::mul_add(qdd[1], T::from_f64(0.0166867), qd[0] * (qd[0] * t762)),
     );
-    let t795 = -(qdd[0] * t758
-        + (qdd[1] * t762 + qd[1] * (qd[0] * t750 + qd[1] * t577)));
-    let t800 = Real::mul_add(qd[0], qd[0] * t577, -(qdd[0] * t762));
+    let t795 = -Real::mul_add(
+        qdd[0],
+        t758,
+        Real::mul_add(qdd[1], t762, qd[1] * Real::mul_add(qd[1], t577, qd[0] * t750)),
+    );
+    let t800 = Real::mul_add(-qdd[0], t762, qd[0] * (qd[0] * t577));
     let t801 = qd[1] * t758;
     let t802 = -t801;
     let t804 = -(t760 + t801);
@@ -100,12 +103,16 @@ pub fn forward_dynamics<T: Real>(
     let t752 = c57 * T::from_f64(0.06) + T::from_f64(0.1247117);
     let t762 = T::from_f64(0.03) * s56;
     let t805 = motor_torques[0] + motor_torques[1]
-        + qd[1] * (qd[0] * (s56 * T::from_f64(0.06)) + qd[1] * t762);
+        + qd[1] * Real::mul_add(qd[1], t762, qd[0] * (s56 * T::from_f64(0.06)));
     let t807 = (T::from_f64(0.03) * c57 + T::from_f64(0.0166967)) / t752;
     let t920 = Real::mul_add(
         -t805,
         t807,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - qd[0] * (qd[0] * t762),
+        Real::mul_add(
+            T::from_f64(0.6666666666666667),
+            motor_torques[1],
+            -(qd[0] * (qd[0] * t762)),
+        ),
     ) / Real::mul_add(-t752, t807 * t807, T::from_f64(0.0166867));
     let t922 = Real::mul_add(-t807, t920, t805 / t752);
     [t922, t920]
@@ -131,8 +138,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t760 = qd[0] * t758;
     let t762 = T::from_f64(0.03) * s56;
     let t801 = qd[1] * t758;
-    let t806 = (motor_torques[0] + motor_torques[1] + qd[1] * (t760 + qd[1] * t762))
-        / t752;
+    let t806 = (motor_torques[0] + motor_torques[1]
+        + qd[1] * Real::mul_add(qd[1], t762, t760)) / t752;
     let t807 = (t577 + T::from_f64(0.0166967)) / t752;
     let t809 = T::from_f64(0.06) * t807;
     let t811 = s56 * t809;
@@ -144,36 +151,52 @@ pub fn forward_dynamics_derivatives<T: Real>(
         t807 * (T::from_f64(-0.1247117) - t750),
         T::from_f64(0.0166867),
     );
-    let t841 = (Real::mul_add(motor_torques[1], t829, -(motor_torques[0] * t807))
-        - qd[1] * (qd[1] * (s56 * t819)) - qd[0] * (qd[0] * t762 + t813)) / t840;
-    let t845 = t806 - t807 * t841;
+    let t841 = Real::mul_add(
+        -qd[0],
+        qd[0] * t762 + t813,
+        Real::mul_add(
+            -qd[1],
+            qd[1] * (s56 * t819),
+            Real::mul_add(-motor_torques[0], t807, motor_torques[1] * t829),
+        ),
+    ) / t840;
+    let t845 = Real::mul_add(-t807, t841, t806);
     let t848 = T::from_f64(0.06) * t806;
     let t877 = Real::mul_add(
-        s56,
+        -qd[0],
+        Real::mul_add(qd[1], c57 * t809, qd[0] * t577),
         Real::mul_add(
-            T::from_f64(0.03),
-            t806,
-            t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
+            -qd[1],
+            qd[1] * (c57 * t819),
+            s56
+                * Real::mul_add(
+                    T::from_f64(0.03),
+                    t806,
+                    t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
+                ),
         ),
-        -(qd[1] * (qd[1] * (c57 * t819))),
-    ) - qd[0] * (qd[0] * t577 + qd[1] * (c57 * t809));
+    );
     let t878 = t877 / t840;
     let t883 = (t760 + t813) / t840;
     let t884 = -t883;
-    let t891 = (t813 + qd[0] * t811) / t840;
+    let t891 = Real::mul_add(qd[0], t811, t813) / t840;
     let t892 = -t891;
     let t893 = T::from_f64(1.0) / t752;
     let t894 = t807 / t840;
     let t895 = t829 / t840;
-    let t901 = -(Real::mul_add(
-        s56,
-        Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848),
-        -(qd[1] * (qd[0] * t750 + qd[1] * t577)),
-    ) / t752 + t807 * t878);
+    let t901 = -Real::mul_add(
+        t807,
+        t878,
+        Real::mul_add(
+            s56,
+            Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848),
+            -(qd[1] * Real::mul_add(qd[1], t577, qd[0] * t750)),
+        ) / t752,
+    );
     let t903 = Real::mul_add(t807, t883, t801 / t752);
     let t905 = Real::mul_add(t807, t891, (t760 + t801) / t752);
     let t907 = Real::mul_add(t807, t894, t893);
-    let t911 = t893 - t807 * t895;
+    let t911 = Real::mul_add(-t807, t895, t893);
     let t912 = -t894;
     tendyn_core::dual::ForwardJacobians {
         value: [t845, t841],
@@ -219,7 +242,7 @@ pub fn all<T: Real>(
     let t758 = s56 * T::from_f64(0.06);
     let t760 = qd[0] * t758;
     let t762 = T::from_f64(0.03) * s56;
-    let t768 = qd[1] * (t760 + qd[1] * t762);
+    let t768 = qd[1] * Real::mul_add(qd[1], t762, t760);
     let t771 = Real::mul_add(qdd[0], t752, Real::mul_add(qdd[1], t755, -t768));
     let t774 = qd[0] * t762;
     let t775 = qd[0] * t774;
@@ -228,10 +251,10 @@ pub fn all<T: Real>(
         t755,
         Real::mul_add(qdd[1], T::from_f64(0.0166867), t775),
     );
-    let t790 = qd[1] * (qd[0] * t750 + qd[1] * t577);
-    let t795 = -(qdd[0] * t758 + (qdd[1] * t762 + t790));
+    let t790 = qd[1] * Real::mul_add(qd[1], t577, qd[0] * t750);
+    let t795 = -Real::mul_add(qdd[0], t758, Real::mul_add(qdd[1], t762, t790));
     let t798 = qd[0] * t577;
-    let t800 = Real::mul_add(qd[0], t798, -(qdd[0] * t762));
+    let t800 = Real::mul_add(-qdd[0], t762, qd[0] * t798);
     let t801 = qd[1] * t758;
     let t802 = -t801;
     let t803 = t760 + t801;
@@ -249,41 +272,54 @@ pub fn all<T: Real>(
         t807 * (T::from_f64(-0.1247117) - t750),
         T::from_f64(0.0166867),
     );
-    let t841 = (Real::mul_add(motor_torques[1], t829, -(motor_torques[0] * t807))
-        - qd[1] * (qd[1] * (s56 * t819)) - qd[0] * (t774 + t813)) / t840;
-    let t845 = t806 - t807 * t841;
+    let t841 = Real::mul_add(
+        -qd[0],
+        t774 + t813,
+        Real::mul_add(
+            -qd[1],
+            qd[1] * (s56 * t819),
+            Real::mul_add(-motor_torques[0], t807, motor_torques[1] * t829),
+        ),
+    ) / t840;
+    let t845 = Real::mul_add(-t807, t841, t806);
     let t848 = T::from_f64(0.06) * t806;
     let t877 = Real::mul_add(
-        s56,
+        -qd[0],
+        Real::mul_add(qd[1], c57 * t809, t798),
         Real::mul_add(
-            T::from_f64(0.03),
-            t806,
-            t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
+            -qd[1],
+            qd[1] * (c57 * t819),
+            s56
+                * Real::mul_add(
+                    T::from_f64(0.03),
+                    t806,
+                    t807 * Real::mul_add(t841, T::from_f64(-0.06) + t809, -t848),
+                ),
         ),
-        -(qd[1] * (qd[1] * (c57 * t819))),
-    ) - qd[0] * (t798 + qd[1] * (c57 * t809));
+    );
     let t878 = t877 / t840;
     let t883 = (t760 + t813) / t840;
     let t884 = -t883;
-    let t891 = (t813 + qd[0] * t811) / t840;
+    let t891 = Real::mul_add(qd[0], t811, t813) / t840;
     let t892 = -t891;
     let t893 = T::from_f64(1.0) / t752;
     let t894 = t807 / t840;
     let t895 = t829 / t840;
-    let t901 = -(Real::mul_add(
-        s56,
-        Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848),
-        -t790,
-    ) / t752 + t807 * t878);
+    let t901 = -Real::mul_add(
+        t807,
+        t878,
+        Real::mul_add(s56, Real::mul_add(t841, T::from_f64(-0.03) + t809, -t848), -t790)
+            / t752,
+    );
     let t903 = Real::mul_add(t807, t883, t801 / t752);
     let t905 = Real::mul_add(t807, t891, t803 / t752);
     let t907 = Real::mul_add(t807, t894, t893);
-    let t911 = t893 - t807 * t895;
+    let t911 = Real::mul_add(-t807, t895, t893);
     let t912 = -t894;
     let t920 = Real::mul_add(
         -t805,
         t807,
-        T::from_f64(0.6666666666666667) * motor_torques[1] - t775,
+        Real::mul_add(T::from_f64(0.6666666666666667), motor_torques[1], -t775),
     ) / Real::mul_add(-t752, t807 * t807, T::from_f64(0.0166867));
     let t922 = Real::mul_add(-t807, t920, t806);
     Outputs {

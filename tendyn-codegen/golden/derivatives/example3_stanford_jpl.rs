@@ -49,9 +49,15 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
                     Real::mul_add(s112, t3428, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * (t3443 + T::from_f64(0.000042000000000000004))
-            + (t3435 + T::from_f64(0.00009551400000000001)
-                - s114 * (s114 * T::from_f64(0.0000104))),
+        Real::mul_add(
+            c113,
+            t3443 + T::from_f64(0.000042000000000000004),
+            Real::mul_add(
+                -s114,
+                s114 * T::from_f64(0.0000104),
+                t3435 + T::from_f64(0.00009551400000000001),
+            ),
+        ),
     );
     let t3465 = s114 * (s114 * T::from_f64(0.0000416));
     let t3474 = c115 * T::from_f64(0.0000416);
@@ -117,7 +123,7 @@ pub fn generalized_forces<T: Real>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> [T;
                 t3531,
             ),
         Real::mul_add(c113, t3548 + T::from_f64(0.017167500000000002), -t3555)
-            - qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585),
+            - qd[2] * Real::mul_add(qd[2], t2585, qd[1] * (s114 * T::from_f64(0.00004))),
     );
     let t3562 = Real::mul_add(
         qdd[1],
@@ -188,9 +194,15 @@ pub fn generalized_forces_derivatives<T: Real>(
                     Real::mul_add(s112, t3428, T::from_f64(-0.000009600000000000001)),
                 ),
         ),
-        c113 * t3445
-            + (t3435 + T::from_f64(0.00009551400000000001)
-                - s114 * (s114 * T::from_f64(0.0000104))),
+        Real::mul_add(
+            c113,
+            t3445,
+            Real::mul_add(
+                -s114,
+                s114 * T::from_f64(0.0000104),
+                t3435 + T::from_f64(0.00009551400000000001),
+            ),
+        ),
     );
     let t3464 = s114 * T::from_f64(0.0000416);
     let t3465 = s114 * t3464;
@@ -250,7 +262,7 @@ pub fn generalized_forces_derivatives<T: Real>(
                 t3531,
             ),
         Real::mul_add(c113, t3548 + T::from_f64(0.017167500000000002), -t3555)
-            - qd[2] * (t3537 + qd[2] * t2585),
+            - qd[2] * Real::mul_add(qd[2], t2585, t3537),
     );
     let t3562 = Real::mul_add(
         qdd[1],
@@ -285,14 +297,17 @@ pub fn generalized_forces_derivatives<T: Real>(
         ),
     );
     let t3590 = c115 * T::from_f64(0.0000832);
-    let t3599 = T::from_f64(0.000009600000000000001)
-        - s112 * (s114 * T::from_f64(0.0000832));
+    let t3599 = Real::mul_add(
+        -s112,
+        s114 * T::from_f64(0.0000832),
+        T::from_f64(0.000009600000000000001),
+    );
     let t3611 = qd[1]
         * Real::mul_add(
             s112,
             Real::mul_add(
                 s112,
-                c115 * T::from_f64(0.00016) + T::from_f64(0.0003398),
+                Real::mul_add(c115, T::from_f64(0.00016), T::from_f64(0.0003398)),
                 s114 * Real::mul_add(c113, t3590 + T::from_f64(0.00016), t3599),
             ),
             Real::mul_add(c113, t3480, t3472),
@@ -353,9 +368,17 @@ pub fn generalized_forces_derivatives<T: Real>(
                 Real::mul_add(s112, t3490, s114 * Real::mul_add(c113, t3673, t3650)),
                 t3683,
             ));
-    let t3698 = t3665 + s112 * t3548;
-    let t3704 = t3686 - (qd[2] * (qd[1] * t3435 + qd[2] * t2580) + t3698)
-        - qdd[2] * t2585 - qdd[1] * t3535;
+    let t3698 = Real::mul_add(s112, t3548, t3665);
+    let t3704 = Real::mul_add(
+        -qdd[1],
+        t3535,
+        Real::mul_add(
+            -qdd[2],
+            t2585,
+            t3686
+                - Real::mul_add(qd[2], Real::mul_add(qd[2], t2580, qd[1] * t3435), t3698),
+        ),
+    );
     let t3705 = t3686 - t3698;
     let t3722 = Real::mul_add(
         qd[0],
@@ -371,7 +394,7 @@ pub fn generalized_forces_derivatives<T: Real>(
             ),
         Real::mul_add(qd[1], qd[1] * t2580, -t3698),
     );
-    let t3723 = t3722 - qdd[1] * t2585;
+    let t3723 = Real::mul_add(-qdd[1], t2585, t3722);
     let t3724 = qd[0] * t3488;
     let t3725 = qd[0] * t3499;
     let t3739 = s114 * (t3484 + (t3423 + T::from_f64(0.00004)));
@@ -481,9 +504,16 @@ pub fn forward_dynamics<T: Real>(
             s114
                 * Real::mul_add(
                     c113,
-                    T::from_f64(-0.00004) - c115 * T::from_f64(0.000020800000000000004),
-                    T::from_f64(-0.000009600000000000001)
-                        + s112 * (s114 * T::from_f64(0.000020800000000000004)),
+                    Real::mul_add(
+                        -c115,
+                        T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.00004),
+                    ),
+                    Real::mul_add(
+                        s112,
+                        s114 * T::from_f64(0.000020800000000000004),
+                        T::from_f64(-0.000009600000000000001),
+                    ),
                 ),
         ),
         Real::mul_add(
@@ -498,7 +528,8 @@ pub fn forward_dynamics<T: Real>(
         * (T::from_f64(-0.00002) - c115 * T::from_f64(0.0000104)
             - c113 * T::from_f64(0.000004800000000000001));
     let t3862 = T::from_f64(0.000000024000000000000003) / t3789;
-    let t4648 = qd[2] * (qd[1] * (s114 * T::from_f64(0.00004)) + qd[2] * t2585)
+    let t4648 = qd[2]
+        * Real::mul_add(qd[2], t2585, qd[1] * (s114 * T::from_f64(0.00004)))
         + (T::from_f64(0.007) * tendon_tensions[0]
             + (T::from_f64(0.01) * tendon_tensions[2]
                 + (Real::mul_add(c113, T::from_f64(-0.017167500000000002) - t3548, t3555)
@@ -604,8 +635,8 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t216 = t153 * t213;
     let t218 = Real::mul_add(-qd[1], t212, t216);
     let t219 = t152 * t213;
-    let t233 = c115 * t152 + s114 * t153;
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t233 = Real::mul_add(s114, t153, c115 * t152);
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t248 = qd[2] * t233;
     let t251 = c115 * t184;
@@ -619,7 +650,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
     let t287 = t237 * t285;
-    let t290 = t287 + t245 * t283;
+    let t290 = Real::mul_add(t245, t283, t287);
     let t291 = t233 * t285;
     let t293 = t233 * t283;
     let t301 = T::from_f64(0.0000024) * t237;
@@ -631,39 +662,48 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t412 = s114 * t307;
     let t522 = T::from_f64(0.05) * t152;
     let t530 = t166 + Real::mul_add(t153, t522, t181);
-    let t531 = t160 - t162 + (t176 - t152 * t522);
+    let t531 = t160 - t162 + Real::mul_add(-t152, t522, t176);
     let t536 = t152 * T::from_f64(0.025);
-    let t549 = t531 + (t152 * t536 - t153 * t196);
+    let t549 = t531 + Real::mul_add(-t153, t196, t152 * t536);
     let t554 = T::from_f64(0.0000058) * t152;
     let t592 = T::from_f64(0.04) * t233;
     let t595 = Real::mul_add(t237, t592, t271);
-    let t598 = t266 - t233 * t592;
+    let t598 = Real::mul_add(-t233, t592, t266);
     let t599 = t237 * t263;
     let t606 = T::from_f64(0.02) * t233;
-    let t610 = t291 + t237 * t606;
-    let t615 = t233 * t606 - t287;
+    let t610 = Real::mul_add(t237, t606, t291);
+    let t615 = Real::mul_add(t233, t606, -t287);
     let t616 = t237 * t283;
-    let t619 = Real::mul_add(c115, t531, -(s114 * t530)) + t598 + t615;
+    let t619 = Real::mul_add(-s114, t530, c115 * t531) + t598 + t615;
     let t624 = T::from_f64(0.0000024) * t233;
-    let t630 = t245 * t624 - t308;
-    let t635 = Real::mul_add(t237, t301, -(t233 * t624));
+    let t630 = Real::mul_add(t245, t624, -t308);
+    let t635 = Real::mul_add(-t233, t624, t237 * t301);
     let t660 = c115 * t630;
     let t664 = s114 * t630;
     let t849 = t120 + t120;
     let t852 = t130 + t130;
     let t863 = qd[1] * s112;
     let t870 = T::from_f64(0.05) * c113;
-    let t885 = c113 * t849 + (c113 * t174 + t153 * t870);
-    let t887 = Real::mul_add(s112, t849, s112 * t174 + t152 * t870);
+    let t885 = Real::mul_add(c113, t849, Real::mul_add(t153, t870, c113 * t174));
+    let t887 = Real::mul_add(s112, t849, Real::mul_add(t152, t870, s112 * t174));
     let t888 = Real::mul_add(s112, t173, T::from_f64(0.05) * t863);
-    let t905 = t888 - T::from_f64(0.025) * t863 - s112 * t194;
+    let t905 = Real::mul_add(
+        -s112,
+        t194,
+        Real::mul_add(-T::from_f64(0.025), t863, t888),
+    );
     let t909 = T::from_f64(0.0000058) * c113;
     let t930 = Real::mul_add(c113, s114, s112 * c115);
-    let t934 = Real::mul_add(c113, c115, -(s112 * s114));
-    let t948 = Real::mul_add(qd[2], t930, s114 * (qd[1] * c113) + c115 * t863);
+    let t934 = Real::mul_add(-s112, s114, c113 * c115);
+    let t948 = Real::mul_add(
+        qd[2],
+        t930,
+        Real::mul_add(c115, t863, s114 * (qd[1] * c113)),
+    );
     let t960 = T::from_f64(0.04) * t934;
     let t981 = T::from_f64(0.02) * t934;
-    let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
+    let t993 = Real::mul_add(c115, t887, s114 * t885)
+        + Real::mul_add(t233, t960, t264 * t930)
         - Real::mul_add(t233, t981, t285 * t930);
     let t998 = T::from_f64(0.0000024) * t934;
     let t1003 = Real::mul_add(-t245, t998, t302 * t934);
@@ -674,33 +714,41 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
     let t1342 = t166 + t181;
-    let t1343 = t183 + T::from_f64(0.05) * t158;
+    let t1343 = Real::mul_add(T::from_f64(0.05), t158, t183);
     let t1347 = t1342 - t152 * t196;
-    let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
-    let t1372 = t248 + (s114 * t156 + c115 * t158);
+    let t1348 = Real::mul_add(-t158, T::from_f64(0.025), t1343) - t204;
+    let t1372 = t248 + Real::mul_add(c115, t158, s114 * t156);
     let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
     let t1577 = s114 * T::from_f64(0.000010400000000000002);
-    let t1586 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
+    let t1586 = Real::mul_add(c115, T::from_f64(0.0004), T::from_f64(-0.00075));
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
-        + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
+        + Real::mul_add(-s112, s114 * T::from_f64(0.0004), c113 * t1590);
     let t2418 = T::from_f64(0.05)
-        * (T::from_f64(0.03) * t549
-            + Real::mul_add(
+        * Real::mul_add(
+            T::from_f64(0.03),
+            t549,
+            Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
                 c115 * (T::from_f64(0.02) * t619),
-            ));
+            ),
+        );
     let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
     let t2477 = T::from_f64(0.02)
         * (s114
-            * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
+            * (Real::mul_add(-c115, t885, s114 * t887)
+                - Real::mul_add(t237, t960, t264 * t934)
                 + Real::mul_add(t237, t981, t285 * t934)));
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
-    let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2934 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2586 = Real::mul_add(c115, t1577, s114 * T::from_f64(0.00002));
+    let t2934 = Real::mul_add(
+        -t283,
+        t930,
+        Real::mul_add(t263, t930, Real::mul_add(T::from_f64(0.02), t948, t888)),
+    );
     let t2936 = Real::mul_add(T::from_f64(0.02), t2934, T::from_f64(0.03) * t905);
     let t2948 = t233 * T::from_f64(0.039999999999999994);
     let t2949 = t1114 + t2948;
@@ -709,30 +757,36 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t2955 = c115 * t2952;
     let t2956 = s114 * t2952;
     let t2957 = Real::mul_add(T::from_f64(0.02), t2949, T::from_f64(0.03) * t1119);
-    let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2962 = Real::mul_add(T::from_f64(0.02), t1372, t273 + t1343) - t293;
     let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
-    let t3008 = t635 + t619 * T::from_f64(0.0004);
+    let t3008 = Real::mul_add(t619, T::from_f64(0.0004), t635);
     let t3031 = Real::mul_add(
         -T::from_f64(0.0008),
         t2934,
         Real::mul_add(
             T::from_f64(0.0004),
             t2934,
-            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+            -Real::mul_add(t302, t930, T::from_f64(0.0000024) * t948),
         ),
     );
-    let t3032 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3041 = T::from_f64(0.05)
-        * Real::mul_add(
+    let t3032 = Real::mul_add(
+        t993,
+        T::from_f64(0.0004),
+        Real::mul_add(t233, t998, t301 * t930),
+    );
+    let t3041 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
             T::from_f64(0.03),
             t2462,
-            c115 * (T::from_f64(0.02) * t993) + t2477,
-        )
-        + (Real::mul_add(
+            Real::mul_add(c115, T::from_f64(0.02) * t993, t2477),
+        ),
+        Real::mul_add(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3032);
+        ) + t3032,
+    );
     let t3044 = Real::mul_add(
         c113,
         Real::mul_add(
@@ -741,14 +795,14 @@ pub fn forward_dynamics_derivatives<T: Real>(
             Real::mul_add(
                 t905,
                 T::from_f64(0.00075),
-                -(T::from_f64(0.0000058) * t863 + s112 * t213),
+                -Real::mul_add(s112, t213, T::from_f64(0.0000058) * t863),
             ) + Real::mul_add(c115, t3031, s114 * t1003),
         ),
         s112
             * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t3031, -(c115 * t1003))),
+                - Real::mul_add(-c115, t1003, s114 * t3031)),
     );
-    let t3047 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852)
+    let t3047 = T::from_f64(0.012) * Real::mul_add(-T::from_f64(0.014), t852, t2936)
         - (Real::mul_add(
             -t852,
             T::from_f64(0.00006),
@@ -795,17 +849,23 @@ pub fn forward_dynamics_derivatives<T: Real>(
         Real::mul_add(
             T::from_f64(0.0004),
             t2962,
-            -(t308 + T::from_f64(0.0000024) * t1372),
+            -Real::mul_add(T::from_f64(0.0000024), t1372, t308),
         ),
     );
-    let t3085 = t233 * t301 + t1388 * T::from_f64(0.0004);
-    let t3094 = T::from_f64(0.05)
-        * (T::from_f64(0.03) * t1347
-            + Real::mul_add(
+    let t3085 = Real::mul_add(t1388, T::from_f64(0.0004), t233 * t301);
+    let t3094 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1347,
+            Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3085);
+            ),
+        ),
+        Real::mul_add(-t1347, T::from_f64(0.00075), t152 * t212) + t3085,
+    );
     let t3097 = Real::mul_add(
         c113,
         Real::mul_add(
@@ -814,7 +874,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
             Real::mul_add(
                 t1348,
                 T::from_f64(0.00075),
-                -(t219 + T::from_f64(0.0000058) * t158),
+                -Real::mul_add(T::from_f64(0.0000058), t158, t219),
             ) + Real::mul_add(c115, t3084, t412),
         ),
         s112 * (t218 - Real::mul_add(s114, t3084, -t408)),
@@ -825,15 +885,16 @@ pub fn forward_dynamics_derivatives<T: Real>(
         + T::from_f64(0.008) * tendon_tensions[3]
         - Real::mul_add(
             -T::from_f64(0.012),
-            t2964 - T::from_f64(0.014) * t134,
+            Real::mul_add(-T::from_f64(0.014), t134, t2964),
             Real::mul_add(
                 -t134,
                 T::from_f64(0.00006),
                 (qd[0] * t131 - t122) * T::from_f64(0.00003),
             ) + t3097,
         );
-    let t3107 = s112
-        * Real::mul_add(
+    let t3107 = Real::mul_add(
+        s112,
+        Real::mul_add(
             -c113,
             t2586,
             s112
@@ -844,11 +905,16 @@ pub fn forward_dynamics_derivatives<T: Real>(
                             t1586,
                             T::from_f64(0.05) * t1590,
                         ))),
-        )
-        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
-            + T::from_f64(0.0000027880000000000002));
-    let t3108 = c113
-        * Real::mul_add(
+        ),
+        Real::mul_add(
+            T::from_f64(0.012),
+            t1655 + (t1655 + T::from_f64(0.000768)),
+            T::from_f64(0.0000027880000000000002),
+        ),
+    );
+    let t3108 = Real::mul_add(
+        c113,
+        Real::mul_add(
             -s112,
             t2586,
             c113
@@ -858,7 +924,9 @@ pub fn forward_dynamics_derivatives<T: Real>(
                         c115 * c115,
                         T::from_f64(0.00002455),
                     )),
-        ) + t3107;
+        ),
+        t3107,
+    );
     let t3109 = T::from_f64(0.00000002100000000000001) / t3108;
     let t3110 = T::from_f64(0.000000024000000000000003) / t3108;
     let t3113 = Real::mul_add(-t3108, t3109 * t3109, t1592 + T::from_f64(0.000036946));
@@ -906,8 +974,11 @@ pub fn forward_dynamics_derivatives<T: Real>(
     let t3168 = Real::mul_add(s114, t3148, t251);
     let t3170 = Real::mul_add(c115, t3148, -t254);
     let t3186 = Real::mul_add(-T::from_f64(0.02), t3165, t273 + t3149) - t293;
-    let t3193 = Real::mul_add(T::from_f64(0.0000024), t3165, -t308)
-        - T::from_f64(0.0004) * t3186;
+    let t3193 = Real::mul_add(
+        -T::from_f64(0.0004),
+        t3186,
+        Real::mul_add(T::from_f64(0.0000024), t3165, -t308),
+    );
     let t3198 = s114 * t3193;
     let t3199 = c115 * t3193;
     let t3210 = Real::mul_add(T::from_f64(0.05), t3142, t153 * t173);
@@ -949,7 +1020,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
         t3236,
         -(Real::mul_add(
             s112,
-            qd[1] * t554 - t219 - Real::mul_add(s114, t3231, -t660),
+            Real::mul_add(qd[1], t554, -t219) - Real::mul_add(s114, t3231, -t660),
             c113 * (t218 - (t3198 - t408)),
         ) + t3244),
     );
@@ -960,7 +1031,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
         t3254,
         Real::mul_add(T::from_f64(0.0004), t3254, -t3227),
     );
-    let t3263 = t635 + T::from_f64(0.0004) * t3253;
+    let t3263 = Real::mul_add(T::from_f64(0.0004), t3253, t635);
     let t3269 = Real::mul_add(
         T::from_f64(0.02),
         s114 * (t595 + t3170 - t610),
@@ -989,7 +1060,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
             + (Real::mul_add(
                 -t549,
                 T::from_f64(0.00075),
-                Real::mul_add(t153, t212, -(t152 * t554)),
+                Real::mul_add(-t152, t554, t153 * t212),
             ) + t3008),
     );
     let t3293 = Real::mul_add(t3117, t3286, -Real::mul_add(t3110, t3247, t3008)) / t3123;
@@ -1017,7 +1088,7 @@ pub fn forward_dynamics_derivatives<T: Real>(
             T::from_f64(0.05),
             Real::mul_add(
                 T::from_f64(0.02),
-                s114 * (t1141 - (c115 * t1112 + t1135)),
+                s114 * (t1141 - Real::mul_add(c115, t1112, t1135)),
                 c115 * (T::from_f64(0.02) * t1133),
             ),
             t2502 - t2499,
@@ -1127,11 +1198,11 @@ pub fn all<T: Real>(
     let t131 = qd[0] * T::from_f64(0.004285714285714286);
     let t133 = qd[0] * t131;
     let t134 = qd[0] * t130;
-    let t137 = qdd[0] * T::from_f64(0.004285714285714286) - t118 - t134;
+    let t137 = Real::mul_add(qdd[0], T::from_f64(0.004285714285714286), -t118) - t134;
     let t152 = qd[0] * s112;
     let t153 = qd[0] * c113;
     let t156 = qd[1] * t153;
-    let t157 = qdd[0] * s112 + t156;
+    let t157 = Real::mul_add(qdd[0], s112, t156);
     let t158 = qd[1] * t152;
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t160 = c113 * t122;
@@ -1144,29 +1215,29 @@ pub fn all<T: Real>(
     let t183 = t152 * t173;
     let t184 = t162 - t160 - Real::mul_add(qd[1], t173, t176);
     let t185 = Real::mul_add(T::from_f64(0.05), qdd[1], t166) + t181;
-    let t186 = t183 - (t118 + T::from_f64(0.05) * t159);
+    let t186 = t183 - Real::mul_add(T::from_f64(0.05), t159, t118);
     let t194 = qd[1] * T::from_f64(0.025);
     let t196 = t153 * T::from_f64(0.025);
     let t202 = t152 * t196;
     let t204 = t152 * t194;
-    let t207 = t185 - qdd[1] * T::from_f64(0.025) - t202;
-    let t208 = t186 + t159 * T::from_f64(0.025) - t204;
+    let t207 = Real::mul_add(-qdd[1], T::from_f64(0.025), t185) - t202;
+    let t208 = Real::mul_add(t159, T::from_f64(0.025), t186) - t204;
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t216 = t153 * t213;
     let t218 = Real::mul_add(-qd[1], t212, t216);
     let t219 = t152 * t213;
     let t221 = t152 * t212;
-    let t233 = c115 * t152 + s114 * t153;
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t233 = Real::mul_add(s114, t153, c115 * t152);
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t246 = qd[2] * t237;
-    let t247 = c115 * t157 + s114 * t159 + t246;
+    let t247 = Real::mul_add(s114, t159, c115 * t157) + t246;
     let t248 = qd[2] * t233;
-    let t249 = Real::mul_add(c115, t159, -(s114 * t157)) - t248;
+    let t249 = Real::mul_add(-s114, t157, c115 * t159) - t248;
     let t250 = qdd[1] + qdd[2];
     let t251 = c115 * t184;
-    let t253 = t251 + s114 * t185;
+    let t253 = Real::mul_add(s114, t185, t251);
     let t254 = s114 * t184;
     let t257 = Real::mul_add(c115, t185, -t254);
     let t263 = T::from_f64(0.04) * t245;
@@ -1178,7 +1249,7 @@ pub fn all<T: Real>(
     let t283 = T::from_f64(0.02) * t245;
     let t285 = T::from_f64(0.02) * t237;
     let t287 = t237 * t285;
-    let t290 = t287 + t245 * t283;
+    let t290 = Real::mul_add(t245, t283, t287);
     let t291 = t233 * t285;
     let t293 = t233 * t283;
     let t298 = T::from_f64(0.02) * (t253 - t269 + t290);
@@ -1190,8 +1261,11 @@ pub fn all<T: Real>(
     let t310 = t233 * t301;
     let t322 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1]);
     let t332 = T::from_f64(0.000000049) * t322;
-    let t354 = qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333);
+    let t354 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    );
     let t364 = Real::mul_add(
         T::from_f64(0.888888888888889),
         qdd[2],
@@ -1205,33 +1279,33 @@ pub fn all<T: Real>(
     let t522 = T::from_f64(0.05) * t152;
     let t529 = t153 * t173;
     let t530 = t166 + Real::mul_add(t153, t522, t181);
-    let t531 = t160 - t162 + (t176 - t152 * t522);
-    let t532 = T::from_f64(0.05) * t157 + t529;
+    let t531 = t160 - t162 + Real::mul_add(-t152, t522, t176);
+    let t532 = Real::mul_add(T::from_f64(0.05), t157, t529);
     let t536 = t152 * T::from_f64(0.025);
     let t546 = t153 * t194;
-    let t549 = t531 + (t152 * t536 - t153 * t196);
-    let t550 = t532 - t157 * T::from_f64(0.025) - t546;
+    let t549 = t531 + Real::mul_add(-t153, t196, t152 * t536);
+    let t550 = Real::mul_add(-t157, T::from_f64(0.025), t532) - t546;
     let t554 = T::from_f64(0.0000058) * t152;
-    let t560 = qd[1] * t554 - t219;
+    let t560 = Real::mul_add(qd[1], t554, -t219);
     let t589 = T::from_f64(0.04) * t247;
     let t592 = T::from_f64(0.04) * t233;
     let t595 = Real::mul_add(t237, t592, t271);
-    let t598 = t266 - t233 * t592;
+    let t598 = Real::mul_add(-t233, t592, t266);
     let t599 = t237 * t263;
     let t603 = T::from_f64(0.02) * t247;
     let t606 = T::from_f64(0.02) * t233;
-    let t610 = t291 + t237 * t606;
-    let t615 = t233 * t606 - t287;
+    let t610 = Real::mul_add(t237, t606, t291);
+    let t615 = Real::mul_add(t233, t606, -t287);
     let t616 = t237 * t283;
-    let t619 = Real::mul_add(c115, t531, -(s114 * t530)) + t598 + t615;
+    let t619 = Real::mul_add(-s114, t530, c115 * t531) + t598 + t615;
     let t620 = t532 + t589 + t599 - t603 - t616;
     let t624 = T::from_f64(0.0000024) * t233;
-    let t630 = t245 * t624 - t308;
-    let t635 = Real::mul_add(t237, t301, -(t233 * t624));
-    let t636 = t305 + T::from_f64(0.0000024) * t247;
+    let t630 = Real::mul_add(t245, t624, -t308);
+    let t635 = Real::mul_add(-t233, t624, t237 * t301);
+    let t636 = Real::mul_add(T::from_f64(0.0000024), t247, t305);
     let t660 = c115 * t630;
     let t664 = s114 * t630;
-    let t672 = T::from_f64(0.03) * t550 + T::from_f64(0.02) * t620;
+    let t672 = Real::mul_add(T::from_f64(0.02), t620, T::from_f64(0.03) * t550);
     let t750 = t615 + (t598 - t253);
     let t751 = t589 + t599 - t603 - t616;
     let t785 = t660 - t412;
@@ -1240,17 +1314,26 @@ pub fn all<T: Real>(
     let t852 = t130 + t130;
     let t863 = qd[1] * s112;
     let t870 = T::from_f64(0.05) * c113;
-    let t885 = c113 * t849 + (c113 * t174 + t153 * t870);
-    let t887 = Real::mul_add(s112, t849, s112 * t174 + t152 * t870);
+    let t885 = Real::mul_add(c113, t849, Real::mul_add(t153, t870, c113 * t174));
+    let t887 = Real::mul_add(s112, t849, Real::mul_add(t152, t870, s112 * t174));
     let t888 = Real::mul_add(s112, t173, T::from_f64(0.05) * t863);
-    let t905 = t888 - T::from_f64(0.025) * t863 - s112 * t194;
+    let t905 = Real::mul_add(
+        -s112,
+        t194,
+        Real::mul_add(-T::from_f64(0.025), t863, t888),
+    );
     let t909 = T::from_f64(0.0000058) * c113;
     let t930 = Real::mul_add(c113, s114, s112 * c115);
-    let t934 = Real::mul_add(c113, c115, -(s112 * s114));
-    let t948 = Real::mul_add(qd[2], t930, s114 * (qd[1] * c113) + c115 * t863);
+    let t934 = Real::mul_add(-s112, s114, c113 * c115);
+    let t948 = Real::mul_add(
+        qd[2],
+        t930,
+        Real::mul_add(c115, t863, s114 * (qd[1] * c113)),
+    );
     let t960 = T::from_f64(0.04) * t934;
     let t981 = T::from_f64(0.02) * t934;
-    let t993 = Real::mul_add(c115, t887, s114 * t885) + (t264 * t930 + t233 * t960)
+    let t993 = Real::mul_add(c115, t887, s114 * t885)
+        + Real::mul_add(t233, t960, t264 * t930)
         - Real::mul_add(t233, t981, t285 * t930);
     let t998 = T::from_f64(0.0000024) * t934;
     let t1003 = Real::mul_add(-t245, t998, t302 * t934);
@@ -1261,17 +1344,17 @@ pub fn all<T: Real>(
     let t1135 = t263 + t263;
     let t1141 = t283 + t283;
     let t1342 = t166 + t181;
-    let t1343 = t183 + T::from_f64(0.05) * t158;
+    let t1343 = Real::mul_add(T::from_f64(0.05), t158, t183);
     let t1347 = t1342 - t202;
-    let t1348 = t1343 - t158 * T::from_f64(0.025) - t204;
-    let t1372 = t248 + (s114 * t156 + c115 * t158);
+    let t1348 = Real::mul_add(-t158, T::from_f64(0.025), t1343) - t204;
+    let t1372 = t248 + Real::mul_add(c115, t158, s114 * t156);
     let t1388 = t271 + Real::mul_add(c115, t1342, -t254) - t291;
     let t1577 = s114 * T::from_f64(0.000010400000000000002);
-    let t1586 = T::from_f64(-0.00075) + c115 * T::from_f64(0.0004);
+    let t1586 = Real::mul_add(c115, T::from_f64(0.0004), T::from_f64(-0.00075));
     let t1590 = t1586 + T::from_f64(0.0025000000000000005);
     let t1592 = T::from_f64(0.05) * (t1586 + t1590);
     let t1655 = T::from_f64(-0.00006)
-        + Real::mul_add(c113, t1590, -(s112 * (s114 * T::from_f64(0.0004))));
+        + Real::mul_add(-s112, s114 * T::from_f64(0.0004), c113 * t1590);
     let t2373 = t322 * T::from_f64(0.000000056);
     let t2405 = Real::mul_add(
         -t620,
@@ -1279,12 +1362,15 @@ pub fn all<T: Real>(
         Real::mul_add(t620, T::from_f64(0.0004), -t636),
     );
     let t2418 = T::from_f64(0.05)
-        * (T::from_f64(0.03) * t549
-            + Real::mul_add(
+        * Real::mul_add(
+            T::from_f64(0.03),
+            t549,
+            Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (Real::mul_add(s114, t531, c115 * t530) + t595 - t610),
                 c115 * (T::from_f64(0.02) * t619),
-            ));
+            ),
+        );
     let t2433 = Real::mul_add(
         -t751,
         T::from_f64(0.0008),
@@ -1293,7 +1379,8 @@ pub fn all<T: Real>(
     let t2462 = t887 - Real::mul_add(T::from_f64(0.025), c113 * t152, s112 * t196);
     let t2477 = T::from_f64(0.02)
         * (s114
-            * (Real::mul_add(s114, t887, -(c115 * t885)) - (t264 * t934 + t237 * t960)
+            * (Real::mul_add(-c115, t885, s114 * t887)
+                - Real::mul_add(t237, t960, t264 * t934)
                 + Real::mul_add(t237, t981, t285 * t934)));
     let t2499 = t1133 * T::from_f64(0.0004);
     let t2502 = t1133 * T::from_f64(0.0008);
@@ -1302,20 +1389,24 @@ pub fn all<T: Real>(
         T::from_f64(0.05),
         Real::mul_add(
             T::from_f64(0.02),
-            s114 * (t1141 - (c115 * t1112 + t1135)),
+            s114 * (t1141 - Real::mul_add(c115, t1112, t1135)),
             c115 * (T::from_f64(0.02) * t1133),
         ),
         t2504,
     );
     let t2534 = T::from_f64(0.001) * (s114 * (t1141 - t1135));
-    let t2586 = c115 * t1577 + s114 * T::from_f64(0.00002);
-    let t2918 = t271 + (t257 + T::from_f64(0.02) * t250) - t291;
-    let t2919 = t273 + (t186 - T::from_f64(0.02) * t249) - t293;
+    let t2586 = Real::mul_add(c115, t1577, s114 * T::from_f64(0.00002));
+    let t2918 = t271 + Real::mul_add(T::from_f64(0.02), t250, t257) - t291;
+    let t2919 = t273 + Real::mul_add(-T::from_f64(0.02), t249, t186) - t293;
     let t2920 = T::from_f64(0.02) * t2918;
     let t2926 = Real::mul_add(T::from_f64(0.02), t2919, T::from_f64(0.03) * t208);
-    let t2934 = t263 * t930 + (t888 + T::from_f64(0.02) * t948) - t283 * t930;
+    let t2934 = Real::mul_add(
+        -t283,
+        t930,
+        Real::mul_add(t263, t930, Real::mul_add(T::from_f64(0.02), t948, t888)),
+    );
     let t2936 = Real::mul_add(T::from_f64(0.02), t2934, T::from_f64(0.03) * t905);
-    let t2939 = T::from_f64(0.012) * (t2936 - T::from_f64(0.014) * t852);
+    let t2939 = T::from_f64(0.012) * Real::mul_add(-T::from_f64(0.014), t852, t2936);
     let t2948 = t233 * T::from_f64(0.039999999999999994);
     let t2949 = t1114 + t2948;
     let t2952 = t237 * T::from_f64(0.0000006000000000000002);
@@ -1324,12 +1415,18 @@ pub fn all<T: Real>(
     let t2956 = s114 * t2952;
     let t2957 = Real::mul_add(T::from_f64(0.02), t2949, T::from_f64(0.03) * t1119);
     let t2959 = T::from_f64(0.012) * t2957;
-    let t2962 = T::from_f64(0.02) * t1372 + (t273 + t1343) - t293;
+    let t2962 = Real::mul_add(T::from_f64(0.02), t1372, t273 + t1343) - t293;
     let t2964 = Real::mul_add(T::from_f64(0.02), t2962, T::from_f64(0.03) * t1348);
-    let t2976 = Real::mul_add(T::from_f64(0.0000024), t249, -t308)
-        - T::from_f64(0.0004) * t2919;
-    let t2977 = Real::mul_add(T::from_f64(0.000003), t250, t310)
-        + T::from_f64(0.0004) * t2918;
+    let t2976 = Real::mul_add(
+        -T::from_f64(0.0004),
+        t2919,
+        Real::mul_add(T::from_f64(0.0000024), t249, -t308),
+    );
+    let t2977 = Real::mul_add(
+        T::from_f64(0.0004),
+        t2918,
+        Real::mul_add(T::from_f64(0.000003), t250, t310),
+    );
     let t2978 = s114 * t2976;
     let t2979 = c115 * t2976;
     let t2982 = t218 - (t2978 - t408);
@@ -1344,41 +1441,73 @@ pub fn all<T: Real>(
     );
     let t2993 = Real::mul_add(
         -T::from_f64(0.012),
-        T::from_f64(0.014) * t137 + t2926,
-        T::from_f64(0.0000022215714285714285) * qdd[0]
-            + Real::mul_add(
+        Real::mul_add(T::from_f64(0.014), t137, t2926),
+        Real::mul_add(
+            T::from_f64(0.0000022215714285714285),
+            qdd[0],
+            Real::mul_add(
                 t137,
                 T::from_f64(0.00006),
                 (Real::mul_add(T::from_f64(0.002142857142857143), qdd[0], -t122) + t133)
                     * T::from_f64(0.00003),
-            ) + Real::mul_add(c113, t2985, s112 * t2982),
+            ),
+        ) + Real::mul_add(c113, t2985, s112 * t2982),
     );
     let t2994 = t332
         + Real::mul_add(
             T::from_f64(0.05),
-            T::from_f64(0.03) * t207 + Real::mul_add(c115, t2920, s114 * t298),
+            Real::mul_add(
+                T::from_f64(0.03),
+                t207,
+                Real::mul_add(c115, t2920, s114 * t298),
+            ),
             Real::mul_add(
                 -t207,
                 T::from_f64(0.00075),
                 Real::mul_add(T::from_f64(0.0000068), qdd[1], t221),
             ) + t2977,
         );
-    let t3003 = t364 * T::from_f64(0.000000072)
-        + (t2373 + (t2373 + t2977) - t354 * T::from_f64(0.00000004799999999999999));
-    let t3006 = T::from_f64(0.000000064) * t376
-        + (T::from_f64(0.000000064) * t370
-            + (T::from_f64(0.000000081) * t364
-                + (T::from_f64(0.000000036) * t354 + t2993)));
-    let t3007 = t370 * T::from_f64(0.00000008)
-        + (t364 * T::from_f64(0.00000006300000000000001)
-            + (t332 + t2994 - t354 * T::from_f64(0.000000042)))
-        - t376 * T::from_f64(0.00000008);
-    let t3008 = t635 + t619 * T::from_f64(0.0004);
+    let t3003 = Real::mul_add(
+        t364,
+        T::from_f64(0.000000072),
+        Real::mul_add(
+            -t354,
+            T::from_f64(0.00000004799999999999999),
+            t2373 + (t2373 + t2977),
+        ),
+    );
+    let t3006 = Real::mul_add(
+        T::from_f64(0.000000064),
+        t376,
+        Real::mul_add(
+            T::from_f64(0.000000064),
+            t370,
+            Real::mul_add(
+                T::from_f64(0.000000081),
+                t364,
+                Real::mul_add(T::from_f64(0.000000036), t354, t2993),
+            ),
+        ),
+    );
+    let t3007 = Real::mul_add(
+        -t376,
+        T::from_f64(0.00000008),
+        Real::mul_add(
+            t370,
+            T::from_f64(0.00000008),
+            Real::mul_add(
+                t364,
+                T::from_f64(0.00000006300000000000001),
+                Real::mul_add(-t354, T::from_f64(0.000000042), t332 + t2994),
+            ),
+        ),
+    );
+    let t3008 = Real::mul_add(t619, T::from_f64(0.0004), t635);
     let t3010 = t2418
         + (Real::mul_add(
             -t549,
             T::from_f64(0.00075),
-            Real::mul_add(t153, t212, -(t152 * t554)),
+            Real::mul_add(-t152, t554, t153 * t212),
         ) + t3008);
     let t3013 = Real::mul_add(
         c113,
@@ -1389,14 +1518,18 @@ pub fn all<T: Real>(
             -s112,
             t2985,
             c113
-                * (Real::mul_add(
-                    t550,
-                    T::from_f64(0.00075),
-                    -(t216 + T::from_f64(0.0000058) * t157),
-                ) + Real::mul_add(c115, t2405, t664) - T::from_f64(0.05) * t672),
+                * Real::mul_add(
+                    -T::from_f64(0.05),
+                    t672,
+                    Real::mul_add(
+                        t550,
+                        T::from_f64(0.00075),
+                        -Real::mul_add(T::from_f64(0.0000058), t157, t216),
+                    ) + Real::mul_add(c115, t2405, t664),
+                ),
         );
-    let t3014 = t3013 - T::from_f64(0.012) * t672;
-    let t3015 = t635 + t750 * T::from_f64(0.0004);
+    let t3014 = Real::mul_add(-T::from_f64(0.012), t672, t3013);
+    let t3015 = Real::mul_add(t750, T::from_f64(0.0004), t635);
     let t3023 = Real::mul_add(
         T::from_f64(0.05),
         Real::mul_add(T::from_f64(0.02), s114 * (t257 + t595 - t610), c115 * t298)
@@ -1404,31 +1537,45 @@ pub fn all<T: Real>(
         t3015,
     );
     let t3027 = Real::mul_add(
-        c113,
-        t792 + (c115 * t2433 - t2978) - t751 * T::from_f64(0.001),
-        s112 * (t785 - (s114 * t2433 + t2979)),
-    ) - t751 * T::from_f64(0.00024);
+        -t751,
+        T::from_f64(0.00024),
+        Real::mul_add(
+            c113,
+            Real::mul_add(
+                -t751,
+                T::from_f64(0.001),
+                t792 + Real::mul_add(c115, t2433, -t2978),
+            ),
+            s112 * (t785 - Real::mul_add(s114, t2433, t2979)),
+        ),
+    );
     let t3031 = Real::mul_add(
         -T::from_f64(0.0008),
         t2934,
         Real::mul_add(
             T::from_f64(0.0004),
             t2934,
-            -(T::from_f64(0.0000024) * t948 + t302 * t930),
+            -Real::mul_add(t302, t930, T::from_f64(0.0000024) * t948),
         ),
     );
-    let t3032 = Real::mul_add(t233, t998, t301 * t930) + t993 * T::from_f64(0.0004);
-    let t3041 = T::from_f64(0.05)
-        * Real::mul_add(
+    let t3032 = Real::mul_add(
+        t993,
+        T::from_f64(0.0004),
+        Real::mul_add(t233, t998, t301 * t930),
+    );
+    let t3041 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
             T::from_f64(0.03),
             t2462,
-            c115 * (T::from_f64(0.02) * t993) + t2477,
-        )
-        + (Real::mul_add(
+            Real::mul_add(c115, T::from_f64(0.02) * t993, t2477),
+        ),
+        Real::mul_add(
             -T::from_f64(0.00075),
             t2462,
             Real::mul_add(t152, t909, s112 * t212),
-        ) + t3032);
+        ) + t3032,
+    );
     let t3044 = Real::mul_add(
         c113,
         Real::mul_add(
@@ -1437,12 +1584,12 @@ pub fn all<T: Real>(
             Real::mul_add(
                 t905,
                 T::from_f64(0.00075),
-                -(T::from_f64(0.0000058) * t863 + s112 * t213),
+                -Real::mul_add(s112, t213, T::from_f64(0.0000058) * t863),
             ) + Real::mul_add(c115, t3031, s114 * t1003),
         ),
         s112
             * (Real::mul_add(-qd[1], t909, c113 * t213)
-                - Real::mul_add(s114, t3031, -(c115 * t1003))),
+                - Real::mul_add(-c115, t1003, s114 * t3031)),
     );
     let t3045 = Real::mul_add(
         -t852,
@@ -1495,17 +1642,23 @@ pub fn all<T: Real>(
         Real::mul_add(
             T::from_f64(0.0004),
             t2962,
-            -(t308 + T::from_f64(0.0000024) * t1372),
+            -Real::mul_add(T::from_f64(0.0000024), t1372, t308),
         ),
     );
-    let t3085 = t310 + t1388 * T::from_f64(0.0004);
-    let t3094 = T::from_f64(0.05)
-        * (T::from_f64(0.03) * t1347
-            + Real::mul_add(
+    let t3085 = Real::mul_add(t1388, T::from_f64(0.0004), t310);
+    let t3094 = Real::mul_add(
+        T::from_f64(0.05),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1347,
+            Real::mul_add(
                 T::from_f64(0.02),
                 s114 * (t290 + (Real::mul_add(s114, t1342, t251) - t269)),
                 c115 * (T::from_f64(0.02) * t1388),
-            )) + (Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3085);
+            ),
+        ),
+        Real::mul_add(-t1347, T::from_f64(0.00075), t221) + t3085,
+    );
     let t3097 = Real::mul_add(
         c113,
         Real::mul_add(
@@ -1514,7 +1667,7 @@ pub fn all<T: Real>(
             Real::mul_add(
                 t1348,
                 T::from_f64(0.00075),
-                -(t219 + T::from_f64(0.0000058) * t158),
+                -Real::mul_add(T::from_f64(0.0000058), t158, t219),
             ) + Real::mul_add(c115, t3084, t412),
         ),
         s112 * (t218 - Real::mul_add(s114, t3084, -t408)),
@@ -1525,15 +1678,16 @@ pub fn all<T: Real>(
         + T::from_f64(0.008) * tendon_tensions[3]
         - Real::mul_add(
             -T::from_f64(0.012),
-            t2964 - T::from_f64(0.014) * t134,
+            Real::mul_add(-T::from_f64(0.014), t134, t2964),
             Real::mul_add(
                 -t134,
                 T::from_f64(0.00006),
                 (t133 - t122) * T::from_f64(0.00003),
             ) + t3097,
         );
-    let t3107 = s112
-        * Real::mul_add(
+    let t3107 = Real::mul_add(
+        s112,
+        Real::mul_add(
             -c113,
             t2586,
             s112
@@ -1544,11 +1698,16 @@ pub fn all<T: Real>(
                             t1586,
                             T::from_f64(0.05) * t1590,
                         ))),
-        )
-        + (T::from_f64(0.012) * (t1655 + (t1655 + T::from_f64(0.000768)))
-            + T::from_f64(0.0000027880000000000002));
-    let t3108 = c113
-        * Real::mul_add(
+        ),
+        Real::mul_add(
+            T::from_f64(0.012),
+            t1655 + (t1655 + T::from_f64(0.000768)),
+            T::from_f64(0.0000027880000000000002),
+        ),
+    );
+    let t3108 = Real::mul_add(
+        c113,
+        Real::mul_add(
             -s112,
             t2586,
             c113
@@ -1558,7 +1717,9 @@ pub fn all<T: Real>(
                         c115 * c115,
                         T::from_f64(0.00002455),
                     )),
-        ) + t3107;
+        ),
+        t3107,
+    );
     let t3109 = T::from_f64(0.00000002100000000000001) / t3108;
     let t3110 = T::from_f64(0.000000024000000000000003) / t3108;
     let t3113 = Real::mul_add(-t3108, t3109 * t3109, t1592 + T::from_f64(0.000036946));
@@ -1606,8 +1767,11 @@ pub fn all<T: Real>(
     let t3168 = Real::mul_add(s114, t3148, t251);
     let t3170 = Real::mul_add(c115, t3148, -t254);
     let t3186 = Real::mul_add(-T::from_f64(0.02), t3165, t273 + t3149) - t293;
-    let t3193 = Real::mul_add(T::from_f64(0.0000024), t3165, -t308)
-        - T::from_f64(0.0004) * t3186;
+    let t3193 = Real::mul_add(
+        -T::from_f64(0.0004),
+        t3186,
+        Real::mul_add(T::from_f64(0.0000024), t3165, -t308),
+    );
     let t3198 = s114 * t3193;
     let t3199 = c115 * t3193;
     let t3210 = Real::mul_add(T::from_f64(0.05), t3142, t529);
@@ -1660,7 +1824,7 @@ pub fn all<T: Real>(
         t3254,
         Real::mul_add(T::from_f64(0.0004), t3254, -t3227),
     );
-    let t3263 = t635 + T::from_f64(0.0004) * t3253;
+    let t3263 = Real::mul_add(T::from_f64(0.0004), t3253, t635);
     let t3269 = Real::mul_add(
         T::from_f64(0.02),
         s114 * (t595 + t3170 - t610),

@@ -29,10 +29,15 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let t89 = T::from_f64(0.0022565364925521848) * qdd[0]
-        + T::from_f64(0.05876696717445425)
-            * (T::from_f64(9.81) * q[0].cos()
-                + qdd[0] * T::from_f64(0.11453933004307648));
+    let t89 = Real::mul_add(
+        T::from_f64(0.05876696717445425),
+        Real::mul_add(
+            qdd[0],
+            T::from_f64(0.11453933004307648),
+            T::from_f64(9.81) * q[0].cos(),
+        ),
+        T::from_f64(0.0022565364925521848) * qdd[0],
+    );
     let t91 = -(T::from_f64(26.86799212591526) * t89);
     let t92 = T::from_f64(2.640692450034188) * t89;
     let t93 = T::from_f64(12.177380240452862) * t89;
@@ -83,10 +88,15 @@ pub struct Outputs<T> {
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
-    let t89 = T::from_f64(0.0022565364925521848) * qdd[0]
-        + T::from_f64(0.05876696717445425)
-            * (T::from_f64(9.81) * q[0].cos()
-                + qdd[0] * T::from_f64(0.11453933004307648));
+    let t89 = Real::mul_add(
+        T::from_f64(0.05876696717445425),
+        Real::mul_add(
+            qdd[0],
+            T::from_f64(0.11453933004307648),
+            T::from_f64(9.81) * q[0].cos(),
+        ),
+        T::from_f64(0.0022565364925521848) * qdd[0],
+    );
     let t91 = -(T::from_f64(26.86799212591526) * t89);
     let t92 = T::from_f64(2.640692450034188) * t89;
     let t93 = T::from_f64(12.177380240452862) * t89;

@@ -29,10 +29,15 @@ pub fn actuation<T: Numeric>(
     qd: &[T; 1],
     qdd: &[T; 1],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
-    let t153 = T::from_f64(0.0022565364925521848) * qdd[0]
-        + T::from_f64(0.05876696717445425)
-            * (T::from_f64(9.81) * q[0].cos()
-                + qdd[0] * T::from_f64(0.11453933004307648));
+    let t153 = Real::mul_add(
+        T::from_f64(0.05876696717445425),
+        Real::mul_add(
+            qdd[0],
+            T::from_f64(0.11453933004307648),
+            T::from_f64(9.81) * q[0].cos(),
+        ),
+        T::from_f64(0.0022565364925521848) * qdd[0],
+    );
     let t155 = -(T::from_f64(26.86799212591526) * t153);
     let t156 = T::from_f64(2.640692450034188) * t153;
     let t157 = T::from_f64(12.177380240452862) * t153;
@@ -86,8 +91,11 @@ pub fn actuation_derivatives<T: Numeric>(
     qdd: &[T; 1],
 ) -> tendyn_core::dual::ActuationJacobians<[T; 3], [[T; 1]; 3]> {
     let (s29, c30) = q[0].sin_cos();
-    let t166 = -(qdd[0] * T::from_f64(0.24148052699609443)
-        + c30 * T::from_f64(15.489503534923216));
+    let t166 = -Real::mul_add(
+        c30,
+        T::from_f64(15.489503534923216),
+        qdd[0] * T::from_f64(0.24148052699609443),
+    );
     let t170 = Real::mul_add(
         c30,
         T::from_f64(1.5223696228493755),
@@ -211,9 +219,11 @@ pub fn all<T: Numeric>(q: &[T; 1], qd: &[T; 1], qdd: &[T; 1]) -> Outputs<T> {
     let t146 = -(T::from_f64(26.86799212591526) * t144);
     let t147 = T::from_f64(2.640692450034188) * t144;
     let t148 = T::from_f64(12.177380240452862) * t144;
-    let t153 = T::from_f64(0.0022565364925521848) * qdd[0]
-        + T::from_f64(0.05876696717445425)
-            * (T::from_f64(9.81) * c30 + qdd[0] * T::from_f64(0.11453933004307648));
+    let t153 = Real::mul_add(
+        T::from_f64(0.05876696717445425),
+        Real::mul_add(qdd[0], T::from_f64(0.11453933004307648), T::from_f64(9.81) * c30),
+        T::from_f64(0.0022565364925521848) * qdd[0],
+    );
     let t155 = -(T::from_f64(26.86799212591526) * t153);
     let t156 = T::from_f64(2.640692450034188) * t153;
     let t157 = T::from_f64(12.177380240452862) * t153;

@@ -60,7 +60,7 @@ pub fn actuation<T: Numeric>(
         qdd[0],
         T::from_f64(4.905) * c97,
     );
-    let t114 = t106 - qdd[0] * T::from_f64(0.08674124527872953);
+    let t114 = Real::mul_add(-qdd[0], T::from_f64(0.08674124527872953), t106);
     let t128 = qd[0] + qd[1];
     let t129 = qdd[0] + qdd[1];
     let t160 = qd[2] + t128;
@@ -70,24 +70,40 @@ pub fn actuation<T: Numeric>(
         qd[0] * qd[0],
         T::from_f64(4.905) * s96,
     );
-    let t296 = T::from_f64(0.22861191771406145) * t129
-        + Real::mul_add(-s98, t288, c99 * t106);
+    let t296 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        t129,
+        Real::mul_add(-s98, t288, c99 * t106),
+    );
     let t297 = t128 * t128;
     let t299 = Real::mul_add(
         -T::from_f64(0.22861191771406145),
         t297,
         Real::mul_add(c99, t288, s98 * t106),
     );
-    let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t378 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t300 = Real::mul_add(-t129, T::from_f64(0.11430595885703072), t296);
+    let t378 = Real::mul_add(
+        -s100,
+        t299,
+        Real::mul_add(c101, t296, t161 * T::from_f64(0.05865388667445857)),
+    );
     let t380 = T::from_f64(0.5007304715876689)
-        * (Real::mul_add(s100, t296, c101 * t299)
-            - T::from_f64(0.05865388667445857) * (t160 * t160));
+        * Real::mul_add(
+            -T::from_f64(0.05865388667445857),
+            t160 * t160,
+            Real::mul_add(s100, t296, c101 * t299),
+        );
     let t381 = T::from_f64(0.5007304715876689) * t378;
-    let t385 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t378;
-    let t393 = T::from_f64(0.6835347352950796) * t300
-        + Real::mul_add(c101, t381, s100 * t380);
+    let t385 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t378,
+        T::from_f64(0.0005867356740067153) * t161,
+    );
+    let t393 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t300,
+        Real::mul_add(c101, t381, s100 * t380),
+    );
     let t396 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t393,
@@ -98,15 +114,20 @@ pub fn actuation<T: Numeric>(
         ) + t385,
     );
     let t402 = T::from_f64(0.17348249055745907)
-        * (T::from_f64(0.6015049614594958) * t114
-            + Real::mul_add(
+        * Real::mul_add(
+            T::from_f64(0.6015049614594958),
+            t114,
+            Real::mul_add(
                 c99,
                 t393,
                 s98
-                    * (T::from_f64(0.6835347352950796)
-                        * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
-                        - Real::mul_add(-c101, t380, s100 * t381)),
-            ));
+                    * Real::mul_add(
+                        T::from_f64(0.6835347352950796),
+                        Real::mul_add(T::from_f64(0.11430595885703072), t297, t299),
+                        -Real::mul_add(-c101, t380, s100 * t381),
+                    ),
+            ),
+        );
     let t403 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),
@@ -354,7 +375,7 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         qdd[0],
         T::from_f64(4.905) * c97,
     );
-    let t114 = t106 - qdd[0] * T::from_f64(0.08674124527872953);
+    let t114 = Real::mul_add(-qdd[0], T::from_f64(0.08674124527872953), t106);
     let t128 = qd[0] + qd[1];
     let t129 = qdd[0] + qdd[1];
     let t160 = qd[2] + t128;
@@ -364,24 +385,40 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         qd[0] * qd[0],
         T::from_f64(4.905) * s96,
     );
-    let t296 = T::from_f64(0.22861191771406145) * t129
-        + Real::mul_add(-s98, t288, c99 * t106);
+    let t296 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        t129,
+        Real::mul_add(-s98, t288, c99 * t106),
+    );
     let t297 = t128 * t128;
     let t299 = Real::mul_add(
         -T::from_f64(0.22861191771406145),
         t297,
         Real::mul_add(c99, t288, s98 * t106),
     );
-    let t300 = t296 - t129 * T::from_f64(0.11430595885703072);
-    let t378 = t161 * T::from_f64(0.05865388667445857) + c101 * t296 - s100 * t299;
+    let t300 = Real::mul_add(-t129, T::from_f64(0.11430595885703072), t296);
+    let t378 = Real::mul_add(
+        -s100,
+        t299,
+        Real::mul_add(c101, t296, t161 * T::from_f64(0.05865388667445857)),
+    );
     let t380 = T::from_f64(0.5007304715876689)
-        * (Real::mul_add(s100, t296, c101 * t299)
-            - T::from_f64(0.05865388667445857) * (t160 * t160));
+        * Real::mul_add(
+            -T::from_f64(0.05865388667445857),
+            t160 * t160,
+            Real::mul_add(s100, t296, c101 * t299),
+        );
     let t381 = T::from_f64(0.5007304715876689) * t378;
-    let t385 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t378;
-    let t393 = T::from_f64(0.6835347352950796) * t300
-        + Real::mul_add(c101, t381, s100 * t380);
+    let t385 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t378,
+        T::from_f64(0.0005867356740067153) * t161,
+    );
+    let t393 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t300,
+        Real::mul_add(c101, t381, s100 * t380),
+    );
     let t396 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t393,
@@ -392,15 +429,20 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         ) + t385,
     );
     let t402 = T::from_f64(0.17348249055745907)
-        * (T::from_f64(0.6015049614594958) * t114
-            + Real::mul_add(
+        * Real::mul_add(
+            T::from_f64(0.6015049614594958),
+            t114,
+            Real::mul_add(
                 c99,
                 t393,
                 s98
-                    * (T::from_f64(0.6835347352950796)
-                        * Real::mul_add(T::from_f64(0.11430595885703072), t297, t299)
-                        - Real::mul_add(-c101, t380, s100 * t381)),
-            ));
+                    * Real::mul_add(
+                        T::from_f64(0.6835347352950796),
+                        Real::mul_add(T::from_f64(0.11430595885703072), t297, t299),
+                        -Real::mul_add(-c101, t380, s100 * t381),
+                    ),
+            ),
+        );
     let t403 = Real::mul_add(
         -t114,
         T::from_f64(0.05217528939833088),

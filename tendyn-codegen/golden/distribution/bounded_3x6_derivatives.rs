@@ -60,39 +60,67 @@ pub fn actuation<T: Numeric>(
         qdd[0],
         T::from_f64(4.905) * c97,
     );
-    let t110 = T::from_f64(4.905) * s96
-        - qd[0] * (T::from_f64(0.17348249055745907) * qd[0]);
-    let t114 = t106 - qdd[0] * T::from_f64(0.08674124527872953);
+    let t110 = Real::mul_add(
+        -qd[0],
+        T::from_f64(0.17348249055745907) * qd[0],
+        T::from_f64(4.905) * s96,
+    );
+    let t114 = Real::mul_add(-qdd[0], T::from_f64(0.08674124527872953), t106);
     let t128 = qd[0] + qd[1];
     let t129 = qdd[0] + qdd[1];
     let t138 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t129,
-        Real::mul_add(c99, t106, -(s98 * t110)),
+        Real::mul_add(-s98, t110, c99 * t106),
     );
-    let t142 = c99 * t110 + s98 * t106
-        - t128 * (T::from_f64(0.22861191771406145) * t128);
-    let t146 = t138 - t129 * T::from_f64(0.11430595885703072);
+    let t142 = Real::mul_add(
+        -t128,
+        T::from_f64(0.22861191771406145) * t128,
+        Real::mul_add(s98, t106, c99 * t110),
+    );
+    let t146 = Real::mul_add(-t129, T::from_f64(0.11430595885703072), t138);
     let t160 = qd[2] + t128;
     let t161 = qdd[2] + t129;
     let t184 = T::from_f64(0.5007304715876689)
-        * (c101 * t142 + s100 * t138 - t160 * (T::from_f64(0.11730777334891714) * t160)
-            + t160 * (t160 * T::from_f64(0.05865388667445857)));
-    let t1547 = Real::mul_add(c101, t138, -(s100 * t142))
-        + t161 * T::from_f64(0.05865388667445857);
+        * Real::mul_add(
+            t160,
+            t160 * T::from_f64(0.05865388667445857),
+            Real::mul_add(
+                -t160,
+                T::from_f64(0.11730777334891714) * t160,
+                Real::mul_add(s100, t138, c101 * t142),
+            ),
+        );
+    let t1547 = Real::mul_add(
+        t161,
+        T::from_f64(0.05865388667445857),
+        Real::mul_add(-s100, t142, c101 * t138),
+    );
     let t1548 = T::from_f64(0.5007304715876689) * t1547;
-    let t1554 = T::from_f64(0.6835347352950796) * t146 + (s100 * t184 + c101 * t1548);
-    let t1561 = T::from_f64(0.6015049614594958) * t114
-        + Real::mul_add(
+    let t1554 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t146,
+        s100 * t184 + c101 * t1548,
+    );
+    let t1561 = Real::mul_add(
+        T::from_f64(0.6015049614594958),
+        t114,
+        Real::mul_add(
             c99,
             t1554,
             s98
-                * (T::from_f64(0.6835347352950796)
-                    * (t142 + t128 * (t128 * T::from_f64(0.11430595885703072)))
-                    - (s100 * t1548 - c101 * t184)),
-        );
-    let t1593 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t1547;
+                * Real::mul_add(
+                    T::from_f64(0.6835347352950796),
+                    Real::mul_add(t128, t128 * T::from_f64(0.11430595885703072), t142),
+                    -(s100 * t1548 - c101 * t184),
+                ),
+        ),
+    );
+    let t1593 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1547,
+        T::from_f64(0.0005867356740067153) * t161,
+    );
     let t1595 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t1554,
@@ -354,63 +382,76 @@ pub fn actuation_derivatives<T: Numeric>(
     let t104 = T::from_f64(4.905) * c97;
     let t106 = Real::mul_add(T::from_f64(0.17348249055745907), qdd[0], t104);
     let t107 = T::from_f64(0.17348249055745907) * qd[0];
-    let t110 = t103 - qd[0] * t107;
-    let t114 = t106 - qdd[0] * T::from_f64(0.08674124527872953);
+    let t110 = Real::mul_add(-qd[0], t107, t103);
+    let t114 = Real::mul_add(-qdd[0], T::from_f64(0.08674124527872953), t106);
     let t128 = qd[0] + qd[1];
     let t129 = qdd[0] + qdd[1];
-    let t132 = c99 * t110 + s98 * t106;
-    let t136 = Real::mul_add(c99, t106, -(s98 * t110));
+    let t132 = Real::mul_add(s98, t106, c99 * t110);
+    let t136 = Real::mul_add(-s98, t110, c99 * t106);
     let t138 = Real::mul_add(T::from_f64(0.22861191771406145), t129, t136);
     let t139 = T::from_f64(0.22861191771406145) * t128;
-    let t142 = t132 - t128 * t139;
-    let t146 = t138 - t129 * T::from_f64(0.11430595885703072);
+    let t142 = Real::mul_add(-t128, t139, t132);
+    let t146 = Real::mul_add(-t129, T::from_f64(0.11430595885703072), t138);
     let t147 = t128 * T::from_f64(0.11430595885703072);
     let t160 = qd[2] + t128;
     let t161 = qdd[2] + t129;
-    let t164 = c101 * t142 + s100 * t138;
-    let t168 = Real::mul_add(c101, t138, -(s100 * t142));
+    let t164 = Real::mul_add(s100, t138, c101 * t142);
+    let t168 = Real::mul_add(-s100, t142, c101 * t138);
     let t171 = T::from_f64(0.11730777334891714) * t160;
     let t179 = t160 * T::from_f64(0.05865388667445857);
-    let t184 = T::from_f64(0.5007304715876689) * (t164 - t160 * t171 + t160 * t179);
+    let t184 = T::from_f64(0.5007304715876689)
+        * Real::mul_add(t160, t179, Real::mul_add(-t160, t171, t164));
     let t195 = c101 * t184;
     let t199 = s100 * t184;
-    let t296 = Real::mul_add(c99, t104, -(s98 * t103));
-    let t301 = s98 * t104 + c99 * t103;
-    let t316 = s100 * t296 + c101 * t301;
-    let t318 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(c101, t296, -(s100 * t301));
+    let t296 = Real::mul_add(-s98, t103, c99 * t104);
+    let t301 = Real::mul_add(c99, t103, s98 * t104);
+    let t316 = Real::mul_add(c101, t301, s100 * t296);
+    let t318 = T::from_f64(0.5007304715876689) * Real::mul_add(-s100, t301, c101 * t296);
     let t319 = T::from_f64(0.5007304715876689) * t316;
-    let t337 = T::from_f64(0.6835347352950796) * t301 + (c101 * t319 - s100 * t318);
+    let t337 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t301,
+        Real::mul_add(-s100, t318, c101 * t319),
+    );
     let t340 = T::from_f64(0.22861191771406145) * t337;
-    let t433 = s100 * t136 + c101 * t132;
-    let t435 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(c101, t136, -(s100 * t132));
+    let t433 = Real::mul_add(c101, t132, s100 * t136);
+    let t435 = T::from_f64(0.5007304715876689) * Real::mul_add(-s100, t132, c101 * t136);
     let t436 = T::from_f64(0.5007304715876689) * t433;
-    let t454 = T::from_f64(0.6835347352950796) * t132 + (c101 * t436 - s100 * t435);
+    let t454 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t132,
+        Real::mul_add(-s100, t435, c101 * t436),
+    );
     let t533 = T::from_f64(0.5007304715876689) * t168;
     let t534 = T::from_f64(0.5007304715876689) * t164;
     let t623 = t107 + t107;
     let t631 = s98 * t623;
     let t632 = t139 + t139;
-    let t634 = c99 * t623 + t632;
+    let t634 = Real::mul_add(c99, t623, t632);
     let t636 = t147 + t147;
     let t649 = Real::mul_add(c101, t631, s100 * t634);
     let t650 = t171 + t171;
     let t653 = t179 + t179;
     let t656 = T::from_f64(0.5007304715876689)
-        * (Real::mul_add(s100, t631, -(c101 * t634)) - t650 + t653);
+        * (Real::mul_add(-c101, t634, s100 * t631) - t650 + t653);
     let t657 = T::from_f64(0.5007304715876689) * t649;
-    let t674 = T::from_f64(0.6835347352950796) * t631
-        + Real::mul_add(c101, t657, s100 * t656);
+    let t674 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t631,
+        Real::mul_add(c101, t657, s100 * t656),
+    );
     let t747 = s100 * t632;
-    let t751 = T::from_f64(0.5007304715876689) * (t653 - (t650 + c101 * t632));
+    let t751 = T::from_f64(0.5007304715876689)
+        * (t653 - Real::mul_add(c101, t632, t650));
     let t752 = T::from_f64(0.5007304715876689) * t747;
     let t764 = Real::mul_add(c101, t752, s100 * t751);
     let t835 = T::from_f64(0.5007304715876689) * (t653 - t650);
     let t837 = s100 * t835;
-    let t853 = T::from_f64(0.22861191771406145) * t837
-        + T::from_f64(0.17348249055745907)
-            * Real::mul_add(c99, t837, s98 * (c101 * t835));
+    let t853 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(c99, t837, s98 * (c101 * t835)),
+        T::from_f64(0.22861191771406145) * t837,
+    );
     let t891 = T::from_f64(0.17348249055745907) * s98;
     let t893 = Real::mul_add(
         T::from_f64(0.17348249055745907),
@@ -429,13 +470,15 @@ pub fn actuation_derivatives<T: Numeric>(
         Real::mul_add(
             s96,
             T::from_f64(2.950381835958827),
-            c99 * t337
-                - s98
-                    * Real::mul_add(
-                        T::from_f64(0.6835347352950796),
-                        t296,
-                        Real::mul_add(s100, t319, c101 * t318),
-                    ),
+            Real::mul_add(
+                -s98,
+                Real::mul_add(
+                    T::from_f64(0.6835347352950796),
+                    t296,
+                    Real::mul_add(s100, t319, c101 * t318),
+                ),
+                c99 * t337,
+            ),
         ),
         Real::mul_add(s96, T::from_f64(0.25591979449881297), -(t340 - t1217)),
     );
@@ -496,8 +539,11 @@ pub fn actuation_derivatives<T: Numeric>(
     let t1255 = t433 * T::from_f64(0.029369788334951328);
     let t1256 = t433 * T::from_f64(0.058739576669902656);
     let t1257 = t1255 - t1256;
-    let t1260 = Real::mul_add(t132, T::from_f64(0.07813209332999076), -(t1256 - t1255))
-        - T::from_f64(0.22861191771406145) * t454;
+    let t1260 = Real::mul_add(
+        -T::from_f64(0.22861191771406145),
+        t454,
+        Real::mul_add(t132, T::from_f64(0.07813209332999076), -(t1256 - t1255)),
+    );
     let t1294 = Real::mul_add(
         -t164,
         T::from_f64(0.058739576669902656),
@@ -506,19 +552,25 @@ pub fn actuation_derivatives<T: Numeric>(
     let t1328 = t649 * T::from_f64(0.029369788334951328);
     let t1329 = t649 * T::from_f64(0.058739576669902656);
     let t1330 = t1329 - t1328;
-    let t1333 = T::from_f64(0.22861191771406145) * t674
-        - Real::mul_add(t631, T::from_f64(0.07813209332999076), t1328 - t1329);
-    let t1334 = T::from_f64(0.17348249055745907)
-        * Real::mul_add(
+    let t1333 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        t674,
+        -Real::mul_add(t631, T::from_f64(0.07813209332999076), t1328 - t1329),
+    );
+    let t1334 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(
             c99,
             t674,
             s98
                 * Real::mul_add(
                     T::from_f64(0.6835347352950796),
                     t636 - t634,
-                    -(s100 * t657 - c101 * t656),
+                    -Real::mul_add(-c101, t656, s100 * t657),
                 ),
-        ) + t1333;
+        ),
+        t1333,
+    );
     let t1339 = Real::mul_add(
         T::from_f64(4.467850922313987),
         t1330,
@@ -575,9 +627,9 @@ pub fn actuation_derivatives<T: Numeric>(
     );
     let t1365 = t747 * T::from_f64(0.029369788334951328);
     let t1402 = Real::mul_add(
-        t837,
-        T::from_f64(4.576012330494364),
-        -(T::from_f64(5.809172465528377) * t853),
+        -T::from_f64(5.809172465528377),
+        t853,
+        t837 * T::from_f64(4.576012330494364),
     );
     let t1405 = Real::mul_add(
         t837,
@@ -585,9 +637,9 @@ pub fn actuation_derivatives<T: Numeric>(
         T::from_f64(11.400003889691153) * t853,
     );
     let t1408 = Real::mul_add(
-        t837,
-        T::from_f64(3.0488908211307812),
-        -(T::from_f64(2.8992594498656623) * t853),
+        -T::from_f64(2.8992594498656623),
+        t853,
+        t837 * T::from_f64(3.0488908211307812),
     );
     let t1411 = Real::mul_add(
         t837,
@@ -655,12 +707,16 @@ pub fn actuation_derivatives<T: Numeric>(
             t1517,
             T::from_f64(3.295669234330575) * t1522,
         );
-    let t1547 = t168 + t161 * T::from_f64(0.05865388667445857);
+    let t1547 = Real::mul_add(t161, T::from_f64(0.05865388667445857), t168);
     let t1548 = T::from_f64(0.5007304715876689) * t1547;
     let t1549 = s100 * t1548;
     let t1550 = c101 * t1548;
-    let t1553 = T::from_f64(0.6835347352950796) * (t142 + t128 * t147) - (t1549 - t195);
-    let t1554 = T::from_f64(0.6835347352950796) * t146 + (t199 + t1550);
+    let t1553 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        Real::mul_add(t128, t147, t142),
+        -(t1549 - t195),
+    );
+    let t1554 = Real::mul_add(T::from_f64(0.6835347352950796), t146, t199 + t1550);
     let t1566 = T::from_f64(0.17348249055745907)
         * (Real::mul_add(
             c99,
@@ -672,16 +728,29 @@ pub fn actuation_derivatives<T: Numeric>(
                     Real::mul_add(s100, t436, c101 * t435),
                 ),
         ) - Real::mul_add(s98, t1554, c99 * t454));
-    let t1570 = Real::mul_add(s100, t533, t195) - (c101 * t534 + t1549);
-    let t1577 = T::from_f64(0.05865388667445857) + c101 * t893 - s100 * t891;
+    let t1570 = Real::mul_add(s100, t533, t195) - Real::mul_add(c101, t534, t1549);
+    let t1577 = Real::mul_add(
+        -s100,
+        t891,
+        Real::mul_add(c101, t893, T::from_f64(0.05865388667445857)),
+    );
     let t1578 = T::from_f64(0.5007304715876689) * t1577;
-    let t1583 = T::from_f64(0.6835347352950796) * t894
-        + Real::mul_add(c101, t1578, s100 * t909);
-    let t1586 = T::from_f64(0.05865388667445857)
-        + T::from_f64(0.22861191771406145) * c101;
+    let t1583 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t894,
+        Real::mul_add(c101, t1578, s100 * t909),
+    );
+    let t1586 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        c101,
+        T::from_f64(0.05865388667445857),
+    );
     let t1587 = T::from_f64(0.5007304715876689) * t1586;
-    let t1593 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t1547;
+    let t1593 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1547,
+        T::from_f64(0.0005867356740067153) * t161,
+    );
     let t1595 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t1554,
@@ -693,7 +762,11 @@ pub fn actuation_derivatives<T: Numeric>(
     );
     let t1597 = Real::mul_add(
         T::from_f64(0.17348249055745907),
-        T::from_f64(0.6015049614594958) * t114 + Real::mul_add(c99, t1554, s98 * t1553),
+        Real::mul_add(
+            T::from_f64(0.6015049614594958),
+            t114,
+            Real::mul_add(c99, t1554, s98 * t1553),
+        ),
         Real::mul_add(
             -t114,
             T::from_f64(0.05217528939833088),
@@ -755,94 +828,139 @@ pub fn actuation_derivatives<T: Numeric>(
         ),
     );
     let t1628 = t1260 + t1566;
-    let t1631 = T::from_f64(4.467850922313987) * t1257
-        + Real::mul_add(
+    let t1631 = Real::mul_add(
+        T::from_f64(4.467850922313987),
+        t1257,
+        Real::mul_add(
             -T::from_f64(5.809172465528377),
             t1628,
             T::from_f64(20.016508221666097) * t1260,
-        );
-    let t1634 = T::from_f64(6.170316129089984) * t1257
-        + Real::mul_add(
+        ),
+    );
+    let t1634 = Real::mul_add(
+        T::from_f64(6.170316129089984),
+        t1257,
+        Real::mul_add(
             T::from_f64(11.400003889691153),
             t1628,
             T::from_f64(0.006739236891550426) * t1260,
-        );
+        ),
+    );
     let t1637 = Real::mul_add(
-        -T::from_f64(2.8992594498656623),
-        t1628,
-        T::from_f64(13.336534908666533) * t1260,
-    ) - T::from_f64(4.82564702027779) * t1257;
+        -T::from_f64(4.82564702027779),
+        t1257,
+        Real::mul_add(
+            -T::from_f64(2.8992594498656623),
+            t1628,
+            T::from_f64(13.336534908666533) * t1260,
+        ),
+    );
     let t1640 = Real::mul_add(
-        T::from_f64(2.436491563222303),
-        t1628,
-        T::from_f64(2.3508975571053456) * t1260,
-    ) - T::from_f64(3.343664733351526) * t1257;
-    let t1643 = T::from_f64(5.3821204934726845) * t1257
-        - Real::mul_add(
+        -T::from_f64(3.343664733351526),
+        t1257,
+        Real::mul_add(
+            T::from_f64(2.436491563222303),
+            t1628,
+            T::from_f64(2.3508975571053456) * t1260,
+        ),
+    );
+    let t1643 = Real::mul_add(
+        T::from_f64(5.3821204934726845),
+        t1257,
+        -Real::mul_add(
             T::from_f64(21.466654370643287),
             t1628,
             T::from_f64(46.92786534807541) * t1260,
-        );
+        ),
+    );
     let t1646 = Real::mul_add(
-        T::from_f64(3.295669234330575),
-        t1628,
-        -(T::from_f64(15.948011217177697) * t1260),
-    ) - T::from_f64(5.523420133271952) * t1257;
+        -T::from_f64(5.523420133271952),
+        t1257,
+        Real::mul_add(
+            -T::from_f64(15.948011217177697),
+            t1260,
+            T::from_f64(3.295669234330575) * t1628,
+        ),
+    );
     let t1647 = Real::mul_add(T::from_f64(0.22861191771406145), t1570, t1294);
     let t1648 = Real::mul_add(
         T::from_f64(0.17348249055745907),
         Real::mul_add(
             c99,
             t1570,
-            s98 * (Real::mul_add(c101, t533, -t199) + (s100 * t534 - t1550)),
+            s98 * (Real::mul_add(c101, t533, -t199) + Real::mul_add(s100, t534, -t1550)),
         ),
         t1647,
     );
-    let t1652 = T::from_f64(4.467850922313987) * t1294
-        + Real::mul_add(
+    let t1652 = Real::mul_add(
+        T::from_f64(4.467850922313987),
+        t1294,
+        Real::mul_add(
             -T::from_f64(5.809172465528377),
             t1648,
             T::from_f64(20.016508221666097) * t1647,
-        );
-    let t1656 = T::from_f64(6.170316129089984) * t1294
-        + Real::mul_add(
+        ),
+    );
+    let t1656 = Real::mul_add(
+        T::from_f64(6.170316129089984),
+        t1294,
+        Real::mul_add(
             T::from_f64(0.006739236891550426),
             t1647,
             T::from_f64(11.400003889691153) * t1648,
-        );
+        ),
+    );
     let t1660 = Real::mul_add(
-        -T::from_f64(2.8992594498656623),
-        t1648,
-        T::from_f64(13.336534908666533) * t1647,
-    ) - T::from_f64(4.82564702027779) * t1294;
+        -T::from_f64(4.82564702027779),
+        t1294,
+        Real::mul_add(
+            -T::from_f64(2.8992594498656623),
+            t1648,
+            T::from_f64(13.336534908666533) * t1647,
+        ),
+    );
     let t1664 = Real::mul_add(
-        T::from_f64(2.3508975571053456),
-        t1647,
-        T::from_f64(2.436491563222303) * t1648,
-    ) - T::from_f64(3.343664733351526) * t1294;
-    let t1668 = T::from_f64(5.3821204934726845) * t1294
-        - Real::mul_add(
+        -T::from_f64(3.343664733351526),
+        t1294,
+        Real::mul_add(
+            T::from_f64(2.3508975571053456),
+            t1647,
+            T::from_f64(2.436491563222303) * t1648,
+        ),
+    );
+    let t1668 = Real::mul_add(
+        T::from_f64(5.3821204934726845),
+        t1294,
+        -Real::mul_add(
             T::from_f64(46.92786534807541),
             t1647,
             T::from_f64(21.466654370643287) * t1648,
-        );
+        ),
+    );
     let t1672 = Real::mul_add(
-        -T::from_f64(15.948011217177697),
-        t1647,
-        T::from_f64(3.295669234330575) * t1648,
-    ) - T::from_f64(5.523420133271952) * t1294;
-    let t1673 = T::from_f64(0.22861191771406145) * t764 + t1365;
-    let t1674 = T::from_f64(0.17348249055745907)
-        * Real::mul_add(
+        -T::from_f64(5.523420133271952),
+        t1294,
+        Real::mul_add(
+            -T::from_f64(15.948011217177697),
+            t1647,
+            T::from_f64(3.295669234330575) * t1648,
+        ),
+    );
+    let t1673 = Real::mul_add(T::from_f64(0.22861191771406145), t764, t1365);
+    let t1674 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(
             c99,
             t764,
             s98
                 * Real::mul_add(
                     T::from_f64(0.6835347352950796),
                     t636 - t632,
-                    -(s100 * t752 - c101 * t751),
+                    -Real::mul_add(-c101, t751, s100 * t752),
                 ),
-        ) + t1673;
+        ),
+        t1673,
+    );
     let t1679 = Real::mul_add(
         T::from_f64(4.467850922313987),
         t1365,
@@ -897,8 +1015,11 @@ pub fn actuation_derivatives<T: Numeric>(
             T::from_f64(3.295669234330575) * t1674,
         ),
     );
-    let t1708 = T::from_f64(0.0005867356740067153)
-        + T::from_f64(0.029369788334951328) * t1577;
+    let t1708 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1577,
+        T::from_f64(0.0005867356740067153),
+    );
     let t1711 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t1583,
@@ -913,8 +1034,11 @@ pub fn actuation_derivatives<T: Numeric>(
         T::from_f64(0.05217528939833088)
             + Real::mul_add(
                 s98,
-                s98 * T::from_f64(0.11858130826152392)
-                    - Real::mul_add(s100, t1578, -(c101 * t909)),
+                Real::mul_add(
+                    s98,
+                    T::from_f64(0.11858130826152392),
+                    -Real::mul_add(-c101, t909, s100 * t1578),
+                ),
                 c99 * t1583,
             ),
         T::from_f64(-0.0030021287594230563) + t1711,
@@ -973,8 +1097,11 @@ pub fn actuation_derivatives<T: Numeric>(
             T::from_f64(3.295669234330575) * t1717,
         ),
     );
-    let t1751 = T::from_f64(0.0005867356740067153)
-        + T::from_f64(0.029369788334951328) * t1586;
+    let t1751 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1586,
+        T::from_f64(0.0005867356740067153),
+    );
     let t1754 = T::from_f64(0.07813209332999076)
         + Real::mul_add(c101, t1587, s100 * t1467);
     let t1757 = Real::mul_add(
@@ -1352,63 +1479,76 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t104 = T::from_f64(4.905) * c97;
     let t106 = Real::mul_add(T::from_f64(0.17348249055745907), qdd[0], t104);
     let t107 = T::from_f64(0.17348249055745907) * qd[0];
-    let t110 = t103 - qd[0] * t107;
-    let t114 = t106 - qdd[0] * T::from_f64(0.08674124527872953);
+    let t110 = Real::mul_add(-qd[0], t107, t103);
+    let t114 = Real::mul_add(-qdd[0], T::from_f64(0.08674124527872953), t106);
     let t128 = qd[0] + qd[1];
     let t129 = qdd[0] + qdd[1];
-    let t132 = c99 * t110 + s98 * t106;
-    let t136 = Real::mul_add(c99, t106, -(s98 * t110));
+    let t132 = Real::mul_add(s98, t106, c99 * t110);
+    let t136 = Real::mul_add(-s98, t110, c99 * t106);
     let t138 = Real::mul_add(T::from_f64(0.22861191771406145), t129, t136);
     let t139 = T::from_f64(0.22861191771406145) * t128;
-    let t142 = t132 - t128 * t139;
-    let t146 = t138 - t129 * T::from_f64(0.11430595885703072);
+    let t142 = Real::mul_add(-t128, t139, t132);
+    let t146 = Real::mul_add(-t129, T::from_f64(0.11430595885703072), t138);
     let t147 = t128 * T::from_f64(0.11430595885703072);
     let t160 = qd[2] + t128;
     let t161 = qdd[2] + t129;
-    let t164 = c101 * t142 + s100 * t138;
-    let t168 = Real::mul_add(c101, t138, -(s100 * t142));
+    let t164 = Real::mul_add(s100, t138, c101 * t142);
+    let t168 = Real::mul_add(-s100, t142, c101 * t138);
     let t171 = T::from_f64(0.11730777334891714) * t160;
     let t179 = t160 * T::from_f64(0.05865388667445857);
-    let t184 = T::from_f64(0.5007304715876689) * (t164 - t160 * t171 + t160 * t179);
+    let t184 = T::from_f64(0.5007304715876689)
+        * Real::mul_add(t160, t179, Real::mul_add(-t160, t171, t164));
     let t195 = c101 * t184;
     let t199 = s100 * t184;
-    let t296 = Real::mul_add(c99, t104, -(s98 * t103));
-    let t301 = s98 * t104 + c99 * t103;
-    let t316 = s100 * t296 + c101 * t301;
-    let t318 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(c101, t296, -(s100 * t301));
+    let t296 = Real::mul_add(-s98, t103, c99 * t104);
+    let t301 = Real::mul_add(c99, t103, s98 * t104);
+    let t316 = Real::mul_add(c101, t301, s100 * t296);
+    let t318 = T::from_f64(0.5007304715876689) * Real::mul_add(-s100, t301, c101 * t296);
     let t319 = T::from_f64(0.5007304715876689) * t316;
-    let t337 = T::from_f64(0.6835347352950796) * t301 + (c101 * t319 - s100 * t318);
+    let t337 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t301,
+        Real::mul_add(-s100, t318, c101 * t319),
+    );
     let t340 = T::from_f64(0.22861191771406145) * t337;
-    let t433 = s100 * t136 + c101 * t132;
-    let t435 = T::from_f64(0.5007304715876689)
-        * Real::mul_add(c101, t136, -(s100 * t132));
+    let t433 = Real::mul_add(c101, t132, s100 * t136);
+    let t435 = T::from_f64(0.5007304715876689) * Real::mul_add(-s100, t132, c101 * t136);
     let t436 = T::from_f64(0.5007304715876689) * t433;
-    let t454 = T::from_f64(0.6835347352950796) * t132 + (c101 * t436 - s100 * t435);
+    let t454 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t132,
+        Real::mul_add(-s100, t435, c101 * t436),
+    );
     let t533 = T::from_f64(0.5007304715876689) * t168;
     let t534 = T::from_f64(0.5007304715876689) * t164;
     let t623 = t107 + t107;
     let t631 = s98 * t623;
     let t632 = t139 + t139;
-    let t634 = c99 * t623 + t632;
+    let t634 = Real::mul_add(c99, t623, t632);
     let t636 = t147 + t147;
     let t649 = Real::mul_add(c101, t631, s100 * t634);
     let t650 = t171 + t171;
     let t653 = t179 + t179;
     let t656 = T::from_f64(0.5007304715876689)
-        * (Real::mul_add(s100, t631, -(c101 * t634)) - t650 + t653);
+        * (Real::mul_add(-c101, t634, s100 * t631) - t650 + t653);
     let t657 = T::from_f64(0.5007304715876689) * t649;
-    let t674 = T::from_f64(0.6835347352950796) * t631
-        + Real::mul_add(c101, t657, s100 * t656);
+    let t674 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t631,
+        Real::mul_add(c101, t657, s100 * t656),
+    );
     let t747 = s100 * t632;
-    let t751 = T::from_f64(0.5007304715876689) * (t653 - (t650 + c101 * t632));
+    let t751 = T::from_f64(0.5007304715876689)
+        * (t653 - Real::mul_add(c101, t632, t650));
     let t752 = T::from_f64(0.5007304715876689) * t747;
     let t764 = Real::mul_add(c101, t752, s100 * t751);
     let t835 = T::from_f64(0.5007304715876689) * (t653 - t650);
     let t837 = s100 * t835;
-    let t853 = T::from_f64(0.22861191771406145) * t837
-        + T::from_f64(0.17348249055745907)
-            * Real::mul_add(c99, t837, s98 * (c101 * t835));
+    let t853 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(c99, t837, s98 * (c101 * t835)),
+        T::from_f64(0.22861191771406145) * t837,
+    );
     let t891 = T::from_f64(0.17348249055745907) * s98;
     let t893 = Real::mul_add(
         T::from_f64(0.17348249055745907),
@@ -1427,13 +1567,15 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         Real::mul_add(
             s96,
             T::from_f64(2.950381835958827),
-            c99 * t337
-                - s98
-                    * Real::mul_add(
-                        T::from_f64(0.6835347352950796),
-                        t296,
-                        Real::mul_add(s100, t319, c101 * t318),
-                    ),
+            Real::mul_add(
+                -s98,
+                Real::mul_add(
+                    T::from_f64(0.6835347352950796),
+                    t296,
+                    Real::mul_add(s100, t319, c101 * t318),
+                ),
+                c99 * t337,
+            ),
         ),
         Real::mul_add(s96, T::from_f64(0.25591979449881297), -(t340 - t1217)),
     );
@@ -1494,8 +1636,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t1255 = t433 * T::from_f64(0.029369788334951328);
     let t1256 = t433 * T::from_f64(0.058739576669902656);
     let t1257 = t1255 - t1256;
-    let t1260 = Real::mul_add(t132, T::from_f64(0.07813209332999076), -(t1256 - t1255))
-        - T::from_f64(0.22861191771406145) * t454;
+    let t1260 = Real::mul_add(
+        -T::from_f64(0.22861191771406145),
+        t454,
+        Real::mul_add(t132, T::from_f64(0.07813209332999076), -(t1256 - t1255)),
+    );
     let t1294 = Real::mul_add(
         -t164,
         T::from_f64(0.058739576669902656),
@@ -1504,19 +1649,25 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t1328 = t649 * T::from_f64(0.029369788334951328);
     let t1329 = t649 * T::from_f64(0.058739576669902656);
     let t1330 = t1329 - t1328;
-    let t1333 = T::from_f64(0.22861191771406145) * t674
-        - Real::mul_add(t631, T::from_f64(0.07813209332999076), t1328 - t1329);
-    let t1334 = T::from_f64(0.17348249055745907)
-        * Real::mul_add(
+    let t1333 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        t674,
+        -Real::mul_add(t631, T::from_f64(0.07813209332999076), t1328 - t1329),
+    );
+    let t1334 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(
             c99,
             t674,
             s98
                 * Real::mul_add(
                     T::from_f64(0.6835347352950796),
                     t636 - t634,
-                    -(s100 * t657 - c101 * t656),
+                    -Real::mul_add(-c101, t656, s100 * t657),
                 ),
-        ) + t1333;
+        ),
+        t1333,
+    );
     let t1339 = Real::mul_add(
         T::from_f64(4.467850922313987),
         t1330,
@@ -1573,9 +1724,9 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     );
     let t1365 = t747 * T::from_f64(0.029369788334951328);
     let t1402 = Real::mul_add(
-        t837,
-        T::from_f64(4.576012330494364),
-        -(T::from_f64(5.809172465528377) * t853),
+        -T::from_f64(5.809172465528377),
+        t853,
+        t837 * T::from_f64(4.576012330494364),
     );
     let t1405 = Real::mul_add(
         t837,
@@ -1583,9 +1734,9 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         T::from_f64(11.400003889691153) * t853,
     );
     let t1408 = Real::mul_add(
-        t837,
-        T::from_f64(3.0488908211307812),
-        -(T::from_f64(2.8992594498656623) * t853),
+        -T::from_f64(2.8992594498656623),
+        t853,
+        t837 * T::from_f64(3.0488908211307812),
     );
     let t1411 = Real::mul_add(
         t837,
@@ -1653,12 +1804,16 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             t1517,
             T::from_f64(3.295669234330575) * t1522,
         );
-    let t1547 = t168 + t161 * T::from_f64(0.05865388667445857);
+    let t1547 = Real::mul_add(t161, T::from_f64(0.05865388667445857), t168);
     let t1548 = T::from_f64(0.5007304715876689) * t1547;
     let t1549 = s100 * t1548;
     let t1550 = c101 * t1548;
-    let t1553 = T::from_f64(0.6835347352950796) * (t142 + t128 * t147) - (t1549 - t195);
-    let t1554 = T::from_f64(0.6835347352950796) * t146 + (t199 + t1550);
+    let t1553 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        Real::mul_add(t128, t147, t142),
+        -(t1549 - t195),
+    );
+    let t1554 = Real::mul_add(T::from_f64(0.6835347352950796), t146, t199 + t1550);
     let t1566 = T::from_f64(0.17348249055745907)
         * (Real::mul_add(
             c99,
@@ -1670,16 +1825,29 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
                     Real::mul_add(s100, t436, c101 * t435),
                 ),
         ) - Real::mul_add(s98, t1554, c99 * t454));
-    let t1570 = Real::mul_add(s100, t533, t195) - (c101 * t534 + t1549);
-    let t1577 = T::from_f64(0.05865388667445857) + c101 * t893 - s100 * t891;
+    let t1570 = Real::mul_add(s100, t533, t195) - Real::mul_add(c101, t534, t1549);
+    let t1577 = Real::mul_add(
+        -s100,
+        t891,
+        Real::mul_add(c101, t893, T::from_f64(0.05865388667445857)),
+    );
     let t1578 = T::from_f64(0.5007304715876689) * t1577;
-    let t1583 = T::from_f64(0.6835347352950796) * t894
-        + Real::mul_add(c101, t1578, s100 * t909);
-    let t1586 = T::from_f64(0.05865388667445857)
-        + T::from_f64(0.22861191771406145) * c101;
+    let t1583 = Real::mul_add(
+        T::from_f64(0.6835347352950796),
+        t894,
+        Real::mul_add(c101, t1578, s100 * t909),
+    );
+    let t1586 = Real::mul_add(
+        T::from_f64(0.22861191771406145),
+        c101,
+        T::from_f64(0.05865388667445857),
+    );
     let t1587 = T::from_f64(0.5007304715876689) * t1586;
-    let t1593 = T::from_f64(0.0005867356740067153) * t161
-        + T::from_f64(0.029369788334951328) * t1547;
+    let t1593 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1547,
+        T::from_f64(0.0005867356740067153) * t161,
+    );
     let t1595 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t1554,
@@ -1691,7 +1859,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     );
     let t1597 = Real::mul_add(
         T::from_f64(0.17348249055745907),
-        T::from_f64(0.6015049614594958) * t114 + Real::mul_add(c99, t1554, s98 * t1553),
+        Real::mul_add(
+            T::from_f64(0.6015049614594958),
+            t114,
+            Real::mul_add(c99, t1554, s98 * t1553),
+        ),
         Real::mul_add(
             -t114,
             T::from_f64(0.05217528939833088),
@@ -1753,94 +1925,139 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         ),
     );
     let t1628 = t1260 + t1566;
-    let t1631 = T::from_f64(4.467850922313987) * t1257
-        + Real::mul_add(
+    let t1631 = Real::mul_add(
+        T::from_f64(4.467850922313987),
+        t1257,
+        Real::mul_add(
             -T::from_f64(5.809172465528377),
             t1628,
             T::from_f64(20.016508221666097) * t1260,
-        );
-    let t1634 = T::from_f64(6.170316129089984) * t1257
-        + Real::mul_add(
+        ),
+    );
+    let t1634 = Real::mul_add(
+        T::from_f64(6.170316129089984),
+        t1257,
+        Real::mul_add(
             T::from_f64(11.400003889691153),
             t1628,
             T::from_f64(0.006739236891550426) * t1260,
-        );
+        ),
+    );
     let t1637 = Real::mul_add(
-        -T::from_f64(2.8992594498656623),
-        t1628,
-        T::from_f64(13.336534908666533) * t1260,
-    ) - T::from_f64(4.82564702027779) * t1257;
+        -T::from_f64(4.82564702027779),
+        t1257,
+        Real::mul_add(
+            -T::from_f64(2.8992594498656623),
+            t1628,
+            T::from_f64(13.336534908666533) * t1260,
+        ),
+    );
     let t1640 = Real::mul_add(
-        T::from_f64(2.436491563222303),
-        t1628,
-        T::from_f64(2.3508975571053456) * t1260,
-    ) - T::from_f64(3.343664733351526) * t1257;
-    let t1643 = T::from_f64(5.3821204934726845) * t1257
-        - Real::mul_add(
+        -T::from_f64(3.343664733351526),
+        t1257,
+        Real::mul_add(
+            T::from_f64(2.436491563222303),
+            t1628,
+            T::from_f64(2.3508975571053456) * t1260,
+        ),
+    );
+    let t1643 = Real::mul_add(
+        T::from_f64(5.3821204934726845),
+        t1257,
+        -Real::mul_add(
             T::from_f64(21.466654370643287),
             t1628,
             T::from_f64(46.92786534807541) * t1260,
-        );
+        ),
+    );
     let t1646 = Real::mul_add(
-        T::from_f64(3.295669234330575),
-        t1628,
-        -(T::from_f64(15.948011217177697) * t1260),
-    ) - T::from_f64(5.523420133271952) * t1257;
+        -T::from_f64(5.523420133271952),
+        t1257,
+        Real::mul_add(
+            -T::from_f64(15.948011217177697),
+            t1260,
+            T::from_f64(3.295669234330575) * t1628,
+        ),
+    );
     let t1647 = Real::mul_add(T::from_f64(0.22861191771406145), t1570, t1294);
     let t1648 = Real::mul_add(
         T::from_f64(0.17348249055745907),
         Real::mul_add(
             c99,
             t1570,
-            s98 * (Real::mul_add(c101, t533, -t199) + (s100 * t534 - t1550)),
+            s98 * (Real::mul_add(c101, t533, -t199) + Real::mul_add(s100, t534, -t1550)),
         ),
         t1647,
     );
-    let t1652 = T::from_f64(4.467850922313987) * t1294
-        + Real::mul_add(
+    let t1652 = Real::mul_add(
+        T::from_f64(4.467850922313987),
+        t1294,
+        Real::mul_add(
             -T::from_f64(5.809172465528377),
             t1648,
             T::from_f64(20.016508221666097) * t1647,
-        );
-    let t1656 = T::from_f64(6.170316129089984) * t1294
-        + Real::mul_add(
+        ),
+    );
+    let t1656 = Real::mul_add(
+        T::from_f64(6.170316129089984),
+        t1294,
+        Real::mul_add(
             T::from_f64(0.006739236891550426),
             t1647,
             T::from_f64(11.400003889691153) * t1648,
-        );
+        ),
+    );
     let t1660 = Real::mul_add(
-        -T::from_f64(2.8992594498656623),
-        t1648,
-        T::from_f64(13.336534908666533) * t1647,
-    ) - T::from_f64(4.82564702027779) * t1294;
+        -T::from_f64(4.82564702027779),
+        t1294,
+        Real::mul_add(
+            -T::from_f64(2.8992594498656623),
+            t1648,
+            T::from_f64(13.336534908666533) * t1647,
+        ),
+    );
     let t1664 = Real::mul_add(
-        T::from_f64(2.3508975571053456),
-        t1647,
-        T::from_f64(2.436491563222303) * t1648,
-    ) - T::from_f64(3.343664733351526) * t1294;
-    let t1668 = T::from_f64(5.3821204934726845) * t1294
-        - Real::mul_add(
+        -T::from_f64(3.343664733351526),
+        t1294,
+        Real::mul_add(
+            T::from_f64(2.3508975571053456),
+            t1647,
+            T::from_f64(2.436491563222303) * t1648,
+        ),
+    );
+    let t1668 = Real::mul_add(
+        T::from_f64(5.3821204934726845),
+        t1294,
+        -Real::mul_add(
             T::from_f64(46.92786534807541),
             t1647,
             T::from_f64(21.466654370643287) * t1648,
-        );
+        ),
+    );
     let t1672 = Real::mul_add(
-        -T::from_f64(15.948011217177697),
-        t1647,
-        T::from_f64(3.295669234330575) * t1648,
-    ) - T::from_f64(5.523420133271952) * t1294;
-    let t1673 = T::from_f64(0.22861191771406145) * t764 + t1365;
-    let t1674 = T::from_f64(0.17348249055745907)
-        * Real::mul_add(
+        -T::from_f64(5.523420133271952),
+        t1294,
+        Real::mul_add(
+            -T::from_f64(15.948011217177697),
+            t1647,
+            T::from_f64(3.295669234330575) * t1648,
+        ),
+    );
+    let t1673 = Real::mul_add(T::from_f64(0.22861191771406145), t764, t1365);
+    let t1674 = Real::mul_add(
+        T::from_f64(0.17348249055745907),
+        Real::mul_add(
             c99,
             t764,
             s98
                 * Real::mul_add(
                     T::from_f64(0.6835347352950796),
                     t636 - t632,
-                    -(s100 * t752 - c101 * t751),
+                    -Real::mul_add(-c101, t751, s100 * t752),
                 ),
-        ) + t1673;
+        ),
+        t1673,
+    );
     let t1679 = Real::mul_add(
         T::from_f64(4.467850922313987),
         t1365,
@@ -1895,8 +2112,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             T::from_f64(3.295669234330575) * t1674,
         ),
     );
-    let t1708 = T::from_f64(0.0005867356740067153)
-        + T::from_f64(0.029369788334951328) * t1577;
+    let t1708 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1577,
+        T::from_f64(0.0005867356740067153),
+    );
     let t1711 = Real::mul_add(
         T::from_f64(0.22861191771406145),
         t1583,
@@ -1911,8 +2131,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         T::from_f64(0.05217528939833088)
             + Real::mul_add(
                 s98,
-                s98 * T::from_f64(0.11858130826152392)
-                    - Real::mul_add(s100, t1578, -(c101 * t909)),
+                Real::mul_add(
+                    s98,
+                    T::from_f64(0.11858130826152392),
+                    -Real::mul_add(-c101, t909, s100 * t1578),
+                ),
                 c99 * t1583,
             ),
         T::from_f64(-0.0030021287594230563) + t1711,
@@ -1971,8 +2194,11 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             T::from_f64(3.295669234330575) * t1717,
         ),
     );
-    let t1751 = T::from_f64(0.0005867356740067153)
-        + T::from_f64(0.029369788334951328) * t1586;
+    let t1751 = Real::mul_add(
+        T::from_f64(0.029369788334951328),
+        t1586,
+        T::from_f64(0.0005867356740067153),
+    );
     let t1754 = T::from_f64(0.07813209332999076)
         + Real::mul_add(c101, t1587, s100 * t1467);
     let t1757 = Real::mul_add(

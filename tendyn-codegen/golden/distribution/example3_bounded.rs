@@ -40,16 +40,16 @@ pub fn actuation<T: Numeric>(
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
+    let t186 = Real::mul_add(t152, t173, -Real::mul_add(T::from_f64(0.05), t159, t118));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t249 = Real::mul_add(
         -qd[2],
         t233,
-        Real::mul_add(c115, t159, -(s114 * Real::mul_add(qd[1], t153, qdd[0] * s112))),
+        Real::mul_add(-s114, Real::mul_add(qd[1], t153, qdd[0] * s112), c115 * t159),
     );
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
@@ -68,26 +68,34 @@ pub fn actuation<T: Numeric>(
     let t1495 = Real::mul_add(
         -T::from_f64(0.002142857142857143),
         t1489,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+        Real::mul_add(qdd[0], T::from_f64(0.004285714285714286), -t118),
     );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
-    let t1510 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1]
-            + Real::mul_add(s112, t1490, T::from_f64(9.81) * c113));
+    let t1510 = Real::mul_add(
+        t152,
+        t174,
+        Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            Real::mul_add(s112, t1490, T::from_f64(9.81) * c113),
+        ),
+    );
     let t1515 = Real::mul_add(
         -T::from_f64(0.025),
         t152 * t153,
-        t1510 - qdd[1] * T::from_f64(0.025),
+        Real::mul_add(-qdd[1], T::from_f64(0.025), t1510),
     );
     let t1516 = Real::mul_add(
         -t158,
         T::from_f64(0.025),
-        t186 + t159 * T::from_f64(0.025),
+        Real::mul_add(t159, T::from_f64(0.025), t186),
     );
-    let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333))
-        * T::from_f64(0.000005999999999999999);
+    let t1544 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    ) * T::from_f64(0.000005999999999999999);
     let t1546 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t1547 = t1544 - t1546;
@@ -116,36 +124,61 @@ pub fn actuation<T: Numeric>(
         -T::from_f64(0.04),
         t1561,
         Real::mul_add(
-            s114 * T::from_f64(0.00015999999999999828) + t498,
+            Real::mul_add(s114, T::from_f64(0.00015999999999999828), t498),
             t1558,
-            (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561,
+            Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t494) * t1561,
         ),
     )
         - Real::mul_add(
             T::from_f64(0.04),
             t1576,
             Real::mul_add(
-                s114 * T::from_f64(0.00016000000000000026) - t498,
+                Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t498),
                 t1573,
-                (t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576,
+                Real::mul_add(c115, T::from_f64(0.00016000000000000026), t494) * t1576,
             ),
         );
     let t1617 = Real::mul_add(
         T::from_f64(0.02),
-        Real::mul_add(t237, t285, t245 * t283)
+        Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t1510, c115 * t1509)
                 - Real::mul_add(t245, t263, t237 * t264)),
         -(t1573 - t1558),
     );
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1720 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t1731 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
-        - t233 * t285;
+    let t1720 = Real::mul_add(
+        -t233,
+        t283,
+        Real::mul_add(t233, t263, Real::mul_add(-T::from_f64(0.02), t249, t186)),
+    );
+    let t1731 = Real::mul_add(
+        -t233,
+        t285,
+        Real::mul_add(
+            -s114,
+            t1509,
+            Real::mul_add(
+                c115,
+                t1510,
+                Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+            ),
+        ),
+    );
     let t1737 = Real::mul_add(T::from_f64(0.02), t1731, -(t1561 + t1576));
-    let t1744 = T::from_f64(0.006) * t1558
-        + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-            - T::from_f64(0.0004) * t1720 - T::from_f64(0.009) * t1573);
+    let t1744 = Real::mul_add(
+        T::from_f64(0.006),
+        t1558,
+        Real::mul_add(
+            -T::from_f64(0.009),
+            t1573,
+            Real::mul_add(
+                -T::from_f64(0.0004),
+                t1720,
+                Real::mul_add(-t233, t302, T::from_f64(0.0000024) * t249),
+            ),
+        ),
+    );
     let t1745 = Real::mul_add(
         T::from_f64(0.04),
         t1737,
@@ -173,14 +206,21 @@ pub fn actuation<T: Numeric>(
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
-            Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
+            Real::mul_add(-t152, t213, T::from_f64(0.0000058) * t159),
         )
-            + (T::from_f64(0.008) * (t1584 + t1589)
-                + Real::mul_add(c115, t1744, s114 * t1619)),
+            + Real::mul_add(
+                T::from_f64(0.008),
+                t1584 + t1589,
+                Real::mul_add(c115, t1744, s114 * t1619),
+            ),
     );
     let t1764 = Real::mul_add(
         T::from_f64(0.05),
-        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1737, s114 * t1617)),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1515,
+            t1592 + Real::mul_add(c115, t1737, s114 * t1617),
+        ),
         t1760,
     );
     let t1768 = Real::mul_add(
@@ -193,14 +233,19 @@ pub fn actuation<T: Numeric>(
             t1763,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t1744, -(c115 * t1619))
-                        - T::from_f64(0.008) * t1592)),
+                    - Real::mul_add(
+                        -T::from_f64(0.008),
+                        t1592,
+                        Real::mul_add(-c115, t1619, s114 * t1744),
+                    )),
         );
     let t1772 = Real::mul_add(
         -T::from_f64(0.012),
-        T::from_f64(0.014) * t1495 + t1757,
-        T::from_f64(0.0000022215714285714285) * qdd[0]
-            + Real::mul_add(
+        Real::mul_add(T::from_f64(0.014), t1495, t1757),
+        Real::mul_add(
+            T::from_f64(0.0000022215714285714285),
+            qdd[0],
+            Real::mul_add(
                 T::from_f64(0.00003),
                 Real::mul_add(
                     -t1489,
@@ -208,7 +253,8 @@ pub fn actuation<T: Numeric>(
                     T::from_f64(0.002142857142857143) * qdd[0],
                 ),
                 t1495 * T::from_f64(0.00006),
-            ) - t1768,
+            ),
+        ) - t1768,
     );
     let t1777 = Real::mul_add(
         T::from_f64(68.34719334719333),
@@ -287,16 +333,16 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t159 = Real::mul_add(qdd[0], c113, -t158);
     let t173 = T::from_f64(0.05) * qd[1];
     let t174 = T::from_f64(0.05) * t153;
-    let t186 = Real::mul_add(t152, t173, -(t118 + T::from_f64(0.05) * t159));
+    let t186 = Real::mul_add(t152, t173, -Real::mul_add(T::from_f64(0.05), t159, t118));
     let t212 = T::from_f64(0.0000058) * t153;
     let t213 = T::from_f64(0.0000068) * qd[1];
     let t233 = Real::mul_add(s114, t153, c115 * t152);
-    let t237 = Real::mul_add(c115, t153, -(s114 * t152));
+    let t237 = Real::mul_add(-s114, t152, c115 * t153);
     let t245 = qd[1] + qd[2];
     let t249 = Real::mul_add(
         -qd[2],
         t233,
-        Real::mul_add(c115, t159, -(s114 * Real::mul_add(qd[1], t153, qdd[0] * s112))),
+        Real::mul_add(-s114, Real::mul_add(qd[1], t153, qdd[0] * s112), c115 * t159),
     );
     let t250 = qdd[1] + qdd[2];
     let t263 = T::from_f64(0.04) * t245;
@@ -315,26 +361,34 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
     let t1495 = Real::mul_add(
         -T::from_f64(0.002142857142857143),
         t1489,
-        qdd[0] * T::from_f64(0.004285714285714286) - t118,
+        Real::mul_add(qdd[0], T::from_f64(0.004285714285714286), -t118),
     );
     let t1509 = Real::mul_add(-c113, t1490, T::from_f64(9.81) * s112)
         - Real::mul_add(qd[1], t173, t153 * t174);
-    let t1510 = t152 * t174
-        + (T::from_f64(0.05) * qdd[1]
-            + Real::mul_add(s112, t1490, T::from_f64(9.81) * c113));
+    let t1510 = Real::mul_add(
+        t152,
+        t174,
+        Real::mul_add(
+            T::from_f64(0.05),
+            qdd[1],
+            Real::mul_add(s112, t1490, T::from_f64(9.81) * c113),
+        ),
+    );
     let t1515 = Real::mul_add(
         -T::from_f64(0.025),
         t152 * t153,
-        t1510 - qdd[1] * T::from_f64(0.025),
+        Real::mul_add(-qdd[1], T::from_f64(0.025), t1510),
     );
     let t1516 = Real::mul_add(
         -t158,
         T::from_f64(0.025),
-        t186 + t159 * T::from_f64(0.025),
+        Real::mul_add(t159, T::from_f64(0.025), t186),
     );
-    let t1544 = (qdd[0] - qdd[1] * T::from_f64(1.1666666666666667)
-        - qdd[2] * T::from_f64(1.3333333333333333))
-        * T::from_f64(0.000005999999999999999);
+    let t1544 = Real::mul_add(
+        -qdd[2],
+        T::from_f64(1.3333333333333333),
+        Real::mul_add(-qdd[1], T::from_f64(1.1666666666666667), qdd[0]),
+    ) * T::from_f64(0.000005999999999999999);
     let t1546 = Real::mul_add(T::from_f64(1.1428571428571428), qdd[2], qdd[1])
         * T::from_f64(0.000007000000000000001);
     let t1547 = t1544 - t1546;
@@ -363,36 +417,61 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         -T::from_f64(0.04),
         t1561,
         Real::mul_add(
-            s114 * T::from_f64(0.00015999999999999828) + t498,
+            Real::mul_add(s114, T::from_f64(0.00015999999999999828), t498),
             t1558,
-            (t494 - c115 * T::from_f64(0.00015999999999999828)) * t1561,
+            Real::mul_add(-c115, T::from_f64(0.00015999999999999828), t494) * t1561,
         ),
     )
         - Real::mul_add(
             T::from_f64(0.04),
             t1576,
             Real::mul_add(
-                s114 * T::from_f64(0.00016000000000000026) - t498,
+                Real::mul_add(s114, T::from_f64(0.00016000000000000026), -t498),
                 t1573,
-                (t494 + c115 * T::from_f64(0.00016000000000000026)) * t1576,
+                Real::mul_add(c115, T::from_f64(0.00016000000000000026), t494) * t1576,
             ),
         );
     let t1617 = Real::mul_add(
         T::from_f64(0.02),
-        Real::mul_add(t237, t285, t245 * t283)
+        Real::mul_add(t245, t283, t237 * t285)
             + (Real::mul_add(s114, t1510, c115 * t1509)
                 - Real::mul_add(t245, t263, t237 * t264)),
         -(t1573 - t1558),
     );
     let t1619 = Real::mul_add(-t245, t301, t237 * t302)
         + Real::mul_add(T::from_f64(0.006), t1561, T::from_f64(0.009) * t1576);
-    let t1720 = t233 * t263 + (t186 - T::from_f64(0.02) * t249) - t233 * t283;
-    let t1731 = c115 * t1510 + (t233 * t264 + T::from_f64(0.02) * t250) - s114 * t1509
-        - t233 * t285;
+    let t1720 = Real::mul_add(
+        -t233,
+        t283,
+        Real::mul_add(t233, t263, Real::mul_add(-T::from_f64(0.02), t249, t186)),
+    );
+    let t1731 = Real::mul_add(
+        -t233,
+        t285,
+        Real::mul_add(
+            -s114,
+            t1509,
+            Real::mul_add(
+                c115,
+                t1510,
+                Real::mul_add(T::from_f64(0.02), t250, t233 * t264),
+            ),
+        ),
+    );
     let t1737 = Real::mul_add(T::from_f64(0.02), t1731, -(t1561 + t1576));
-    let t1744 = T::from_f64(0.006) * t1558
-        + (Real::mul_add(T::from_f64(0.0000024), t249, -(t233 * t302))
-            - T::from_f64(0.0004) * t1720 - T::from_f64(0.009) * t1573);
+    let t1744 = Real::mul_add(
+        T::from_f64(0.006),
+        t1558,
+        Real::mul_add(
+            -T::from_f64(0.009),
+            t1573,
+            Real::mul_add(
+                -T::from_f64(0.0004),
+                t1720,
+                Real::mul_add(-t233, t302, T::from_f64(0.0000024) * t249),
+            ),
+        ),
+    );
     let t1745 = Real::mul_add(
         T::from_f64(0.04),
         t1737,
@@ -420,14 +499,21 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
         Real::mul_add(
             t1516,
             T::from_f64(0.00075),
-            Real::mul_add(T::from_f64(0.0000058), t159, -(t152 * t213)),
+            Real::mul_add(-t152, t213, T::from_f64(0.0000058) * t159),
         )
-            + (T::from_f64(0.008) * (t1584 + t1589)
-                + Real::mul_add(c115, t1744, s114 * t1619)),
+            + Real::mul_add(
+                T::from_f64(0.008),
+                t1584 + t1589,
+                Real::mul_add(c115, t1744, s114 * t1619),
+            ),
     );
     let t1764 = Real::mul_add(
         T::from_f64(0.05),
-        T::from_f64(0.03) * t1515 + (t1592 + Real::mul_add(c115, t1737, s114 * t1617)),
+        Real::mul_add(
+            T::from_f64(0.03),
+            t1515,
+            t1592 + Real::mul_add(c115, t1737, s114 * t1617),
+        ),
         t1760,
     );
     let t1768 = Real::mul_add(
@@ -440,14 +526,19 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
             t1763,
             s112
                 * (Real::mul_add(-qd[1], t212, t153 * t213)
-                    - (Real::mul_add(s114, t1744, -(c115 * t1619))
-                        - T::from_f64(0.008) * t1592)),
+                    - Real::mul_add(
+                        -T::from_f64(0.008),
+                        t1592,
+                        Real::mul_add(-c115, t1619, s114 * t1744),
+                    )),
         );
     let t1772 = Real::mul_add(
         -T::from_f64(0.012),
-        T::from_f64(0.014) * t1495 + t1757,
-        T::from_f64(0.0000022215714285714285) * qdd[0]
-            + Real::mul_add(
+        Real::mul_add(T::from_f64(0.014), t1495, t1757),
+        Real::mul_add(
+            T::from_f64(0.0000022215714285714285),
+            qdd[0],
+            Real::mul_add(
                 T::from_f64(0.00003),
                 Real::mul_add(
                     -t1489,
@@ -455,7 +546,8 @@ pub fn all<T: Numeric>(q: &[T; 3], qd: &[T; 3], qdd: &[T; 3]) -> Outputs<T> {
                     T::from_f64(0.002142857142857143) * qdd[0],
                 ),
                 t1495 * T::from_f64(0.00006),
-            ) - t1768,
+            ),
+        ) - t1768,
     );
     let t1777 = Real::mul_add(
         T::from_f64(68.34719334719333),
