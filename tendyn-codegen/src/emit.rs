@@ -5,9 +5,9 @@
 //! written inline), in index order, so the code computes exactly the graph; the sine and
 //! cosine of one angle are computed together with `sin_cos`, and on targets with 256-bit
 //! vectors those of every angle linear in `q` (four or more) first, in one call of
-//! `Real::sin_cos_array` (vector code in `f64`); a product whose one consumer among the emitted nodes
-//! is a sum or difference is written into it as `Real::mul_add` (one rounding where the
-//! target has FMA). Nothing else is emitted: no loops, no allocation, no panics, no
+//! `Real::sin_cos_array` (vector code in `f64`); a product whose one consumer among the
+//! emitted nodes is a sum or difference is written into it as `Real::mul_add` (one rounding
+//! where the target has FMA). Nothing else is emitted: no loops, no allocation, no panics, no
 //! arithmetic on known zeros (those never became nodes).
 //! The code is generic over `tendyn_core::Real` unless a concrete scalar is asked for, and
 //! needs neither `std` nor `alloc`.
