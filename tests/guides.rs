@@ -3,7 +3,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tendyn_core::model::Model;
+use tendyn_core::model::{Model, SlidingCheck};
 use tendyn_core::{parse, Data, Error};
 use tendyn_spec::guides::{pin_with, PIN};
 use tendyn_spec::lagrangian;
@@ -1112,4 +1112,126 @@ fn where_the_lead_tendon_s_elimination_fails_generated_code_frees_another_tendon
         compared >= 100 && worst < 1e-9,
         "{compared} states, worst {worst:e}"
     );
+}
+
+/// The signed maximal minors `n_k = (−1)^k det(E without column k)` of an `r × (r + 1)`
+/// tension matrix, by direct determinants: its null vector, unnormalised.
+fn signed_minors(e: &[Vec<f64>]) -> Vec<f64> {
+    let (rows, columns) = (e.len(), e[0].len());
+    (0..columns)
+        .map(|k| {
+            let kept: Vec<usize> = (0..columns).filter(|&c| c != k).collect();
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            sign * nalgebra::DMatrix::from_fn(rows, rows, |i, j| e[i][kept[j]]).determinant()
+        })
+        .collect()
+}
+
+/// Where validation reports [`SlidingCheck::EveryFactor`] (docs/format.md §6a), every
+/// capstan factor the guides can take, `e^{λ_g}` with `|λ_g| ≤ μ β_g` (`β_g` the largest
+/// wrap angle over the joints' ranges), keeps the tendons taut and the motors and loop
+/// sides determined: checked by direct determinants, sharing nothing with the boxes'
+/// bounds, at every vertex of the box of factors (2000 random ones past 12 guides, where
+/// there are too many) and at random points inside it. Seeded random mechanisms, and
+/// fingers of 5 to 7 joints whose 14 to 27 guides have too many directions of sliding to
+/// take one by one (which validation checked only where every guide slides before the
+/// boxes), with their idlers made guides with friction; the fingers also run inverse
+/// dynamics at random states.
+#[test]
+fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon() {
+    let mut texts = Vec::new();
+    for seed in 0..40u64 {
+        let features = tendyn_spec::random_mechanism::Features {
+            coupled_pulleys: false,
+            endless: seed % 3 == 1,
+        };
+        let (text, _) = tendyn_spec::random_mechanism::valid_random_mechanism(seed, features);
+        for mu in [0.05, 0.5, 2.0] {
+            texts.push((tendyn_spec::guides::idlers_as_capstans(&text, mu), false));
+        }
+    }
+    for joints in [5, 6, 7] {
+        let finger = tendyn_spec::stress::Arm::new("finger", joints, joints).ron();
+        texts.push((tendyn_spec::guides::idlers_as_capstans(&finger, 0.2), true));
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(17);
+    let (mut accepted, mut shown, mut vertices) = (0, 0, 0);
+    let mut worst = f64::INFINITY;
+    for (text, finger) in &texts {
+        let Ok(model) = parse(text) else {
+            assert!(!finger, "the fingers are controllable");
+            continue;
+        };
+        accepted += model.has_capstan() as usize;
+        let SlidingCheck::EveryFactor { .. } = model.sliding_check() else {
+            assert!(!finger, "{:?}", model.sliding_check());
+            continue;
+        };
+        shown += 1;
+        let reach: Vec<(usize, usize, f64)> = (model.guides())
+            .filter(|(_, _, _, g)| g.mu > 0.0)
+            .map(|(s, k, _, g)| (s, k, g.mu * g.wrap_over(&model.range_box())[1]))
+            .collect();
+        let tendons: Vec<usize> = model.tendons().iter().map(|t| t.unknown).collect();
+        let without = signed_minors(&model.system().matrix);
+        let way = tendons.iter().map(|&k| without[k]).sum::<f64>().signum();
+        let mut check = |lambda: &[f64]| {
+            let mut capstan: Vec<Vec<f64>> = (model.strands().iter())
+                .map(|s| vec![1.0; s.idlers.len()])
+                .collect();
+            for (&(s, k, _), l) in reach.iter().zip(lambda) {
+                capstan[s][k] = l.exp();
+            }
+            let n = signed_minors(&tendyn_core::tension::state_matrix(&model, &capstan));
+            let size = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for (k, x) in n.iter().enumerate() {
+                if tendons.contains(&k) {
+                    worst = worst.min(way * x / size);
+                    assert!(
+                        way * x > 1e-9 * size,
+                        "{}: tendon column {k} at {lambda:?}",
+                        model.name()
+                    );
+                } else {
+                    assert!(
+                        x.abs() <= 1e-9 * size,
+                        "{}: column {k} at {lambda:?}",
+                        model.name()
+                    );
+                }
+            }
+            vertices += 1;
+        };
+        let corner = |bits: usize| -> Vec<f64> {
+            (reach.iter().enumerate())
+                .map(|(g, r)| if bits >> g & 1 == 1 { r.2 } else { -r.2 })
+                .collect()
+        };
+        if reach.len() <= 12 {
+            (0..1usize << reach.len()).for_each(|bits| check(&corner(bits)));
+        } else {
+            for _ in 0..2000 {
+                check(&corner(rng.random_range(0..1usize << reach.len())));
+            }
+        }
+        for _ in 0..50 {
+            let inside: Vec<f64> = reach
+                .iter()
+                .map(|r| rng.random_range(-1.0..1.0) * r.2)
+                .collect();
+            check(&inside);
+        }
+        if *finger {
+            let mut solver = Data::new(&model);
+            for _ in 0..20 {
+                let [q, qd, qdd] = random_state(&mut rng, model.dof());
+                solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
+            }
+        }
+    }
+    println!(
+        "{shown} of {accepted} mechanisms with capstan friction shown on boxes, {vertices} \
+         factors checked, least tendon minor {worst:.1e} of |n|"
+    );
+    assert!(shown >= 20, "{shown}");
 }

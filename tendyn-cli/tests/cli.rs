@@ -1241,3 +1241,33 @@ fn drawings_render_in_a_headless_browser() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `check` says how far validation showed a routing with capstan friction controllable
+/// (format.md §6a), in its text and its JSON alike: Example 2's two guides at every
+/// factor they can take, on one box of factors; without guides with friction, nothing to
+/// show and no line.
+#[test]
+fn check_says_how_far_the_routing_was_shown_controllable_with_friction() {
+    let capstan = "examples/mechanisms/example2_capstan.ron";
+    let (ok, text, err) = tendyn(&["check", capstan]);
+    assert!(ok, "{err}");
+    assert!(
+        text.contains(
+            "controllable with this friction: at every capstan factor the guides can take \
+             (1 box of factors)"
+        ),
+        "{text}"
+    );
+    let (_, out, _) = tendyn(&["check", capstan, "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        v["sliding_check"],
+        serde_json::json!({"covers": "every_factor", "boxes": 1})
+    );
+    let plain = "examples/mechanisms/example2_open_ended.ron";
+    let (_, text, _) = tendyn(&["check", plain]);
+    assert!(!text.contains("controllable with this friction"), "{text}");
+    let (_, out, _) = tendyn(&["check", plain, "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["sliding_check"], serde_json::json!({"covers": "constant"}));
+}

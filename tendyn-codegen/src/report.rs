@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 use tendyn_core::base_parameters::BaseParameters;
 use tendyn_core::error::ImpliedSystem;
 use tendyn_core::identification::Identification;
-use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, Unknown};
+use tendyn_core::model::{BodyKind, Model, PulleyRole, Row, SlidingCheck, Unknown};
 use tendyn_core::physical_consistency::Consistent;
 use tendyn_core::regressor;
 use tendyn_core::spatial::Vec3;
@@ -146,7 +146,42 @@ pub fn check_json(m: &Model<f64>) -> Value {
             "mu": g.mu,
             "sliding_rate": g.slide,
         })).collect::<Vec<_>>(),
+        "sliding_check": sliding_check_json(m.sliding_check()),
     })
+}
+
+/// How far validation showed the routing controllable with the guides' friction, for
+/// `check`'s text (docs/outputs.md §1).
+fn sliding_check_text(check: SlidingCheck) -> String {
+    match check {
+        SlidingCheck::Constant => {
+            "at every state (nothing slides over the guides with friction)".into()
+        }
+        SlidingCheck::EveryWay { systems } => {
+            format!("every way the guides slide and rest, and between ({systems} tension systems)")
+        }
+        SlidingCheck::EveryFactor { boxes } => format!(
+            "at every capstan factor the guides can take ({boxes} box{} of factors)",
+            if boxes == 1 { "" } else { "es" }
+        ),
+        SlidingCheck::AllSliding { systems } => format!(
+            "only where every guide slides ({systems} tension systems; too many directions \
+             to take one by one): inverse and forward dynamics check each state's system \
+             and refuse one that fails"
+        ),
+    }
+}
+
+/// [`sliding_check_text`] for `check --json`.
+fn sliding_check_json(check: SlidingCheck) -> Value {
+    match check {
+        SlidingCheck::Constant => json!({"covers": "constant"}),
+        SlidingCheck::EveryWay { systems } => json!({"covers": "every_way", "systems": systems}),
+        SlidingCheck::EveryFactor { boxes } => json!({"covers": "every_factor", "boxes": boxes}),
+        SlidingCheck::AllSliding { systems } => {
+            json!({"covers": "all_sliding", "systems": systems})
+        }
+    }
 }
 
 /// What `tendyn check` prints: the validated structure and everything derived from the routing.
@@ -235,6 +270,12 @@ pub fn check_text(m: &Model<f64>) -> String {
                 g.wrap.to_degrees(),
                 number(g.mu),
                 number(g.mu * g.wrap)
+            ));
+        }
+        if m.has_capstan() {
+            line(format!(
+                "  controllable with this friction: {}",
+                sliding_check_text(m.sliding_check())
             ));
         }
     }

@@ -516,6 +516,8 @@ pub struct Model<T> {
     /// [`Model::capstan_before_an_idler`], found once at validation: every inverse and
     /// forward dynamics call asks it.
     pub(crate) idler_behind_capstan: bool,
+    /// How far validation showed the routing controllable with the guides' friction.
+    pub(crate) sliding_check: SlidingCheck,
     /// What the routing was traced from ([`Model::symbolic_geometry`] traces it again).
     pub(crate) trace_record: crate::transmission::TraceRecord,
     /// What the recursions may skip for each body (derived at validation by
@@ -525,6 +527,32 @@ pub struct Model<T> {
     /// whenever a copy's numbers change; clones share it, having the same numbers. What
     /// [`crate::Data`] keys the dual-number copy it keeps for derivatives on.
     pub(crate) identity: usize,
+}
+
+/// How far validation showed a routing controllable (full row rank, every tendon lifted,
+/// motors and loop sides determined) at every state the guides' capstan friction can
+/// produce (docs/format.md §6a). Inverse and forward dynamics check each state's system
+/// all the same, and refuse one that fails.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlidingCheck {
+    /// Nothing slides over a guide with friction: `E` is the same at every state.
+    Constant,
+    /// Every way the guides can slide and rest, and every state between.
+    EveryWay {
+        /// The systems checked: one per pattern of directions and rest.
+        systems: usize,
+    },
+    /// Every capstan factor the guides can take, whatever the directions and wrap angles.
+    EveryFactor {
+        /// The boxes of factors it was shown on.
+        boxes: usize,
+    },
+    /// Only the patterns in which every guide slides: too many directions to take one by
+    /// one, and the boxes of factors did not settle it.
+    AllSliding {
+        /// The systems checked: one per pattern.
+        systems: usize,
+    },
 }
 
 /// A fresh [`Model::identity`].
@@ -724,6 +752,12 @@ impl<T: Real> Model<T> {
         self.idler_behind_capstan
     }
 
+    /// How far validation showed the routing controllable at every state the guides'
+    /// friction can produce (docs/format.md §6a).
+    pub fn sliding_check(&self) -> SlidingCheck {
+        self.sliding_check
+    }
+
     /// Every fixed guide a tendon slides over, strand by strand in route order: strand
     /// index, idler index on it (`strands()[s].idlers[k]`), the guide's body, the guide.
     pub fn guides(&self) -> impl Iterator<Item = (usize, usize, usize, &Guide)> {
@@ -845,6 +879,7 @@ impl<T: Real> Model<T> {
             }),
             routing_incomplete: self.routing_incomplete,
             idler_behind_capstan: self.idler_behind_capstan,
+            sliding_check: self.sliding_check,
             trace_record: self.trace_record.clone(),
             patterns: self.patterns.clone(),
             identity: new_identity(),

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use crate::linalg;
 use crate::model::{
-    BodyKind, Eliminated, Model, Objective, PulleyRole, Row, Tendon, TensionSystem, Unknown,
+    BodyKind, Eliminated, Model, Objective, PulleyRole, Row, Strand, Tendon, TensionSystem, Unknown,
 };
 use crate::newton_euler::{Load, LoadScalar, Loads};
 use crate::real::{Numeric, Real};
@@ -232,26 +232,17 @@ fn solved<T>(
 pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>> {
     let mut matrix = model.system.matrix.clone();
     for (strand, factors) in model.strands.iter().zip(capstan) {
-        let with_friction = |k: usize| strand.idlers[k].capstan().is_some();
-        if !(0..strand.idlers.len()).any(with_friction) {
+        if !strand.idlers.iter().any(|idler| idler.capstan().is_some()) {
             continue;
         }
         let mut column = vec![T::zero(); matrix.len()];
         let mut ratio = T::one();
-        let mut pending = vec![T::zero(); matrix.len()];
-        // From the ground end towards the anchor, as the tensions are (Eq. 24b).
-        for k in (0..strand.shares.len()).rev() {
-            for (p, &x) in pending.iter_mut().zip(&strand.shares[k]) {
-                *p = *p + x;
+        for run in runs(strand, matrix.len()) {
+            for (c, &p) in column.iter_mut().zip(&run.share) {
+                *c = *c + ratio * p;
             }
-            if k == 0 || with_friction(k - 1) {
-                for (c, p) in column.iter_mut().zip(&mut pending) {
-                    *c = *c + ratio * *p;
-                    *p = T::zero();
-                }
-                if k > 0 {
-                    ratio = ratio * factors[k - 1];
-                }
+            if let Some(guide) = run.below {
+                ratio = ratio * factors[guide];
             }
         }
         // The pretension rows keep the model's entries (strands over guides are never a
@@ -264,6 +255,39 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
     }
     matrix
 }
+
+/// A stretch of a strand between guides with friction, where the tension is one: its
+/// segments' shares of the strand's column summed ([`crate::model::Strand::shares`]), and
+/// the guide with friction that ends it towards the anchor (`None` at the anchor).
+pub(crate) struct Run<T> {
+    pub(crate) share: Vec<T>,
+    pub(crate) below: Option<usize>,
+}
+
+/// `strand`'s runs from the ground end towards the anchor, as the tensions are (Eq. 24b):
+/// run `i`'s tension is the ground-level one times the capstan factors of the guides that
+/// end runs `0..i` ([`state_matrix`]).
+pub(crate) fn runs<T: Real>(strand: &Strand<T>, rows: usize) -> Vec<Run<T>> {
+    let mut runs = Vec::new();
+    let mut pending = vec![T::zero(); rows];
+    for k in (0..strand.shares.len()).rev() {
+        for (p, &x) in pending.iter_mut().zip(&strand.shares[k]) {
+            *p = *p + x;
+        }
+        let below = k
+            .checked_sub(1)
+            .filter(|&g| strand.idlers[g].capstan().is_some());
+        if k == 0 || below.is_some() {
+            let share = core::mem::replace(&mut pending, vec![T::zero(); rows]);
+            runs.push(Run { share, below });
+        }
+    }
+    runs
+}
+
+/// The most boxes of capstan factors [`Elimination::holds_while_sliding`] tries before the
+/// directions of sliding validation checks.
+const LEADING_BOXES: usize = 256;
 
 /// How generated code solves a state's tension system where guides with friction make
 /// `E(σ, q)` depend on the state: by elimination on the columns of every unknown but the
@@ -368,7 +392,9 @@ impl Elimination {
     /// pivots are minors of `E`, affine in each capstan factor taken alone as the null
     /// vector's are (docs/format.md §6a), so where validation's points are the corners of
     /// the boxes the directions reach, no state in between makes the traced code divide by
-    /// zero.
+    /// zero. Before the points, boxes of capstan factors may show it for every factor the
+    /// guides can take at once (docs/format.md §6a): the pivots are ratios of the leading
+    /// minors of `E` in this order, which then keep their signs.
     pub fn holds_while_sliding(&self, model: &Model<f64>) -> bool {
         let sliding = crate::validate::Sliding::of(model);
         let without = self.pivots(&model.system.matrix);
@@ -378,6 +404,12 @@ impl Elimination {
             let holds = self.pivots(&e).iter().zip(&without).all(kept);
             (!holds).then(|| "a pivot of the elimination vanishes or turns".to_string())
         };
+        let leading: Vec<(Vec<usize>, Vec<usize>)> = (1..=self.rows.len())
+            .map(|k| (self.rows[..k].to_vec(), self.columns[..k].to_vec()))
+            .collect();
+        if (sliding.on_every_factor(model, &leading, &fails, LEADING_BOXES)).is_some() {
+            return true;
+        }
         let ranged = sliding.ranged(model);
         sliding.points().into_iter().all(|point| {
             if ranged {

@@ -52,8 +52,8 @@ pub fn parse(text: &str) -> Result<Model<f64>> {
     let file = read(text)?;
     let mut v = Validator::new(text);
     v.params = v.parameters(&file)?;
-    let model = v.model(&file)?;
-    tension_system::sliding_directions(&v, &model)?;
+    let mut model = v.model(&file)?;
+    model.sliding_check = tension_system::sliding_directions(&v, &model)?;
     Ok(model)
 }
 
@@ -70,8 +70,8 @@ pub fn read(text: &str) -> Result<MechanismFile> {
 pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
     let mut v = Validator::new("");
     v.params = v.parameters(file)?;
-    let model = v.model(file)?;
-    tension_system::sliding_directions(&v, &model)?;
+    let mut model = v.model(file)?;
+    model.sliding_check = tension_system::sliding_directions(&v, &model)?;
     Ok(model)
 }
 
@@ -282,6 +282,7 @@ impl<'a> Validator<'a> {
             external_wrench,
             routing_incomplete,
             idler_behind_capstan,
+            sliding_check: crate::model::SlidingCheck::Constant,
             trace_record,
             patterns,
             identity: crate::model::new_identity(),

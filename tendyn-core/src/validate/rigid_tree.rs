@@ -118,6 +118,7 @@ impl Model<f64> {
             external_wrench,
             routing_incomplete: false,
             idler_behind_capstan: false,
+            sliding_check: crate::model::SlidingCheck::Constant,
             patterns,
             trace_record: Default::default(),
             identity: crate::model::new_identity(),

@@ -10,10 +10,13 @@ use super::Validator;
 use crate::error::{Error, ImpliedSystem, Result};
 use crate::format::MechanismFile;
 use crate::model::{
-    Body, BodyKind, Loop, Model, Motor, PulleyRole, Row, Tendon, TensionSystem, Unknown,
+    Body, BodyKind, Loop, Model, Motor, PulleyRole, Row, SlidingCheck, Tendon, TensionSystem,
+    Unknown,
 };
 use crate::transmission::{tension_matrix, Columns, PulleyInfo, Rate, StrandGeometry};
 use nalgebra::DMatrix;
+
+mod factor_boxes;
 
 /// What the tension system's unknowns belong to.
 pub(super) struct Actuators {
@@ -532,10 +535,16 @@ const ENDS_UP_TO: usize = 10;
 /// up finding the state where a routing fails, and refuses it all the same.
 const UNSETTLED_AFTER: usize = 4096;
 
+/// The most boxes of capstan factors tried where the points are every way
+/// ([`factor_boxes::every_factor`]), which then settle what the boxes leave.
+const BOXES_BEFORE_EVERY_WAY: usize = 64;
+
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
-/// every tendon, motors and loop sides determined) for every direction it can take. The
-/// systems are taken at the points [`Sliding::points`] gives, each guide at its largest
+/// every tendon, motors and loop sides determined) for every direction it can take. With
+/// one null direction, boxes of capstan factors may show that for every factor the guides
+/// can take at once ([`every_factor_lifts`]); what they leave, the systems taken at the
+/// points [`Sliding::points`] gives settle, each guide at its largest
 /// wrap angle over the joints' ranges (at `q = 0` where a joint has none), and a failing
 /// point refuses the routing only if some motion produces it ([`Sliding::reachable`]) and,
 /// over ranges, at a state ([`Sliding::state_that_fails`]).
@@ -559,9 +568,12 @@ const UNSETTLED_AFTER: usize = 4096;
 ///
 /// Beyond, the points are those where every guide slides: each group one way, all the
 /// ways of up to 12 groups, past that the two where every group slides one way and those
-/// with one group flipped.
-pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()> {
+/// with one group flipped. Returns how far the routing was shown controllable.
+pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<SlidingCheck> {
     let sliding = Sliding::of(model);
+    if sliding.sliders.is_empty() {
+        return Ok(SlidingCheck::Constant);
+    }
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
     let frictionless =
         (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
@@ -576,6 +588,18 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
             },
         }
     };
+    // Boxes of factors first: one box often settles every state at once. Where the points
+    // are every way, they settle what the boxes leave, so few boxes are tried.
+    if frictionless.is_some() {
+        let budget = if every_way {
+            BOXES_BEFORE_EVERY_WAY
+        } else {
+            UNSETTLED_AFTER
+        };
+        if let Some(boxes) = every_factor_lifts(model, &sliding, &tendons, &fails, budget) {
+            return Ok(SlidingCheck::EveryFactor { boxes });
+        }
+    }
     let ranged = sliding.ranged(model);
     for point in &points {
         // Over the joints' ranges each guide's wrap angle lies in an interval, which guides
@@ -648,7 +672,41 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<()
             ));
         }
     }
-    Ok(())
+    Ok(match every_way {
+        true => SlidingCheck::EveryWay {
+            systems: points.len(),
+        },
+        false => SlidingCheck::AllSliding {
+            systems: points.len(),
+        },
+    })
+}
+
+/// With one null direction, the number of boxes of capstan factors on which every factor
+/// the guides can take is shown to keep each tendon's minor the sign it has without
+/// friction ([`factor_boxes::every_factor`]) while the motors' and loop sides' vanish with
+/// the pattern of `E` ([`factor_boxes::always_singular`]); `None` where that is not shown.
+fn every_factor_lifts(
+    model: &Model<f64>,
+    sliding: &Sliding,
+    tendons: &[usize],
+    fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
+    budget: usize,
+) -> Option<usize> {
+    let rows: Vec<usize> = (0..model.system.matrix.len()).collect();
+    let columns = model.system.matrix.first().map_or(0, Vec::len);
+    let without = |k: usize| factor_boxes::Square {
+        rows: rows.clone(),
+        columns: (0..columns).filter(|&c| c != k).collect(),
+    };
+    let determined = (0..columns)
+        .filter(|k| !tendons.contains(k))
+        .all(|k| factor_boxes::always_singular(model, sliding, &without(k)));
+    if !determined {
+        return None;
+    }
+    let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
+    factor_boxes::every_factor(model, sliding, &squares, fails, budget)
 }
 
 /// The first column of null vector `v` that is not a tendon's (a motor torque or loop side)
@@ -1096,6 +1154,26 @@ impl Sliding {
     fn guide<'m>(&self, model: &'m Model<f64>, slider: &Slider) -> &'m crate::model::Guide {
         let idler = &model.strands[slider.strand].idlers[slider.idler];
         idler.capstan().expect("a slider is a guide with friction")
+    }
+
+    /// The number of boxes of capstan factors on which every factor the guides can take is
+    /// shown to pass `fails` (at each box's centre) and to keep the sign of each of
+    /// `squares`' determinants (rows, columns of `E`), within `budget` boxes
+    /// ([`factor_boxes::every_factor`]); `None` where that is not shown.
+    pub(crate) fn on_every_factor(
+        &self,
+        model: &Model<f64>,
+        squares: &[(Vec<usize>, Vec<usize>)],
+        fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
+        budget: usize,
+    ) -> Option<usize> {
+        let squares: Vec<factor_boxes::Square> = (squares.iter())
+            .map(|(rows, columns)| factor_boxes::Square {
+                rows: rows.clone(),
+                columns: columns.clone(),
+            })
+            .collect();
+        factor_boxes::every_factor(model, self, &squares, fails, budget)
     }
 
     /// Whether some guide's wrap angle changes over the joints' ranges.
