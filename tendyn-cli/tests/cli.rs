@@ -1269,5 +1269,8 @@ fn check_says_how_far_the_routing_was_shown_controllable_with_friction() {
     assert!(!text.contains("controllable with this friction"), "{text}");
     let (_, out, _) = tendyn(&["check", plain, "--json"]);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    assert_eq!(v["sliding_check"], serde_json::json!({"covers": "constant"}));
+    assert_eq!(
+        v["sliding_check"],
+        serde_json::json!({"covers": "constant"})
+    );
 }

@@ -206,6 +206,10 @@ pub struct Arm {
     pub distal_scale: f64,
     pub floor: f64,
     pub gravity: [f64; 3],
+    /// A second tendon ending on each tendon-driven link but the last, routed the other
+    /// way round its drum and idlers (in planes of their own): `2p + 1` tendons on `p`
+    /// joints, `p + 1` null directions.
+    pub antagonists: bool,
 }
 
 impl Arm {
@@ -222,6 +226,7 @@ impl Arm {
             distal_scale: 1.0,
             floor: 5.0,
             gravity: [0.0, -9.81, 0.0],
+            antagonists: false,
         }
     }
 
@@ -311,6 +316,34 @@ impl Arm {
                     "    (name: \"t{k}\", route: [{route}], exit: (-0.25, {y:e}, {zeta:e})),"
                 )
                 .unwrap();
+                if self.antagonists && k < p {
+                    let zeta = zeta + 0.006;
+                    writeln!(
+                        s,
+                        "    (name: \"drumu{k}\", carrier: \"l{anchor}\", at: Joint(joint: \"l{anchor}\", height: {zeta:e}), radius: {r_d:e}, fixed: true),"
+                    )
+                    .unwrap();
+                    let mut route = format!("(\"drumu{k}\", Cw)");
+                    for j in (1..anchor).rev() {
+                        let carrier = if j == 1 {
+                            "base".to_string()
+                        } else {
+                            format!("l{}", j - 1)
+                        };
+                        writeln!(
+                            s,
+                            "    (name: \"idleru{k}_{j}\", carrier: \"{carrier}\", at: Joint(joint: \"l{j}\", height: {zeta:e}), radius: {r_i:e}, {idler_inertia}),"
+                        )
+                        .unwrap();
+                        write!(route, ", (\"idleru{k}_{j}\", Ccw)").unwrap();
+                    }
+                    writeln!(
+                        tendons,
+                        "    (name: \"u{k}\", route: [{route}], exit: (-0.25, {:e}, {zeta:e})),",
+                        y + 0.03
+                    )
+                    .unwrap();
+                }
             }
         }
         for i in 0..self.gears {

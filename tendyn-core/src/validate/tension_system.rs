@@ -541,10 +541,11 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 
 /// With capstan friction on guides `E` depends on the direction each tendon slides over
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
-/// every tendon, motors and loop sides determined) for every direction it can take. With
-/// one null direction, boxes of capstan factors may show that for every factor the guides
-/// can take at once ([`every_factor_lifts`]); what they leave, the systems taken at the
-/// points [`Sliding::points`] gives settle, each guide at its largest
+/// every tendon, motors and loop sides determined) for every direction it can take. Boxes
+/// of capstan factors may show that for every factor the guides can take at once
+/// ([`every_factor_lifts`] with one null direction, [`every_factor_held`] with none or
+/// more); what they leave, the systems taken at the points [`Sliding::points`] gives
+/// settle, each guide at its largest
 /// wrap angle over the joints' ranges (at `q = 0` where a joint has none), and a failing
 /// point refuses the routing only if some motion produces it ([`Sliding::reachable`]) and,
 /// over ranges, at a state ([`Sliding::state_that_fails`]).
@@ -590,15 +591,17 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     };
     // Boxes of factors first: one box often settles every state at once. Where the points
     // are every way, they settle what the boxes leave, so few boxes are tried.
-    if frictionless.is_some() {
-        let budget = if every_way {
-            BOXES_BEFORE_EVERY_WAY
-        } else {
-            UNSETTLED_AFTER
-        };
-        if let Some(boxes) = every_factor_lifts(model, &sliding, &tendons, &fails, budget) {
-            return Ok(SlidingCheck::EveryFactor { boxes });
-        }
+    let budget = if every_way {
+        BOXES_BEFORE_EVERY_WAY
+    } else {
+        UNSETTLED_AFTER
+    };
+    let shown = match frictionless {
+        Some(_) => every_factor_lifts(model, &sliding, &tendons, &fails, budget),
+        None => every_factor_held(model, &sliding, &points, &tendons, &fails, budget),
+    };
+    if let Some(boxes) = shown {
+        return Ok(SlidingCheck::EveryFactor { boxes });
     }
     let ranged = sliding.ranged(model);
     for point in &points {
@@ -695,9 +698,9 @@ fn every_factor_lifts(
 ) -> Option<usize> {
     let rows: Vec<usize> = (0..model.system.matrix.len()).collect();
     let columns = model.system.matrix.first().map_or(0, Vec::len);
-    let without = |k: usize| factor_boxes::Square {
-        rows: rows.clone(),
-        columns: (0..columns).filter(|&c| c != k).collect(),
+    let without = |k: usize| {
+        let kept: Vec<usize> = (0..columns).filter(|&c| c != k).collect();
+        factor_boxes::Square::of(&rows, &kept)
     };
     let determined = (0..columns)
         .filter(|k| !tendons.contains(k))
@@ -708,6 +711,105 @@ fn every_factor_lifts(
     let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
     factor_boxes::every_factor(model, sliding, &squares, fails, budget)
 }
+
+/// With no null direction or two or more, the number of boxes of capstan factors on which
+/// every factor the guides can take is shown to keep `E` controllable
+/// ([`factor_boxes::every_factor`]); `None` where that is not shown. With none, `det E`
+/// keeps its sign. With `d`, a fixed basis as [`held_between`] takes it: `d` free tendons
+/// `N` in one proportion `x_N` (from rest and the `points`), the others `B` solved from
+/// `E_B x_B = −E_N x_N`. By Cramer `x_B,i det E_B = det(E_B with column i replaced by
+/// −E_N x_N)`, so where `det E_B` and each such determinant of a tendon's keep their signs
+/// (checked positive at each box's centre), every tendon stays taut; the motors' and loop
+/// sides' components of every null vector, `det(E_B with their column replaced by one of
+/// N's) / det E_B`, must vanish by `E`'s pattern ([`factor_boxes::always_singular`]). The
+/// first [`BASES_TRIED`] choices of `N` that hold at rest and at the points are tried, each
+/// on its share of `budget` boxes.
+fn every_factor_held(
+    model: &Model<f64>,
+    sliding: &Sliding,
+    points: &[Vec<f64>],
+    tendons: &[usize],
+    fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
+    budget: usize,
+) -> Option<usize> {
+    let d = model.system.null_space.len();
+    let rows: Vec<usize> = (0..model.system.matrix.len()).collect();
+    let columns = model.system.matrix.first().map_or(0, Vec::len);
+    if d == 0 {
+        let all: Vec<usize> = (0..columns).collect();
+        let square = factor_boxes::Square::of(&rows, &all);
+        return factor_boxes::every_factor(model, sliding, &[square], fails, budget);
+    }
+    if choose(tendons.len(), d) > EVERY_WAY_UP_TO {
+        return None;
+    }
+    let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
+    let mut tried = 0;
+    for free in combinations(tendons, d) {
+        let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
+        let Some((sign, mut held)) = basis(&model.system.matrix, &basic, &free, tendons, None)
+        else {
+            continue;
+        };
+        let at_points: Option<Vec<_>> = (matrices.iter())
+            .map(|e| basis(e, &basic, &free, tendons, Some(sign)).map(|b| b.1))
+            .collect();
+        let Some(at_points) = at_points else {
+            continue;
+        };
+        held.extend(at_points.into_iter().flatten());
+        let Some(x) = proportion(&held, d) else {
+            continue;
+        };
+        let replaced = |i: usize, by: Vec<(usize, f64)>| {
+            let mut square = factor_boxes::Square::of(&rows, &basic);
+            square.columns[i] = by;
+            square
+        };
+        let determined = (0..basic.len())
+            .filter(|&i| !tendons.contains(&basic[i]))
+            .all(|i| {
+                (free.iter()).all(|&n| {
+                    factor_boxes::always_singular(model, sliding, &replaced(i, vec![(n, 1.0)]))
+                })
+            });
+        if !determined {
+            continue;
+        }
+        let pulled: Vec<(usize, f64)> = free.iter().zip(&x).map(|(&n, &x)| (n, -x)).collect();
+        let mut squares = vec![factor_boxes::Square::of(&rows, &basic)];
+        squares.extend(
+            (0..basic.len())
+                .filter(|&i| tendons.contains(&basic[i]))
+                .map(|i| replaced(i, pulled.clone())),
+        );
+        // At each box's centre: the basis as at rest, and every tendon taut in the
+        // proportion (the determinants' signs then hold on the box).
+        let taut = |e: Vec<Vec<f64>>| -> Option<String> {
+            let Some((_, held)) = basis(&e, &basic, &free, tendons, Some(sign)) else {
+                return Some("the fixed basis turns singular or moves a motor".into());
+            };
+            let tension = |a: &Vec<f64>| a.iter().zip(&x).map(|(a, x)| a * x).sum::<f64>();
+            if held.iter().any(|a| tension(a) <= 1e-9) {
+                return Some("the fixed proportion loosens a tendon".into());
+            }
+            fails(e)
+        };
+        let share = budget / BASES_TRIED;
+        let shown = factor_boxes::every_factor(model, sliding, &squares, &taut, share);
+        if shown.is_some() {
+            return shown;
+        }
+        tried += 1;
+        if tried == BASES_TRIED {
+            return None;
+        }
+    }
+    None
+}
+
+/// The most choices of free tendons [`every_factor_held`] tries on boxes of factors.
+const BASES_TRIED: usize = 4;
 
 /// The first column of null vector `v` that is not a tendon's (a motor torque or loop side)
 /// and that `v` moves beyond round-off (`1e-9` of its largest component): one the dynamics
@@ -1168,10 +1270,7 @@ impl Sliding {
         budget: usize,
     ) -> Option<usize> {
         let squares: Vec<factor_boxes::Square> = (squares.iter())
-            .map(|(rows, columns)| factor_boxes::Square {
-                rows: rows.clone(),
-                columns: columns.clone(),
-            })
+            .map(|(rows, columns)| factor_boxes::Square::of(rows, columns))
             .collect();
         factor_boxes::every_factor(model, self, &squares, fails, budget)
     }

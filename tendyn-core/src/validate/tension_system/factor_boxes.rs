@@ -1,47 +1,65 @@
-//! Every capstan factor at once, where the directions of sliding are too many to take one
-//! by one ([`super::EVERY_WAY_UP_TO`]): boxes of log capstan factors on which determinants
-//! of square parts of `E` are shown to keep their sign. Invariant: `Some` only where the
-//! check passes at every box's centre and no determinant asked for can vanish anywhere in
-//! the box of every factor the guides can take.
+//! Every capstan factor at once: boxes of log capstan factors on which determinants of
+//! square parts of `E` are shown to keep their sign, for routings whose directions of
+//! sliding are too many to take one by one ([`super::EVERY_WAY_UP_TO`]), and before them
+//! for the others. Invariant: `Some` only where the check passes at every box's centre
+//! and no determinant asked for can vanish anywhere in the box of every factor the guides
+//! can take.
 //!
 //! A guide's factor is `f_g = e^{λ_g}`, `λ_g = −σ μ β` with `|σ| ≤ 1` (the exact law's
 //! `±1` and rest, the smoothed law's `tanh`) and `0 ≤ β ≤ β_g`, its largest wrap angle over
 //! the joints' ranges: every state lies in the box `|λ_g| ≤ μ β_g`, whichever way anything
-//! slides. A strand's column is `Σ_r e^{Λ_r} a_r` over its runs ([`crate::tension::runs`]),
-//! `Λ_r` the sum of the `λ_g` of the guides between the ground end and run `r`.
+//! slides. A strand's column of `E` is `Σ_r e^{Λ_r} a_r` over its runs
+//! ([`crate::tension::runs`]), `Λ_r` the sum of the `λ_g` of the guides `G_r` between the
+//! ground end and run `r`; a column of a square part may also be a fixed combination of
+//! columns of `E`, whose runs are theirs, scaled.
 //!
-//! On a box with centre `c` and half-widths `h`, scale each varying column by `e^{−δ_ρ}`
-//! (`δ_r = Λ_r(λ) − Λ_r(c)`, `ρ` one of its runs): no determinant changes sign, and the
-//! column becomes `col(c) + Δ`, `Δ = Σ_r e^{Λ_r(c)} (e^{δ_r − δ_ρ} − 1) a_r`, where
-//! `|δ_r − δ_ρ| ≤ |H_r − H_ρ|`, `H_r` the sum of `h_g` below run `r` (the runs' guides
-//! are nested). A square part `M` of `E(c)` then becomes `M + Δ_M`, and
-//! `det(M + Δ_M) = det M · det(I + M⁻¹ Δ_M)`: where `‖M⁻¹ Δ_M‖₁ < 1` the second factor never
-//! vanishes on the (connected) box and is `1` at its centre, so it stays positive. The
-//! 1-norm is the largest column sum, bounded column by column by
-//! `min_ρ Σ_r e^{Λ_r(c)} (e^{|H_r − H_ρ|} − 1) ‖M⁻¹ a_r‖₁`; a box whose bound exceeds
-//! [`SETTLED_BELOW`] is halved across its widest guide on the worst column.
+//! On a box with centre `c` and half-widths `h`, scale a column by `e^{−δ_ρ}` (`δ_r =
+//! Λ_r(λ) − Λ_r(c)`, `ρ` one of its runs): no determinant changes sign, and the column
+//! becomes `col(c) + Δ`, `Δ = Σ_r e^{Λ_r(c)} (e^{δ_r − δ_ρ} − 1) a_r`, with `|δ_r − δ_ρ|`
+//! at most `H(G_r △ G_ρ)`, the sum of `h_g` over the guides below one run and not the other.
+//! A square part `M` of `E(c)` becomes `M + Δ_M`, and `det(M + Δ_M) = det M · det(I + M⁻¹
+//! Δ_M)`: where the spectral radius of `M⁻¹ Δ_M` stays below 1 the second factor never
+//! vanishes on the (connected) box and is `1` at its centre, so it stays positive. Entry by
+//! entry `|M⁻¹ Δ_M| ≤ P`, each column `Σ_r e^{Λ_r(c)} (e^{H(G_r △ G_ρ)} − 1) |M⁻¹ a_r|`
+//! with the `ρ` of least sum, and `ρ(M⁻¹ Δ_M) ≤ ρ(P) ≤ max_i (P x)_i / x_i` for any `x > 0`
+//! (Perron-Frobenius, Collatz-Wielandt), `x` from a few steps of power iteration: where `P`
+//! is nearly triangular, as for a finger whose tendons end joint by joint, far below `P`'s
+//! norms. A box whose bound exceeds [`SETTLED_BELOW`] is halved across the widest guide of
+//! the column that contributes most.
 
 use super::Sliding;
-use crate::model::Model;
+use crate::model::{Model, Row};
 use crate::tension::{runs, state_matrix};
 use nalgebra::{DMatrix, DVector};
 
-/// The largest bound on `M⁻¹ Δ_M`'s spectral radius a box may have to be settled: below 1 by far more than
-/// the round-off of `M`'s factorisation.
+/// The largest bound on `M⁻¹ Δ_M`'s spectral radius a box may have to be settled: below 1
+/// by far more than the round-off of `M`'s factorisation.
 const SETTLED_BELOW: f64 = 0.9;
 
-/// A square part of `E`: its rows and columns.
+/// A square part of `E`: its rows, and its columns, each a combination
+/// `Σ coefficient · (column of E)`.
 pub(crate) struct Square {
     pub(crate) rows: Vec<usize>,
-    pub(crate) columns: Vec<usize>,
+    pub(crate) columns: Vec<Vec<(usize, f64)>>,
 }
 
-/// A strand whose column changes with the capstan factors: its unknown, and its runs from
-/// the ground end, each as its share of the column and the sliders between the ground end
-/// and it (those of the run before, and the one that ends that run).
-struct Varying {
-    column: usize,
-    runs: Vec<(Vec<f64>, Vec<usize>)>,
+impl Square {
+    /// The part of `E` in `rows` and `columns`.
+    pub(crate) fn of(rows: &[usize], columns: &[usize]) -> Square {
+        Square {
+            rows: rows.to_vec(),
+            columns: columns.iter().map(|&c| vec![(c, 1.0)]).collect(),
+        }
+    }
+}
+
+/// A run of a column of `E`: its share of the column, and the sliders between it and its
+/// strand's ground end, in increasing order (none for a column that friction leaves as it
+/// is).
+#[derive(Clone)]
+struct Run {
+    share: Vec<f64>,
+    guides: Vec<usize>,
 }
 
 /// A box of log capstan factors, one interval `[low, high]` per slider.
@@ -59,6 +77,22 @@ impl FactorBox {
     fn half(&self, g: usize) -> f64 {
         0.5 * (self.high[g] - self.low[g])
     }
+
+    /// `H(a △ b)`: the half-widths of the guides in one of two increasing lists and not
+    /// the other.
+    fn apart(&self, a: &[usize], b: &[usize]) -> f64 {
+        let (mut i, mut j, mut sum) = (0, 0, 0.0);
+        while i < a.len() || j < b.len() {
+            match (a.get(i), b.get(j)) {
+                (Some(x), Some(y)) if x == y => (i, j) = (i + 1, j + 1),
+                (Some(&x), Some(&y)) if x < y => (sum, i) = (sum + self.half(x), i + 1),
+                (Some(&x), None) => (sum, i) = (sum + self.half(x), i + 1),
+                (_, Some(&y)) => (sum, j) = (sum + self.half(y), j + 1),
+                (None, None) => unreachable!("the loop runs while either list has more"),
+            }
+        }
+        sum
+    }
 }
 
 /// The number of boxes on which every capstan factor the guides can take is shown to pass
@@ -72,7 +106,19 @@ pub(super) fn every_factor(
     fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
     budget: usize,
 ) -> Option<usize> {
-    let varying = varying_columns(model, sliding);
+    let columns = columns_as_runs(model, sliding);
+    let squares: Vec<(&Square, Vec<Vec<Run>>)> = (squares.iter())
+        .map(|square| {
+            (
+                square,
+                square
+                    .columns
+                    .iter()
+                    .map(|c| combined(&columns, c))
+                    .collect(),
+            )
+        })
+        .collect();
     let reach: Vec<f64> = (sliding.sliders.iter())
         .map(|s| sliding.guide(model, s).mu * s.wrap.max(0.0))
         .collect();
@@ -93,26 +139,23 @@ pub(super) fn every_factor(
             capstan[slider.strand][slider.idler] = b.centre(g).exp();
         }
         let e = state_matrix(model, &capstan);
-        let mut worst: Option<(f64, usize)> = None;
-        for square in squares {
-            let (bound, column) = bound(&e, &b, square, &varying)?;
+        let mut worst: Option<(f64, &[Run])> = None;
+        for (square, runs) in &squares {
+            let (bound, column) = bound(&e, &b, square, runs)?;
             if worst.is_none_or(|(w, _)| bound > w) {
-                worst = Some((bound, column));
+                worst = Some((bound, &runs[column]));
             }
         }
         if fails(e).is_some() {
             return None;
         }
-        let Some((bound, column)) = worst else {
+        let Some((_, column)) = worst.filter(|w| w.0 > SETTLED_BELOW) else {
             continue;
         };
-        if bound <= SETTLED_BELOW {
-            continue;
-        }
-        // Halve the widest of the guides on the worst column (some has width: with none,
-        // every `H_r` is zero and so is the bound).
-        let (_, guides) = varying[column].runs.last()?;
-        let widest = (guides.iter().copied()).max_by(|&x, &y| b.half(x).total_cmp(&b.half(y)))?;
+        // Halve the widest guide of the worst column (it has one of some width: without,
+        // its part of the bound is zero).
+        let widest = (column.iter().flat_map(|r| r.guides.iter().copied()))
+            .max_by(|&x, &y| b.half(x).total_cmp(&b.half(y)))?;
         let middle = b.centre(widest);
         let (mut lower, mut upper) = (b.clone(), b);
         lower.high[widest] = middle;
@@ -124,51 +167,50 @@ pub(super) fn every_factor(
 }
 
 /// A bound on the spectral radius of `M⁻¹ Δ_M` over box `b` for `square` of `e` (`E` at
-/// the box's centre), and the varying column that contributes most to it; `None` where `M`
-/// is singular. `|M⁻¹ Δ_M|` is bounded entry by entry by `P`, each varying column's
-/// `Σ_r e^{Λ_r(c)} (e^{|H_r − H_ρ|} − 1) |M⁻¹ a_r|` with the `ρ` of least sum; then
-/// `ρ(M⁻¹ Δ_M) ≤ ρ(P) ≤ max_i (P x)_i / x_i` for any `x > 0` (Perron-Frobenius, Collatz-
-/// Wielandt), `x` from a few steps of power iteration. Where `P` is nearly triangular, as
-/// for a finger whose tendons end joint by joint, that is far below `P`'s norms.
+/// the box's centre), whose columns have `runs`, and the column that contributes most to
+/// it; `None` where `M` is singular.
 fn bound(
     e: &[Vec<f64>],
     b: &FactorBox,
     square: &Square,
-    varying: &[Varying],
+    runs: &[Vec<Run>],
 ) -> Option<(f64, usize)> {
     let k = square.rows.len();
-    let lu = DMatrix::from_fn(k, k, |i, j| e[square.rows[i]][square.columns[j]]).lu();
+    let m = DMatrix::from_fn(k, k, |i, j| {
+        (square.columns[j].iter()).fold(0.0, |sum, &(c, x)| sum + x * e[square.rows[i]][c])
+    });
+    let lu = m.lu();
     let det = lu.determinant();
     if det == 0.0 || !det.is_finite() {
         return None;
     }
     let mut p = DMatrix::<f64>::zeros(k, k);
-    let mut columns = Vec::new();
-    for (v, column) in varying.iter().enumerate() {
-        let Some(at) = square.columns.iter().position(|&c| c == column.column) else {
+    for (j, column) in runs.iter().enumerate() {
+        if column.iter().all(|r| r.guides.is_empty()) {
             continue;
-        };
-        // Each run's `e^{Λ_r(c)} |M⁻¹ a_r|` and `H_r`.
-        let mut runs = Vec::with_capacity(column.runs.len());
-        for (share, guides) in &column.runs {
-            let a = DVector::from_fn(k, |i, _| share[square.rows[i]]);
-            let centre: f64 = guides.iter().map(|&g| b.centre(g)).sum();
-            let half: f64 = guides.iter().map(|&g| b.half(g)).sum();
-            runs.push((lu.solve(&a)?.abs() * centre.exp(), half));
         }
-        let with_reference = |reference: f64| {
-            (runs.iter()).fold(DVector::zeros(k), |sum, (size, half)| {
-                sum + size * (half - reference).abs().exp_m1()
+        // Each run's `e^{Λ_r(c)} |M⁻¹ a_r|`.
+        let mut sizes = Vec::with_capacity(column.len());
+        for run in column {
+            let a = DVector::from_fn(k, |i, _| run.share[square.rows[i]]);
+            let centre: f64 = run.guides.iter().map(|&g| b.centre(g)).sum();
+            sizes.push(lu.solve(&a)?.abs() * centre.exp());
+        }
+        let with_reference = |reference: &Run| {
+            (column.iter().zip(&sizes)).fold(DVector::zeros(k), |sum, (run, size)| {
+                sum + size * b.apart(&run.guides, &reference.guides).exp_m1()
             })
         };
-        let best = (runs.iter())
-            .map(|&(_, reference)| with_reference(reference))
+        let best = (column.iter())
+            .map(with_reference)
             .min_by(|x, y| x.sum().total_cmp(&y.sum()))?;
-        p.set_column(at, &best);
-        columns.push((at, v));
+        p.set_column(j, &best);
     }
     if !p.iter().all(|x| x.is_finite()) {
-        return Some((f64::INFINITY, columns.first()?.1));
+        return Some((
+            f64::INFINITY,
+            (0..k).find(|&j| !p.column(j).iter().all(|x| x.is_finite()))?,
+        ));
     }
     // Power iteration from both sides, kept positive.
     let (mut x, mut y) = (DVector::from_element(k, 1.0), DVector::from_element(k, 1.0));
@@ -180,48 +222,72 @@ fn bound(
     }
     let px = &p * &x;
     let radius = (0..k).map(|i| px[i] / x[i]).fold(0.0, f64::max);
-    // The column whose share `y_i P_ik x_k` of `yᵀ P x` is largest.
+    // The column whose share `y_i P_ij x_j` of `yᵀ P x` is largest.
     let yp = p.transpose() * &y;
-    let worst = (columns.iter()).max_by(|a, b| (yp[a.0] * x[a.0]).total_cmp(&(yp[b.0] * x[b.0])));
-    Some((radius, worst.map_or(0, |w| w.1)))
+    let worst = (0..k).max_by(|&a, &b| (yp[a] * x[a]).total_cmp(&(yp[b] * x[b])))?;
+    Some((radius, worst))
 }
 
-/// The strands over guides with friction, their runs ([`crate::tension::runs`]) with the
-/// sliders below each (a guide nothing slides over keeps the factor 1, and is left out).
-fn varying_columns(model: &Model<f64>, sliding: &Sliding) -> Vec<Varying> {
-    let rows = model.system.matrix.len();
+/// Each column of `E` as its runs: a strand over guides with friction by
+/// [`crate::tension::runs`] (a guide nothing slides over keeps the factor 1, and is left
+/// out of the runs' guides; the pretension rows keep the model's entries, in the first
+/// run, as `state_matrix` keeps them), every other column one run without guides.
+fn columns_as_runs(model: &Model<f64>, sliding: &Sliding) -> Vec<Vec<Run>> {
+    let e = &model.system.matrix;
+    let count = e.first().map_or(0, Vec::len);
+    let constant = |c: usize| Run {
+        share: e.iter().map(|row| row[c]).collect(),
+        guides: Vec::new(),
+    };
+    let mut columns: Vec<Vec<Run>> = (0..count).map(|c| vec![constant(c)]).collect();
     let slider_at = |s: usize, idler: usize| {
         (sliding.sliders.iter()).position(|x| x.strand == s && x.idler == idler)
     };
-    let mut varying = Vec::new();
     for (s, strand) in model.strands.iter().enumerate() {
         if !strand.idlers.iter().any(|idler| idler.capstan().is_some()) {
             continue;
         }
         let mut below = Vec::new();
-        let mut column = Vec::new();
-        for run in runs(strand, rows) {
-            column.push((run.share, below.clone()));
+        let mut column: Vec<Run> = Vec::new();
+        for run in runs(strand, e.len()) {
+            column.push(Run {
+                share: run.share,
+                guides: below.clone(),
+            });
             below.extend(run.below.and_then(|idler| slider_at(s, idler)));
+            below.sort_unstable();
         }
-        varying.push(Varying {
-            column: strand.unknown,
-            runs: column,
-        });
+        for (r, row) in model.system.rows.iter().enumerate() {
+            if matches!(row, Row::Pretension(_)) {
+                column[0].share[r] = e[r][strand.unknown];
+            }
+        }
+        columns[strand.unknown] = column;
     }
-    varying
+    columns
+}
+
+/// The runs of `Σ coefficient · (column of E)`.
+fn combined(columns: &[Vec<Run>], combination: &[(usize, f64)]) -> Vec<Run> {
+    (combination.iter())
+        .flat_map(|&(c, x)| {
+            columns[c].iter().map(move |run| Run {
+                share: run.share.iter().map(|a| x * a).collect(),
+                guides: run.guides.clone(),
+            })
+        })
+        .collect()
 }
 
 /// Whether the determinant of `square` vanishes at every capstan factor, by its pattern of
 /// entries that are not always zero ([`without_transversal`]).
 pub(super) fn always_singular(model: &Model<f64>, sliding: &Sliding, square: &Square) -> bool {
-    let varying = varying_columns(model, sliding);
-    let entry = |i: usize, c: usize| match varying.iter().find(|v| v.column == c) {
-        Some(v) => v.runs.iter().any(|(share, _)| share[i] != 0.0),
-        None => model.system.matrix[i][c] != 0.0,
-    };
+    let columns = columns_as_runs(model, sliding);
+    let runs: Vec<Vec<Run>> = (square.columns.iter())
+        .map(|c| combined(&columns, c))
+        .collect();
     without_transversal(square.rows.len(), &|i, j| {
-        entry(square.rows[i], square.columns[j])
+        (runs[j].iter()).any(|run| run.share[square.rows[i]] != 0.0)
     })
 }
 
