@@ -24,8 +24,12 @@
 //! with the `ρ` of least sum, and `ρ(M⁻¹ Δ_M) ≤ ρ(P) ≤ max_i (P x)_i / x_i` for any `x > 0`
 //! (Perron-Frobenius, Collatz-Wielandt), `x` from a few steps of power iteration: where `P`
 //! is nearly triangular, as for a finger whose tendons end joint by joint, far below `P`'s
-//! norms. A box whose bound exceeds [`SETTLED_BELOW`] is halved across the widest guide of
-//! the column that contributes most.
+//! norms. Where a box's bound exceeds [`SETTLED_BELOW`], the widest guide of the column
+//! that contributes most is fixed at each end of its interval in turn, two boxes with one
+//! guide fewer: every determinant asked for is affine in each factor taken alone (each
+//! guide's factor enters one run of one strand, and no column of `E` enters a square
+//! twice), so where it keeps its sign at both ends it keeps it in between. At worst that
+//! is every vertex of the box, as [`super::Sliding::points`] takes them.
 
 use super::Sliding;
 use crate::model::{Model, Row};
@@ -152,14 +156,13 @@ pub(super) fn every_factor(
         let Some((_, column)) = worst.filter(|w| w.0 > SETTLED_BELOW) else {
             continue;
         };
-        // Halve the widest guide of the worst column (it has one of some width: without,
-        // its part of the bound is zero).
+        // Fix the widest guide of the worst column at each end (it has one of some width:
+        // without, its part of the bound is zero).
         let widest = (column.iter().flat_map(|r| r.guides.iter().copied()))
             .max_by(|&x, &y| b.half(x).total_cmp(&b.half(y)))?;
-        let middle = b.centre(widest);
         let (mut lower, mut upper) = (b.clone(), b);
-        lower.high[widest] = middle;
-        upper.low[widest] = middle;
+        lower.high[widest] = lower.low[widest];
+        upper.low[widest] = upper.high[widest];
         boxes.push(lower);
         boxes.push(upper);
     }
