@@ -8,8 +8,11 @@
 //! (the tree printed by prettyplease: what the command line and build scripts write), so
 //! that a regression points at its phase.
 //!
+//! And how long validation takes with capstan friction on many guides
+//! ([`capstan_validation`]).
+//!
 //! `cargo bench -p tendyn-codegen --bench generation` (the CLI's `generate` also prints the
-//! time of one run).
+//! time of one run; `-- capstan` for validation alone).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -61,12 +64,41 @@ fn generation(c: &mut Criterion) {
     }
 }
 
+/// Validation of fingers whose every idler is a guide with capstan friction, past the
+/// 26,244 directions of sliding validation takes one by one (docs/format.md §6a): shown at
+/// every factor on one box (6 joints at `μ = 0.2`; 5 joints with a second tendon on each
+/// link, 6 null directions), on many (8 joints at `μ = 0.5`, guides fixed at their ends),
+/// and the worst case, where 4096 boxes do not settle it and validation falls back to the
+/// patterns where every guide slides (8 joints at `μ = 1`).
+fn capstan_validation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("capstan validation");
+    for (joints, antagonists, mu) in [
+        (6, false, 0.2),
+        (5, true, 0.2),
+        (8, false, 0.5),
+        (8, false, 1.0),
+    ] {
+        let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
+        finger.antagonists = antagonists;
+        let text = tendyn_spec::guides::idlers_as_capstans(&finger.ron(), mu);
+        let check = tendyn_core::parse(&text).unwrap().sliding_check();
+        let name = format!(
+            "{joints} joints{} mu {mu}: {check:?}",
+            if antagonists { " antagonistic" } else { "" }
+        );
+        group.bench_function(name, |b| {
+            b.iter(|| tendyn_core::parse(black_box(&text)).unwrap())
+        });
+    }
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default()
         .sample_size(30)
         .warm_up_time(std::time::Duration::from_millis(500))
         .measurement_time(std::time::Duration::from_secs(3));
-    targets = generation
+    targets = generation, capstan_validation
 }
 criterion_main!(benches);

@@ -187,27 +187,49 @@ fn bound(
     if det == 0.0 || !det.is_finite() {
         return None;
     }
+    // Every run of every column friction moves, solved at once: `M⁻¹ a_r`.
+    let moved: Vec<(usize, &Run)> = (runs.iter().enumerate())
+        .filter(|(_, column)| column.iter().any(|r| !r.guides.is_empty()))
+        .flat_map(|(j, column)| column.iter().map(move |run| (j, run)))
+        .collect();
+    let shares = DMatrix::from_fn(k, moved.len(), |i, r| moved[r].1.share[square.rows[i]]);
+    let solved = lu.solve(&shares)?;
+    // Each run's weight `e^{Λ_r(c)}`, and its `e^{Λ_r(c)} ‖M⁻¹ a_r‖₁` for choosing the
+    // reference run of its column (the one of least sum).
+    let weights: Vec<f64> = (moved.iter())
+        .map(|(_, run)| run.guides.iter().map(|&g| b.centre(g)).sum::<f64>().exp())
+        .collect();
+    let sizes: Vec<f64> = (0..moved.len())
+        .map(|r| weights[r] * solved.column(r).lp_norm(1))
+        .collect();
     let mut p = DMatrix::<f64>::zeros(k, k);
-    for (j, column) in runs.iter().enumerate() {
-        if column.iter().all(|r| r.guides.is_empty()) {
-            continue;
-        }
-        // Each run's `e^{Λ_r(c)} |M⁻¹ a_r|`.
-        let mut sizes = Vec::with_capacity(column.len());
-        for run in column {
-            let a = DVector::from_fn(k, |i, _| run.share[square.rows[i]]);
-            let centre: f64 = run.guides.iter().map(|&g| b.centre(g)).sum();
-            sizes.push(lu.solve(&a)?.abs() * centre.exp());
-        }
-        let with_reference = |reference: &Run| {
-            (column.iter().zip(&sizes)).fold(DVector::zeros(k), |sum, (run, size)| {
-                sum + size * b.apart(&run.guides, &reference.guides).exp_m1()
-            })
+    let mut start = 0;
+    while start < moved.len() {
+        let j = moved[start].0;
+        let end = start + moved[start..].iter().take_while(|m| m.0 == j).count();
+        let column = start..end;
+        let spread = |r: usize, reference: usize| {
+            b.apart(&moved[r].1.guides, &moved[reference].1.guides)
+                .exp_m1()
         };
-        let best = (column.iter())
-            .map(with_reference)
-            .min_by(|x, y| x.sum().total_cmp(&y.sum()))?;
-        p.set_column(j, &best);
+        let reference = (column.clone())
+            .min_by(|&x, &y| {
+                let sum = |reference| {
+                    column
+                        .clone()
+                        .map(|r| sizes[r] * spread(r, reference))
+                        .sum::<f64>()
+                };
+                sum(x).total_cmp(&sum(y))
+            })
+            .unwrap_or(start);
+        for r in column {
+            let scale = weights[r] * spread(r, reference);
+            for i in 0..k {
+                p[(i, j)] += scale * solved[(i, r)].abs();
+            }
+        }
+        start = end;
     }
     if !p.iter().all(|x| x.is_finite()) {
         return Some((
