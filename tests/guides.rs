@@ -1114,14 +1114,24 @@ fn where_the_lead_tendon_s_elimination_fails_generated_code_frees_another_tendon
     );
 }
 
-/// Whether a tension matrix `e` is controllable, by nalgebra's SVD and a linear program,
-/// sharing nothing with validation: full row rank (`σ_min > 1e-10 σ_max`), the columns that
+/// Whether a tension matrix `e` is controllable, by nalgebra's SVD of `e` with its columns
+/// scaled to unit length and a linear program, sharing nothing with validation: full row rank (`σ_min > 1e-10 σ_max`), the columns that
 /// are not `tendons` (motors, loop sides) zero in every null vector (within `1e-9`), and
 /// some null vector `N y`, `|y_i| ≤ 1`, lifting every tendon by more than `1e-9`. `Ok` with
 /// that least lift.
 fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
     use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome};
     let (rows, columns) = (e.len(), e[0].len());
+    // Columns scaled to unit length: the null vectors scale by the inverse, which keeps
+    // their signs and zeros, and the thresholds hold for any size of factor.
+    let length = |c: usize| e.iter().map(|row| row[c] * row[c]).sum::<f64>().sqrt();
+    let lengths: Vec<f64> = (0..columns)
+        .map(|c| length(c).max(f64::MIN_POSITIVE))
+        .collect();
+    let scaled: Vec<Vec<f64>> = (e.iter())
+        .map(|row| row.iter().zip(&lengths).map(|(x, l)| x / l).collect())
+        .collect();
+    let e = &scaled;
     let m = nalgebra::DMatrix::from_fn(columns, rows, |i, j| e[j][i]);
     // `Eᵀ`'s SVD: its left singular vectors beyond the rank span `null(E)`.
     let svd = nalgebra::linalg::SVD::new(m.clone(), true, false);

@@ -542,7 +542,8 @@ pub enum SlidingCheck {
         /// The systems checked: one per pattern of directions and rest.
         systems: usize,
     },
-    /// Every capstan factor the guides can take, whatever the directions and wrap angles.
+    /// Every capstan factor the guides can take, whatever the directions of sliding, with
+    /// wrap angles up to their largest over the joints' ranges (at `q = 0` without).
     EveryFactor {
         /// The boxes of factors it was shown on.
         boxes: usize,

@@ -394,7 +394,8 @@ impl Elimination {
     /// the boxes the directions reach, no state in between makes the traced code divide by
     /// zero. Before the points, boxes of capstan factors may show it for every factor the
     /// guides can take at once (docs/format.md §6a): the pivots are ratios of the leading
-    /// minors of `E` in this order, which then keep their signs.
+    /// minors of `E` in this order, which then keep their signs and never vanish (the
+    /// `1e-12` margin is taken at the boxes' centres only).
     pub fn holds_while_sliding(&self, model: &Model<f64>) -> bool {
         let sliding = crate::validate::Sliding::of(model);
         let without = self.pivots(&model.system.matrix);

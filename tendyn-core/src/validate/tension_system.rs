@@ -543,8 +543,7 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
 /// every tendon, motors and loop sides determined) for every direction it can take. Boxes
 /// of capstan factors may show that for every factor the guides can take at once
-/// ([`every_factor_lifts`] with one null direction, [`every_factor_held`] with none or
-/// more); what they leave, the systems taken at the points [`Sliding::points`] gives
+/// ([`every_factor_lifts`] with one null direction, [`every_factor_held`] with more); what they leave, the systems taken at the points [`Sliding::points`] gives
 /// settle, each guide at its largest
 /// wrap angle over the joints' ranges (at `q = 0` where a joint has none), and a failing
 /// point refuses the routing only if some motion produces it ([`Sliding::reachable`]) and,
@@ -712,10 +711,10 @@ fn every_factor_lifts(
     factor_boxes::every_factor(model, sliding, &squares, fails, budget)
 }
 
-/// With no null direction or two or more, the number of boxes of capstan factors on which
+/// With two or more null directions, the number of boxes of capstan factors on which
 /// every factor the guides can take is shown to keep `E` controllable
-/// ([`factor_boxes::every_factor`]); `None` where that is not shown. With none, `det E`
-/// keeps its sign. With `d`, a fixed basis as [`held_between`] takes it: `d` free tendons
+/// ([`factor_boxes::every_factor`]); `None` where that is not shown. With `d`, a fixed
+/// basis as [`held_between`] takes it: `d` free tendons
 /// `N` in one proportion `x_N` (from rest and the `points`), the others `B` solved from
 /// `E_B x_B = −E_N x_N`. By Cramer `x_B,i det E_B = det(E_B with column i replaced by
 /// −E_N x_N)`, so where `det E_B` and each such determinant of a tendon's keep their signs
@@ -735,12 +734,9 @@ fn every_factor_held(
     let d = model.system.null_space.len();
     let rows: Vec<usize> = (0..model.system.matrix.len()).collect();
     let columns = model.system.matrix.first().map_or(0, Vec::len);
-    if d == 0 {
-        let all: Vec<usize> = (0..columns).collect();
-        let square = factor_boxes::Square::of(&rows, &all);
-        return factor_boxes::every_factor(model, sliding, &[square], fails, budget);
-    }
-    if choose(tendons.len(), d) > EVERY_WAY_UP_TO {
+    // Guides are only ever on open-ended tendons, which validation keeps with a null
+    // direction at least: none is not met here.
+    if d == 0 || choose(tendons.len(), d) > EVERY_WAY_UP_TO {
         return None;
     }
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();

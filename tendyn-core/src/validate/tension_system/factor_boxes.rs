@@ -26,10 +26,15 @@
 //! is nearly triangular, as for a finger whose tendons end joint by joint, far below `P`'s
 //! norms. Where a box's bound exceeds [`SETTLED_BELOW`], the widest guide of the column
 //! that contributes most is fixed at each end of its interval in turn, two boxes with one
-//! guide fewer: every determinant asked for is affine in each factor taken alone (each
-//! guide's factor enters one run of one strand, and no column of `E` enters a square
-//! twice), so where it keeps its sign at both ends it keeps it in between. At worst that
-//! is every vertex of the box, as [`super::Sliding::points`] takes them.
+//! guide fewer: every determinant asked for is affine in each factor taken alone (a
+//! guide's factor multiplies the runs on the anchor side of it, all in its strand's one
+//! column, and no column of `E` enters a square twice), so where it keeps its sign at both
+//! ends it keeps it in between. At worst that is every vertex of the box, `2^sliders`.
+//!
+//! The determinants, `M⁻¹ a_r` and the bound are computed in floating point, without an
+//! error bound of their own: the margin below 1 ([`SETTLED_BELOW`]) stands for the
+//! round-off of a well-conditioned `M`, and the runtime solver checks each state's system
+//! all the same.
 
 use super::Sliding;
 use crate::model::{Model, Row};
@@ -237,7 +242,22 @@ fn bound(
             (0..k).find(|&j| !p.column(j).iter().all(|x| x.is_finite()))?,
         ));
     }
-    // Power iteration from both sides, kept positive.
+    Some(spectral_bound(p))
+}
+
+/// `max_i (P x)_i / x_i ≥ ρ(P)` for nonnegative `P`, `x > 0` from power iteration (the
+/// Collatz-Wielandt bound, exact at `P`'s Perron vector), and the column whose share
+/// `y_i P_ij x_j` of `yᵀ P x` is largest (`y` from `Pᵀ`'s iteration). Infinite where it
+/// overflows.
+fn spectral_bound(p: DMatrix<f64>) -> (f64, usize) {
+    // On `P` scaled to a largest entry of 1, so that no sum overflows nor any `x_i`
+    // underflows (`x_i ≥ 1e-30 / (k + 1)`).
+    let k = p.nrows();
+    let largest = p.max();
+    if largest == 0.0 {
+        return (0.0, 0);
+    }
+    let p = p / largest;
     let (mut x, mut y) = (DVector::from_element(k, 1.0), DVector::from_element(k, 1.0));
     for _ in 0..20 {
         x = (&p * &x).add_scalar(1e-30);
@@ -246,11 +266,14 @@ fn bound(
         y /= y.max();
     }
     let px = &p * &x;
-    let radius = (0..k).map(|i| px[i] / x[i]).fold(0.0, f64::max);
-    // The column whose share `y_i P_ij x_j` of `yᵀ P x` is largest.
+    let scaled = (0..k).map(|i| px[i] / x[i]).fold(0.0, f64::max);
+    let radius = match scaled * largest {
+        r if r <= f64::MAX => r,
+        _ => f64::INFINITY,
+    };
     let yp = p.transpose() * &y;
-    let worst = (0..k).max_by(|&a, &b| (yp[a] * x[a]).total_cmp(&(yp[b] * x[b])))?;
-    Some((radius, worst))
+    let worst = (0..k).max_by(|&a, &b| (yp[a] * x[a]).total_cmp(&(yp[b] * x[b])));
+    (radius, worst.unwrap_or(0))
 }
 
 /// Each column of `E` as its runs: a strand over guides with friction by
@@ -347,7 +370,30 @@ fn without_transversal(k: usize, entry: &dyn Fn(usize, usize) -> bool) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::without_transversal;
+    use super::{spectral_bound, without_transversal};
+    use nalgebra::DMatrix;
+
+    /// The bound on the spectral radius is the radius for a triangle to within the power
+    /// iteration's 20 steps (far below its norms: the off-diagonal 100 does not count), at
+    /// least the radius for a full matrix, zero
+    /// for zero, and infinite where the radius is beyond `f64` (`2e308` for `1e308 (J − I)`),
+    /// never zero or NaN.
+    #[test]
+    fn the_spectral_bound_is_the_perron_root_from_above_and_overflows_to_infinity() {
+        let triangle = DMatrix::from_row_slice(2, 2, &[0.1, 100.0, 0.0, 0.2]);
+        let (radius, _) = spectral_bound(triangle);
+        assert!((0.2..=0.2 * (1.0 + 1e-5)).contains(&radius), "{radius}");
+        let full = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 3.0, 4.0]);
+        let perron = (5.0 + 33f64.sqrt()) / 2.0;
+        let (radius, _) = spectral_bound(full);
+        assert!(
+            radius >= perron && radius <= perron * (1.0 + 1e-9),
+            "{radius}"
+        );
+        assert_eq!(spectral_bound(DMatrix::zeros(3, 3)).0, 0.0);
+        let huge = DMatrix::from_fn(3, 3, |i, j| if i == j { 0.0 } else { 1e308 });
+        assert_eq!(spectral_bound(huge).0, f64::INFINITY);
+    }
 
     fn pattern<'a>(rows: &'a [&'a str]) -> impl Fn(usize, usize) -> bool + 'a {
         move |i, j| rows[i].as_bytes()[j] == b'x'
