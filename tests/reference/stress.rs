@@ -286,30 +286,42 @@ impl Arm {
             0.55 * izz,
             0.5 * izz
         );
+        // Tendon `k`'s drum on link `anchor` and its idlers on the joints below, named with
+        // `tag`, at height `zeta`, wound `turns` (drum, idlers): written to `s`, the route
+        // returned.
+        let routed = |s: &mut String,
+                      tag: &str,
+                      k: usize,
+                      anchor: usize,
+                      zeta: f64,
+                      turns: [&str; 2]| {
+            writeln!(
+                s,
+                "    (name: \"drum{tag}{k}\", carrier: \"l{anchor}\", at: Joint(joint: \"l{anchor}\", height: {zeta:e}), radius: {r_d:e}, fixed: true),"
+            )
+            .unwrap();
+            let mut route = format!("(\"drum{tag}{k}\", {})", turns[0]);
+            for j in (1..anchor).rev() {
+                let carrier = if j == 1 {
+                    "base".to_string()
+                } else {
+                    format!("l{}", j - 1)
+                };
+                writeln!(
+                    s,
+                    "    (name: \"idler{tag}{k}_{j}\", carrier: \"{carrier}\", at: Joint(joint: \"l{j}\", height: {zeta:e}), radius: {r_i:e}, {idler_inertia}),"
+                )
+                .unwrap();
+                write!(route, ", (\"idler{tag}{k}_{j}\", {})", turns[1]).unwrap();
+            }
+            route
+        };
         if p >= 1 {
             for k in 0..=p {
                 let anchor = if k < p { k + 1 } else { p };
                 let turn = if k < p { "Ccw" } else { "Cw" };
                 let zeta = 0.012 * (k as f64 + 1.0) * if k % 2 == 0 { 1.0 } else { -1.0 };
-                writeln!(
-                    s,
-                    "    (name: \"drum{k}\", carrier: \"l{anchor}\", at: Joint(joint: \"l{anchor}\", height: {zeta:e}), radius: {r_d:e}, fixed: true),"
-                )
-                .unwrap();
-                let mut route = format!("(\"drum{k}\", {turn})");
-                for j in (1..anchor).rev() {
-                    let carrier = if j == 1 {
-                        "base".to_string()
-                    } else {
-                        format!("l{}", j - 1)
-                    };
-                    writeln!(
-                        s,
-                        "    (name: \"idler{k}_{j}\", carrier: \"{carrier}\", at: Joint(joint: \"l{j}\", height: {zeta:e}), radius: {r_i:e}, {idler_inertia}),"
-                    )
-                    .unwrap();
-                    write!(route, ", (\"idler{k}_{j}\", Cw)").unwrap();
-                }
+                let route = routed(&mut s, "", k, anchor, zeta, [turn, "Cw"]);
                 let y = 0.06 * (k as f64 - p as f64 / 2.0);
                 writeln!(
                     tendons,
@@ -318,25 +330,7 @@ impl Arm {
                 .unwrap();
                 if self.antagonists && k < p {
                     let zeta = zeta + 0.006;
-                    writeln!(
-                        s,
-                        "    (name: \"drumu{k}\", carrier: \"l{anchor}\", at: Joint(joint: \"l{anchor}\", height: {zeta:e}), radius: {r_d:e}, fixed: true),"
-                    )
-                    .unwrap();
-                    let mut route = format!("(\"drumu{k}\", Cw)");
-                    for j in (1..anchor).rev() {
-                        let carrier = if j == 1 {
-                            "base".to_string()
-                        } else {
-                            format!("l{}", j - 1)
-                        };
-                        writeln!(
-                            s,
-                            "    (name: \"idleru{k}_{j}\", carrier: \"{carrier}\", at: Joint(joint: \"l{j}\", height: {zeta:e}), radius: {r_i:e}, {idler_inertia}),"
-                        )
-                        .unwrap();
-                        write!(route, ", (\"idleru{k}_{j}\", Ccw)").unwrap();
-                    }
+                    let route = routed(&mut s, "u", k, anchor, zeta, ["Cw", "Ccw"]);
                     writeln!(
                         tendons,
                         "    (name: \"u{k}\", route: [{route}], exit: (-0.25, {:e}, {zeta:e})),",
