@@ -543,11 +543,11 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 /// its guides: the routing must be controllable (full row rank, a null vector that lifts
 /// every tendon, motors and loop sides determined) for every direction it can take. Boxes
 /// of capstan factors may show that for every factor the guides can take at once
-/// ([`every_factor_lifts`] with one null direction, [`every_factor_held`] with more); what they leave, the systems taken at the points [`Sliding::points`] gives
-/// settle, each guide at its largest
-/// wrap angle over the joints' ranges (at `q = 0` where a joint has none), and a failing
-/// point refuses the routing only if some motion produces it ([`Sliding::reachable`]) and,
-/// over ranges, at a state ([`Sliding::state_that_fails`]).
+/// ([`every_factor_lifts`] with one null direction, [`every_factor_held`] with more); what
+/// they leave, the systems taken at the points [`Sliding::points`] gives settle, each
+/// guide at its largest wrap angle over the joints' ranges (at `q = 0` where a joint has
+/// none), and a failing point refuses the routing only if some motion produces it
+/// ([`Sliding::reachable`]) and, over ranges, at a state ([`Sliding::state_that_fails`]).
 ///
 /// With one null direction each tendon's component of the null vector, as the signed
 /// maximal minor of `E` without that tendon's column, must keep the sign it has without
@@ -714,9 +714,8 @@ fn every_factor_lifts(
 /// With two or more null directions, the number of boxes of capstan factors on which
 /// every factor the guides can take is shown to keep `E` controllable
 /// ([`factor_boxes::every_factor`]); `None` where that is not shown. With `d`, a fixed
-/// basis as [`held_between`] takes it: `d` free tendons
-/// `N` in one proportion `x_N` (from rest and the `points`), the others `B` solved from
-/// `E_B x_B = −E_N x_N`. By Cramer `x_B,i det E_B = det(E_B with column i replaced by
+/// basis as [`held_between`] takes it: `d` free tendons `N` in one proportion `x_N` (from
+/// rest and the `points`), the others `B` solved from `E_B x_B = −E_N x_N`. By Cramer `x_B,i det E_B = det(E_B with column i replaced by
 /// −E_N x_N)`, so where `det E_B` and each such determinant of a tendon's keep their signs
 /// (checked positive at each box's centre), every tendon stays taut; the motors' and loop
 /// sides' components of every null vector, `det(E_B with their column replaced by one of

@@ -91,16 +91,15 @@ impl FactorBox {
     /// the other.
     fn apart(&self, a: &[usize], b: &[usize]) -> f64 {
         let (mut i, mut j, mut sum) = (0, 0, 0.0);
-        while i < a.len() || j < b.len() {
+        loop {
             match (a.get(i), b.get(j)) {
+                (None, None) => return sum,
                 (Some(x), Some(y)) if x == y => (i, j) = (i + 1, j + 1),
                 (Some(&x), Some(&y)) if x < y => (sum, i) = (sum + self.half(x), i + 1),
                 (Some(&x), None) => (sum, i) = (sum + self.half(x), i + 1),
                 (_, Some(&y)) => (sum, j) = (sum + self.half(y), j + 1),
-                (None, None) => unreachable!("the loop runs while either list has more"),
             }
         }
-        sum
     }
 }
 
