@@ -24,10 +24,10 @@
 //! with the `ρ` of least sum, and `ρ(M⁻¹ Δ_M) ≤ ρ(P) ≤ max_i (P x)_i / x_i` for any `x > 0`
 //! (Perron-Frobenius, Collatz-Wielandt), `x` from a few steps of power iteration: where `P`
 //! is nearly triangular, as for a finger whose tendons end joint by joint, far below `P`'s
-//! norms. Where a box's bound exceeds [`SETTLED_BELOW`], the widest guide of the column
-//! that contributes most is fixed at each end of its interval in turn, two boxes with one
-//! guide fewer: every determinant asked for is affine in each factor taken alone (a
-//! guide's factor multiplies the runs on the anchor side of it, all in its strand's one
+//! norms. Where a box's bound exceeds [`SETTLED_BELOW`], the guide that weighs most on the
+//! column that contributes most is fixed at each end of its interval in turn, two boxes
+//! with one guide fewer: every determinant asked for is affine in each factor taken alone
+//! (a guide's factor multiplies the runs on the anchor side of it, all in its strand's one
 //! column, and no column of `E` enters a square twice), so where it keeps its sign at both
 //! ends it keeps it in between. At worst that is every vertex of the box, `2^sliders`.
 //!
@@ -147,26 +147,25 @@ pub(super) fn every_factor(
             capstan[slider.strand][slider.idler] = b.centre(g).exp();
         }
         let e = state_matrix(model, &capstan);
-        let mut worst: Option<(f64, &[Run])> = None;
+        let mut worst: Option<(f64, Option<usize>)> = None;
         for (square, runs) in &squares {
-            let (bound, column) = bound(&e, &b, square, runs)?;
+            let (bound, guide) = bound(&e, &b, square, runs)?;
             if worst.is_none_or(|(w, _)| bound > w) {
-                worst = Some((bound, &runs[column]));
+                worst = Some((bound, guide));
             }
         }
         if fails(e).is_some() {
             return None;
         }
-        let Some((_, column)) = worst.filter(|w| w.0 > SETTLED_BELOW) else {
+        let Some((_, guide)) = worst.filter(|w| w.0 > SETTLED_BELOW) else {
             continue;
         };
-        // Fix the widest guide of the worst column at each end (it has one of some width:
-        // without, its part of the bound is zero).
-        let widest = (column.iter().flat_map(|r| r.guides.iter().copied()))
-            .max_by(|&x, &y| b.half(x).total_cmp(&b.half(y)))?;
+        // Fix the guide that weighs most in the worst square at each end (one has some
+        // width: without, the bound is zero).
+        let guide = guide?;
         let (mut lower, mut upper) = (b.clone(), b);
-        lower.high[widest] = lower.low[widest];
-        upper.low[widest] = upper.high[widest];
+        lower.high[guide] = lower.low[guide];
+        upper.low[guide] = upper.high[guide];
         boxes.push(lower);
         boxes.push(upper);
     }
@@ -174,14 +173,16 @@ pub(super) fn every_factor(
 }
 
 /// A bound on the spectral radius of `M⁻¹ Δ_M` over box `b` for `square` of `e` (`E` at
-/// the box's centre), whose columns have `runs`, and the column that contributes most to
-/// it; `None` where `M` is singular.
+/// the box's centre), whose columns have `runs`, and the guide to fix where it is too
+/// large: on the column that contributes most, the one whose half-width times the runs it
+/// sets apart from the reference (`Σ e^{Λ_r(c)} ‖M⁻¹ a_r‖₁` over the runs on its other
+/// side) is largest. `None` where `M` is singular.
 fn bound(
     e: &[Vec<f64>],
     b: &FactorBox,
     square: &Square,
     runs: &[Vec<Run>],
-) -> Option<(f64, usize)> {
+) -> Option<(f64, Option<usize>)> {
     let k = square.rows.len();
     let m = DMatrix::from_fn(k, k, |i, j| {
         (square.columns[j].iter()).fold(0.0, |sum, &(c, x)| sum + x * e[square.rows[i]][c])
@@ -207,6 +208,8 @@ fn bound(
         .map(|r| weights[r] * solved.column(r).lp_norm(1))
         .collect();
     let mut p = DMatrix::<f64>::zeros(k, k);
+    // Each moved column's runs (a range of `moved`) and its reference run.
+    let mut references: Vec<(usize, std::ops::Range<usize>, usize)> = Vec::new();
     let mut start = 0;
     while start < moved.len() {
         let j = moved[start].0;
@@ -227,21 +230,35 @@ fn bound(
                 sum(x).total_cmp(&sum(y))
             })
             .unwrap_or(start);
-        for r in column {
+        for r in column.clone() {
             let scale = weights[r] * spread(r, reference);
             for i in 0..k {
                 p[(i, j)] += scale * solved[(i, r)].abs();
             }
         }
+        references.push((j, column, reference));
         start = end;
     }
-    if !p.iter().all(|x| x.is_finite()) {
-        return Some((
-            f64::INFINITY,
-            (0..k).find(|&j| !p.column(j).iter().all(|x| x.is_finite()))?,
-        ));
-    }
-    Some(spectral_bound(p))
+    let (radius, worst) = match p.iter().all(|x| x.is_finite()) {
+        true => spectral_bound(p.clone()),
+        false => {
+            let column = (0..k).find(|&j| !p.column(j).iter().all(|x| x.is_finite()));
+            (f64::INFINITY, column.unwrap_or(0))
+        }
+    };
+    let Some((_, column, reference)) = references.iter().find(|c| c.0 == worst) else {
+        return Some((radius, None));
+    };
+    let guides = &moved[*reference].1.guides;
+    let weight = |g: usize| -> f64 {
+        let apart = |r: &usize| moved[*r].1.guides.contains(&g) != guides.contains(&g);
+        b.half(g) * column.clone().filter(apart).map(|r| sizes[r]).sum::<f64>()
+    };
+    let guide = (column.clone())
+        .flat_map(|r| moved[r].1.guides.iter().copied())
+        .filter(|&g| b.half(g) > 0.0)
+        .max_by(|&x, &y| weight(x).total_cmp(&weight(y)));
+    Some((radius, guide))
 }
 
 /// `max_i (P x)_i / x_i ≥ ρ(P)` for nonnegative `P`, `x > 0` from power iteration (the
