@@ -1199,7 +1199,7 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// directions of sliding to take one by one (which validation checked only where every
 /// guide slides, before the boxes), fingers of 5 to 7 joints (one null direction, 14 to 27
 /// guides) and fingers of 4 and 5 joints with a second tendon on each link (5 and 6 null
-/// directions, 26 and 38 guides), every idler made a guide with friction, at `μ = 0.2`
+/// directions, 15 and 24 guides), every idler made a guide with friction, at `μ = 0.2`
 /// (one box or a few) and `μ = 1` (tens of boxes: guides fixed at the ends of their
 /// factors). The fingers also run inverse dynamics at random states.
 #[test]
