@@ -708,7 +708,7 @@ fn every_factor_lifts(
         return None;
     }
     let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
-    factor_boxes::every_factor(model, sliding, &squares, fails, budget)
+    factor_boxes::every_factor(model, sliding, &squares, fails, budget).ok()
 }
 
 /// With two or more null directions, the number of boxes of capstan factors on which
@@ -721,7 +721,7 @@ fn every_factor_lifts(
 /// sides' components of every null vector, `det(E_B with their column replaced by one of
 /// N's) / det E_B`, must vanish by `E`'s pattern ([`factor_boxes::always_singular`]). The
 /// first [`BASES_TRIED`] choices of `N` that hold at rest and at the points are tried, each
-/// on its share of `budget` boxes.
+/// on at most a quarter of `budget` boxes and all on at most `budget`.
 fn every_factor_held(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -739,7 +739,7 @@ fn every_factor_held(
         return None;
     }
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
-    let mut tried = 0;
+    let (mut tried, mut left) = (0, budget);
     for free in combinations(tendons, d) {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
         let Some((sign, mut held)) = basis(&model.system.matrix, &basic, &free, tendons, None)
@@ -790,13 +790,14 @@ fn every_factor_held(
             }
             fails(e)
         };
-        let share = budget / BASES_TRIED;
-        let shown = factor_boxes::every_factor(model, sliding, &squares, &taut, share);
-        if shown.is_some() {
-            return shown;
+        // Each choice may take a quarter of the boxes, and all of them `budget`.
+        let share = left.min(budget / 4);
+        match factor_boxes::every_factor(model, sliding, &squares, &taut, share) {
+            Ok(boxes) => return Some(boxes),
+            Err(taken) => left -= taken.min(left),
         }
         tried += 1;
-        if tried == BASES_TRIED {
+        if tried == BASES_TRIED || left == 0 {
             return None;
         }
     }
@@ -804,7 +805,7 @@ fn every_factor_held(
 }
 
 /// The most choices of free tendons [`every_factor_held`] tries on boxes of factors.
-const BASES_TRIED: usize = 4;
+const BASES_TRIED: usize = 16;
 
 /// The first column of null vector `v` that is not a tendon's (a motor torque or loop side)
 /// and that `v` moves beyond round-off (`1e-9` of its largest component): one the dynamics
@@ -1267,7 +1268,7 @@ impl Sliding {
         let squares: Vec<factor_boxes::Square> = (squares.iter())
             .map(|(rows, columns)| factor_boxes::Square::of(rows, columns))
             .collect();
-        factor_boxes::every_factor(model, self, &squares, fails, budget)
+        factor_boxes::every_factor(model, self, &squares, fails, budget).ok()
     }
 
     /// Whether some guide's wrap angle changes over the joints' ranges.

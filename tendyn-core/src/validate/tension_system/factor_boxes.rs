@@ -105,15 +105,16 @@ impl FactorBox {
 
 /// The number of boxes on which every capstan factor the guides can take is shown to pass
 /// `fails` (at each box's centre) and to keep the sign of each of `squares`' determinants;
-/// `None` where `budget` boxes do not settle it, or some centre fails or has a singular
-/// square (a failure validation then looks for among the directions of sliding).
+/// `Err` with the boxes taken where `budget` boxes do not settle it, or some centre fails
+/// or has a singular square (a failure validation then looks for among the directions of
+/// sliding).
 pub(super) fn every_factor(
     model: &Model<f64>,
     sliding: &Sliding,
     squares: &[Square],
     fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
     budget: usize,
-) -> Option<usize> {
+) -> Result<usize, usize> {
     let columns = columns_as_runs(model, sliding);
     let squares: Vec<(&Square, Vec<Vec<Run>>)> = (squares.iter())
         .map(|square| {
@@ -138,7 +139,7 @@ pub(super) fn every_factor(
     while let Some(b) = boxes.pop() {
         explored += 1;
         if explored > budget {
-            return None;
+            return Err(budget);
         }
         let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
             .map(|s| vec![1.0; s.idlers.len()])
@@ -149,27 +150,27 @@ pub(super) fn every_factor(
         let e = state_matrix(model, &capstan);
         let mut worst: Option<(f64, Option<usize>)> = None;
         for (square, runs) in &squares {
-            let (bound, guide) = bound(&e, &b, square, runs)?;
+            let (bound, guide) = bound(&e, &b, square, runs).ok_or(explored)?;
             if worst.is_none_or(|(w, _)| bound > w) {
                 worst = Some((bound, guide));
             }
         }
         if fails(e).is_some() {
-            return None;
+            return Err(explored);
         }
         let Some((_, guide)) = worst.filter(|w| w.0 > SETTLED_BELOW) else {
             continue;
         };
         // Fix the guide that weighs most in the worst square at each end (one has some
         // width: without, the bound is zero).
-        let guide = guide?;
+        let guide = guide.ok_or(explored)?;
         let (mut lower, mut upper) = (b.clone(), b);
         lower.high[guide] = lower.low[guide];
         upper.low[guide] = upper.high[guide];
         boxes.push(lower);
         boxes.push(upper);
     }
-    Some(explored)
+    Ok(explored)
 }
 
 /// A bound on the spectral radius of `M⁻¹ Δ_M` over box `b` for `square` of `e` (`E` at
