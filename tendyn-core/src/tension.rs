@@ -237,14 +237,14 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
         }
         let mut column = vec![T::zero(); matrix.len()];
         let mut ratio = T::one();
-        for run in runs(strand, matrix.len()) {
-            for (c, &p) in column.iter_mut().zip(&run.share) {
+        for_each_run(strand, matrix.len(), |share, below| {
+            for (c, &p) in column.iter_mut().zip(share) {
                 *c = *c + ratio * p;
             }
-            if let Some(guide) = run.below {
+            if let Some(guide) = below {
                 ratio = ratio * factors[guide];
             }
-        }
+        });
         // The pretension rows keep the model's entries (strands over guides are never a
         // loop's sides, whose entries they are).
         for (r, (row, c)) in matrix.iter_mut().zip(column).enumerate() {
@@ -256,19 +256,18 @@ pub fn state_matrix<T: Real>(model: &Model<T>, capstan: &[Vec<T>]) -> Vec<Vec<T>
     matrix
 }
 
-/// A stretch of a strand between guides with friction, where the tension is one: its
-/// segments' shares of the strand's column summed ([`crate::model::Strand::shares`]), and
-/// the guide with friction that ends it towards the anchor (`None` at the anchor).
-pub(crate) struct Run<T> {
-    pub(crate) share: Vec<T>,
-    pub(crate) below: Option<usize>,
-}
-
-/// `strand`'s runs from the ground end towards the anchor, as the tensions are (Eq. 24b):
-/// run `i`'s tension is the ground-level one times the capstan factors of the guides that
-/// end runs `0..i` ([`state_matrix`]).
-pub(crate) fn runs<T: Real>(strand: &Strand<T>, rows: usize) -> Vec<Run<T>> {
-    let mut runs = Vec::new();
+/// `strand`'s runs, the stretches between guides with friction where the tension is one,
+/// from the ground end towards the anchor, as the tensions are (Eq. 24b): `visit` gets
+/// each run's share of the strand's column (its segments' shares summed,
+/// [`crate::model::Strand::shares`]) and the guide with friction that ends it towards the
+/// anchor (`None` at the anchor). Run `i`'s tension is the ground-level one times the
+/// capstan factors of the guides that end runs `0..i` ([`state_matrix`]). One buffer
+/// serves every run: `state_matrix` is on the runtime's path at every state.
+pub(crate) fn for_each_run<T: Real>(
+    strand: &Strand<T>,
+    rows: usize,
+    mut visit: impl FnMut(&[T], Option<usize>),
+) {
     let mut pending = vec![T::zero(); rows];
     for k in (0..strand.shares.len()).rev() {
         for (p, &x) in pending.iter_mut().zip(&strand.shares[k]) {
@@ -278,11 +277,10 @@ pub(crate) fn runs<T: Real>(strand: &Strand<T>, rows: usize) -> Vec<Run<T>> {
             .checked_sub(1)
             .filter(|&g| strand.idlers[g].capstan().is_some());
         if k == 0 || below.is_some() {
-            let share = core::mem::replace(&mut pending, vec![T::zero(); rows]);
-            runs.push(Run { share, below });
+            visit(&pending, below);
+            pending.iter_mut().for_each(|p| *p = T::zero());
         }
     }
-    runs
 }
 
 /// The most boxes of capstan factors [`Elimination::holds_while_sliding`] tries before the

@@ -687,7 +687,8 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
 /// With one null direction, the number of boxes of capstan factors on which every factor
 /// the guides can take is shown to keep each tendon's minor the sign it has without
 /// friction ([`factor_boxes::every_factor`]) while the motors' and loop sides' vanish with
-/// the pattern of `E` ([`factor_boxes::always_singular`]); `None` where that is not shown.
+/// the pattern of `E` ([`factor_boxes::Columns::always_singular`]); `None` where that is
+/// not shown.
 fn every_factor_lifts(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -701,26 +702,28 @@ fn every_factor_lifts(
         let kept: Vec<usize> = (0..columns).filter(|&c| c != k).collect();
         factor_boxes::Square::of(&rows, &kept)
     };
+    let runs = factor_boxes::Columns::of(model, sliding);
     let determined = (0..columns)
         .filter(|k| !tendons.contains(k))
-        .all(|k| factor_boxes::always_singular(model, sliding, &without(k)));
+        .all(|k| runs.always_singular(&without(k)));
     if !determined {
         return None;
     }
     let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
-    factor_boxes::every_factor(model, sliding, &squares, fails, budget).ok()
+    factor_boxes::every_factor(model, sliding, &runs, &squares, fails, budget).ok()
 }
 
 /// With two or more null directions, the number of boxes of capstan factors on which
 /// every factor the guides can take is shown to keep `E` controllable
 /// ([`factor_boxes::every_factor`]); `None` where that is not shown. With `d`, a fixed
 /// basis as [`held_between`] takes it: `d` free tendons `N` in one proportion `x_N` (from
-/// rest and the `points`), the others `B` solved from `E_B x_B = −E_N x_N`. By Cramer `x_B,i det E_B = det(E_B with column i replaced by
-/// −E_N x_N)`, so where `det E_B` and each such determinant of a tendon's keep their signs
-/// (checked positive at each box's centre), every tendon stays taut; the motors' and loop
-/// sides' components of every null vector, `det(E_B with their column replaced by one of
-/// N's) / det E_B`, must vanish by `E`'s pattern ([`factor_boxes::always_singular`]). The
-/// first [`BASES_TRIED`] choices of `N` that hold at rest and at the points are tried, each
+/// rest and the `points`), the others `B` solved from `E_B x_B = −E_N x_N`. By Cramer
+/// `x_B,i det E_B = det(E_B with column i replaced by −E_N x_N)`, so where `det E_B` and
+/// each such determinant of a tendon's keep their signs (checked positive at each box's
+/// centre), every tendon stays taut; the motors' and loop sides' components of every null
+/// vector, `det(E_B with their column replaced by one of N's) / det E_B`, must vanish by
+/// `E`'s pattern ([`factor_boxes::Columns::always_singular`]). The first [`BASES_TRIED`]
+/// choices of `N` that hold at rest and at the points are tried, each
 /// on at most a quarter of `budget` boxes and all on at most `budget`.
 fn every_factor_held(
     model: &Model<f64>,
@@ -739,6 +742,7 @@ fn every_factor_held(
         return None;
     }
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
+    let runs = factor_boxes::Columns::of(model, sliding);
     let (mut tried, mut left) = (0, budget);
     for free in combinations(tendons, d) {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
@@ -763,11 +767,7 @@ fn every_factor_held(
         };
         let determined = (0..basic.len())
             .filter(|&i| !tendons.contains(&basic[i]))
-            .all(|i| {
-                (free.iter()).all(|&n| {
-                    factor_boxes::always_singular(model, sliding, &replaced(i, vec![(n, 1.0)]))
-                })
-            });
+            .all(|i| (free.iter()).all(|&n| runs.always_singular(&replaced(i, vec![(n, 1.0)]))));
         if !determined {
             continue;
         }
@@ -792,7 +792,7 @@ fn every_factor_held(
         };
         // Each choice may take a quarter of the boxes, and all of them `budget`.
         let share = left.min(budget / 4);
-        match factor_boxes::every_factor(model, sliding, &squares, &taut, share) {
+        match factor_boxes::every_factor(model, sliding, &runs, &squares, &taut, share) {
             Ok(boxes) => return Some(boxes),
             Err(taken) => left -= taken.min(left),
         }
@@ -1268,7 +1268,8 @@ impl Sliding {
         let squares: Vec<factor_boxes::Square> = (squares.iter())
             .map(|(rows, columns)| factor_boxes::Square::of(rows, columns))
             .collect();
-        factor_boxes::every_factor(model, self, &squares, fails, budget).ok()
+        let runs = factor_boxes::Columns::of(model, self);
+        factor_boxes::every_factor(model, self, &runs, &squares, fails, budget).ok()
     }
 
     /// Whether some guide's wrap angle changes over the joints' ranges.

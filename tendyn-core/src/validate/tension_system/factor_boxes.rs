@@ -9,7 +9,7 @@
 //! `±1` and rest, the smoothed law's `tanh`) and `0 ≤ β ≤ β_g`, its largest wrap angle over
 //! the joints' ranges: every state lies in the box `|λ_g| ≤ μ β_g`, whichever way anything
 //! slides. A strand's column of `E` is `Σ_r e^{Λ_r} a_r` over its runs
-//! ([`crate::tension::runs`]), `Λ_r` the sum of the `λ_g` of the guides `G_r` between the
+//! ([`crate::tension::for_each_run`]), `Λ_r` the sum of the `λ_g` of the guides `G_r` between the
 //! ground end and run `r`; a column of a square part may also be a fixed combination of
 //! columns of `E`, whose runs are theirs, scaled.
 //!
@@ -38,7 +38,7 @@
 
 use super::Sliding;
 use crate::model::{Model, Row};
-use crate::tension::{runs, state_matrix};
+use crate::tension::{for_each_run, state_matrix};
 use nalgebra::{DMatrix, DVector};
 
 /// The largest bound on `M⁻¹ Δ_M`'s spectral radius a box may have to be settled: below 1
@@ -111,22 +111,13 @@ impl FactorBox {
 pub(super) fn every_factor(
     model: &Model<f64>,
     sliding: &Sliding,
+    columns: &Columns,
     squares: &[Square],
     fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
     budget: usize,
 ) -> Result<usize, usize> {
-    let columns = columns_as_runs(model, sliding);
     let squares: Vec<(&Square, Vec<Vec<Run>>)> = (squares.iter())
-        .map(|square| {
-            (
-                square,
-                square
-                    .columns
-                    .iter()
-                    .map(|c| combined(&columns, c))
-                    .collect(),
-            )
-        })
+        .map(|square| (square, columns.of_square(square)))
         .collect();
     let reach: Vec<f64> = (sliding.sliders.iter())
         .map(|s| sliding.guide(model, s).mu * s.wrap.max(0.0))
@@ -294,66 +285,71 @@ fn spectral_bound(p: DMatrix<f64>) -> (f64, usize) {
 }
 
 /// Each column of `E` as its runs: a strand over guides with friction by
-/// [`crate::tension::runs`] (a guide nothing slides over keeps the factor 1, and is left
-/// out of the runs' guides; the pretension rows keep the model's entries, in the first
-/// run, as `state_matrix` keeps them), every other column one run without guides.
-fn columns_as_runs(model: &Model<f64>, sliding: &Sliding) -> Vec<Vec<Run>> {
-    let e = &model.system.matrix;
-    let count = e.first().map_or(0, Vec::len);
-    let constant = |c: usize| Run {
-        share: e.iter().map(|row| row[c]).collect(),
-        guides: Vec::new(),
-    };
-    let mut columns: Vec<Vec<Run>> = (0..count).map(|c| vec![constant(c)]).collect();
-    let slider_at = |s: usize, idler: usize| {
-        (sliding.sliders.iter()).position(|x| x.strand == s && x.idler == idler)
-    };
-    for (s, strand) in model.strands.iter().enumerate() {
-        if !strand.idlers.iter().any(|idler| idler.capstan().is_some()) {
-            continue;
-        }
-        let mut below = Vec::new();
-        let mut column: Vec<Run> = Vec::new();
-        for run in runs(strand, e.len()) {
-            column.push(Run {
-                share: run.share,
-                guides: below.clone(),
-            });
-            below.extend(run.below.and_then(|idler| slider_at(s, idler)));
-            below.sort_unstable();
-        }
-        for (r, row) in model.system.rows.iter().enumerate() {
-            if matches!(row, Row::Pretension(_)) {
-                column[0].share[r] = e[r][strand.unknown];
+/// [`crate::tension::for_each_run`] (a guide nothing slides over keeps the factor 1, and is
+/// left out of the runs' guides; the pretension rows keep the model's entries, in the first
+/// run, as `state_matrix` keeps them), every other column one run without guides. Built
+/// once per model and its sliders.
+pub(super) struct Columns(Vec<Vec<Run>>);
+
+impl Columns {
+    pub(super) fn of(model: &Model<f64>, sliding: &Sliding) -> Columns {
+        let e = &model.system.matrix;
+        let count = e.first().map_or(0, Vec::len);
+        let constant = |c: usize| Run {
+            share: e.iter().map(|row| row[c]).collect(),
+            guides: Vec::new(),
+        };
+        let mut columns: Vec<Vec<Run>> = (0..count).map(|c| vec![constant(c)]).collect();
+        let slider_at = |s: usize, idler: usize| {
+            (sliding.sliders.iter()).position(|x| x.strand == s && x.idler == idler)
+        };
+        for (s, strand) in model.strands.iter().enumerate() {
+            if !strand.idlers.iter().any(|idler| idler.capstan().is_some()) {
+                continue;
             }
+            let mut below = Vec::new();
+            let mut column: Vec<Run> = Vec::new();
+            for_each_run(strand, e.len(), |share, ends| {
+                column.push(Run {
+                    share: share.to_vec(),
+                    guides: below.clone(),
+                });
+                below.extend(ends.and_then(|idler| slider_at(s, idler)));
+                below.sort_unstable();
+            });
+            for (r, row) in model.system.rows.iter().enumerate() {
+                if matches!(row, Row::Pretension(_)) {
+                    column[0].share[r] = e[r][strand.unknown];
+                }
+            }
+            columns[strand.unknown] = column;
         }
-        columns[strand.unknown] = column;
+        Columns(columns)
     }
-    columns
-}
 
-/// The runs of `Σ coefficient · (column of E)`.
-fn combined(columns: &[Vec<Run>], combination: &[(usize, f64)]) -> Vec<Run> {
-    (combination.iter())
-        .flat_map(|&(c, x)| {
-            columns[c].iter().map(move |run| Run {
-                share: run.share.iter().map(|a| x * a).collect(),
-                guides: run.guides.clone(),
-            })
+    /// The runs of each column of `square`, `Σ coefficient · (column of E)`.
+    fn of_square(&self, square: &Square) -> Vec<Vec<Run>> {
+        let combined = |combination: &Vec<(usize, f64)>| -> Vec<Run> {
+            (combination.iter())
+                .flat_map(|&(c, x)| {
+                    self.0[c].iter().map(move |run| Run {
+                        share: run.share.iter().map(|a| x * a).collect(),
+                        guides: run.guides.clone(),
+                    })
+                })
+                .collect()
+        };
+        square.columns.iter().map(combined).collect()
+    }
+
+    /// Whether the determinant of `square` vanishes at every capstan factor, by its
+    /// pattern of entries that are not always zero ([`without_transversal`]).
+    pub(super) fn always_singular(&self, square: &Square) -> bool {
+        let runs = self.of_square(square);
+        without_transversal(square.rows.len(), &|i, j| {
+            (runs[j].iter()).any(|run| run.share[square.rows[i]] != 0.0)
         })
-        .collect()
-}
-
-/// Whether the determinant of `square` vanishes at every capstan factor, by its pattern of
-/// entries that are not always zero ([`without_transversal`]).
-pub(super) fn always_singular(model: &Model<f64>, sliding: &Sliding, square: &Square) -> bool {
-    let columns = columns_as_runs(model, sliding);
-    let runs: Vec<Vec<Run>> = (square.columns.iter())
-        .map(|c| combined(&columns, c))
-        .collect();
-    without_transversal(square.rows.len(), &|i, j| {
-        (runs[j].iter()).any(|run| run.share[square.rows[i]] != 0.0)
-    })
+    }
 }
 
 /// Whether a `k × k` pattern of possibly nonzero entries has no assignment of its rows to
