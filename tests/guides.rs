@@ -1132,25 +1132,27 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
         .map(|row| row.iter().zip(&lengths).map(|(x, l)| x / l).collect())
         .collect();
     let e = &scaled;
-    let m = nalgebra::DMatrix::from_fn(columns, rows, |i, j| e[j][i]);
-    // `Eᵀ`'s SVD: its left singular vectors beyond the rank span `null(E)`.
-    let svd = nalgebra::linalg::SVD::new(m.clone(), true, false);
+    // `E` padded with zero rows to a square: its SVD then gives every right singular
+    // vector, and those beyond the rank span `null(E)` (no Gram-Schmidt completion, whose
+    // round-off grows where a vector nearly lies in the span).
+    let padded = nalgebra::DMatrix::from_fn(
+        columns,
+        columns,
+        |i, j| if i < rows { e[i][j] } else { 0.0 },
+    );
+    let svd = nalgebra::linalg::SVD::new(padded, false, true);
     let sigma = &svd.singular_values;
     let largest = sigma.max();
-    if sigma.min() <= 1e-10 * largest {
+    let mut order: Vec<usize> = (0..columns).collect();
+    order.sort_by(|&a, &b| sigma[b].total_cmp(&sigma[a]));
+    if sigma[order[rows - 1]] <= 1e-10 * largest {
         return Err(format!("rank lost: σ {sigma:?}"));
     }
-    let u = svd.u.unwrap();
-    // Complete `U` to an orthonormal basis: the null space is what `U` does not span.
-    let mut null: Vec<nalgebra::DVector<f64>> = Vec::new();
-    let mut basis: Vec<nalgebra::DVector<f64>> = (0..rows).map(|k| u.column(k).into()).collect();
-    for k in 0..columns {
-        let mut v = nalgebra::DVector::from_fn(columns, |i, _| if i == k { 1.0 } else { 0.0 });
-        for b in &basis {
-            v -= b * b.dot(&v);
-        }
-        if v.norm() > 1e-6 && null.len() < columns - rows {
-            v /= v.norm();
+    let v_t = svd.v_t.unwrap();
+    let null: Vec<nalgebra::DVector<f64>> = order[rows..]
+        .iter()
+        .map(|&k| {
+            let mut v: nalgebra::DVector<f64> = v_t.row(k).transpose();
             // Round-off left in the components, which the linear program would take as
             // coefficients 1e16 apart.
             v.apply(|x| {
@@ -1158,10 +1160,9 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
                     *x = 0.0
                 }
             });
-            basis.push(v.clone());
-            null.push(v);
-        }
-    }
+            v
+        })
+        .collect();
     for v in &null {
         let residual = (0..rows)
             .map(|i| (0..columns).map(|c| e[i][c] * v[c]).sum::<f64>().abs())
@@ -1195,13 +1196,17 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// wrap angle over the joints' ranges), leaves the routing controllable: checked by an SVD
 /// and a linear program ([`controllable`]) sharing nothing with the boxes' bounds, at
 /// every vertex of the box of factors (2000 random ones past 12 guides, where there are
-/// too many) and at random points inside it. Seeded random mechanisms; and, with too many
-/// directions of sliding to take one by one (which validation checked only where every
-/// guide slides, before the boxes), fingers of 5 to 7 joints (one null direction, 14 to 27
-/// guides) and fingers of 4 to 6 joints with a second tendon on each link (5 to 7 null
-/// directions, 15 to 35 guides), every idler made a guide with friction, at `μ = 0.2`
-/// (one box or a few), `μ = 1` (tens of boxes: guides fixed at the ends of their
-/// factors) and, for 6 joints, `μ = 0.5` (beyond the first choices of free tendons). The fingers also run inverse dynamics at random states.
+/// too many, and the vertices an adversary reaches flipping one guide at a time while the
+/// least lift falls) and at random points inside it. Seeded random mechanisms; and, with
+/// too many directions of sliding to take one by one (which validation checked only where
+/// every guide slides, before the boxes), fingers of 5 to 7 joints at `μ = 0.2` and 6 at
+/// `μ = 1` (one null direction, 14 to 27 guides), 9 joints at `μ = 0.5` (44 guides) and 12
+/// at `μ = 1` (77 guides, where the slack-tendon programs settle what boxes could not),
+/// and fingers of 4 to 6 joints with a second tendon on each link (5 to 7 null directions,
+/// 15 to 35 guides), every idler made a guide with friction, at `μ = 0.2` (one box or a
+/// few), `μ = 1` (tens of boxes: guides fixed at the ends of their factors) and, for 6
+/// joints, `μ = 0.5` (beyond the first choices of free tendons). The fingers also run
+/// inverse dynamics at random states.
 #[test]
 fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon() {
     let mut texts = Vec::new();
@@ -1220,6 +1225,8 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
         (6, false, 0.2),
         (7, false, 0.2),
         (6, false, 1.0),
+        (9, false, 0.5),
+        (12, false, 0.5),
     ];
     let antagonistic = [
         (4, true, 0.2),
@@ -1254,7 +1261,7 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
             .map(|(s, k, _, g)| (s, k, g.mu * g.wrap_over(&model.range_box())[1]))
             .collect();
         let tendons: Vec<usize> = model.tendons().iter().map(|t| t.unknown).collect();
-        let mut check = |lambda: &[f64]| {
+        let mut check = |lambda: &[f64]| -> f64 {
             let mut capstan: Vec<Vec<f64>> = (model.strands().iter())
                 .map(|s| vec![1.0; s.idlers.len()])
                 .collect();
@@ -1262,22 +1269,49 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
                 capstan[s][k] = l.exp();
             }
             let e = tendyn_core::tension::state_matrix(&model, &capstan);
+            vertices += 1;
             match controllable(&e, &tendons) {
-                Ok(lift) => least = least.min(lift),
+                Ok(lift) => {
+                    least = least.min(lift);
+                    lift
+                }
                 Err(why) => panic!("{}: {why} at {lambda:?}", model.name()),
             }
-            vertices += 1;
         };
-        let corner = |bits: u64| -> Vec<f64> {
+        // The vertex whose guide `g` is at its upper end where `upper(g)`.
+        let corner = |upper: &dyn Fn(usize) -> bool| -> Vec<f64> {
             (reach.iter().enumerate())
-                .map(|(g, r)| if bits >> g & 1 == 1 { r.2 } else { -r.2 })
+                .map(|(g, r)| if upper(g) { r.2 } else { -r.2 })
                 .collect()
         };
+        let mut random_corner = || {
+            let bits: Vec<bool> = reach.iter().map(|_| rng.random()).collect();
+            corner(&|g| bits[g])
+        };
         if reach.len() <= 12 {
-            (0..1u64 << reach.len()).for_each(|bits| check(&corner(bits)));
+            for bits in 0..1u64 << reach.len() {
+                check(&corner(&|g| bits >> g & 1 == 1));
+            }
         } else {
             for _ in 0..2000 {
-                check(&corner(rng.random::<u64>()));
+                check(&random_corner());
+            }
+            // An adversary: from random vertices, flip one guide at a time while the least
+            // lift falls, down to a vertex no single flip lowers.
+            for _ in 0..3 {
+                let mut lambda = random_corner();
+                let mut lift = check(&lambda);
+                let mut lowered = true;
+                while lowered {
+                    lowered = false;
+                    for g in 0..lambda.len() {
+                        lambda[g] = -lambda[g];
+                        match check(&lambda) {
+                            lower if lower < lift => (lift, lowered) = (lower, true),
+                            _ => lambda[g] = -lambda[g],
+                        }
+                    }
+                }
             }
         }
         for _ in 0..50 {

@@ -17,6 +17,7 @@ use crate::transmission::{tension_matrix, Columns, PulleyInfo, Rate, StrandGeome
 use nalgebra::DMatrix;
 
 mod factor_boxes;
+mod slack_tendon;
 
 /// What the tension system's unknowns belong to.
 pub(super) struct Actuators {
@@ -686,9 +687,10 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
 
 /// With one null direction, the number of boxes of capstan factors on which every factor
 /// the guides can take is shown to keep each tendon's minor the sign it has without
-/// friction ([`factor_boxes::every_factor`]) while the motors' and loop sides' vanish with
-/// the pattern of `E` ([`factor_boxes::Columns::always_singular`]); `None` where that is
-/// not shown.
+/// friction ([`factor_boxes::every_factor`]), or 1 where no factor of the whole box lets a
+/// tendon go slack ([`slack_tendon::never_slack`]), while the motors' and loop sides'
+/// vanish with the pattern of `E` ([`factor_boxes::Columns::always_singular`]); `None`
+/// where that is not shown.
 fn every_factor_lifts(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -710,7 +712,18 @@ fn every_factor_lifts(
         return None;
     }
     let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
-    factor_boxes::every_factor(model, sliding, &runs, &squares, fails, budget).ok()
+    // One box settles most routings at once and costs a factorisation per tendon; the
+    // slack-tendon programs settle nearly all the rest, long tendons over many guides
+    // whose factors multiply up included; the boxes take what the programs' tolerance
+    // leaves.
+    let boxes = |budget| factor_boxes::every_factor(model, sliding, &runs, &squares, fails, budget);
+    if let Ok(one) = boxes(1) {
+        return Some(one);
+    }
+    if slack_tendon::never_slack(model, sliding, &runs, tendons) {
+        return Some(1);
+    }
+    boxes(budget).ok()
 }
 
 /// With two or more null directions, the number of boxes of capstan factors on which
@@ -1252,6 +1265,14 @@ impl Sliding {
     fn guide<'m>(&self, model: &'m Model<f64>, slider: &Slider) -> &'m crate::model::Guide {
         let idler = &model.strands[slider.strand].idlers[slider.idler];
         idler.capstan().expect("a slider is a guide with friction")
+    }
+
+    /// Each slider's `μ β_g`, `β_g` its largest wrap angle: the box of every log capstan
+    /// factor it can take is `|λ_g| ≤ μ β_g`.
+    fn reach(&self, model: &Model<f64>) -> Vec<f64> {
+        (self.sliders.iter())
+            .map(|s| self.guide(model, s).mu * s.wrap.max(0.0))
+            .collect()
     }
 
     /// The number of boxes of capstan factors on which every factor the guides can take is

@@ -66,9 +66,9 @@ impl Square {
 /// strand's ground end, in increasing order (none for a column that friction leaves as it
 /// is).
 #[derive(Clone)]
-struct Run {
-    share: Vec<f64>,
-    guides: Vec<usize>,
+pub(super) struct Run {
+    pub(super) share: Vec<f64>,
+    pub(super) guides: Vec<usize>,
 }
 
 /// A box of log capstan factors, one interval `[low, high]` per slider.
@@ -119,9 +119,7 @@ pub(super) fn every_factor(
     let squares: Vec<(&Square, Vec<Vec<Run>>)> = (squares.iter())
         .map(|square| (square, columns.of_square(square)))
         .collect();
-    let reach: Vec<f64> = (sliding.sliders.iter())
-        .map(|s| sliding.guide(model, s).mu * s.wrap.max(0.0))
-        .collect();
+    let reach = sliding.reach(model);
     let mut boxes = vec![FactorBox {
         low: reach.iter().map(|r| -r).collect(),
         high: reach,
@@ -325,6 +323,11 @@ impl Columns {
             columns[strand.unknown] = column;
         }
         Columns(columns)
+    }
+
+    /// Column `c`'s runs, from the ground end.
+    pub(super) fn runs(&self, c: usize) -> &[Run] {
+        &self.0[c]
     }
 
     /// The runs of each column of `square`, `Σ coefficient · (column of E)`.
