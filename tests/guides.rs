@@ -1203,10 +1203,9 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// `μ = 1` (one null direction, 14 to 27 guides), 9 joints at `μ = 0.5` (44 guides) and 12
 /// at `μ = 1` (77 guides, where the slack-tendon programs settle what boxes could not),
 /// and fingers of 4 to 6 joints with a second tendon on each link (5 to 7 null directions,
-/// 15 to 35 guides), every idler made a guide with friction, at `μ = 0.2` (one box or a
-/// few), `μ = 1` (tens of boxes: guides fixed at the ends of their factors) and, for 6
-/// joints, `μ = 0.5` (beyond the first choices of free tendons). The fingers also run
-/// inverse dynamics at random states.
+/// 15 to 35 guides) at `μ = 0.2` and `μ = 1`, of 6 and 8 joints at `μ = 0.5` (7 and 9
+/// null directions, 35 and 63 guides: the programs with cutting planes), every idler made
+/// a guide with friction. The fingers also run inverse dynamics at random states.
 #[test]
 fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon() {
     let mut texts = Vec::new();
@@ -1233,6 +1232,7 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
         (5, true, 0.2),
         (4, true, 1.0),
         (6, true, 0.5),
+        (8, true, 0.5),
     ];
     for (joints, antagonists, mu) in fingers.into_iter().chain(antagonistic) {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);

@@ -720,7 +720,7 @@ fn every_factor_lifts(
     if let Ok(one) = boxes(1) {
         return Some(one);
     }
-    if slack_tendon::never_slack(model, sliding, &runs, tendons) {
+    if slack_tendon::never_slack(model, sliding, &runs, tendons, &[]).is_ok() {
         return Some(1);
     }
     boxes(budget).ok()
@@ -728,16 +728,20 @@ fn every_factor_lifts(
 
 /// With two or more null directions, the number of boxes of capstan factors on which
 /// every factor the guides can take is shown to keep `E` controllable
-/// ([`factor_boxes::every_factor`]); `None` where that is not shown. With `d`, a fixed
-/// basis as [`held_between`] takes it: `d` free tendons `N` in one proportion `x_N` (from
-/// rest and the `points`), the others `B` solved from `E_B x_B = −E_N x_N`. By Cramer
-/// `x_B,i det E_B = det(E_B with column i replaced by −E_N x_N)`, so where `det E_B` and
-/// each such determinant of a tendon's keep their signs (checked positive at each box's
-/// centre), every tendon stays taut; the motors' and loop sides' components of every null
-/// vector, `det(E_B with their column replaced by one of N's) / det E_B`, must vanish by
-/// `E`'s pattern ([`factor_boxes::Columns::always_singular`]). The first [`BASES_TRIED`]
-/// choices of `N` that hold at rest and at the points are tried, each
-/// on at most a quarter of `budget` boxes and all on at most `budget`.
+/// ([`factor_boxes::every_factor`]), or 1 where the slack-tendon programs show it on the
+/// whole box ([`slack_tendon::never_slack`]); `None` where neither does. With `d`, a
+/// fixed basis as [`held_between`] takes it: `d` free tendons `N` in one proportion `x_N`
+/// (from rest and the `points`), the others `B` solved from `E_B x_B = −E_N x_N`. By
+/// Cramer `x_B,i det E_B = det(E_B with column i replaced by −E_N x_N)`, so where `det E_B`
+/// and each such determinant of a tendon's keep their signs (checked positive at each
+/// box's centre), every tendon stays taut; the motors' and loop sides' components of every
+/// null vector, `det(E_B with their column replaced by one of N's) / det E_B`, must vanish
+/// by `E`'s pattern ([`factor_boxes::Columns::always_singular`]).
+///
+/// The first [`BASES_TRIED`] choices of `N` that hold at rest and at the points are
+/// tried, first each on one box and by the programs, which may add up to [`CUTS`] factors
+/// they find loosening a tendon to the systems the proportion is chosen from (cutting
+/// planes); then each on at most a quarter of `budget` boxes and all on at most `budget`.
 fn every_factor_held(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -756,7 +760,43 @@ fn every_factor_held(
     }
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
     let runs = factor_boxes::Columns::of(model, sliding);
-    let (mut tried, mut left) = (0, budget);
+    // A fixed basis: free tendons, the other columns, `det E_B`'s sign at rest, and the
+    // proportion of the free tendons.
+    struct Held {
+        free: Vec<usize>,
+        basic: Vec<usize>,
+        sign: f64,
+        x: Vec<f64>,
+    }
+    let replaced = |basic: &[usize], i: usize, by: Vec<(usize, f64)>| {
+        let mut square = factor_boxes::Square::of(&rows, basic);
+        square.columns[i] = by;
+        square
+    };
+    // The boxes: `det E_B`, and each tendon's with its column replaced by the free
+    // tendons' pull; at each box's centre the basis as at rest and every tendon taut in the
+    // proportion (the determinants' signs then hold on the box).
+    let boxes = |h: &Held, share: usize| {
+        let pulled: Vec<(usize, f64)> = h.free.iter().zip(&h.x).map(|(&n, &x)| (n, -x)).collect();
+        let mut squares = vec![factor_boxes::Square::of(&rows, &h.basic)];
+        squares.extend(
+            (0..h.basic.len())
+                .filter(|&i| tendons.contains(&h.basic[i]))
+                .map(|i| replaced(&h.basic, i, pulled.clone())),
+        );
+        let taut = |e: Vec<Vec<f64>>| -> Option<String> {
+            let Some((_, held)) = basis(&e, &h.basic, &h.free, tendons, Some(h.sign)) else {
+                return Some("the fixed basis turns singular or moves a motor".into());
+            };
+            let tension = |a: &Vec<f64>| a.iter().zip(&h.x).map(|(a, x)| a * x).sum::<f64>();
+            if held.iter().any(|a| tension(a) <= 1e-9) {
+                return Some("the fixed proportion loosens a tendon".into());
+            }
+            fails(e)
+        };
+        factor_boxes::every_factor(model, sliding, &runs, &squares, &taut, share)
+    };
+    let mut candidates: Vec<Held> = Vec::new();
     for free in combinations(tendons, d) {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
         let Some((sign, mut held)) = basis(&model.system.matrix, &basic, &free, tendons, None)
@@ -770,48 +810,65 @@ fn every_factor_held(
             continue;
         };
         held.extend(at_points.into_iter().flatten());
-        let Some(x) = proportion(&held, d) else {
+        let Some(mut x) = proportion(&held, d) else {
             continue;
-        };
-        let replaced = |i: usize, by: Vec<(usize, f64)>| {
-            let mut square = factor_boxes::Square::of(&rows, &basic);
-            square.columns[i] = by;
-            square
         };
         let determined = (0..basic.len())
             .filter(|&i| !tendons.contains(&basic[i]))
-            .all(|i| (free.iter()).all(|&n| runs.always_singular(&replaced(i, vec![(n, 1.0)]))));
+            .all(|i| {
+                (free.iter()).all(|&n| runs.always_singular(&replaced(&basic, i, vec![(n, 1.0)])))
+            });
         if !determined {
             continue;
         }
-        let pulled: Vec<(usize, f64)> = free.iter().zip(&x).map(|(&n, &x)| (n, -x)).collect();
-        let mut squares = vec![factor_boxes::Square::of(&rows, &basic)];
-        squares.extend(
-            (0..basic.len())
-                .filter(|&i| tendons.contains(&basic[i]))
-                .map(|i| replaced(i, pulled.clone())),
-        );
-        // At each box's centre: the basis as at rest, and every tendon taut in the
-        // proportion (the determinants' signs then hold on the box).
-        let taut = |e: Vec<Vec<f64>>| -> Option<String> {
-            let Some((_, held)) = basis(&e, &basic, &free, tendons, Some(sign)) else {
-                return Some("the fixed basis turns singular or moves a motor".into());
+        if let Ok(one) = boxes(
+            &Held {
+                free: free.clone(),
+                basic: basic.clone(),
+                sign,
+                x: x.clone(),
+            },
+            1,
+        ) {
+            return Some(one);
+        }
+        // Cutting planes: where a program finds a factor at which this proportion loosens
+        // a tendon, that factor's system joins those the proportion is chosen from.
+        for _ in 0..CUTS {
+            let x_free: Vec<(usize, f64)> = free.iter().copied().zip(x.iter().copied()).collect();
+            let lambda = match slack_tendon::never_slack(model, sliding, &runs, tendons, &x_free) {
+                Ok(()) => return Some(1),
+                Err(None) => break,
+                Err(Some(lambda)) => lambda,
             };
-            let tension = |a: &Vec<f64>| a.iter().zip(&x).map(|(a, x)| a * x).sum::<f64>();
-            if held.iter().any(|a| tension(a) <= 1e-9) {
-                return Some("the fixed proportion loosens a tendon".into());
-            }
-            fails(e)
-        };
-        // Each choice may take a quarter of the boxes, and all of them `budget`.
-        let share = left.min(budget / 4);
-        match factor_boxes::every_factor(model, sliding, &runs, &squares, &taut, share) {
+            let e = sliding.matrix_with_factors(model, &lambda);
+            let Some((_, loosened)) = basis(&e, &basic, &free, tendons, Some(sign)) else {
+                break;
+            };
+            held.extend(loosened);
+            let Some(better) = proportion(&held, d) else {
+                break;
+            };
+            x = better;
+        }
+        candidates.push(Held {
+            free,
+            basic,
+            sign,
+            x,
+        });
+        if candidates.len() == BASES_TRIED {
+            break;
+        }
+    }
+    let mut left = budget;
+    for held in &candidates {
+        match boxes(held, left.min(budget / 4)) {
             Ok(boxes) => return Some(boxes),
             Err(taken) => left -= taken.min(left),
         }
-        tried += 1;
-        if tried == BASES_TRIED || left == 0 {
-            return None;
+        if left == 0 {
+            break;
         }
     }
     None
@@ -819,6 +876,10 @@ fn every_factor_held(
 
 /// The most choices of free tendons [`every_factor_held`] tries on boxes of factors.
 const BASES_TRIED: usize = 16;
+
+/// The most factors the slack-tendon programs may add, for one choice of free tendons, to
+/// the systems its proportion is chosen from ([`every_factor_held`]).
+const CUTS: usize = 8;
 
 /// The first column of null vector `v` that is not a tendon's (a motor torque or loop side)
 /// and that `v` moves beyond round-off (`1e-9` of its largest component): one the dynamics
@@ -1258,6 +1319,18 @@ impl Sliding {
             let mu = self.guide(model, slider).mu;
             capstan[slider.strand][slider.idler] =
                 crate::friction::capstan_factor(slider.sign * way, mu, wrap);
+        }
+        crate::tension::state_matrix(model, &capstan)
+    }
+
+    /// `E` with each slider's log capstan factor `λ_g` (one of the box `|λ_g| ≤ μ β_g`,
+    /// [`Sliding::reach`], holds every state's).
+    fn matrix_with_factors(&self, model: &Model<f64>, lambda: &[f64]) -> Vec<Vec<f64>> {
+        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
+            .map(|s| vec![1.0; s.idlers.len()])
+            .collect();
+        for (slider, l) in self.sliders.iter().zip(lambda) {
+            capstan[slider.strand][slider.idler] = l.exp();
         }
         crate::tension::state_matrix(model, &capstan)
     }

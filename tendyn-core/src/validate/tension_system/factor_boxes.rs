@@ -38,7 +38,7 @@
 
 use super::Sliding;
 use crate::model::{Model, Row};
-use crate::tension::{for_each_run, state_matrix};
+use crate::tension::for_each_run;
 use nalgebra::{DMatrix, DVector};
 
 /// The largest bound on `M⁻¹ Δ_M`'s spectral radius a box may have to be settled: below 1
@@ -130,13 +130,8 @@ pub(super) fn every_factor(
         if explored > budget {
             return Err(budget);
         }
-        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
-            .map(|s| vec![1.0; s.idlers.len()])
-            .collect();
-        for (g, slider) in sliding.sliders.iter().enumerate() {
-            capstan[slider.strand][slider.idler] = b.centre(g).exp();
-        }
-        let e = state_matrix(model, &capstan);
+        let centre: Vec<f64> = (0..sliding.sliders.len()).map(|g| b.centre(g)).collect();
+        let e = sliding.matrix_with_factors(model, &centre);
         let mut worst: Option<(f64, Option<usize>)> = None;
         for (square, runs) in &squares {
             let (bound, guide) = bound(&e, &b, square, runs).ok_or(explored)?;

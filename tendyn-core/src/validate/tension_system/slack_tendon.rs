@@ -34,71 +34,150 @@
 use super::factor_boxes::Columns;
 use super::Sliding;
 use crate::model::Model;
-use microlp::{ComparisonOp, OptimizationDirection, Problem, Variable};
+use microlp::{ComparisonOp, OptimizationDirection, Problem, SolveOutcome, Variable};
 
 /// How much each interval of log factors between two runs is widened (absolute, in
 /// nepers) against the round-off of `e^{±W}`: a margin far below any `μβ` that matters.
 const WIDENED: f64 = 1e-9;
 
-/// Whether no factor of the box of every capstan factor the guides can take
-/// lets a tendon of `tendons` go slack or `E` lose rank, by one linear program per tendon;
-/// `false` where one finds such tensions (a factor where the routing fails, or one the
-/// program's tolerance cannot tell from it), or a column other than a tendon's has runs.
+/// `Ok` where no factor of the box of every capstan factor the guides can take lets a
+/// tendon of `tendons` go slack or `E` lose rank, by one linear program per tendon; `Err`
+/// with the log factors of the first program's tensions where one finds some (a factor
+/// where the routing fails, or one the program's tolerance cannot tell from it), `Err(None)`
+/// where a program fails or a column other than a tendon's has runs.
+///
+/// With `free` tendons `N` held at ground-end tensions `x_N` (a fixed basis, two or more
+/// null directions: [`super::every_factor_held`]), the question is whether the other
+/// columns `B`, solved from `E_B x_B = −E_N x_N`, keep every tendon taut, and the programs
+/// hold `N`'s first runs at `x_N` instead of summing the tensions to 1. The path argument
+/// is the same, for `x_B` and `det E_B`: at a first factor where it fails, a tendon of `B`
+/// is at zero, or `E_B` is singular, where a null vector of `E_B` moves a bounded `x_B` to
+/// a first zero, and an unbounded one tends (scaled) to a null vector of `E_B` with its
+/// tendons not negative, which one more program looks for: `N`'s runs at zero, `B`'s
+/// tendons summing to 1. There a factor found is one where that proportion fails, not
+/// necessarily the routing.
 pub(super) fn never_slack(
     model: &Model<f64>,
     sliding: &Sliding,
     columns: &Columns,
     tendons: &[usize],
-) -> bool {
+    free: &[(usize, f64)],
+) -> Result<(), Option<Vec<f64>>> {
+    let count = model.system.matrix.first().map_or(0, Vec::len);
+    if (0..count).any(|c| !tendons.contains(&c) && columns.runs(c).len() > 1) {
+        return Err(None);
+    }
+    let is_free = |c: usize| free.iter().any(|n| n.0 == c);
+    let solved = tendons.iter().filter(|&&k| !is_free(k)).map(|&k| Some(k));
+    // `Some(k)`: tendon `k` slack; `None`: the free tendons (with a fixed basis).
+    let mut programs = solved.chain((!free.is_empty()).then_some(None));
+    programs.try_for_each(|slack| slack_point(model, sliding, columns, tendons, free, slack))
+}
+
+/// Tensions of the runs with `slack` (a tendon, or with `None` the free tendons) at zero,
+/// the other tendons not negative, every row of `E` balanced and consecutive runs within
+/// their guides' factors: with `free` tendons and a tendon slack, the free tendons' first
+/// runs at their tensions; otherwise every tendon's runs summing to 1. `Ok` where the
+/// program proves there are none; `Err` with the log factors of the tensions found
+/// ([`factors_of`]), or `None` where the program fails.
+fn slack_point(
+    model: &Model<f64>,
+    sliding: &Sliding,
+    columns: &Columns,
+    tendons: &[usize],
+    free: &[(usize, f64)],
+    slack: Option<usize>,
+) -> Result<(), Option<Vec<f64>>> {
     let reach = sliding.reach(model);
     let rows = model.system.matrix.len();
     let count = model.system.matrix.first().map_or(0, Vec::len);
-    if (0..count).any(|c| !tendons.contains(&c) && columns.runs(c).len() > 1) {
-        return false;
+    let held = |c: usize| free.iter().find(|n| n.0 == c).map(|n| n.1);
+    let mut lp = Problem::new(OptimizationDirection::Minimize);
+    let mut balances: Vec<Vec<(Variable, f64)>> = vec![Vec::new(); rows];
+    let mut total = Vec::new();
+    let mut unknowns: Vec<Vec<Variable>> = Vec::with_capacity(count);
+    for c in 0..count {
+        let runs = columns.runs(c);
+        let tendon = tendons.contains(&c);
+        let at_zero = match slack {
+            Some(k) => c == k,
+            None => held(c).is_some(),
+        };
+        let bounds = |r: usize| match (tendon, at_zero, held(c)) {
+            (false, _, _) => (f64::NEG_INFINITY, f64::INFINITY),
+            (true, true, _) => (0.0, 0.0),
+            (true, false, Some(x)) if r == 0 => (x, x),
+            (true, false, _) => (0.0, f64::INFINITY),
+        };
+        let column: Vec<Variable> = (0..runs.len())
+            .map(|r| lp.add_var(0.0, bounds(r)))
+            .collect();
+        for (run, &t) in runs.iter().zip(&column) {
+            for (i, &a) in run.share.iter().enumerate() {
+                if a != 0.0 {
+                    balances[i].push((t, a));
+                }
+            }
+            if tendon {
+                total.push((t, 1.0));
+            }
+        }
+        // Consecutive runs: the guides below the second and not the first.
+        for (pair, t) in runs.windows(2).zip(column.windows(2)) {
+            let across = (pair[1].guides.iter())
+                .filter(|g| !pair[0].guides.contains(g))
+                .map(|&g| reach[g])
+                .sum::<f64>()
+                + WIDENED;
+            lp.add_constraint([(t[1], 1.0), (t[0], -across.exp())], ComparisonOp::Le, 0.0);
+            lp.add_constraint(
+                [(t[1], 1.0), (t[0], -(-across).exp())],
+                ComparisonOp::Ge,
+                0.0,
+            );
+        }
+        unknowns.push(column);
     }
-    tendons.iter().all(|&slack| {
-        let mut lp = Problem::new(OptimizationDirection::Minimize);
-        let mut balances: Vec<Vec<(Variable, f64)>> = vec![Vec::new(); rows];
-        let mut total = Vec::new();
-        for c in 0..count {
-            let runs = columns.runs(c);
-            let tendon = tendons.contains(&c);
-            let bounds = match (tendon, c == slack) {
-                (true, true) => (0.0, 0.0),
-                (true, false) => (0.0, f64::INFINITY),
-                (false, _) => (f64::NEG_INFINITY, f64::INFINITY),
-            };
-            let unknowns: Vec<Variable> = runs.iter().map(|_| lp.add_var(0.0, bounds)).collect();
-            for (run, &t) in runs.iter().zip(&unknowns) {
-                for (i, &a) in run.share.iter().enumerate() {
-                    if a != 0.0 {
-                        balances[i].push((t, a));
-                    }
-                }
-                if tendon {
-                    total.push((t, 1.0));
-                }
-            }
-            // Consecutive runs: the guides below the second and not the first.
-            for (pair, t) in runs.windows(2).zip(unknowns.windows(2)) {
-                let across = (pair[1].guides.iter())
-                    .filter(|g| !pair[0].guides.contains(g))
-                    .map(|&g| reach[g])
-                    .sum::<f64>()
-                    + WIDENED;
-                lp.add_constraint([(t[1], 1.0), (t[0], -across.exp())], ComparisonOp::Le, 0.0);
-                lp.add_constraint(
-                    [(t[1], 1.0), (t[0], -(-across).exp())],
-                    ComparisonOp::Ge,
-                    0.0,
-                );
-            }
-        }
-        for balance in balances.iter().filter(|b| !b.is_empty()) {
-            lp.add_constraint(balance.as_slice(), ComparisonOp::Eq, 0.0);
-        }
+    for balance in balances.iter().filter(|b| !b.is_empty()) {
+        lp.add_constraint(balance.as_slice(), ComparisonOp::Eq, 0.0);
+    }
+    // Free tendons held at their tensions set the scale; otherwise the tensions sum to 1.
+    if free.is_empty() || slack.is_none() {
         lp.add_constraint(total.as_slice(), ComparisonOp::Eq, 1.0);
-        // Anything but a proof that there is no such point leaves it to the boxes.
-        matches!(lp.solve(), Err(microlp::Error::Infeasible))
-    })
+    }
+    match lp.solve() {
+        Err(microlp::Error::Infeasible) => Ok(()),
+        Ok(SolveOutcome::Solution(found)) => {
+            let tensions: Vec<Vec<f64>> = (unknowns.iter())
+                .map(|column| column.iter().map(|&t| found.var_value(t)).collect())
+                .collect();
+            Err(Some(factors_of(columns, &tensions, &reach)))
+        }
+        _ => Err(None),
+    }
+}
+
+/// The log factors `λ_g` a program's run tensions imply: across consecutive runs whose
+/// tensions are both positive, the log of their ratio (within the interval's `±Σ μβ_g`)
+/// shared among the guides between them in proportion to their `μβ_g`; `0` where no two
+/// such runs tell.
+fn factors_of(columns: &Columns, tensions: &[Vec<f64>], reach: &[f64]) -> Vec<f64> {
+    let mut lambda = vec![0.0; reach.len()];
+    for (c, column) in tensions.iter().enumerate() {
+        let runs = columns.runs(c);
+        for (pair, t) in runs.windows(2).zip(column.windows(2)) {
+            let between: Vec<usize> = (pair[1].guides.iter())
+                .filter(|g| !pair[0].guides.contains(g))
+                .copied()
+                .collect();
+            let width: f64 = between.iter().map(|&g| reach[g]).sum();
+            if t[0] > 0.0 && t[1] > 0.0 && width > 0.0 {
+                let log = (t[1] / t[0]).ln().clamp(-width, width);
+                for &g in &between {
+                    lambda[g] = log * reach[g] / width;
+                }
+            }
+        }
+    }
+    lambda
 }
