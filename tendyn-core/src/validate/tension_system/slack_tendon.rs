@@ -49,7 +49,7 @@ const WIDENED: f64 = 1e-9;
 /// With `free` tendons `N` held at ground-end tensions `x_N` (a fixed basis, two or more
 /// null directions: [`super::every_factor_held`]), the question is whether the other
 /// columns `B`, solved from `E_B x_B = −E_N x_N`, keep every tendon taut, and the programs
-/// hold `N`'s first runs at `x_N` instead of summing the tensions to 1. The path argument
+/// hold `N`'s first runs at `s x_N` (`s ≥ 0`, the tensions summing to 1). The path argument
 /// is the same, for `x_B` and `det E_B`: at a first factor where it fails, a tendon of `B`
 /// is at zero, or `E_B` is singular, where a null vector of `E_B` moves a bounded `x_B` to
 /// a first zero, and an unbounded one tends (scaled) to a null vector of `E_B` with its
@@ -75,11 +75,11 @@ pub(super) fn never_slack(
 }
 
 /// Tensions of the runs with `slack` (a tendon, or with `None` the free tendons) at zero,
-/// the other tendons not negative, every row of `E` balanced and consecutive runs within
-/// their guides' factors: with `free` tendons and a tendon slack, the free tendons' first
-/// runs at their tensions; otherwise every tendon's runs summing to 1. `Ok` where the
-/// program proves there are none; `Err` with the log factors of the tensions found
-/// ([`factors_of`]), or `None` where the program fails.
+/// the other tendons not negative, every row of `E` balanced, consecutive runs within
+/// their guides' factors, the free tendons' first runs in their proportion and every
+/// tendon's runs summing to 1. `Ok` where the program proves there are none; `Err` with
+/// the log factors of the tensions found ([`factors_of`]), or `None` where the program
+/// fails.
 fn slack_point(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -93,6 +93,10 @@ fn slack_point(
     let count = model.system.matrix.first().map_or(0, Vec::len);
     let held = |c: usize| free.iter().find(|n| n.0 == c).map(|n| n.1);
     let mut lp = Problem::new(OptimizationDirection::Minimize);
+    // The free tendons' first runs are `s x_N` for a scale `s ≥ 0` (`s = 0` is the
+    // program with the free tendons slack, or the limit of tensions unbounded at `s = 1`),
+    // so that every program's tensions sum to 1 and none needs large values.
+    let scale = lp.add_var(0.0, (0.0, f64::INFINITY));
     let mut balances: Vec<Vec<(Variable, f64)>> = vec![Vec::new(); rows];
     let mut total = Vec::new();
     let mut unknowns: Vec<Vec<Variable>> = Vec::with_capacity(count);
@@ -103,15 +107,15 @@ fn slack_point(
             Some(k) => c == k,
             None => held(c).is_some(),
         };
-        let bounds = |r: usize| match (tendon, at_zero, held(c)) {
-            (false, _, _) => (f64::NEG_INFINITY, f64::INFINITY),
-            (true, true, _) => (0.0, 0.0),
-            (true, false, Some(x)) if r == 0 => (x, x),
-            (true, false, _) => (0.0, f64::INFINITY),
+        let bounds = match (tendon, at_zero) {
+            (false, _) => (f64::NEG_INFINITY, f64::INFINITY),
+            (true, true) => (0.0, 0.0),
+            (true, false) => (0.0, f64::INFINITY),
         };
-        let column: Vec<Variable> = (0..runs.len())
-            .map(|r| lp.add_var(0.0, bounds(r)))
-            .collect();
+        let column: Vec<Variable> = runs.iter().map(|_| lp.add_var(0.0, bounds)).collect();
+        if let (Some(x), false, Some(&first)) = (held(c), at_zero, column.first()) {
+            lp.add_constraint([(first, 1.0), (scale, -x)], ComparisonOp::Eq, 0.0);
+        }
         for (run, &t) in runs.iter().zip(&column) {
             for (i, &a) in run.share.iter().enumerate() {
                 if a != 0.0 {
@@ -141,10 +145,7 @@ fn slack_point(
     for balance in balances.iter().filter(|b| !b.is_empty()) {
         lp.add_constraint(balance.as_slice(), ComparisonOp::Eq, 0.0);
     }
-    // Free tendons held at their tensions set the scale; otherwise the tensions sum to 1.
-    if free.is_empty() || slack.is_none() {
-        lp.add_constraint(total.as_slice(), ComparisonOp::Eq, 1.0);
-    }
+    lp.add_constraint(total.as_slice(), ComparisonOp::Eq, 1.0);
     match lp.solve() {
         Err(microlp::Error::Infeasible) => Ok(()),
         Ok(SolveOutcome::Solution(found)) => {
