@@ -163,7 +163,13 @@ pub fn capstan_factors<T: Real>(
 /// anchor and ground sides, with `β` taken as 0 where it turns negative: a tendon bending
 /// away from a guide does not touch it.
 pub fn capstan_factor<T: Real>(sigma: T, mu: T, wrap: T) -> T {
-    (-(sigma * mu * wrap.max(T::zero()))).exp()
+    capstan_log_factor(sigma, mu, wrap).exp()
+}
+
+/// The log of [`capstan_factor`], `−σ μ β` (`β ≥ 0`): validation's boxes of factors are
+/// boxes of these.
+pub(crate) fn capstan_log_factor<T: Real>(sigma: T, mu: T, wrap: T) -> T {
+    -(sigma * mu * wrap.max(T::zero()))
 }
 
 /// `Σ_j c_j x_j` of constant coefficients.

@@ -1312,15 +1312,13 @@ impl Sliding {
 
     /// `E` at `point` with each guide with friction at the wrap angle `wraps` gives it.
     fn matrix_at(&self, model: &Model<f64>, point: &[f64], wraps: &[f64]) -> Vec<Vec<f64>> {
-        let mut capstan: Vec<Vec<f64>> = (model.strands.iter())
-            .map(|s| vec![1.0; s.idlers.len()])
+        let lambda: Vec<f64> = (self.sliders.iter().zip(point).zip(wraps))
+            .map(|((slider, &way), &wrap)| {
+                let mu = self.guide(model, slider).mu;
+                crate::friction::capstan_log_factor(slider.sign * way, mu, wrap)
+            })
             .collect();
-        for ((slider, &way), &wrap) in self.sliders.iter().zip(point).zip(wraps) {
-            let mu = self.guide(model, slider).mu;
-            capstan[slider.strand][slider.idler] =
-                crate::friction::capstan_factor(slider.sign * way, mu, wrap);
-        }
-        crate::tension::state_matrix(model, &capstan)
+        self.matrix_with_factors(model, &lambda)
     }
 
     /// `E` with each slider's log capstan factor `λ_g` (one of the box `|λ_g| ≤ μ β_g`,
