@@ -66,17 +66,20 @@ fn generation(c: &mut Criterion) {
 
 /// Validation of fingers whose every idler is a guide with capstan friction, past the
 /// 26,244 directions of sliding validation takes one by one (docs/format.md §6a): shown at
-/// every factor on one box (6 joints at `μ = 0.2`; 5 joints with a second tendon on each
-/// link, 6 null directions), on many (8 joints at `μ = 0.5`, guides fixed at their ends),
-/// and the worst case, where 4096 boxes do not settle it and validation falls back to the
-/// patterns where every guide slides (8 joints at `μ = 1`).
+/// every factor on one box or a few (6 joints at `μ = 0.2`; 5 joints with a second tendon
+/// on each link, 6 null directions), by the slack-tendon programs (12 joints at `μ = 1`,
+/// one null direction; 8 joints with a second tendon on each link at `μ = 0.5`, 9 null
+/// directions, with cutting planes), and the worst case, where neither they nor 4096 boxes
+/// settle it and validation falls back to the patterns where every guide slides (10 joints
+/// at `μ = 2`).
 fn capstan_validation(c: &mut Criterion) {
     let mut group = c.benchmark_group("capstan validation");
     for (joints, antagonists, mu) in [
         (6, false, 0.2),
         (5, true, 0.2),
-        (8, false, 0.5),
-        (8, false, 1.0),
+        (12, false, 1.0),
+        (8, true, 0.5),
+        (10, false, 2.0),
     ] {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
         finger.antagonists = antagonists;

@@ -712,13 +712,13 @@ fn every_factor_lifts(
         return None;
     }
     let squares: Vec<factor_boxes::Square> = tendons.iter().map(|&k| without(k)).collect();
-    // One box settles most routings at once and costs a factorisation per tendon; the
+    // A few boxes settle most routings and cost a factorisation per tendon each; the
     // slack-tendon programs settle nearly all the rest, long tendons over many guides
-    // whose factors multiply up included; the boxes take what the programs' tolerance
+    // whose factors multiply up included; more boxes take what the programs' tolerance
     // leaves.
     let boxes = |budget| factor_boxes::every_factor(model, sliding, &runs, &squares, fails, budget);
-    if let Ok(one) = boxes(1) {
-        return Some(one);
+    if let Ok(few) = boxes(FIRST_BOXES) {
+        return Some(few);
     }
     if slack_tendon::never_slack(model, sliding, &runs, tendons, &[]).is_ok() {
         return Some(1);
@@ -739,9 +739,10 @@ fn every_factor_lifts(
 /// by `E`'s pattern ([`factor_boxes::Columns::always_singular`]).
 ///
 /// The first [`BASES_TRIED`] choices of `N` that hold at rest and at the points are
-/// tried, first each on one box and by the programs, which may add up to [`CUTS`] factors
-/// they find loosening a tendon to the systems the proportion is chosen from (cutting
-/// planes); then each on at most a quarter of `budget` boxes and all on at most `budget`.
+/// tried, first each on [`FIRST_BOXES`] boxes and by the programs, which may add up to
+/// [`CUTS`] factors they find loosening a tendon to the systems the proportion is chosen
+/// from (cutting planes); then each on at most a quarter of `budget` boxes and all on at
+/// most `budget`.
 fn every_factor_held(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -821,16 +822,14 @@ fn every_factor_held(
         if !determined {
             continue;
         }
-        if let Ok(one) = boxes(
-            &Held {
-                free: free.clone(),
-                basic: basic.clone(),
-                sign,
-                x: x.clone(),
-            },
-            1,
-        ) {
-            return Some(one);
+        let first = Held {
+            free: free.clone(),
+            basic: basic.clone(),
+            sign,
+            x: x.clone(),
+        };
+        if let Ok(few) = boxes(&first, FIRST_BOXES) {
+            return Some(few);
         }
         // Cutting planes: where a program finds a factor at which this proportion loosens
         // a tendon, that factor's system joins those the proportion is chosen from.
@@ -876,6 +875,11 @@ fn every_factor_held(
 
 /// The most choices of free tendons [`every_factor_held`] tries on boxes of factors.
 const BASES_TRIED: usize = 16;
+
+/// The boxes of factors tried before the slack-tendon programs (for each choice of free
+/// tendons): enough for a routing a few guides fixed at their ends settle, which costs
+/// less than the programs.
+const FIRST_BOXES: usize = 8;
 
 /// The most factors the slack-tendon programs may add, for one choice of free tendons, to
 /// the systems its proportion is chosen from ([`every_factor_held`]).
