@@ -1200,8 +1200,8 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// least lift falls) and at random points inside it. Seeded random mechanisms; and, with
 /// too many directions of sliding to take one by one (which validation checked only where
 /// every guide slides, before the boxes), fingers of 5 to 7 joints at `μ = 0.2` and 6 at
-/// `μ = 1` (one null direction, 14 to 27 guides), 9 joints at `μ = 0.5` (44 guides) and 12
-/// at `μ = 1` (77 guides, where the slack-tendon programs settle what boxes could not),
+/// `μ = 1` (one null direction, 14 to 27 guides), 9 and 12 joints at `μ = 0.5` (44 and 77
+/// guides, where the slack-tendon programs settle what boxes could not),
 /// and fingers of 4 to 6 joints with a second tendon on each link (5 to 7 null directions,
 /// 15 to 35 guides) at `μ = 0.2` and `μ = 1`, of 6 and 8 joints at `μ = 0.5` (7 and 9
 /// null directions, 35 and 63 guides: the programs with cutting planes), every idler made

@@ -546,8 +546,7 @@ pub enum SlidingCheck {
     /// wrap angles up to their largest over the joints' ranges (at `q = 0` without).
     EveryFactor {
         /// The boxes of factors it was shown on: 1 where the whole box was shown at once,
-        /// by one bound or, with one null direction, by the slack-tendon programs
-        /// (docs/format.md §6a).
+        /// by one bound or by the slack-tendon programs (docs/format.md §6a).
         boxes: usize,
     },
     /// Only the patterns in which every guide slides: too many directions to take one by

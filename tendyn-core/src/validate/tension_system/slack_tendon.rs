@@ -1,16 +1,17 @@
-//! Every capstan factor at once, with one null direction, by the tensions of the runs: a
-//! linear program per tendon asks whether any factor the guides can take lets that tendon
-//! go slack while the others balance. Invariant: `true` only where no program finds such
+//! Every capstan factor at once, by the tensions of the runs: a linear program per tendon
+//! asks whether any factor the guides can take lets that tendon go slack while the others
+//! balance (with two or more null directions, the others solved from free tendons held in
+//! one proportion: [`never_slack`]). Invariant: `Ok` only where no program finds such
 //! tensions, which (below) leaves the routing controllable at every factor of the box.
 //!
 //! Take the tension of each run of each strand as an unknown `T_r` ([`Columns`]: a
-//! strand's column of `E` is `Σ_r e^{Λ_r} a_r`, so `E x = Σ_r a_r T_r` with `T_r = x e^{Λ_r}`).
-//! Across the guides between two consecutive runs the tension changes by their factors,
-//! `e^{λ_g}` with `|λ_g| ≤ μ β_g` ([`super::factor_boxes`] takes the same box): for
-//! tensions that are not negative that is the pair of linear constraints `e^{−W} T_r ≤
-//! T_{r+1} ≤ e^{W} T_r`, `W` the sum of those guides' `μ β_g`. The balances `Σ_r a_r T_r =
-//! 0`, one per row of `E`, are linear too, with the model's constant shares. So the
-//! tensions some factor of the box balances, with every tendon at least slack, form a
+//! strand's column of `E` is `Σ_r e^{Λ_r} a_r`, so `E x = Σ_r a_r T_r` with
+//! `T_r = x e^{Λ_r}`). Across the guides between two consecutive runs the tension changes
+//! by their factors `e^{λ_g}`, `|λ_g| ≤ μ β_g` ([`super::factor_boxes`] takes the same
+//! box): for tensions that are not negative, the pair of linear constraints
+//! `e^{−W} T_r ≤ T_{r+1} ≤ e^{W} T_r`, `W` the sum of those guides' `μ β_g`. The balances
+//! `Σ_r a_r T_r = 0`, one per row of `E`, are linear too, with the model's constant
+//! shares. So the tensions some factor of the box balances, none negative, form a
 //! polyhedral cone, and a linear program finds in it, for a tendon `k`, a point with `k`'s
 //! runs at zero, `Σ T = 1` and the motors' and loop sides' unknowns free, if there is one.
 //!
