@@ -1219,6 +1219,7 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
             texts.push((tendyn_spec::guides::idlers_as_capstans(&text, mu), false));
         }
     }
+    // (joints, a second tendon on each link, μ)
     let fingers = [
         (5, false, 0.2),
         (6, false, 0.2),
@@ -1226,15 +1227,13 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
         (6, false, 1.0),
         (9, false, 0.5),
         (12, false, 0.5),
-    ];
-    let antagonistic = [
         (4, true, 0.2),
         (5, true, 0.2),
         (4, true, 1.0),
         (6, true, 0.5),
         (8, true, 0.5),
     ];
-    for (joints, antagonists, mu) in fingers.into_iter().chain(antagonistic) {
+    for (joints, antagonists, mu) in fingers {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
         finger.antagonists = antagonists;
         texts.push((

@@ -811,7 +811,7 @@ fn every_factor_held(
             continue;
         };
         held.extend(at_points.into_iter().flatten());
-        let Some(mut x) = proportion(&held, d) else {
+        let Some(x) = proportion(&held, d) else {
             continue;
         };
         let determined = (0..basic.len())
@@ -822,40 +822,38 @@ fn every_factor_held(
         if !determined {
             continue;
         }
-        let first = Held {
-            free: free.clone(),
-            basic: basic.clone(),
+        let mut choice = Held {
+            free,
+            basic,
             sign,
-            x: x.clone(),
+            x,
         };
-        if let Ok(few) = boxes(&first, FIRST_BOXES) {
+        if let Ok(few) = boxes(&choice, FIRST_BOXES) {
             return Some(few);
         }
         // Cutting planes: where a program finds a factor at which this proportion loosens
         // a tendon, that factor's system joins those the proportion is chosen from.
         for _ in 0..CUTS {
-            let x_free: Vec<(usize, f64)> = free.iter().copied().zip(x.iter().copied()).collect();
+            let x_free: Vec<(usize, f64)> = (choice.free.iter().copied())
+                .zip(choice.x.iter().copied())
+                .collect();
             let lambda = match slack_tendon::never_slack(model, sliding, &runs, tendons, &x_free) {
                 Ok(()) => return Some(1),
                 Err(None) => break,
                 Err(Some(lambda)) => lambda,
             };
             let e = sliding.matrix_with_factors(model, &lambda);
-            let Some((_, loosened)) = basis(&e, &basic, &free, tendons, Some(sign)) else {
+            let Some((_, loosened)) = basis(&e, &choice.basic, &choice.free, tendons, Some(sign))
+            else {
                 break;
             };
             held.extend(loosened);
             let Some(better) = proportion(&held, d) else {
                 break;
             };
-            x = better;
+            choice.x = better;
         }
-        candidates.push(Held {
-            free,
-            basic,
-            sign,
-            x,
-        });
+        candidates.push(choice);
         if candidates.len() == BASES_TRIED {
             break;
         }

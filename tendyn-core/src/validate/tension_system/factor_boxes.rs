@@ -71,6 +71,19 @@ pub(super) struct Run {
     pub(super) guides: Vec<usize>,
 }
 
+impl Run {
+    /// The sliders between `previous`, the run before it towards the ground end, and this
+    /// one: those below this run and not below `previous`.
+    pub(super) fn guides_after<'a>(
+        &'a self,
+        previous: &'a Run,
+    ) -> impl Iterator<Item = usize> + 'a {
+        (self.guides.iter())
+            .filter(|g| !previous.guides.contains(g))
+            .copied()
+    }
+}
+
 /// A box of log capstan factors, one interval `[low, high]` per slider.
 #[derive(Clone)]
 struct FactorBox {

@@ -72,7 +72,8 @@ pub(super) fn never_slack(
     let solved = tendons.iter().filter(|&&k| !is_free(k)).map(|&k| Some(k));
     // `Some(k)`: tendon `k` slack; `None`: the free tendons (with a fixed basis).
     let mut programs = solved.chain((!free.is_empty()).then_some(None));
-    programs.try_for_each(|slack| slack_point(model, sliding, columns, tendons, free, slack))
+    let reach = sliding.reach(model);
+    programs.try_for_each(|slack| slack_point(model, &reach, columns, tendons, free, slack))
 }
 
 /// Tensions of the runs with `slack` (a tendon, or with `None` the free tendons) at zero,
@@ -83,13 +84,12 @@ pub(super) fn never_slack(
 /// fails.
 fn slack_point(
     model: &Model<f64>,
-    sliding: &Sliding,
+    reach: &[f64],
     columns: &Columns,
     tendons: &[usize],
     free: &[(usize, f64)],
     slack: Option<usize>,
 ) -> Result<(), Option<Vec<f64>>> {
-    let reach = sliding.reach(model);
     let rows = model.system.matrix.len();
     let count = model.system.matrix.first().map_or(0, Vec::len);
     let held = |c: usize| free.iter().find(|n| n.0 == c).map(|n| n.1);
@@ -129,9 +129,9 @@ fn slack_point(
         }
         // Consecutive runs: the guides below the second and not the first.
         for (pair, t) in runs.windows(2).zip(column.windows(2)) {
-            let across = (pair[1].guides.iter())
-                .filter(|g| !pair[0].guides.contains(g))
-                .map(|&g| reach[g])
+            let across = pair[1]
+                .guides_after(&pair[0])
+                .map(|g| reach[g])
                 .sum::<f64>()
                 + WIDENED;
             lp.add_constraint([(t[1], 1.0), (t[0], -across.exp())], ComparisonOp::Le, 0.0);
@@ -153,7 +153,7 @@ fn slack_point(
             let tensions: Vec<Vec<f64>> = (unknowns.iter())
                 .map(|column| column.iter().map(|&t| found.var_value(t)).collect())
                 .collect();
-            Err(Some(factors_of(columns, &tensions, &reach)))
+            Err(Some(factors_of(columns, &tensions, reach)))
         }
         _ => Err(None),
     }
@@ -168,10 +168,7 @@ fn factors_of(columns: &Columns, tensions: &[Vec<f64>], reach: &[f64]) -> Vec<f6
     for (c, column) in tensions.iter().enumerate() {
         let runs = columns.runs(c);
         for (pair, t) in runs.windows(2).zip(column.windows(2)) {
-            let between: Vec<usize> = (pair[1].guides.iter())
-                .filter(|g| !pair[0].guides.contains(g))
-                .copied()
-                .collect();
+            let between: Vec<usize> = pair[1].guides_after(&pair[0]).collect();
             let width: f64 = between.iter().map(|&g| reach[g]).sum();
             if t[0] > 0.0 && t[1] > 0.0 && width > 0.0 {
                 let log = (t[1] / t[0]).ln().clamp(-width, width);
