@@ -55,7 +55,10 @@ fn bad_capstan_coefficients_are_rejected_naming_the_pulley() {
         "{shown}"
     );
     let shown = invalid(&pin_with("mu: 0.0", "mu: 1e300"));
-    assert!(shown.contains("between 0 (frictionless) and 10"), "{shown}");
+    assert!(
+        shown.contains("`mu` is 1e300; a capstan coefficient is between 0 (frictionless) and 10"),
+        "{shown}"
+    );
     // On a pulley that turns with the tendon, nothing slides.
     let shown = invalid(&pin_with("fixed: true, mu: 0.0", "mu: 0.0"));
     assert!(

@@ -391,6 +391,57 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
     assert!(v["structure_matrix"].is_null() && v["static_torque_range"].is_null());
 }
 
+/// `check` prints a guide's `mu` as the file gives it, however small, and its `μβ` as the
+/// capstan law takes it: 0 where the wrap angle is negative (Example 2 with capstan
+/// friction, whose idler4 the tendon bends away from at `q = 0`). At rest, `eval`'s
+/// bearing friction is `0`, not `-0`.
+#[test]
+fn check_prints_the_guides_coefficients_as_the_law_takes_them() {
+    let dir = scratch_dir("tendyn_cli_coefficients");
+    let file = dir.join("tiny_mu.ron");
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/mechanisms/example2_capstan.ron"
+    ))
+    .unwrap()
+    .replacen("mu: 0.3,", "mu: 1e-300,", 1);
+    std::fs::write(&file, text).unwrap();
+    let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains(
+            "idler3       T32      β = 27.662° (at q = 0), μ = 1.00000e-300, μβ = 4.82787e-301\n"
+        ),
+        "{out}"
+    );
+    assert!(
+        out.contains(
+            "idler4       T42      β = -2.642° (at q = 0), μ = 0.300000, μβ = 0 (negative"
+        ),
+        "{out}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    let (ok, out, err) = tendyn(&[
+        "eval",
+        "examples/mechanisms/example2_friction.ron",
+        "--q",
+        "0,0",
+        "--qd",
+        "0,0",
+        "--qdd",
+        "0,0",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for (body, torque) in v["bearing_friction"].as_object().unwrap() {
+        assert!(
+            torque.as_f64().unwrap().is_sign_positive(),
+            "{body}: {torque}"
+        );
+    }
+}
+
 /// A joint's `range` reaches `check`: the JSON gives it, and each guide whose wrap angle
 /// changes with the joint gets the interval the range spans, `wrap + rate·q` at the ends
 /// (Example 2 with capstan friction, link1 within `[−0.5, 0.8]` rad); the text prints it.

@@ -165,9 +165,9 @@ fn sliding_check_text(check: SlidingCheck) -> String {
             if boxes == 1 { "" } else { "es" }
         ),
         SlidingCheck::AllSliding { systems } => format!(
-            "only where every guide slides ({systems} tension systems; too many directions \
-             to take one by one): inverse and forward dynamics check each state's system \
-             and refuse one that fails"
+            "only at {systems} ways every guide slides (too many directions to take one by \
+             one): inverse and forward dynamics check each state's system and refuse one \
+             that fails"
         ),
     }
 }
@@ -268,8 +268,8 @@ pub fn check_text(m: &Model<f64>) -> String {
                 m.bodies()[b].name,
                 m.strands()[s].name,
                 g.wrap.to_degrees(),
-                number(g.mu),
-                number(g.mu * g.wrap)
+                coefficient(g.mu),
+                coefficient(g.mu * g.wrap.max(0.0))
             ));
         }
         if m.has_capstan() {
@@ -443,6 +443,15 @@ pub fn number(x: f64) -> String {
     }
 }
 
+/// A coefficient of the file (`mu`, and `μβ` from it) as [`number`] prints it, but never
+/// as `0` unless it is: it is input, not round-off.
+fn coefficient(x: f64) -> String {
+    match x != 0.0 && x.abs() < 1e-4 {
+        true => format!("{x:.5e}"),
+        false => number(x),
+    }
+}
+
 /// The JSON object `tendyn eval --json` prints for one state.
 pub fn inverse_json(
     m: &Model<f64>,
@@ -468,7 +477,7 @@ pub fn inverse_json(
         "null_space_tensions": m.tendons().iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "loops": m.loops().iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v + 0.0))).collect::<serde_json::Map<_, _>>(),
         "sticking": r.sticking.iter().map(|b| m.bodies()[*b].name.clone()).collect::<Vec<_>>(),
         "guides": tendyn_core::friction::guide_states(m, [q, qd, qdd], r.segment_tensions.as_deref()).into_iter().map(|g| json!({
             "pulley": m.bodies()[g.body].name,

@@ -549,8 +549,10 @@ pub enum SlidingCheck {
         /// by one bound or by the slack-tendon programs (docs/format.md §6a).
         boxes: usize,
     },
-    /// Only the patterns in which every guide slides: too many directions to take one by
-    /// one, and the boxes of factors did not settle it.
+    /// Only patterns in which every guide slides: too many directions to take one by one,
+    /// and the boxes of factors did not settle it. Every such pattern up to 12 groups of
+    /// guides (guides whose speeds are proportional), beyond that the two uniform ones and
+    /// those with one group flipped (docs/format.md §6a).
     AllSliding {
         /// The systems checked: one per pattern.
         systems: usize,

@@ -273,8 +273,9 @@ impl Validator<'_> {
             return Err(self.invalid(
                 &p.name,
                 format!(
-                    "`mu` is {mu}; a capstan coefficient is between 0 (frictionless) and \
-                     {MAX_MU} (format.md §6a)"
+                    "`mu` is {}; a capstan coefficient is between 0 (frictionless) and \
+                     {MAX_MU} (format.md §6a)",
+                    shown(mu)
                 ),
             ));
         }
