@@ -72,7 +72,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Evaluate inverse dynamics, M, h and g at a state.
+    /// Evaluate inverse dynamics, M, h and g at a state: give it by --q, --qd and --qdd
+    /// (each required, n numbers), or give many by --states.
     Eval {
         /// The mechanism's RON file (docs/format.md).
         file: String,
@@ -321,6 +322,16 @@ fn join_continued(args: impl Iterator<Item = std::ffi::OsString>) -> Vec<std::ff
     out
 }
 
+/// A line to standard error: what was written where, or why nothing was. Where no one
+/// reads it any more (`2>&1 | head -1`), it is dropped: the work is done either way, and
+/// the exit status still says how it went (`eprintln!` would panic).
+macro_rules! note {
+    ($($t:tt)*) => {{
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+
 /// Writes to stdout. A reader that went away (`tendyn demo | head`) ends the program
 /// quietly, with success; any other failure (a full disk behind `> out.rs`) is an error,
 /// exit status 1, so that a script does not take a partial output for a whole one.
@@ -331,7 +342,7 @@ fn emit(text: &str) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             std::process::exit(0);
         }
-        eprintln!("error: cannot write to standard output: {e}");
+        note!("error: cannot write to standard output: {e}");
         std::process::exit(1);
     }
 }
@@ -344,7 +355,7 @@ fn main() -> ExitCode {
     match run(Cli::parse_from(join_continued(std::env::args_os()))) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            note!("error: {e}");
             ExitCode::FAILURE
         }
     }
@@ -484,7 +495,7 @@ fn run(cli: Cli) -> Result<(), String> {
                         .map_err(|e| format!("{out}: {e}"))?;
                     tendyn_codegen::builder::write_atomically(out.as_ref(), &identified)
                         .map_err(|e| format!("{out}: {e}"))?;
-                    eprintln!(
+                    note!(
                         "wrote `{}` with the identified mass properties to {out}",
                         m.name()
                     );
@@ -535,7 +546,12 @@ fn run(cli: Cli) -> Result<(), String> {
             let svg = draw::svg(&m, &scene, view)?;
             tendyn_codegen::builder::write_atomically(out.as_ref(), &svg)
                 .map_err(|e| format!("{out}: {e}"))?;
-            eprintln!("drew `{}` ({view:?}) to {out}", m.name());
+            let seen = clap::ValueEnum::to_possible_value(&view).map(|v| v.get_name().to_owned());
+            note!(
+                "drew `{}` ({}) to {out}",
+                m.name(),
+                seen.unwrap_or_default()
+            );
             Ok(())
         }
         Command::Export { file, mjcf: _, out } => {
@@ -543,7 +559,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let xml = mjcf::mjcf(&m)?;
             tendyn_codegen::builder::write_atomically(out.as_ref(), &xml)
                 .map_err(|e| format!("{out}: {e}"))?;
-            eprintln!("exported `{}` as MJCF to {out}", m.name());
+            note!("exported `{}` as MJCF to {out}", m.name());
             Ok(())
         }
         Command::Generate {
@@ -584,16 +600,16 @@ fn run(cli: Cli) -> Result<(), String> {
                     .map_err(|e| format!("{path}: {e}"))?,
                 None => emit(&text),
             }
-            eprintln!(
+            note!(
                 "generated {} functions for `{}` in {:.2} ms:",
                 g.functions.len(),
                 m.name(),
                 elapsed.as_secs_f64() * 1e3
             );
             for (o, ops, form) in &g.functions {
-                eprintln!("  {:<20} {} ({})", o.name(), ops, form.label());
+                note!("  {:<20} {} ({})", o.name(), ops, form.label());
             }
-            eprintln!("  {:<20} {}", "all", g.all);
+            note!("  {:<20} {}", "all", g.all);
             Ok(())
         }
         Command::Equations { file, outputs } => {

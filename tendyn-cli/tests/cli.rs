@@ -391,6 +391,32 @@ fn check_json_holds_what_check_prints_with_the_model_s_own_numbers() {
     assert!(v["structure_matrix"].is_null() && v["static_torque_range"].is_null());
 }
 
+/// A reader of standard error that goes away (`2>&1 | head -1`) does not make `generate`
+/// fail: the file is written and the notes are dropped.
+#[test]
+fn generate_succeeds_when_no_one_reads_its_notes() {
+    let dir = scratch_dir("tendyn_cli_closed_stderr");
+    let file = dir.join("out.rs");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tendyn"))
+        .args([
+            "generate",
+            "examples/mechanisms/example3_stanford_jpl.ron",
+            "-o",
+        ])
+        .arg(&file)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    drop(child.stderr.take());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(0));
+    assert!(std::fs::read_to_string(&file)
+        .unwrap()
+        .contains("pub fn generalized_forces"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `check` prints a guide's `mu` as the file gives it, however small, and its `μβ` as the
 /// capstan law takes it: 0 where the wrap angle is negative (Example 2 with capstan
 /// friction, whose idler4 the tendon bends away from at `q = 0`). At rest, `eval`'s
