@@ -1097,6 +1097,33 @@ fn f01_a_mass_f32_cannot_hold_is_rejected_naming_the_link_in_a_file_and_in_code(
     );
 }
 
+/// A joint that moves no mass has a zero pivot in `M`: generating forward dynamics for it
+/// is refused naming that joint (the reproducer that found it: F01's link without mass,
+/// `tendyn generate`, whose error named only an infinite constant), while what needs no
+/// `M⁻¹` still generates.
+#[test]
+fn generating_forward_dynamics_names_the_joint_that_moves_no_mass() {
+    let (_, text) = reproducer("F01-codegen-f32-constant-overflow-panic");
+    let massless = parse(&with(&text, "mass: 1e39,", "mass: 0.0,")).unwrap();
+    for scalar in [tendyn_codegen::Scalar::F64, tendyn_codegen::Scalar::F32] {
+        let err = generated(&massless, scalar).unwrap_err().to_string();
+        assert!(
+            err.starts_with("output `forward_dynamics`:")
+                && err.contains("joint `arm` moves nothing with mass or inertia")
+                && err.contains("leave `forward_dynamics` out of the outputs"),
+            "{err}"
+        );
+    }
+    let inverse = [tendyn_codegen::Output::GeneralizedForces];
+    tendyn_codegen::generate(
+        &massless,
+        &inverse,
+        tendyn_codegen::Scalar::F64,
+        "bad_input",
+    )
+    .unwrap();
+}
+
 /// The link of [`one_motor_link`] as a rigid tree built in code, changed by `change`.
 fn rigid_link_with(
     change: impl FnOnce(&mut tendyn_core::model::Body<f64>),

@@ -258,6 +258,22 @@ fn fix(scalar: Scalar) -> &'static str {
     }
 }
 
+/// The first joint whose pivot `D_j` in the `L D Lᵀ` factors of `M(0)` that forward
+/// dynamics divides by ([`tendyn_core::linalg::ldlt_factor`], as generated code traces
+/// it) is not positive (below `1e-12` of `M`'s largest diagonal entry): nothing that joint
+/// moves beyond what the joints before it move has mass or inertia.
+fn unresisted_joint(model: &tendyn_core::Model<f64>) -> Option<String> {
+    let n = model.dof();
+    let mut ws = tendyn_core::dynamics::Workspace::new(model);
+    let rows = tendyn_core::dynamics::mass_matrix(model, &vec![0.0; n], &mut ws);
+    let mut m: Vec<f64> = rows.concat();
+    let largest = (0..n).fold(0.0f64, |a, j| a.max(m[j * n + j].abs()));
+    tendyn_core::linalg::ldlt_factor(&mut m, n);
+    let positive = |d: f64| d > 1e-12 * largest; // false for NaN after a zero pivot
+    let unresisted = (0..n).find(|&j| !positive(m[j * n + j]))?;
+    Some(model.bodies()[unresisted].name.clone())
+}
+
 /// Every constant the emitted code writes fits the scalar: those of the traced functions
 /// (folded from the mechanism's numbers as the graph is built: an error names the output
 /// whose function holds one), the structure matrix and the distribution's constants.
@@ -291,12 +307,25 @@ fn check_constants(
             );
             if let Some(id) = (0..g.nodes.len()).find(|&id| live[id] && overflows(id)) {
                 let x = g.constant_value(expr::Id(id as u32)).expect("a constant");
+                let forward = matches!(
+                    f.output,
+                    Output::ForwardDynamics | Output::ForwardDynamicsDerivatives
+                );
+                let why = match forward.then(|| unresisted_joint(model)).flatten() {
+                    Some(joint) => format!(
+                        "; the mass matrix is singular at q = 0: joint `{joint}` moves nothing \
+                         with mass or inertia that the joints before it could not move as \
+                         well, and forward dynamics divides by its pivot; give the bodies it \
+                         moves mass or inertia, or leave `{}` out of the outputs",
+                        f.output.name()
+                    ),
+                    None => format!("; {}", fix(scalar)),
+                };
                 return Err(Error::Constant {
                     item: format!("output `{}`", f.output.name()),
                     problem: format!(
                         "a constant folded from the mechanism's numbers is {x:e}, which {name} \
-                         cannot hold (its largest number is {max:.1e}); {}",
-                        fix(scalar)
+                         cannot hold (its largest number is {max:.1e}){why}"
                     ),
                 });
             }
