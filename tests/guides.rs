@@ -608,6 +608,101 @@ fn a_routing_that_friction_makes_uncontrollable_in_some_direction_of_sliding_is_
     );
 }
 
+/// A 10-joint finger with every idler a guide at `μ = 2` has 54 groups of guides, far too
+/// many ways of sliding to take one by one, and no box of factors settles it. Among the
+/// ways every guide slides, a descent finds one that leaves a tendon nearly slack, and
+/// validation refuses the routing naming it (docs/format.md §6a). Checked without
+/// validation's code: the named way, read back from the message, is produced by a `q̇`
+/// (found by a perceptron on the guides' sliding rates), and at it the null vector of
+/// `E` (an SVD) holds some tendon below `1e-7` of the largest, which an SVD cannot tell
+/// from validation's `1e-9` on this matrix (`σ_min/σ_max` near `1e-7`).
+#[test]
+fn past_the_ways_taken_one_by_one_a_descent_finds_where_sliding_leaves_a_tendon_nearly_slack() {
+    let finger = tendyn_spec::stress::Arm::new("finger", 10, 10);
+    let e = parse(&tendyn_spec::guides::idlers_as_capstans(&finger.ron(), 2.0)).unwrap_err();
+    let shown = e.to_string();
+    assert!(matches!(e, Error::Routing { .. }), "{shown}");
+    assert!(
+        shown.contains("whichever way the tendons slide")
+            && shown.contains("within round-off of slack"),
+        "{shown}"
+    );
+    // The way: "`TENDON` over `GUIDE` towards its anchor|exit", one per guide.
+    let pieces: Vec<&str> = shown.split('`').collect();
+    let mut way = std::collections::HashMap::new();
+    for i in 1..pieces.len().saturating_sub(3) {
+        if pieces[i + 1] == " over " {
+            let towards = pieces[i + 3];
+            assert!(towards.starts_with(" towards its "), "{towards}");
+            let sigma = if towards.starts_with(" towards its exit") {
+                1.0
+            } else {
+                -1.0
+            };
+            way.insert((pieces[i].to_string(), pieces[i + 2].to_string()), sigma);
+        }
+    }
+    // The same finger with a μ validation accepts gives the guides, their wrap angles at
+    // `q = 0` and sliding rates, and `E` at any capstan factors.
+    let model = parse(&tendyn_spec::guides::idlers_as_capstans(&finger.ron(), 0.1)).unwrap();
+    let mut capstan: Vec<Vec<f64>> = (model.strands().iter())
+        .map(|s| vec![1.0; s.idlers.len()])
+        .collect();
+    let mut rates = Vec::new();
+    for (s, k, body, guide) in model.guides() {
+        let key = (
+            model.strands()[s].name.clone(),
+            model.bodies()[body].name.clone(),
+        );
+        let sigma = way[&key];
+        capstan[s][k] = (-sigma * 2.0 * guide.wrap.max(0.0)).exp();
+        rates.push((sigma, guide.slide.clone()));
+    }
+    assert_eq!(way.len(), rates.len(), "every guide is named");
+    // A `q̇` sliding every guide the named way, by a perceptron's corrections.
+    let mut qd = vec![0.0; model.dof()];
+    let norm = |u: &[f64]| u.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
+    for _ in 0..100_000 {
+        let Some((sigma, u)) = (rates.iter()).find(|(s, u)| s * dot(u, &qd) <= 1e-3 * norm(u))
+        else {
+            break;
+        };
+        qd.iter_mut()
+            .zip(u)
+            .for_each(|(q, a)| *q += sigma * a / norm(u));
+    }
+    assert!(
+        rates.iter().all(|(s, u)| s * dot(u, &qd) > 1e-3 * norm(u)),
+        "no motion slides the guides so: {qd:?}"
+    );
+    let e = tendyn_core::tension::state_matrix(&model, &capstan);
+    let (rows, columns) = (e.len(), e[0].len());
+    let padded = nalgebra::DMatrix::from_fn(
+        columns,
+        columns,
+        |i, j| {
+            if i < rows {
+                e[i][j]
+            } else {
+                0.0
+            }
+        },
+    );
+    let svd = nalgebra::linalg::SVD::new(padded, false, true);
+    let least = svd.singular_values.imin();
+    let v_t = svd.v_t.unwrap();
+    let null: Vec<f64> = (0..columns).map(|j| v_t[(least, j)]).collect();
+    let largest = null.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let sign = null.iter().sum::<f64>().signum();
+    let tendons: Vec<usize> = model.tendons().iter().map(|t| t.unknown).collect();
+    let slackest = (tendons.iter()).fold(f64::INFINITY, |a, &k| a.min(sign * null[k] / largest));
+    assert!(
+        slackest < 1e-7,
+        "least tendon {slackest:e} of the largest: {null:?}"
+    );
+}
+
 /// Two joints driven by four tendons (a two-dimensional null space), one of which slides over
 /// a pin on link 1 with `μ = 0.4` (found by a seeded random search). Without friction the
 /// routing is controllable; sliding `t2` over the pin towards its anchor, no tensions lift

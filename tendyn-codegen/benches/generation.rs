@@ -70,8 +70,9 @@ fn generation(c: &mut Criterion) {
 /// on each link, 6 null directions), by the slack-tendon programs (12 joints at `μ = 1`,
 /// one null direction; 8 joints with a second tendon on each link at `μ = 0.5`, 9 null
 /// directions, with cutting planes), and the worst case, where neither they nor 4096 boxes
-/// settle it and validation falls back to the patterns where every guide slides (10 joints
-/// at `μ = 2`).
+/// settle it and validation falls back to the patterns where every guide slides, from
+/// which a descent finds one that leaves a tendon nearly slack and refuses the routing
+/// (10 joints at `μ = 2`).
 fn capstan_validation(c: &mut Criterion) {
     let mut group = c.benchmark_group("capstan validation");
     for (joints, antagonists, mu) in [
@@ -84,14 +85,15 @@ fn capstan_validation(c: &mut Criterion) {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
         finger.antagonists = antagonists;
         let text = tendyn_spec::guides::idlers_as_capstans(&finger.ron(), mu);
-        let check = tendyn_core::parse(&text).unwrap().sliding_check();
+        let check = match tendyn_core::parse(&text) {
+            Ok(model) => format!("{:?}", model.sliding_check()),
+            Err(_) => "refused".into(),
+        };
         let name = format!(
-            "{joints} joints{} mu {mu}: {check:?}",
+            "{joints} joints{} mu {mu}: {check}",
             if antagonists { " antagonistic" } else { "" }
         );
-        group.bench_function(name, |b| {
-            b.iter(|| tendyn_core::parse(black_box(&text)).unwrap())
-        });
+        group.bench_function(name, |b| b.iter(|| tendyn_core::parse(black_box(&text))));
     }
     group.finish();
 }

@@ -551,8 +551,9 @@ pub enum SlidingCheck {
     },
     /// Only patterns in which every guide slides: too many directions to take one by one,
     /// and the boxes of factors did not settle it. Every such pattern up to 12 groups of
-    /// guides (guides whose speeds are proportional), beyond that the two uniform ones and
-    /// those with one group flipped (docs/format.md §6a).
+    /// guides (guides whose speeds are proportional), beyond that the two uniform ones,
+    /// those with one group flipped, and, with one null direction, those a descent on the
+    /// tendons' least lift passes through (docs/format.md §6a).
     AllSliding {
         /// The systems checked: one per pattern.
         systems: usize,

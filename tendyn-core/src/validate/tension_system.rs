@@ -569,7 +569,9 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 ///
 /// Beyond, the points are those where every guide slides: each group one way, all the
 /// ways of up to 12 groups, past that the two where every group slides one way and those
-/// with one group flipped. Returns how far the routing was shown controllable.
+/// with one group flipped, to which, with one null direction, a descent from them adds a
+/// pattern that fails if it finds one ([`least_lifting_way`]). Returns how far the routing
+/// was shown controllable.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<SlidingCheck> {
     let sliding = Sliding::of(model);
     if sliding.sliders.is_empty() {
@@ -578,7 +580,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     let tendons: Vec<usize> = model.tendons.iter().map(|t| t.unknown).collect();
     let frictionless =
         (model.system.null_space.len() == 1).then(|| Minors::of(&model.system.matrix, &tendons));
-    let (points, every_way) = sliding.points_and_whether_every_way();
+    let (mut points, every_way) = sliding.points_and_whether_every_way();
     let fails = |e: Vec<Vec<f64>>| -> Option<String> {
         match &frictionless {
             Some(without) => without.compare(&without.at(&e), &tendons).err(),
@@ -602,6 +604,13 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     };
     if let Some(boxes) = shown {
         return Ok(SlidingCheck::EveryFactor { boxes });
+    }
+    // Past the points every way, those where every guide slides are a sample: a search
+    // among the others may find one that fails, which then refuses as any point does.
+    if let (false, Some(minors)) = (every_way, &frictionless) {
+        if let Some(point) = least_lifting_way(model, &sliding, minors, &tendons, &points) {
+            points.insert(0, point);
+        }
     }
     let ranged = sliding.ranged(model);
     for point in &points {
@@ -683,6 +692,75 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             systems: points.len(),
         },
     })
+}
+
+/// The most steps [`least_lifting_way`] takes per group of guides.
+const STEPS_PER_GROUP: usize = 4;
+
+/// With one null direction, a way every guide slides (each group one way, some motion
+/// producing it: [`Sliding::slides_every_guide`]) at which the tendons' least lift
+/// ([`Minors::least_lift`], each guide at its largest wrap angle) falls to validation's
+/// margin, if a descent finds one: from the lowest of the `sampled` ways some motion
+/// produces, flip the group whose flip lowers the least lift most among those some motion
+/// still produces, while it falls. A sufficient search, not an exhaustive one: where it
+/// finds none the routing is still checked only at the sampled ways.
+fn least_lifting_way(
+    model: &Model<f64>,
+    sliding: &Sliding,
+    minors: &Minors,
+    tendons: &[usize],
+    sampled: &[Vec<f64>],
+) -> Option<Vec<f64>> {
+    let groups = sliding.groups.len();
+    let point = |by_group: &[f64]| -> Vec<f64> {
+        (sliding.sliders.iter())
+            .map(|s| by_group[sliding.classes[s.class].group])
+            .collect()
+    };
+    let lift = |by_group: &[f64]| {
+        let e = sliding.matrix(model, &point(by_group));
+        minors.least_lift(&minors.at(&e), tendons)
+    };
+    let by_group = |p: &Vec<f64>| -> Vec<f64> {
+        let mut g = vec![0.0; groups];
+        for (s, &way) in sliding.sliders.iter().zip(p) {
+            g[sliding.classes[s.class].group] = way;
+        }
+        g
+    };
+    let mut starts: Vec<(f64, Vec<f64>)> = (sampled.iter())
+        .map(by_group)
+        .map(|g| (lift(&g), g))
+        .collect();
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (mut least, mut way) = starts
+        .into_iter()
+        .find(|(_, g)| sliding.slides_every_guide(&point(g)))?;
+    for _ in 0..STEPS_PER_GROUP * groups {
+        if least <= LIFT_MARGIN {
+            return Some(point(&way));
+        }
+        let mut flips: Vec<(f64, usize)> = (0..groups)
+            .map(|i| {
+                way[i] = -way[i];
+                let l = lift(&way);
+                way[i] = -way[i];
+                (l, i)
+            })
+            .filter(|&(l, _)| l < least)
+            .collect();
+        flips.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let produced = flips.into_iter().find(|&(_, i)| {
+            way[i] = -way[i];
+            let moves = sliding.slides_every_guide(&point(&way));
+            way[i] = -way[i];
+            moves
+        });
+        let (l, i) = produced?;
+        way[i] = -way[i];
+        least = l;
+    }
+    None
 }
 
 /// With one null direction, the number of boxes of capstan factors on which every factor
@@ -1560,6 +1638,23 @@ impl Sliding {
         Some(ways)
     }
 
+    /// Whether some `q̇` slides every guide the way `point` says (`±1` each, every group
+    /// one way) beyond any band of rest: `way_g (u_g · q̇) > 0` for every group, an open
+    /// cone (one linear program). Such a point is [`Sliding::reachable`].
+    fn slides_every_guide(&self, point: &[f64]) -> bool {
+        let Some(ways) = self.ways(point).filter(|_| point.iter().all(|&d| d != 0.0)) else {
+            return false;
+        };
+        let rows: Option<Vec<_>> = (ways.iter().zip(&self.groups))
+            .map(|(w, u)| {
+                let &(_, way) = w.first()?;
+                let one_way = w.iter().all(|c| c.1 == way);
+                one_way.then(|| (u.iter().map(|x| way * x).collect(), 1.0, f64::INFINITY))
+            })
+            .collect();
+        rows.is_some_and(|rows| feasible(&rows))
+    }
+
     /// Whether some motion makes the guides take the directions of `point` (a guide at
     /// rest there is left free: it stands for the corner of a box, [`sliding_directions`]).
     /// With the smoothed law: some `q̇` with `way_g (u_g · q̇) > 0` for every group that
@@ -1721,25 +1816,45 @@ impl Minors {
         }
     }
 
+    /// The least of the tendons' minors in `n`, taken the way the model's lift them,
+    /// relative to `|n|`: at most `0` where some tendon is slack or pushed, `−∞` where `n`
+    /// vanishes (`E` loses rank) or is not finite.
+    fn least_lift(&self, n: &[f64], tendons: &[usize]) -> f64 {
+        let size = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(size.is_finite() && size > 0.0) {
+            return f64::NEG_INFINITY;
+        }
+        let way = (tendons.iter()).fold(0.0, |s, &k| s + self.n[k]).signum();
+        (tendons.iter()).fold(f64::INFINITY, |least, &k| least.min(way * n[k] / size))
+    }
+
     /// Whether the minors `n` lift every tendon as the model's do: each tendon's of the
     /// same sign and larger than `1e-9` of `|n|` (the margin [`positive_null_vector`] asks
     /// of a unit null vector), and the others, which vanish in the model (every motor and
     /// loop side determined), within `1e-9` of `|n|` still.
     fn compare(&self, n: &[f64], tendons: &[usize]) -> std::result::Result<(), String> {
         let size = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let way = (tendons.iter()).fold(0.0, |s, &k| s + self.n[k]).signum();
         if !(size.is_finite() && size > 0.0) {
             return Err("the tension system loses full rank".into());
         }
-        if !tendons.iter().all(|&k| way * n[k] > 1e-9 * size) {
+        let least = self.least_lift(n, tendons);
+        if least <= 0.0 {
             return Err(
                 "the null vector of the tension system no longer lifts every tendon \
                         together"
                     .into(),
             );
         }
+        if least <= LIFT_MARGIN {
+            return Err(format!(
+                "the null vector of the tension system lifts one tendon by only {least:.1e} \
+                 of its size, within round-off of slack (validation asks at least \
+                 {LIFT_MARGIN:e}): the largest tension would be {:.0e} times that tendon's",
+                1.0 / least
+            ));
+        }
         let other = (0..n.len()).filter(|k| !tendons.contains(k));
-        if other.clone().any(|k| n[k].abs() > 1e-9 * size) {
+        if other.clone().any(|k| n[k].abs() > LIFT_MARGIN * size) {
             return Err(
                 "the tendons' co-contraction would then move a motor torque or a loop \
                         side, which the routing must determine"
@@ -1749,6 +1864,10 @@ impl Minors {
         Ok(())
     }
 }
+
+/// The least tendon component of a null vector, relative to its size, that validation
+/// asks for (`1e-9`, the margin [`positive_null_vector`] asks of a unit null vector).
+const LIFT_MARGIN: f64 = 1e-9;
 
 /// `(−1)^k det(E without column k)`.
 fn minor(e: &[Vec<f64>], k: usize) -> f64 {
