@@ -4,6 +4,7 @@ Arrays of states are `(n,)` for one state or `(N, n)` for `N` states; results ca
 same leading axis.
 """
 
+import os
 from typing import Any, Optional, Union
 
 import numpy as np
@@ -12,11 +13,14 @@ import numpy.typing as npt
 Array = npt.NDArray[np.float64]
 ArrayLike = npt.ArrayLike
 
+__version__: str
+
 class TendynError(Exception):
     """A mechanism file that cannot be read or does not validate, a state the solver
-    cannot evaluate, or code that cannot be generated."""
+    cannot evaluate, or code that cannot be generated; the message is the command line's
+    (for a file: the item, its line and column, and what would fix it)."""
 
-def load(path: str) -> Model:
+def load(path: Union[str, os.PathLike[str]]) -> Model:
     """Loads and validates the mechanism file at `path`."""
 
 def loads(text: str, name: str = "<string>") -> Model:
@@ -36,6 +40,9 @@ class Model:
     @property
     def motor_names(self) -> list[str]: ...
     @property
+    def loop_names(self) -> list[str]:
+        """The loops' names, in file order: the rows of `loop_sides`."""
+    @property
     def pulley_names(self) -> list[str]: ...
     @property
     def friction_bodies(self) -> list[str]:
@@ -47,7 +54,8 @@ class Model:
         entries of the `guide_…` arrays."""
     @property
     def strands(self) -> list[tuple[str, int]]:
-        """Each strand's name and number of segments."""
+        """Each strand's name and number of segments, in order (`segment_tensions` runs
+        through them; a loop has two strands, `LOOP/ccw` and `LOOP/cw`)."""
     @property
     def structure_matrix(self) -> Array:
         """`A` (m), `(n, tendons)`: the tendons' part of `Q` is `A T` (paper Eqs. 33, 35).
@@ -60,14 +68,17 @@ class Model:
         self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
     ) -> dict[str, Optional[npt.NDArray[Any]]]:
         """`generalized_forces` `(n,)`, `motor_torques`, `tendon_tensions`,
-        `minimal_norm_tensions`, `null_space_tensions`, `loop_sides` `(loops, 2)`,
-        `pulley_moments`,
+        `minimal_norm_tensions`, `null_space_tensions`, `loop_sides` `(loops, 2)`
+        (`loop_names` order; ccw, cw side; slack where either is negative),
+        `pulley_moments` (`pulley_names` order),
         `bearing_friction` and `sticking` (bool; one entry per `friction_bodies`),
         `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`,
         `guide_sticking` (bool) and `guide_dissipated_powers` (one entry per `guides`),
-        `segment_tensions`, `bearings` `(bodies, 2, 3)` (force, moment),
-        `base_reaction` `(2, 3)` (these three and `guide_dissipated_powers` `None` where
-        the routing cannot attribute them); per state, with the batch axis first when the
+        `segment_tensions` (every segment of every strand, `strands` order, each from
+        its anchor end), `bearings` `(bodies, 2, 3)` (force, moment; `joint_names` then
+        `pulley_names`), `base_reaction` `(2, 3)` (these three, and
+        `guide_dissipated_powers` where there are guides, `None` where the routing cannot
+        attribute them); per state, with the batch axis first when the
         states are batched. Float64 arrays but `sticking` and `guide_sticking` (bool)."""
     def mass_matrix(self, q: ArrayLike) -> Array:
         """`M(q)` (kg·m²), `(n, n)` per state."""
@@ -94,7 +105,9 @@ class Model:
         motor_torques: ArrayLike,
         tendon_tensions: ArrayLike,
     ) -> Array:
-        """`(n, 2n + m)` per state: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u` side by side, exact."""
+        """`(n, 2n + m)` per state: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u` side by side, exact;
+        `u` the motor torques then the tendon tensions (`m` = motors + tendons; pass `[]`
+        for none)."""
     def regressor(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array:
         """`Y` (`(n, p)` per state, columns `parameter_names`): `Q = Y π + offset`."""
     def regressor_offset(self, q: ArrayLike) -> Array:
@@ -115,7 +128,8 @@ class Model:
     ) -> str:
         """The generated Rust source of `outputs` (the default ones available when `None`);
         `ValueError` for an unknown output or scalar, `TendynError` for an output the
-        mechanism cannot provide."""
+        mechanism cannot provide (among the defaults too: forward dynamics where a joint
+        moves no mass)."""
     def _rust_loop_ns(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, repeats: int) -> float:
         """Private, for `bench/inverse_dynamics_batch.py`: the Rust solver alone on the
         states, one thread, best of `repeats` passes, nanoseconds per state."""

@@ -30,8 +30,9 @@ create_exception!(
     tendyn,
     TendynError,
     PyException,
-    "A mechanism file that does not validate, or a state the solver cannot evaluate; the \
-     message names the item, its line and column, and what would fix it."
+    "A mechanism file that cannot be read or does not validate, a state the solver cannot \
+     evaluate, or code that cannot be generated; the message is the command line's (for a \
+     file: the item, its line and column, and what would fix it)."
 );
 
 fn tendyn_error(e: impl std::fmt::Display) -> PyErr {
@@ -49,12 +50,12 @@ struct Model {
     data: Mutex<Data<f64>>,
 }
 
-/// Loads and validates the mechanism file at `path`.
+/// Loads and validates the mechanism file at `path` (a `str` or any path-like object).
 #[pyfunction]
-fn load(path: &str) -> PyResult<Model> {
-    let model = tendyn_core::load(path).map_err(|e| match e {
+fn load(path: std::path::PathBuf) -> PyResult<Model> {
+    let model = tendyn_core::load(&path).map_err(|e| match e {
         tendyn_core::Error::Io { .. } => tendyn_error(e),
-        _ => tendyn_error(format!("{path}: {e}")),
+        _ => tendyn_error(format!("{}: {e}", path.display())),
     })?;
     Ok(Model::new(model))
 }
@@ -564,6 +565,12 @@ impl Model {
             .collect()
     }
 
+    /// The loops' names, in file order: the rows of `inverse_dynamics`'s `loop_sides`.
+    #[getter]
+    fn loop_names(&self) -> Vec<String> {
+        self.model.loops().iter().map(|l| l.name.clone()).collect()
+    }
+
     /// The motors' names, in file order.
     #[getter]
     fn motor_names(&self) -> Vec<String> {
@@ -594,14 +601,15 @@ impl Model {
     /// Inverse dynamics at `(q, qd, qdd)`: a dict of arrays, each with the batch axis first
     /// when the states are batched — `generalized_forces` `(n,)`, `motor_torques`,
     /// `tendon_tensions`, `minimal_norm_tensions` and `null_space_tensions` (file order),
-    /// `loop_sides` `(loops, 2)` (ccw, cw side at the driving pulley), `pulley_moments`
+    /// `loop_sides` `(loops, 2)` (`loop_names` order; ccw, cw side at the driving pulley;
+    /// a loop is slack where either is negative), `pulley_moments`
     /// (`pulley_names` order), `segment_tensions` (every segment of every strand, `strands`
     /// order), `bearings` `(bodies, 2, 3)` (force, moment; joints then pulleys),
     /// `base_reaction` `(2, 3)`; the last three `None` where the routing cannot attribute
     /// them; `bearing_friction` and `sticking` (bool), one entry per `friction_bodies`;
     /// `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`, `guide_sticking`
     /// (bool) and `guide_dissipated_powers` (`None` where the routing cannot attribute
-    /// them), one entry per `guides` of the model. Units and frames as docs/outputs.md §3.
+    /// them to guides it has), one entry per `guides` of the model. Units and frames as docs/outputs.md §3.
     fn inverse_dynamics<'py>(
         &self,
         py: Python<'py>,
@@ -627,12 +635,15 @@ impl Model {
             Ok(())
         })?;
         let out = PyDict::new(py);
+        // Without guides there is nothing to attribute: an empty array, as the command
+        // line's `"guides": []`.
+        let has_guides = model.guides().next().is_some();
         for ((key, _, _), array) in fields.iter().zip(arrays) {
             match *key {
                 "sticking" | "guide_sticking" => {
                     out.set_item(key, array.call_method1("astype", ("bool",))?)?
                 }
-                "guide_dissipated_powers" if model.routing_incomplete() => {
+                "guide_dissipated_powers" if model.routing_incomplete() && has_guides => {
                     out.set_item(key, py.None())?
                 }
                 _ => out.set_item(key, array)?,
@@ -897,5 +908,6 @@ fn tendyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(loads, m)?)?;
     m.add_class::<Model>()?;
     m.add("TendynError", m.py().get_type::<TendynError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

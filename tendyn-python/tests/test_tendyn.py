@@ -165,6 +165,24 @@ def test_model_describes_the_mechanism():
     assert "pub fn gravity" in source and "pub fn actuation" not in source
 
 
+def test_loops_paths_and_the_version_are_named():
+    # A path-like object loads as its string does.
+    m = tendyn.load(EXAMPLES / "example1_endless.ron")
+    assert m.name == model("example1_endless").name
+    assert isinstance(tendyn.__version__, str) and tendyn.__version__
+    # Example 1 has one loop: its row of `loop_sides`, ccw then cw side.
+    assert len(m.loop_names) == 1
+    r = m.inverse_dynamics(np.zeros(2), np.zeros(2), np.ones(2))
+    assert r["loop_sides"].shape == (1, 2)
+    # An explicitly coupled pulley leaves bearings unattributed (None), but with no guides
+    # their dissipated powers are an empty array, as the command line's `"guides": []`.
+    coupled = tendyn.load(ROOT / "tests" / "mechanisms" / "random" / "random_1_coupled.ron")
+    assert coupled.guides == []
+    r = coupled.inverse_dynamics(*(np.zeros(coupled.dof) for _ in range(3)))
+    assert r["bearings"] is None
+    assert r["guide_dissipated_powers"].shape == (0,)
+
+
 def test_a_bad_file_raises_tendyn_error_naming_line_and_column():
     with pytest.raises(tendyn.TendynError, match=r"mine.ron: .*line 1, column 21"):
         tendyn.loads('(name: "x", links: [)', name="mine.ron")
