@@ -23,20 +23,29 @@ pub enum View {
     /// Looking along −x: y right, z up.
     Yz,
     /// Isometric, seen from (1, 1, 1): y to the right and x to the left, 30° below the
-    /// horizontal, z up.
+    /// horizontal, z up; an orthographic projection, so lengths in the view's plane (a
+    /// pulley's diameter across its ellipse) are to scale and the axes are foreshortened
+    /// to `√(2/3)` of theirs.
     Iso,
 }
 
 impl View {
+    /// The name `--view` takes.
+    pub fn name(self) -> String {
+        clap::ValueEnum::to_possible_value(&self).map_or(String::new(), |v| v.get_name().into())
+    }
+
     fn project(self, p: Vec3<f64>) -> (f64, f64) {
         match self {
             View::Xy => (p.x, p.y),
             View::Xz => (p.x, p.z),
             View::Yz => (p.y, p.z),
-            View::Iso => {
-                let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
-                ((p.y - p.x) * c, p.z - (p.x + p.y) * s)
-            }
+            // Onto the plane normal to (1, 1, 1): coordinates along (−1, 1, 0)/√2 and
+            // (−1, −1, 2)/√6.
+            View::Iso => (
+                (p.y - p.x) / 2f64.sqrt(),
+                (2.0 * p.z - p.x - p.y) / 6f64.sqrt(),
+            ),
         }
     }
 }
@@ -351,7 +360,7 @@ fn draw(
     let lx = (width - legend + 10.0) as i32;
     root.draw(&Text::new(model.name().to_string(), (lx, 12), font.clone()))?;
     root.draw(&Text::new(
-        format!("view {view:?}"),
+        format!("view {}", view.name()),
         (lx, 30),
         small.clone(),
     ))?;
@@ -377,6 +386,35 @@ mod tests {
 
     fn count(svg: &str, tag: &str) -> usize {
         svg.matches(&format!("<{tag}")).count()
+    }
+
+    /// Every view is an orthographic projection, so the scale bar holds for lengths in its
+    /// plane: a unit vector in the plane keeps its length (a pulley's largest diameter is
+    /// to scale), the viewing direction vanishes, and a base axis keeps `√(2/3)` of its
+    /// length in `iso`.
+    #[test]
+    fn each_view_projects_lengths_in_its_plane_to_scale() {
+        let length = |view: View, v: [f64; 3]| {
+            let (x, y) = view.project(Vec3::new(v[0], v[1], v[2]));
+            x.hypot(y)
+        };
+        let s = 1.0 / 2f64.sqrt();
+        for (view, normal, in_plane) in [
+            (View::Xy, [0.0, 0.0, 1.0], [s, s, 0.0]),
+            (View::Xz, [0.0, 1.0, 0.0], [s, 0.0, -s]),
+            (View::Yz, [1.0, 0.0, 0.0], [0.0, s, s]),
+            (
+                View::Iso,
+                [1.0, 1.0, 1.0],
+                [1.0 / 6f64.sqrt(), 1.0 / 6f64.sqrt(), -2.0 / 6f64.sqrt()],
+            ),
+        ] {
+            assert!(length(view, normal) < 1e-15, "{view:?}");
+            assert!((length(view, in_plane) - 1.0).abs() < 1e-15, "{view:?}");
+        }
+        for axis in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+            assert!((length(View::Iso, axis) - (2.0f64 / 3.0).sqrt()).abs() < 1e-15);
+        }
     }
 
     /// Every part is drawn once: for each of the paper's examples, in every view, one circle

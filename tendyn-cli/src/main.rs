@@ -546,12 +546,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let svg = draw::svg(&m, &scene, view)?;
             tendyn_codegen::builder::write_atomically(out.as_ref(), &svg)
                 .map_err(|e| format!("{out}: {e}"))?;
-            let seen = clap::ValueEnum::to_possible_value(&view).map(|v| v.get_name().to_owned());
-            note!(
-                "drew `{}` ({}) to {out}",
-                m.name(),
-                seen.unwrap_or_default()
-            );
+            note!("drew `{}` ({}) to {out}", m.name(), view.name());
             Ok(())
         }
         Command::Export { file, mjcf: _, out } => {
