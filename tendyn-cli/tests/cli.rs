@@ -18,6 +18,15 @@ fn run(args: &[&str]) -> (Option<i32>, String, String) {
     )
 }
 
+/// The text of `examples/mechanisms/NAME.ron`.
+fn example(name: &str) -> String {
+    let path = format!(
+        "{}/../examples/mechanisms/{name}.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::read_to_string(path).unwrap()
+}
+
 /// A fresh directory of this test process for a test's files (tests run in parallel, so
 /// each names its own).
 fn scratch_dir(test: &str) -> std::path::PathBuf {
@@ -425,12 +434,7 @@ fn generate_succeeds_when_no_one_reads_its_notes() {
 fn check_prints_the_guides_coefficients_as_the_law_takes_them() {
     let dir = scratch_dir("tendyn_cli_coefficients");
     let file = dir.join("tiny_mu.ron");
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/mechanisms/example2_capstan.ron"
-    ))
-    .unwrap()
-    .replacen("mu: 0.3,", "mu: 1e-300,", 1);
+    let text = example("example2_capstan").replacen("mu: 0.3,", "mu: 1e-300,", 1);
     std::fs::write(&file, text).unwrap();
     let (ok, out, err) = tendyn(&["check", file.to_str().unwrap()]);
     assert!(ok, "{err}");
@@ -475,12 +479,11 @@ fn check_prints_the_guides_coefficients_as_the_law_takes_them() {
 fn check_gives_the_joint_ranges_and_the_wrap_angles_they_span() {
     let dir = scratch_dir("tendyn_cli_ranges");
     let file = dir.join("ranged.ron");
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/mechanisms/example2_capstan.ron"
-    ))
-    .unwrap()
-    .replacen("dh: (a: 0.30,", "range: (-0.5, 0.8), dh: (a: 0.30,", 1);
+    let text = example("example2_capstan").replacen(
+        "dh: (a: 0.30,",
+        "range: (-0.5, 0.8), dh: (a: 0.30,",
+        1,
+    );
     std::fs::write(&file, text).unwrap();
     let (ok, out, err) = tendyn(&["check", file.to_str().unwrap(), "--json"]);
     assert!(ok, "{err}");
@@ -555,11 +558,7 @@ fn eval_states_as_csv_prints_a_header_and_one_full_precision_row_per_state() {
 
 #[test]
 fn check_warns_of_pulleys_that_overlap_in_one_plane_of_one_carrier() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/mechanisms/example2_open_ended.ron"
-    ))
-    .unwrap();
+    let text = example("example2_open_ended");
     // Nine pins of 10 mm radius on link1, 5 mm apart in the plane of drum1 (40 mm).
     let pins: String = (0..9)
         .map(|i| {
@@ -746,11 +745,7 @@ fn check_warns_of_a_segment_that_passes_through_a_pulley_it_does_not_wrap() {
 
 #[test]
 fn check_and_eval_report_the_guides_tendons_slide_over() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/mechanisms/example2_open_ended.ron"
-    ))
-    .unwrap();
+    let text = example("example2_open_ended");
     // Example 2 with its idlers held fixed: pins the tendons slide over.
     let text = text
         .replacen("name: \"idler3\",", "name: \"idler3\", fixed: true,", 1)
@@ -1024,11 +1019,7 @@ fn identify_recovers_the_file_s_base_parameters_from_noise_free_measurements() {
         assert!((b.mass - mass).abs() <= 1e-15 * mass, "{}", b.name);
     }
     let (before, after) = (
-        std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../examples/mechanisms/example2_open_ended.ron"
-        ))
-        .unwrap(),
+        example("example2_open_ended"),
         std::fs::read_to_string(&written).unwrap(),
     );
     let head = |t: &str| t[..t.find("links: [").unwrap()].to_string();
