@@ -1849,7 +1849,7 @@ impl Minors {
             return Err(format!(
                 "the null vector of the tension system lifts one tendon by only {least:.1e} \
                  of its size, within round-off of slack (validation asks at least \
-                 {LIFT_MARGIN:e}): the largest tension would be {:.0e} times that tendon's",
+                 {LIFT_MARGIN:e}): the largest tension would be about {:.0e} times that tendon's",
                 1.0 / least
             ));
         }
