@@ -450,6 +450,29 @@ fn the_line_is_that_of_the_definition_even_where_the_name_is_referenced_first() 
     assert_invalid(&text, "link1", "name: \"link1\"", "mass is -1.2 kg");
 }
 
+/// A value just below zero is shown as it was written, not as 300 digits: a mass, the
+/// default tension floor and a loop's pretension.
+#[test]
+fn a_tiny_negative_number_is_shown_with_its_exponent() {
+    for (text, phrase) in [
+        (
+            with(OPEN_ENDED, "mass: 1.2,", "mass: -1e-300,"),
+            "mass is -1e-300 kg;",
+        ),
+        (
+            with(OPEN_ENDED, "tension_floor: 5.0,", "tension_floor: -1e-300,"),
+            "`tension_floor` is -1e-300 N;",
+        ),
+        (
+            with(ENDLESS, "pretension: 20.0", "pretension: -1e-300"),
+            "pretension is -1e-300 N;",
+        ),
+    ] {
+        let shown = rejected(&text).to_string();
+        assert!(shown.contains(phrase), "{shown}");
+    }
+}
+
 // 5. Inertias.
 
 #[test]
@@ -1737,7 +1760,8 @@ fn more_than_thirty_links_are_refused_naming_the_limit() {
     let text = format!(
         "(\n    name: \"long\",\n    gravity: (0, -9.81, 0),\n    links: [\n{links}    ],\n    motors: [\n{motors}    ],\n)\n"
     );
-    assert_invalid(&text, "long", "name: \"long\"", "at most 30 are supported");
+    let err = assert_invalid(&text, "long", "name: \"long\"", "at most 30 are supported");
+    assert!(!err.to_string().contains("  "), "{err}");
     // Thirty are fine.
     let thirty = text
         .replace(

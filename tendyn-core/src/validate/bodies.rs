@@ -141,7 +141,10 @@ impl Validator<'_> {
         if mass < 0.0 {
             return Err(self.invalid(
                 item,
-                format!("mass is {mass} kg; a mass must be positive (or zero for a massless body)"),
+                format!(
+                    "mass is {} kg; a mass must be positive (or zero for a massless body)",
+                    shown(mass)
+                ),
             ));
         }
         self.within(item, "mass", &[mass], Range::Mass)?;

@@ -180,7 +180,8 @@ impl<'a> Validator<'a> {
             return Err(self.invalid(
                 &f.name,
                 format!(
-                    "{} links: at most {} are supported (a position sums every link's length,                      whose square must stay far from the scalar's range)",
+                    "{} links: at most {} are supported (a position sums every link's length, \
+                     whose square must stay far from the scalar's range)",
                     f.links.len(),
                     ranges::MAX_LINKS
                 ),

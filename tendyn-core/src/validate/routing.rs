@@ -4,7 +4,7 @@
 //! agrees with any explicit one before a strand or role is built from it.
 
 use super::locate::candidates;
-use super::ranges::Range;
+use super::ranges::{shown, Range};
 use super::Validator;
 use crate::error::Result;
 use crate::format::{MechanismFile, MotorSite, Objective, Turn};
@@ -145,7 +145,7 @@ impl Validator<'_> {
                     format!(
                         "pretension is {} N; pretension must not be negative (a loop's sides \
                          can only pull)",
-                        l.pretension
+                        shown(l.pretension)
                     ),
                 ));
             }
@@ -399,16 +399,18 @@ impl Validator<'_> {
                     Some(_) => self.invalid(
                         &t.name,
                         format!(
-                            "`floor` is {floor} N; the tension floor must not be negative (a \
-                             tendon cannot push)"
+                            "`floor` is {} N; the tension floor must not be negative (a tendon \
+                             cannot push)",
+                            shown(floor)
                         ),
                     ),
                     None => self.invalid_at_key(
                         &f.name,
                         "tension_floor",
                         format!(
-                            "`tension_floor` is {floor} N; the tension floor must not be \
-                             negative (a tendon cannot push)"
+                            "`tension_floor` is {} N; the tension floor must not be negative \
+                             (a tendon cannot push)",
+                            shown(floor)
                         ),
                     ),
                 });
@@ -428,7 +430,11 @@ impl Validator<'_> {
                 if mx < floor {
                     return Err(self.invalid(
                         &t.name,
-                        format!("max_tension {mx} N is below its floor {floor} N"),
+                        format!(
+                            "max_tension {} N is below its floor {} N",
+                            shown(mx),
+                            shown(floor)
+                        ),
                     ));
                 }
             }
