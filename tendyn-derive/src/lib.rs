@@ -41,8 +41,9 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote, quote_spanned};
+use syn::punctuated::Punctuated;
 use syn::spanned::Spanned;
-use syn::{parse_macro_input, DeriveInput, Ident, LitStr};
+use syn::{parse_macro_input, DeriveInput, Ident, LitStr, Token};
 use tendyn_codegen::outputs::Param;
 use tendyn_codegen::{Options, Output, Scalar};
 
@@ -115,6 +116,8 @@ use tendyn_codegen::{Options, Output, Scalar};
 /// | both, or one twice | `` give the mechanism once: `file = "..."` or `ron = "..."` `` (the second) |
 /// | an unknown key | `` unknown key: the keys are `file`, `ron`, `outputs(...)`, `scalar` and `crate` `` (the key) |
 /// | an unknown scalar | ``unknown scalar `f16`: write `scalar = f64` or `scalar = f32` `` (the name) |
+/// | a scalar written as a string | ``write the scalar as a type, not a string: `scalar = f32` `` (the string) |
+/// | an empty `outputs()` | ``` `outputs()` names no output: list at least one, … ``` (the key) |
 /// | an unknown output | ``unknown output `x`: the outputs are ...`` (the name) |
 /// | an unreadable file | ``cannot read `mechanisms/x.ron` (relative to the crate's manifest directory): no such file`` (the path) |
 /// | a RON syntax error | `mechanisms/x.ron:17:13: RON syntax error: ...` (the path) |
@@ -184,15 +187,31 @@ fn parse_attribute(input: &DeriveInput) -> syn::Result<Attribute> {
             } else if meta.path.is_ident("ron") {
                 set_source(&mut source, Source::Inline(meta.value()?.parse()?))
             } else if meta.path.is_ident("outputs") {
-                let mut list = Vec::new();
-                meta.parse_nested_meta(|o| {
-                    list.push(o.path.require_ident()?.clone());
-                    Ok(())
-                })?;
-                outputs = Some(list);
+                let names;
+                syn::parenthesized!(names in meta.input);
+                let list = Punctuated::<Ident, Token![,]>::parse_terminated(&names)?;
+                if list.is_empty() {
+                    return Err(meta.error(
+                        "`outputs()` names no output: list at least one, e.g. \
+                         `outputs(generalized_forces)`, or leave `outputs` out for every output \
+                         the mechanism provides",
+                    ));
+                }
+                outputs = Some(list.into_iter().collect());
                 Ok(())
             } else if meta.path.is_ident("scalar") {
-                let ident: Ident = meta.value()?.parse()?;
+                let value = meta.value()?;
+                if value.peek(LitStr) {
+                    let written: LitStr = value.parse()?;
+                    return Err(syn::Error::new(
+                        written.span(),
+                        format!(
+                            "write the scalar as a type, not a string: `scalar = {}`",
+                            written.value()
+                        ),
+                    ));
+                }
+                let ident: Ident = value.parse()?;
                 scalar = match ident.to_string().as_str() {
                     "f64" => (Scalar::F64, ident.span()),
                     "f32" => (Scalar::F32, ident.span()),
