@@ -102,12 +102,12 @@ class Model:
         self,
         q: ArrayLike,
         qd: ArrayLike,
-        motor_torques: ArrayLike,
-        tendon_tensions: ArrayLike,
+        motor_torques: Optional[ArrayLike] = None,
+        tendon_tensions: Optional[ArrayLike] = None,
     ) -> Array:
         """`(n, 2n + m)` per state: `∂q̈/∂q`, `∂q̈/∂q̇`, `∂q̈/∂u` side by side, exact;
-        `u` the motor torques then the tendon tensions (`m` = motors + tendons; pass `[]`
-        for none)."""
+        `u` the motor torques then the tendon tensions (`m` = motors + tendons); actuators
+        not given are zero, as in `forward_dynamics`."""
     def regressor(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> Array:
         """`Y` (`(n, p)` per state, columns `parameter_names`): `Q = Y π + offset`."""
     def regressor_offset(self, q: ArrayLike) -> Array:
@@ -123,10 +123,11 @@ class Model:
         """The `tendyn check --json` report."""
     def generate(
         self,
-        outputs: Optional[Union[list[str], tuple[str, ...]]] = None,
+        outputs: Optional[Union[str, list[str], tuple[str, ...]]] = None,
         scalar: str = "generic",
     ) -> str:
-        """The generated Rust source of `outputs` (the default ones available when `None`);
+        """The generated Rust source of `outputs` (a name or names; the default ones
+        available when `None`);
         `ValueError` for an unknown output or scalar, `TendynError` for an output the
         mechanism cannot provide (among the defaults too: forward dynamics where a joint
         moves no mass)."""

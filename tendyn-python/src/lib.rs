@@ -43,6 +43,60 @@ fn tendyn_error(e: impl std::fmt::Display) -> PyErr {
 /// threads' start-up and buffers cost more than they save.
 const PARALLEL: usize = 256;
 
+/// Which of a state's motor torques and tendon tensions the caller gave (after `q` and
+/// `qd` among its inputs), and the zeros that stand for those not given.
+struct Actuators {
+    given: (bool, bool),
+    zeros: (Vec<f64>, Vec<f64>),
+}
+
+impl Actuators {
+    /// Appends the given arrays to `named`, each with its length per state.
+    fn named<'py>(
+        model: &tendyn_core::Model<f64>,
+        named: &mut Vec<(&'static str, Input<'py>, usize)>,
+        motor_torques: Option<Input<'py>>,
+        tendon_tensions: Option<Input<'py>>,
+    ) -> Actuators {
+        let (nm, nt) = (model.motors().len(), model.tendons().len());
+        let given = (motor_torques.is_some(), tendon_tensions.is_some());
+        named.extend(motor_torques.map(|a| ("motor_torques", a, nm)));
+        named.extend(tendon_tensions.map(|a| ("tendon_tensions", a, nt)));
+        Actuators {
+            given,
+            zeros: (vec![0.0; nm], vec![0.0; nt]),
+        }
+    }
+
+    /// The motor torques and tendon tensions of a state whose inputs after `q` and `qd`
+    /// are `rest`.
+    fn of<'a>(&'a self, rest: &[&'a [f64]]) -> (&'a [f64], &'a [f64]) {
+        let mut rest = rest.iter().copied();
+        let mut take = |given: bool, zeros: &'a [f64]| match given {
+            true => rest.next().unwrap_or(zeros),
+            false => zeros,
+        };
+        let motors = take(self.given.0, &self.zeros.0);
+        (motors, take(self.given.1, &self.zeros.1))
+    }
+}
+
+/// One name, or a list of them.
+#[derive(FromPyObject)]
+enum Names {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl Names {
+    fn into_vec(self) -> Vec<String> {
+        match self {
+            Names::One(name) => vec![name],
+            Names::Many(names) => names,
+        }
+    }
+}
+
 /// A validated mechanism and the solver's buffers for it.
 #[pyclass(module = "tendyn", frozen)]
 struct Model {
@@ -714,25 +768,11 @@ impl Model {
         tendon_tensions: Option<Input<'py>>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let n = self.model.dof();
-        let (nm, nt) = (self.model.motors().len(), self.model.tendons().len());
         let mut named = vec![("q", q, n), ("qd", qd, n)];
-        let (given_m, given_t) = (motor_torques.is_some(), tendon_tensions.is_some());
-        named.extend(motor_torques.map(|a| ("motor_torques", a, nm)));
-        named.extend(tendon_tensions.map(|a| ("tendon_tensions", a, nt)));
+        let actuators = Actuators::named(&self.model, &mut named, motor_torques, tendon_tensions);
         let model = &self.model;
-        let (zeros_m, zeros_t) = (vec![0.0; nm], vec![0.0; nt]);
         self.per_state(py, named, &[n], |data, s, row| {
-            let mut rest = s[2..].iter();
-            let mt = if given_m {
-                rest.next().copied().unwrap_or(&zeros_m)
-            } else {
-                &zeros_m
-            };
-            let tt = if given_t {
-                rest.next().copied().unwrap_or(&zeros_t)
-            } else {
-                &zeros_t
-            };
+            let (mt, tt) = actuators.of(&s[2..]);
             row.extend(data.forward_dynamics(model, s[0], s[1], mt, tt)?);
             Ok(())
         })
@@ -758,26 +798,24 @@ impl Model {
 
     /// `∂q̈/∂q`, `∂q̈/∂q̇` and `∂q̈/∂u` of forward dynamics side by side, exact: `(n, 2n + m)`
     /// per state, columns `q`, then `q̇`, then `u` (the motor torques, then the tendon
-    /// tensions, file order). Both actuator arrays are required.
+    /// tensions, file order); actuators not given are zero, as in `forward_dynamics`.
+    #[pyo3(signature = (q, qd, motor_torques = None, tendon_tensions = None))]
     fn forward_dynamics_derivatives<'py>(
         &self,
         py: Python<'py>,
         q: Input<'py>,
         qd: Input<'py>,
-        motor_torques: Input<'py>,
-        tendon_tensions: Input<'py>,
+        motor_torques: Option<Input<'py>>,
+        tendon_tensions: Option<Input<'py>>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let n = self.model.dof();
         let (nm, nt) = (self.model.motors().len(), self.model.tendons().len());
-        let named = vec![
-            ("q", q, n),
-            ("qd", qd, n),
-            ("motor_torques", motor_torques, nm),
-            ("tendon_tensions", tendon_tensions, nt),
-        ];
+        let mut named = vec![("q", q, n), ("qd", qd, n)];
+        let actuators = Actuators::named(&self.model, &mut named, motor_torques, tendon_tensions);
         let model = &self.model;
         self.per_state(py, named, &[n, 2 * n + nm + nt], |data, s, row| {
-            let d = data.forward_dynamics_derivatives(model, s[0], s[1], s[2], s[3])?;
+            let (mt, tt) = actuators.of(&s[2..]);
+            let d = data.forward_dynamics_derivatives(model, s[0], s[1], mt, tt)?;
             let (cq, cu) = (n, nm + nt);
             for i in 0..n {
                 row.extend(&d.d_q[i * cq..(i + 1) * cq]);
@@ -853,11 +891,11 @@ impl Model {
         py.import("json")?.call_method1("loads", (text,))
     }
 
-    /// The generated Rust source of `outputs` (names as `tendyn generate --outputs`; the
-    /// default outputs the mechanism provides when `None`), in `scalar` `"generic"`,
-    /// `"f64"` or `"f32"`.
+    /// The generated Rust source of `outputs` (a name or a list of names as `tendyn
+    /// generate --outputs`; the default outputs the mechanism provides when `None`), in
+    /// `scalar` `"generic"`, `"f64"` or `"f32"`.
     #[pyo3(signature = (outputs = None, scalar = "generic"))]
-    fn generate(&self, outputs: Option<Vec<String>>, scalar: &str) -> PyResult<String> {
+    fn generate(&self, outputs: Option<Names>, scalar: &str) -> PyResult<String> {
         let scalar = Scalar::parse(scalar).ok_or_else(|| {
             PyValueError::new_err(format!(
                 "unknown scalar `{scalar}`; use generic, f64 or f32"
@@ -865,8 +903,7 @@ impl Model {
         })?;
         let outputs = match outputs {
             None => available_outputs(&self.model),
-            Some(names) => names
-                .iter()
+            Some(names) => (names.into_vec().iter())
                 .map(|name| {
                     Output::parse(name).ok_or_else(|| {
                         let all: Vec<&str> = Output::ALL.iter().map(|o| o.name()).collect();

@@ -183,6 +183,19 @@ def test_loops_paths_and_the_version_are_named():
     assert r["guide_dissipated_powers"].shape == (0,)
 
 
+def test_actuators_not_given_are_zero_and_one_output_may_be_named_alone():
+    m = model("example3_stanford_jpl")  # tendons only, no motors
+    q, qd, _ = states(m, 1, 5)
+    tt = np.full(len(m.tendon_names), 7.0)
+    given = m.forward_dynamics_derivatives(q[0], qd[0], [], tt)
+    assert np.array_equal(m.forward_dynamics_derivatives(q[0], qd[0], tendon_tensions=tt), given)
+    assert np.array_equal(
+        m.forward_dynamics_derivatives(q[0], qd[0]),
+        m.forward_dynamics_derivatives(q[0], qd[0], [], np.zeros(len(m.tendon_names))),
+    )
+    assert m.generate("actuation", "f64") == m.generate(["actuation"], "f64")
+
+
 def test_a_bad_file_raises_tendyn_error_naming_line_and_column():
     with pytest.raises(tendyn.TendynError, match=r"mine.ron: .*line 1, column 21"):
         tendyn.loads('(name: "x", links: [)', name="mine.ron")
