@@ -663,7 +663,8 @@ impl Model {
     /// them; `bearing_friction` and `sticking` (bool), one entry per `friction_bodies`;
     /// `guide_wrap_angles`, `guide_sliding_speeds`, `guide_directions`, `guide_sticking`
     /// (bool) and `guide_dissipated_powers` (`None` where the routing cannot attribute
-    /// them to guides it has), one entry per `guides` of the model. Units and frames as docs/outputs.md §3.
+    /// them to guides it has), one entry per `guides` of the model. Units and frames as
+    /// docs/outputs.md §3.
     fn inverse_dynamics<'py>(
         &self,
         py: Python<'py>,
