@@ -820,7 +820,8 @@ fn every_factor_lifts(
 /// tried, first each on [`FIRST_BOXES`] boxes and by the programs, which may add up to
 /// [`CUTS`] factors they find loosening a tendon to the systems the proportion is chosen
 /// from (cutting planes); then each on at most a quarter of `budget` boxes and all on at
-/// most `budget`.
+/// most `budget`. Past [`EVERY_WAY_UP_TO`] choices, those of [`pivoted_free_tendons`],
+/// on the first boxes and the programs only.
 fn every_factor_held(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -834,9 +835,17 @@ fn every_factor_held(
     let columns = model.system.matrix.first().map_or(0, Vec::len);
     // Guides are only ever on open-ended tendons, which validation keeps with a null
     // direction at least: none is not met here.
-    if d == 0 || choose(tendons.len(), d) > EVERY_WAY_UP_TO {
+    if d == 0 {
         return None;
     }
+    // Every choice of free tendons while they are few; past that, the one a column-pivoted
+    // QR of the tendons' columns leaves last (the others are the most independent: a well
+    // conditioned `E_B`), then each with one free tendon swapped for a basic one.
+    let pivoted = choose(tendons.len(), d) > EVERY_WAY_UP_TO;
+    let choices = match pivoted {
+        false => combinations(tendons, d),
+        true => pivoted_free_tendons(&model.system.matrix, tendons, d),
+    };
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
     let runs = factor_boxes::Columns::of(model, sliding);
     // A fixed basis: free tendons, the other columns, `det E_B`'s sign at rest, and the
@@ -876,7 +885,7 @@ fn every_factor_held(
         factor_boxes::every_factor(model, sliding, &runs, &squares, &taut, share)
     };
     let mut candidates: Vec<Held> = Vec::new();
-    for free in combinations(tendons, d) {
+    for free in choices {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
         let Some((sign, mut held)) = basis(&model.system.matrix, &basic, &free, tendons, None)
         else {
@@ -936,6 +945,11 @@ fn every_factor_held(
             break;
         }
     }
+    // Past the choices taken one by one, the pivoted ones are not given the boxes' budget:
+    // they are more, and larger, and what the programs leave the boxes rarely settle.
+    if pivoted {
+        return None;
+    }
     let mut left = budget;
     for held in &candidates {
         match boxes(held, left.min(budget / 4)) {
@@ -947,6 +961,30 @@ fn every_factor_held(
         }
     }
     None
+}
+
+/// The `d` free tendons a column-pivoted QR of `E`'s tendon columns picks last, then each
+/// set with one of them swapped for one of the others: `1 + d (K − d)` choices of `K`
+/// tendons, each increasing.
+fn pivoted_free_tendons(e: &[Vec<f64>], tendons: &[usize], d: usize) -> Vec<Vec<usize>> {
+    let m = DMatrix::from_fn(e.len(), tendons.len(), |i, j| e[i][tendons[j]]);
+    let mut order = DMatrix::from_fn(1, tendons.len(), |_, j| j as f64);
+    m.col_piv_qr().p().permute_columns(&mut order);
+    let pivoted: Vec<usize> = order.iter().map(|&j| tendons[j as usize]).collect();
+    let (basic, free) = pivoted.split_at(tendons.len() - d);
+    let sorted = |mut set: Vec<usize>| {
+        set.sort_unstable();
+        set
+    };
+    let mut choices = vec![sorted(free.to_vec())];
+    for &b in basic.iter().rev() {
+        for f in 0..d {
+            let mut swapped = free.to_vec();
+            swapped[f] = b;
+            choices.push(sorted(swapped));
+        }
+    }
+    choices
 }
 
 /// The most choices of free tendons [`every_factor_held`] tries on boxes of factors.
@@ -1887,7 +1925,27 @@ fn alternating(k: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{basis, choose, proportion, Class, Minors, Slider, Sliding};
+    use super::{basis, choose, pivoted_free_tendons, proportion, Class, Minors, Slider, Sliding};
+
+    /// Past the choices taken one by one, the free tendons are those a pivoted QR takes
+    /// last (here the two small columns; the two unit ones make a well-conditioned `E_B`),
+    /// then each with one swapped for a basic tendon: `1 + d (K − d)` sets of `d`.
+    #[test]
+    fn the_pivoted_free_tendons_leave_the_most_independent_columns_basic() {
+        let e = vec![vec![1.0, 0.0, 1e-3, 0.0], vec![0.0, 1.0, 0.0, 2e-3]];
+        let choices = pivoted_free_tendons(&e, &[0, 1, 2, 3], 2);
+        assert_eq!(choices[0], vec![2, 3]);
+        assert_eq!(choices.len(), 1 + 2 * 2);
+        for set in &choices[1..] {
+            assert_eq!(set.len(), 2);
+            assert!(set.windows(2).all(|p| p[0] < p[1]), "{set:?}");
+            assert_eq!(
+                set.iter().filter(|t| [2, 3].contains(t)).count(),
+                1,
+                "{set:?}"
+            );
+        }
+    }
 
     /// The count of fixed bases `held_between` would try, which decides whether it builds
     /// them: exact while it fits, past any limit where it does not.
