@@ -703,6 +703,37 @@ fn past_the_ways_taken_one_by_one_a_descent_finds_where_sliding_leaves_a_tendon_
     );
 }
 
+/// A finger whose every joint has a flexor and an extensor ending on its link stays
+/// controllable whatever its friction: at each joint, from the tip, a tendon of each sign
+/// enters, and the capstan factors, all positive, change no entry's sign (docs/format.md
+/// §6a, `E`'s signs). At 10 joints and `μ = 2` (99 guides, 11 null directions), where no
+/// box of factors settled it, validation shows it at every capstan factor (checked without
+/// its code at the vertices of the box in
+/// `where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon`).
+/// At `μ = 4` the capstan factors multiply up to `e^22` along one tendon: where every guide
+/// slides some tendon's tension would be more than `1e9` times another's, and validation
+/// refuses the routing saying so, not that it is uncontrollable.
+#[test]
+fn a_flexor_and_an_extensor_on_every_joint_keep_a_finger_controllable_whatever_its_friction() {
+    let mut finger = tendyn_spec::stress::Arm::new("finger", 10, 10);
+    finger.antagonists = true;
+    let at = |mu: f64| parse(&tendyn_spec::guides::idlers_as_capstans(&finger.ron(), mu));
+    let model = at(2.0).unwrap();
+    assert_eq!(model.system().null_space.len(), 11);
+    assert_eq!(
+        model.sliding_check(),
+        SlidingCheck::EveryFactor { boxes: 1 }
+    );
+    let refused = at(4.0).unwrap_err().to_string();
+    for said in [
+        "E's signs keep it controllable in exact arithmetic",
+        "capstan factors up to e^22.1 along one tendon, more than floating point resolves",
+        "lower `mu`",
+    ] {
+        assert!(refused.contains(said), "{refused}");
+    }
+}
+
 /// Two joints driven by four tendons (a two-dimensional null space), one of which slides over
 /// a pin on link 1 with `μ = 0.4` (found by a seeded random search). Without friction the
 /// routing is controllable; sliding `t2` over the pin towards its anchor, no tensions lift
@@ -1300,11 +1331,13 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// every guide slides, before the boxes), fingers of 5 to 7 joints at `μ = 0.2` and 6 at
 /// `μ = 1` (one null direction, 14 to 27 guides), 9 and 12 joints at `μ = 0.5` (44 and 77
 /// guides, where the slack-tendon programs settle what boxes could not),
-/// and fingers of 4 to 6 joints with a second tendon on each link (5 to 7 null directions,
-/// 15 to 35 guides) at `μ = 0.2` and `μ = 1`, of 6 and 8 joints at `μ = 0.5` (7 and 9
-/// null directions, 35 and 63 guides: the programs with cutting planes), and of 9 joints
-/// at `μ = 1` (10 null directions, too many choices of free tendons to take one by one:
-/// those a pivoted QR picks), every idler made a guide with friction. The fingers also run inverse dynamics at random states.
+/// fingers of 4 to 12 joints with a second tendon on each link (5 to 13 null directions,
+/// 15 to 143 guides) at `μ = 0.2` to `2`, which `E`'s signs show past the ways taken one
+/// by one, and fingers of 8, 9 and 12 joints with a second tendon on every other link (5
+/// to 7 null directions, which the signs do not show: the boxes and the programs with
+/// cutting planes do, past 26,244 choices of free tendons on those a pivoted QR picks),
+/// every idler made a guide with friction. The fingers also run inverse dynamics at
+/// `q = 0`, the wrap angles validation covers without ranges, moving at random.
 #[test]
 fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon() {
     let mut texts = Vec::new();
@@ -1318,24 +1351,30 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
             texts.push((tendyn_spec::guides::idlers_as_capstans(&text, mu), false));
         }
     }
-    // (joints, a second tendon on each link, μ)
+    // (joints, a second tendon on every how many links (0: none), μ)
     let fingers = [
-        (5, false, 0.2),
-        (6, false, 0.2),
-        (7, false, 0.2),
-        (6, false, 1.0),
-        (9, false, 0.5),
-        (12, false, 0.5),
-        (4, true, 0.2),
-        (5, true, 0.2),
-        (4, true, 1.0),
-        (6, true, 0.5),
-        (8, true, 0.5),
-        (9, true, 1.0),
+        (5, 0, 0.2),
+        (6, 0, 0.2),
+        (7, 0, 0.2),
+        (6, 0, 1.0),
+        (9, 0, 0.5),
+        (12, 0, 0.5),
+        (4, 1, 0.2),
+        (5, 1, 0.2),
+        (4, 1, 1.0),
+        (6, 1, 0.5),
+        (8, 1, 0.5),
+        (9, 1, 1.0),
+        (10, 1, 2.0),
+        (12, 1, 2.0),
+        (8, 2, 0.5),
+        (9, 2, 1.0),
+        (12, 2, 0.5),
     ];
-    for (joints, antagonists, mu) in fingers {
+    for (joints, every, mu) in fingers {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
-        finger.antagonists = antagonists;
+        finger.antagonists = every > 0;
+        finger.antagonist_every = every;
         texts.push((
             tendyn_spec::guides::idlers_as_capstans(&finger.ron(), mu),
             true,
@@ -1419,10 +1458,13 @@ fn where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loo
                 .collect();
             check(&inside);
         }
+        // Without ranges validation covers the wrap angles at q = 0: there, whichever way
+        // the joints move.
         if *finger {
             let mut solver = Data::new(&model);
             for _ in 0..20 {
-                let [q, qd, qdd] = random_state(&mut rng, model.dof());
+                let [_, qd, qdd] = random_state(&mut rng, model.dof());
+                let q = vec![0.0; model.dof()];
                 solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
             }
         }

@@ -66,24 +66,26 @@ fn generation(c: &mut Criterion) {
 
 /// Validation of fingers whose every idler is a guide with capstan friction, past the
 /// 26,244 directions of sliding validation takes one by one (docs/format.md §6a): shown at
-/// every factor on one box or a few (6 joints at `μ = 0.2`; 5 joints with a second tendon
-/// on each link, 6 null directions), by the slack-tendon programs (12 joints at `μ = 1`,
-/// one null direction; 8 joints with a second tendon on each link at `μ = 0.5`, 9 null
-/// directions, with cutting planes), and the worst case, where neither they nor 4096 boxes
-/// settle it and validation falls back to the patterns where every guide slides, from
-/// which a descent finds one that leaves a tendon nearly slack and refuses the routing
-/// (10 joints at `μ = 2`).
+/// every factor on one box or a few (6 joints at `μ = 0.2`), by the slack-tendon programs
+/// (12 joints at `μ = 1`, one null direction; 9 joints with a second tendon on every other
+/// link at `μ = 1`, 6 null directions, with cutting planes), by `E`'s signs (10 joints
+/// with a second tendon on each link at `μ = 2`, 11 null directions), and the worst case,
+/// where neither they nor 4096 boxes settle it and validation falls back to the patterns
+/// where every guide slides, from which a descent finds one that leaves a tendon nearly
+/// slack and refuses the routing (10 joints at `μ = 2`).
 fn capstan_validation(c: &mut Criterion) {
     let mut group = c.benchmark_group("capstan validation");
-    for (joints, antagonists, mu) in [
-        (6, false, 0.2),
-        (5, true, 0.2),
-        (12, false, 1.0),
-        (8, true, 0.5),
-        (10, false, 2.0),
+    // (joints, a second tendon on every how many links (0: none), μ)
+    for (joints, every, mu) in [
+        (6, 0, 0.2),
+        (12, 0, 1.0),
+        (9, 2, 1.0),
+        (10, 1, 2.0),
+        (10, 0, 2.0),
     ] {
         let mut finger = tendyn_spec::stress::Arm::new("finger", joints, joints);
-        finger.antagonists = antagonists;
+        finger.antagonists = every > 0;
+        finger.antagonist_every = every;
         let text = tendyn_spec::guides::idlers_as_capstans(&finger.ron(), mu);
         let check = match tendyn_core::parse(&text) {
             Ok(model) => format!("{:?}", model.sliding_check()),
@@ -91,7 +93,11 @@ fn capstan_validation(c: &mut Criterion) {
         };
         let name = format!(
             "{joints} joints{} mu {mu}: {check}",
-            if antagonists { " antagonistic" } else { "" }
+            match every {
+                0 => "",
+                1 => " antagonistic",
+                _ => " half antagonistic",
+            }
         );
         group.bench_function(name, |b| b.iter(|| tendyn_core::parse(black_box(&text))));
     }

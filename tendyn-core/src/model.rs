@@ -546,11 +546,12 @@ pub enum SlidingCheck {
     /// wrap angles up to their largest over the joints' ranges (at `q = 0` without).
     EveryFactor {
         /// The boxes of factors it was shown on: 1 where the whole box was shown at once,
-        /// by one bound or by the slack-tendon programs (docs/format.md §6a).
+        /// by one bound, by the slack-tendon programs or by `E`'s signs (docs/format.md
+        /// §6a).
         boxes: usize,
     },
     /// Only patterns in which every guide slides: too many directions to take one by one,
-    /// and the boxes of factors did not settle it. Every such pattern up to 12 groups of
+    /// and neither the boxes of factors nor `E`'s signs settled it. Every such pattern up to 12 groups of
     /// guides (guides whose speeds are proportional), beyond that the two uniform ones,
     /// those with one group flipped, and, with one null direction, those a descent on the
     /// tendons' least lift passes through (docs/format.md §6a).

@@ -210,6 +210,10 @@ pub struct Arm {
     /// way round its drum and idlers (in planes of their own): `2p + 1` tendons on `p`
     /// joints, `p + 1` null directions.
     pub antagonists: bool,
+    /// With `antagonists`, the second tendon on every `antagonist_every`-th link only (the
+    /// first, then every `antagonist_every`-th after it): with 2, every other joint has
+    /// no pair of tendons ending on its link.
+    pub antagonist_every: usize,
 }
 
 impl Arm {
@@ -227,6 +231,7 @@ impl Arm {
             floor: 5.0,
             gravity: [0.0, -9.81, 0.0],
             antagonists: false,
+            antagonist_every: 1,
         }
     }
 
@@ -328,7 +333,7 @@ impl Arm {
                     "    (name: \"t{k}\", route: [{route}], exit: (-0.25, {y:e}, {zeta:e})),"
                 )
                 .unwrap();
-                if self.antagonists && k < p {
+                if self.antagonists && k < p && k % self.antagonist_every.max(1) == 0 {
                     let zeta = zeta + 0.006;
                     let route = routed(&mut s, "u", k, anchor, zeta, ["Cw", "Ccw"]);
                     writeln!(

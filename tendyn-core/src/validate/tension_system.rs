@@ -17,6 +17,7 @@ use crate::transmission::{tension_matrix, Columns, PulleyInfo, Rate, StrandGeome
 use nalgebra::DMatrix;
 
 mod factor_boxes;
+mod sign_pattern;
 mod slack_tendon;
 
 /// What the tension system's unknowns belong to.
@@ -567,11 +568,14 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 /// such boxes. With no null direction or two or more, where such states occur, a fixed
 /// basis carries the points' systems between them ([`held_between`]).
 ///
-/// Beyond, the points are those where every guide slides: each group one way, all the
-/// ways of up to 12 groups, past that the two where every group slides one way and those
-/// with one group flipped, to which, with one null direction, a descent from them adds a
-/// pattern that fails if it finds one ([`least_lifting_way`]). Returns how far the routing
-/// was shown controllable.
+/// Beyond, the points are a sample of those where every guide slides (each group one way,
+/// all the ways of up to 12 groups, past that the two where every group slides one way and
+/// those with one group flipped), to which, with one null direction, a descent from them
+/// adds a pattern that fails if it finds one ([`least_lifting_way`]), unless `E`'s signs
+/// show a routing of open-ended tendons alone controllable at every factor
+/// ([`sign_pattern`]), whatever the friction: the points then check that floating point
+/// still resolves the tensions it needs. Returns how far the routing was shown
+/// controllable.
 pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<SlidingCheck> {
     let sliding = Sliding::of(model);
     if sliding.sliders.is_empty() {
@@ -598,16 +602,22 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     } else {
         UNSETTLED_AFTER
     };
-    let shown = match frictionless {
-        Some(_) => every_factor_lifts(model, &sliding, &tendons, &fails, budget),
-        None => every_factor_held(model, &sliding, &points, &tendons, &fails, budget),
+    // A routing of open-ended tendons may be shown at every factor by E's signs alone,
+    // whatever the friction. Past the points every way that takes the boxes' place, and
+    // the points where every guide slides then check that floating point still resolves
+    // the tensions it needs there; up to them, it carries their systems between them.
+    let by_signs = sign_pattern::controllable_at_every_factor(model);
+    let shown = match (!every_way && by_signs, &frictionless) {
+        (true, _) => None,
+        (false, Some(_)) => every_factor_lifts(model, &sliding, &tendons, &fails, budget),
+        (false, None) => every_factor_held(model, &sliding, &points, &tendons, &fails, budget),
     };
     if let Some(boxes) = shown {
         return Ok(SlidingCheck::EveryFactor { boxes });
     }
     // Past the points every way, those where every guide slides are a sample: a search
     // among the others may find one that fails, which then refuses as any point does.
-    if let (false, Some(minors)) = (every_way, &frictionless) {
+    if let (false, false, Some(minors)) = (every_way, by_signs, &frictionless) {
         if let Some(point) = least_lifting_way(model, &sliding, minors, &tendons, &points) {
             points.insert(0, point);
         }
@@ -632,6 +642,15 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             continue;
         }
         let described = sliding.described(model, &sliding.sigma(model, point));
+        let why = match by_signs {
+            true => format!(
+                "E's signs keep it controllable in exact arithmetic, but the tensions that \
+                 would keep every tendon taut differ by capstan factors up to e^{:.1} along \
+                 one tendon, more than floating point resolves ({why})",
+                sliding.largest_exponent(model)
+            ),
+            false => why,
+        };
         let problem = match state {
             Some(q) => format!(
                 "with capstan friction the routing must be controllable whichever way the \
@@ -656,7 +675,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     // more, a fixed basis does where some state lies between them.
     let between = sliding.sliders.iter().any(|s| s.variable);
     let d = model.system.null_space.len();
-    if d != 1 && between && every_way {
+    if d != 1 && between && every_way && !by_signs {
         if let Err(point) = held_between(model, &sliding, &points, &tendons) {
             let blocked = match point {
                 Some(point) => format!(
@@ -684,11 +703,12 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             ));
         }
     }
-    Ok(match every_way {
-        true => SlidingCheck::EveryWay {
+    Ok(match (every_way, by_signs) {
+        (true, _) => SlidingCheck::EveryWay {
             systems: points.len(),
         },
-        false => SlidingCheck::AllSliding {
+        (false, true) => SlidingCheck::EveryFactor { boxes: 1 },
+        (false, false) => SlidingCheck::AllSliding {
             systems: points.len(),
         },
     })
@@ -1418,6 +1438,19 @@ impl Sliding {
         model.bodies[model.strands[first.strand].idlers[first.idler].body]
             .name
             .clone()
+    }
+
+    /// The largest `Σ μ β` over the guides with friction one strand passes, each at its
+    /// largest wrap angle: the log of the most its capstan factors can multiply up to.
+    fn largest_exponent(&self, model: &Model<f64>) -> f64 {
+        let mut sums = vec![0.0f64; model.strands.len()];
+        for s in &self.sliders {
+            let mu = model.strands[s.strand].idlers[s.idler]
+                .capstan()
+                .map_or(0.0, |g| g.mu);
+            sums[s.strand] += mu * s.wrap;
+        }
+        sums.into_iter().fold(0.0, f64::max)
     }
 
     /// `E` at `point`: each guide with friction at its largest wrap angle over the joints'
