@@ -828,7 +828,7 @@ fn a_routing_no_fixed_basis_carries_between_rest_and_sliding_is_refused() {
     assert!(
         shown.starts_with("g0 (line ")
             && shown.contains("must stay controllable between rest and every direction of sliding")
-            && shown.contains("no 2 tendons do up to sliding")
+            && shown.contains("no 2 tendons it tried do up to sliding")
             && !shown.contains("whichever way"),
         "{shown}"
     );

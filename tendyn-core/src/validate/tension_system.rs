@@ -692,8 +692,8 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
                      rest and every direction of sliding; with a {d}-dimensional null space \
                      validation shows that by {d} tendons whose tensions, in one proportion \
                      for every state, keep the others taut and the motors and loop sides \
-                     determined, and no {d} tendons do {blocked}; lower `mu` or route the \
-                     tendons differently",
+                     determined, and no {d} tendons it tried do {blocked}; lower `mu` or \
+                     route the tendons differently",
                     if sliding.smoothed {
                         "`friction_smoothing`"
                     } else {
@@ -1071,8 +1071,9 @@ fn lifts_every_tendon(
 /// rest and a point, and the state's `E` has full rank, determines its motors and loop
 /// sides and lifts every tendon (with no null direction, `det E_B` alone).
 ///
-/// Every choice of `N` is tried, over every point, then over the reachable ones. `Err`
-/// where no choice holds, with a reachable point where the last choice that held at rest
+/// Every choice of `N` is tried (past [`EVERY_WAY_UP_TO`] choices, those of
+/// [`pivoted_free_tendons`]), over every point, then over the reachable ones. `Err` where
+/// no choice holds, with a reachable point where the last choice that held at rest
 /// fails, `None` where each fails only for want of one proportion.
 fn held_between(
     model: &Model<f64>,
@@ -1082,14 +1083,13 @@ fn held_between(
 ) -> std::result::Result<(), Option<Vec<f64>>> {
     let d = model.system.null_space.len();
     // The choices are C(tendons, d): past the limit of systems the points obey (26,244),
-    // the states between them are left to the runtime, which checks every state's system,
-    // as beyond that limit of points (and the choices are never built: C(40, 20) is 1e11).
-    if choose(tendons.len(), d) > EVERY_WAY_UP_TO {
-        return Ok(());
-    }
+    // those a pivoted QR picks, as for the boxes (C(40, 20) is 1e11).
+    let choices = match choose(tendons.len(), d) > EVERY_WAY_UP_TO {
+        true => pivoted_free_tendons(&model.system.matrix, tendons, d),
+        false => combinations(tendons, d),
+    };
     let columns = model.system.matrix.first().map_or(0, Vec::len);
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
-    let choices = combinations(tendons, d);
     let holds = |free: &[usize], taken: &dyn Fn(usize) -> bool| -> std::result::Result<(), usize> {
         let basic: Vec<usize> = (0..columns).filter(|c| !free.contains(c)).collect();
         // Rest (the frictionless `E`) is a corner of every box.
