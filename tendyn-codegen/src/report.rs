@@ -160,6 +160,11 @@ fn sliding_check_text(check: SlidingCheck) -> String {
         SlidingCheck::EveryWay { systems } => {
             format!("every way the guides slide and rest, and between ({systems} tension systems)")
         }
+        SlidingCheck::EveryWayNotBetween { systems } => format!(
+            "every way the guides slide and rest ({systems} tension systems), not every state \
+             between (too many choices of free tendons to take one by one): inverse and \
+             forward dynamics check each state's system and refuse one that fails"
+        ),
         SlidingCheck::EveryFactor { boxes } => format!(
             "at every capstan factor the guides can take ({boxes} box{} of factors)",
             if boxes == 1 { "" } else { "es" }
@@ -177,6 +182,9 @@ fn sliding_check_json(check: SlidingCheck) -> Value {
     match check {
         SlidingCheck::Constant => json!({"covers": "constant"}),
         SlidingCheck::EveryWay { systems } => json!({"covers": "every_way", "systems": systems}),
+        SlidingCheck::EveryWayNotBetween { systems } => {
+            json!({"covers": "every_way_not_between", "systems": systems})
+        }
         SlidingCheck::EveryFactor { boxes } => json!({"covers": "every_factor", "boxes": boxes}),
         SlidingCheck::AllSliding { systems } => {
             json!({"covers": "all_sliding", "systems": systems})

@@ -542,6 +542,14 @@ pub enum SlidingCheck {
         /// The systems checked: one per pattern of directions and rest.
         systems: usize,
     },
+    /// Every way the guides can slide and rest, but not every state between (the smoothed
+    /// law's `|σ| < 1`, or wrap angles smaller than the largest): with two or more null
+    /// directions, too many choices of free tendons to take one by one, and none of those
+    /// tried carries the ways' systems between them (docs/format.md §6a).
+    EveryWayNotBetween {
+        /// The systems checked: one per pattern of directions and rest.
+        systems: usize,
+    },
     /// Every capstan factor the guides can take, whatever the directions of sliding, with
     /// wrap angles up to their largest over the joints' ranges (at `q = 0` without).
     EveryFactor {

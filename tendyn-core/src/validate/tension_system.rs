@@ -675,35 +675,42 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     // more, a fixed basis does where some state lies between them.
     let between = sliding.sliders.iter().any(|s| s.variable);
     let d = model.system.null_space.len();
+    let mut between_shown = true;
     if d != 1 && between && every_way && !by_signs {
-        if let Err(point) = held_between(model, &sliding, &points, &tendons) {
-            let blocked = match point {
-                Some(point) => format!(
-                    "up to sliding {} ({})",
-                    sliding.described(model, &sliding.sigma(model, &point)),
-                    sliding.wraps_checked(model)
-                ),
-                None => "in one proportion for every direction of sliding".into(),
-            };
-            return Err(v.routing(
-                &sliding.first_guide(model),
-                format!(
-                    "with capstan friction and {}, the routing must stay controllable between \
+        match held_between(model, &sliding, &points, &tendons) {
+            Ok(shown) => between_shown = shown,
+            Err(point) => {
+                let blocked = match point {
+                    Some(point) => format!(
+                        "up to sliding {} ({})",
+                        sliding.described(model, &sliding.sigma(model, &point)),
+                        sliding.wraps_checked(model)
+                    ),
+                    None => "in one proportion for every direction of sliding".into(),
+                };
+                return Err(v.routing(
+                    &sliding.first_guide(model),
+                    format!(
+                        "with capstan friction and {}, the routing must stay controllable between \
                      rest and every direction of sliding; with a {d}-dimensional null space \
                      validation shows that by {d} tendons whose tensions, in one proportion \
                      for every state, keep the others taut and the motors and loop sides \
-                     determined, and no {d} tendons it tried do {blocked}; lower `mu` or \
-                     route the tendons differently",
-                    if sliding.smoothed {
-                        "`friction_smoothing`"
-                    } else {
-                        "wrap angles that change with the joints"
-                    },
-                ),
-            ));
+                     determined, and no {d} tendons do {blocked}; lower `mu` or route the \
+                     tendons differently",
+                        if sliding.smoothed {
+                            "`friction_smoothing`"
+                        } else {
+                            "wrap angles that change with the joints"
+                        },
+                    ),
+                ));
+            }
         }
     }
     Ok(match (every_way, by_signs) {
+        (true, _) if !between_shown => SlidingCheck::EveryWayNotBetween {
+            systems: points.len(),
+        },
         (true, _) => SlidingCheck::EveryWay {
             systems: points.len(),
         },
@@ -1071,22 +1078,25 @@ fn lifts_every_tendon(
 /// rest and a point, and the state's `E` has full rank, determines its motors and loop
 /// sides and lifts every tendon (with no null direction, `det E_B` alone).
 ///
-/// Every choice of `N` is tried (past [`EVERY_WAY_UP_TO`] choices, those of
-/// [`pivoted_free_tendons`]), over every point, then over the reachable ones. `Err` where
-/// no choice holds, with a reachable point where the last choice that held at rest
-/// fails, `None` where each fails only for want of one proportion.
+/// Every choice of `N` is tried, over every point, then over the reachable ones: `Ok(true)`
+/// where one holds, `Err` where none does, with a reachable point where the last choice
+/// that held at rest fails, `None` where each fails only for want of one proportion. Past
+/// [`EVERY_WAY_UP_TO`] choices, those of [`pivoted_free_tendons`] over every point, and
+/// `Ok(false)` where none holds: not all were tried, and the states between the points
+/// are left to the runtime solver.
 fn held_between(
     model: &Model<f64>,
     sliding: &Sliding,
     points: &[Vec<f64>],
     tendons: &[usize],
-) -> std::result::Result<(), Option<Vec<f64>>> {
+) -> std::result::Result<bool, Option<Vec<f64>>> {
     let d = model.system.null_space.len();
     // The choices are C(tendons, d): past the limit of systems the points obey (26,244),
     // those a pivoted QR picks, as for the boxes (C(40, 20) is 1e11).
-    let choices = match choose(tendons.len(), d) > EVERY_WAY_UP_TO {
-        true => pivoted_free_tendons(&model.system.matrix, tendons, d),
-        false => combinations(tendons, d),
+    let every_choice = choose(tendons.len(), d) <= EVERY_WAY_UP_TO;
+    let choices = match every_choice {
+        true => combinations(tendons, d),
+        false => pivoted_free_tendons(&model.system.matrix, tendons, d),
     };
     let columns = model.system.matrix.first().map_or(0, Vec::len);
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
@@ -1105,13 +1115,16 @@ fn held_between(
     };
     let all = |_: usize| true;
     if choices.iter().any(|free| holds(free, &all).is_ok()) {
-        return Ok(());
+        return Ok(true);
+    }
+    if !every_choice {
+        return Ok(false);
     }
     let reachable: Vec<bool> = points.iter().map(|p| sliding.reachable(p)).collect();
     let mut failing = None;
     for free in &choices {
         match holds(free, &|i| reachable[i]) {
-            Ok(()) => return Ok(()),
+            Ok(()) => return Ok(true),
             Err(i) if i != usize::MAX => failing = Some(i),
             Err(_) => {}
         }
