@@ -928,13 +928,18 @@ pub fn distribute<T: Numeric>(
             let t0: Vec<f64> = t0.iter().map(|v| v.to_f64()).collect();
             return Err(Error::Tension(blocked(model, system, &t0, &w)));
         }
-        // With capstan friction the state's null space need not hold a vector that raises
-        // every tendon (validation checks q = 0 only): then the floors cannot all be met,
-        // which the routine reports as unresolved.
+        // Validation covers the wrap angles the joints' ranges allow (those at q = 0
+        // without them), in exact arithmetic where it shows every capstan factor: floors
+        // that cannot be met here are capstan factors that multiply past what f64
+        // resolves, or wrap angles beyond those covered.
         Status::Unresolved if model.has_capstan() => {
             return Err(Error::Tension(
-                "at this state the guides' friction leaves no tensions that keep every tendon \
-                 at its floor: the routing is not controllable in this direction of sliding"
+                "at this state no tensions were found that keep every tendon at its floor: \
+                 the guides' capstan factors make the tensions it needs differ by more than \
+                 floating point resolves (beyond about 1e9 from one tendon to another), or, \
+                 at wrap angles beyond those validation covered (over the joints' `range`s, \
+                 at q = 0 without them), leave the routing uncontrollable in this direction \
+                 of sliding; lower `mu`, or give the joints the `range`s they move in"
                     .into(),
             ))
         }
