@@ -27,7 +27,10 @@ def loads(text: str, name: str = "<string>") -> Model:
     """Validates the mechanism in `text` (RON); `name` stands for the file in messages."""
 
 class Model:
-    """A validated mechanism and the solver's buffers for it."""
+    """A validated mechanism and the solver's buffers for it.
+
+    Pickling (and `copy.deepcopy`, and sending a model to another process) keeps the
+    mechanism's text: unpickling validates it again, with buffers of its own."""
 
     @property
     def name(self) -> str: ...

@@ -97,21 +97,25 @@ impl Names {
     }
 }
 
-/// A validated mechanism and the solver's buffers for it.
+/// A validated mechanism and the solver's buffers for it, with the text it was validated
+/// from: what pickling keeps.
 #[pyclass(module = "tendyn", frozen)]
 struct Model {
     model: tendyn_core::Model<f64>,
     data: Mutex<Data<f64>>,
+    source: String,
 }
 
 /// Loads and validates the mechanism file at `path` (a `str` or any path-like object).
 #[pyfunction]
 fn load(path: std::path::PathBuf) -> PyResult<Model> {
-    let model = tendyn_core::load(&path).map_err(|e| match e {
-        tendyn_core::Error::Io { .. } => tendyn_error(e),
-        _ => tendyn_error(format!("{}: {e}", path.display())),
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        tendyn_error(tendyn_core::Error::Io {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })
     })?;
-    Ok(Model::new(model))
+    loads(&text, &path.display().to_string())
 }
 
 /// Validates the mechanism in `text` (RON); `name` stands for the file in messages.
@@ -119,7 +123,7 @@ fn load(path: std::path::PathBuf) -> PyResult<Model> {
 #[pyo3(signature = (text, name = "<string>"))]
 fn loads(text: &str, name: &str) -> PyResult<Model> {
     let model = tendyn_core::parse(text).map_err(|e| tendyn_error(format!("{name}: {e}")))?;
-    Ok(Model::new(model))
+    Ok(Model::new(model, text))
 }
 
 /// States of one input: `(n,)` (one state) or `(N, n)`, as `count` rows of `width`
@@ -379,9 +383,13 @@ fn inverse_fields(model: &tendyn_core::Model<f64>) -> Vec<Field> {
 }
 
 impl Model {
-    fn new(model: tendyn_core::Model<f64>) -> Model {
+    fn new(model: tendyn_core::Model<f64>, source: &str) -> Model {
         let data = Mutex::new(Data::new(&model));
-        Model { model, data }
+        Model {
+            model,
+            data,
+            source: source.to_string(),
+        }
     }
 
     /// One array per field of `shapes` (each a state's shape), from `evaluate` on the
@@ -546,6 +554,13 @@ impl Model {
             Ok::<f64, PyErr>(best)
         })?;
         Ok(best / count.max(1) as f64)
+    }
+
+    /// Pickling (and `copy.deepcopy`, and sending a model to another process) keeps the
+    /// mechanism's text: unpickling validates it again, with buffers of its own.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let loads = py.import("tendyn")?.getattr("loads")?;
+        Ok((loads, (self.source.clone(),)))
     }
 
     /// The mechanism's name.

@@ -183,6 +183,24 @@ def test_loops_paths_and_the_version_are_named():
     assert r["guide_dissipated_powers"].shape == (0,)
 
 
+def test_a_model_pickles_and_copies_as_its_mechanism():
+    # What multiprocessing sends to another process: the text, validated again there.
+    import copy
+    import pickle
+
+    for name in PAPER + FRICTION:
+        m = model(name)
+        q, qd, qdd = states(m, 3, 11)
+        for again in (pickle.loads(pickle.dumps(m)), copy.deepcopy(m)):
+            assert again is not m
+            assert (again.name, again.tendon_names, again.motor_names) == (
+                m.name, m.tendon_names, m.motor_names,
+            )
+            got, want = again.inverse_dynamics(q, qd, qdd), m.inverse_dynamics(q, qd, qdd)
+            for key in ("generalized_forces", "tendon_tensions", "motor_torques"):
+                assert np.array_equal(got[key], want[key]), key
+
+
 def test_actuators_not_given_are_zero_and_one_output_may_be_named_alone():
     m = model("example3_stanford_jpl")  # tendons only, no motors
     q, qd, _ = states(m, 1, 5)
