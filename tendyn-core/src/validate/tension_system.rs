@@ -679,32 +679,7 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     if d != 1 && between && every_way && !by_signs {
         match held_between(model, &sliding, &points, &tendons) {
             Ok(shown) => between_shown = shown,
-            Err(point) => {
-                let blocked = match point {
-                    Some(point) => format!(
-                        "up to sliding {} ({})",
-                        sliding.described(model, &sliding.sigma(model, &point)),
-                        sliding.wraps_checked(model)
-                    ),
-                    None => "in one proportion for every direction of sliding".into(),
-                };
-                return Err(v.routing(
-                    &sliding.first_guide(model),
-                    format!(
-                        "with capstan friction and {}, the routing must stay controllable between \
-                     rest and every direction of sliding; with a {d}-dimensional null space \
-                     validation shows that by {d} tendons whose tensions, in one proportion \
-                     for every state, keep the others taut and the motors and loop sides \
-                     determined, and no {d} tendons do {blocked}; lower `mu` or route the \
-                     tendons differently",
-                        if sliding.smoothed {
-                            "`friction_smoothing`"
-                        } else {
-                            "wrap angles that change with the joints"
-                        },
-                    ),
-                ));
-            }
+            Err(point) => return Err(not_held_between(v, model, &sliding, point)),
         }
     }
     Ok(match (every_way, by_signs) {
@@ -719,6 +694,41 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             systems: points.len(),
         },
     })
+}
+
+/// The refusal where no fixed basis carries the points' systems between them
+/// ([`held_between`]), at a reachable `point` where the last choice that held at rest
+/// fails, if there is one.
+fn not_held_between(
+    v: &Validator,
+    model: &Model<f64>,
+    sliding: &Sliding,
+    point: Option<Vec<f64>>,
+) -> Error {
+    let d = model.system.null_space.len();
+    let blocked = match point {
+        Some(point) => format!(
+            "up to sliding {} ({})",
+            sliding.described(model, &sliding.sigma(model, &point)),
+            sliding.wraps_checked(model)
+        ),
+        None => "in one proportion for every direction of sliding".into(),
+    };
+    v.routing(
+        &sliding.first_guide(model),
+        format!(
+            "with capstan friction and {}, the routing must stay controllable between rest \
+             and every direction of sliding; with a {d}-dimensional null space validation \
+             shows that by {d} tendons whose tensions, in one proportion for every state, \
+             keep the others taut and the motors and loop sides determined, and no {d} \
+             tendons do {blocked}; lower `mu` or route the tendons differently",
+            if sliding.smoothed {
+                "`friction_smoothing`"
+            } else {
+                "wrap angles that change with the joints"
+            },
+        ),
+    )
 }
 
 /// The most steps [`least_lifting_way`] takes per group of guides.
