@@ -377,7 +377,7 @@ fn check_capstan_power(model: &Model<f64>, states: usize, seed: u64) -> f64 {
             Ok(r) => r,
             // Wrap angles change with q, so a routing controllable at q = 0 whichever way
             // its tendons slide may not be everywhere: such a state is an error that says so.
-            Err(Error::Tension(e)) if e.contains("not controllable in this direction") => {
+            Err(Error::Tension(e)) if e.contains("controllable in this direction") => {
                 uncontrollable += 1;
                 continue;
             }
@@ -706,13 +706,13 @@ fn past_the_ways_taken_one_by_one_a_descent_finds_where_sliding_leaves_a_tendon_
 /// A finger whose every joint has a flexor and an extensor ending on its link stays
 /// controllable whatever its friction: at each joint, from the tip, a tendon of each sign
 /// enters, and the capstan factors, all positive, change no entry's sign (docs/format.md
-/// §6a, `E`'s signs). At 10 joints and `μ = 2` (99 guides, 11 null directions), where no
-/// box of factors settled it, validation shows it at every capstan factor (checked without
-/// its code at the vertices of the box in
+/// §6a, `E`'s signs). At 10 joints and `μ = 2` (99 guides, 11 null directions), which
+/// boxes of factors did not settle, validation shows it at every capstan factor (checked
+/// without its code at the vertices of the box in
 /// `where_validation_shows_every_capstan_factor_no_factor_the_guides_can_take_loosens_a_tendon`).
 /// At `μ = 4` the capstan factors multiply up to `e^22` along one tendon: where every guide
 /// slides some tendon's tension would be more than `1e9` times another's, and validation
-/// refuses the routing saying so, not that it is uncontrollable.
+/// refuses the routing saying that floating point, not the routing, fails there.
 #[test]
 fn a_flexor_and_an_extensor_on_every_joint_keep_a_finger_controllable_whatever_its_friction() {
     let mut finger = tendyn_spec::stress::Arm::new("finger", 10, 10);
@@ -726,7 +726,7 @@ fn a_flexor_and_an_extensor_on_every_joint_keep_a_finger_controllable_whatever_i
     );
     let refused = at(4.0).unwrap_err().to_string();
     for said in [
-        "E's signs keep it controllable in exact arithmetic",
+        "E's signs show it is, in exact arithmetic, but sliding",
         "capstan factors up to e^22.1 along one tendon, more than floating point resolves",
         "lower `mu`",
     ] {
@@ -1214,7 +1214,7 @@ fn validation_covers_the_wrap_angles_the_joints_ranges_reach() {
                         let [_, qd, qdd] = random_state(&mut rng, n);
                         matches!(
                             solver.inverse_dynamics(&model, &q, &qd, &qdd),
-                            Err(Error::Tension(e)) if e.contains("not controllable in this direction")
+                            Err(Error::Tension(e)) if e.contains("controllable in this direction")
                         )
                     });
                     assert!(
@@ -1396,7 +1396,8 @@ fn controllable(e: &[Vec<f64>], tendons: &[usize]) -> Result<f64, String> {
 /// 15 to 143 guides) at `μ = 0.2` to `2`, which `E`'s signs show past the ways taken one
 /// by one, and fingers of 8, 9 and 12 joints with a second tendon on every other link (5
 /// to 7 null directions, which the signs do not show: the boxes and the programs with
-/// cutting planes do, past 26,244 choices of free tendons on those a pivoted QR picks),
+/// cutting planes do; at 12 joints, past 26,244 choices of free tendons, on those a
+/// pivoted QR picks),
 /// every idler made a guide with friction. The fingers also run inverse dynamics at
 /// `q = 0`, the wrap angles validation covers without ranges, moving at random.
 #[test]

@@ -929,17 +929,19 @@ pub fn distribute<T: Numeric>(
             return Err(Error::Tension(blocked(model, system, &t0, &w)));
         }
         // Validation covers the wrap angles the joints' ranges allow (those at q = 0
-        // without them), in exact arithmetic where it shows every capstan factor: floors
-        // that cannot be met here are capstan factors that multiply past what f64
-        // resolves, or wrap angles beyond those covered.
+        // without them), at every capstan factor or every way of sliding unless `check`
+        // says otherwise: floors that cannot be met here are capstan factors that multiply
+        // past what f64 resolves, or a state validation did not cover.
         Status::Unresolved if model.has_capstan() => {
             return Err(Error::Tension(
                 "at this state no tensions were found that keep every tendon at its floor: \
                  the guides' capstan factors make the tensions it needs differ by more than \
-                 floating point resolves (beyond about 1e9 from one tendon to another), or, \
-                 at wrap angles beyond those validation covered (over the joints' `range`s, \
-                 at q = 0 without them), leave the routing uncontrollable in this direction \
-                 of sliding; lower `mu`, or give the joints the `range`s they move in"
+                 floating point resolves, or leave the routing uncontrollable in this \
+                 direction of sliding at a state validation did not cover (wrap angles \
+                 beyond the joints' `range`s, or beyond those at q = 0 without them; or, \
+                 where `tendyn check` says `only at` or `not every state between`, a way or \
+                 state it did not check); lower `mu`, or give the joints the `range`s they \
+                 move in"
                     .into(),
             ))
         }

@@ -566,7 +566,9 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 /// the points where any subset of the varying guides is at rest: the smoothed law's
 /// `|σ| < 1`, and every state whose wrap angles are no larger than those taken, lie in
 /// such boxes. With no null direction or two or more, where such states occur, a fixed
-/// basis carries the points' systems between them ([`held_between`]).
+/// basis carries the points' systems between them ([`held_between`]; past 26,244 choices
+/// of free tendons, where one a pivoted QR picks holds), or `E`'s signs show every factor
+/// ([`sign_pattern`]).
 ///
 /// Beyond, the points are a sample of those where every guide slides (each group one way,
 /// all the ways of up to 12 groups, past that the two where every group slides one way and
@@ -642,31 +644,30 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             continue;
         }
         let described = sliding.described(model, &sliding.sigma(model, point));
-        let why = match by_signs {
-            true => format!(
-                "E's signs keep it controllable in exact arithmetic, but the tensions that \
-                 would keep every tendon taut differ by capstan factors up to e^{:.1} along \
-                 one tendon, more than floating point resolves ({why})",
+        let at = match &state {
+            Some(q) if q.iter().all(|&x| x == 0.0) => "(at q = 0)".to_string(),
+            Some(q) => format!("(at q = {q:?} rad)"),
+            None => "within the joints' ranges".to_string(),
+        };
+        let problem = match (by_signs, state) {
+            // Controllable in exact arithmetic: what fails is floating point.
+            (true, _) => format!(
+                "with capstan friction the routing must be controllable whichever way the \
+                 tendons slide; E's signs show it is, in exact arithmetic, but sliding \
+                 {described} {at} the tensions that would keep every tendon taut differ by \
+                 capstan factors up to e^{:.1} along one tendon, more than floating point \
+                 resolves; lower `mu`",
                 sliding.largest_exponent(model)
             ),
-            false => why,
-        };
-        let problem = match state {
-            Some(q) => format!(
+            (false, Some(_)) => format!(
                 "with capstan friction the routing must be controllable whichever way the \
-                 tendons slide, but sliding {described} (at q = {}) it is not: {why}; lower \
-                 `mu` or route the tendon differently",
-                if q.iter().all(|&x| x == 0.0) {
-                    "0".to_string()
-                } else {
-                    format!("{q:?} rad")
-                }
+                 tendons slide, but sliding {described} {at} it is not: {why}; lower `mu` or \
+                 route the tendon differently"
             ),
-            None => format!(
+            (false, None) => format!(
                 "with capstan friction the routing must be controllable whichever way the \
                  tendons slide, and validation could not show it is sliding {described} \
-                 within the joints' ranges: {why}; narrow the ranges, lower `mu` or route \
-                 the tendon differently"
+                 {at}: {why}; narrow the ranges, lower `mu` or route the tendon differently"
             ),
         };
         return Err(v.routing(&sliding.first_guide(model), problem));

@@ -16,9 +16,9 @@
 //! of rows that vanishes vanishes at its last row `r_k` too, in a column entering there,
 //! zero in the rows before: `E` has full row rank. A finger whose every joint has a flexor
 //! and an extensor of its own is such a routing, whatever its friction: the tip joint's
-//! pair first, then each joint's towards the base. One whose tendons share joints (one
-//! tendon more than joints) is not, and with enough friction some direction of sliding
-//! can leave it uncontrollable.
+//! pair first, then each joint's towards the base. One with fewer than two tendons per
+//! joint (`n + 1` on two or more joints) is not, and with enough friction some direction
+//! of sliding can leave it uncontrollable.
 //!
 //! The rows are taken greedily: among those where a tendon of each sign would enter, the
 //! one where the fewest enter, which keeps the others for the rows after it. A routing
@@ -38,8 +38,9 @@ pub(super) enum Sign {
     Either,
 }
 
-/// How far below its column's largest share an entry is taken as of no fixed sign: a
-/// moment arm lost in the round-off of the others.
+/// How far below its column's largest share (over every row and run) a run's nonzero
+/// share leaves its entry of no fixed sign: a moment arm lost in the round-off of the
+/// others.
 const NEGLIGIBLE: f64 = 1e-9;
 
 /// Whether `E`'s sign pattern alone shows the routing controllable at every capstan
