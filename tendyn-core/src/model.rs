@@ -559,10 +559,10 @@ pub enum SlidingCheck {
         boxes: usize,
     },
     /// Only patterns in which every guide slides: too many directions to take one by one,
-    /// and neither the boxes of factors nor `E`'s signs settled it. Every such pattern up to 12 groups of
-    /// guides (guides whose speeds are proportional), beyond that the two uniform ones,
-    /// those with one group flipped, and, with one null direction, those a descent on the
-    /// tendons' least lift passes through (docs/format.md §6a).
+    /// and neither the boxes of factors nor `E`'s signs settled it. Every such pattern up
+    /// to 12 groups of guides (guides whose speeds are proportional), beyond that the two
+    /// uniform ones, those with one group flipped, and, with one null direction, those a
+    /// descent on the tendons' least lift passes through (docs/format.md §6a).
     AllSliding {
         /// The systems checked: one per pattern.
         systems: usize,
