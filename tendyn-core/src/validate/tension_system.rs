@@ -608,11 +608,14 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
     // whatever the friction. Past the points every way that takes the boxes' place, and
     // the points where every guide slides then check that floating point still resolves
     // the tensions it needs there; up to them, it carries their systems between them.
-    let by_signs = sign_pattern::controllable_at_every_factor(model);
+    let runs = factor_boxes::Columns::of(model, &sliding);
+    let by_signs = sign_pattern::controllable_at_every_factor(model, &runs);
     let shown = match (!every_way && by_signs, &frictionless) {
         (true, _) => None,
-        (false, Some(_)) => every_factor_lifts(model, &sliding, &tendons, &fails, budget),
-        (false, None) => every_factor_held(model, &sliding, &points, &tendons, &fails, budget),
+        (false, Some(_)) => every_factor_lifts(model, &sliding, &runs, &tendons, &fails, budget),
+        (false, None) => {
+            every_factor_held(model, &sliding, &runs, &points, &tendons, &fails, budget)
+        }
     };
     if let Some(boxes) = shown {
         return Ok(SlidingCheck::EveryFactor { boxes });
@@ -810,6 +813,7 @@ fn least_lifting_way(
 fn every_factor_lifts(
     model: &Model<f64>,
     sliding: &Sliding,
+    runs: &factor_boxes::Columns,
     tendons: &[usize],
     fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
     budget: usize,
@@ -820,7 +824,6 @@ fn every_factor_lifts(
         let kept: Vec<usize> = (0..columns).filter(|&c| c != k).collect();
         factor_boxes::Square::of(&rows, &kept)
     };
-    let runs = factor_boxes::Columns::of(model, sliding);
     let determined = (0..columns)
         .filter(|k| !tendons.contains(k))
         .all(|k| runs.always_singular(&without(k)));
@@ -832,11 +835,11 @@ fn every_factor_lifts(
     // slack-tendon programs settle nearly all the rest, long tendons over many guides
     // whose factors multiply up included; more boxes take what the programs' tolerance
     // leaves.
-    let boxes = |budget| factor_boxes::every_factor(model, sliding, &runs, &squares, fails, budget);
+    let boxes = |budget| factor_boxes::every_factor(model, sliding, runs, &squares, fails, budget);
     if let Ok(few) = boxes(FIRST_BOXES) {
         return Some(few);
     }
-    if slack_tendon::never_slack(model, sliding, &runs, tendons, &[]).is_ok() {
+    if slack_tendon::never_slack(model, sliding, runs, tendons, &[]).is_ok() {
         return Some(1);
     }
     boxes(budget).ok()
@@ -863,6 +866,7 @@ fn every_factor_lifts(
 fn every_factor_held(
     model: &Model<f64>,
     sliding: &Sliding,
+    runs: &factor_boxes::Columns,
     points: &[Vec<f64>],
     tendons: &[usize],
     fails: &dyn Fn(Vec<Vec<f64>>) -> Option<String>,
@@ -885,7 +889,6 @@ fn every_factor_held(
         true => pivoted_free_tendons(&model.system.matrix, tendons, d),
     };
     let matrices: Vec<Vec<Vec<f64>>> = points.iter().map(|p| sliding.matrix(model, p)).collect();
-    let runs = factor_boxes::Columns::of(model, sliding);
     // A fixed basis: free tendons, the other columns, `det E_B`'s sign at rest, and the
     // proportion of the free tendons.
     struct Held {
@@ -920,7 +923,7 @@ fn every_factor_held(
             }
             fails(e)
         };
-        factor_boxes::every_factor(model, sliding, &runs, &squares, &taut, share)
+        factor_boxes::every_factor(model, sliding, runs, &squares, &taut, share)
     };
     let mut candidates: Vec<Held> = Vec::new();
     for free in choices {
@@ -962,7 +965,7 @@ fn every_factor_held(
             let x_free: Vec<(usize, f64)> = (choice.free.iter().copied())
                 .zip(choice.x.iter().copied())
                 .collect();
-            let lambda = match slack_tendon::never_slack(model, sliding, &runs, tendons, &x_free) {
+            let lambda = match slack_tendon::never_slack(model, sliding, runs, tendons, &x_free) {
                 Ok(()) => return Some(1),
                 Err(None) => break,
                 Err(Some(lambda)) => lambda,

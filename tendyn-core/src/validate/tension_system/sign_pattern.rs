@@ -1,8 +1,9 @@
 //! Controllable at every capstan factor by the signs of `E` alone, for routings of
-//! open-ended tendons alone, however many ways their guides slide. Invariant: `true` only where, for every positive capstan factor of every guide, `E` has
-//! full row rank and a null vector that lifts every tendon.
+//! open-ended tendons alone, however many ways their guides slide. Invariant: `true` only
+//! where, for every positive capstan factor of every guide, `E` has full row rank and a
+//! null vector that lifts every tendon.
 //!
-//! A strand's column of `E` is `Σ_r F_r a_r` over its runs ([`crate::tension::for_each_run`]),
+//! A strand's column of `E` is `Σ_r F_r a_r` over its runs ([`Columns`], the boxes' own),
 //! each `F_r` a product of capstan factors, positive whatever the guides do. So an entry
 //! whose runs' shares in its row are all of one sign keeps that sign at every state, and
 //! one whose shares there are all zero stays zero.
@@ -24,8 +25,8 @@
 //! one where the fewest enter, which keeps the others for the rows after it. A routing
 //! another order would show is then missed, never wrongly shown.
 
+use super::factor_boxes::Columns;
 use crate::model::Model;
-use crate::tension::for_each_run;
 
 /// The sign an entry of `E` keeps at every state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,34 +45,28 @@ pub(super) enum Sign {
 const NEGLIGIBLE: f64 = 1e-9;
 
 /// Whether `E`'s sign pattern alone shows the routing controllable at every capstan
-/// factor: only for routings whose every unknown is an open-ended tendon's tension (a
-/// motor torque or loop side would also have to stay determined).
-pub(super) fn controllable_at_every_factor(model: &Model<f64>) -> bool {
-    let tendons_only = (0..model.system.unknowns.len())
-        .all(|c| model.tendons.iter().any(|tendon| tendon.unknown == c));
-    tendons_only && peels(&signs(model))
+/// factor, from its columns' `runs`: only for routings whose every unknown is an
+/// open-ended tendon's tension (a motor torque or loop side would also have to stay
+/// determined).
+pub(super) fn controllable_at_every_factor(model: &Model<f64>, runs: &Columns) -> bool {
+    let columns = model.system.unknowns.len();
+    let tendons_only = (0..columns).all(|c| model.tendons.iter().any(|tendon| tendon.unknown == c));
+    tendons_only && peels(&signs(model.system.matrix.len(), columns, runs))
 }
 
-/// The sign each entry of `E` keeps at every state, row by row.
-fn signs(model: &Model<f64>) -> Vec<Vec<Sign>> {
-    let matrix = &model.system.matrix;
-    let rows = matrix.len();
-    let columns = matrix.first().map_or(0, Vec::len);
-    // Each column's runs: the strand's, or the constant column as one run.
-    let mut runs: Vec<Vec<Vec<f64>>> = (0..columns)
-        .map(|c| vec![matrix.iter().map(|row| row[c]).collect()])
+/// The sign each entry of `E` keeps at every state, row by row, from its column's runs.
+fn signs(rows: usize, columns: usize, runs: &Columns) -> Vec<Vec<Sign>> {
+    let scales: Vec<f64> = (0..columns)
+        .map(|c| {
+            (runs.runs(c).iter().flat_map(|run| &run.share)).fold(0.0f64, |a, x| a.max(x.abs()))
+        })
         .collect();
-    for strand in &model.strands {
-        let mut of_strand = Vec::new();
-        for_each_run(strand, rows, |share, _| of_strand.push(share.to_vec()));
-        runs[strand.unknown] = of_strand;
-    }
     (0..rows)
         .map(|r| {
-            (runs.iter())
-                .map(|column| {
-                    let scale = (column.iter().flatten()).fold(0.0f64, |a, x| a.max(x.abs()));
-                    sign_of(column.iter().map(|run| run[r]), NEGLIGIBLE * scale)
+            (0..columns)
+                .map(|c| {
+                    let shares = runs.runs(c).iter().map(|run| run.share[r]);
+                    sign_of(shares, NEGLIGIBLE * scales[c])
                 })
                 .collect()
         })
