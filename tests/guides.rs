@@ -1088,8 +1088,9 @@ fn with_two_null_directions_validation_covers_the_states_between_rest_and_slidin
 /// factors settles the routing: too many choices of seven free tendons to take one by one
 /// (50,388), so validation carries the patterns' systems to the states between them on
 /// the choices a pivoted QR picks (docs/format.md §6a). With one guide set one of them
-/// holds (`EveryWay`); with another none does, and validation says it showed every way but
-/// not every state between. Either way inverse dynamics at `q = 0` (the wrap angles it
+/// holds (`EveryWay`); with another none does: validation refuses it, saying it showed
+/// every way but not every state between, and accepts it, saying so, where the file sets
+/// `accept_sampled_sliding`. Either way inverse dynamics at `q = 0` (the wrap angles it
 /// covers), moving from nearly at rest to fast, with every `σ` the smoothed law gives,
 /// keeps every tendon at or above its floor.
 #[test]
@@ -1113,6 +1114,24 @@ fn past_the_choices_taken_one_by_one_the_pivoted_free_tendons_cover_the_states_b
         let text = text.replacen(
             "tension_floor:",
             "friction_smoothing: 0.01,\n  tension_floor:",
+            1,
+        );
+        if !between {
+            let refused = parse(&text).unwrap_err().to_string();
+            for phrase in [
+                "every way the guides slide and rest",
+                "not at the states between",
+            ] {
+                assert!(refused.contains(phrase), "{refused}");
+            }
+            assert!(
+                refused.contains("`accept_sampled_sliding: true`"),
+                "{refused}"
+            );
+        }
+        let text = text.replacen(
+            "tension_floor:",
+            "accept_sampled_sliding: true,\n  tension_floor:",
             1,
         );
         let model = parse(&text).unwrap();
@@ -1141,6 +1160,75 @@ fn past_the_choices_taken_one_by_one_the_pivoted_free_tendons_cover_the_states_b
                 r.tendon_tensions
             );
         }
+    }
+}
+
+/// A 5-joint finger with a second tendon on every other link (9 tendons, four null
+/// directions) and every idler a guide at `μ = 10`: too many ways of sliding to take one
+/// by one (14 groups of guides), and neither boxes of factors nor `E`'s signs settle it,
+/// so validation can check it only at a sample of the ways every guide slides. That is
+/// not a proof, so it refuses the routing, saying so and naming `accept_sampled_sliding`
+/// (docs/format.md §6a); with that set it accepts it, `check` saying `only at`. Inverse
+/// dynamics at `q = 0`, moving from nearly at rest to fast, then keeps every tendon at or
+/// above its floor (to the distribution's tolerance, with tensions up to ~1e13 times it).
+#[test]
+fn a_routing_shown_only_at_sampled_ways_of_sliding_is_refused_unless_the_file_accepts_it() {
+    let mut finger = tendyn_spec::stress::Arm::new("finger", 5, 5);
+    finger.antagonists = true;
+    finger.antagonist_every = 2;
+    let text = tendyn_spec::guides::idlers_as_capstans(&finger.ron(), 10.0);
+    let refused = parse(&text).unwrap_err().to_string();
+    for phrase in [
+        "with 14 groups of guides there are too many ways to take one by one",
+        "30 of the ways every guide slides",
+        "none of which fails",
+        "set `accept_sampled_sliding: true` to accept it",
+    ] {
+        assert!(refused.contains(phrase), "{refused}");
+    }
+    let accepted = text.replacen(
+        "tension_floor:",
+        "accept_sampled_sliding: true,\n  tension_floor:",
+        1,
+    );
+    let model = parse(&accepted).unwrap();
+    assert_eq!(
+        model.sliding_check(),
+        SlidingCheck::AllSliding { systems: 30 }
+    );
+    let text = tendyn_codegen::report::check_text(&model);
+    assert!(
+        text.contains("only at 30 ways every guide slides (too many directions to take one by one; accepted by `accept_sampled_sliding`)"),
+        "{text}"
+    );
+    let json = tendyn_codegen::report::check_json(&model);
+    let covers = &json["sliding_check"];
+    assert!(
+        covers["covers"] == "all_sliding" && covers["systems"] == 30,
+        "{covers}"
+    );
+    let (floor, tendons, d) = (
+        model.tendons()[0].floor,
+        model.tendons().len() as f64,
+        model.system().null_space.len() as f64,
+    );
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut solver = Data::new(&model);
+    for _ in 0..300 {
+        let [_, qd, qdd] = random_state(&mut rng, model.dof());
+        let slow = 10f64.powf(rng.random_range(-5.0..0.0));
+        let qd: Vec<f64> = qd.iter().map(|v| v * slow).collect();
+        let q = vec![0.0; model.dof()];
+        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
+        // The distribution's tolerance on a bound: `4 (K + d) u` of the largest tension
+        // (module `distribution`).
+        let largest = r.tendon_tensions.iter().fold(floor, |a, &t| a.max(t));
+        let tolerance = 4.0 * (tendons + d) * f64::EPSILON / 2.0 * largest;
+        assert!(
+            r.tendon_tensions.iter().all(|&t| t >= floor - tolerance),
+            "{:?}",
+            r.tendon_tensions
+        );
     }
 }
 

@@ -163,8 +163,8 @@ fn sliding_check_text(check: SlidingCheck) -> String {
         SlidingCheck::EveryWayNotBetween { systems } => format!(
             "every way the guides slide and rest ({systems} tension systems), not every state \
              between (too many choices of free tendons to take one by one, and none of \
-             those tried holds): inverse and forward dynamics check each state's system and \
-             refuse one that fails"
+             those tried holds; accepted by `accept_sampled_sliding`): inverse and forward \
+             dynamics check each state's system and refuse one that fails"
         ),
         SlidingCheck::EveryFactor { boxes } => format!(
             "at every capstan factor the guides can take ({boxes} box{} of factors)",
@@ -172,8 +172,8 @@ fn sliding_check_text(check: SlidingCheck) -> String {
         ),
         SlidingCheck::AllSliding { systems } => format!(
             "only at {systems} ways every guide slides (too many directions to take one by \
-             one): inverse and forward dynamics check each state's system and refuse one \
-             that fails"
+             one; accepted by `accept_sampled_sliding`): inverse and forward dynamics check \
+             each state's system and refuse one that fails"
         ),
     }
 }

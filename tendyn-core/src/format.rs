@@ -109,6 +109,12 @@ pub struct MechanismFile {
     /// `v` (rad/s): replace `sign(ω)` of every Coulomb friction by `tanh(ω / v)`.
     #[serde(default)]
     pub friction_smoothing: Option<f64>,
+    /// Accept a routing that validation could show controllable with capstan friction only
+    /// at sampled states (some ways of sliding, or every way but not the states between),
+    /// leaving the others to the runtime solver's check of each state. Default `false`:
+    /// such a routing is refused.
+    #[serde(default)]
+    pub accept_sampled_sliding: bool,
 }
 
 /// Friction in a bearing, opposing the body's angular velocity relative to its carrier:

@@ -545,7 +545,8 @@ pub enum SlidingCheck {
     /// Every way the guides can slide and rest, but not every state between (the smoothed
     /// law's `|σ| < 1`, or wrap angles smaller than the largest): with two or more null
     /// directions, too many choices of free tendons to take one by one, and none of those
-    /// tried carries the ways' systems between them (docs/format.md §6a).
+    /// tried carries the ways' systems between them (docs/format.md §6a). Only where the
+    /// file sets `accept_sampled_sliding`: validation refuses such a routing otherwise.
     EveryWayNotBetween {
         /// The systems checked: one per pattern of directions and rest.
         systems: usize,
@@ -562,7 +563,8 @@ pub enum SlidingCheck {
     /// and neither the boxes of factors nor `E`'s signs settled it. Every such pattern up
     /// to 12 groups of guides (guides whose speeds are proportional), beyond that the two
     /// uniform ones, those with one group flipped, and, with one null direction, those a
-    /// descent on the tendons' least lift passes through (docs/format.md §6a).
+    /// descent on the tendons' least lift passes through (docs/format.md §6a). Only where
+    /// the file sets `accept_sampled_sliding`: validation refuses such a routing otherwise.
     AllSliding {
         /// The systems checked: one per pattern.
         systems: usize,

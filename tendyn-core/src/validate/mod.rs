@@ -53,7 +53,8 @@ pub fn parse(text: &str) -> Result<Model<f64>> {
     let mut v = Validator::new(text);
     v.params = v.parameters(&file)?;
     let mut model = v.model(&file)?;
-    model.sliding_check = tension_system::sliding_directions(&v, &model)?;
+    model.sliding_check =
+        tension_system::sliding_directions(&v, &model, file.accept_sampled_sliding)?;
     Ok(model)
 }
 
@@ -71,7 +72,8 @@ pub fn validate(file: &MechanismFile) -> Result<Model<f64>> {
     let mut v = Validator::new("");
     v.params = v.parameters(file)?;
     let mut model = v.model(file)?;
-    model.sliding_check = tension_system::sliding_directions(&v, &model)?;
+    model.sliding_check =
+        tension_system::sliding_directions(&v, &model, file.accept_sampled_sliding)?;
     Ok(model)
 }
 

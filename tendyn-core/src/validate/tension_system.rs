@@ -3,8 +3,9 @@
 //! strictly positive null vector. Invariant: a system is returned only with `E` of full
 //! row rank, every motor and loop side determined, and the tendons kept taut by a strictly
 //! positive null vector when the routing has open-ended tendons (with capstan friction,
-//! whichever way the tendons slide: [`sliding_directions`]); a failing routing is reported
-//! with the system it implies.
+//! whichever way the tendons slide, or, where the file sets `accept_sampled_sliding`, at
+//! the sampled ways validation could check: [`sliding_directions`]); a failing routing is
+//! reported with the system it implies.
 
 use super::Validator;
 use crate::error::{Error, ImpliedSystem, Result};
@@ -578,7 +579,15 @@ const BOXES_BEFORE_EVERY_WAY: usize = 64;
 /// ([`sign_pattern`]), whatever the friction: the points then check that floating point
 /// still resolves the tensions it needs. Returns how far the routing was shown
 /// controllable.
-pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<SlidingCheck> {
+///
+/// Where it could show the routing only at sampled states (`AllSliding`, or
+/// `EveryWayNotBetween`), the routing is refused unless `accept_sampled` (the file's
+/// `accept_sampled_sliding`).
+pub(super) fn sliding_directions(
+    v: &Validator,
+    model: &Model<f64>,
+    accept_sampled: bool,
+) -> Result<SlidingCheck> {
     let sliding = Sliding::of(model);
     if sliding.sliders.is_empty() {
         return Ok(SlidingCheck::Constant);
@@ -686,17 +695,56 @@ pub(super) fn sliding_directions(v: &Validator, model: &Model<f64>) -> Result<Sl
             Err(point) => return Err(not_held_between(v, model, &sliding, point)),
         }
     }
-    Ok(match (every_way, by_signs) {
-        (true, _) if !between_shown => SlidingCheck::EveryWayNotBetween {
-            systems: points.len(),
-        },
-        (true, _) => SlidingCheck::EveryWay {
-            systems: points.len(),
-        },
-        (false, true) => SlidingCheck::EveryFactor { boxes: 1 },
-        (false, false) => SlidingCheck::AllSliding {
-            systems: points.len(),
-        },
+    let (systems, groups) = (points.len(), sliding.groups.len());
+    let sampled = match (every_way, by_signs) {
+        (true, _) if !between_shown => format!(
+            "with capstan friction and {}, the routing must stay controllable between rest \
+             and every direction of sliding; validation showed it at every way the guides \
+             slide and rest ({systems} tension systems) but not at the states between: with \
+             a {d}-dimensional null space there are too many choices of free tendons to take \
+             one by one, and none of those a pivoted QR picks keeps the others taut in one \
+             proportion at every way",
+            sliding.between_comes_from()
+        ),
+        (true, _) => return Ok(SlidingCheck::EveryWay { systems }),
+        (false, true) => return Ok(SlidingCheck::EveryFactor { boxes: 1 }),
+        (false, false) => format!(
+            "with capstan friction the routing must be controllable whichever way the \
+             tendons slide; with {groups} groups of guides there are too many ways to take \
+             one by one, neither boxes of factors nor E's signs settled it, and validation \
+             checked only {}, none of which fails",
+            if groups <= 12 {
+                format!(
+                    "the {systems} ways where every guide slides, each group one way (not \
+                     those where some rest)"
+                )
+            } else {
+                format!(
+                    "{systems} of the ways every guide slides (the two where every group \
+                     slides one way, those with one group flipped{})",
+                    if d == 1 {
+                        ", and those a search for a failing one passed"
+                    } else {
+                        ""
+                    }
+                )
+            }
+        ),
+    };
+    if !accept_sampled {
+        return Err(v.routing(
+            &sliding.first_guide(model),
+            format!(
+                "{sampled}; lower `mu` or route the tendons differently, or set \
+                 `accept_sampled_sliding: true` to accept it, inverse and forward dynamics \
+                 then refusing any state that fails"
+            ),
+        ));
+    }
+    Ok(if every_way {
+        SlidingCheck::EveryWayNotBetween { systems }
+    } else {
+        SlidingCheck::AllSliding { systems }
     })
 }
 
@@ -726,11 +774,7 @@ fn not_held_between(
              shows that by {d} tendons whose tensions, in one proportion for every state, \
              keep the others taut and the motors and loop sides determined, and no {d} \
              tendons do {blocked}; lower `mu` or route the tendons differently",
-            if sliding.smoothed {
-                "`friction_smoothing`"
-            } else {
-                "wrap angles that change with the joints"
-            },
+            sliding.between_comes_from(),
         ),
     )
 }
@@ -1460,6 +1504,15 @@ impl Sliding {
     }
 
     /// The first guide with friction's name, where a refusal is reported.
+    /// What gives the guides' capstan factors values between rest and sliding.
+    fn between_comes_from(&self) -> &'static str {
+        if self.smoothed {
+            "`friction_smoothing`"
+        } else {
+            "wrap angles that change with the joints"
+        }
+    }
+
     fn first_guide(&self, model: &Model<f64>) -> String {
         let first = &self.sliders[0];
         model.bodies[model.strands[first.strand].idlers[first.idler].body]
