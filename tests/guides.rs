@@ -1142,24 +1142,7 @@ fn past_the_choices_taken_one_by_one_the_pivoted_free_tendons_cover_the_states_b
             SlidingCheck::EveryWayNotBetween { .. } => assert!(!between, "{guides:?}"),
             other => panic!("{guides:?}: {other:?}"),
         }
-        let floor = model.tendons()[0].floor;
-        let mut solver = Data::new(&model);
-        for _ in 0..300 {
-            let [_, qd, qdd] = random_state(&mut rng, model.dof());
-            let slow = 10f64.powf(rng.random_range(-5.0..0.0));
-            let qd: Vec<f64> = qd.iter().map(|v| v * slow).collect();
-            let q = vec![0.0; model.dof()];
-            let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
-            // The distribution's tolerance on a bound: `4 (K + d) u` of the largest tension
-            // (module `distribution`), which the capstan factors raise to 1e8 here.
-            let largest = r.tendon_tensions.iter().fold(floor, |a, &t| a.max(t));
-            let tolerance = 4.0 * (19.0 + 7.0) * f64::EPSILON / 2.0 * largest;
-            assert!(
-                r.tendon_tensions.iter().all(|&t| t >= floor - tolerance),
-                "{guides:?}: {:?}",
-                r.tendon_tensions
-            );
-        }
+        floors_kept_at_q_zero(&model, &mut rng, 300);
     }
 }
 
@@ -1207,23 +1190,26 @@ fn a_routing_shown_only_at_sampled_ways_of_sliding_is_refused_unless_the_file_ac
         covers["covers"] == "all_sliding" && covers["systems"] == 30,
         "{covers}"
     );
-    let (floor, tendons, d) = (
-        model.tendons()[0].floor,
-        model.tendons().len() as f64,
-        model.system().null_space.len() as f64,
-    );
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
-    let mut solver = Data::new(&model);
-    for _ in 0..300 {
-        let [_, qd, qdd] = random_state(&mut rng, model.dof());
+    floors_kept_at_q_zero(&model, &mut ChaCha8Rng::seed_from_u64(5), 300);
+}
+
+/// Inverse dynamics at `q = 0` (the wrap angles validation covers without ranges), at
+/// `states` random states moving from nearly at rest (`q̇` scaled down to 1e-5) to fast,
+/// keeps every tendon at or above its floor, to the distribution's tolerance on a bound:
+/// `4 (K + d) u` of the largest tension (module `distribution`), which the capstan factors
+/// raise by many orders of magnitude.
+fn floors_kept_at_q_zero(model: &Model<f64>, rng: &mut ChaCha8Rng, states: usize) {
+    let floor = model.tendons()[0].floor;
+    let unknowns = (model.tendons().len() + model.system().null_space.len()) as f64;
+    let mut solver = Data::new(model);
+    for _ in 0..states {
+        let [_, qd, qdd] = random_state(rng, model.dof());
         let slow = 10f64.powf(rng.random_range(-5.0..0.0));
         let qd: Vec<f64> = qd.iter().map(|v| v * slow).collect();
         let q = vec![0.0; model.dof()];
-        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
-        // The distribution's tolerance on a bound: `4 (K + d) u` of the largest tension
-        // (module `distribution`).
+        let r = solver.inverse_dynamics(model, &q, &qd, &qdd).unwrap();
         let largest = r.tendon_tensions.iter().fold(floor, |a, &t| a.max(t));
-        let tolerance = 4.0 * (tendons + d) * f64::EPSILON / 2.0 * largest;
+        let tolerance = 4.0 * unknowns * f64::EPSILON / 2.0 * largest;
         assert!(
             r.tendon_tensions.iter().all(|&t| t >= floor - tolerance),
             "{:?}",
