@@ -1165,7 +1165,7 @@ fn a_routing_shown_only_at_sampled_ways_of_sliding_is_refused_unless_the_file_ac
         "with 14 groups of guides there are too many ways to take one by one",
         "30 of the ways every guide slides",
         "none of which fails",
-        "set `accept_sampled_sliding: true` to accept it",
+        "set the top-level field `accept_sampled_sliding: true` to accept it",
     ] {
         assert!(refused.contains(phrase), "{refused}");
     }

@@ -735,9 +735,9 @@ pub(super) fn sliding_directions(
         return Err(v.routing(
             &sliding.first_guide(model),
             format!(
-                "{sampled}; lower `mu` or route the tendons differently, or set \
-                 `accept_sampled_sliding: true` to accept it, inverse and forward dynamics \
-                 then refusing any state that fails"
+                "{sampled}; lower `mu` or route the tendons differently, or set the \
+                 top-level field `accept_sampled_sliding: true` to accept it, inverse and \
+                 forward dynamics then refusing any state that fails"
             ),
         ));
     }
@@ -1141,7 +1141,7 @@ fn lifts_every_tendon(
 /// that held at rest fails, `None` where each fails only for want of one proportion. Past
 /// [`EVERY_WAY_UP_TO`] choices, those of [`pivoted_free_tendons`] over every point, and
 /// `Ok(false)` where none holds: not all were tried, and the states between the points
-/// are left to the runtime solver.
+/// are not shown ([`sliding_directions`] refuses the routing unless the file accepts it).
 fn held_between(
     model: &Model<f64>,
     sliding: &Sliding,
@@ -1503,7 +1503,6 @@ impl Sliding {
         )
     }
 
-    /// The first guide with friction's name, where a refusal is reported.
     /// What gives the guides' capstan factors values between rest and sliding.
     fn between_comes_from(&self) -> &'static str {
         if self.smoothed {
@@ -1513,6 +1512,7 @@ impl Sliding {
         }
     }
 
+    /// The first guide with friction's name, where a refusal is reported.
     fn first_guide(&self, model: &Model<f64>) -> String {
         let first = &self.sliders[0];
         model.bodies[model.strands[first.strand].idlers[first.idler].body]
