@@ -711,8 +711,31 @@ fn run(cli: Cli) -> Result<(), String> {
                 .forward_dynamics(&m, &q, &qd, &torques, &tensions)
                 .map_err(|e| e.to_string())?
                 .to_vec();
+            // Within the band of rest, forward dynamics takes no friction (it does not know
+            // q̈, which would give the impending motion's direction): flag those elements.
+            let bearings: Vec<&str> = (tendyn_core::friction::at_rest(&m, &qd).into_iter())
+                .map(|b| m.bodies()[b].name.as_str())
+                .collect();
+            let guides: Vec<(&str, &str)> = (tendyn_core::friction::guides_at_rest(&m, &qd)
+                .into_iter())
+            .map(|(s, k)| {
+                let strand = &m.strands()[s];
+                (
+                    strand.name.as_str(),
+                    m.bodies()[strand.idlers[k].body].name.as_str(),
+                )
+            })
+            .collect();
             if json {
-                let mut out = serde_json::json!({ "mechanism": m.name(), "qdd": qdd });
+                let mut out = serde_json::json!({
+                    "mechanism": m.name(),
+                    "qdd": qdd,
+                    "sticking": bearings,
+                    "sticking_guides": guides
+                        .iter()
+                        .map(|(t, p)| serde_json::json!({"tendon": t, "pulley": p}))
+                        .collect::<Vec<_>>(),
+                });
                 if derivatives {
                     let d = s
                         .forward_dynamics_derivatives(&m, &q, &qd, &torques, &tensions)
@@ -724,6 +747,16 @@ fn run(cli: Cli) -> Result<(), String> {
                 say!("{out}");
             } else {
                 say!("qdd = {qdd:?}");
+                let resting: Vec<String> = (bearings.iter())
+                    .map(|b| format!("`{b}`'s bearing"))
+                    .chain(guides.iter().map(|(t, p)| format!("`{t}` over `{p}`")))
+                    .collect();
+                if !resting.is_empty() {
+                    say!(
+                        "at rest, without friction (exact only away from rest): {}",
+                        resting.join(", ")
+                    );
+                }
             }
             Ok(())
         }

@@ -213,6 +213,54 @@ fn forward_gives_joint_accelerations_and_bad_input_fails_with_the_reason() {
     assert!(!ok && err.contains("does/not/exist.ron"), "{err}");
 }
 
+/// Forward dynamics does not know `q̈`, so within the band of rest it takes no friction:
+/// it flags the bearings and guides it took so (docs/outputs.md §5), and none where they
+/// move.
+#[test]
+fn forward_flags_the_bearings_and_guides_it_took_at_rest_without_friction() {
+    let forward = |file: &str, qd: &str, tensions: &str, json: bool| {
+        let mut args = vec![
+            "forward",
+            file,
+            "--q",
+            "0.1,0.2",
+            "--qd",
+            qd,
+            "--tensions",
+            tensions,
+        ];
+        if json {
+            args.push("--json");
+        }
+        let (ok, out, err) = tendyn(&args);
+        assert!(ok, "{err}");
+        out
+    };
+    let capstan = "examples/mechanisms/example2_capstan.ron";
+    let out = forward(capstan, "0,0", "10,10,10", true);
+    assert!(
+        out.contains(r#""sticking":[]"#)
+            && out.contains(
+                r#""sticking_guides":[{"pulley":"idler3","tendon":"T32"},{"pulley":"idler4","tendon":"T42"}]"#
+            ),
+        "{out}"
+    );
+    let out = forward(capstan, "0,0", "10,10,10", false);
+    assert!(
+        out.contains("at rest, without friction (exact only away from rest): `T32` over `idler3`, `T42` over `idler4`"),
+        "{out}"
+    );
+    let out = forward(capstan, "1,-0.5", "10,10,10", true);
+    assert!(
+        out.contains(r#""sticking":[],"sticking_guides":[]"#),
+        "{out}"
+    );
+    assert!(!forward(capstan, "1,-0.5", "10,10,10", false).contains("at rest"));
+    let friction = "examples/mechanisms/example2_friction.ron";
+    let out = forward(friction, "0,1", "10,10,10", true);
+    assert!(out.contains(r#""sticking":["link1"]"#), "{out}");
+}
+
 #[test]
 fn generate_writes_straight_line_rust_and_reports_operation_counts() {
     let dir = scratch_dir("tendyn_gen");

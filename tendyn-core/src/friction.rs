@@ -198,6 +198,23 @@ pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
         .collect()
 }
 
+/// The guides with friction, each as `(strand, place on it)`, whose tendon the exact law
+/// finds within [`REST`] of rest at `q̇`: forward dynamics, which does not know `q̈`, takes
+/// no friction there, so its result is exact only where this and [`at_rest`] are empty
+/// (docs/outputs.md §5). Empty with the smoothed law, which has no such band.
+pub fn guides_at_rest(model: &Model<f64>, qd: &[f64]) -> Vec<(usize, usize)> {
+    (model.guides())
+        .filter(|(_, _, _, g)| sticks(model, g, g.speed(qd)))
+        .map(|(s, k, _, _)| (s, k))
+        .collect()
+}
+
+/// Whether a guide whose tendon slides at `v` (m/s) sticks: it has friction and the exact
+/// law finds it within [`REST`] of rest.
+fn sticks(model: &Model<f64>, g: &crate::model::Guide, v: f64) -> bool {
+    g.mu > 0.0 && model.friction_smoothing.is_none() && v.abs() <= REST
+}
+
 /// What a fixed guide does at a state: the `guides` of `tendyn eval --json` and of the
 /// Python package's inverse dynamics (docs/outputs.md).
 #[derive(Clone, Debug, PartialEq)]
@@ -244,7 +261,7 @@ pub fn guide_states(
                 wrap_angle: g.wrap_at(q),
                 sliding_speed: v,
                 direction: direction(v, Some(accel), model.friction_smoothing),
-                sticking: g.mu > 0.0 && model.friction_smoothing.is_none() && v.abs() <= REST,
+                sticking: sticks(model, g, v),
                 dissipated_power: segment_tensions.map(|t| (t[s][k + 1] - t[s][k]) * v),
             }
         })
