@@ -92,7 +92,9 @@ fn bad_capstan_coefficients_are_rejected_naming_the_pulley() {
 /// over the pin towards its exit at `0.02 q̇`; the side it slides towards pulls, so with
 /// `σ = sign(q̇)` (the sign of `q̈` at rest, 0 if that is zero too) the drum side carries
 /// `T_drum = T_exit e^{−σμπ/2}`, the joint needs `Q = 0.02 (T_drum − T_direct)`, and the
-/// least-norm distribution above the 2 N floors puts one tendon on its floor.
+/// least-norm distribution above the 2 N floors puts one tendon on its floor. Within
+/// `1e-6` m/s of rest the pin is flagged sticking, in inverse dynamics' guides and in what
+/// forward dynamics (which does not know `q̈`) takes at rest, and nowhere else.
 #[test]
 fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_where_it_slides() {
     let model = parse(&pin_with("mu: 0.0", "mu: 0.2")).unwrap();
@@ -106,15 +108,27 @@ fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_wh
     states.push([vec![0.3], vec![0.0], vec![0.0]]);
     for [q, qd, qdd] in states {
         let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap();
-        let sigma = if qd[0].abs() > 1e-6 {
+        // The band of rest is on the sliding speed `0.02 q̇` (m/s) and its rate.
+        let sigma = if (0.02 * qd[0]).abs() > 1e-6 {
             qd[0].signum()
-        } else if qdd[0].abs() > 1e-6 {
+        } else if (0.02 * qdd[0]).abs() > 1e-6 {
             qdd[0].signum()
         } else {
             0.0
         };
         let f = (-sigma * 0.2 * std::f64::consts::FRAC_PI_2).exp();
         let segments = &r.segment_tensions.as_ref().unwrap()[0];
+        let at_rest = (0.02 * qd[0]).abs() <= 1e-6;
+        let [pin] = &tendyn_core::friction::guide_states(&model, [&q, &qd, &qdd], None)[..] else {
+            panic!("one guide")
+        };
+        assert_eq!(
+            (pin.direction, pin.sticking),
+            (sigma, at_rest),
+            "q̇ = {qd:?}"
+        );
+        let resting = tendyn_core::friction::guides_at_rest(&model, &qd);
+        assert_eq!(resting.len(), usize::from(at_rest), "q̇ = {qd:?}");
         let (over, direct) = (r.tendon_tensions[0], r.tendon_tensions[1]);
         assert_eq!(
             segments[1], over,
