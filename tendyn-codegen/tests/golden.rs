@@ -1,5 +1,5 @@
-//! The generated code of the paper's examples is kept in `golden/` (the benchmark compiles
-//! it). Generation must reproduce it byte for byte, so any change to what is emitted shows
+//! The generated code of the paper's examples, and of Example 2 with friction, is kept in
+//! `golden/` (the benchmark compiles the former). Generation must reproduce it byte for byte, so any change to what is emitted shows
 //! up in review. After an intended change: `TENDYN_BLESS=1 cargo test -p tendyn-codegen --test golden`.
 
 //!
@@ -19,6 +19,24 @@ fn generated_paper_examples_match_the_golden_files() {
         "example2_open_ended",
         "example3_stanford_jpl",
     ] {
+        let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
+        let outputs = available_outputs(&model);
+        compare(
+            name,
+            &model,
+            &outputs,
+            &format!("{root}/tendyn-codegen/golden/{name}.rs"),
+        );
+    }
+}
+
+/// Example 2 with bearing friction and with capstan friction on its guides, kept the same
+/// way: what friction adds to the emitted code shows in review, and the `no_std` check
+/// (`tests/no-std`) compiles these too.
+#[test]
+fn generated_friction_examples_match_the_golden_files() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for name in ["example2_friction", "example2_capstan"] {
         let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
         let outputs = available_outputs(&model);
         compare(
