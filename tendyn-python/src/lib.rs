@@ -794,6 +794,40 @@ impl Model {
         })
     }
 
+    /// Where `forward_dynamics` is not exact: the bearings and guides with friction it takes
+    /// without friction at `q̇`, within the band of rest, where only `q̈` (which it does not
+    /// know) would direct it. `{"sticking": (…, friction bodies), "guide_sticking": (…,
+    /// guides)}` of booleans, as `inverse_dynamics` names them (`friction_bodies`, `guides`
+    /// order); all false with `friction_smoothing`.
+    fn forward_at_rest<'py>(
+        &self,
+        py: Python<'py>,
+        qd: Input<'py>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let (model, n) = (&self.model, self.model.dof());
+        let shapes = [
+            vec![friction_bodies(model).count()],
+            vec![model.guides().count()],
+        ];
+        let flag = |at_rest: bool| if at_rest { 1.0 } else { 0.0 };
+        let arrays = self.fill(py, vec![("qd", qd, n)], &shapes, |_, s, values| {
+            let bodies = tendyn_core::friction::at_rest(model, s[0]);
+            values[0].extend(friction_bodies(model).map(|b| flag(bodies.contains(&b))));
+            let guides = tendyn_core::friction::guides_at_rest(model, s[0]);
+            values[1].extend(
+                model
+                    .guides()
+                    .map(|(g, k, _, _)| flag(guides.contains(&(g, k)))),
+            );
+            Ok(())
+        })?;
+        let out = PyDict::new(py);
+        for (key, array) in ["sticking", "guide_sticking"].into_iter().zip(arrays) {
+            out.set_item(key, array.call_method1("astype", ("bool",))?)?;
+        }
+        Ok(out)
+    }
+
     /// `∂Q/∂q` and `∂Q/∂q̇`, exact (dual numbers through the recursion): `(2, n, n)` per
     /// state, `[0][i][k] = ∂Q_i/∂q_k`, `[1][i][k] = ∂Q_i/∂q̇_k` (`∂Q/∂q̈` is `mass_matrix`).
     fn generalized_forces_derivatives<'py>(

@@ -112,6 +112,24 @@ def test_friction_and_guides_are_the_command_lines(name):
     assert got["sticking"].all() and got["guide_sticking"].all()
 
 
+@pytest.mark.parametrize("name", FRICTION)
+def test_forward_at_rest_flags_what_forward_dynamics_takes_without_friction(name):
+    """Within the band of rest forward dynamics, which does not know `q̈`, takes no friction:
+    `forward_at_rest` flags those bearings and guides, the ones inverse dynamics finds
+    sticking at the same `q̇` (all of them at rest, none where every joint moves)."""
+    m = model(name)
+    q, qd, qdd = states(m, 12, 9)
+    qd[::3] = 0.0
+    flags = m.forward_at_rest(qd)
+    inverse = m.inverse_dynamics(q, qd, qdd)
+    for key in ("sticking", "guide_sticking"):
+        assert flags[key].dtype == bool
+        assert np.array_equal(flags[key], inverse[key]), key
+        assert flags[key][::3].all()
+        assert not flags[key][1::3].any()
+    assert np.array_equal(m.forward_at_rest(qd[1])["sticking"], flags["sticking"][1])
+
+
 @pytest.mark.parametrize("name", PAPER)
 def test_the_outputs_obey_the_equations_of_motion(name):
     """`Q = M q̈ + h + g` (no friction in the paper's examples), and forward dynamics of the
