@@ -710,6 +710,7 @@ pub fn generated_cases() -> Vec<StressCase> {
         tendon_chain(6),
         light_distal(1e-9),
         bearing_friction(1e3),
+        capstan_friction(1.0),
     ];
     v.extend(
         tension_bounds()
