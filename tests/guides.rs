@@ -155,6 +155,31 @@ fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_wh
     }
 }
 
+/// The pin's wrap angle does not change with `q`: under the exact law its capstan factor is
+/// one of `e^{−μβ}`, `e^{μβ}` and 1, folded into the generated code as numbers chosen by
+/// the direction (docs/generated-code.md), with no `exp` at run time. The numbers are the
+/// capstan law's by hand (`μ = 0.2`, `β = π/2`); `tests/generated` checks such code
+/// (`pin_then_idler_friction`) against the runtime solver.
+#[test]
+fn a_guide_of_constant_wrap_angle_has_its_capstan_factors_folded_into_generated_code() {
+    use tendyn_codegen::{generate, Output, Scalar};
+    let model = parse(&pin_with("mu: 0.0", "mu: 0.2")).unwrap();
+    let code = generate(&model, &[Output::Actuation], Scalar::Generic, "pin.ron").unwrap();
+    let source = code.source();
+    let x = 0.2 * std::f64::consts::FRAC_PI_2;
+    assert!(!source.contains(".exp()"), "{source}");
+    let numbers: Vec<f64> = (source.split("T::from_f64(").skip(1))
+        .filter_map(|s| s.split(')').next()?.parse().ok())
+        .collect();
+    for factor in [(-x).exp(), x.exp()] {
+        assert!(
+            (numbers.iter()).any(|n| (n - factor).abs() <= 2.0 * f64::EPSILON * factor),
+            "{factor:?} not in {numbers:?}"
+        );
+    }
+    assert!(source.contains(".select_outside("), "{source}");
+}
+
 /// Generated code traces the state's system for any null space (the pin, `d = 1`: every
 /// output is available; with a second direct tendon, `d = 2`: `actuation`, `base_reaction`
 /// and forward dynamics, the segments and bearings refused as for any `d ≥ 2`, friction or

@@ -27,18 +27,18 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s75, c76) = q[1].sin_cos();
-    let t954 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t1192 = s75 * T::from_f64(0.03);
-    let t1201 = qdd[0]
+    let t955 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
+    let t1193 = s75 * T::from_f64(0.03);
+    let t1202 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * t954
-            - qd[1] * Real::mul_add(qd[1], t1192, qd[0] * (s75 * T::from_f64(0.06))));
-    let t1207 = Real::mul_add(
+        + (qdd[1] * t955
+            - qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06))));
+    let t1208 = Real::mul_add(
         qdd[0],
-        t954,
-        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1192)),
+        t955,
+        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1193)),
     );
-    [t1201, t1207]
+    [t1202, t1208]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -53,74 +53,74 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s75, c76) = q[1].sin_cos();
-    let t196 = qd[0] * T::from_f64(0.03);
-    let t198 = T::from_f64(0.02) * qd[1];
-    let t200 = qdd[0] * T::from_f64(0.03);
-    let t202 = T::from_f64(0.02) * qdd[1];
-    let t953 = c76 * T::from_f64(0.03);
-    let t1192 = s75 * T::from_f64(0.03);
-    let t1212 = (-((t198 - t196)
+    let t194 = qd[0] * T::from_f64(0.03);
+    let t196 = T::from_f64(0.02) * qd[1];
+    let t198 = qdd[0] * T::from_f64(0.03);
+    let t200 = T::from_f64(0.02) * qdd[1];
+    let t954 = c76 * T::from_f64(0.03);
+    let t1193 = s75 * T::from_f64(0.03);
+    let t1213 = (-((t196 - t194)
         .sign_outside_or(
             T::from_f64(0.000001),
-            (t202 - t200).sign_outside(T::from_f64(0.000001)),
+            (t200 - t198).sign_outside(T::from_f64(0.000001)),
         )
         * (T::from_f64(0.3)
             * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
         .exp();
-    let t1215 = ((t196 + t198)
+    let t1216 = ((t194 + t196)
         .sign_outside_or(
             T::from_f64(0.000001),
-            (t200 + t202).sign_outside(T::from_f64(0.000001)),
+            (t198 + t200).sign_outside(T::from_f64(0.000001)),
         )
         * (T::from_f64(0.3)
             * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
         .exp();
-    let t1218 = -(T::from_f64(0.03) * t1212);
-    let t1219 = T::from_f64(0.02) * t1212 / t1218;
-    let t1220 = T::from_f64(0.06) * t1219;
-    let t1240 = T::from_f64(0.03) * t1219;
-    let t1245 = Real::mul_add(
+    let t1219 = -(T::from_f64(0.03) * t1213);
+    let t1220 = T::from_f64(0.02) * t1213 / t1219;
+    let t1221 = T::from_f64(0.06) * t1220;
+    let t1241 = T::from_f64(0.03) * t1220;
+    let t1246 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t1219, T::from_f64(-0.0166667) - t953, T::from_f64(0.0166667)),
+        Real::mul_add(t1220, T::from_f64(-0.0166667) - t954, T::from_f64(0.0166667)),
         Real::mul_add(
             qd[1],
-            qd[1] * (s75 * t1240),
-            qd[0] * Real::mul_add(qd[1], s75 * t1220, qd[0] * t1192),
+            qd[1] * (s75 * t1241),
+            qd[0] * Real::mul_add(qd[1], s75 * t1221, qd[0] * t1193),
         ),
     );
-    let t1248 = t1215 * (T::from_f64(-0.02) + t1240);
-    let t1249 = Real::mul_add(
+    let t1249 = t1216 * (T::from_f64(-0.02) + t1241);
+    let t1250 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1220,
+            T::from_f64(0.03) - t1221,
             Real::mul_add(
                 -T::from_f64(0.12466669999999999),
-                t1219,
+                t1220,
                 T::from_f64(0.0166667),
             ),
         ),
-        t1245,
-    ) / t1248;
-    let t1254 = qdd[0]
+        t1246,
+    ) / t1249;
+    let t1255 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t953)
+        + (qdd[1] * (T::from_f64(0.0166667) + t954)
             + Real::mul_add(
-                t1215,
-                T::from_f64(0.03) * t1249,
-                -(qd[1] * Real::mul_add(qd[1], t1192, qd[0] * (s75 * T::from_f64(0.06)))),
+                t1216,
+                T::from_f64(0.03) * t1250,
+                -(qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1255 = t1254 / t1218;
-    let t1257 = T::from_f64(0.04) * t1219 / t1248;
-    let t1261 = Real::mul_add(t1215, T::from_f64(0.03) * t1257, T::from_f64(-0.04))
-        / t1218;
-    let t1279 = (-(Real::mul_add(t1255, t1261, t1249 * t1257)
-        / Real::mul_add(t1257, t1257, Real::mul_add(t1261, t1261, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1255) / t1261)
-        .max((T::from_f64(5.0) - t1249) / t1257);
+    let t1256 = t1255 / t1219;
+    let t1258 = T::from_f64(0.04) * t1220 / t1249;
+    let t1262 = Real::mul_add(t1216, T::from_f64(0.03) * t1258, T::from_f64(-0.04))
+        / t1219;
+    let t1279 = (-(Real::mul_add(t1256, t1262, t1250 * t1258)
+        / Real::mul_add(t1258, t1258, Real::mul_add(t1262, t1262, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1256) / t1262)
+        .max((T::from_f64(5.0) - t1250) / t1258);
     let t1280 = T::from_f64(5.0).max(t1279);
-    let t1282 = Real::mul_add(t1261, t1280, t1255);
-    let t1284 = Real::mul_add(t1257, t1280, t1249);
+    let t1282 = Real::mul_add(t1262, t1280, t1256);
+    let t1284 = Real::mul_add(t1258, t1280, t1250);
     tendyn_core::distribution::Actuation::exact([], [t1282, t1284, t1280])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
@@ -132,9 +132,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t76 = q[1].cos();
-    let t954 = T::from_f64(0.0166667) + t76 * T::from_f64(0.03);
-    let t1184 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    [[t1184, t954], [t954, T::from_f64(0.0166667)]]
+    let t955 = T::from_f64(0.0166667) + t76 * T::from_f64(0.03);
+    let t1185 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    [[t1185, t955], [t955, T::from_f64(0.0166667)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -145,11 +145,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t75 = q[1].sin();
-    let t1192 = t75 * T::from_f64(0.03);
-    let t1199 = -(qd[1]
-        * Real::mul_add(qd[1], t1192, qd[0] * (t75 * T::from_f64(0.06))));
-    let t1205 = qd[0] * (qd[0] * t1192);
-    [t1199, t1205]
+    let t1193 = t75 * T::from_f64(0.03);
+    let t1200 = -(qd[1]
+        * Real::mul_add(qd[1], t1193, qd[0] * (t75 * T::from_f64(0.06))));
+    let t1206 = qd[0] * (qd[0] * t1193);
+    [t1200, t1206]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -175,37 +175,37 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s75, c76) = q[1].sin_cos();
-    let t196 = qd[0] * T::from_f64(0.03);
-    let t198 = T::from_f64(0.02) * qd[1];
-    let t678 = (-(T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
-        * (T::from_f64(0.3) * (t198 - t196).sign_outside(T::from_f64(0.000001)))))
+    let t194 = qd[0] * T::from_f64(0.03);
+    let t196 = T::from_f64(0.02) * qd[1];
+    let t679 = (-(T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
+        * (T::from_f64(0.3) * (t196 - t194).sign_outside(T::from_f64(0.000001)))))
         .exp();
-    let t685 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
-        * (T::from_f64(0.3) * (t196 + t198).sign_outside(T::from_f64(0.000001))))
+    let t686 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
+        * (T::from_f64(0.3) * (t194 + t196).sign_outside(T::from_f64(0.000001))))
         .exp();
-    let t1184 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    let t1192 = s75 * T::from_f64(0.03);
-    let t1288 = qd[1] * Real::mul_add(qd[1], t1192, qd[0] * (s75 * T::from_f64(0.06)))
+    let t1185 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    let t1193 = s75 * T::from_f64(0.03);
+    let t1288 = qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))
         + Real::mul_add(
             -tendon_tensions[0],
-            T::from_f64(0.03) * t678,
+            T::from_f64(0.03) * t679,
             Real::mul_add(
                 -tendon_tensions[1],
-                T::from_f64(0.03) * t685,
+                T::from_f64(0.03) * t686,
                 T::from_f64(0.04) * tendon_tensions[2],
             ),
         );
-    let t1290 = (T::from_f64(0.0166667) + c76 * T::from_f64(0.03)) / t1184;
+    let t1290 = (T::from_f64(0.0166667) + c76 * T::from_f64(0.03)) / t1185;
     let t1750 = Real::mul_add(
         -t1288,
         t1290,
         Real::mul_add(
             -tendon_tensions[1],
-            T::from_f64(0.02) * t685,
-            tendon_tensions[0] * (T::from_f64(0.02) * t678),
-        ) - qd[0] * (qd[0] * t1192),
-    ) / Real::mul_add(-t1184, t1290 * t1290, T::from_f64(0.0166667));
-    let t1752 = Real::mul_add(-t1290, t1750, t1288 / t1184);
+            T::from_f64(0.02) * t686,
+            tendon_tensions[0] * (T::from_f64(0.02) * t679),
+        ) - qd[0] * (qd[0] * t1193),
+    ) / Real::mul_add(-t1185, t1290 * t1290, T::from_f64(0.0166667));
+    let t1752 = Real::mul_add(-t1290, t1750, t1288 / t1185);
     [t1752, t1750]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
@@ -217,76 +217,76 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s75, c76) = q[1].sin_cos();
-    let t196 = qd[0] * T::from_f64(0.03);
-    let t198 = T::from_f64(0.02) * qd[1];
-    let t200 = qdd[0] * T::from_f64(0.03);
-    let t202 = T::from_f64(0.02) * qdd[1];
-    let t953 = c76 * T::from_f64(0.03);
-    let t1192 = s75 * T::from_f64(0.03);
-    let t1212 = (-((t198 - t196)
+    let t194 = qd[0] * T::from_f64(0.03);
+    let t196 = T::from_f64(0.02) * qd[1];
+    let t198 = qdd[0] * T::from_f64(0.03);
+    let t200 = T::from_f64(0.02) * qdd[1];
+    let t954 = c76 * T::from_f64(0.03);
+    let t1193 = s75 * T::from_f64(0.03);
+    let t1213 = (-((t196 - t194)
         .sign_outside_or(
             T::from_f64(0.000001),
-            (t202 - t200).sign_outside(T::from_f64(0.000001)),
+            (t200 - t198).sign_outside(T::from_f64(0.000001)),
         )
         * (T::from_f64(0.3)
             * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
         .exp();
-    let t1215 = ((t196 + t198)
+    let t1216 = ((t194 + t196)
         .sign_outside_or(
             T::from_f64(0.000001),
-            (t200 + t202).sign_outside(T::from_f64(0.000001)),
+            (t198 + t200).sign_outside(T::from_f64(0.000001)),
         )
         * (T::from_f64(0.3)
             * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
         .exp();
-    let t1218 = -(T::from_f64(0.03) * t1212);
-    let t1219 = T::from_f64(0.02) * t1212 / t1218;
-    let t1220 = T::from_f64(0.06) * t1219;
-    let t1240 = T::from_f64(0.03) * t1219;
-    let t1245 = Real::mul_add(
+    let t1219 = -(T::from_f64(0.03) * t1213);
+    let t1220 = T::from_f64(0.02) * t1213 / t1219;
+    let t1221 = T::from_f64(0.06) * t1220;
+    let t1241 = T::from_f64(0.03) * t1220;
+    let t1246 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t1219, T::from_f64(-0.0166667) - t953, T::from_f64(0.0166667)),
+        Real::mul_add(t1220, T::from_f64(-0.0166667) - t954, T::from_f64(0.0166667)),
         Real::mul_add(
             qd[1],
-            qd[1] * (s75 * t1240),
-            qd[0] * Real::mul_add(qd[1], s75 * t1220, qd[0] * t1192),
+            qd[1] * (s75 * t1241),
+            qd[0] * Real::mul_add(qd[1], s75 * t1221, qd[0] * t1193),
         ),
     );
-    let t1248 = t1215 * (T::from_f64(-0.02) + t1240);
-    let t1249 = Real::mul_add(
+    let t1249 = t1216 * (T::from_f64(-0.02) + t1241);
+    let t1250 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1220,
+            T::from_f64(0.03) - t1221,
             Real::mul_add(
                 -T::from_f64(0.12466669999999999),
-                t1219,
+                t1220,
                 T::from_f64(0.0166667),
             ),
         ),
-        t1245,
-    ) / t1248;
-    let t1254 = qdd[0]
+        t1246,
+    ) / t1249;
+    let t1255 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t953)
+        + (qdd[1] * (T::from_f64(0.0166667) + t954)
             + Real::mul_add(
-                t1215,
-                T::from_f64(0.03) * t1249,
-                -(qd[1] * Real::mul_add(qd[1], t1192, qd[0] * (s75 * T::from_f64(0.06)))),
+                t1216,
+                T::from_f64(0.03) * t1250,
+                -(qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1255 = t1254 / t1218;
-    let t1257 = T::from_f64(0.04) * t1219 / t1248;
-    let t1261 = Real::mul_add(t1215, T::from_f64(0.03) * t1257, T::from_f64(-0.04))
-        / t1218;
-    let t1279 = (-(Real::mul_add(t1255, t1261, t1249 * t1257)
-        / Real::mul_add(t1257, t1257, Real::mul_add(t1261, t1261, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1255) / t1261)
-        .max((T::from_f64(5.0) - t1249) / t1257);
+    let t1256 = t1255 / t1219;
+    let t1258 = T::from_f64(0.04) * t1220 / t1249;
+    let t1262 = Real::mul_add(t1216, T::from_f64(0.03) * t1258, T::from_f64(-0.04))
+        / t1219;
+    let t1279 = (-(Real::mul_add(t1256, t1262, t1250 * t1258)
+        / Real::mul_add(t1258, t1258, Real::mul_add(t1262, t1262, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1256) / t1262)
+        .max((T::from_f64(5.0) - t1250) / t1258);
     let t1280 = T::from_f64(5.0).max(t1279);
-    let t1282 = Real::mul_add(t1261, t1280, t1255);
-    let t1284 = Real::mul_add(t1257, t1280, t1249);
-    let t1334 = t1212 * t1282;
-    let t1335 = t1215 * t1284;
+    let t1282 = Real::mul_add(t1262, t1280, t1256);
+    let t1284 = Real::mul_add(t1258, t1280, t1250);
+    let t1334 = t1213 * t1282;
+    let t1335 = t1216 * t1284;
     [t1334, t1282, t1335, t1284, t1280]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
@@ -303,136 +303,136 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t83 = qdd[0] * T::from_f64(0.15);
     let t102 = qd[0] + qd[1];
     let t103 = qdd[0] + qdd[1];
-    let t196 = qd[0] * T::from_f64(0.03);
-    let t198 = T::from_f64(0.02) * qd[1];
-    let t200 = qdd[0] * T::from_f64(0.03);
-    let t202 = T::from_f64(0.02) * qdd[1];
-    let t740 = qd[0] * qd[0];
-    let t741 = T::from_f64(0.3) * t740;
-    let t753 = t102 * t102;
-    let t759 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t741)) - T::from_f64(0.25) * t753
-            + T::from_f64(0.125) * t753);
-    let t785 = (-(T::from_f64(0.3)
-        * ((t198 - t196)
+    let t194 = qd[0] * T::from_f64(0.03);
+    let t196 = T::from_f64(0.02) * qd[1];
+    let t198 = qdd[0] * T::from_f64(0.03);
+    let t200 = T::from_f64(0.02) * qdd[1];
+    let t741 = qd[0] * qd[0];
+    let t742 = T::from_f64(0.3) * t741;
+    let t754 = t102 * t102;
+    let t760 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t742)) - T::from_f64(0.25) * t754
+            + T::from_f64(0.125) * t754);
+    let t786 = (-(T::from_f64(0.3)
+        * ((t196 - t194)
             .sign_outside_or(
                 T::from_f64(0.000001),
-                (t202 - t200).sign_outside(T::from_f64(0.000001)),
+                (t200 - t198).sign_outside(T::from_f64(0.000001)),
             ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
         .exp();
-    let t788 = (T::from_f64(0.3)
-        * ((t196 + t198)
+    let t789 = (T::from_f64(0.3)
+        * ((t194 + t196)
             .sign_outside_or(
                 T::from_f64(0.000001),
-                (t200 + t202).sign_outside(T::from_f64(0.000001)),
+                (t198 + t200).sign_outside(T::from_f64(0.000001)),
             ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
         .exp();
-    let t790 = -(T::from_f64(0.03) * t785);
-    let t792 = T::from_f64(0.03) * t788;
-    let t794 = T::from_f64(0.02) * t785 / t790;
-    let t796 = Real::mul_add(-T::from_f64(0.02), t788, t792 * t794);
-    let t798 = T::from_f64(0.04) * t794 / t796;
-    let t801 = Real::mul_add(t792, t798, T::from_f64(-0.04)) / t790;
-    let t1000 = T::from_f64(1.2) * t83;
-    let t1002 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1004 = s75 * t741 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1005 = T::from_f64(0.8) * t1004;
-    let t1007 = Real::mul_add(-T::from_f64(0.1), t1004, T::from_f64(0.0041667) * t103);
-    let t1009 = Real::mul_add(T::from_f64(0.2), t1004, t1007);
-    let t1018 = Real::mul_add(
+    let t791 = -(T::from_f64(0.03) * t786);
+    let t793 = T::from_f64(0.03) * t789;
+    let t795 = T::from_f64(0.02) * t786 / t791;
+    let t797 = Real::mul_add(-T::from_f64(0.02), t789, t793 * t795);
+    let t799 = T::from_f64(0.04) * t795 / t797;
+    let t802 = Real::mul_add(t793, t799, T::from_f64(-0.04)) / t791;
+    let t1001 = T::from_f64(1.2) * t83;
+    let t1003 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1005 = s75 * t742 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t1006 = T::from_f64(0.8) * t1005;
+    let t1008 = Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103);
+    let t1010 = Real::mul_add(T::from_f64(0.2), t1005, t1008);
+    let t1019 = Real::mul_add(
         T::from_f64(0.3),
-        t1000 + Real::mul_add(c76, t1005, s75 * t759),
-        t1002 + t1009,
+        t1001 + Real::mul_add(c76, t1006, s75 * t760),
+        t1003 + t1010,
     );
-    let t1027 = Real::mul_add(-t794, t1018, t1009) / t796;
-    let t1030 = Real::mul_add(t792, t1027, t1018) / t790;
-    let t1041 = (-(Real::mul_add(t798, t1027, t801 * t1030)
-        / (T::from_f64(1.0) + Real::mul_add(t798, t798, t801 * t801))))
-        .max((T::from_f64(5.0) - t1030) / t801)
-        .max((T::from_f64(5.0) - t1027) / t798);
-    let t1042 = T::from_f64(5.0).max(t1041);
-    let t1044 = Real::mul_add(t801, t1042, t1030);
-    let t1046 = Real::mul_add(t798, t1042, t1027);
-    let t1047 = t785 * t1044;
-    let t1048 = t788 * t1046;
-    let t1049 = T::from_f64(0.9860132971832694) * t1047;
-    let t1050 = T::from_f64(0.16666666666666652) * t1047;
-    let t1053 = Real::mul_add(s75, t1050, c76 * t1049);
-    let t1054 = s75 * t1049;
-    let t1055 = c76 * t1050;
-    let t1056 = t1054 - t1055;
-    let t1059 = Real::mul_add(
+    let t1028 = Real::mul_add(-t795, t1019, t1010) / t797;
+    let t1031 = Real::mul_add(t793, t1028, t1019) / t791;
+    let t1042 = (-(Real::mul_add(t799, t1028, t802 * t1031)
+        / (T::from_f64(1.0) + Real::mul_add(t799, t799, t802 * t802))))
+        .max((T::from_f64(5.0) - t1031) / t802)
+        .max((T::from_f64(5.0) - t1028) / t799);
+    let t1043 = T::from_f64(5.0).max(t1042);
+    let t1045 = Real::mul_add(t802, t1043, t1031);
+    let t1047 = Real::mul_add(t799, t1043, t1028);
+    let t1048 = t786 * t1045;
+    let t1049 = t789 * t1047;
+    let t1050 = T::from_f64(0.9860132971832694) * t1048;
+    let t1051 = T::from_f64(0.16666666666666652) * t1048;
+    let t1054 = Real::mul_add(s75, t1051, c76 * t1050);
+    let t1055 = s75 * t1050;
+    let t1056 = c76 * t1051;
+    let t1057 = t1055 - t1056;
+    let t1060 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1053,
+        t1054,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1056,
+        ) * t1057,
     );
-    let t1062 = Real::mul_add(-s73, t1050, c74 * t1049);
-    let t1065 = Real::mul_add(c74, t1050, s73 * t1049);
-    let t1076 = T::from_f64(0.9994442900376633) * t1048;
-    let t1077 = T::from_f64(0.03333333333333337) * t1048;
-    let t1080 = Real::mul_add(s75, t1077, c76 * t1076);
-    let t1081 = s75 * t1076;
-    let t1082 = c76 * t1077;
-    let t1083 = t1081 - t1082;
-    let t1084 = Real::mul_add(
+    let t1063 = Real::mul_add(-s73, t1051, c74 * t1050);
+    let t1066 = Real::mul_add(c74, t1051, s73 * t1050);
+    let t1077 = T::from_f64(0.9994442900376633) * t1049;
+    let t1078 = T::from_f64(0.03333333333333337) * t1049;
+    let t1081 = Real::mul_add(s75, t1078, c76 * t1077);
+    let t1082 = s75 * t1077;
+    let t1083 = c76 * t1078;
+    let t1084 = t1082 - t1083;
+    let t1085 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1083;
-    let t1085 = Real::mul_add(
+    ) * t1084;
+    let t1086 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1080;
-    let t1089 = Real::mul_add(-s73, t1077, c74 * t1076);
-    let t1092 = Real::mul_add(c74, t1077, s73 * t1076);
-    let t1101 = T::from_f64(0.9733466865996102) * t1042;
-    let t1102 = T::from_f64(0.22933867463984403) * t1042;
-    let t1103 = c74 * t1101;
-    let t1104 = s73 * t1102;
-    let t1105 = t1104 - t1103;
-    let t1108 = Real::mul_add(c74, t1102, s73 * t1101);
-    let t1109 = Real::mul_add(
+    ) * t1081;
+    let t1090 = Real::mul_add(-s73, t1078, c74 * t1077);
+    let t1093 = Real::mul_add(c74, t1078, s73 * t1077);
+    let t1102 = T::from_f64(0.9733466865996102) * t1043;
+    let t1103 = T::from_f64(0.22933867463984403) * t1043;
+    let t1104 = c74 * t1102;
+    let t1105 = s73 * t1103;
+    let t1106 = t1105 - t1104;
+    let t1109 = Real::mul_add(c74, t1103, s73 * t1102);
+    let t1110 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1108;
-    let t1110 = Real::mul_add(
+    ) * t1109;
+    let t1111 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1105;
-    let t1112 = Real::mul_add(T::from_f64(0.9968453000901664), t1046, -t1089);
-    let t1113 = Real::mul_add(T::from_f64(0.0793690600180332), t1046, -t1092);
-    let t1114 = Real::mul_add(
+    ) * t1106;
+    let t1113 = Real::mul_add(T::from_f64(0.9968453000901664), t1047, -t1090);
+    let t1114 = Real::mul_add(T::from_f64(0.0793690600180332), t1047, -t1093);
+    let t1115 = Real::mul_add(
         T::from_f64(0.03),
-        t1046,
+        t1047,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1089,
+            t1090,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1092,
+            ) * t1093,
         ),
     );
-    let t1115 = Real::mul_add(T::from_f64(0.9506914539363203), t1044, -t1062);
-    let t1116 = -Real::mul_add(T::from_f64(0.31013829078726374), t1044, t1065);
-    let t1117 = Real::mul_add(
-        t1044,
+    let t1116 = Real::mul_add(T::from_f64(0.9506914539363203), t1045, -t1063);
+    let t1117 = -Real::mul_add(T::from_f64(0.31013829078726374), t1045, t1066);
+    let t1118 = Real::mul_add(
+        t1045,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -440,63 +440,63 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1062,
+            t1063,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1065,
+            ) * t1066,
         ),
     );
-    let t1118 = t1103 - t1104;
-    let t1119 = -t1108;
-    let t1120 = t1110 - t1109;
-    let t1123 = t1082 - t1081;
-    let t1124 = t1085 - t1084;
-    let t1129 = t1055 - t1054;
-    let t1130 = -t1059;
-    let t1139 = t759 + (t1053 + t1080);
-    let t1140 = t1005 - (t1056 + t1083);
-    let t1141 = Real::mul_add(-T::from_f64(0.01), t1083, T::from_f64(0.01) * t1056);
-    let t1146 = Real::mul_add(
-        -T::from_f64(0.01),
-        t1080,
-        Real::mul_add(T::from_f64(0.01), t1053, -T::from_f64(0.9810000000000001)),
-    );
+    let t1119 = t1104 - t1105;
+    let t1120 = -t1109;
+    let t1121 = t1111 - t1110;
+    let t1124 = t1083 - t1082;
+    let t1125 = t1086 - t1085;
+    let t1130 = t1056 - t1055;
+    let t1131 = -t1060;
+    let t1140 = t760 + (t1054 + t1081);
+    let t1141 = t1006 - (t1057 + t1084);
+    let t1142 = Real::mul_add(-T::from_f64(0.01), t1084, T::from_f64(0.01) * t1057);
     let t1147 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1081,
+        Real::mul_add(T::from_f64(0.01), t1054, -T::from_f64(0.9810000000000001)),
+    );
+    let t1148 = Real::mul_add(
         T::from_f64(0.25),
-        t1140,
-        t1007
-            - (Real::mul_add(-T::from_f64(0.25), t1083, t1084 - t1085)
-                + Real::mul_add(-T::from_f64(0.25), t1056, t1059)),
+        t1141,
+        t1008
+            - (Real::mul_add(-T::from_f64(0.25), t1084, t1085 - t1086)
+                + Real::mul_add(-T::from_f64(0.25), t1057, t1060)),
     );
-    let t1156 = Real::mul_add(-s75, t1146, c76 * t1141);
-    let t1163 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t740, -t741)
-        - (t1105 + Real::mul_add(-c76, t1139, s75 * t1140));
-    let t1164 = t1000 - (t1108 - Real::mul_add(c76, t1140, s75 * t1139));
-    let t1170 = Real::mul_add(
-        c76,
-        t1146,
-        Real::mul_add(s75, t1141, -T::from_f64(4.1202000000000005)),
-    );
+    let t1157 = Real::mul_add(-s75, t1147, c76 * t1142);
+    let t1164 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742)
+        - (t1106 + Real::mul_add(-c76, t1140, s75 * t1141));
+    let t1165 = t1001 - (t1109 - Real::mul_add(c76, t1141, s75 * t1140));
     let t1171 = Real::mul_add(
+        c76,
+        t1147,
+        Real::mul_add(s75, t1142, -T::from_f64(4.1202000000000005)),
+    );
+    let t1172 = Real::mul_add(
         T::from_f64(0.3),
-        t1164,
-        t1002 - (Real::mul_add(-T::from_f64(0.3), t1108, t1109 - t1110) - t1147),
+        t1165,
+        t1003 - (Real::mul_add(-T::from_f64(0.3), t1109, t1110 - t1111) - t1148),
     );
     [
-        [[t1163, t1164, T::from_f64(19.62)], [t1156, t1170, t1171]],
-        [[t1139, t1140, T::from_f64(7.848000000000001)], [t1141, t1146, t1147]],
-        [[t1053, t1129, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1130]],
-        [[t1080, t1123, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1124]],
-        [[t1118, t1119, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1120]],
+        [[t1164, t1165, T::from_f64(19.62)], [t1157, t1171, t1172]],
+        [[t1140, t1141, T::from_f64(7.848000000000001)], [t1142, t1147, t1148]],
+        [[t1054, t1130, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1131]],
+        [[t1081, t1124, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1125]],
+        [[t1119, t1120, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1121]],
         [
-            [t1115, t1116, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1117],
+            [t1116, t1117, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1118],
         ],
         [
-            [t1112, t1113, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1114],
+            [t1113, t1114, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1115],
         ],
     ]
 }
@@ -523,30 +523,30 @@ pub fn base_reaction<T: Real>(
         - T::from_f64(5.886);
     let t180 = Real::mul_add(-s73, t165, c74 * t151);
     let t183 = Real::mul_add(c74, t165, s73 * t151);
-    let t740 = qd[0] * qd[0];
-    let t741 = T::from_f64(0.3) * t740;
-    let t753 = t102 * t102;
-    let t759 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t741)) - T::from_f64(0.25) * t753
-            + T::from_f64(0.125) * t753);
-    let t1004 = s75 * t741 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1005 = T::from_f64(0.8) * t1004;
-    let t1014 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t740, -t741)
-        - Real::mul_add(-c76, t759, s75 * t1005);
-    let t1015 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t1005, s75 * t759);
-    let t1018 = Real::mul_add(
+    let t741 = qd[0] * qd[0];
+    let t742 = T::from_f64(0.3) * t741;
+    let t754 = t102 * t102;
+    let t760 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t742)) - T::from_f64(0.25) * t754
+            + T::from_f64(0.125) * t754);
+    let t1005 = s75 * t742 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t1006 = T::from_f64(0.8) * t1005;
+    let t1015 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742)
+        - Real::mul_add(-c76, t760, s75 * t1006);
+    let t1016 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t1006, s75 * t760);
+    let t1019 = Real::mul_add(
         T::from_f64(0.3),
-        t1015,
+        t1016,
         Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
             + Real::mul_add(
                 T::from_f64(0.2),
-                t1004,
-                Real::mul_add(-T::from_f64(0.1), t1004, T::from_f64(0.0041667) * t103),
+                t1005,
+                Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103),
             ),
     );
-    let t1021 = Real::mul_add(-s73, t1015, c74 * t1014);
-    let t1024 = Real::mul_add(c74, t1015, s73 * t1014);
-    [[[t1021, t1024, T::from_f64(20.601000000000003)], [t180, t183, t1018]]]
+    let t1022 = Real::mul_add(-s73, t1016, c74 * t1015);
+    let t1025 = Real::mul_add(c74, t1016, s73 * t1015);
+    [[[t1022, t1025, T::from_f64(20.601000000000003)], [t180, t183, t1019]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -591,157 +591,157 @@ pub fn all<T: Real>(
         - T::from_f64(5.886);
     let t180 = Real::mul_add(-s73, t165, c74 * t151);
     let t183 = Real::mul_add(c74, t165, s73 * t151);
-    let t196 = qd[0] * T::from_f64(0.03);
-    let t198 = T::from_f64(0.02) * qd[1];
-    let t199 = t198 - t196;
-    let t200 = qdd[0] * T::from_f64(0.03);
-    let t202 = T::from_f64(0.02) * qdd[1];
-    let t208 = T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723));
-    let t215 = t196 + t198;
-    let t226 = T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092));
-    let t622 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
-    let t639 = Real::mul_add(
+    let t194 = qd[0] * T::from_f64(0.03);
+    let t196 = T::from_f64(0.02) * qd[1];
+    let t197 = t196 - t194;
+    let t198 = qdd[0] * T::from_f64(0.03);
+    let t200 = T::from_f64(0.02) * qdd[1];
+    let t209 = T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723));
+    let t214 = t194 + t196;
+    let t227 = T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092));
+    let t623 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
+    let t640 = Real::mul_add(
         T::from_f64(0.3),
-        t622 + (t622 + T::from_f64(0.6)),
+        t623 + (t623 + T::from_f64(0.6)),
         T::from_f64(0.0526667),
     );
-    let t740 = qd[0] * qd[0];
-    let t741 = T::from_f64(0.3) * t740;
-    let t744 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t740, -t741);
-    let t748 = c76 * t741;
-    let t750 = s75 * t741;
-    let t753 = t102 * t102;
-    let t754 = T::from_f64(0.25) * t753;
-    let t757 = T::from_f64(0.125) * t753;
-    let t759 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t748) - t754 + t757);
-    let t785 = (-(T::from_f64(0.3)
-        * (t199
+    let t741 = qd[0] * qd[0];
+    let t742 = T::from_f64(0.3) * t741;
+    let t745 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742);
+    let t749 = c76 * t742;
+    let t751 = s75 * t742;
+    let t754 = t102 * t102;
+    let t755 = T::from_f64(0.25) * t754;
+    let t758 = T::from_f64(0.125) * t754;
+    let t760 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t749) - t755 + t758);
+    let t786 = (-(T::from_f64(0.3)
+        * (t197
             .sign_outside_or(
                 T::from_f64(0.000001),
-                (t202 - t200).sign_outside(T::from_f64(0.000001)),
-            ) * t208)))
+                (t200 - t198).sign_outside(T::from_f64(0.000001)),
+            ) * t209)))
         .exp();
-    let t788 = (T::from_f64(0.3)
-        * (t215
+    let t789 = (T::from_f64(0.3)
+        * (t214
             .sign_outside_or(
                 T::from_f64(0.000001),
-                (t200 + t202).sign_outside(T::from_f64(0.000001)),
-            ) * t226))
+                (t198 + t200).sign_outside(T::from_f64(0.000001)),
+            ) * t227))
         .exp();
-    let t790 = -(T::from_f64(0.03) * t785);
-    let t792 = T::from_f64(0.03) * t788;
-    let t794 = T::from_f64(0.02) * t785 / t790;
-    let t796 = Real::mul_add(-T::from_f64(0.02), t788, t792 * t794);
-    let t798 = T::from_f64(0.04) * t794 / t796;
-    let t801 = Real::mul_add(t792, t798, T::from_f64(-0.04)) / t790;
-    let t954 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t959 = T::from_f64(0.1) * t750;
-    let t979 = tendon_tensions[0]
-        * (-(T::from_f64(0.3) * (t208 * t199.sign_outside(T::from_f64(0.000001)))))
+    let t791 = -(T::from_f64(0.03) * t786);
+    let t793 = T::from_f64(0.03) * t789;
+    let t795 = T::from_f64(0.02) * t786 / t791;
+    let t797 = Real::mul_add(-T::from_f64(0.02), t789, t793 * t795);
+    let t799 = T::from_f64(0.04) * t795 / t797;
+    let t802 = Real::mul_add(t793, t799, T::from_f64(-0.04)) / t791;
+    let t955 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
+    let t960 = T::from_f64(0.1) * t751;
+    let t980 = tendon_tensions[0]
+        * (-(T::from_f64(0.3) * (t209 * t197.sign_outside(T::from_f64(0.000001)))))
             .exp();
-    let t981 = tendon_tensions[1]
-        * (T::from_f64(0.3) * (t226 * t215.sign_outside(T::from_f64(0.000001)))).exp();
-    let t990 = t954 / t639;
-    let t1000 = T::from_f64(1.2) * t83;
-    let t1002 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1004 = t750 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1005 = T::from_f64(0.8) * t1004;
-    let t1007 = Real::mul_add(-T::from_f64(0.1), t1004, T::from_f64(0.0041667) * t103);
-    let t1009 = Real::mul_add(T::from_f64(0.2), t1004, t1007);
-    let t1014 = t744 - Real::mul_add(-c76, t759, s75 * t1005);
-    let t1015 = t1000 + Real::mul_add(c76, t1005, s75 * t759);
-    let t1018 = Real::mul_add(T::from_f64(0.3), t1015, t1002 + t1009);
-    let t1021 = Real::mul_add(-s73, t1015, c74 * t1014);
-    let t1024 = Real::mul_add(c74, t1015, s73 * t1014);
-    let t1027 = Real::mul_add(-t794, t1018, t1009) / t796;
-    let t1030 = Real::mul_add(t792, t1027, t1018) / t790;
-    let t1041 = (-(Real::mul_add(t798, t1027, t801 * t1030)
-        / (T::from_f64(1.0) + Real::mul_add(t798, t798, t801 * t801))))
-        .max((T::from_f64(5.0) - t1030) / t801)
-        .max((T::from_f64(5.0) - t1027) / t798);
-    let t1042 = T::from_f64(5.0).max(t1041);
-    let t1044 = Real::mul_add(t801, t1042, t1030);
-    let t1046 = Real::mul_add(t798, t1042, t1027);
-    let t1047 = t785 * t1044;
-    let t1048 = t788 * t1046;
-    let t1049 = T::from_f64(0.9860132971832694) * t1047;
-    let t1050 = T::from_f64(0.16666666666666652) * t1047;
-    let t1053 = Real::mul_add(s75, t1050, c76 * t1049);
-    let t1054 = s75 * t1049;
-    let t1055 = c76 * t1050;
-    let t1056 = t1054 - t1055;
-    let t1059 = Real::mul_add(
+    let t982 = tendon_tensions[1]
+        * (T::from_f64(0.3) * (t227 * t214.sign_outside(T::from_f64(0.000001)))).exp();
+    let t991 = t955 / t640;
+    let t1001 = T::from_f64(1.2) * t83;
+    let t1003 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1005 = t751 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t1006 = T::from_f64(0.8) * t1005;
+    let t1008 = Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103);
+    let t1010 = Real::mul_add(T::from_f64(0.2), t1005, t1008);
+    let t1015 = t745 - Real::mul_add(-c76, t760, s75 * t1006);
+    let t1016 = t1001 + Real::mul_add(c76, t1006, s75 * t760);
+    let t1019 = Real::mul_add(T::from_f64(0.3), t1016, t1003 + t1010);
+    let t1022 = Real::mul_add(-s73, t1016, c74 * t1015);
+    let t1025 = Real::mul_add(c74, t1016, s73 * t1015);
+    let t1028 = Real::mul_add(-t795, t1019, t1010) / t797;
+    let t1031 = Real::mul_add(t793, t1028, t1019) / t791;
+    let t1042 = (-(Real::mul_add(t799, t1028, t802 * t1031)
+        / (T::from_f64(1.0) + Real::mul_add(t799, t799, t802 * t802))))
+        .max((T::from_f64(5.0) - t1031) / t802)
+        .max((T::from_f64(5.0) - t1028) / t799);
+    let t1043 = T::from_f64(5.0).max(t1042);
+    let t1045 = Real::mul_add(t802, t1043, t1031);
+    let t1047 = Real::mul_add(t799, t1043, t1028);
+    let t1048 = t786 * t1045;
+    let t1049 = t789 * t1047;
+    let t1050 = T::from_f64(0.9860132971832694) * t1048;
+    let t1051 = T::from_f64(0.16666666666666652) * t1048;
+    let t1054 = Real::mul_add(s75, t1051, c76 * t1050);
+    let t1055 = s75 * t1050;
+    let t1056 = c76 * t1051;
+    let t1057 = t1055 - t1056;
+    let t1060 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1053,
+        t1054,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1056,
+        ) * t1057,
     );
-    let t1062 = Real::mul_add(-s73, t1050, c74 * t1049);
-    let t1065 = Real::mul_add(c74, t1050, s73 * t1049);
-    let t1076 = T::from_f64(0.9994442900376633) * t1048;
-    let t1077 = T::from_f64(0.03333333333333337) * t1048;
-    let t1080 = Real::mul_add(s75, t1077, c76 * t1076);
-    let t1081 = s75 * t1076;
-    let t1082 = c76 * t1077;
-    let t1083 = t1081 - t1082;
-    let t1084 = Real::mul_add(
+    let t1063 = Real::mul_add(-s73, t1051, c74 * t1050);
+    let t1066 = Real::mul_add(c74, t1051, s73 * t1050);
+    let t1077 = T::from_f64(0.9994442900376633) * t1049;
+    let t1078 = T::from_f64(0.03333333333333337) * t1049;
+    let t1081 = Real::mul_add(s75, t1078, c76 * t1077);
+    let t1082 = s75 * t1077;
+    let t1083 = c76 * t1078;
+    let t1084 = t1082 - t1083;
+    let t1085 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1083;
-    let t1085 = Real::mul_add(
+    ) * t1084;
+    let t1086 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1080;
-    let t1089 = Real::mul_add(-s73, t1077, c74 * t1076);
-    let t1092 = Real::mul_add(c74, t1077, s73 * t1076);
-    let t1101 = T::from_f64(0.9733466865996102) * t1042;
-    let t1102 = T::from_f64(0.22933867463984403) * t1042;
-    let t1103 = c74 * t1101;
-    let t1104 = s73 * t1102;
-    let t1105 = t1104 - t1103;
-    let t1108 = Real::mul_add(c74, t1102, s73 * t1101);
-    let t1109 = Real::mul_add(
+    ) * t1081;
+    let t1090 = Real::mul_add(-s73, t1078, c74 * t1077);
+    let t1093 = Real::mul_add(c74, t1078, s73 * t1077);
+    let t1102 = T::from_f64(0.9733466865996102) * t1043;
+    let t1103 = T::from_f64(0.22933867463984403) * t1043;
+    let t1104 = c74 * t1102;
+    let t1105 = s73 * t1103;
+    let t1106 = t1105 - t1104;
+    let t1109 = Real::mul_add(c74, t1103, s73 * t1102);
+    let t1110 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1108;
-    let t1110 = Real::mul_add(
+    ) * t1109;
+    let t1111 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1105;
-    let t1112 = Real::mul_add(T::from_f64(0.9968453000901664), t1046, -t1089);
-    let t1113 = Real::mul_add(T::from_f64(0.0793690600180332), t1046, -t1092);
-    let t1114 = Real::mul_add(
+    ) * t1106;
+    let t1113 = Real::mul_add(T::from_f64(0.9968453000901664), t1047, -t1090);
+    let t1114 = Real::mul_add(T::from_f64(0.0793690600180332), t1047, -t1093);
+    let t1115 = Real::mul_add(
         T::from_f64(0.03),
-        t1046,
+        t1047,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1089,
+            t1090,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1092,
+            ) * t1093,
         ),
     );
-    let t1115 = Real::mul_add(T::from_f64(0.9506914539363203), t1044, -t1062);
-    let t1116 = -Real::mul_add(T::from_f64(0.31013829078726374), t1044, t1065);
-    let t1117 = Real::mul_add(
-        t1044,
+    let t1116 = Real::mul_add(T::from_f64(0.9506914539363203), t1045, -t1063);
+    let t1117 = -Real::mul_add(T::from_f64(0.31013829078726374), t1045, t1066);
+    let t1118 = Real::mul_add(
+        t1045,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -749,103 +749,103 @@ pub fn all<T: Real>(
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1062,
+            t1063,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1065,
+            ) * t1066,
         ),
     );
-    let t1118 = t1103 - t1104;
-    let t1119 = -t1108;
-    let t1120 = t1110 - t1109;
-    let t1123 = t1082 - t1081;
-    let t1124 = t1085 - t1084;
-    let t1129 = t1055 - t1054;
-    let t1130 = -t1059;
-    let t1139 = t759 + (t1053 + t1080);
-    let t1140 = t1005 - (t1056 + t1083);
-    let t1141 = Real::mul_add(-T::from_f64(0.01), t1083, T::from_f64(0.01) * t1056);
-    let t1146 = Real::mul_add(
-        -T::from_f64(0.01),
-        t1080,
-        Real::mul_add(T::from_f64(0.01), t1053, -T::from_f64(0.9810000000000001)),
-    );
+    let t1119 = t1104 - t1105;
+    let t1120 = -t1109;
+    let t1121 = t1111 - t1110;
+    let t1124 = t1083 - t1082;
+    let t1125 = t1086 - t1085;
+    let t1130 = t1056 - t1055;
+    let t1131 = -t1060;
+    let t1140 = t760 + (t1054 + t1081);
+    let t1141 = t1006 - (t1057 + t1084);
+    let t1142 = Real::mul_add(-T::from_f64(0.01), t1084, T::from_f64(0.01) * t1057);
     let t1147 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1081,
+        Real::mul_add(T::from_f64(0.01), t1054, -T::from_f64(0.9810000000000001)),
+    );
+    let t1148 = Real::mul_add(
         T::from_f64(0.25),
-        t1140,
-        t1007
-            - (Real::mul_add(-T::from_f64(0.25), t1083, t1084 - t1085)
-                + Real::mul_add(-T::from_f64(0.25), t1056, t1059)),
+        t1141,
+        t1008
+            - (Real::mul_add(-T::from_f64(0.25), t1084, t1085 - t1086)
+                + Real::mul_add(-T::from_f64(0.25), t1057, t1060)),
     );
-    let t1156 = Real::mul_add(-s75, t1146, c76 * t1141);
-    let t1163 = t744 - (t1105 + Real::mul_add(-c76, t1139, s75 * t1140));
-    let t1164 = t1000 - (t1108 - Real::mul_add(c76, t1140, s75 * t1139));
-    let t1170 = Real::mul_add(
-        c76,
-        t1146,
-        Real::mul_add(s75, t1141, -T::from_f64(4.1202000000000005)),
-    );
+    let t1157 = Real::mul_add(-s75, t1147, c76 * t1142);
+    let t1164 = t745 - (t1106 + Real::mul_add(-c76, t1140, s75 * t1141));
+    let t1165 = t1001 - (t1109 - Real::mul_add(c76, t1141, s75 * t1140));
     let t1171 = Real::mul_add(
-        T::from_f64(0.3),
-        t1164,
-        t1002 - (Real::mul_add(-T::from_f64(0.3), t1108, t1109 - t1110) - t1147),
+        c76,
+        t1147,
+        Real::mul_add(s75, t1142, -T::from_f64(4.1202000000000005)),
     );
     let t1172 = Real::mul_add(
         T::from_f64(0.3),
+        t1165,
+        t1003 - (Real::mul_add(-T::from_f64(0.3), t1109, t1110 - t1111) - t1148),
+    );
+    let t1173 = Real::mul_add(
+        T::from_f64(0.3),
         Real::mul_add(
             c76,
-            T::from_f64(0.8) * t750,
-            T::from_f64(0.8) * (s75 * (t757 - (t748 + t754))),
+            T::from_f64(0.8) * t751,
+            T::from_f64(0.8) * (s75 * (t758 - (t749 + t755))),
         ),
-        t959,
+        t960,
     );
-    let t1173 = T::from_f64(0.04) * tendon_tensions[2]
-        - Real::mul_add(T::from_f64(0.03), t981, T::from_f64(0.03) * t979) - t1172;
-    let t1178 = Real::mul_add(
-        -t990,
-        t1173,
-        Real::mul_add(-T::from_f64(0.02), t981, T::from_f64(0.02) * t979) - t959,
-    ) / Real::mul_add(-t639, t990 * t990, T::from_f64(0.0166667));
-    let t1180 = Real::mul_add(-t990, t1178, t1173 / t639);
+    let t1174 = T::from_f64(0.04) * tendon_tensions[2]
+        - Real::mul_add(T::from_f64(0.03), t982, T::from_f64(0.03) * t980) - t1173;
+    let t1179 = Real::mul_add(
+        -t991,
+        t1174,
+        Real::mul_add(-T::from_f64(0.02), t982, T::from_f64(0.02) * t980) - t960,
+    ) / Real::mul_add(-t640, t991 * t991, T::from_f64(0.0166667));
+    let t1181 = Real::mul_add(-t991, t1179, t1174 / t640);
     Outputs {
-        generalized_forces: [t1018, t1009],
+        generalized_forces: [t1019, t1010],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t1044, t1046, t1042],
+            [t1045, t1047, t1043],
         ),
-        mass_matrix: [[t639, t954], [t954, T::from_f64(0.0166667)]],
-        bias: [t1172, t959],
+        mass_matrix: [[t640, t955], [t955, T::from_f64(0.0166667)]],
+        bias: [t1173, t960],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1180, t1178],
-        segment_tensions: [t1047, t1044, t1048, t1046, t1042],
+        forward_dynamics: [t1181, t1179],
+        segment_tensions: [t1048, t1045, t1049, t1047, t1043],
         bearings: [
-            [[t1163, t1164, T::from_f64(19.62)], [t1156, t1170, t1171]],
-            [[t1139, t1140, T::from_f64(7.848000000000001)], [t1141, t1146, t1147]],
+            [[t1164, t1165, T::from_f64(19.62)], [t1157, t1171, t1172]],
+            [[t1140, t1141, T::from_f64(7.848000000000001)], [t1142, t1147, t1148]],
             [
-                [t1053, t1129, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1130],
+                [t1054, t1130, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1131],
             ],
             [
-                [t1080, t1123, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1124],
+                [t1081, t1124, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1125],
             ],
             [
-                [t1118, t1119, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1120],
+                [t1119, t1120, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1121],
             ],
             [
-                [t1115, t1116, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1117],
+                [t1116, t1117, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1118],
             ],
             [
-                [t1112, t1113, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1114],
+                [t1113, t1114, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1115],
             ],
         ],
         base_reaction: [
-            [[t1021, t1024, T::from_f64(20.601000000000003)], [t180, t183, t1018]],
+            [[t1022, t1025, T::from_f64(20.601000000000003)], [t180, t183, t1019]],
         ],
     }
 }

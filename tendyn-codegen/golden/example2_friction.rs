@@ -29,19 +29,19 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
     let (s77, c78) = q[1].sin_cos();
     let t138 = T::from_f64(0.6666666666666667) * qd[1];
     let t141 = T::from_f64(0.6666666666666667) * qdd[1];
-    let t228 = (qd[0] - t138)
+    let t229 = (qd[0] - t138)
         .sign_outside_or(
             T::from_f64(0.000001),
             (qdd[0] - t141).sign_outside(T::from_f64(0.000001)),
         );
-    let t235 = (qd[0] + t138)
+    let t236 = (qd[0] + t138)
         .sign_outside_or(
             T::from_f64(0.000001),
             (qdd[0] + t141).sign_outside(T::from_f64(0.000001)),
         );
-    let t1177 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1439 = s77 * T::from_f64(0.03);
-    let t1448 = Real::mul_add(
+    let t1178 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1440 = s77 * T::from_f64(0.03);
+    let t1449 = Real::mul_add(
         qd[0],
         T::from_f64(0.0104) - qd[1] * (s77 * T::from_f64(0.06)),
         T::from_f64(0.05)
@@ -49,18 +49,18 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
                 .sign_outside_or(
                     T::from_f64(0.000001),
                     qdd[0].sign_outside(T::from_f64(0.000001)),
-                ) + (t228 * T::from_f64(0.002) + T::from_f64(0.002) * t235)
-            - qd[1] * (qd[1] * t1439),
+                ) + (t229 * T::from_f64(0.002) + T::from_f64(0.002) * t236)
+            - qd[1] * (qd[1] * t1440),
     );
-    let t1450 = Real::mul_add(
+    let t1451 = Real::mul_add(
         qdd[0],
         Real::mul_add(c78, T::from_f64(0.06), T::from_f64(0.1247117)),
-        Real::mul_add(qdd[1], t1177, t1448),
+        Real::mul_add(qdd[1], t1178, t1449),
     );
-    let t1466 = Real::mul_add(
+    let t1467 = Real::mul_add(
         qdd[1],
         T::from_f64(0.0166867),
-        qd[0] * (qd[0] * t1439)
+        qd[0] * (qd[0] * t1440)
             + (qd[1] * T::from_f64(0.005177777777777778)
                 + (qd[1]
                     .sign_outside_or(
@@ -68,13 +68,13 @@ pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T;
                         qdd[1].sign_outside(T::from_f64(0.000001)),
                     ) * T::from_f64(0.03)
                     + Real::mul_add(
-                        -t228,
+                        -t229,
                         T::from_f64(0.0013333333333333335),
-                        t235 * T::from_f64(0.0013333333333333335),
+                        t236 * T::from_f64(0.0013333333333333335),
                     ))),
     );
-    let t1467 = Real::mul_add(qdd[0], t1177, t1466);
-    [t1450, t1467]
+    let t1468 = Real::mul_add(qdd[0], t1178, t1467);
+    [t1451, t1468]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
@@ -99,79 +99,79 @@ pub fn actuation<T: Real>(
     let t143 = qdd[0] - t141;
     let t146 = qd[0] + t138;
     let t147 = qdd[0] + t141;
-    let t257 = T::from_f64(0.0000225) * t143
+    let t258 = T::from_f64(0.0000225) * t143
         + (t140
             .sign_outside_or(
                 T::from_f64(0.000001),
                 t143.sign_outside(T::from_f64(0.000001)),
             ) * T::from_f64(0.002) + T::from_f64(0.0002) * t140);
-    let t261 = T::from_f64(0.0000225) * t147
+    let t262 = T::from_f64(0.0000225) * t147
         + (T::from_f64(0.002)
             * t146
                 .sign_outside_or(
                     T::from_f64(0.000001),
                     t147.sign_outside(T::from_f64(0.000001)),
                 ) + T::from_f64(0.0002) * t146);
-    let t928 = T::from_f64(0.3) * (qd[0] * qd[0]);
-    let t940 = t104 * t104;
-    let t983 = t257 * T::from_f64(32.86710990610898);
-    let t985 = t257 * T::from_f64(5.555555555555551);
-    let t988 = Real::mul_add(s77, t985, c78 * t983);
-    let t991 = Real::mul_add(-c78, t985, s77 * t983);
-    let t996 = t261 * T::from_f64(33.31480966792211);
-    let t998 = t261 * T::from_f64(1.1111111111111123);
-    let t1001 = Real::mul_add(s77, t998, c78 * t996);
-    let t1004 = Real::mul_add(-c78, t998, s77 * t996);
-    let t1014 = Real::mul_add(
+    let t929 = T::from_f64(0.3) * (qd[0] * qd[0]);
+    let t941 = t104 * t104;
+    let t984 = t258 * T::from_f64(32.86710990610898);
+    let t986 = t258 * T::from_f64(5.555555555555551);
+    let t989 = Real::mul_add(s77, t986, c78 * t984);
+    let t992 = Real::mul_add(-c78, t986, s77 * t984);
+    let t997 = t262 * T::from_f64(33.31480966792211);
+    let t999 = t262 * T::from_f64(1.1111111111111123);
+    let t1002 = Real::mul_add(s77, t999, c78 * t997);
+    let t1005 = Real::mul_add(-c78, t999, s77 * t997);
+    let t1015 = Real::mul_add(
         -T::from_f64(0.25),
-        t1004,
+        t1005,
         Real::mul_add(
             -Real::mul_add(
                 c78,
                 T::from_f64(0.019988885800753267),
                 T::from_f64(0.0006666666666666674) * s77,
             ),
-            t1001,
+            t1002,
             Real::mul_add(
                 -s77,
                 T::from_f64(0.019988885800753267),
                 T::from_f64(0.0006666666666666674) * c78,
-            ) * t1004,
+            ) * t1005,
         ),
     )
         + Real::mul_add(
             -T::from_f64(0.25),
-            t991,
+            t992,
             Real::mul_add(
                 Real::mul_add(
                     T::from_f64(0.019720265943665386),
                     c78,
                     s77 * T::from_f64(0.0033333333333333305),
                 ),
-                t988,
+                t989,
                 Real::mul_add(
                     -c78,
                     T::from_f64(0.0033333333333333305),
                     T::from_f64(0.019720265943665386) * s77,
-                ) * t991,
+                ) * t992,
             ),
         );
-    let t1215 = s77 * t928 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
-    let t1247 = T::from_f64(0.8) * t1215 - (t991 + t1004);
-    let t1250 = Real::mul_add(
+    let t1216 = s77 * t929 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
+    let t1248 = T::from_f64(0.8) * t1216 - (t992 + t1005);
+    let t1251 = Real::mul_add(
         T::from_f64(0.25),
-        t1247,
-        Real::mul_add(-T::from_f64(0.1), t1215, T::from_f64(0.0041667) * t105) - t1014,
+        t1248,
+        Real::mul_add(-T::from_f64(0.1), t1216, T::from_f64(0.0041667) * t105) - t1015,
     );
-    let t1252 = Real::mul_add(
+    let t1253 = Real::mul_add(
         c78,
-        t1247,
+        t1248,
         s77
             * (T::from_f64(0.8)
-                * (Real::mul_add(s77, t80, -(c78 * t928)) - T::from_f64(0.25) * t940
-                    + T::from_f64(0.125) * t940) + (t988 + t1001)),
+                * (Real::mul_add(s77, t80, -(c78 * t929)) - T::from_f64(0.25) * t941
+                    + T::from_f64(0.125) * t941) + (t989 + t1002)),
     );
-    let t1257 = T::from_f64(0.05)
+    let t1258 = T::from_f64(0.05)
         * qd[0]
             .sign_outside_or(
                 T::from_f64(0.000001),
@@ -179,37 +179,37 @@ pub fn actuation<T: Real>(
             ) + T::from_f64(0.01) * qd[0]
         + Real::mul_add(
             T::from_f64(0.3),
-            T::from_f64(1.2) * t85 + t1252,
-            Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]) + t1250,
+            T::from_f64(1.2) * t85 + t1253,
+            Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]) + t1251,
         );
-    let t1258 = qd[1]
+    let t1259 = qd[1]
         .sign_outside_or(
             T::from_f64(0.000001),
             qdd[1].sign_outside(T::from_f64(0.000001)),
-        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1250;
-    let t1261 = Real::mul_add(
+        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1251;
+    let t1262 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1257,
-        T::from_f64(24.999999999999975) * t1258,
+        t1258,
+        T::from_f64(24.999999999999975) * t1259,
     );
-    let t1264 = Real::mul_add(
+    let t1265 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1258,
-        T::from_f64(8.823529411764705) * t1257,
+        t1259,
+        T::from_f64(8.823529411764705) * t1258,
     );
-    let t1267 = Real::mul_add(
+    let t1268 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1258,
-        T::from_f64(11.764705882352942) * t1257,
+        t1259,
+        T::from_f64(11.764705882352942) * t1258,
     );
-    let t1274 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1261)
-        .max(T::from_f64(5.0) + t1264)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1267));
-    let t1275 = t1261 + t1274;
-    let t1276 = t1274 - t1264;
-    let t1278 = Real::mul_add(T::from_f64(1.5000000000000002), t1274, t1267);
-    tendyn_core::distribution::Actuation::exact([], [t1275, t1276, t1278])
+    let t1275 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1262)
+        .max(T::from_f64(5.0) + t1265)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1268));
+    let t1276 = t1262 + t1275;
+    let t1277 = t1275 - t1265;
+    let t1279 = Real::mul_add(T::from_f64(1.5000000000000002), t1275, t1268);
+    tendyn_core::distribution::Actuation::exact([], [t1276, t1277, t1279])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -220,9 +220,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t78 = q[1].cos();
-    let t1177 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1428 = Real::mul_add(t78, T::from_f64(0.06), T::from_f64(0.1247117));
-    [[t1428, t1177], [t1177, T::from_f64(0.0166867)]]
+    let t1178 = Real::mul_add(t78, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1429 = Real::mul_add(t78, T::from_f64(0.06), T::from_f64(0.1247117));
+    [[t1429, t1178], [t1178, T::from_f64(0.0166867)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -233,10 +233,10 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t77 = q[1].sin();
-    let t1439 = t77 * T::from_f64(0.03);
-    let t1454 = qd[0] * (qd[0] * t1439);
-    let t1719 = -(qd[1] * Real::mul_add(qd[0], t77 * T::from_f64(0.06), qd[1] * t1439));
-    [t1719, t1454]
+    let t1440 = t77 * T::from_f64(0.03);
+    let t1455 = qd[0] * (qd[0] * t1440);
+    let t1720 = -(qd[1] * Real::mul_add(qd[0], t77 * T::from_f64(0.06), qd[1] * t1440));
+    [t1720, t1455]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -263,33 +263,33 @@ pub fn forward_dynamics<T: Real>(
 ) -> [T; 2] {
     let (s77, c78) = q[1].sin_cos();
     let t138 = T::from_f64(0.6666666666666667) * qd[1];
-    let t876 = (qd[0] - t138).sign_outside(T::from_f64(0.000001));
-    let t880 = (qd[0] + t138).sign_outside(T::from_f64(0.000001));
-    let t1428 = Real::mul_add(c78, T::from_f64(0.06), T::from_f64(0.1247117));
-    let t1439 = s77 * T::from_f64(0.03);
-    let t1734 = qd[1] * (qd[1] * t1439)
+    let t877 = (qd[0] - t138).sign_outside(T::from_f64(0.000001));
+    let t881 = (qd[0] + t138).sign_outside(T::from_f64(0.000001));
+    let t1429 = Real::mul_add(c78, T::from_f64(0.06), T::from_f64(0.1247117));
+    let t1440 = s77 * T::from_f64(0.03);
+    let t1735 = qd[1] * (qd[1] * t1440)
         + (T::from_f64(0.04) * tendon_tensions[2]
             - (T::from_f64(0.05) * qd[0].sign_outside(T::from_f64(0.000001))
-                + (T::from_f64(0.002) * t876 + T::from_f64(0.002) * t880))
+                + (T::from_f64(0.002) * t877 + T::from_f64(0.002) * t881))
             - tendon_tensions[1] * T::from_f64(0.03)
             - tendon_tensions[0] * T::from_f64(0.03));
-    let t1735 = Real::mul_add(
+    let t1736 = Real::mul_add(
         qd[0],
         qd[1] * (s77 * T::from_f64(0.06)) + T::from_f64(-0.0104),
-        t1734,
+        t1735,
     );
-    let t1737 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1428;
+    let t1738 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667)) / t1429;
     let t1870 = T::from_f64(0.02) * tendon_tensions[0]
         + (Real::mul_add(
-            -t880,
+            -t881,
             T::from_f64(0.0013333333333333335),
-            t876 * T::from_f64(0.0013333333333333335),
+            t877 * T::from_f64(0.0013333333333333335),
         ) - T::from_f64(0.03) * qd[1].sign_outside(T::from_f64(0.000001))
             - T::from_f64(0.02) * tendon_tensions[1])
-        - qd[1] * T::from_f64(0.005177777777777778) - qd[0] * (qd[0] * t1439);
-    let t1876 = Real::mul_add(-t1735, t1737, t1870)
-        / Real::mul_add(-t1428, t1737 * t1737, T::from_f64(0.0166867));
-    let t1878 = Real::mul_add(-t1737, t1876, t1735 / t1428);
+        - qd[1] * T::from_f64(0.005177777777777778) - qd[0] * (qd[0] * t1440);
+    let t1876 = Real::mul_add(-t1736, t1738, t1870)
+        / Real::mul_add(-t1429, t1738 * t1738, T::from_f64(0.0166867));
+    let t1878 = Real::mul_add(-t1738, t1876, t1736 / t1429);
     [t1878, t1876]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
@@ -311,79 +311,79 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
     let t143 = qdd[0] - t141;
     let t146 = qd[0] + t138;
     let t147 = qdd[0] + t141;
-    let t257 = T::from_f64(0.0000225) * t143
+    let t258 = T::from_f64(0.0000225) * t143
         + (t140
             .sign_outside_or(
                 T::from_f64(0.000001),
                 t143.sign_outside(T::from_f64(0.000001)),
             ) * T::from_f64(0.002) + T::from_f64(0.0002) * t140);
-    let t261 = T::from_f64(0.0000225) * t147
+    let t262 = T::from_f64(0.0000225) * t147
         + (T::from_f64(0.002)
             * t146
                 .sign_outside_or(
                     T::from_f64(0.000001),
                     t147.sign_outside(T::from_f64(0.000001)),
                 ) + T::from_f64(0.0002) * t146);
-    let t928 = T::from_f64(0.3) * (qd[0] * qd[0]);
-    let t940 = t104 * t104;
-    let t983 = t257 * T::from_f64(32.86710990610898);
-    let t985 = t257 * T::from_f64(5.555555555555551);
-    let t988 = Real::mul_add(s77, t985, c78 * t983);
-    let t991 = Real::mul_add(-c78, t985, s77 * t983);
-    let t996 = t261 * T::from_f64(33.31480966792211);
-    let t998 = t261 * T::from_f64(1.1111111111111123);
-    let t1001 = Real::mul_add(s77, t998, c78 * t996);
-    let t1004 = Real::mul_add(-c78, t998, s77 * t996);
-    let t1014 = Real::mul_add(
+    let t929 = T::from_f64(0.3) * (qd[0] * qd[0]);
+    let t941 = t104 * t104;
+    let t984 = t258 * T::from_f64(32.86710990610898);
+    let t986 = t258 * T::from_f64(5.555555555555551);
+    let t989 = Real::mul_add(s77, t986, c78 * t984);
+    let t992 = Real::mul_add(-c78, t986, s77 * t984);
+    let t997 = t262 * T::from_f64(33.31480966792211);
+    let t999 = t262 * T::from_f64(1.1111111111111123);
+    let t1002 = Real::mul_add(s77, t999, c78 * t997);
+    let t1005 = Real::mul_add(-c78, t999, s77 * t997);
+    let t1015 = Real::mul_add(
         -T::from_f64(0.25),
-        t1004,
+        t1005,
         Real::mul_add(
             -Real::mul_add(
                 c78,
                 T::from_f64(0.019988885800753267),
                 T::from_f64(0.0006666666666666674) * s77,
             ),
-            t1001,
+            t1002,
             Real::mul_add(
                 -s77,
                 T::from_f64(0.019988885800753267),
                 T::from_f64(0.0006666666666666674) * c78,
-            ) * t1004,
+            ) * t1005,
         ),
     )
         + Real::mul_add(
             -T::from_f64(0.25),
-            t991,
+            t992,
             Real::mul_add(
                 Real::mul_add(
                     T::from_f64(0.019720265943665386),
                     c78,
                     s77 * T::from_f64(0.0033333333333333305),
                 ),
-                t988,
+                t989,
                 Real::mul_add(
                     -c78,
                     T::from_f64(0.0033333333333333305),
                     T::from_f64(0.019720265943665386) * s77,
-                ) * t991,
+                ) * t992,
             ),
         );
-    let t1215 = s77 * t928 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
-    let t1247 = T::from_f64(0.8) * t1215 - (t991 + t1004);
-    let t1250 = Real::mul_add(
+    let t1216 = s77 * t929 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
+    let t1248 = T::from_f64(0.8) * t1216 - (t992 + t1005);
+    let t1251 = Real::mul_add(
         T::from_f64(0.25),
-        t1247,
-        Real::mul_add(-T::from_f64(0.1), t1215, T::from_f64(0.0041667) * t105) - t1014,
+        t1248,
+        Real::mul_add(-T::from_f64(0.1), t1216, T::from_f64(0.0041667) * t105) - t1015,
     );
-    let t1252 = Real::mul_add(
+    let t1253 = Real::mul_add(
         c78,
-        t1247,
+        t1248,
         s77
             * (T::from_f64(0.8)
-                * (Real::mul_add(s77, t80, -(c78 * t928)) - T::from_f64(0.25) * t940
-                    + T::from_f64(0.125) * t940) + (t988 + t1001)),
+                * (Real::mul_add(s77, t80, -(c78 * t929)) - T::from_f64(0.25) * t941
+                    + T::from_f64(0.125) * t941) + (t989 + t1002)),
     );
-    let t1257 = T::from_f64(0.05)
+    let t1258 = T::from_f64(0.05)
         * qd[0]
             .sign_outside_or(
                 T::from_f64(0.000001),
@@ -391,39 +391,39 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
             ) + T::from_f64(0.01) * qd[0]
         + Real::mul_add(
             T::from_f64(0.3),
-            T::from_f64(1.2) * t85 + t1252,
-            Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]) + t1250,
+            T::from_f64(1.2) * t85 + t1253,
+            Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]) + t1251,
         );
-    let t1258 = qd[1]
+    let t1259 = qd[1]
         .sign_outside_or(
             T::from_f64(0.000001),
             qdd[1].sign_outside(T::from_f64(0.000001)),
-        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1250;
-    let t1261 = Real::mul_add(
+        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1251;
+    let t1262 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1257,
-        T::from_f64(24.999999999999975) * t1258,
+        t1258,
+        T::from_f64(24.999999999999975) * t1259,
     );
-    let t1264 = Real::mul_add(
+    let t1265 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1258,
-        T::from_f64(8.823529411764705) * t1257,
+        t1259,
+        T::from_f64(8.823529411764705) * t1258,
     );
-    let t1267 = Real::mul_add(
+    let t1268 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1258,
-        T::from_f64(11.764705882352942) * t1257,
+        t1259,
+        T::from_f64(11.764705882352942) * t1258,
     );
-    let t1274 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1261)
-        .max(T::from_f64(5.0) + t1264)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1267));
-    let t1275 = t1261 + t1274;
-    let t1276 = t1274 - t1264;
-    let t1278 = Real::mul_add(T::from_f64(1.5000000000000002), t1274, t1267);
-    let t1279 = Real::mul_add(t257, T::from_f64(33.333333333333336), t1275);
-    let t1280 = Real::mul_add(T::from_f64(33.333333333333336), t261, t1276);
-    [t1279, t1275, t1280, t1276, t1278]
+    let t1275 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1262)
+        .max(T::from_f64(5.0) + t1265)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1268));
+    let t1276 = t1262 + t1275;
+    let t1277 = t1275 - t1265;
+    let t1279 = Real::mul_add(T::from_f64(1.5000000000000002), t1275, t1268);
+    let t1280 = Real::mul_add(t258, T::from_f64(33.333333333333336), t1276);
+    let t1281 = Real::mul_add(T::from_f64(33.333333333333336), t262, t1277);
+    [t1280, t1276, t1281, t1277, t1279]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
@@ -447,75 +447,75 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t146 = qd[0] + t138;
     let t147 = qdd[0] + t141;
     let t149 = T::from_f64(0.0000225) * t147;
-    let t257 = t145
+    let t258 = t145
         + (t140
             .sign_outside_or(
                 T::from_f64(0.000001),
                 t143.sign_outside(T::from_f64(0.000001)),
             ) * T::from_f64(0.002) + T::from_f64(0.0002) * t140);
-    let t261 = t149
+    let t262 = t149
         + (T::from_f64(0.002)
             * t146
                 .sign_outside_or(
                     T::from_f64(0.000001),
                     t147.sign_outside(T::from_f64(0.000001)),
                 ) + T::from_f64(0.0002) * t146);
-    let t284 = Real::mul_add(
+    let t285 = Real::mul_add(
         -c78,
         T::from_f64(0.0033333333333333305),
         T::from_f64(0.019720265943665386) * s77,
     );
-    let t288 = Real::mul_add(
+    let t289 = Real::mul_add(
         T::from_f64(0.019720265943665386),
         c78,
         s77 * T::from_f64(0.0033333333333333305),
     );
-    let t332 = Real::mul_add(
+    let t333 = Real::mul_add(
         -s77,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c78,
     );
-    let t337 = Real::mul_add(
+    let t338 = Real::mul_add(
         c78,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s77,
     );
-    let t927 = qd[0] * qd[0];
-    let t928 = T::from_f64(0.3) * t927;
-    let t940 = t104 * t104;
-    let t946 = T::from_f64(0.8)
-        * (Real::mul_add(s77, t80, -(c78 * t928)) - T::from_f64(0.25) * t940
-            + T::from_f64(0.125) * t940);
-    let t983 = t257 * T::from_f64(32.86710990610898);
-    let t985 = t257 * T::from_f64(5.555555555555551);
-    let t988 = Real::mul_add(s77, t985, c78 * t983);
-    let t991 = Real::mul_add(-c78, t985, s77 * t983);
-    let t996 = t261 * T::from_f64(33.31480966792211);
-    let t998 = t261 * T::from_f64(1.1111111111111123);
-    let t1001 = Real::mul_add(s77, t998, c78 * t996);
-    let t1004 = Real::mul_add(-c78, t998, s77 * t996);
-    let t1209 = T::from_f64(1.2) * t85;
-    let t1213 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1215 = s77 * t928 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
-    let t1216 = T::from_f64(0.8) * t1215;
-    let t1218 = Real::mul_add(-T::from_f64(0.1), t1215, T::from_f64(0.0041667) * t105);
-    let t1247 = t1216 - (t991 + t1004);
-    let t1250 = Real::mul_add(
+    let t928 = qd[0] * qd[0];
+    let t929 = T::from_f64(0.3) * t928;
+    let t941 = t104 * t104;
+    let t947 = T::from_f64(0.8)
+        * (Real::mul_add(s77, t80, -(c78 * t929)) - T::from_f64(0.25) * t941
+            + T::from_f64(0.125) * t941);
+    let t984 = t258 * T::from_f64(32.86710990610898);
+    let t986 = t258 * T::from_f64(5.555555555555551);
+    let t989 = Real::mul_add(s77, t986, c78 * t984);
+    let t992 = Real::mul_add(-c78, t986, s77 * t984);
+    let t997 = t262 * T::from_f64(33.31480966792211);
+    let t999 = t262 * T::from_f64(1.1111111111111123);
+    let t1002 = Real::mul_add(s77, t999, c78 * t997);
+    let t1005 = Real::mul_add(-c78, t999, s77 * t997);
+    let t1210 = T::from_f64(1.2) * t85;
+    let t1214 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1216 = s77 * t929 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
+    let t1217 = T::from_f64(0.8) * t1216;
+    let t1219 = Real::mul_add(-T::from_f64(0.1), t1216, T::from_f64(0.0041667) * t105);
+    let t1248 = t1217 - (t992 + t1005);
+    let t1251 = Real::mul_add(
         T::from_f64(0.25),
-        t1247,
-        t1218
+        t1248,
+        t1219
             - (Real::mul_add(
                 -T::from_f64(0.25),
-                t1004,
-                Real::mul_add(-t337, t1001, t332 * t1004),
+                t1005,
+                Real::mul_add(-t338, t1002, t333 * t1005),
             )
                 + Real::mul_add(
                     -T::from_f64(0.25),
-                    t991,
-                    Real::mul_add(t288, t988, t284 * t991),
+                    t992,
+                    Real::mul_add(t289, t989, t285 * t992),
                 )),
     );
-    let t1257 = T::from_f64(0.05)
+    let t1258 = T::from_f64(0.05)
         * qd[0]
             .sign_outside_or(
                 T::from_f64(0.000001),
@@ -523,98 +523,98 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
             ) + T::from_f64(0.01) * qd[0]
         + Real::mul_add(
             T::from_f64(0.3),
-            t1209 + Real::mul_add(c78, t1247, s77 * (t946 + (t988 + t1001))),
-            t1213 + t1250,
+            t1210 + Real::mul_add(c78, t1248, s77 * (t947 + (t989 + t1002))),
+            t1214 + t1251,
         );
-    let t1258 = qd[1]
+    let t1259 = qd[1]
         .sign_outside_or(
             T::from_f64(0.000001),
             qdd[1].sign_outside(T::from_f64(0.000001)),
-        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1250;
-    let t1261 = Real::mul_add(
+        ) * T::from_f64(0.03) + qd[1] * T::from_f64(0.005) + t1251;
+    let t1262 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1257,
-        T::from_f64(24.999999999999975) * t1258,
+        t1258,
+        T::from_f64(24.999999999999975) * t1259,
     );
-    let t1264 = Real::mul_add(
+    let t1265 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1258,
-        T::from_f64(8.823529411764705) * t1257,
+        t1259,
+        T::from_f64(8.823529411764705) * t1258,
     );
-    let t1267 = Real::mul_add(
+    let t1268 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1258,
-        T::from_f64(11.764705882352942) * t1257,
+        t1259,
+        T::from_f64(11.764705882352942) * t1258,
     );
-    let t1274 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1261)
-        .max(T::from_f64(5.0) + t1264)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1267));
-    let t1275 = t1261 + t1274;
-    let t1276 = t1274 - t1264;
-    let t1278 = Real::mul_add(T::from_f64(1.5000000000000002), t1274, t1267);
-    let t1279 = Real::mul_add(t257, T::from_f64(33.333333333333336), t1275);
-    let t1280 = Real::mul_add(T::from_f64(33.333333333333336), t261, t1276);
-    let t1281 = T::from_f64(0.9860132971832694) * t1279;
-    let t1282 = T::from_f64(0.16666666666666652) * t1279;
-    let t1285 = Real::mul_add(s77, t1282, c78 * t1281);
-    let t1286 = s77 * t1281;
-    let t1287 = c78 * t1282;
-    let t1288 = t1286 - t1287;
-    let t1291 = Real::mul_add(t288, t1285, t284 * t1288);
-    let t1294 = Real::mul_add(-s75, t1282, c76 * t1281);
-    let t1297 = Real::mul_add(c76, t1282, s75 * t1281);
-    let t1309 = T::from_f64(0.9994442900376633) * t1280;
-    let t1310 = T::from_f64(0.03333333333333337) * t1280;
-    let t1313 = Real::mul_add(s77, t1310, c78 * t1309);
-    let t1314 = s77 * t1309;
-    let t1315 = c78 * t1310;
-    let t1316 = t1314 - t1315;
-    let t1317 = t332 * t1316;
-    let t1318 = t337 * t1313;
-    let t1322 = Real::mul_add(-s75, t1310, c76 * t1309);
-    let t1325 = Real::mul_add(c76, t1310, s75 * t1309);
-    let t1335 = T::from_f64(0.9733466865996102) * t1278;
-    let t1336 = T::from_f64(0.22933867463984403) * t1278;
-    let t1337 = c76 * t1335;
-    let t1338 = s75 * t1336;
-    let t1339 = t1338 - t1337;
-    let t1342 = Real::mul_add(c76, t1336, s75 * t1335);
-    let t1343 = Real::mul_add(
+    let t1275 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1262)
+        .max(T::from_f64(5.0) + t1265)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1268));
+    let t1276 = t1262 + t1275;
+    let t1277 = t1275 - t1265;
+    let t1279 = Real::mul_add(T::from_f64(1.5000000000000002), t1275, t1268);
+    let t1280 = Real::mul_add(t258, T::from_f64(33.333333333333336), t1276);
+    let t1281 = Real::mul_add(T::from_f64(33.333333333333336), t262, t1277);
+    let t1282 = T::from_f64(0.9860132971832694) * t1280;
+    let t1283 = T::from_f64(0.16666666666666652) * t1280;
+    let t1286 = Real::mul_add(s77, t1283, c78 * t1282);
+    let t1287 = s77 * t1282;
+    let t1288 = c78 * t1283;
+    let t1289 = t1287 - t1288;
+    let t1292 = Real::mul_add(t289, t1286, t285 * t1289);
+    let t1295 = Real::mul_add(-s75, t1283, c76 * t1282);
+    let t1298 = Real::mul_add(c76, t1283, s75 * t1282);
+    let t1310 = T::from_f64(0.9994442900376633) * t1281;
+    let t1311 = T::from_f64(0.03333333333333337) * t1281;
+    let t1314 = Real::mul_add(s77, t1311, c78 * t1310);
+    let t1315 = s77 * t1310;
+    let t1316 = c78 * t1311;
+    let t1317 = t1315 - t1316;
+    let t1318 = t333 * t1317;
+    let t1319 = t338 * t1314;
+    let t1323 = Real::mul_add(-s75, t1311, c76 * t1310);
+    let t1326 = Real::mul_add(c76, t1311, s75 * t1310);
+    let t1336 = T::from_f64(0.9733466865996102) * t1279;
+    let t1337 = T::from_f64(0.22933867463984403) * t1279;
+    let t1338 = c76 * t1336;
+    let t1339 = s75 * t1337;
+    let t1340 = t1339 - t1338;
+    let t1343 = Real::mul_add(c76, t1337, s75 * t1336);
+    let t1344 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1342;
-    let t1344 = Real::mul_add(
+    ) * t1343;
+    let t1345 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s75,
         T::from_f64(0.03893386746398441) * c76,
-    ) * t1339;
-    let t1346 = Real::mul_add(T::from_f64(0.9968453000901664), t1276, -t1322);
-    let t1347 = Real::mul_add(T::from_f64(0.0793690600180332), t1276, -t1325);
-    let t1348 = t149
+    ) * t1340;
+    let t1347 = Real::mul_add(T::from_f64(0.9968453000901664), t1277, -t1323);
+    let t1348 = Real::mul_add(T::from_f64(0.0793690600180332), t1277, -t1326);
+    let t1349 = t149
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1276,
+            t1277,
             Real::mul_add(
                 -Real::mul_add(
                     -c76,
                     T::from_f64(0.029983328701129897),
                     T::from_f64(0.0010000000000000009) * s75,
                 ),
-                t1322,
+                t1323,
                 Real::mul_add(
                     s75,
                     T::from_f64(0.029983328701129897),
                     T::from_f64(0.0010000000000000009) * c76,
-                ) * t1325,
+                ) * t1326,
             ),
         );
-    let t1349 = Real::mul_add(T::from_f64(0.9506914539363203), t1275, -t1294);
-    let t1350 = -Real::mul_add(T::from_f64(0.31013829078726374), t1275, t1297);
-    let t1351 = t145
+    let t1350 = Real::mul_add(T::from_f64(0.9506914539363203), t1276, -t1295);
+    let t1351 = -Real::mul_add(T::from_f64(0.31013829078726374), t1276, t1298);
+    let t1352 = t145
         - Real::mul_add(
-            -t1275,
+            -t1276,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -622,63 +622,63 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                     T::from_f64(0.02958039891549808),
                     T::from_f64(0.004999999999999996) * s75,
                 ),
-                t1294,
+                t1295,
                 Real::mul_add(
                     s75,
                     T::from_f64(0.02958039891549808),
                     T::from_f64(0.004999999999999996) * c76,
-                ) * t1297,
+                ) * t1298,
             ),
         );
-    let t1352 = t1337 - t1338;
-    let t1353 = -t1342;
-    let t1354 = t1344 - t1343;
-    let t1357 = t1315 - t1314;
-    let t1358 = t1318 - t1317;
-    let t1363 = t1287 - t1286;
-    let t1364 = -t1291;
-    let t1373 = t946 + (t1285 + t1313);
-    let t1374 = t1216 - (t1288 + t1316);
-    let t1375 = Real::mul_add(-T::from_f64(0.01), t1316, T::from_f64(0.01) * t1288);
-    let t1380 = Real::mul_add(
-        -T::from_f64(0.01),
-        t1313,
-        Real::mul_add(T::from_f64(0.01), t1285, -T::from_f64(0.9810000000000001)),
-    );
+    let t1353 = t1338 - t1339;
+    let t1354 = -t1343;
+    let t1355 = t1345 - t1344;
+    let t1358 = t1316 - t1315;
+    let t1359 = t1319 - t1318;
+    let t1364 = t1288 - t1287;
+    let t1365 = -t1292;
+    let t1374 = t947 + (t1286 + t1314);
+    let t1375 = t1217 - (t1289 + t1317);
+    let t1376 = Real::mul_add(-T::from_f64(0.01), t1317, T::from_f64(0.01) * t1289);
     let t1381 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1314,
+        Real::mul_add(T::from_f64(0.01), t1286, -T::from_f64(0.9810000000000001)),
+    );
+    let t1382 = Real::mul_add(
         T::from_f64(0.25),
-        t1374,
-        t1218
-            - (Real::mul_add(-T::from_f64(0.25), t1316, t1317 - t1318)
-                + Real::mul_add(-T::from_f64(0.25), t1288, t1291)),
+        t1375,
+        t1219
+            - (Real::mul_add(-T::from_f64(0.25), t1317, t1318 - t1319)
+                + Real::mul_add(-T::from_f64(0.25), t1289, t1292)),
     );
-    let t1390 = Real::mul_add(-s77, t1380, c78 * t1375);
-    let t1397 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t927, -t928)
-        - (t1339 + Real::mul_add(-c78, t1373, s77 * t1374));
-    let t1398 = t1209 - (t1342 - Real::mul_add(c78, t1374, s77 * t1373));
-    let t1404 = Real::mul_add(
-        c78,
-        t1380,
-        Real::mul_add(s77, t1375, -T::from_f64(4.1202000000000005)),
-    );
+    let t1391 = Real::mul_add(-s77, t1381, c78 * t1376);
+    let t1398 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t928, -t929)
+        - (t1340 + Real::mul_add(-c78, t1374, s77 * t1375));
+    let t1399 = t1210 - (t1343 - Real::mul_add(c78, t1375, s77 * t1374));
     let t1405 = Real::mul_add(
+        c78,
+        t1381,
+        Real::mul_add(s77, t1376, -T::from_f64(4.1202000000000005)),
+    );
+    let t1406 = Real::mul_add(
         T::from_f64(0.3),
-        t1398,
-        t1213 - (Real::mul_add(-T::from_f64(0.3), t1342, t1343 - t1344) - t1381),
+        t1399,
+        t1214 - (Real::mul_add(-T::from_f64(0.3), t1343, t1344 - t1345) - t1382),
     );
     [
-        [[t1397, t1398, T::from_f64(19.62)], [t1390, t1404, t1405]],
-        [[t1373, t1374, T::from_f64(7.848000000000001)], [t1375, t1380, t1381]],
-        [[t1285, t1363, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1364]],
-        [[t1313, t1357, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1358]],
-        [[t1352, t1353, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1354]],
+        [[t1398, t1399, T::from_f64(19.62)], [t1391, t1405, t1406]],
+        [[t1374, t1375, T::from_f64(7.848000000000001)], [t1376, t1381, t1382]],
+        [[t1286, t1364, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1365]],
+        [[t1314, t1358, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1359]],
+        [[t1353, t1354, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1355]],
         [
-            [t1349, t1350, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1351],
+            [t1350, t1351, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1352],
         ],
         [
-            [t1346, t1347, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1348],
+            [t1347, t1348, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1349],
         ],
     ]
 }
@@ -706,36 +706,36 @@ pub fn base_reaction<T: Real>(
         - T::from_f64(5.886);
     let t197 = Real::mul_add(-s75, t182, c76 * t168);
     let t200 = Real::mul_add(c76, t182, s75 * t168);
-    let t927 = qd[0] * qd[0];
-    let t928 = T::from_f64(0.3) * t927;
-    let t940 = t104 * t104;
-    let t946 = T::from_f64(0.8)
-        * (Real::mul_add(s77, t80, -(c78 * t928)) - T::from_f64(0.25) * t940
-            + T::from_f64(0.125) * t940);
-    let t1215 = s77 * t928 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
-    let t1216 = T::from_f64(0.8) * t1215;
-    let t1225 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t927, -t928)
-        - Real::mul_add(-c78, t946, s77 * t1216);
-    let t1226 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1216, s77 * t946);
-    let t1232 = Real::mul_add(-s75, t1226, c76 * t1225);
-    let t1235 = Real::mul_add(c76, t1226, s75 * t1225);
-    let t1236 = T::from_f64(0.0000225) * (qdd[0] - t141)
+    let t928 = qd[0] * qd[0];
+    let t929 = T::from_f64(0.3) * t928;
+    let t941 = t104 * t104;
+    let t947 = T::from_f64(0.8)
+        * (Real::mul_add(s77, t80, -(c78 * t929)) - T::from_f64(0.25) * t941
+            + T::from_f64(0.125) * t941);
+    let t1216 = s77 * t929 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
+    let t1217 = T::from_f64(0.8) * t1216;
+    let t1226 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t928, -t929)
+        - Real::mul_add(-c78, t947, s77 * t1217);
+    let t1227 = T::from_f64(1.2) * t85 + Real::mul_add(c78, t1217, s77 * t947);
+    let t1233 = Real::mul_add(-s75, t1227, c76 * t1226);
+    let t1236 = Real::mul_add(c76, t1227, s75 * t1226);
+    let t1237 = T::from_f64(0.0000225) * (qdd[0] - t141)
         + T::from_f64(0.0000225) * (qdd[0] + t141)
         + Real::mul_add(
             T::from_f64(0.3),
-            t1226,
+            t1227,
             Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
                 + Real::mul_add(
                     T::from_f64(0.2),
-                    t1215,
+                    t1216,
                     Real::mul_add(
                         -T::from_f64(0.1),
-                        t1215,
+                        t1216,
                         T::from_f64(0.0041667) * t105,
                     ),
                 ),
         );
-    [[[t1232, t1235, T::from_f64(20.601000000000003)], [t197, t200, t1236]]]
+    [[[t1233, t1236, T::from_f64(20.601000000000003)], [t197, t200, t1237]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -788,213 +788,213 @@ pub fn all<T: Real>(
         - T::from_f64(5.886);
     let t197 = Real::mul_add(-s75, t182, c76 * t168);
     let t200 = Real::mul_add(c76, t182, s75 * t168);
-    let t216 = T::from_f64(0.01) * qd[0];
-    let t217 = T::from_f64(0.05)
+    let t217 = T::from_f64(0.01) * qd[0];
+    let t218 = T::from_f64(0.05)
         * qd[0]
             .sign_outside_or(
                 T::from_f64(0.000001),
                 qdd[0].sign_outside(T::from_f64(0.000001)),
-            ) + t216;
-    let t224 = qd[1] * T::from_f64(0.005);
-    let t225 = qd[1]
+            ) + t217;
+    let t225 = qd[1] * T::from_f64(0.005);
+    let t226 = qd[1]
         .sign_outside_or(
             T::from_f64(0.000001),
             qdd[1].sign_outside(T::from_f64(0.000001)),
-        ) * T::from_f64(0.03) + t224;
-    let t231 = T::from_f64(0.0002) * t140;
-    let t232 = t140
+        ) * T::from_f64(0.03) + t225;
+    let t232 = T::from_f64(0.0002) * t140;
+    let t233 = t140
         .sign_outside_or(T::from_f64(0.000001), t143.sign_outside(T::from_f64(0.000001)))
-        * T::from_f64(0.002) + t231;
-    let t237 = T::from_f64(0.0002) * t146;
-    let t238 = T::from_f64(0.002)
+        * T::from_f64(0.002) + t232;
+    let t238 = T::from_f64(0.0002) * t146;
+    let t239 = T::from_f64(0.002)
         * t146
             .sign_outside_or(
                 T::from_f64(0.000001),
                 t147.sign_outside(T::from_f64(0.000001)),
-            ) + t237;
-    let t257 = t145 + t232;
-    let t261 = t149 + t238;
-    let t284 = Real::mul_add(
+            ) + t238;
+    let t258 = t145 + t233;
+    let t262 = t149 + t239;
+    let t285 = Real::mul_add(
         -c78,
         T::from_f64(0.0033333333333333305),
         T::from_f64(0.019720265943665386) * s77,
     );
-    let t288 = Real::mul_add(
+    let t289 = Real::mul_add(
         T::from_f64(0.019720265943665386),
         c78,
         s77 * T::from_f64(0.0033333333333333305),
     );
-    let t332 = Real::mul_add(
+    let t333 = Real::mul_add(
         -s77,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c78,
     );
-    let t337 = Real::mul_add(
+    let t338 = Real::mul_add(
         c78,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s77,
     );
-    let t801 = Real::mul_add(T::from_f64(0.1), c78, T::from_f64(-0.18));
-    let t878 = t231 + T::from_f64(0.002) * t140.sign_outside(T::from_f64(0.000001));
-    let t882 = t237 + T::from_f64(0.002) * t146.sign_outside(T::from_f64(0.000001));
-    let t927 = qd[0] * qd[0];
-    let t928 = T::from_f64(0.3) * t927;
-    let t931 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t927, -t928);
-    let t935 = c78 * t928;
-    let t937 = s77 * t928;
-    let t940 = t104 * t104;
-    let t941 = T::from_f64(0.25) * t940;
-    let t944 = T::from_f64(0.125) * t940;
-    let t946 = T::from_f64(0.8) * (Real::mul_add(s77, t80, -t935) - t941 + t944);
-    let t983 = t257 * T::from_f64(32.86710990610898);
-    let t985 = t257 * T::from_f64(5.555555555555551);
-    let t988 = Real::mul_add(s77, t985, c78 * t983);
-    let t991 = Real::mul_add(-c78, t985, s77 * t983);
-    let t996 = t261 * T::from_f64(33.31480966792211);
-    let t998 = t261 * T::from_f64(1.1111111111111123);
-    let t1001 = Real::mul_add(s77, t998, c78 * t996);
-    let t1004 = Real::mul_add(-c78, t998, s77 * t996);
-    let t1177 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
-    let t1182 = T::from_f64(0.1) * t937;
-    let t1209 = T::from_f64(1.2) * t85;
-    let t1211 = Real::mul_add(
+    let t802 = Real::mul_add(T::from_f64(0.1), c78, T::from_f64(-0.18));
+    let t879 = t232 + T::from_f64(0.002) * t140.sign_outside(T::from_f64(0.000001));
+    let t883 = t238 + T::from_f64(0.002) * t146.sign_outside(T::from_f64(0.000001));
+    let t928 = qd[0] * qd[0];
+    let t929 = T::from_f64(0.3) * t928;
+    let t932 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t928, -t929);
+    let t936 = c78 * t929;
+    let t938 = s77 * t929;
+    let t941 = t104 * t104;
+    let t942 = T::from_f64(0.25) * t941;
+    let t945 = T::from_f64(0.125) * t941;
+    let t947 = T::from_f64(0.8) * (Real::mul_add(s77, t80, -t936) - t942 + t945);
+    let t984 = t258 * T::from_f64(32.86710990610898);
+    let t986 = t258 * T::from_f64(5.555555555555551);
+    let t989 = Real::mul_add(s77, t986, c78 * t984);
+    let t992 = Real::mul_add(-c78, t986, s77 * t984);
+    let t997 = t262 * T::from_f64(33.31480966792211);
+    let t999 = t262 * T::from_f64(1.1111111111111123);
+    let t1002 = Real::mul_add(s77, t999, c78 * t997);
+    let t1005 = Real::mul_add(-c78, t999, s77 * t997);
+    let t1178 = Real::mul_add(c78, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1183 = T::from_f64(0.1) * t938;
+    let t1210 = T::from_f64(1.2) * t85;
+    let t1212 = Real::mul_add(
         T::from_f64(0.3),
-        t801 + (t801 + T::from_f64(0.6)),
+        t802 + (t802 + T::from_f64(0.6)),
         T::from_f64(0.0527117),
     );
-    let t1213 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1215 = t937 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
-    let t1216 = T::from_f64(0.8) * t1215;
-    let t1218 = Real::mul_add(-T::from_f64(0.1), t1215, T::from_f64(0.0041667) * t105);
-    let t1220 = Real::mul_add(T::from_f64(0.2), t1215, t1218);
-    let t1225 = t931 - Real::mul_add(-c78, t946, s77 * t1216);
-    let t1226 = t1209 + Real::mul_add(c78, t1216, s77 * t946);
-    let t1229 = Real::mul_add(T::from_f64(0.3), t1226, t1213 + t1220);
-    let t1232 = Real::mul_add(-s75, t1226, c76 * t1225);
-    let t1235 = Real::mul_add(c76, t1226, s75 * t1225);
-    let t1236 = t145 + t149 + t1229;
-    let t1245 = t238 + (t232 + (t217 + (t149 + (t145 + t1229))));
-    let t1246 = Real::mul_add(
+    let t1214 = Real::mul_add(-t85, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t1216 = t938 + Real::mul_add(t105, T::from_f64(0.125), c78 * t80);
+    let t1217 = T::from_f64(0.8) * t1216;
+    let t1219 = Real::mul_add(-T::from_f64(0.1), t1216, T::from_f64(0.0041667) * t105);
+    let t1221 = Real::mul_add(T::from_f64(0.2), t1216, t1219);
+    let t1226 = t932 - Real::mul_add(-c78, t947, s77 * t1217);
+    let t1227 = t1210 + Real::mul_add(c78, t1217, s77 * t947);
+    let t1230 = Real::mul_add(T::from_f64(0.3), t1227, t1214 + t1221);
+    let t1233 = Real::mul_add(-s75, t1227, c76 * t1226);
+    let t1236 = Real::mul_add(c76, t1227, s75 * t1226);
+    let t1237 = t145 + t149 + t1230;
+    let t1246 = t239 + (t233 + (t218 + (t149 + (t145 + t1230))));
+    let t1247 = Real::mul_add(
         T::from_f64(0.6666666666666667),
-        t238,
+        t239,
         Real::mul_add(
             -T::from_f64(0.6666666666666667),
-            t232,
-            t225
+            t233,
+            t226
                 + Real::mul_add(
                     t147,
                     T::from_f64(0.000015000000000000002),
-                    Real::mul_add(-t143, T::from_f64(0.000015000000000000002), t1220),
+                    Real::mul_add(-t143, T::from_f64(0.000015000000000000002), t1221),
                 ),
         ),
     );
-    let t1247 = t1216 - (t991 + t1004);
-    let t1250 = Real::mul_add(
+    let t1248 = t1217 - (t992 + t1005);
+    let t1251 = Real::mul_add(
         T::from_f64(0.25),
-        t1247,
-        t1218
+        t1248,
+        t1219
             - (Real::mul_add(
                 -T::from_f64(0.25),
-                t1004,
-                Real::mul_add(-t337, t1001, t332 * t1004),
+                t1005,
+                Real::mul_add(-t338, t1002, t333 * t1005),
             )
                 + Real::mul_add(
                     -T::from_f64(0.25),
-                    t991,
-                    Real::mul_add(t288, t988, t284 * t991),
+                    t992,
+                    Real::mul_add(t289, t989, t285 * t992),
                 )),
     );
-    let t1257 = t217
+    let t1258 = t218
         + Real::mul_add(
             T::from_f64(0.3),
-            t1209 + Real::mul_add(c78, t1247, s77 * (t946 + (t988 + t1001))),
-            t1213 + t1250,
+            t1210 + Real::mul_add(c78, t1248, s77 * (t947 + (t989 + t1002))),
+            t1214 + t1251,
         );
-    let t1258 = t225 + t1250;
-    let t1261 = Real::mul_add(
+    let t1259 = t226 + t1251;
+    let t1262 = Real::mul_add(
         -T::from_f64(8.823529411764707),
-        t1257,
-        T::from_f64(24.999999999999975) * t1258,
+        t1258,
+        T::from_f64(24.999999999999975) * t1259,
     );
-    let t1264 = Real::mul_add(
+    let t1265 = Real::mul_add(
         T::from_f64(24.999999999999993),
-        t1258,
-        T::from_f64(8.823529411764705) * t1257,
+        t1259,
+        T::from_f64(8.823529411764705) * t1258,
     );
-    let t1267 = Real::mul_add(
+    let t1268 = Real::mul_add(
         T::from_f64(0.000000000000002943923360032077),
-        t1258,
-        T::from_f64(11.764705882352942) * t1257,
+        t1259,
+        T::from_f64(11.764705882352942) * t1258,
     );
-    let t1274 = T::from_f64(0.0)
-        .max(T::from_f64(5.0) - t1261)
-        .max(T::from_f64(5.0) + t1264)
-        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1267));
-    let t1275 = t1261 + t1274;
-    let t1276 = t1274 - t1264;
-    let t1278 = Real::mul_add(T::from_f64(1.5000000000000002), t1274, t1267);
-    let t1279 = Real::mul_add(t257, T::from_f64(33.333333333333336), t1275);
-    let t1280 = Real::mul_add(T::from_f64(33.333333333333336), t261, t1276);
-    let t1281 = T::from_f64(0.9860132971832694) * t1279;
-    let t1282 = T::from_f64(0.16666666666666652) * t1279;
-    let t1285 = Real::mul_add(s77, t1282, c78 * t1281);
-    let t1286 = s77 * t1281;
-    let t1287 = c78 * t1282;
-    let t1288 = t1286 - t1287;
-    let t1291 = Real::mul_add(t288, t1285, t284 * t1288);
-    let t1294 = Real::mul_add(-s75, t1282, c76 * t1281);
-    let t1297 = Real::mul_add(c76, t1282, s75 * t1281);
-    let t1309 = T::from_f64(0.9994442900376633) * t1280;
-    let t1310 = T::from_f64(0.03333333333333337) * t1280;
-    let t1313 = Real::mul_add(s77, t1310, c78 * t1309);
-    let t1314 = s77 * t1309;
-    let t1315 = c78 * t1310;
-    let t1316 = t1314 - t1315;
-    let t1317 = t332 * t1316;
-    let t1318 = t337 * t1313;
-    let t1322 = Real::mul_add(-s75, t1310, c76 * t1309);
-    let t1325 = Real::mul_add(c76, t1310, s75 * t1309);
-    let t1335 = T::from_f64(0.9733466865996102) * t1278;
-    let t1336 = T::from_f64(0.22933867463984403) * t1278;
-    let t1337 = c76 * t1335;
-    let t1338 = s75 * t1336;
-    let t1339 = t1338 - t1337;
-    let t1342 = Real::mul_add(c76, t1336, s75 * t1335);
-    let t1343 = Real::mul_add(
+    let t1275 = T::from_f64(0.0)
+        .max(T::from_f64(5.0) - t1262)
+        .max(T::from_f64(5.0) + t1265)
+        .max(T::from_f64(0.6666666666666665) * (T::from_f64(5.0) - t1268));
+    let t1276 = t1262 + t1275;
+    let t1277 = t1275 - t1265;
+    let t1279 = Real::mul_add(T::from_f64(1.5000000000000002), t1275, t1268);
+    let t1280 = Real::mul_add(t258, T::from_f64(33.333333333333336), t1276);
+    let t1281 = Real::mul_add(T::from_f64(33.333333333333336), t262, t1277);
+    let t1282 = T::from_f64(0.9860132971832694) * t1280;
+    let t1283 = T::from_f64(0.16666666666666652) * t1280;
+    let t1286 = Real::mul_add(s77, t1283, c78 * t1282);
+    let t1287 = s77 * t1282;
+    let t1288 = c78 * t1283;
+    let t1289 = t1287 - t1288;
+    let t1292 = Real::mul_add(t289, t1286, t285 * t1289);
+    let t1295 = Real::mul_add(-s75, t1283, c76 * t1282);
+    let t1298 = Real::mul_add(c76, t1283, s75 * t1282);
+    let t1310 = T::from_f64(0.9994442900376633) * t1281;
+    let t1311 = T::from_f64(0.03333333333333337) * t1281;
+    let t1314 = Real::mul_add(s77, t1311, c78 * t1310);
+    let t1315 = s77 * t1310;
+    let t1316 = c78 * t1311;
+    let t1317 = t1315 - t1316;
+    let t1318 = t333 * t1317;
+    let t1319 = t338 * t1314;
+    let t1323 = Real::mul_add(-s75, t1311, c76 * t1310);
+    let t1326 = Real::mul_add(c76, t1311, s75 * t1310);
+    let t1336 = T::from_f64(0.9733466865996102) * t1279;
+    let t1337 = T::from_f64(0.22933867463984403) * t1279;
+    let t1338 = c76 * t1336;
+    let t1339 = s75 * t1337;
+    let t1340 = t1339 - t1338;
+    let t1343 = Real::mul_add(c76, t1337, s75 * t1336);
+    let t1344 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s75,
         T::from_f64(0.009173546985593762) * c76,
-    ) * t1342;
-    let t1344 = Real::mul_add(
+    ) * t1343;
+    let t1345 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s75,
         T::from_f64(0.03893386746398441) * c76,
-    ) * t1339;
-    let t1346 = Real::mul_add(T::from_f64(0.9968453000901664), t1276, -t1322);
-    let t1347 = Real::mul_add(T::from_f64(0.0793690600180332), t1276, -t1325);
-    let t1348 = t149
+    ) * t1340;
+    let t1347 = Real::mul_add(T::from_f64(0.9968453000901664), t1277, -t1323);
+    let t1348 = Real::mul_add(T::from_f64(0.0793690600180332), t1277, -t1326);
+    let t1349 = t149
         - Real::mul_add(
             -T::from_f64(0.03),
-            t1276,
+            t1277,
             Real::mul_add(
                 -Real::mul_add(
                     -c76,
                     T::from_f64(0.029983328701129897),
                     T::from_f64(0.0010000000000000009) * s75,
                 ),
-                t1322,
+                t1323,
                 Real::mul_add(
                     s75,
                     T::from_f64(0.029983328701129897),
                     T::from_f64(0.0010000000000000009) * c76,
-                ) * t1325,
+                ) * t1326,
             ),
         );
-    let t1349 = Real::mul_add(T::from_f64(0.9506914539363203), t1275, -t1294);
-    let t1350 = -Real::mul_add(T::from_f64(0.31013829078726374), t1275, t1297);
-    let t1351 = t145
+    let t1350 = Real::mul_add(T::from_f64(0.9506914539363203), t1276, -t1295);
+    let t1351 = -Real::mul_add(T::from_f64(0.31013829078726374), t1276, t1298);
+    let t1352 = t145
         - Real::mul_add(
-            -t1275,
+            -t1276,
             T::from_f64(0.029999999999999995),
             Real::mul_add(
                 -Real::mul_add(
@@ -1002,119 +1002,119 @@ pub fn all<T: Real>(
                     T::from_f64(0.02958039891549808),
                     T::from_f64(0.004999999999999996) * s75,
                 ),
-                t1294,
+                t1295,
                 Real::mul_add(
                     s75,
                     T::from_f64(0.02958039891549808),
                     T::from_f64(0.004999999999999996) * c76,
-                ) * t1297,
+                ) * t1298,
             ),
         );
-    let t1352 = t1337 - t1338;
-    let t1353 = -t1342;
-    let t1354 = t1344 - t1343;
-    let t1357 = t1315 - t1314;
-    let t1358 = t1318 - t1317;
-    let t1363 = t1287 - t1286;
-    let t1364 = -t1291;
-    let t1373 = t946 + (t1285 + t1313);
-    let t1374 = t1216 - (t1288 + t1316);
-    let t1375 = Real::mul_add(-T::from_f64(0.01), t1316, T::from_f64(0.01) * t1288);
-    let t1380 = Real::mul_add(
-        -T::from_f64(0.01),
-        t1313,
-        Real::mul_add(T::from_f64(0.01), t1285, -T::from_f64(0.9810000000000001)),
-    );
+    let t1353 = t1338 - t1339;
+    let t1354 = -t1343;
+    let t1355 = t1345 - t1344;
+    let t1358 = t1316 - t1315;
+    let t1359 = t1319 - t1318;
+    let t1364 = t1288 - t1287;
+    let t1365 = -t1292;
+    let t1374 = t947 + (t1286 + t1314);
+    let t1375 = t1217 - (t1289 + t1317);
+    let t1376 = Real::mul_add(-T::from_f64(0.01), t1317, T::from_f64(0.01) * t1289);
     let t1381 = Real::mul_add(
+        -T::from_f64(0.01),
+        t1314,
+        Real::mul_add(T::from_f64(0.01), t1286, -T::from_f64(0.9810000000000001)),
+    );
+    let t1382 = Real::mul_add(
         T::from_f64(0.25),
-        t1374,
-        t1218
-            - (Real::mul_add(-T::from_f64(0.25), t1316, t1317 - t1318)
-                + Real::mul_add(-T::from_f64(0.25), t1288, t1291)),
+        t1375,
+        t1219
+            - (Real::mul_add(-T::from_f64(0.25), t1317, t1318 - t1319)
+                + Real::mul_add(-T::from_f64(0.25), t1289, t1292)),
     );
-    let t1390 = Real::mul_add(-s77, t1380, c78 * t1375);
-    let t1397 = t931 - (t1339 + Real::mul_add(-c78, t1373, s77 * t1374));
-    let t1398 = t1209 - (t1342 - Real::mul_add(c78, t1374, s77 * t1373));
-    let t1404 = Real::mul_add(
-        c78,
-        t1380,
-        Real::mul_add(s77, t1375, -T::from_f64(4.1202000000000005)),
-    );
+    let t1391 = Real::mul_add(-s77, t1381, c78 * t1376);
+    let t1398 = t932 - (t1340 + Real::mul_add(-c78, t1374, s77 * t1375));
+    let t1399 = t1210 - (t1343 - Real::mul_add(c78, t1375, s77 * t1374));
     let t1405 = Real::mul_add(
-        T::from_f64(0.3),
-        t1398,
-        t1213 - (Real::mul_add(-T::from_f64(0.3), t1342, t1343 - t1344) - t1381),
+        c78,
+        t1381,
+        Real::mul_add(s77, t1376, -T::from_f64(4.1202000000000005)),
     );
     let t1406 = Real::mul_add(
         T::from_f64(0.3),
+        t1399,
+        t1214 - (Real::mul_add(-T::from_f64(0.3), t1343, t1344 - t1345) - t1382),
+    );
+    let t1407 = Real::mul_add(
+        T::from_f64(0.3),
         Real::mul_add(
             c78,
-            T::from_f64(0.8) * t937,
-            T::from_f64(0.8) * (s77 * (t944 - (t935 + t941))),
+            T::from_f64(0.8) * t938,
+            T::from_f64(0.8) * (s77 * (t945 - (t936 + t942))),
         ),
-        t1182,
+        t1183,
     );
-    let t1413 = T::from_f64(0.04) * tendon_tensions[2]
+    let t1414 = T::from_f64(0.04) * tendon_tensions[2]
         - (tendon_tensions[0] * T::from_f64(0.03)
-            + tendon_tensions[1] * T::from_f64(0.03)) - t1406
-        - (t216 + T::from_f64(0.05) * qd[0].sign_outside(T::from_f64(0.000001))) - t878
-        - t882;
-    let t1415 = t1177 / t1211;
-    let t1420 = Real::mul_add(
-        -t1413,
-        t1415,
+            + tendon_tensions[1] * T::from_f64(0.03)) - t1407
+        - (t217 + T::from_f64(0.05) * qd[0].sign_outside(T::from_f64(0.000001))) - t879
+        - t883;
+    let t1416 = t1178 / t1212;
+    let t1421 = Real::mul_add(
+        -t1414,
+        t1416,
         Real::mul_add(
             -T::from_f64(0.6666666666666667),
-            t882,
+            t883,
             Real::mul_add(
                 T::from_f64(0.6666666666666667),
-                t878,
+                t879,
                 T::from_f64(0.02) * tendon_tensions[0]
-                    - T::from_f64(0.02) * tendon_tensions[1] - t1182
-                    - (t224
+                    - T::from_f64(0.02) * tendon_tensions[1] - t1183
+                    - (t225
                         + T::from_f64(0.03) * qd[1].sign_outside(T::from_f64(0.000001))),
             ),
         ),
     );
-    let t1422 = t1420 / Real::mul_add(-t1211, t1415 * t1415, T::from_f64(0.0166867));
-    let t1424 = Real::mul_add(-t1415, t1422, t1413 / t1211);
+    let t1423 = t1421 / Real::mul_add(-t1212, t1416 * t1416, T::from_f64(0.0166867));
+    let t1425 = Real::mul_add(-t1416, t1423, t1414 / t1212);
     Outputs {
-        generalized_forces: [t1245, t1246],
+        generalized_forces: [t1246, t1247],
         actuation: tendyn_core::distribution::Actuation::exact(
             [],
-            [t1275, t1276, t1278],
+            [t1276, t1277, t1279],
         ),
-        mass_matrix: [[t1211, t1177], [t1177, T::from_f64(0.0166867)]],
-        bias: [t1406, t1182],
+        mass_matrix: [[t1212, t1178], [t1178, T::from_f64(0.0166867)]],
+        bias: [t1407, t1183],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1424, t1422],
-        segment_tensions: [t1279, t1275, t1280, t1276, t1278],
+        forward_dynamics: [t1425, t1423],
+        segment_tensions: [t1280, t1276, t1281, t1277, t1279],
         bearings: [
-            [[t1397, t1398, T::from_f64(19.62)], [t1390, t1404, t1405]],
-            [[t1373, t1374, T::from_f64(7.848000000000001)], [t1375, t1380, t1381]],
+            [[t1398, t1399, T::from_f64(19.62)], [t1391, t1405, t1406]],
+            [[t1374, t1375, T::from_f64(7.848000000000001)], [t1376, t1381, t1382]],
             [
-                [t1285, t1363, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1364],
+                [t1286, t1364, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1365],
             ],
             [
-                [t1313, t1357, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1358],
+                [t1314, t1358, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1359],
             ],
             [
-                [t1352, t1353, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1354],
+                [t1353, t1354, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1355],
             ],
             [
-                [t1349, t1350, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1351],
+                [t1350, t1351, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1352],
             ],
             [
-                [t1346, t1347, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1348],
+                [t1347, t1348, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1349],
             ],
         ],
         base_reaction: [
-            [[t1232, t1235, T::from_f64(20.601000000000003)], [t197, t200, t1236]],
+            [[t1233, t1236, T::from_f64(20.601000000000003)], [t197, t200, t1237]],
         ],
     }
 }

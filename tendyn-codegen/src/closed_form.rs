@@ -444,6 +444,14 @@ impl Expander<'_, '_> {
                 let v = self.g.sign_outside(a, b, c);
                 self.variable(v, out);
             }
+            Node::SelectOutside(ids) => {
+                let mut c = [ids[0]; 5];
+                for (to, from) in c.iter_mut().zip(ids) {
+                    *to = self.collected(from)?;
+                }
+                let v = self.g.select_outside(c);
+                self.variable(v, out);
+            }
         }
         Some(())
     }

@@ -491,6 +491,10 @@ impl<'g> Body<'g> {
                 let args = [self.expr(b), self.expr(c)];
                 (ast::method(operand(a, 4), "sign_outside_or", args), 4)
             }
+            Node::SelectOutside([a, b, p, m, o]) => {
+                let args = [self.expr(b), self.expr(p), self.expr(m), self.expr(o)];
+                (ast::method(operand(a, 4), "select_outside", args), 4)
+            }
         }
     }
 

@@ -136,6 +136,10 @@ fn show(g: &Graph, id: Id, names: &dyn Fn(Id) -> Option<String>) -> (String, u8)
             let (a, b) = (show(g, a, names).0, show(g, b, names).0);
             (format!("sgn({a}; ±{b}{within})"), 4)
         }
+        Node::SelectOutside([a, b, p, m, o]) => {
+            let [a, b, p, m, o] = [a, b, p, m, o].map(|x| show(g, x, names).0);
+            (format!("select({a}; ±{b}: {p}, {m}, else {o})"), 4)
+        }
     }
 }
 

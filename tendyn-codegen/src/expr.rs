@@ -61,25 +61,28 @@ pub enum Node {
     /// `a.sign_outside_or(band, otherwise)`: ±1 beyond the band, `otherwise` within it
     /// ([`Real::sign_outside_or`]; `a.sign_outside(band)` where `otherwise` is 0).
     SignOutside(Id, Id, Id),
+    /// `a.select_outside(band, above, below, otherwise)` ([`Real::select_outside`]).
+    SelectOutside([Id; 5]),
 }
 
 impl Node {
     /// The operands of the node, without allocating.
     pub fn operands(self) -> impl Iterator<Item = Id> {
         let (ids, n) = match self {
-            Node::Const(_) | Node::Input(_) => ([Id(0); 3], 0),
+            Node::Const(_) | Node::Input(_) => ([Id(0); 5], 0),
             Node::Neg(a)
             | Node::Sin(a)
             | Node::Cos(a)
             | Node::Sqrt(a)
             | Node::Tanh(a)
-            | Node::Exp(a) => ([a, a, a], 1),
+            | Node::Exp(a) => ([a; 5], 1),
             Node::Add(a, b)
             | Node::Sub(a, b)
             | Node::Mul(a, b)
             | Node::Div(a, b)
-            | Node::Max(a, b) => ([a, b, b], 2),
-            Node::SignOutside(a, b, c) => ([a, b, c], 3),
+            | Node::Max(a, b) => ([a, b, b, b, b], 2),
+            Node::SignOutside(a, b, c) => ([a, b, c, c, c], 3),
+            Node::SelectOutside(ids) => (ids, 5),
         };
         ids.into_iter().take(n)
     }
@@ -415,6 +418,30 @@ impl Graph {
         self.intern(Node::SignOutside(a, band, otherwise))
     }
 
+    /// `a.select_outside(band, above, below, otherwise)` ([`Real::select_outside`]),
+    /// folded when `a` and `band` are constants or the three values are one, and with a
+    /// negation of `a` taken into the choice (`above` and `below` swapped).
+    pub fn select_outside(&mut self, [a, band, above, below, otherwise]: [Id; 5]) -> Id {
+        if let (Some(x), Some(b)) = (self.constant_value(a), self.constant_value(band)) {
+            return match x.sign_outside(b) {
+                1.0 => above,
+                -1.0 => below,
+                _ => otherwise,
+            };
+        }
+        if above == below && below == otherwise {
+            return above;
+        }
+        // A choice of signs is a sign.
+        if (self.constant_value(above), self.constant_value(below)) == (Some(1.0), Some(-1.0)) {
+            return self.sign_outside(a, band, otherwise);
+        }
+        if let Node::Neg(x) = self.node(a) {
+            return self.select_outside([x, band, below, above, otherwise]);
+        }
+        self.intern(Node::SelectOutside([a, band, above, below, otherwise]))
+    }
+
     /// `roots` rebuilt with their numbers gathered in products: `k · (k' · y) = (k k') · y`,
     /// and `x · (k · y) = k · (x · y)` wherever `k · y` has no other use among the nodes the
     /// roots depend on. Never more multiplications, and products that differ only in
@@ -604,6 +631,7 @@ impl Graph {
             Node::Exp(_) => self.exp(x(0)),
             Node::Max(..) => self.max(x(0), x(1)),
             Node::SignOutside(..) => self.sign_outside(x(0), x(1), x(2)),
+            Node::SelectOutside(..) => self.select_outside([x(0), x(1), x(2), x(3), x(4)]),
         }
     }
 
@@ -629,6 +657,7 @@ impl Graph {
                 Node::Exp(a) => v(a).exp(),
                 Node::Max(a, b) => v(a).max(v(b)),
                 Node::SignOutside(a, b, c) => v(a).sign_outside_or(v(b), v(c)),
+                Node::SelectOutside([a, b, p, m, o]) => v(a).select_outside(v(b), v(p), v(m), v(o)),
             };
         }
         roots.iter().map(|r| value[r.0 as usize]).collect()
@@ -702,7 +731,7 @@ impl Graph {
                 Node::Tanh(_) => c.tanh += 1,
                 Node::Exp(_) => c.exp += 1,
                 Node::Max(..) => c.max += 1,
-                Node::SignOutside(..) => c.sign += 1,
+                Node::SignOutside(..) | Node::SelectOutside(..) => c.sign += 1,
                 Node::Const(_) | Node::Input(_) => {}
             }
         }
@@ -919,6 +948,11 @@ impl Real for Sym {
     }
     fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
         Sym(with(|g| g.sign_outside(self.0, band.0, otherwise.0)))
+    }
+    fn select_outside(self, band: Self, above: Self, below: Self, otherwise: Self) -> Self {
+        Sym(with(|g| {
+            g.select_outside([self.0, band.0, above.0, below.0, otherwise.0])
+        }))
     }
 }
 

@@ -539,10 +539,13 @@ impl Real for DoubleDouble {
         Self(dd_exp(self.0))
     }
     fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
+        self.select_outside(band, Self::ONE, -Self::ONE, otherwise)
+    }
+    fn select_outside(self, band: Self, above: Self, below: Self, otherwise: Self) -> Self {
         if self > band {
-            Self::ONE
+            above
         } else if self < -band {
-            -Self::ONE
+            below
         } else {
             otherwise
         }

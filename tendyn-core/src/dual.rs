@@ -143,6 +143,15 @@ impl<T: Real> Real for Dual<T> {
             (T::one() - moving * moving) * otherwise.tangent,
         )
     }
+    fn select_outside(self, band: Self, above: Self, below: Self, otherwise: Self) -> Self {
+        // The value taken, with its derivative: the choice itself is constant almost
+        // everywhere (a step in `self`, whose derivative is taken as zero, as a sign's).
+        let (b, v) = (band.value, self.value);
+        Dual::new(
+            v.select_outside(b, above.value, below.value, otherwise.value),
+            v.select_outside(b, above.tangent, below.tangent, otherwise.tangent),
+        )
+    }
     fn tanh(self) -> Self {
         let t = self.value.tanh();
         Dual::new(t, (T::one() - t * t) * self.tangent)

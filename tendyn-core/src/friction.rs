@@ -55,11 +55,22 @@ pub fn direction<T: Real>(rate: T, accel: Option<T>, smoothing: Option<f64>) -> 
     if let Some(v) = smoothing {
         return (rate / T::from_f64(v)).tanh();
     }
+    by_direction(rate, accel, [T::one(), -T::one(), T::zero()])
+}
+
+/// What the exact law makes of three values, `[moving up, moving down, at rest]`: the
+/// first where the rate is above the band of rest, the second where it is below, and
+/// within it the same choice by `accel` (the impending motion), or the third without it
+/// or where that is within the band too. [`direction`] is its choice among `±1` and `0`;
+/// a guide of constant wrap angle makes its capstan factor `e^{−σμβ}` one among three
+/// numbers with it ([`capstan_factors`]).
+fn by_direction<T: Real>(rate: T, accel: Option<T>, [up, down, rest]: [T; 3]) -> T {
     let band = T::from_f64(REST);
-    match accel {
-        Some(a) => rate.sign_outside_or(band, a.sign_outside(band)),
-        None => rate.sign_outside(band),
-    }
+    let within = match accel {
+        Some(a) => a.select_outside(band, up, down, rest),
+        None => rest,
+    };
+    rate.select_outside(band, up, down, within)
 }
 
 /// Body `b`'s bearing rate `ω_b = c_b · q̇` and the direction `s` its friction opposes
@@ -148,12 +159,21 @@ pub fn capstan_factors<T: Real>(
             let Some(guide) = idler.capstan() else {
                 continue;
             };
-            let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
-            let sigma = direction(
+            let (slide, accel) = (
                 linear(&guide.slide, qd),
                 qdd.map(|a| linear(&guide.slide, a)),
-                model.friction_smoothing,
             );
+            // A constant wrap angle under the exact law: the factor is one of three
+            // numbers, `e^{∓μβ}` or 1, chosen by the direction (folded at generation).
+            if model.friction_smoothing.is_none() && guide.wrap_rate.iter().all(|&r| r == 0.0) {
+                let (mu, wrap) = (T::from_f64(guide.mu), T::from_f64(guide.wrap));
+                let towards_exit = capstan_factor(T::one(), mu, wrap);
+                let towards_anchor = T::one() / towards_exit;
+                *factor = by_direction(slide, accel, [towards_exit, towards_anchor, T::one()]);
+                continue;
+            }
+            let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
+            let sigma = direction(slide, accel, model.friction_smoothing);
             *factor = capstan_factor(sigma, T::from_f64(guide.mu), wrap);
         }
     }

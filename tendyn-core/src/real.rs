@@ -44,6 +44,12 @@ pub trait Real:
     fn sign_outside(self, band: Self) -> Self {
         self.sign_outside_or(band, Self::zero())
     }
+    /// `above` where `self > band`, `below` where `self < −band`, `otherwise` in between:
+    /// [`Real::sign_outside_or`] choosing among three values, so that a guide's capstan
+    /// factor `e^{−σμβ}` of a constant wrap angle is one of three numbers fixed at
+    /// generation, not an `exp` at run time (`crate::friction`). A symbolic scalar maps it
+    /// to a select node.
+    fn select_outside(self, band: Self, above: Self, below: Self, otherwise: Self) -> Self;
     /// The hyperbolic tangent: the smoothed friction law.
     fn tanh(self) -> Self;
     /// `e^self`: the capstan law of a guide, `T_high = T_low e^{μβ}`.
@@ -194,10 +200,13 @@ macro_rules! primitive_real {
                 }
             }
             fn sign_outside_or(self, band: Self, otherwise: Self) -> Self {
+                self.select_outside(band, 1.0, -1.0, otherwise)
+            }
+            fn select_outside(self, band: Self, above: Self, below: Self, otherwise: Self) -> Self {
                 if self > band {
-                    1.0
+                    above
                 } else if self < -band {
-                    -1.0
+                    below
                 } else {
                     otherwise
                 }
