@@ -97,11 +97,12 @@ class Model:
         tendon_tensions: Optional[ArrayLike] = None,
     ) -> Array:
         """`q̈` (rad/s²) from motor torques and ground-level tendon tensions."""
-    def forward_at_rest(self, qd: ArrayLike) -> dict:
+    def forward_at_rest(self, q: ArrayLike, qd: ArrayLike) -> dict[str, npt.NDArray[np.bool_]]:
         """Where `forward_dynamics` is not exact: `{"sticking": (…, friction bodies),
-        "guide_sticking": (…, guides)}` of booleans, the bearings and guides with friction
-        it takes without friction at `q̇` (within the band of rest, where only `q̈` would
-        direct it); all false with `friction_smoothing`."""
+        "guide_sticking": (…, guides)}` of booleans, the bearings with Coulomb friction and
+        the guides with friction touching their tendon that it takes without friction at
+        `(q, q̇)` (within the band of rest, where only `q̈` would direct them); all false
+        with `friction_smoothing`."""
     def generalized_forces_derivatives(
         self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
     ) -> Array:

@@ -160,7 +160,8 @@ enum Command {
                 value_name = "T1,..."
         )]
         tensions: Vec<f64>,
-        /// Print `{"mechanism": NAME, "qdd": [...]}` instead of text.
+        /// Print `{"mechanism": NAME, "qdd": [...], "sticking": [...], "sticking_guides":
+        /// [...]}` instead of text (docs/outputs.md §5).
         #[arg(long)]
         json: bool,
         /// With --json: add `dqdd_dq`, `dqdd_dqd` (n × n) and `dqdd_du` (n × m, u the
@@ -713,19 +714,17 @@ fn run(cli: Cli) -> Result<(), String> {
                 .to_vec();
             // Within the band of rest, forward dynamics takes no friction (it does not know
             // q̈, which would give the impending motion's direction): flag those elements.
-            let bearings: Vec<&str> = (tendyn_core::friction::at_rest(&m, &qd).into_iter())
+            let (bearings, guides) = tendyn_core::friction::forward_at_rest(&m, &q, &qd);
+            let bearings: Vec<&str> = (bearings.into_iter())
                 .map(|b| m.bodies()[b].name.as_str())
                 .collect();
-            let guides: Vec<(&str, &str)> = (tendyn_core::friction::guides_at_rest(&m, &qd)
-                .into_iter())
-            .map(|(s, k)| {
-                let strand = &m.strands()[s];
-                (
-                    strand.name.as_str(),
-                    m.bodies()[strand.idlers[k].body].name.as_str(),
-                )
-            })
-            .collect();
+            let guides: Vec<(&str, &str)> = (guides.into_iter())
+                .map(|(s, k)| {
+                    let strand = &m.strands()[s];
+                    let pulley = &m.bodies()[strand.idlers[k].body].name;
+                    (strand.name.as_str(), pulley.as_str())
+                })
+                .collect();
             if json {
                 let mut out = serde_json::json!({
                     "mechanism": m.name(),

@@ -218,15 +218,26 @@ pub fn at_rest<T: Numeric>(model: &Model<T>, qd: &[T]) -> Vec<usize> {
         .collect()
 }
 
-/// The guides with friction, each as `(strand, place on it)`, whose tendon the exact law
-/// finds within [`REST`] of rest at `q̇`: forward dynamics, which does not know `q̈`, takes
-/// no friction there, so its result is exact only where this and [`at_rest`] are empty
-/// (docs/outputs.md §5). Empty with the smoothed law, which has no such band.
-pub fn guides_at_rest(model: &Model<f64>, qd: &[f64]) -> Vec<(usize, usize)> {
-    (model.guides())
-        .filter(|(_, _, _, g)| sticks(model, g, g.speed(qd)))
+/// Where forward dynamics, which does not know `q̈`, takes friction as none at `(q, q̇)`
+/// though the exact law would give it the direction of the impending motion: the bodies
+/// whose bearing has Coulomb friction, and the guides with friction (each as `(strand,
+/// place on it)`) that touch their tendon (`β(q) > 0`), within [`REST`] of rest. Its
+/// result is exact only where both are empty (docs/outputs.md §5); both are empty with
+/// the smoothed law, which has no such band. (Viscous friction vanishes at rest whatever
+/// the direction.)
+pub fn forward_at_rest(
+    model: &Model<f64>,
+    q: &[f64],
+    qd: &[f64],
+) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let bearings = (at_rest(model, qd).into_iter())
+        .filter(|&b| model.bodies[b].friction.is_some_and(|f| f.coulomb > 0.0))
+        .collect();
+    let guides = (model.guides())
+        .filter(|(_, _, _, g)| sticks(model, g, g.speed(qd)) && g.wrap_at(q) > 0.0)
         .map(|(s, k, _, _)| (s, k))
-        .collect()
+        .collect();
+    (bearings, guides)
 }
 
 /// Whether a guide whose tendon slides at `v` (m/s) sticks: it has friction and the exact

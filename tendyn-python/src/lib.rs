@@ -794,14 +794,16 @@ impl Model {
         })
     }
 
-    /// Where `forward_dynamics` is not exact: the bearings and guides with friction it takes
-    /// without friction at `q̇`, within the band of rest, where only `q̈` (which it does not
-    /// know) would direct it. `{"sticking": (…, friction bodies), "guide_sticking": (…,
-    /// guides)}` of booleans, as `inverse_dynamics` names them (`friction_bodies`, `guides`
-    /// order); all false with `friction_smoothing`.
+    /// Where `forward_dynamics` is not exact: the bearings with Coulomb friction and the
+    /// guides with friction touching their tendon that it takes without friction at `(q,
+    /// q̇)`, within the band of rest, where only `q̈` (which it does not know) would direct
+    /// them. `{"sticking": (…, friction bodies), "guide_sticking": (…, guides)}` of
+    /// booleans, in `friction_bodies` and `guides` order; all false with
+    /// `friction_smoothing`.
     fn forward_at_rest<'py>(
         &self,
         py: Python<'py>,
+        q: Input<'py>,
         qd: Input<'py>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let (model, n) = (&self.model, self.model.dof());
@@ -810,15 +812,12 @@ impl Model {
             vec![model.guides().count()],
         ];
         let flag = |at_rest: bool| if at_rest { 1.0 } else { 0.0 };
-        let arrays = self.fill(py, vec![("qd", qd, n)], &shapes, |_, s, values| {
-            let bodies = tendyn_core::friction::at_rest(model, s[0]);
+        let named = vec![("q", q, n), ("qd", qd, n)];
+        let arrays = self.fill(py, named, &shapes, |_, s, values| {
+            let (bodies, guides) = tendyn_core::friction::forward_at_rest(model, s[0], s[1]);
             values[0].extend(friction_bodies(model).map(|b| flag(bodies.contains(&b))));
-            let guides = tendyn_core::friction::guides_at_rest(model, s[0]);
-            values[1].extend(
-                model
-                    .guides()
-                    .map(|(g, k, _, _)| flag(guides.contains(&(g, k)))),
-            );
+            let guide = |(g, k, _, _): (usize, usize, usize, _)| flag(guides.contains(&(g, k)));
+            values[1].extend(model.guides().map(guide));
             Ok(())
         })?;
         let out = PyDict::new(py);

@@ -158,7 +158,7 @@ fn distance<T: Numeric>(got: &[T], want: &[T], scale: f64) -> f64 {
 
 /// The mechanisms with bearing or capstan friction: generated code run in f32 agrees with the runtime
 /// solver in f32 (both round at every step, in different orders: within `2¹⁰ u`, u = 2⁻²⁴,
-/// relative as above; measured 120 u on 2026-12-01), and in f64 at states where every joint is at rest
+/// relative as above; measured 109 u on 2026-12-05), and in f64 at states where every joint is at rest
 /// (q̇ = 0: the direction of impending motion from q̈, or none), to 1e-12.
 #[test]
 fn generated_friction_code_matches_the_runtime_solver_in_f32_and_at_rest() {
