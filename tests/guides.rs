@@ -112,7 +112,10 @@ fn a_tendon_over_a_pin_with_friction_loses_tension_by_the_capstan_law_towards_wh
     states.push([vec![0.3], vec![1e-5], vec![-2.0]]);
     states.push([vec![0.3], vec![0.0], vec![1e-5]]);
     for [q, qd, qdd] in states {
-        let r = solver.inverse_dynamics(&model, &q, &qd, &qdd).unwrap().clone();
+        let r = solver
+            .inverse_dynamics(&model, &q, &qd, &qdd)
+            .unwrap()
+            .clone();
         // The band of rest is on the sliding speed `0.02 q̇` (m/s) and its rate.
         let sigma = if (0.02 * qd[0]).abs() > 1e-6 {
             qd[0].signum()

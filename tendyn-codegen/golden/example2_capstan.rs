@@ -27,24 +27,24 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s75, c76) = q[1].sin_cos();
-    let t955 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t1193 = s75 * T::from_f64(0.03);
-    let t1202 = qdd[0]
+    let t917 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
+    let t1144 = s75 * T::from_f64(0.03);
+    let t1153 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * t955
-            - qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06))));
-    let t1208 = Real::mul_add(
+        + (qdd[1] * t917
+            - qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06))));
+    let t1159 = Real::mul_add(
         qdd[0],
-        t955,
-        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1193)),
+        t917,
+        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1144)),
     );
-    [t1202, t1208]
+    [t1153, t1159]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon T32, tendon T42, tendon T11.
 ///
-/// Operations (closed form): 95 arithmetic (30 add/sub, 45 mul, 8 div, 3 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (closed form): 92 arithmetic (30 add/sub, 43 mul, 8 div, 2 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(
@@ -57,71 +57,83 @@ pub fn actuation<T: Real>(
     let t196 = T::from_f64(0.02) * qd[1];
     let t198 = qdd[0] * T::from_f64(0.03);
     let t200 = T::from_f64(0.02) * qdd[1];
-    let t954 = c76 * T::from_f64(0.03);
-    let t1193 = s75 * T::from_f64(0.03);
-    let t1213 = (-((t196 - t194)
-        .sign_outside_or(
+    let t209 = ((t196 - t194)
+        .select_outside(
             T::from_f64(0.000001),
-            (t200 - t198).sign_outside(T::from_f64(0.000001)),
-        )
-        * (T::from_f64(0.3)
-            * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
+            T::from_f64(-0.3),
+            T::from_f64(0.3),
+            (t200 - t198)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t1216 = ((t194 + t196)
-        .sign_outside_or(
+    let t222 = ((t194 + t196)
+        .select_outside(
             T::from_f64(0.000001),
-            (t198 + t200).sign_outside(T::from_f64(0.000001)),
-        )
-        * (T::from_f64(0.3)
-            * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
+            T::from_f64(0.3),
+            T::from_f64(-0.3),
+            (t198 + t200)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(0.3),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092)))
         .exp();
-    let t1219 = -(T::from_f64(0.03) * t1213);
-    let t1220 = T::from_f64(0.02) * t1213 / t1219;
-    let t1221 = T::from_f64(0.06) * t1220;
-    let t1241 = T::from_f64(0.03) * t1220;
-    let t1246 = Real::mul_add(
+    let t269 = -(T::from_f64(0.03) * t209);
+    let t275 = T::from_f64(0.02) * t209 / t269;
+    let t916 = c76 * T::from_f64(0.03);
+    let t1144 = s75 * T::from_f64(0.03);
+    let t1160 = t275 * T::from_f64(0.06);
+    let t1180 = T::from_f64(0.03) * t275;
+    let t1185 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t1220, T::from_f64(-0.0166667) - t954, T::from_f64(0.0166667)),
+        Real::mul_add(t275, T::from_f64(-0.0166667) - t916, T::from_f64(0.0166667)),
         Real::mul_add(
             qd[1],
-            qd[1] * (s75 * t1241),
-            qd[0] * Real::mul_add(qd[1], s75 * t1221, qd[0] * t1193),
+            qd[1] * (s75 * t1180),
+            qd[0] * Real::mul_add(qd[1], s75 * t1160, qd[0] * t1144),
         ),
     );
-    let t1249 = t1216 * (T::from_f64(-0.02) + t1241);
-    let t1250 = Real::mul_add(
+    let t1188 = t222 * (T::from_f64(-0.02) + t1180);
+    let t1189 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1221,
+            T::from_f64(0.03) - t1160,
             Real::mul_add(
-                -T::from_f64(0.12466669999999999),
-                t1220,
+                -t275,
+                T::from_f64(0.12466669999999999),
                 T::from_f64(0.0166667),
             ),
         ),
-        t1246,
-    ) / t1249;
-    let t1255 = qdd[0]
+        t1185,
+    ) / t1188;
+    let t1194 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t954)
+        + (qdd[1] * (T::from_f64(0.0166667) + t916)
             + Real::mul_add(
-                t1216,
-                T::from_f64(0.03) * t1250,
-                -(qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))),
+                t222,
+                T::from_f64(0.03) * t1189,
+                -(qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1256 = t1255 / t1219;
-    let t1258 = T::from_f64(0.04) * t1220 / t1249;
-    let t1262 = Real::mul_add(t1216, T::from_f64(0.03) * t1258, T::from_f64(-0.04))
-        / t1219;
-    let t1279 = (-(Real::mul_add(t1256, t1262, t1250 * t1258)
-        / Real::mul_add(t1258, t1258, Real::mul_add(t1262, t1262, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1256) / t1262)
-        .max((T::from_f64(5.0) - t1250) / t1258);
-    let t1280 = T::from_f64(5.0).max(t1279);
-    let t1282 = Real::mul_add(t1262, t1280, t1256);
-    let t1284 = Real::mul_add(t1258, t1280, t1250);
-    tendyn_core::distribution::Actuation::exact([], [t1282, t1284, t1280])
+    let t1195 = t1194 / t269;
+    let t1196 = T::from_f64(0.04) * t275 / t1188;
+    let t1200 = Real::mul_add(t222, T::from_f64(0.03) * t1196, T::from_f64(-0.04))
+        / t269;
+    let t1218 = (-(Real::mul_add(t1195, t1200, t1189 * t1196)
+        / Real::mul_add(t1196, t1196, Real::mul_add(t1200, t1200, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1195) / t1200)
+        .max((T::from_f64(5.0) - t1189) / t1196);
+    let t1219 = T::from_f64(5.0).max(t1218);
+    let t1221 = Real::mul_add(t1200, t1219, t1195);
+    let t1223 = Real::mul_add(t1196, t1219, t1189);
+    tendyn_core::distribution::Actuation::exact([], [t1221, t1223, t1219])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -132,9 +144,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t76 = q[1].cos();
-    let t955 = T::from_f64(0.0166667) + t76 * T::from_f64(0.03);
-    let t1185 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    [[t1185, t955], [t955, T::from_f64(0.0166667)]]
+    let t917 = T::from_f64(0.0166667) + t76 * T::from_f64(0.03);
+    let t1136 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    [[t1136, t917], [t917, T::from_f64(0.0166667)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -145,11 +157,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t75 = q[1].sin();
-    let t1193 = t75 * T::from_f64(0.03);
-    let t1200 = -(qd[1]
-        * Real::mul_add(qd[1], t1193, qd[0] * (t75 * T::from_f64(0.06))));
-    let t1206 = qd[0] * (qd[0] * t1193);
-    [t1200, t1206]
+    let t1144 = t75 * T::from_f64(0.03);
+    let t1151 = -(qd[1]
+        * Real::mul_add(qd[1], t1144, qd[0] * (t75 * T::from_f64(0.06))));
+    let t1157 = qd[0] * (qd[0] * t1144);
+    [t1151, t1157]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -165,7 +177,7 @@ pub fn gravity<T: Real>(q: &[T; 2]) -> [T; 2] {
 ///
 /// Entries: link1, link2.
 ///
-/// Operations (L D Lᵀ over the best forms of M and the right-hand side): 51 arithmetic (15 add/sub, 28 mul, 3 div, 1 neg, 2 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 2 sign selects, 2 exp.
+/// Operations (L D Lᵀ over the best forms of M and the right-hand side): 48 arithmetic (15 add/sub, 26 mul, 3 div, 0 neg, 2 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 2 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn forward_dynamics<T: Real>(
@@ -177,42 +189,54 @@ pub fn forward_dynamics<T: Real>(
     let (s75, c76) = q[1].sin_cos();
     let t194 = qd[0] * T::from_f64(0.03);
     let t196 = T::from_f64(0.02) * qd[1];
-    let t679 = (-(T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
-        * (T::from_f64(0.3) * (t196 - t194).sign_outside(T::from_f64(0.000001)))))
+    let t669 = (T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
+        * (t196 - t194)
+            .select_outside(
+                T::from_f64(0.000001),
+                T::from_f64(-0.3),
+                T::from_f64(0.3),
+                T::from_f64(0.0),
+            ))
         .exp();
-    let t686 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
-        * (T::from_f64(0.3) * (t194 + t196).sign_outside(T::from_f64(0.000001))))
+    let t672 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
+        * (t194 + t196)
+            .select_outside(
+                T::from_f64(0.000001),
+                T::from_f64(0.3),
+                T::from_f64(-0.3),
+                T::from_f64(0.0),
+            ))
         .exp();
-    let t1185 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    let t1193 = s75 * T::from_f64(0.03);
-    let t1288 = qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))
+    let t1136 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    let t1144 = s75 * T::from_f64(0.03);
+    let t1226 = qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))
         + Real::mul_add(
             -tendon_tensions[0],
-            T::from_f64(0.03) * t679,
+            T::from_f64(0.03) * t669,
             Real::mul_add(
                 -tendon_tensions[1],
-                T::from_f64(0.03) * t686,
+                T::from_f64(0.03) * t672,
                 T::from_f64(0.04) * tendon_tensions[2],
             ),
         );
-    let t1290 = (T::from_f64(0.0166667) + c76 * T::from_f64(0.03)) / t1185;
-    let t1750 = Real::mul_add(
-        -t1288,
-        t1290,
+    let t1228 = (T::from_f64(0.0166667) + c76 * T::from_f64(0.03)) / t1136;
+    let t1688 = Real::mul_add(
+        -t1226,
+        t1228,
         Real::mul_add(
             -tendon_tensions[1],
-            T::from_f64(0.02) * t686,
-            tendon_tensions[0] * (T::from_f64(0.02) * t679),
-        ) - qd[0] * (qd[0] * t1193),
-    ) / Real::mul_add(-t1185, t1290 * t1290, T::from_f64(0.0166667));
-    let t1752 = Real::mul_add(-t1290, t1750, t1288 / t1185);
-    [t1752, t1750]
+            T::from_f64(0.02) * t672,
+            tendon_tensions[0] * (T::from_f64(0.02) * t669),
+        ) - qd[0] * (qd[0] * t1144),
+    ) / Real::mul_add(-t1136, t1228 * t1228, T::from_f64(0.0166667));
+    let t1690 = Real::mul_add(-t1228, t1688, t1226 / t1136);
+    [t1690, t1688]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: T32#0, T32#1, T42#0, T42#1, T11#0.
 ///
-/// Operations (closed form): 97 arithmetic (30 add/sub, 47 mul, 8 div, 3 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (closed form): 94 arithmetic (30 add/sub, 45 mul, 8 div, 2 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
@@ -221,79 +245,91 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
     let t196 = T::from_f64(0.02) * qd[1];
     let t198 = qdd[0] * T::from_f64(0.03);
     let t200 = T::from_f64(0.02) * qdd[1];
-    let t954 = c76 * T::from_f64(0.03);
-    let t1193 = s75 * T::from_f64(0.03);
-    let t1213 = (-((t196 - t194)
-        .sign_outside_or(
+    let t209 = ((t196 - t194)
+        .select_outside(
             T::from_f64(0.000001),
-            (t200 - t198).sign_outside(T::from_f64(0.000001)),
-        )
-        * (T::from_f64(0.3)
-            * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
+            T::from_f64(-0.3),
+            T::from_f64(0.3),
+            (t200 - t198)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t1216 = ((t194 + t196)
-        .sign_outside_or(
+    let t222 = ((t194 + t196)
+        .select_outside(
             T::from_f64(0.000001),
-            (t198 + t200).sign_outside(T::from_f64(0.000001)),
-        )
-        * (T::from_f64(0.3)
-            * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
+            T::from_f64(0.3),
+            T::from_f64(-0.3),
+            (t198 + t200)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(0.3),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092)))
         .exp();
-    let t1219 = -(T::from_f64(0.03) * t1213);
-    let t1220 = T::from_f64(0.02) * t1213 / t1219;
-    let t1221 = T::from_f64(0.06) * t1220;
-    let t1241 = T::from_f64(0.03) * t1220;
-    let t1246 = Real::mul_add(
+    let t269 = -(T::from_f64(0.03) * t209);
+    let t275 = T::from_f64(0.02) * t209 / t269;
+    let t916 = c76 * T::from_f64(0.03);
+    let t1144 = s75 * T::from_f64(0.03);
+    let t1160 = t275 * T::from_f64(0.06);
+    let t1180 = T::from_f64(0.03) * t275;
+    let t1185 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t1220, T::from_f64(-0.0166667) - t954, T::from_f64(0.0166667)),
+        Real::mul_add(t275, T::from_f64(-0.0166667) - t916, T::from_f64(0.0166667)),
         Real::mul_add(
             qd[1],
-            qd[1] * (s75 * t1241),
-            qd[0] * Real::mul_add(qd[1], s75 * t1221, qd[0] * t1193),
+            qd[1] * (s75 * t1180),
+            qd[0] * Real::mul_add(qd[1], s75 * t1160, qd[0] * t1144),
         ),
     );
-    let t1249 = t1216 * (T::from_f64(-0.02) + t1241);
-    let t1250 = Real::mul_add(
+    let t1188 = t222 * (T::from_f64(-0.02) + t1180);
+    let t1189 = Real::mul_add(
         qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1221,
+            T::from_f64(0.03) - t1160,
             Real::mul_add(
-                -T::from_f64(0.12466669999999999),
-                t1220,
+                -t275,
+                T::from_f64(0.12466669999999999),
                 T::from_f64(0.0166667),
             ),
         ),
-        t1246,
-    ) / t1249;
-    let t1255 = qdd[0]
+        t1185,
+    ) / t1188;
+    let t1194 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t954)
+        + (qdd[1] * (T::from_f64(0.0166667) + t916)
             + Real::mul_add(
-                t1216,
-                T::from_f64(0.03) * t1250,
-                -(qd[1] * Real::mul_add(qd[1], t1193, qd[0] * (s75 * T::from_f64(0.06)))),
+                t222,
+                T::from_f64(0.03) * t1189,
+                -(qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1256 = t1255 / t1219;
-    let t1258 = T::from_f64(0.04) * t1220 / t1249;
-    let t1262 = Real::mul_add(t1216, T::from_f64(0.03) * t1258, T::from_f64(-0.04))
-        / t1219;
-    let t1279 = (-(Real::mul_add(t1256, t1262, t1250 * t1258)
-        / Real::mul_add(t1258, t1258, Real::mul_add(t1262, t1262, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1256) / t1262)
-        .max((T::from_f64(5.0) - t1250) / t1258);
-    let t1280 = T::from_f64(5.0).max(t1279);
-    let t1282 = Real::mul_add(t1262, t1280, t1256);
-    let t1284 = Real::mul_add(t1258, t1280, t1250);
-    let t1334 = t1213 * t1282;
-    let t1335 = t1216 * t1284;
-    [t1334, t1282, t1335, t1284, t1280]
+    let t1195 = t1194 / t269;
+    let t1196 = T::from_f64(0.04) * t275 / t1188;
+    let t1200 = Real::mul_add(t222, T::from_f64(0.03) * t1196, T::from_f64(-0.04))
+        / t269;
+    let t1218 = (-(Real::mul_add(t1195, t1200, t1189 * t1196)
+        / Real::mul_add(t1196, t1196, Real::mul_add(t1200, t1200, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1195) / t1200)
+        .max((T::from_f64(5.0) - t1189) / t1196);
+    let t1219 = T::from_f64(5.0).max(t1218);
+    let t1221 = Real::mul_add(t1200, t1219, t1195);
+    let t1223 = Real::mul_add(t1196, t1219, t1189);
+    let t1272 = t209 * t1221;
+    let t1273 = t222 * t1223;
+    [t1272, t1221, t1273, t1223, t1219]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 245 arithmetic (93 add/sub, 129 mul, 8 div, 6 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (traced recursion): 242 arithmetic (93 add/sub, 127 mul, 8 div, 5 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
@@ -307,132 +343,146 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t196 = T::from_f64(0.02) * qd[1];
     let t198 = qdd[0] * T::from_f64(0.03);
     let t200 = T::from_f64(0.02) * qdd[1];
-    let t741 = qd[0] * qd[0];
-    let t742 = T::from_f64(0.3) * t741;
-    let t754 = t102 * t102;
-    let t760 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t742)) - T::from_f64(0.25) * t754
-            + T::from_f64(0.125) * t754);
-    let t786 = (-(T::from_f64(0.3)
-        * ((t196 - t194)
-            .sign_outside_or(
-                T::from_f64(0.000001),
-                (t200 - t198).sign_outside(T::from_f64(0.000001)),
-            ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))))
+    let t209 = ((t196 - t194)
+        .select_outside(
+            T::from_f64(0.000001),
+            T::from_f64(-0.3),
+            T::from_f64(0.3),
+            (t200 - t198)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t789 = (T::from_f64(0.3)
-        * ((t194 + t196)
-            .sign_outside_or(
-                T::from_f64(0.000001),
-                (t198 + t200).sign_outside(T::from_f64(0.000001)),
-            ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))))
+    let t222 = ((t194 + t196)
+        .select_outside(
+            T::from_f64(0.000001),
+            T::from_f64(0.3),
+            T::from_f64(-0.3),
+            (t198 + t200)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(0.3),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092)))
         .exp();
-    let t791 = -(T::from_f64(0.03) * t786);
-    let t793 = T::from_f64(0.03) * t789;
-    let t795 = T::from_f64(0.02) * t786 / t791;
-    let t797 = Real::mul_add(-T::from_f64(0.02), t789, t793 * t795);
-    let t799 = T::from_f64(0.04) * t795 / t797;
-    let t802 = Real::mul_add(t793, t799, T::from_f64(-0.04)) / t791;
-    let t1001 = T::from_f64(1.2) * t83;
-    let t1003 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1005 = s75 * t742 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1006 = T::from_f64(0.8) * t1005;
-    let t1008 = Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103);
-    let t1010 = Real::mul_add(T::from_f64(0.2), t1005, t1008);
-    let t1019 = Real::mul_add(
+    let t269 = -(T::from_f64(0.03) * t209);
+    let t271 = T::from_f64(0.03) * t222;
+    let t275 = T::from_f64(0.02) * t209 / t269;
+    let t278 = Real::mul_add(-T::from_f64(0.02), t222, t271 * t275);
+    let t282 = T::from_f64(0.04) * t275 / t278;
+    let t286 = Real::mul_add(t271, t282, T::from_f64(-0.04)) / t269;
+    let t727 = qd[0] * qd[0];
+    let t728 = T::from_f64(0.3) * t727;
+    let t740 = t102 * t102;
+    let t746 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t728)) - T::from_f64(0.25) * t740
+            + T::from_f64(0.125) * t740);
+    let t952 = T::from_f64(1.2) * t83;
+    let t954 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t956 = s75 * t728 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t957 = T::from_f64(0.8) * t956;
+    let t959 = Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103);
+    let t961 = Real::mul_add(T::from_f64(0.2), t956, t959);
+    let t970 = Real::mul_add(
         T::from_f64(0.3),
-        t1001 + Real::mul_add(c76, t1006, s75 * t760),
-        t1003 + t1010,
+        t952 + Real::mul_add(c76, t957, s75 * t746),
+        t954 + t961,
     );
-    let t1028 = Real::mul_add(-t795, t1019, t1010) / t797;
-    let t1031 = Real::mul_add(t793, t1028, t1019) / t791;
-    let t1042 = (-(Real::mul_add(t799, t1028, t802 * t1031)
-        / (T::from_f64(1.0) + Real::mul_add(t799, t799, t802 * t802))))
-        .max((T::from_f64(5.0) - t1031) / t802)
-        .max((T::from_f64(5.0) - t1028) / t799);
-    let t1043 = T::from_f64(5.0).max(t1042);
-    let t1045 = Real::mul_add(t802, t1043, t1031);
-    let t1047 = Real::mul_add(t799, t1043, t1028);
-    let t1048 = t786 * t1045;
-    let t1049 = t789 * t1047;
-    let t1050 = T::from_f64(0.9860132971832694) * t1048;
-    let t1051 = T::from_f64(0.16666666666666652) * t1048;
-    let t1054 = Real::mul_add(s75, t1051, c76 * t1050);
-    let t1055 = s75 * t1050;
-    let t1056 = c76 * t1051;
-    let t1057 = t1055 - t1056;
-    let t1060 = Real::mul_add(
+    let t979 = Real::mul_add(-t275, t970, t961) / t278;
+    let t982 = Real::mul_add(t271, t979, t970) / t269;
+    let t993 = (-(Real::mul_add(t282, t979, t286 * t982)
+        / (T::from_f64(1.0) + Real::mul_add(t282, t282, t286 * t286))))
+        .max((T::from_f64(5.0) - t982) / t286)
+        .max((T::from_f64(5.0) - t979) / t282);
+    let t994 = T::from_f64(5.0).max(t993);
+    let t996 = Real::mul_add(t286, t994, t982);
+    let t998 = Real::mul_add(t282, t994, t979);
+    let t999 = t209 * t996;
+    let t1000 = t222 * t998;
+    let t1001 = T::from_f64(0.9860132971832694) * t999;
+    let t1002 = T::from_f64(0.16666666666666652) * t999;
+    let t1005 = Real::mul_add(s75, t1002, c76 * t1001);
+    let t1006 = s75 * t1001;
+    let t1007 = c76 * t1002;
+    let t1008 = t1006 - t1007;
+    let t1011 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1054,
+        t1005,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1057,
+        ) * t1008,
     );
-    let t1063 = Real::mul_add(-s73, t1051, c74 * t1050);
-    let t1066 = Real::mul_add(c74, t1051, s73 * t1050);
-    let t1077 = T::from_f64(0.9994442900376633) * t1049;
-    let t1078 = T::from_f64(0.03333333333333337) * t1049;
-    let t1081 = Real::mul_add(s75, t1078, c76 * t1077);
-    let t1082 = s75 * t1077;
-    let t1083 = c76 * t1078;
-    let t1084 = t1082 - t1083;
-    let t1085 = Real::mul_add(
+    let t1014 = Real::mul_add(-s73, t1002, c74 * t1001);
+    let t1017 = Real::mul_add(c74, t1002, s73 * t1001);
+    let t1028 = T::from_f64(0.9994442900376633) * t1000;
+    let t1029 = T::from_f64(0.03333333333333337) * t1000;
+    let t1032 = Real::mul_add(s75, t1029, c76 * t1028);
+    let t1033 = s75 * t1028;
+    let t1034 = c76 * t1029;
+    let t1035 = t1033 - t1034;
+    let t1036 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1084;
-    let t1086 = Real::mul_add(
+    ) * t1035;
+    let t1037 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1081;
-    let t1090 = Real::mul_add(-s73, t1078, c74 * t1077);
-    let t1093 = Real::mul_add(c74, t1078, s73 * t1077);
-    let t1102 = T::from_f64(0.9733466865996102) * t1043;
-    let t1103 = T::from_f64(0.22933867463984403) * t1043;
-    let t1104 = c74 * t1102;
-    let t1105 = s73 * t1103;
-    let t1106 = t1105 - t1104;
-    let t1109 = Real::mul_add(c74, t1103, s73 * t1102);
-    let t1110 = Real::mul_add(
+    ) * t1032;
+    let t1041 = Real::mul_add(-s73, t1029, c74 * t1028);
+    let t1044 = Real::mul_add(c74, t1029, s73 * t1028);
+    let t1053 = T::from_f64(0.9733466865996102) * t994;
+    let t1054 = T::from_f64(0.22933867463984403) * t994;
+    let t1055 = c74 * t1053;
+    let t1056 = s73 * t1054;
+    let t1057 = t1056 - t1055;
+    let t1060 = Real::mul_add(c74, t1054, s73 * t1053);
+    let t1061 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1109;
-    let t1111 = Real::mul_add(
+    ) * t1060;
+    let t1062 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1106;
-    let t1113 = Real::mul_add(T::from_f64(0.9968453000901664), t1047, -t1090);
-    let t1114 = Real::mul_add(T::from_f64(0.0793690600180332), t1047, -t1093);
-    let t1115 = Real::mul_add(
+    ) * t1057;
+    let t1064 = Real::mul_add(T::from_f64(0.9968453000901664), t998, -t1041);
+    let t1065 = Real::mul_add(T::from_f64(0.0793690600180332), t998, -t1044);
+    let t1066 = Real::mul_add(
         T::from_f64(0.03),
-        t1047,
+        t998,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1090,
+            t1041,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1093,
+            ) * t1044,
         ),
     );
-    let t1116 = Real::mul_add(T::from_f64(0.9506914539363203), t1045, -t1063);
-    let t1117 = -Real::mul_add(T::from_f64(0.31013829078726374), t1045, t1066);
-    let t1118 = Real::mul_add(
-        t1045,
+    let t1067 = Real::mul_add(T::from_f64(0.9506914539363203), t996, -t1014);
+    let t1068 = -Real::mul_add(T::from_f64(0.31013829078726374), t996, t1017);
+    let t1069 = Real::mul_add(
+        t996,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -440,63 +490,63 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1063,
+            t1014,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1066,
+            ) * t1017,
         ),
     );
-    let t1119 = t1104 - t1105;
-    let t1120 = -t1109;
-    let t1121 = t1111 - t1110;
-    let t1124 = t1083 - t1082;
-    let t1125 = t1086 - t1085;
-    let t1130 = t1056 - t1055;
-    let t1131 = -t1060;
-    let t1140 = t760 + (t1054 + t1081);
-    let t1141 = t1006 - (t1057 + t1084);
-    let t1142 = Real::mul_add(-T::from_f64(0.01), t1084, T::from_f64(0.01) * t1057);
-    let t1147 = Real::mul_add(
+    let t1070 = t1055 - t1056;
+    let t1071 = -t1060;
+    let t1072 = t1062 - t1061;
+    let t1075 = t1034 - t1033;
+    let t1076 = t1037 - t1036;
+    let t1081 = t1007 - t1006;
+    let t1082 = -t1011;
+    let t1091 = t746 + (t1005 + t1032);
+    let t1092 = t957 - (t1008 + t1035);
+    let t1093 = Real::mul_add(-T::from_f64(0.01), t1035, T::from_f64(0.01) * t1008);
+    let t1098 = Real::mul_add(
         -T::from_f64(0.01),
-        t1081,
-        Real::mul_add(T::from_f64(0.01), t1054, -T::from_f64(0.9810000000000001)),
+        t1032,
+        Real::mul_add(T::from_f64(0.01), t1005, -T::from_f64(0.9810000000000001)),
     );
-    let t1148 = Real::mul_add(
+    let t1099 = Real::mul_add(
         T::from_f64(0.25),
-        t1141,
-        t1008
-            - (Real::mul_add(-T::from_f64(0.25), t1084, t1085 - t1086)
-                + Real::mul_add(-T::from_f64(0.25), t1057, t1060)),
+        t1092,
+        t959
+            - (Real::mul_add(-T::from_f64(0.25), t1035, t1036 - t1037)
+                + Real::mul_add(-T::from_f64(0.25), t1008, t1011)),
     );
-    let t1157 = Real::mul_add(-s75, t1147, c76 * t1142);
-    let t1164 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742)
-        - (t1106 + Real::mul_add(-c76, t1140, s75 * t1141));
-    let t1165 = t1001 - (t1109 - Real::mul_add(c76, t1141, s75 * t1140));
-    let t1171 = Real::mul_add(
+    let t1108 = Real::mul_add(-s75, t1098, c76 * t1093);
+    let t1115 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728)
+        - (t1057 + Real::mul_add(-c76, t1091, s75 * t1092));
+    let t1116 = t952 - (t1060 - Real::mul_add(c76, t1092, s75 * t1091));
+    let t1122 = Real::mul_add(
         c76,
-        t1147,
-        Real::mul_add(s75, t1142, -T::from_f64(4.1202000000000005)),
+        t1098,
+        Real::mul_add(s75, t1093, -T::from_f64(4.1202000000000005)),
     );
-    let t1172 = Real::mul_add(
+    let t1123 = Real::mul_add(
         T::from_f64(0.3),
-        t1165,
-        t1003 - (Real::mul_add(-T::from_f64(0.3), t1109, t1110 - t1111) - t1148),
+        t1116,
+        t954 - (Real::mul_add(-T::from_f64(0.3), t1060, t1061 - t1062) - t1099),
     );
     [
-        [[t1164, t1165, T::from_f64(19.62)], [t1157, t1171, t1172]],
-        [[t1140, t1141, T::from_f64(7.848000000000001)], [t1142, t1147, t1148]],
-        [[t1054, t1130, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1131]],
-        [[t1081, t1124, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1125]],
-        [[t1119, t1120, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1121]],
+        [[t1115, t1116, T::from_f64(19.62)], [t1108, t1122, t1123]],
+        [[t1091, t1092, T::from_f64(7.848000000000001)], [t1093, t1098, t1099]],
+        [[t1005, t1081, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1082]],
+        [[t1032, t1075, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1076]],
+        [[t1070, t1071, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1072]],
         [
-            [t1116, t1117, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1118],
+            [t1067, t1068, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1069],
         ],
         [
-            [t1113, t1114, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1115],
+            [t1064, t1065, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1066],
         ],
     ]
 }
@@ -523,30 +573,30 @@ pub fn base_reaction<T: Real>(
         - T::from_f64(5.886);
     let t180 = Real::mul_add(-s73, t165, c74 * t151);
     let t183 = Real::mul_add(c74, t165, s73 * t151);
-    let t741 = qd[0] * qd[0];
-    let t742 = T::from_f64(0.3) * t741;
-    let t754 = t102 * t102;
-    let t760 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t742)) - T::from_f64(0.25) * t754
-            + T::from_f64(0.125) * t754);
-    let t1005 = s75 * t742 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1006 = T::from_f64(0.8) * t1005;
-    let t1015 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742)
-        - Real::mul_add(-c76, t760, s75 * t1006);
-    let t1016 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t1006, s75 * t760);
-    let t1019 = Real::mul_add(
+    let t727 = qd[0] * qd[0];
+    let t728 = T::from_f64(0.3) * t727;
+    let t740 = t102 * t102;
+    let t746 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t728)) - T::from_f64(0.25) * t740
+            + T::from_f64(0.125) * t740);
+    let t956 = s75 * t728 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t957 = T::from_f64(0.8) * t956;
+    let t966 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728)
+        - Real::mul_add(-c76, t746, s75 * t957);
+    let t967 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t957, s75 * t746);
+    let t970 = Real::mul_add(
         T::from_f64(0.3),
-        t1016,
+        t967,
         Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
             + Real::mul_add(
                 T::from_f64(0.2),
-                t1005,
-                Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103),
+                t956,
+                Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103),
             ),
     );
-    let t1022 = Real::mul_add(-s73, t1016, c74 * t1015);
-    let t1025 = Real::mul_add(c74, t1016, s73 * t1015);
-    [[[t1022, t1025, T::from_f64(20.601000000000003)], [t180, t183, t1019]]]
+    let t973 = Real::mul_add(-s73, t967, c74 * t966);
+    let t976 = Real::mul_add(c74, t967, s73 * t966);
+    [[[t973, t976, T::from_f64(20.601000000000003)], [t180, t183, t970]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -570,7 +620,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 312 arithmetic (118 add/sub, 165 mul, 11 div, 7 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 6 sign selects, 4 exp.
+/// Every generated output at once, sharing their common work. Operations: 306 arithmetic (118 add/sub, 161 mul, 11 div, 5 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 6 sign selects, 4 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -596,152 +646,181 @@ pub fn all<T: Real>(
     let t197 = t196 - t194;
     let t198 = qdd[0] * T::from_f64(0.03);
     let t200 = T::from_f64(0.02) * qdd[1];
-    let t209 = T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723));
-    let t214 = t194 + t196;
-    let t227 = T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092));
-    let t623 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
-    let t640 = Real::mul_add(
+    let t207 = T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723));
+    let t209 = (t197
+        .select_outside(
+            T::from_f64(0.000001),
+            T::from_f64(-0.3),
+            T::from_f64(0.3),
+            (t200 - t198)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * t207)
+        .exp();
+    let t211 = t194 + t196;
+    let t220 = T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092));
+    let t222 = (t211
+        .select_outside(
+            T::from_f64(0.000001),
+            T::from_f64(0.3),
+            T::from_f64(-0.3),
+            (t198 + t200)
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(0.3),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.0),
+                ),
+        ) * t220)
+        .exp();
+    let t269 = -(T::from_f64(0.03) * t209);
+    let t271 = T::from_f64(0.03) * t222;
+    let t275 = T::from_f64(0.02) * t209 / t269;
+    let t278 = Real::mul_add(-T::from_f64(0.02), t222, t271 * t275);
+    let t282 = T::from_f64(0.04) * t275 / t278;
+    let t286 = Real::mul_add(t271, t282, T::from_f64(-0.04)) / t269;
+    let t615 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
+    let t632 = Real::mul_add(
         T::from_f64(0.3),
-        t623 + (t623 + T::from_f64(0.6)),
+        t615 + (t615 + T::from_f64(0.6)),
         T::from_f64(0.0526667),
     );
-    let t741 = qd[0] * qd[0];
-    let t742 = T::from_f64(0.3) * t741;
-    let t745 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t741, -t742);
-    let t749 = c76 * t742;
-    let t751 = s75 * t742;
-    let t754 = t102 * t102;
-    let t755 = T::from_f64(0.25) * t754;
-    let t758 = T::from_f64(0.125) * t754;
-    let t760 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t749) - t755 + t758);
-    let t786 = (-(T::from_f64(0.3)
-        * (t197
-            .sign_outside_or(
-                T::from_f64(0.000001),
-                (t200 - t198).sign_outside(T::from_f64(0.000001)),
-            ) * t209)))
-        .exp();
-    let t789 = (T::from_f64(0.3)
-        * (t214
-            .sign_outside_or(
-                T::from_f64(0.000001),
-                (t198 + t200).sign_outside(T::from_f64(0.000001)),
-            ) * t227))
-        .exp();
-    let t791 = -(T::from_f64(0.03) * t786);
-    let t793 = T::from_f64(0.03) * t789;
-    let t795 = T::from_f64(0.02) * t786 / t791;
-    let t797 = Real::mul_add(-T::from_f64(0.02), t789, t793 * t795);
-    let t799 = T::from_f64(0.04) * t795 / t797;
-    let t802 = Real::mul_add(t793, t799, T::from_f64(-0.04)) / t791;
-    let t955 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t960 = T::from_f64(0.1) * t751;
-    let t980 = tendon_tensions[0]
-        * (-(T::from_f64(0.3) * (t209 * t197.sign_outside(T::from_f64(0.000001)))))
+    let t727 = qd[0] * qd[0];
+    let t728 = T::from_f64(0.3) * t727;
+    let t731 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728);
+    let t735 = c76 * t728;
+    let t737 = s75 * t728;
+    let t740 = t102 * t102;
+    let t741 = T::from_f64(0.25) * t740;
+    let t744 = T::from_f64(0.125) * t740;
+    let t746 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t735) - t741 + t744);
+    let t917 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
+    let t922 = T::from_f64(0.1) * t737;
+    let t931 = tendon_tensions[0]
+        * (t207
+            * t197
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.3),
+                    T::from_f64(0.0),
+                ))
             .exp();
-    let t982 = tendon_tensions[1]
-        * (T::from_f64(0.3) * (t227 * t214.sign_outside(T::from_f64(0.000001)))).exp();
-    let t991 = t955 / t640;
-    let t1001 = T::from_f64(1.2) * t83;
-    let t1003 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t1005 = t751 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t1006 = T::from_f64(0.8) * t1005;
-    let t1008 = Real::mul_add(-T::from_f64(0.1), t1005, T::from_f64(0.0041667) * t103);
-    let t1010 = Real::mul_add(T::from_f64(0.2), t1005, t1008);
-    let t1015 = t745 - Real::mul_add(-c76, t760, s75 * t1006);
-    let t1016 = t1001 + Real::mul_add(c76, t1006, s75 * t760);
-    let t1019 = Real::mul_add(T::from_f64(0.3), t1016, t1003 + t1010);
-    let t1022 = Real::mul_add(-s73, t1016, c74 * t1015);
-    let t1025 = Real::mul_add(c74, t1016, s73 * t1015);
-    let t1028 = Real::mul_add(-t795, t1019, t1010) / t797;
-    let t1031 = Real::mul_add(t793, t1028, t1019) / t791;
-    let t1042 = (-(Real::mul_add(t799, t1028, t802 * t1031)
-        / (T::from_f64(1.0) + Real::mul_add(t799, t799, t802 * t802))))
-        .max((T::from_f64(5.0) - t1031) / t802)
-        .max((T::from_f64(5.0) - t1028) / t799);
-    let t1043 = T::from_f64(5.0).max(t1042);
-    let t1045 = Real::mul_add(t802, t1043, t1031);
-    let t1047 = Real::mul_add(t799, t1043, t1028);
-    let t1048 = t786 * t1045;
-    let t1049 = t789 * t1047;
-    let t1050 = T::from_f64(0.9860132971832694) * t1048;
-    let t1051 = T::from_f64(0.16666666666666652) * t1048;
-    let t1054 = Real::mul_add(s75, t1051, c76 * t1050);
-    let t1055 = s75 * t1050;
-    let t1056 = c76 * t1051;
-    let t1057 = t1055 - t1056;
-    let t1060 = Real::mul_add(
+    let t933 = tendon_tensions[1]
+        * (t220
+            * t211
+                .select_outside(
+                    T::from_f64(0.000001),
+                    T::from_f64(0.3),
+                    T::from_f64(-0.3),
+                    T::from_f64(0.0),
+                ))
+            .exp();
+    let t942 = t917 / t632;
+    let t952 = T::from_f64(1.2) * t83;
+    let t954 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t956 = t737 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t957 = T::from_f64(0.8) * t956;
+    let t959 = Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103);
+    let t961 = Real::mul_add(T::from_f64(0.2), t956, t959);
+    let t966 = t731 - Real::mul_add(-c76, t746, s75 * t957);
+    let t967 = t952 + Real::mul_add(c76, t957, s75 * t746);
+    let t970 = Real::mul_add(T::from_f64(0.3), t967, t954 + t961);
+    let t973 = Real::mul_add(-s73, t967, c74 * t966);
+    let t976 = Real::mul_add(c74, t967, s73 * t966);
+    let t979 = Real::mul_add(-t275, t970, t961) / t278;
+    let t982 = Real::mul_add(t271, t979, t970) / t269;
+    let t993 = (-(Real::mul_add(t282, t979, t286 * t982)
+        / (T::from_f64(1.0) + Real::mul_add(t282, t282, t286 * t286))))
+        .max((T::from_f64(5.0) - t982) / t286)
+        .max((T::from_f64(5.0) - t979) / t282);
+    let t994 = T::from_f64(5.0).max(t993);
+    let t996 = Real::mul_add(t286, t994, t982);
+    let t998 = Real::mul_add(t282, t994, t979);
+    let t999 = t209 * t996;
+    let t1000 = t222 * t998;
+    let t1001 = T::from_f64(0.9860132971832694) * t999;
+    let t1002 = T::from_f64(0.16666666666666652) * t999;
+    let t1005 = Real::mul_add(s75, t1002, c76 * t1001);
+    let t1006 = s75 * t1001;
+    let t1007 = c76 * t1002;
+    let t1008 = t1006 - t1007;
+    let t1011 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1054,
+        t1005,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1057,
+        ) * t1008,
     );
-    let t1063 = Real::mul_add(-s73, t1051, c74 * t1050);
-    let t1066 = Real::mul_add(c74, t1051, s73 * t1050);
-    let t1077 = T::from_f64(0.9994442900376633) * t1049;
-    let t1078 = T::from_f64(0.03333333333333337) * t1049;
-    let t1081 = Real::mul_add(s75, t1078, c76 * t1077);
-    let t1082 = s75 * t1077;
-    let t1083 = c76 * t1078;
-    let t1084 = t1082 - t1083;
-    let t1085 = Real::mul_add(
+    let t1014 = Real::mul_add(-s73, t1002, c74 * t1001);
+    let t1017 = Real::mul_add(c74, t1002, s73 * t1001);
+    let t1028 = T::from_f64(0.9994442900376633) * t1000;
+    let t1029 = T::from_f64(0.03333333333333337) * t1000;
+    let t1032 = Real::mul_add(s75, t1029, c76 * t1028);
+    let t1033 = s75 * t1028;
+    let t1034 = c76 * t1029;
+    let t1035 = t1033 - t1034;
+    let t1036 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1084;
-    let t1086 = Real::mul_add(
+    ) * t1035;
+    let t1037 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1081;
-    let t1090 = Real::mul_add(-s73, t1078, c74 * t1077);
-    let t1093 = Real::mul_add(c74, t1078, s73 * t1077);
-    let t1102 = T::from_f64(0.9733466865996102) * t1043;
-    let t1103 = T::from_f64(0.22933867463984403) * t1043;
-    let t1104 = c74 * t1102;
-    let t1105 = s73 * t1103;
-    let t1106 = t1105 - t1104;
-    let t1109 = Real::mul_add(c74, t1103, s73 * t1102);
-    let t1110 = Real::mul_add(
+    ) * t1032;
+    let t1041 = Real::mul_add(-s73, t1029, c74 * t1028);
+    let t1044 = Real::mul_add(c74, t1029, s73 * t1028);
+    let t1053 = T::from_f64(0.9733466865996102) * t994;
+    let t1054 = T::from_f64(0.22933867463984403) * t994;
+    let t1055 = c74 * t1053;
+    let t1056 = s73 * t1054;
+    let t1057 = t1056 - t1055;
+    let t1060 = Real::mul_add(c74, t1054, s73 * t1053);
+    let t1061 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1109;
-    let t1111 = Real::mul_add(
+    ) * t1060;
+    let t1062 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1106;
-    let t1113 = Real::mul_add(T::from_f64(0.9968453000901664), t1047, -t1090);
-    let t1114 = Real::mul_add(T::from_f64(0.0793690600180332), t1047, -t1093);
-    let t1115 = Real::mul_add(
+    ) * t1057;
+    let t1064 = Real::mul_add(T::from_f64(0.9968453000901664), t998, -t1041);
+    let t1065 = Real::mul_add(T::from_f64(0.0793690600180332), t998, -t1044);
+    let t1066 = Real::mul_add(
         T::from_f64(0.03),
-        t1047,
+        t998,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1090,
+            t1041,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1093,
+            ) * t1044,
         ),
     );
-    let t1116 = Real::mul_add(T::from_f64(0.9506914539363203), t1045, -t1063);
-    let t1117 = -Real::mul_add(T::from_f64(0.31013829078726374), t1045, t1066);
-    let t1118 = Real::mul_add(
-        t1045,
+    let t1067 = Real::mul_add(T::from_f64(0.9506914539363203), t996, -t1014);
+    let t1068 = -Real::mul_add(T::from_f64(0.31013829078726374), t996, t1017);
+    let t1069 = Real::mul_add(
+        t996,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -749,103 +828,100 @@ pub fn all<T: Real>(
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1063,
+            t1014,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1066,
+            ) * t1017,
         ),
     );
-    let t1119 = t1104 - t1105;
-    let t1120 = -t1109;
-    let t1121 = t1111 - t1110;
-    let t1124 = t1083 - t1082;
-    let t1125 = t1086 - t1085;
-    let t1130 = t1056 - t1055;
-    let t1131 = -t1060;
-    let t1140 = t760 + (t1054 + t1081);
-    let t1141 = t1006 - (t1057 + t1084);
-    let t1142 = Real::mul_add(-T::from_f64(0.01), t1084, T::from_f64(0.01) * t1057);
-    let t1147 = Real::mul_add(
+    let t1070 = t1055 - t1056;
+    let t1071 = -t1060;
+    let t1072 = t1062 - t1061;
+    let t1075 = t1034 - t1033;
+    let t1076 = t1037 - t1036;
+    let t1081 = t1007 - t1006;
+    let t1082 = -t1011;
+    let t1091 = t746 + (t1005 + t1032);
+    let t1092 = t957 - (t1008 + t1035);
+    let t1093 = Real::mul_add(-T::from_f64(0.01), t1035, T::from_f64(0.01) * t1008);
+    let t1098 = Real::mul_add(
         -T::from_f64(0.01),
-        t1081,
-        Real::mul_add(T::from_f64(0.01), t1054, -T::from_f64(0.9810000000000001)),
+        t1032,
+        Real::mul_add(T::from_f64(0.01), t1005, -T::from_f64(0.9810000000000001)),
     );
-    let t1148 = Real::mul_add(
+    let t1099 = Real::mul_add(
         T::from_f64(0.25),
-        t1141,
-        t1008
-            - (Real::mul_add(-T::from_f64(0.25), t1084, t1085 - t1086)
-                + Real::mul_add(-T::from_f64(0.25), t1057, t1060)),
+        t1092,
+        t959
+            - (Real::mul_add(-T::from_f64(0.25), t1035, t1036 - t1037)
+                + Real::mul_add(-T::from_f64(0.25), t1008, t1011)),
     );
-    let t1157 = Real::mul_add(-s75, t1147, c76 * t1142);
-    let t1164 = t745 - (t1106 + Real::mul_add(-c76, t1140, s75 * t1141));
-    let t1165 = t1001 - (t1109 - Real::mul_add(c76, t1141, s75 * t1140));
-    let t1171 = Real::mul_add(
+    let t1108 = Real::mul_add(-s75, t1098, c76 * t1093);
+    let t1115 = t731 - (t1057 + Real::mul_add(-c76, t1091, s75 * t1092));
+    let t1116 = t952 - (t1060 - Real::mul_add(c76, t1092, s75 * t1091));
+    let t1122 = Real::mul_add(
         c76,
-        t1147,
-        Real::mul_add(s75, t1142, -T::from_f64(4.1202000000000005)),
+        t1098,
+        Real::mul_add(s75, t1093, -T::from_f64(4.1202000000000005)),
     );
-    let t1172 = Real::mul_add(
+    let t1123 = Real::mul_add(
         T::from_f64(0.3),
-        t1165,
-        t1003 - (Real::mul_add(-T::from_f64(0.3), t1109, t1110 - t1111) - t1148),
+        t1116,
+        t954 - (Real::mul_add(-T::from_f64(0.3), t1060, t1061 - t1062) - t1099),
     );
-    let t1173 = Real::mul_add(
+    let t1124 = Real::mul_add(
         T::from_f64(0.3),
         Real::mul_add(
             c76,
-            T::from_f64(0.8) * t751,
-            T::from_f64(0.8) * (s75 * (t758 - (t749 + t755))),
+            T::from_f64(0.8) * t737,
+            T::from_f64(0.8) * (s75 * (t744 - (t735 + t741))),
         ),
-        t960,
+        t922,
     );
-    let t1174 = T::from_f64(0.04) * tendon_tensions[2]
-        - Real::mul_add(T::from_f64(0.03), t982, T::from_f64(0.03) * t980) - t1173;
-    let t1179 = Real::mul_add(
-        -t991,
-        t1174,
-        Real::mul_add(-T::from_f64(0.02), t982, T::from_f64(0.02) * t980) - t960,
-    ) / Real::mul_add(-t640, t991 * t991, T::from_f64(0.0166667));
-    let t1181 = Real::mul_add(-t991, t1179, t1174 / t640);
+    let t1125 = T::from_f64(0.04) * tendon_tensions[2]
+        - Real::mul_add(T::from_f64(0.03), t933, T::from_f64(0.03) * t931) - t1124;
+    let t1130 = Real::mul_add(
+        -t942,
+        t1125,
+        Real::mul_add(-T::from_f64(0.02), t933, T::from_f64(0.02) * t931) - t922,
+    ) / Real::mul_add(-t632, t942 * t942, T::from_f64(0.0166667));
+    let t1132 = Real::mul_add(-t942, t1130, t1125 / t632);
     Outputs {
-        generalized_forces: [t1019, t1010],
-        actuation: tendyn_core::distribution::Actuation::exact(
-            [],
-            [t1045, t1047, t1043],
-        ),
-        mass_matrix: [[t640, t955], [t955, T::from_f64(0.0166667)]],
-        bias: [t1173, t960],
+        generalized_forces: [t970, t961],
+        actuation: tendyn_core::distribution::Actuation::exact([], [t996, t998, t994]),
+        mass_matrix: [[t632, t917], [t917, T::from_f64(0.0166667)]],
+        bias: [t1124, t922],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1181, t1179],
-        segment_tensions: [t1048, t1045, t1049, t1047, t1043],
+        forward_dynamics: [t1132, t1130],
+        segment_tensions: [t999, t996, t1000, t998, t994],
         bearings: [
-            [[t1164, t1165, T::from_f64(19.62)], [t1157, t1171, t1172]],
-            [[t1140, t1141, T::from_f64(7.848000000000001)], [t1142, t1147, t1148]],
+            [[t1115, t1116, T::from_f64(19.62)], [t1108, t1122, t1123]],
+            [[t1091, t1092, T::from_f64(7.848000000000001)], [t1093, t1098, t1099]],
             [
-                [t1054, t1130, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1131],
+                [t1005, t1081, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1082],
             ],
             [
-                [t1081, t1124, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1125],
+                [t1032, t1075, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1076],
             ],
             [
-                [t1119, t1120, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1121],
+                [t1070, t1071, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1072],
             ],
             [
-                [t1116, t1117, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1118],
+                [t1067, t1068, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1069],
             ],
             [
-                [t1113, t1114, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1115],
+                [t1064, t1065, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1066],
             ],
         ],
         base_reaction: [
-            [[t1022, t1025, T::from_f64(20.601000000000003)], [t180, t183, t1019]],
+            [[t973, t976, T::from_f64(20.601000000000003)], [t180, t183, t970]],
         ],
     }
 }

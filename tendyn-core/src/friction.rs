@@ -165,31 +165,36 @@ pub fn capstan_factors<T: Real>(
             );
             // A constant wrap angle under the exact law: the factor is one of three
             // numbers, `e^{∓μβ}` or 1, chosen by the direction (folded at generation).
+            let mu = T::from_f64(guide.mu);
             if model.friction_smoothing.is_none() && guide.wrap_rate.iter().all(|&r| r == 0.0) {
-                let (mu, wrap) = (T::from_f64(guide.mu), T::from_f64(guide.wrap));
-                let towards_exit = capstan_factor(T::one(), mu, wrap);
+                let towards_exit = capstan_factor(-mu, T::from_f64(guide.wrap));
                 let towards_anchor = T::one() / towards_exit;
                 *factor = by_direction(slide, accel, [towards_exit, towards_anchor, T::one()]);
                 continue;
             }
+            // `−σ μ`: under the exact law chosen among `∓μ` and 0 as the direction is (a
+            // select whose numbers carry the law's sign and `μ` from generation).
+            let rate = match model.friction_smoothing {
+                None => by_direction(slide, accel, [-mu, mu, T::zero()]),
+                smoothing => -(direction(slide, accel, smoothing) * mu),
+            };
             let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
-            let sigma = direction(slide, accel, model.friction_smoothing);
-            *factor = capstan_factor(sigma, T::from_f64(guide.mu), wrap);
+            *factor = capstan_factor(rate, wrap);
         }
     }
 }
 
 /// A guide's capstan law, the ratio `T_k / T_{k+1} = e^{−σ μ β}` of the tensions on its
-/// anchor and ground sides, with `β` taken as 0 where it turns negative: a tendon bending
-/// away from a guide does not touch it.
-pub fn capstan_factor<T: Real>(sigma: T, mu: T, wrap: T) -> T {
-    capstan_log_factor(sigma, mu, wrap).exp()
+/// anchor and ground sides (`rate` is `−σ μ`), with `β` taken as 0 where it turns
+/// negative: a tendon bending away from a guide does not touch it.
+pub fn capstan_factor<T: Real>(rate: T, wrap: T) -> T {
+    capstan_log_factor(rate, wrap).exp()
 }
 
-/// The log of [`capstan_factor`], `−σ μ β` (`β ≥ 0`): validation's boxes of factors are
-/// boxes of these.
-pub(crate) fn capstan_log_factor<T: Real>(sigma: T, mu: T, wrap: T) -> T {
-    -(sigma * mu * wrap.max(T::zero()))
+/// The log of [`capstan_factor`], `−σ μ β` (`β ≥ 0`, `rate` is `−σ μ`): validation's
+/// boxes of factors are boxes of these.
+pub(crate) fn capstan_log_factor<T: Real>(rate: T, wrap: T) -> T {
+    rate * wrap.max(T::zero())
 }
 
 /// `Σ_j c_j x_j` of constant coefficients.

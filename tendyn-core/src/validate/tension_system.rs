@@ -1546,7 +1546,7 @@ impl Sliding {
         let lambda: Vec<f64> = (self.sliders.iter().zip(point).zip(wraps))
             .map(|((slider, &way), &wrap)| {
                 let mu = self.guide(model, slider).mu;
-                crate::friction::capstan_log_factor(slider.sign * way, mu, wrap)
+                crate::friction::capstan_log_factor(-slider.sign * way * mu, wrap)
             })
             .collect();
         self.matrix_with_factors(model, &lambda)
