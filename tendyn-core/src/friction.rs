@@ -174,27 +174,28 @@ pub fn capstan_factors<T: Real>(
             }
             // `−σ μ`: under the exact law chosen among `∓μ` and 0 as the direction is (a
             // select whose numbers carry the law's sign and `μ` from generation).
-            let rate = match model.friction_smoothing {
+            let per_radian = match model.friction_smoothing {
                 None => by_direction(slide, accel, [-mu, mu, T::zero()]),
                 smoothing => -(direction(slide, accel, smoothing) * mu),
             };
             let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
-            *factor = capstan_factor(rate, wrap);
+            *factor = capstan_factor(per_radian, wrap);
         }
     }
 }
 
 /// A guide's capstan law, the ratio `T_k / T_{k+1} = e^{−σ μ β}` of the tensions on its
-/// anchor and ground sides (`rate` is `−σ μ`), with `β` taken as 0 where it turns
-/// negative: a tendon bending away from a guide does not touch it.
-pub fn capstan_factor<T: Real>(rate: T, wrap: T) -> T {
-    capstan_log_factor(rate, wrap).exp()
+/// anchor and ground sides (`per_radian` is `−σ μ`, the log of the factor per radian of
+/// wrap), with `β` taken as 0 where it turns negative: a tendon bending away from a guide
+/// does not touch it.
+pub fn capstan_factor<T: Real>(per_radian: T, wrap: T) -> T {
+    capstan_log_factor(per_radian, wrap).exp()
 }
 
-/// The log of [`capstan_factor`], `−σ μ β` (`β ≥ 0`, `rate` is `−σ μ`): validation's
-/// boxes of factors are boxes of these.
-pub(crate) fn capstan_log_factor<T: Real>(rate: T, wrap: T) -> T {
-    rate * wrap.max(T::zero())
+/// The log of [`capstan_factor`], `−σ μ β` (`β ≥ 0`, `per_radian` is `−σ μ`):
+/// validation's boxes of factors are boxes of these.
+pub(crate) fn capstan_log_factor<T: Real>(per_radian: T, wrap: T) -> T {
+    per_radian * wrap.max(T::zero())
 }
 
 /// `Σ_j c_j x_j` of constant coefficients.
