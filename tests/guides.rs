@@ -192,6 +192,34 @@ fn a_guide_of_constant_wrap_angle_has_its_capstan_factors_folded_into_generated_
     assert!(source.contains(".select_outside("), "{source}");
 }
 
+/// Issue 10 asks that capstan friction cost generated code at most 1.5 times the operations
+/// of the frictionless code, on Example 3 with a guide on every idler (`μ = 0.1` here).
+/// That goal is not met yet (1.54 and 1.57 times, docs/generated-code.md); this guards
+/// what has been reached: `actuation` and `segment_tensions` take no more operations than
+/// they did when it was measured (295 and 301, against 192 each without friction).
+#[test]
+fn capstan_friction_costs_generated_code_no_more_than_when_last_measured() {
+    use tendyn_codegen::{generate, Output, Scalar};
+    let example = tendyn_spec::examples::text("example3_stanford_jpl");
+    let outputs = [Output::Actuation, Output::SegmentTensions];
+    let counts = |text: &str| -> Vec<usize> {
+        let model = parse(text).unwrap();
+        let code = generate(&model, &outputs, Scalar::Generic, "example3.ron").unwrap();
+        (code.functions.iter())
+            .map(|(_, ops, _)| ops.arithmetic())
+            .collect()
+    };
+    let frictionless = counts(&tendyn_spec::guides::idlers_as_guides(&example));
+    let capstan = counts(&tendyn_spec::guides::idlers_as_capstans(&example, 0.1));
+    let ratios: Vec<f64> = (capstan.iter().zip(&frictionless))
+        .map(|(&c, &f)| c as f64 / f as f64)
+        .collect();
+    println!("frictionless {frictionless:?}, μ = 0.1 {capstan:?}: {ratios:.2?} times");
+    // A new frictionless count moves the goal: measure both again and update them here.
+    assert_eq!(frictionless, [192, 192]);
+    assert!(capstan[0] <= 295 && capstan[1] <= 301, "{capstan:?}");
+}
+
 /// Generated code traces the state's system for any null space (the pin, `d = 1`: every
 /// output is available; with a second direct tendon, `d = 2`: `actuation`, `base_reaction`
 /// and forward dynamics, the segments and bearings refused as for any `d ≥ 2`, friction or
