@@ -53,16 +53,16 @@ pub fn actuation<T: Real>(
     qdd: &[T; 2],
 ) -> tendyn_core::distribution::Actuation<[T; 0], [T; 3]> {
     let (s75, c76) = q[1].sin_cos();
-    let t194 = qd[0] * T::from_f64(0.03);
-    let t196 = T::from_f64(0.02) * qd[1];
-    let t198 = qdd[0] * T::from_f64(0.03);
-    let t200 = T::from_f64(0.02) * qdd[1];
-    let t209 = ((t196 - t194)
+    let t193 = T::from_f64(0.02) * qd[1];
+    let t195 = qd[0] * T::from_f64(0.03);
+    let t198 = T::from_f64(0.02) * qdd[1];
+    let t199 = qdd[0] * T::from_f64(0.03);
+    let t209 = ((t193 - t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(-0.3),
             T::from_f64(0.3),
-            (t200 - t198)
+            (t198 - t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(-0.3),
@@ -71,12 +71,12 @@ pub fn actuation<T: Real>(
                 ),
         ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t222 = ((t194 + t196)
+    let t222 = ((t193 + t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(0.3),
             T::from_f64(-0.3),
-            (t198 + t200)
+            (t198 + t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(0.3),
@@ -187,10 +187,10 @@ pub fn forward_dynamics<T: Real>(
     tendon_tensions: &[T; 3],
 ) -> [T; 2] {
     let (s75, c76) = q[1].sin_cos();
-    let t194 = qd[0] * T::from_f64(0.03);
-    let t196 = T::from_f64(0.02) * qd[1];
+    let t193 = T::from_f64(0.02) * qd[1];
+    let t195 = qd[0] * T::from_f64(0.03);
     let t669 = (T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
-        * (t196 - t194)
+        * (t193 - t195)
             .select_outside(
                 T::from_f64(0.000001),
                 T::from_f64(-0.3),
@@ -199,7 +199,7 @@ pub fn forward_dynamics<T: Real>(
             ))
         .exp();
     let t672 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
-        * (t194 + t196)
+        * (t193 + t195)
             .select_outside(
                 T::from_f64(0.000001),
                 T::from_f64(0.3),
@@ -241,16 +241,16 @@ pub fn forward_dynamics<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
     let (s75, c76) = q[1].sin_cos();
-    let t194 = qd[0] * T::from_f64(0.03);
-    let t196 = T::from_f64(0.02) * qd[1];
-    let t198 = qdd[0] * T::from_f64(0.03);
-    let t200 = T::from_f64(0.02) * qdd[1];
-    let t209 = ((t196 - t194)
+    let t193 = T::from_f64(0.02) * qd[1];
+    let t195 = qd[0] * T::from_f64(0.03);
+    let t198 = T::from_f64(0.02) * qdd[1];
+    let t199 = qdd[0] * T::from_f64(0.03);
+    let t209 = ((t193 - t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(-0.3),
             T::from_f64(0.3),
-            (t200 - t198)
+            (t198 - t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(-0.3),
@@ -259,12 +259,12 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
                 ),
         ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t222 = ((t194 + t196)
+    let t222 = ((t193 + t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(0.3),
             T::from_f64(-0.3),
-            (t198 + t200)
+            (t198 + t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(0.3),
@@ -339,16 +339,16 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
     let t83 = qdd[0] * T::from_f64(0.15);
     let t102 = qd[0] + qd[1];
     let t103 = qdd[0] + qdd[1];
-    let t194 = qd[0] * T::from_f64(0.03);
-    let t196 = T::from_f64(0.02) * qd[1];
-    let t198 = qdd[0] * T::from_f64(0.03);
-    let t200 = T::from_f64(0.02) * qdd[1];
-    let t209 = ((t196 - t194)
+    let t193 = T::from_f64(0.02) * qd[1];
+    let t195 = qd[0] * T::from_f64(0.03);
+    let t198 = T::from_f64(0.02) * qdd[1];
+    let t199 = qdd[0] * T::from_f64(0.03);
+    let t209 = ((t193 - t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(-0.3),
             T::from_f64(0.3),
-            (t200 - t198)
+            (t198 - t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(-0.3),
@@ -357,12 +357,12 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                 ),
         ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
         .exp();
-    let t222 = ((t194 + t196)
+    let t222 = ((t193 + t195)
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(0.3),
             T::from_f64(-0.3),
-            (t198 + t200)
+            (t198 + t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(0.3),
@@ -641,18 +641,18 @@ pub fn all<T: Real>(
         - T::from_f64(5.886);
     let t180 = Real::mul_add(-s73, t165, c74 * t151);
     let t183 = Real::mul_add(c74, t165, s73 * t151);
-    let t194 = qd[0] * T::from_f64(0.03);
-    let t196 = T::from_f64(0.02) * qd[1];
-    let t197 = t196 - t194;
-    let t198 = qdd[0] * T::from_f64(0.03);
-    let t200 = T::from_f64(0.02) * qdd[1];
+    let t193 = T::from_f64(0.02) * qd[1];
+    let t195 = qd[0] * T::from_f64(0.03);
+    let t197 = t193 - t195;
+    let t198 = T::from_f64(0.02) * qdd[1];
+    let t199 = qdd[0] * T::from_f64(0.03);
     let t207 = T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723));
     let t209 = (t197
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(-0.3),
             T::from_f64(0.3),
-            (t200 - t198)
+            (t198 - t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(-0.3),
@@ -661,14 +661,14 @@ pub fn all<T: Real>(
                 ),
         ) * t207)
         .exp();
-    let t211 = t194 + t196;
+    let t211 = t193 + t195;
     let t220 = T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092));
     let t222 = (t211
         .select_outside(
             T::from_f64(0.000001),
             T::from_f64(0.3),
             T::from_f64(-0.3),
-            (t198 + t200)
+            (t198 + t199)
                 .select_outside(
                     T::from_f64(0.000001),
                     T::from_f64(0.3),

@@ -198,11 +198,12 @@ pub(crate) fn capstan_log_factor<T: Real>(per_radian: T, wrap: T) -> T {
     per_radian * wrap.max(T::zero())
 }
 
-/// `Σ_j c_j x_j` of constant coefficients.
+/// `Σ_j c_j x_j` of constant coefficients, summed from the last joint down: a route
+/// gathers its joints from its anchor, usually the most distal, towards the ground, so a
+/// guide's sum then extends the sum of the guide before it on the route, which generated
+/// code shares.
 fn linear<T: Real>(c: &[f64], x: &[T]) -> T {
-    c.iter()
-        .zip(x)
-        .fold(T::zero(), |s, (c, x)| s + T::from_f64(*c) * *x)
+    (c.iter().zip(x).rev()).fold(T::zero(), |s, (c, x)| s + T::from_f64(*c) * *x)
 }
 
 /// The bodies whose bearing has friction and turns within [`REST`] of rest: with the exact

@@ -487,16 +487,17 @@ impl Routing<'_> {
         let RouteGeometry {
             segments,
             rims,
+            rim_speeds,
             pull_rate,
             segment_rates,
         } = self.geometry_and_rates(route, &start_coupling, start_is_coordinate, &|p| {
             self.pulleys[p].radius
         })?;
         let mut idlers = Vec::new();
-        for (i, (&(p, turn), c)) in stops(route).iter().zip(&rims).enumerate().skip(1) {
+        for (i, (&(p, turn), speed)) in stops(route).iter().zip(&rim_speeds).enumerate().skip(1) {
             let (s, r) = (turn_sign(turn), self.pulleys[p].radius);
             let incoming = segments[i - 1].frame;
-            // A fixed pulley here is a guide: it does not turn, so the rim rate the tendon
+            // A fixed pulley here is a guide: it does not turn, so the rim speed the tendon
             // would give it is the tendon's sliding over it, `v = s r c q̇`.
             let outgoing = segments.get(i);
             let guide = outgoing.filter(|_| self.pulleys[p].fixed).map(|outgoing| {
@@ -508,7 +509,7 @@ impl Routing<'_> {
                 // represented.
                 let quarter = std::f64::consts::FRAC_PI_2;
                 Guide {
-                    slide: c.joints.iter().map(|x| s * r * x).collect(),
+                    slide: speed.joints.clone(),
                     wrap: (s * (depart - arrive) + quarter).rem_euclid(std::f64::consts::TAU)
                         - quarter,
                     // The departure point turns with the outgoing frame, the arrival point
@@ -587,17 +588,21 @@ impl Routing<'_> {
         );
         segment_rates[0].add_scaled(&pull, T::one());
         let mut rims = vec![start_coupling.clone()];
+        let mut rim_speeds = vec![Rate::zero(n)];
+        rim_speeds[0].add_scaled(start_coupling, s0 * r0);
         for (i, &(p, turn)) in stops.iter().enumerate().skip(1) {
             let (s, r) = (sign(turn), radius(p));
             let incoming = segments[i - 1].frame;
+            let to_carrier = self.relative_rate(incoming, self.pulleys[p].carrier, p);
             // The rim moves with the tendon (Eqs. 9-10): coupling of this pulley.
             let mut c = Rate::zero(n);
             c.add_divided(&pull, s, r);
-            c.add_scaled(
-                &self.relative_rate(incoming, self.pulleys[p].carrier, p),
-                T::one(),
-            );
+            c.add_scaled(&to_carrier, T::one());
             rims.push(c);
+            // s r c, without the division and the multiplication that cancel.
+            let mut speed = pull.clone();
+            speed.add_scaled(&to_carrier, s * r);
+            rim_speeds.push(speed);
             if let Some(out) = segments.get(i) {
                 pull.add_scaled(&self.relative_rate(incoming, out.frame, p), s * r);
                 let carrier = self.pulleys[p].carrier;
@@ -631,6 +636,7 @@ impl Routing<'_> {
         Ok(RouteGeometry {
             segments,
             rims,
+            rim_speeds,
             pull_rate: expanded,
             segment_rates,
         })
@@ -699,6 +705,11 @@ pub(crate) struct RouteGeometry<T> {
     /// driving pulley it ends on), per `q̇`: the coupling of an idler or driving pulley, the
     /// sliding of a guide over its pin, over its radius; `rims[0]` is the start coupling.
     pub rims: Vec<Rate<T>>,
+    /// `rim_speeds[k] = s r rims[k]`: the tendon's speed over stop `k`'s rim relative to
+    /// its carrier (m per rad/s), formed without dividing by `r` and multiplying back, so
+    /// that a guide's sliding speed has the radii's own coefficients (exact sums of the
+    /// wraps' `± r` before it, as `E`'s are).
+    pub rim_speeds: Vec<Rate<T>>,
     /// `ẋ` of the strand (see [`StrandGeometry::pull_rate`]).
     pub pull_rate: Rate<T>,
     /// Each segment's share of it (see [`StrandGeometry::segment_rates`]).
