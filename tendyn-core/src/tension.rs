@@ -287,11 +287,18 @@ pub(crate) fn for_each_run<T: Real>(
 /// directions of sliding validation checks.
 const LEADING_BOXES: usize = 256;
 
+/// The least fraction of its column's largest entry a pivot of [`Elimination`] may have:
+/// each step then grows the entries by at most `1 + 1/PIVOT_THRESHOLD`, while the sparsest
+/// row can be chosen among near-equals (sparse LU codes take 0.1; the systems here are at
+/// most a few rows, where stability is cheaper than the few operations a sparser row saves).
+const PIVOT_THRESHOLD: f64 = 0.5;
+
 /// How generated code solves a state's tension system where guides with friction make
 /// `E(σ, q)` depend on the state: by elimination on the columns of every unknown but the
 /// free ones (one per null direction, always tendons: motor and loop columns are
 /// independent of all others, or the null space would reach them), its rows taken in the
-/// order a partially pivoting elimination of the model's `E` takes them. Chosen once,
+/// order a threshold-pivoting elimination of the model's `E` takes them (the sparsest of
+/// the rows near the largest, so that the traced code fills in least). Chosen once,
 /// from the model, so the traced code does no pivoting: friction scales the columns of
 /// `E` by capstan factors `e^{±μβ}` and leaves its pattern of zeros, but a square part that
 /// is regular in the model may still turn singular at some state of a controllable routing,
@@ -349,7 +356,7 @@ impl Elimination {
         out
     }
 
-    /// The order with the unknowns `free` left free and the rest eliminated in a partially
+    /// The order with the unknowns `free` left free and the rest eliminated in a threshold-
     /// pivoting elimination of the model's `E`; `None` if a free unknown is not a tendon.
     fn with_free<T: Numeric>(model: &Model<T>, free: Vec<usize>) -> Option<Elimination> {
         let system = &model.system;
@@ -366,8 +373,23 @@ impl Elimination {
             .collect();
         let mut rows: Vec<usize> = (0..system.rows.len()).collect();
         for j in 0..n {
+            // Threshold pivoting with the sparsest row (Markowitz's rule for a fixed
+            // column): of the rows whose entry is within PIVOT_THRESHOLD of the column's
+            // largest, the one with the fewest other nonzeros left, so that elimination
+            // fills in least and the traced code forms fewest terms; the largest entry
+            // among those.
+            let largest = (j..rows.len()).fold(0.0f64, |m, i| m.max(e[i][j].abs()));
+            let others = |i: usize| (j + 1..n).filter(|&k| e[i][k] != 0.0).count();
             let pivot = (j..rows.len())
-                .reduce(|a, b| if e[b][j].abs() > e[a][j].abs() { b } else { a })
+                .filter(|&i| e[i][j].abs() >= PIVOT_THRESHOLD * largest)
+                .reduce(|a, b| {
+                    let better = (others(b), -e[b][j].abs()) < (others(a), -e[a][j].abs());
+                    if better {
+                        b
+                    } else {
+                        a
+                    }
+                })
                 .unwrap_or(j);
             e.swap(j, pivot);
             rows.swap(j, pivot);
