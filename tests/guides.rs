@@ -193,12 +193,12 @@ fn a_guide_of_constant_wrap_angle_has_its_capstan_factors_folded_into_generated_
 }
 
 /// Issue 10 asks that capstan friction cost generated code at most 1.5 times the operations
-/// of the frictionless code, on Example 3 with a guide on every idler (`μ = 0.1` here).
-/// That goal is not met yet (1.54 and 1.57 times, docs/generated-code.md); this guards
-/// what has been reached: `actuation` and `segment_tensions` take no more operations than
-/// they did when it was measured (295 and 301, against 192 each without friction).
+/// of the frictionless code, on Example 3 with a guide on every idler (`μ = 0.1` here):
+/// `actuation` and `segment_tensions` take 263 and 269 operations against 192 each
+/// without friction (1.37 and 1.40 times, docs/generated-code.md). Both the goal and the
+/// figures measured are kept.
 #[test]
-fn capstan_friction_costs_generated_code_no_more_than_when_last_measured() {
+fn capstan_friction_costs_generated_code_at_most_one_and_a_half_times_the_frictionless() {
     use tendyn_codegen::{generate, Output, Scalar};
     let example = tendyn_spec::examples::text("example3_stanford_jpl");
     let outputs = [Output::Actuation, Output::SegmentTensions];
@@ -217,7 +217,8 @@ fn capstan_friction_costs_generated_code_no_more_than_when_last_measured() {
     println!("frictionless {frictionless:?}, μ = 0.1 {capstan:?}: {ratios:.2?} times");
     // A new frictionless count moves the goal: measure both again and update them here.
     assert_eq!(frictionless, [192, 192]);
-    assert!(capstan[0] <= 295 && capstan[1] <= 301, "{capstan:?}");
+    assert!(ratios.iter().all(|&r| r <= 1.5), "{ratios:?}");
+    assert!(capstan[0] <= 263 && capstan[1] <= 269, "{capstan:?}");
 }
 
 /// Generated code traces the state's system for any null space (the pin, `d = 1`: every

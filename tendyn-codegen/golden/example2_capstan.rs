@@ -27,24 +27,24 @@ pub const TENDONS: usize = 3;
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn generalized_forces<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 2] {
     let (s75, c76) = q[1].sin_cos();
-    let t917 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t1144 = s75 * T::from_f64(0.03);
-    let t1153 = qdd[0]
+    let t930 = Real::mul_add(c76, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1157 = s75 * T::from_f64(0.03);
+    let t1166 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * t917
-            - qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06))));
-    let t1159 = Real::mul_add(
+        + (qdd[1] * t930
+            - qd[1] * Real::mul_add(qd[1], t1157, qd[0] * (s75 * T::from_f64(0.06))));
+    let t1172 = Real::mul_add(
         qdd[0],
-        t917,
-        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1144)),
+        t930,
+        Real::mul_add(qdd[1], T::from_f64(0.0166667), qd[0] * (qd[0] * t1157)),
     );
-    [t1153, t1159]
+    [t1166, t1172]
 }
 /// Motor torques (N·m, file order), ground-level tendon tensions (N, file order, each within its floor and `max_tension`, the file's distribution objective least) and whether the bounds could be met (`status`).
 ///
 /// Entries: tendon T32, tendon T42, tendon T11.
 ///
-/// Operations (closed form): 92 arithmetic (30 add/sub, 43 mul, 8 div, 2 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (closed form): 83 arithmetic (26 add/sub, 38 mul, 7 div, 3 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn actuation<T: Real>(
@@ -57,20 +57,6 @@ pub fn actuation<T: Real>(
     let t195 = qd[0] * T::from_f64(0.03);
     let t198 = T::from_f64(0.02) * qdd[1];
     let t199 = qdd[0] * T::from_f64(0.03);
-    let t209 = ((t193 - t195)
-        .select_outside(
-            T::from_f64(0.000001),
-            T::from_f64(-0.3),
-            T::from_f64(0.3),
-            (t198 - t199)
-                .select_outside(
-                    T::from_f64(0.000001),
-                    T::from_f64(-0.3),
-                    T::from_f64(0.3),
-                    T::from_f64(0.0),
-                ),
-        ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
-        .exp();
     let t222 = ((t193 + t195)
         .select_outside(
             T::from_f64(0.000001),
@@ -85,55 +71,66 @@ pub fn actuation<T: Real>(
                 ),
         ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092)))
         .exp();
-    let t269 = -(T::from_f64(0.03) * t209);
-    let t275 = T::from_f64(0.02) * t209 / t269;
-    let t916 = c76 * T::from_f64(0.03);
-    let t1144 = s75 * T::from_f64(0.03);
-    let t1160 = t275 * T::from_f64(0.06);
-    let t1180 = T::from_f64(0.03) * t275;
-    let t1185 = Real::mul_add(
+    let t269 = -(T::from_f64(0.03)
+        * ((t193 - t195)
+            .select_outside(
+                T::from_f64(0.000001),
+                T::from_f64(-0.3),
+                T::from_f64(0.3),
+                (t198 - t199)
+                    .select_outside(
+                        T::from_f64(0.000001),
+                        T::from_f64(-0.3),
+                        T::from_f64(0.3),
+                        T::from_f64(0.0),
+                    ),
+            ) * T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723)))
+            .exp());
+    let t1157 = s75 * T::from_f64(0.03);
+    let t1199 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t275, T::from_f64(-0.0166667) - t916, T::from_f64(0.0166667)),
-        Real::mul_add(
-            qd[1],
-            qd[1] * (s75 * t1180),
-            qd[0] * Real::mul_add(qd[1], s75 * t1160, qd[0] * t1144),
-        ),
-    );
-    let t1188 = t222 * (T::from_f64(-0.02) + t1180);
-    let t1189 = Real::mul_add(
-        qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1160,
-            Real::mul_add(
-                -t275,
-                T::from_f64(0.12466669999999999),
-                T::from_f64(0.0166667),
-            ),
+            T::from_f64(0.020000000000000004),
+            T::from_f64(0.027777833333333335),
         ),
-        t1185,
-    ) / t1188;
-    let t1194 = qdd[0]
+        Real::mul_add(
+            -qd[1],
+            qd[1] * (s75 * T::from_f64(0.020000000000000004)),
+            qd[0]
+                * Real::mul_add(
+                    -qd[1],
+                    s75 * T::from_f64(0.04000000000000001),
+                    qd[0] * t1157,
+                ),
+        ),
+    );
+    let t1202 = -(T::from_f64(0.04) * t222);
+    let t1203 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(c76, T::from_f64(0.07), T::from_f64(0.09977783333333334)),
+        t1199,
+    ) / t1202;
+    let t1208 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t916)
+        + (qdd[1] * Real::mul_add(c76, T::from_f64(0.03), T::from_f64(0.0166667))
             + Real::mul_add(
                 t222,
-                T::from_f64(0.03) * t1189,
-                -(qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))),
+                T::from_f64(0.03) * t1203,
+                -(qd[1] * Real::mul_add(qd[1], t1157, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1195 = t1194 / t269;
-    let t1196 = T::from_f64(0.04) * t275 / t1188;
-    let t1200 = Real::mul_add(t222, T::from_f64(0.03) * t1196, T::from_f64(-0.04))
+    let t1209 = t1208 / t269;
+    let t1210 = T::from_f64(-0.026666666666666672) / t1202;
+    let t1214 = Real::mul_add(t222, T::from_f64(0.03) * t1210, T::from_f64(-0.04))
         / t269;
-    let t1218 = (-(Real::mul_add(t1195, t1200, t1189 * t1196)
-        / Real::mul_add(t1196, t1196, Real::mul_add(t1200, t1200, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1195) / t1200)
-        .max((T::from_f64(5.0) - t1189) / t1196);
-    let t1219 = T::from_f64(5.0).max(t1218);
-    let t1221 = Real::mul_add(t1200, t1219, t1195);
-    let t1223 = Real::mul_add(t1196, t1219, t1189);
-    tendyn_core::distribution::Actuation::exact([], [t1221, t1223, t1219])
+    let t1232 = (-(Real::mul_add(t1209, t1214, t1203 * t1210)
+        / Real::mul_add(t1210, t1210, Real::mul_add(t1214, t1214, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1209) / t1214)
+        .max((T::from_f64(5.0) - t1203) / t1210);
+    let t1233 = T::from_f64(5.0).max(t1232);
+    let t1235 = Real::mul_add(t1214, t1233, t1209);
+    let t1237 = Real::mul_add(t1210, t1233, t1203);
+    tendyn_core::distribution::Actuation::exact([], [t1235, t1237, t1233])
 }
 /// Joint-space mass matrix `M(q)` (kg·m², pulley inertias included).
 ///
@@ -144,9 +141,9 @@ pub fn actuation<T: Real>(
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
     let t76 = q[1].cos();
-    let t917 = T::from_f64(0.0166667) + t76 * T::from_f64(0.03);
-    let t1136 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    [[t1136, t917], [t917, T::from_f64(0.0166667)]]
+    let t930 = Real::mul_add(t76, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t1149 = Real::mul_add(t76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    [[t1149, t930], [t930, T::from_f64(0.0166667)]]
 }
 /// Coriolis and centrifugal generalized forces `h(q, q̇)` (N·m).
 ///
@@ -157,11 +154,11 @@ pub fn mass_matrix<T: Real>(q: &[T; 2]) -> [[T; 2]; 2] {
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bias<T: Real>(q: &[T; 2], qd: &[T; 2]) -> [T; 2] {
     let t75 = q[1].sin();
-    let t1144 = t75 * T::from_f64(0.03);
-    let t1151 = -(qd[1]
-        * Real::mul_add(qd[1], t1144, qd[0] * (t75 * T::from_f64(0.06))));
-    let t1157 = qd[0] * (qd[0] * t1144);
-    [t1151, t1157]
+    let t1157 = t75 * T::from_f64(0.03);
+    let t1164 = -(qd[1]
+        * Real::mul_add(qd[1], t1157, qd[0] * (t75 * T::from_f64(0.06))));
+    let t1170 = qd[0] * (qd[0] * t1157);
+    [t1164, t1170]
 }
 /// Gravity generalized forces `g(q)` (N·m).
 ///
@@ -189,7 +186,7 @@ pub fn forward_dynamics<T: Real>(
     let (s75, c76) = q[1].sin_cos();
     let t193 = T::from_f64(0.02) * qd[1];
     let t195 = qd[0] * T::from_f64(0.03);
-    let t669 = (T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
+    let t672 = (T::from_f64(0.0).max(q[0] + T::from_f64(0.48278657158448723))
         * (t193 - t195)
             .select_outside(
                 T::from_f64(0.000001),
@@ -198,7 +195,7 @@ pub fn forward_dynamics<T: Real>(
                 T::from_f64(0.0),
             ))
         .exp();
-    let t672 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
+    let t675 = (T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092))
         * (t193 + t195)
             .select_outside(
                 T::from_f64(0.000001),
@@ -207,36 +204,36 @@ pub fn forward_dynamics<T: Real>(
                 T::from_f64(0.0),
             ))
         .exp();
-    let t1136 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
-    let t1144 = s75 * T::from_f64(0.03);
-    let t1226 = qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))
+    let t1149 = Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999));
+    let t1157 = s75 * T::from_f64(0.03);
+    let t1240 = qd[1] * Real::mul_add(qd[1], t1157, qd[0] * (s75 * T::from_f64(0.06)))
         + Real::mul_add(
             -tendon_tensions[0],
-            T::from_f64(0.03) * t669,
+            T::from_f64(0.03) * t672,
             Real::mul_add(
                 -tendon_tensions[1],
-                T::from_f64(0.03) * t672,
+                T::from_f64(0.03) * t675,
                 T::from_f64(0.04) * tendon_tensions[2],
             ),
         );
-    let t1228 = (T::from_f64(0.0166667) + c76 * T::from_f64(0.03)) / t1136;
-    let t1688 = Real::mul_add(
-        -t1226,
-        t1228,
+    let t1242 = Real::mul_add(c76, T::from_f64(0.03), T::from_f64(0.0166667)) / t1149;
+    let t1701 = Real::mul_add(
+        -t1240,
+        t1242,
         Real::mul_add(
             -tendon_tensions[1],
-            T::from_f64(0.02) * t672,
-            tendon_tensions[0] * (T::from_f64(0.02) * t669),
-        ) - qd[0] * (qd[0] * t1144),
-    ) / Real::mul_add(-t1136, t1228 * t1228, T::from_f64(0.0166667));
-    let t1690 = Real::mul_add(-t1228, t1688, t1226 / t1136);
-    [t1690, t1688]
+            T::from_f64(0.02) * t675,
+            tendon_tensions[0] * (T::from_f64(0.02) * t672),
+        ) - qd[0] * (qd[0] * t1157),
+    ) / Real::mul_add(-t1149, t1242 * t1242, T::from_f64(0.0166667));
+    let t1703 = Real::mul_add(-t1242, t1701, t1240 / t1149);
+    [t1703, t1701]
 }
 /// Tension of every tendon segment (N), strands in order, each from its anchored end.
 ///
 /// Entries: T32#0, T32#1, T42#0, T42#1, T11#0.
 ///
-/// Operations (closed form): 94 arithmetic (30 add/sub, 45 mul, 8 div, 2 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (closed form): 85 arithmetic (26 add/sub, 40 mul, 7 div, 3 neg, 5 max), 1 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5] {
@@ -274,62 +271,59 @@ pub fn segment_tensions<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [T; 5
         ) * T::from_f64(0.0).max(q[0] + T::from_f64(-0.04611311807366092)))
         .exp();
     let t269 = -(T::from_f64(0.03) * t209);
-    let t275 = T::from_f64(0.02) * t209 / t269;
-    let t916 = c76 * T::from_f64(0.03);
-    let t1144 = s75 * T::from_f64(0.03);
-    let t1160 = t275 * T::from_f64(0.06);
-    let t1180 = T::from_f64(0.03) * t275;
-    let t1185 = Real::mul_add(
+    let t1157 = s75 * T::from_f64(0.03);
+    let t1199 = Real::mul_add(
         qdd[1],
-        Real::mul_add(t275, T::from_f64(-0.0166667) - t916, T::from_f64(0.0166667)),
-        Real::mul_add(
-            qd[1],
-            qd[1] * (s75 * t1180),
-            qd[0] * Real::mul_add(qd[1], s75 * t1160, qd[0] * t1144),
-        ),
-    );
-    let t1188 = t222 * (T::from_f64(-0.02) + t1180);
-    let t1189 = Real::mul_add(
-        qdd[0],
         Real::mul_add(
             c76,
-            T::from_f64(0.03) - t1160,
-            Real::mul_add(
-                -t275,
-                T::from_f64(0.12466669999999999),
-                T::from_f64(0.0166667),
-            ),
+            T::from_f64(0.020000000000000004),
+            T::from_f64(0.027777833333333335),
         ),
-        t1185,
-    ) / t1188;
-    let t1194 = qdd[0]
+        Real::mul_add(
+            -qd[1],
+            qd[1] * (s75 * T::from_f64(0.020000000000000004)),
+            qd[0]
+                * Real::mul_add(
+                    -qd[1],
+                    s75 * T::from_f64(0.04000000000000001),
+                    qd[0] * t1157,
+                ),
+        ),
+    );
+    let t1202 = -(T::from_f64(0.04) * t222);
+    let t1203 = Real::mul_add(
+        qdd[0],
+        Real::mul_add(c76, T::from_f64(0.07), T::from_f64(0.09977783333333334)),
+        t1199,
+    ) / t1202;
+    let t1208 = qdd[0]
         * Real::mul_add(c76, T::from_f64(0.06), T::from_f64(0.12466669999999999))
-        + (qdd[1] * (T::from_f64(0.0166667) + t916)
+        + (qdd[1] * Real::mul_add(c76, T::from_f64(0.03), T::from_f64(0.0166667))
             + Real::mul_add(
                 t222,
-                T::from_f64(0.03) * t1189,
-                -(qd[1] * Real::mul_add(qd[1], t1144, qd[0] * (s75 * T::from_f64(0.06)))),
+                T::from_f64(0.03) * t1203,
+                -(qd[1] * Real::mul_add(qd[1], t1157, qd[0] * (s75 * T::from_f64(0.06)))),
             ));
-    let t1195 = t1194 / t269;
-    let t1196 = T::from_f64(0.04) * t275 / t1188;
-    let t1200 = Real::mul_add(t222, T::from_f64(0.03) * t1196, T::from_f64(-0.04))
+    let t1209 = t1208 / t269;
+    let t1210 = T::from_f64(-0.026666666666666672) / t1202;
+    let t1214 = Real::mul_add(t222, T::from_f64(0.03) * t1210, T::from_f64(-0.04))
         / t269;
-    let t1218 = (-(Real::mul_add(t1195, t1200, t1189 * t1196)
-        / Real::mul_add(t1196, t1196, Real::mul_add(t1200, t1200, T::from_f64(1.0)))))
-        .max((T::from_f64(5.0) - t1195) / t1200)
-        .max((T::from_f64(5.0) - t1189) / t1196);
-    let t1219 = T::from_f64(5.0).max(t1218);
-    let t1221 = Real::mul_add(t1200, t1219, t1195);
-    let t1223 = Real::mul_add(t1196, t1219, t1189);
-    let t1272 = t209 * t1221;
-    let t1273 = t222 * t1223;
-    [t1272, t1221, t1273, t1223, t1219]
+    let t1232 = (-(Real::mul_add(t1209, t1214, t1203 * t1210)
+        / Real::mul_add(t1210, t1210, Real::mul_add(t1214, t1214, T::from_f64(1.0)))))
+        .max((T::from_f64(5.0) - t1209) / t1214)
+        .max((T::from_f64(5.0) - t1203) / t1210);
+    let t1233 = T::from_f64(5.0).max(t1232);
+    let t1235 = Real::mul_add(t1214, t1233, t1209);
+    let t1237 = Real::mul_add(t1210, t1233, t1203);
+    let t1287 = t209 * t1235;
+    let t1288 = t222 * t1237;
+    [t1287, t1235, t1288, t1237, t1233]
 }
 /// Bearing force (N) and moment (N·m) on every body from its parent, moment about the joint point, motor torque excluded; links in their DH frame, pulleys in their housing frame.
 ///
 /// Entries: link1, link2, drum2a, drum2b, drum1, idler3, idler4.
 ///
-/// Operations (traced recursion): 242 arithmetic (93 add/sub, 127 mul, 8 div, 5 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
+/// Operations (traced recursion): 239 arithmetic (93 add/sub, 124 mul, 7 div, 6 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 4 sign selects, 2 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2]; 7] {
@@ -373,116 +367,116 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
         .exp();
     let t269 = -(T::from_f64(0.03) * t209);
     let t271 = T::from_f64(0.03) * t222;
-    let t275 = T::from_f64(0.02) * t209 / t269;
-    let t278 = Real::mul_add(-T::from_f64(0.02), t222, t271 * t275);
-    let t282 = T::from_f64(0.04) * t275 / t278;
-    let t286 = Real::mul_add(t271, t282, T::from_f64(-0.04)) / t269;
-    let t727 = qd[0] * qd[0];
-    let t728 = T::from_f64(0.3) * t727;
-    let t740 = t102 * t102;
-    let t746 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t728)) - T::from_f64(0.25) * t740
-            + T::from_f64(0.125) * t740);
-    let t952 = T::from_f64(1.2) * t83;
-    let t954 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t956 = s75 * t728 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t957 = T::from_f64(0.8) * t956;
-    let t959 = Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103);
-    let t961 = Real::mul_add(T::from_f64(0.2), t956, t959);
-    let t970 = Real::mul_add(
+    let t273 = T::from_f64(0.02) * t222;
+    let t730 = qd[0] * qd[0];
+    let t731 = T::from_f64(0.3) * t730;
+    let t743 = t102 * t102;
+    let t749 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t731)) - T::from_f64(0.25) * t743
+            + T::from_f64(0.125) * t743);
+    let t773 = -(t273 + t273);
+    let t774 = T::from_f64(-0.026666666666666672) / t773;
+    let t777 = Real::mul_add(t271, t774, T::from_f64(-0.04)) / t269;
+    let t965 = T::from_f64(1.2) * t83;
+    let t967 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t969 = s75 * t731 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t970 = T::from_f64(0.8) * t969;
+    let t972 = Real::mul_add(-T::from_f64(0.1), t969, T::from_f64(0.0041667) * t103);
+    let t974 = Real::mul_add(T::from_f64(0.2), t969, t972);
+    let t983 = Real::mul_add(
         T::from_f64(0.3),
-        t952 + Real::mul_add(c76, t957, s75 * t746),
-        t954 + t961,
+        t965 + Real::mul_add(c76, t970, s75 * t749),
+        t967 + t974,
     );
-    let t979 = Real::mul_add(-t275, t970, t961) / t278;
-    let t982 = Real::mul_add(t271, t979, t970) / t269;
-    let t993 = (-(Real::mul_add(t282, t979, t286 * t982)
-        / (T::from_f64(1.0) + Real::mul_add(t282, t282, t286 * t286))))
-        .max((T::from_f64(5.0) - t982) / t286)
-        .max((T::from_f64(5.0) - t979) / t282);
-    let t994 = T::from_f64(5.0).max(t993);
-    let t996 = Real::mul_add(t286, t994, t982);
-    let t998 = Real::mul_add(t282, t994, t979);
-    let t999 = t209 * t996;
-    let t1000 = t222 * t998;
-    let t1001 = T::from_f64(0.9860132971832694) * t999;
-    let t1002 = T::from_f64(0.16666666666666652) * t999;
-    let t1005 = Real::mul_add(s75, t1002, c76 * t1001);
-    let t1006 = s75 * t1001;
-    let t1007 = c76 * t1002;
-    let t1008 = t1006 - t1007;
-    let t1011 = Real::mul_add(
+    let t992 = Real::mul_add(T::from_f64(0.6666666666666667), t983, t974) / t773;
+    let t995 = Real::mul_add(t271, t992, t983) / t269;
+    let t1006 = (-(Real::mul_add(t774, t992, t777 * t995)
+        / (T::from_f64(1.0) + Real::mul_add(t774, t774, t777 * t777))))
+        .max((T::from_f64(5.0) - t995) / t777)
+        .max((T::from_f64(5.0) - t992) / t774);
+    let t1007 = T::from_f64(5.0).max(t1006);
+    let t1009 = Real::mul_add(t777, t1007, t995);
+    let t1011 = Real::mul_add(t774, t1007, t992);
+    let t1012 = t209 * t1009;
+    let t1013 = t222 * t1011;
+    let t1014 = T::from_f64(0.9860132971832694) * t1012;
+    let t1015 = T::from_f64(0.16666666666666652) * t1012;
+    let t1018 = Real::mul_add(s75, t1015, c76 * t1014);
+    let t1019 = s75 * t1014;
+    let t1020 = c76 * t1015;
+    let t1021 = t1019 - t1020;
+    let t1024 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1005,
+        t1018,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1008,
+        ) * t1021,
     );
-    let t1014 = Real::mul_add(-s73, t1002, c74 * t1001);
-    let t1017 = Real::mul_add(c74, t1002, s73 * t1001);
-    let t1028 = T::from_f64(0.9994442900376633) * t1000;
-    let t1029 = T::from_f64(0.03333333333333337) * t1000;
-    let t1032 = Real::mul_add(s75, t1029, c76 * t1028);
-    let t1033 = s75 * t1028;
-    let t1034 = c76 * t1029;
-    let t1035 = t1033 - t1034;
-    let t1036 = Real::mul_add(
+    let t1027 = Real::mul_add(-s73, t1015, c74 * t1014);
+    let t1030 = Real::mul_add(c74, t1015, s73 * t1014);
+    let t1041 = T::from_f64(0.9994442900376633) * t1013;
+    let t1042 = T::from_f64(0.03333333333333337) * t1013;
+    let t1045 = Real::mul_add(s75, t1042, c76 * t1041);
+    let t1046 = s75 * t1041;
+    let t1047 = c76 * t1042;
+    let t1048 = t1046 - t1047;
+    let t1049 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1035;
-    let t1037 = Real::mul_add(
+    ) * t1048;
+    let t1050 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1032;
-    let t1041 = Real::mul_add(-s73, t1029, c74 * t1028);
-    let t1044 = Real::mul_add(c74, t1029, s73 * t1028);
-    let t1053 = T::from_f64(0.9733466865996102) * t994;
-    let t1054 = T::from_f64(0.22933867463984403) * t994;
-    let t1055 = c74 * t1053;
-    let t1056 = s73 * t1054;
-    let t1057 = t1056 - t1055;
-    let t1060 = Real::mul_add(c74, t1054, s73 * t1053);
-    let t1061 = Real::mul_add(
+    ) * t1045;
+    let t1054 = Real::mul_add(-s73, t1042, c74 * t1041);
+    let t1057 = Real::mul_add(c74, t1042, s73 * t1041);
+    let t1066 = T::from_f64(0.9733466865996102) * t1007;
+    let t1067 = T::from_f64(0.22933867463984403) * t1007;
+    let t1068 = c74 * t1066;
+    let t1069 = s73 * t1067;
+    let t1070 = t1069 - t1068;
+    let t1073 = Real::mul_add(c74, t1067, s73 * t1066);
+    let t1074 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1060;
-    let t1062 = Real::mul_add(
+    ) * t1073;
+    let t1075 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1057;
-    let t1064 = Real::mul_add(T::from_f64(0.9968453000901664), t998, -t1041);
-    let t1065 = Real::mul_add(T::from_f64(0.0793690600180332), t998, -t1044);
-    let t1066 = Real::mul_add(
+    ) * t1070;
+    let t1077 = Real::mul_add(T::from_f64(0.9968453000901664), t1011, -t1054);
+    let t1078 = Real::mul_add(T::from_f64(0.0793690600180332), t1011, -t1057);
+    let t1079 = Real::mul_add(
         T::from_f64(0.03),
-        t998,
+        t1011,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1041,
+            t1054,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1044,
+            ) * t1057,
         ),
     );
-    let t1067 = Real::mul_add(T::from_f64(0.9506914539363203), t996, -t1014);
-    let t1068 = -Real::mul_add(T::from_f64(0.31013829078726374), t996, t1017);
-    let t1069 = Real::mul_add(
-        t996,
+    let t1080 = Real::mul_add(T::from_f64(0.9506914539363203), t1009, -t1027);
+    let t1081 = -Real::mul_add(T::from_f64(0.31013829078726374), t1009, t1030);
+    let t1082 = Real::mul_add(
+        t1009,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -490,63 +484,63 @@ pub fn bearings<T: Real>(q: &[T; 2], qd: &[T; 2], qdd: &[T; 2]) -> [[[T; 3]; 2];
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1014,
+            t1027,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1017,
+            ) * t1030,
         ),
     );
-    let t1070 = t1055 - t1056;
-    let t1071 = -t1060;
-    let t1072 = t1062 - t1061;
-    let t1075 = t1034 - t1033;
-    let t1076 = t1037 - t1036;
-    let t1081 = t1007 - t1006;
-    let t1082 = -t1011;
-    let t1091 = t746 + (t1005 + t1032);
-    let t1092 = t957 - (t1008 + t1035);
-    let t1093 = Real::mul_add(-T::from_f64(0.01), t1035, T::from_f64(0.01) * t1008);
-    let t1098 = Real::mul_add(
+    let t1083 = t1068 - t1069;
+    let t1084 = -t1073;
+    let t1085 = t1075 - t1074;
+    let t1088 = t1047 - t1046;
+    let t1089 = t1050 - t1049;
+    let t1094 = t1020 - t1019;
+    let t1095 = -t1024;
+    let t1104 = t749 + (t1018 + t1045);
+    let t1105 = t970 - (t1021 + t1048);
+    let t1106 = Real::mul_add(-T::from_f64(0.01), t1048, T::from_f64(0.01) * t1021);
+    let t1111 = Real::mul_add(
         -T::from_f64(0.01),
-        t1032,
-        Real::mul_add(T::from_f64(0.01), t1005, -T::from_f64(0.9810000000000001)),
+        t1045,
+        Real::mul_add(T::from_f64(0.01), t1018, -T::from_f64(0.9810000000000001)),
     );
-    let t1099 = Real::mul_add(
+    let t1112 = Real::mul_add(
         T::from_f64(0.25),
-        t1092,
-        t959
-            - (Real::mul_add(-T::from_f64(0.25), t1035, t1036 - t1037)
-                + Real::mul_add(-T::from_f64(0.25), t1008, t1011)),
+        t1105,
+        t972
+            - (Real::mul_add(-T::from_f64(0.25), t1048, t1049 - t1050)
+                + Real::mul_add(-T::from_f64(0.25), t1021, t1024)),
     );
-    let t1108 = Real::mul_add(-s75, t1098, c76 * t1093);
-    let t1115 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728)
-        - (t1057 + Real::mul_add(-c76, t1091, s75 * t1092));
-    let t1116 = t952 - (t1060 - Real::mul_add(c76, t1092, s75 * t1091));
-    let t1122 = Real::mul_add(
+    let t1121 = Real::mul_add(-s75, t1111, c76 * t1106);
+    let t1128 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t730, -t731)
+        - (t1070 + Real::mul_add(-c76, t1104, s75 * t1105));
+    let t1129 = t965 - (t1073 - Real::mul_add(c76, t1105, s75 * t1104));
+    let t1135 = Real::mul_add(
         c76,
-        t1098,
-        Real::mul_add(s75, t1093, -T::from_f64(4.1202000000000005)),
+        t1111,
+        Real::mul_add(s75, t1106, -T::from_f64(4.1202000000000005)),
     );
-    let t1123 = Real::mul_add(
+    let t1136 = Real::mul_add(
         T::from_f64(0.3),
-        t1116,
-        t954 - (Real::mul_add(-T::from_f64(0.3), t1060, t1061 - t1062) - t1099),
+        t1129,
+        t967 - (Real::mul_add(-T::from_f64(0.3), t1073, t1074 - t1075) - t1112),
     );
     [
-        [[t1115, t1116, T::from_f64(19.62)], [t1108, t1122, t1123]],
-        [[t1091, t1092, T::from_f64(7.848000000000001)], [t1093, t1098, t1099]],
-        [[t1005, t1081, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1082]],
-        [[t1032, t1075, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1076]],
-        [[t1070, t1071, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1072]],
+        [[t1128, t1129, T::from_f64(19.62)], [t1121, t1135, t1136]],
+        [[t1104, t1105, T::from_f64(7.848000000000001)], [t1106, t1111, t1112]],
+        [[t1018, t1094, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1095]],
+        [[t1045, t1088, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1089]],
+        [[t1083, t1084, T::from_f64(0.0)], [T::from_f64(0.0), T::from_f64(0.0), t1085]],
         [
-            [t1067, t1068, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1069],
+            [t1080, t1081, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1082],
         ],
         [
-            [t1064, t1065, T::from_f64(0.49050000000000005)],
-            [T::from_f64(0.0), T::from_f64(0.0), t1066],
+            [t1077, t1078, T::from_f64(0.49050000000000005)],
+            [T::from_f64(0.0), T::from_f64(0.0), t1079],
         ],
     ]
 }
@@ -573,30 +567,30 @@ pub fn base_reaction<T: Real>(
         - T::from_f64(5.886);
     let t180 = Real::mul_add(-s73, t165, c74 * t151);
     let t183 = Real::mul_add(c74, t165, s73 * t151);
-    let t727 = qd[0] * qd[0];
-    let t728 = T::from_f64(0.3) * t727;
-    let t740 = t102 * t102;
-    let t746 = T::from_f64(0.8)
-        * (Real::mul_add(s75, t78, -(c76 * t728)) - T::from_f64(0.25) * t740
-            + T::from_f64(0.125) * t740);
-    let t956 = s75 * t728 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t957 = T::from_f64(0.8) * t956;
-    let t966 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728)
-        - Real::mul_add(-c76, t746, s75 * t957);
-    let t967 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t957, s75 * t746);
-    let t970 = Real::mul_add(
+    let t730 = qd[0] * qd[0];
+    let t731 = T::from_f64(0.3) * t730;
+    let t743 = t102 * t102;
+    let t749 = T::from_f64(0.8)
+        * (Real::mul_add(s75, t78, -(c76 * t731)) - T::from_f64(0.25) * t743
+            + T::from_f64(0.125) * t743);
+    let t969 = s75 * t731 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t970 = T::from_f64(0.8) * t969;
+    let t979 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t730, -t731)
+        - Real::mul_add(-c76, t749, s75 * t970);
+    let t980 = T::from_f64(1.2) * t83 + Real::mul_add(c76, t970, s75 * t749);
+    let t983 = Real::mul_add(
         T::from_f64(0.3),
-        t967,
+        t980,
         Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0])
             + Real::mul_add(
                 T::from_f64(0.2),
-                t956,
-                Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103),
+                t969,
+                Real::mul_add(-T::from_f64(0.1), t969, T::from_f64(0.0041667) * t103),
             ),
     );
-    let t973 = Real::mul_add(-s73, t967, c74 * t966);
-    let t976 = Real::mul_add(c74, t967, s73 * t966);
-    [[[t973, t976, T::from_f64(20.601000000000003)], [t180, t183, t970]]]
+    let t986 = Real::mul_add(-s73, t980, c74 * t979);
+    let t989 = Real::mul_add(c74, t980, s73 * t979);
+    [[[t986, t989, T::from_f64(20.601000000000003)], [t180, t183, t983]]]
 }
 /// Every requested output of [`all`].
 #[derive(Clone, Copy, Debug)]
@@ -620,7 +614,7 @@ pub struct Outputs<T> {
     /// See [`base_reaction`].
     pub base_reaction: [[[T; 3]; 2]; 1],
 }
-/// Every generated output at once, sharing their common work. Operations: 306 arithmetic (118 add/sub, 161 mul, 11 div, 5 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 6 sign selects, 4 exp.
+/// Every generated output at once, sharing their common work. Operations: 303 arithmetic (118 add/sub, 158 mul, 10 div, 6 neg, 5 max), 2 sin_cos, 0 sin, 0 cos, 0 sqrt, 6 sign selects, 4 exp.
 #[inline]
 #[allow(unused_variables, unused_parens, dead_code, clippy::all)]
 pub fn all<T: Real>(
@@ -679,28 +673,28 @@ pub fn all<T: Real>(
         .exp();
     let t269 = -(T::from_f64(0.03) * t209);
     let t271 = T::from_f64(0.03) * t222;
-    let t275 = T::from_f64(0.02) * t209 / t269;
-    let t278 = Real::mul_add(-T::from_f64(0.02), t222, t271 * t275);
-    let t282 = T::from_f64(0.04) * t275 / t278;
-    let t286 = Real::mul_add(t271, t282, T::from_f64(-0.04)) / t269;
-    let t615 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
-    let t632 = Real::mul_add(
+    let t273 = T::from_f64(0.02) * t222;
+    let t618 = Real::mul_add(T::from_f64(0.1), c76, T::from_f64(-0.18));
+    let t635 = Real::mul_add(
         T::from_f64(0.3),
-        t615 + (t615 + T::from_f64(0.6)),
+        t618 + (t618 + T::from_f64(0.6)),
         T::from_f64(0.0526667),
     );
-    let t727 = qd[0] * qd[0];
-    let t728 = T::from_f64(0.3) * t727;
-    let t731 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t727, -t728);
-    let t735 = c76 * t728;
-    let t737 = s75 * t728;
-    let t740 = t102 * t102;
-    let t741 = T::from_f64(0.25) * t740;
-    let t744 = T::from_f64(0.125) * t740;
-    let t746 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t735) - t741 + t744);
-    let t917 = T::from_f64(0.0166667) + c76 * T::from_f64(0.03);
-    let t922 = T::from_f64(0.1) * t737;
-    let t931 = tendon_tensions[0]
+    let t730 = qd[0] * qd[0];
+    let t731 = T::from_f64(0.3) * t730;
+    let t734 = T::from_f64(1.2) * Real::mul_add(T::from_f64(0.15), t730, -t731);
+    let t738 = c76 * t731;
+    let t740 = s75 * t731;
+    let t743 = t102 * t102;
+    let t744 = T::from_f64(0.25) * t743;
+    let t747 = T::from_f64(0.125) * t743;
+    let t749 = T::from_f64(0.8) * (Real::mul_add(s75, t78, -t738) - t744 + t747);
+    let t773 = -(t273 + t273);
+    let t774 = T::from_f64(-0.026666666666666672) / t773;
+    let t777 = Real::mul_add(t271, t774, T::from_f64(-0.04)) / t269;
+    let t930 = Real::mul_add(c76, T::from_f64(0.03), T::from_f64(0.0166667));
+    let t935 = T::from_f64(0.1) * t740;
+    let t944 = tendon_tensions[0]
         * (t207
             * t197
                 .select_outside(
@@ -710,7 +704,7 @@ pub fn all<T: Real>(
                     T::from_f64(0.0),
                 ))
             .exp();
-    let t933 = tendon_tensions[1]
+    let t946 = tendon_tensions[1]
         * (t220
             * t211
                 .select_outside(
@@ -720,107 +714,107 @@ pub fn all<T: Real>(
                     T::from_f64(0.0),
                 ))
             .exp();
-    let t942 = t917 / t632;
-    let t952 = T::from_f64(1.2) * t83;
-    let t954 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
-    let t956 = t737 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
-    let t957 = T::from_f64(0.8) * t956;
-    let t959 = Real::mul_add(-T::from_f64(0.1), t956, T::from_f64(0.0041667) * t103);
-    let t961 = Real::mul_add(T::from_f64(0.2), t956, t959);
-    let t966 = t731 - Real::mul_add(-c76, t746, s75 * t957);
-    let t967 = t952 + Real::mul_add(c76, t957, s75 * t746);
-    let t970 = Real::mul_add(T::from_f64(0.3), t967, t954 + t961);
-    let t973 = Real::mul_add(-s73, t967, c74 * t966);
-    let t976 = Real::mul_add(c74, t967, s73 * t966);
-    let t979 = Real::mul_add(-t275, t970, t961) / t278;
-    let t982 = Real::mul_add(t271, t979, t970) / t269;
-    let t993 = (-(Real::mul_add(t282, t979, t286 * t982)
-        / (T::from_f64(1.0) + Real::mul_add(t282, t282, t286 * t286))))
-        .max((T::from_f64(5.0) - t982) / t286)
-        .max((T::from_f64(5.0) - t979) / t282);
-    let t994 = T::from_f64(5.0).max(t993);
-    let t996 = Real::mul_add(t286, t994, t982);
-    let t998 = Real::mul_add(t282, t994, t979);
-    let t999 = t209 * t996;
-    let t1000 = t222 * t998;
-    let t1001 = T::from_f64(0.9860132971832694) * t999;
-    let t1002 = T::from_f64(0.16666666666666652) * t999;
-    let t1005 = Real::mul_add(s75, t1002, c76 * t1001);
-    let t1006 = s75 * t1001;
-    let t1007 = c76 * t1002;
-    let t1008 = t1006 - t1007;
-    let t1011 = Real::mul_add(
+    let t955 = t930 / t635;
+    let t965 = T::from_f64(1.2) * t83;
+    let t967 = Real::mul_add(-t83, T::from_f64(0.18), T::from_f64(0.009) * qdd[0]);
+    let t969 = t740 + Real::mul_add(t103, T::from_f64(0.125), c76 * t78);
+    let t970 = T::from_f64(0.8) * t969;
+    let t972 = Real::mul_add(-T::from_f64(0.1), t969, T::from_f64(0.0041667) * t103);
+    let t974 = Real::mul_add(T::from_f64(0.2), t969, t972);
+    let t979 = t734 - Real::mul_add(-c76, t749, s75 * t970);
+    let t980 = t965 + Real::mul_add(c76, t970, s75 * t749);
+    let t983 = Real::mul_add(T::from_f64(0.3), t980, t967 + t974);
+    let t986 = Real::mul_add(-s73, t980, c74 * t979);
+    let t989 = Real::mul_add(c74, t980, s73 * t979);
+    let t992 = Real::mul_add(T::from_f64(0.6666666666666667), t983, t974) / t773;
+    let t995 = Real::mul_add(t271, t992, t983) / t269;
+    let t1006 = (-(Real::mul_add(t774, t992, t777 * t995)
+        / (T::from_f64(1.0) + Real::mul_add(t774, t774, t777 * t777))))
+        .max((T::from_f64(5.0) - t995) / t777)
+        .max((T::from_f64(5.0) - t992) / t774);
+    let t1007 = T::from_f64(5.0).max(t1006);
+    let t1009 = Real::mul_add(t777, t1007, t995);
+    let t1011 = Real::mul_add(t774, t1007, t992);
+    let t1012 = t209 * t1009;
+    let t1013 = t222 * t1011;
+    let t1014 = T::from_f64(0.9860132971832694) * t1012;
+    let t1015 = T::from_f64(0.16666666666666652) * t1012;
+    let t1018 = Real::mul_add(s75, t1015, c76 * t1014);
+    let t1019 = s75 * t1014;
+    let t1020 = c76 * t1015;
+    let t1021 = t1019 - t1020;
+    let t1024 = Real::mul_add(
         Real::mul_add(
             T::from_f64(0.019720265943665386),
             c76,
             s75 * T::from_f64(0.0033333333333333305),
         ),
-        t1005,
+        t1018,
         Real::mul_add(
             -c76,
             T::from_f64(0.0033333333333333305),
             T::from_f64(0.019720265943665386) * s75,
-        ) * t1008,
+        ) * t1021,
     );
-    let t1014 = Real::mul_add(-s73, t1002, c74 * t1001);
-    let t1017 = Real::mul_add(c74, t1002, s73 * t1001);
-    let t1028 = T::from_f64(0.9994442900376633) * t1000;
-    let t1029 = T::from_f64(0.03333333333333337) * t1000;
-    let t1032 = Real::mul_add(s75, t1029, c76 * t1028);
-    let t1033 = s75 * t1028;
-    let t1034 = c76 * t1029;
-    let t1035 = t1033 - t1034;
-    let t1036 = Real::mul_add(
+    let t1027 = Real::mul_add(-s73, t1015, c74 * t1014);
+    let t1030 = Real::mul_add(c74, t1015, s73 * t1014);
+    let t1041 = T::from_f64(0.9994442900376633) * t1013;
+    let t1042 = T::from_f64(0.03333333333333337) * t1013;
+    let t1045 = Real::mul_add(s75, t1042, c76 * t1041);
+    let t1046 = s75 * t1041;
+    let t1047 = c76 * t1042;
+    let t1048 = t1046 - t1047;
+    let t1049 = Real::mul_add(
         -s75,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * c76,
-    ) * t1035;
-    let t1037 = Real::mul_add(
+    ) * t1048;
+    let t1050 = Real::mul_add(
         c76,
         T::from_f64(0.019988885800753267),
         T::from_f64(0.0006666666666666674) * s75,
-    ) * t1032;
-    let t1041 = Real::mul_add(-s73, t1029, c74 * t1028);
-    let t1044 = Real::mul_add(c74, t1029, s73 * t1028);
-    let t1053 = T::from_f64(0.9733466865996102) * t994;
-    let t1054 = T::from_f64(0.22933867463984403) * t994;
-    let t1055 = c74 * t1053;
-    let t1056 = s73 * t1054;
-    let t1057 = t1056 - t1055;
-    let t1060 = Real::mul_add(c74, t1054, s73 * t1053);
-    let t1061 = Real::mul_add(
+    ) * t1045;
+    let t1054 = Real::mul_add(-s73, t1042, c74 * t1041);
+    let t1057 = Real::mul_add(c74, t1042, s73 * t1041);
+    let t1066 = T::from_f64(0.9733466865996102) * t1007;
+    let t1067 = T::from_f64(0.22933867463984403) * t1007;
+    let t1068 = c74 * t1066;
+    let t1069 = s73 * t1067;
+    let t1070 = t1069 - t1068;
+    let t1073 = Real::mul_add(c74, t1067, s73 * t1066);
+    let t1074 = Real::mul_add(
         T::from_f64(0.03893386746398441),
         s73,
         T::from_f64(0.009173546985593762) * c74,
-    ) * t1060;
-    let t1062 = Real::mul_add(
+    ) * t1073;
+    let t1075 = Real::mul_add(
         -T::from_f64(0.009173546985593762),
         s73,
         T::from_f64(0.03893386746398441) * c74,
-    ) * t1057;
-    let t1064 = Real::mul_add(T::from_f64(0.9968453000901664), t998, -t1041);
-    let t1065 = Real::mul_add(T::from_f64(0.0793690600180332), t998, -t1044);
-    let t1066 = Real::mul_add(
+    ) * t1070;
+    let t1077 = Real::mul_add(T::from_f64(0.9968453000901664), t1011, -t1054);
+    let t1078 = Real::mul_add(T::from_f64(0.0793690600180332), t1011, -t1057);
+    let t1079 = Real::mul_add(
         T::from_f64(0.03),
-        t998,
+        t1011,
         -Real::mul_add(
             -Real::mul_add(
                 -c74,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * s73,
             ),
-            t1041,
+            t1054,
             Real::mul_add(
                 s73,
                 T::from_f64(0.029983328701129897),
                 T::from_f64(0.0010000000000000009) * c74,
-            ) * t1044,
+            ) * t1057,
         ),
     );
-    let t1067 = Real::mul_add(T::from_f64(0.9506914539363203), t996, -t1014);
-    let t1068 = -Real::mul_add(T::from_f64(0.31013829078726374), t996, t1017);
-    let t1069 = Real::mul_add(
-        t996,
+    let t1080 = Real::mul_add(T::from_f64(0.9506914539363203), t1009, -t1027);
+    let t1081 = -Real::mul_add(T::from_f64(0.31013829078726374), t1009, t1030);
+    let t1082 = Real::mul_add(
+        t1009,
         T::from_f64(0.029999999999999995),
         -Real::mul_add(
             -Real::mul_add(
@@ -828,100 +822,103 @@ pub fn all<T: Real>(
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * s73,
             ),
-            t1014,
+            t1027,
             Real::mul_add(
                 s73,
                 T::from_f64(0.02958039891549808),
                 T::from_f64(0.004999999999999996) * c74,
-            ) * t1017,
+            ) * t1030,
         ),
     );
-    let t1070 = t1055 - t1056;
-    let t1071 = -t1060;
-    let t1072 = t1062 - t1061;
-    let t1075 = t1034 - t1033;
-    let t1076 = t1037 - t1036;
-    let t1081 = t1007 - t1006;
-    let t1082 = -t1011;
-    let t1091 = t746 + (t1005 + t1032);
-    let t1092 = t957 - (t1008 + t1035);
-    let t1093 = Real::mul_add(-T::from_f64(0.01), t1035, T::from_f64(0.01) * t1008);
-    let t1098 = Real::mul_add(
+    let t1083 = t1068 - t1069;
+    let t1084 = -t1073;
+    let t1085 = t1075 - t1074;
+    let t1088 = t1047 - t1046;
+    let t1089 = t1050 - t1049;
+    let t1094 = t1020 - t1019;
+    let t1095 = -t1024;
+    let t1104 = t749 + (t1018 + t1045);
+    let t1105 = t970 - (t1021 + t1048);
+    let t1106 = Real::mul_add(-T::from_f64(0.01), t1048, T::from_f64(0.01) * t1021);
+    let t1111 = Real::mul_add(
         -T::from_f64(0.01),
-        t1032,
-        Real::mul_add(T::from_f64(0.01), t1005, -T::from_f64(0.9810000000000001)),
+        t1045,
+        Real::mul_add(T::from_f64(0.01), t1018, -T::from_f64(0.9810000000000001)),
     );
-    let t1099 = Real::mul_add(
+    let t1112 = Real::mul_add(
         T::from_f64(0.25),
-        t1092,
-        t959
-            - (Real::mul_add(-T::from_f64(0.25), t1035, t1036 - t1037)
-                + Real::mul_add(-T::from_f64(0.25), t1008, t1011)),
+        t1105,
+        t972
+            - (Real::mul_add(-T::from_f64(0.25), t1048, t1049 - t1050)
+                + Real::mul_add(-T::from_f64(0.25), t1021, t1024)),
     );
-    let t1108 = Real::mul_add(-s75, t1098, c76 * t1093);
-    let t1115 = t731 - (t1057 + Real::mul_add(-c76, t1091, s75 * t1092));
-    let t1116 = t952 - (t1060 - Real::mul_add(c76, t1092, s75 * t1091));
-    let t1122 = Real::mul_add(
+    let t1121 = Real::mul_add(-s75, t1111, c76 * t1106);
+    let t1128 = t734 - (t1070 + Real::mul_add(-c76, t1104, s75 * t1105));
+    let t1129 = t965 - (t1073 - Real::mul_add(c76, t1105, s75 * t1104));
+    let t1135 = Real::mul_add(
         c76,
-        t1098,
-        Real::mul_add(s75, t1093, -T::from_f64(4.1202000000000005)),
+        t1111,
+        Real::mul_add(s75, t1106, -T::from_f64(4.1202000000000005)),
     );
-    let t1123 = Real::mul_add(
+    let t1136 = Real::mul_add(
         T::from_f64(0.3),
-        t1116,
-        t954 - (Real::mul_add(-T::from_f64(0.3), t1060, t1061 - t1062) - t1099),
+        t1129,
+        t967 - (Real::mul_add(-T::from_f64(0.3), t1073, t1074 - t1075) - t1112),
     );
-    let t1124 = Real::mul_add(
+    let t1137 = Real::mul_add(
         T::from_f64(0.3),
         Real::mul_add(
             c76,
-            T::from_f64(0.8) * t737,
-            T::from_f64(0.8) * (s75 * (t744 - (t735 + t741))),
+            T::from_f64(0.8) * t740,
+            T::from_f64(0.8) * (s75 * (t747 - (t738 + t744))),
         ),
-        t922,
+        t935,
     );
-    let t1125 = T::from_f64(0.04) * tendon_tensions[2]
-        - Real::mul_add(T::from_f64(0.03), t933, T::from_f64(0.03) * t931) - t1124;
-    let t1130 = Real::mul_add(
-        -t942,
-        t1125,
-        Real::mul_add(-T::from_f64(0.02), t933, T::from_f64(0.02) * t931) - t922,
-    ) / Real::mul_add(-t632, t942 * t942, T::from_f64(0.0166667));
-    let t1132 = Real::mul_add(-t942, t1130, t1125 / t632);
+    let t1138 = T::from_f64(0.04) * tendon_tensions[2]
+        - Real::mul_add(T::from_f64(0.03), t946, T::from_f64(0.03) * t944) - t1137;
+    let t1143 = Real::mul_add(
+        -t955,
+        t1138,
+        Real::mul_add(-T::from_f64(0.02), t946, T::from_f64(0.02) * t944) - t935,
+    ) / Real::mul_add(-t635, t955 * t955, T::from_f64(0.0166667));
+    let t1145 = Real::mul_add(-t955, t1143, t1138 / t635);
     Outputs {
-        generalized_forces: [t970, t961],
-        actuation: tendyn_core::distribution::Actuation::exact([], [t996, t998, t994]),
-        mass_matrix: [[t632, t917], [t917, T::from_f64(0.0166667)]],
-        bias: [t1124, t922],
+        generalized_forces: [t983, t974],
+        actuation: tendyn_core::distribution::Actuation::exact(
+            [],
+            [t1009, t1011, t1007],
+        ),
+        mass_matrix: [[t635, t930], [t930, T::from_f64(0.0166667)]],
+        bias: [t1137, t935],
         gravity: [T::from_f64(0.0), T::from_f64(0.0)],
-        forward_dynamics: [t1132, t1130],
-        segment_tensions: [t999, t996, t1000, t998, t994],
+        forward_dynamics: [t1145, t1143],
+        segment_tensions: [t1012, t1009, t1013, t1011, t1007],
         bearings: [
-            [[t1115, t1116, T::from_f64(19.62)], [t1108, t1122, t1123]],
-            [[t1091, t1092, T::from_f64(7.848000000000001)], [t1093, t1098, t1099]],
+            [[t1128, t1129, T::from_f64(19.62)], [t1121, t1135, t1136]],
+            [[t1104, t1105, T::from_f64(7.848000000000001)], [t1106, t1111, t1112]],
             [
-                [t1005, t1081, T::from_f64(0.0)],
+                [t1018, t1094, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1095],
+            ],
+            [
+                [t1045, t1088, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1089],
+            ],
+            [
+                [t1083, t1084, T::from_f64(0.0)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1085],
+            ],
+            [
+                [t1080, t1081, T::from_f64(0.49050000000000005)],
                 [T::from_f64(0.0), T::from_f64(0.0), t1082],
             ],
             [
-                [t1032, t1075, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1076],
-            ],
-            [
-                [t1070, t1071, T::from_f64(0.0)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1072],
-            ],
-            [
-                [t1067, t1068, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1069],
-            ],
-            [
-                [t1064, t1065, T::from_f64(0.49050000000000005)],
-                [T::from_f64(0.0), T::from_f64(0.0), t1066],
+                [t1077, t1078, T::from_f64(0.49050000000000005)],
+                [T::from_f64(0.0), T::from_f64(0.0), t1079],
             ],
         ],
         base_reaction: [
-            [[t973, t976, T::from_f64(20.601000000000003)], [t180, t183, t970]],
+            [[t986, t989, T::from_f64(20.601000000000003)], [t180, t183, t983]],
         ],
     }
 }

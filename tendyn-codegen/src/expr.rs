@@ -294,9 +294,26 @@ impl Graph {
         }
     }
 
-    /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `x / x = 1`, a
-    /// division by a number as a multiplication by its reciprocal, and a negated dividend's
-    /// sign moved out.
+    /// `k / l` if `a` is `k x` and `b` is `l x` for one node `x`, each factor a number or
+    /// missing (1) and either side possibly negated.
+    fn ratio_of_multiples(&self, a: Id, b: Id) -> Option<f64> {
+        let multiple = |x: Id| -> (f64, Id) {
+            let (sign, x) = match self.node(x) {
+                Node::Neg(y) => (-1.0, y),
+                _ => (1.0, x),
+            };
+            match self.scaled(x).map(|(k, y)| (self.constant_value(k), y)) {
+                Some((Some(k), y)) => (sign * k, y),
+                _ => (sign, x),
+            }
+        };
+        let ((k, x), (l, y)) = (multiple(a), multiple(b));
+        (x == y).then_some(k / l)
+    }
+
+    /// `a / b`, folded: constants divided, `0 / x = 0`, `x / 1 = x`, `(k x) / (l x) = k / l`
+    /// (so `x / x = 1`), a division by a number as a multiplication by its reciprocal, and
+    /// a negated dividend's sign moved out.
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => return self.constant(x / y),
@@ -309,8 +326,10 @@ impl Graph {
             }
             _ => {}
         }
-        if a == b {
-            return self.constant(1.0);
+        // (k x)/(l x) = k/l (with `x / x = 1` the case k = l = 1): multiples of one
+        // value, such as two entries of a column of `E` that share its capstan factors.
+        if let Some(ratio) = self.ratio_of_multiples(a, b) {
+            return self.constant(ratio);
         }
         // (−x)/y = −(x/y) exactly: the sign joins the others outside.
         if let Node::Neg(x) = self.node(a) {
@@ -999,6 +1018,26 @@ mod tests {
         let (before, after, v0, v1) = gathered(|x, y| k(2.0) * (k(3.0) * x) + y);
         assert_eq!((before.mul, after.mul), (2, 1));
         assert_eq!(v0, v1);
+    }
+
+    #[test]
+    fn the_quotient_of_two_multiples_of_one_value_is_the_ratio_of_their_numbers() {
+        let k = Sym::from_f64;
+        let (g, roots) = Graph::default().scope(|| {
+            let (x, y) = (Sym::input("x"), Sym::input("y"));
+            let e = x * y;
+            [
+                (k(0.007) * e) / (-(k(0.008) * e)),
+                e / (k(4.0) * e),
+                (k(3.0) * e) / e,
+                (k(3.0) * x) / (k(2.0) * y),
+            ]
+        });
+        let numbers: Vec<Option<f64>> = roots.iter().map(|r| g.constant_value(r.0)).collect();
+        assert_eq!(numbers[..3], [Some(0.007 / -0.008), Some(0.25), Some(3.0)]);
+        // Multiples of different values stay a division.
+        assert_eq!(numbers[3], None);
+        assert_eq!(g.count(&[roots[3].0]).div, 1);
     }
 
     /// Builds `f` of inputs `x`, `y` and merges its like terms: the operation counts before
