@@ -662,6 +662,19 @@ pub fn capstan_friction(mu: f64) -> StressCase {
     )
 }
 
+/// Example 3 with every idler made a guide with capstan friction `mu`: four tendons, each
+/// over two or three guides whose wrap angles change with the joints, so that the state's
+/// `E` (3 × 4) is solved by the traced elimination with all its columns scaled.
+pub fn capstan_guides_everywhere(mu: f64) -> StressCase {
+    StressCase::new(
+        &format!("capstan_guides_everywhere_{mu}"),
+        Group::CapstanFriction,
+        format!("Example 3 with every idler made a guide with capstan friction mu = {mu}"),
+        crate::guides::idlers_as_capstans(&example("example3_stanford_jpl"), mu),
+        Range::PROTOCOL,
+    )
+}
+
 /// Every case of the suite.
 pub fn cases() -> Vec<StressCase> {
     let mut all = paper_cases();
@@ -694,6 +707,9 @@ pub fn cases() -> Vec<StressCase> {
     for mu in [0.01, 0.3, 1.0] {
         all.push(capstan_friction(mu));
     }
+    for mu in [0.1, 0.5] {
+        all.push(capstan_guides_everywhere(mu));
+    }
     all
 }
 
@@ -711,6 +727,7 @@ pub fn generated_cases() -> Vec<StressCase> {
         light_distal(1e-9),
         bearing_friction(1e3),
         capstan_friction(1.0),
+        capstan_guides_everywhere(0.1),
     ];
     v.extend(
         tension_bounds()
@@ -720,9 +737,10 @@ pub fn generated_cases() -> Vec<StressCase> {
     v
 }
 
-/// A Rust identifier for a case name (`radius_ratio_1e-2` → `radius_ratio_1em2`).
+/// A Rust identifier for a case name (`radius_ratio_1e-2` → `radius_ratio_1em2`,
+/// `capstan_guides_everywhere_0.1` → `capstan_guides_everywhere_0p1`).
 pub fn ident(name: &str) -> String {
-    name.replace('-', "m")
+    name.replace('-', "m").replace('.', "p")
 }
 
 /// The case of that name.
