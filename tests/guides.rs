@@ -192,6 +192,49 @@ fn a_guide_of_constant_wrap_angle_has_its_capstan_factors_folded_into_generated_
     assert!(source.contains(".select_outside("), "{source}");
 }
 
+/// The direction each guide reports (`eval --json`, Python) is the one its tensions took,
+/// even where the sliding speed is within rounding of the rest band: a review found a
+/// state of Example 3 (a guide on every idler, μ 0.1) where Ta's speed over idler 4 is
+/// `1e-6` to a few ulps, and the report, summing the speed in another order, said
+/// "sticking, −1" while the tensions had taken `+1`.
+#[test]
+fn a_guide_reports_the_direction_its_tensions_took_at_the_edge_of_rest() {
+    let example = tendyn_spec::examples::text("example3_stanford_jpl");
+    let model = parse(&tendyn_spec::guides::idlers_as_capstans(&example, 0.1)).unwrap();
+    let q = [0.0; 3];
+    let qd = [-0.8122808264515302, -0.9433050469559874, 0.2163062962478413];
+    let qdd = [1.0, 0.0, 0.0];
+    let r = Data::new(&model)
+        .inverse_dynamics(&model, &q, &qd, &qdd)
+        .unwrap()
+        .clone();
+    let segments = r.segment_tensions.unwrap();
+    let guides = tendyn_core::friction::guide_states(&model, [&q, &qd, &qdd], Some(&segments));
+    let edge = (guides.iter())
+        .map(|g| (g.sliding_speed.abs() - tendyn_core::friction::REST).abs())
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        edge <= 1e-15,
+        "no guide at the edge of rest here ({edge:e})"
+    );
+    for g in &guides {
+        let guide = model.strands()[g.strand].idlers[g.idler]
+            .guide
+            .as_ref()
+            .unwrap();
+        let tensions = &segments[g.strand];
+        let factor = (-g.direction * guide.mu * g.wrap_angle.max(0.0)).exp();
+        let ratio = tensions[g.idler] / tensions[g.idler + 1];
+        assert!(
+            (ratio - factor).abs() <= 8.0 * f64::EPSILON,
+            "{} over {}: tensions in ratio {ratio}, the reported direction {} gives {factor}",
+            model.strands()[g.strand].name,
+            model.bodies()[g.body].name,
+            g.direction
+        );
+    }
+}
+
 /// Issue 10 asks that capstan friction cost generated code at most 1.5 times the operations
 /// of the frictionless code, on Example 3 with a guide on every idler (`μ = 0.1` here):
 /// `actuation` and `segment_tensions` take 263 and 269 operations against 192 each

@@ -159,14 +159,11 @@ pub fn capstan_factors<T: Real>(
             let Some(guide) = idler.capstan() else {
                 continue;
             };
-            let (slide, accel) = (
-                linear(&guide.slide, qd),
-                qdd.map(|a| linear(&guide.slide, a)),
-            );
+            let (slide, accel) = (guide.speed(qd), qdd.map(|a| guide.speed(a)));
             // A constant wrap angle under the exact law: the factor is one of three
             // numbers, `e^{∓μβ}` or 1, chosen by the direction (folded at generation).
             let mu = T::from_f64(guide.mu);
-            if model.friction_smoothing.is_none() && guide.wrap_rate.iter().all(|&r| r == 0.0) {
+            if model.friction_smoothing.is_none() && guide.wrap_is_constant() {
                 let towards_exit = capstan_factor(-mu, T::from_f64(guide.wrap));
                 let towards_anchor = T::one() / towards_exit;
                 *factor = by_direction(slide, accel, [towards_exit, towards_anchor, T::one()]);
@@ -178,7 +175,7 @@ pub fn capstan_factors<T: Real>(
                 None => by_direction(slide, accel, [-mu, mu, T::zero()]),
                 smoothing => -(direction(slide, accel, smoothing) * mu),
             };
-            let wrap = T::from_f64(guide.wrap) + linear(&guide.wrap_rate, q);
+            let wrap = guide.wrap_at(q);
             *factor = capstan_factor(per_radian, wrap);
         }
     }
@@ -196,14 +193,6 @@ pub fn capstan_factor<T: Real>(per_radian: T, wrap: T) -> T {
 /// validation's boxes of factors are boxes of these.
 pub(crate) fn capstan_log_factor<T: Real>(per_radian: T, wrap: T) -> T {
     per_radian * wrap.max(T::zero())
-}
-
-/// `Σ_j c_j x_j` of constant coefficients, summed from the last joint down: a route
-/// gathers its joints from its anchor, usually the most distal, towards the ground, so a
-/// guide's sum then extends the sum of the guide before it on the route, which generated
-/// code shares.
-fn linear<T: Real>(c: &[f64], x: &[T]) -> T {
-    (c.iter().zip(x).rev()).fold(T::zero(), |s, (c, x)| s + T::from_f64(*c) * *x)
 }
 
 /// The bodies whose bearing has friction and turns within [`REST`] of rest: with the exact
@@ -291,7 +280,7 @@ pub fn guide_states(
     (model.guides())
         .map(|(s, k, body, g)| {
             let v = g.speed(qd);
-            let accel = linear(&g.slide, qdd);
+            let accel = g.speed(qdd);
             GuideState {
                 strand: s,
                 idler: k,

@@ -174,6 +174,14 @@ impl IdlerStep {
     }
 }
 
+/// `Σ_j c_j x_j` of constant coefficients, summed from the last joint down: a route
+/// gathers its joints from its anchor, usually the most distal, towards the ground, so a
+/// guide's sum then extends the sum of the guide before it on the route, which generated
+/// code shares.
+fn linear<T: Real>(c: &[f64], x: &[T]) -> T {
+    (c.iter().zip(x).rev()).fold(T::zero(), |s, (c, x)| s + T::from_f64(*c) * *x)
+}
+
 /// A fixed pulley after a route's anchor: the tendon slides over it (format.md §6a).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Guide {
@@ -194,20 +202,16 @@ pub struct Guide {
 
 impl Guide {
     /// The tendon's speed over the guide at joint velocities `qd` (m/s), positive towards
-    /// the strand's ground end.
-    pub fn speed(&self, qd: &[f64]) -> f64 {
-        self.slide.iter().zip(qd).map(|(s, v)| s * v).sum()
+    /// the strand's ground end (with `q̈`, the acceleration of its sliding). The one sum
+    /// the solver, generated code and the reports all take, so they agree on the
+    /// direction to the last bit.
+    pub fn speed<T: Real>(&self, qd: &[T]) -> T {
+        linear(&self.slide, qd)
     }
 
-    /// The wrap angle at joint angles `q` (rad).
-    pub fn wrap_at(&self, q: &[f64]) -> f64 {
-        self.wrap
-            + self
-                .wrap_rate
-                .iter()
-                .zip(q)
-                .map(|(k, x)| k * x)
-                .sum::<f64>()
+    /// The wrap angle at joint angles `q` (rad), before the clamp at 0 of the capstan law.
+    pub fn wrap_at<T: Real>(&self, q: &[T]) -> T {
+        T::from_f64(self.wrap) + linear(&self.wrap_rate, q)
     }
 
     /// The interval of the wrap angle over a box of joint angles (`[lower, upper]` per

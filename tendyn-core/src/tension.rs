@@ -288,9 +288,12 @@ pub(crate) fn for_each_run<T: Real>(
 const LEADING_BOXES: usize = 256;
 
 /// The least fraction of its column's largest entry a pivot of [`Elimination`] may have:
-/// each step then grows the entries by at most `1 + 1/PIVOT_THRESHOLD`, while the sparsest
-/// row can be chosen among near-equals (sparse LU codes take 0.1; the systems here are at
-/// most a few rows, where stability is cheaper than the few operations a sparser row saves).
+/// each step of the model's `E` then grows the entries by at most `1 + 1/PIVOT_THRESHOLD`
+/// (at a state, capstan factors scale the columns, and with them the multipliers, by up
+/// to their ratios; `Elimination::holds_while_sliding` keeps the pivots from zero), while
+/// the sparsest row can be chosen among near-equals (sparse LU codes take 0.1; the systems
+/// here are at most a few rows, where stability is cheaper than the few operations a
+/// sparser row saves).
 const PIVOT_THRESHOLD: f64 = 0.5;
 
 /// How generated code solves a state's tension system where guides with friction make
