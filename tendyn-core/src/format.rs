@@ -106,7 +106,8 @@ pub struct MechanismFile {
     /// What the tension distribution of a redundant routing minimises.
     #[serde(default)]
     pub distribution: Objective,
-    /// `v` (rad/s): replace `sign(ω)` of every Coulomb friction by `tanh(ω / v)`.
+    /// `v`: replace `sign(ω)` of every bearing's Coulomb friction by `tanh(ω / v)` (rad/s)
+    /// and the direction of every guide's capstan law by `tanh(v_slide / v)` (m/s).
     #[serde(default)]
     pub friction_smoothing: Option<f64>,
     /// Accept a routing that validation could show controllable with capstan friction only

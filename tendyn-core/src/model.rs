@@ -508,7 +508,8 @@ pub struct Model<T> {
     pub(crate) system: TensionSystem<T>,
     /// What the tension distribution minimises (format.md §3).
     pub(crate) objective: Objective,
-    /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
+    /// `v` of the smoothed friction law, if the file sets it: `tanh(ω / v)` for bearings
+    /// (rad/s), `tanh(v_slide / v)` for guides (m/s).
     pub(crate) friction_smoothing: Option<f64>,
     /// Each joint's `range` of `q` (rad), where the file gives one (format.md §4).
     pub(crate) joint_ranges: Vec<Option<[f64; 2]>>,
@@ -710,7 +711,8 @@ impl<T> Model<T> {
         self.objective
     }
 
-    /// `v` (rad/s) of the smoothed friction law `tanh(ω / v)`, if the file sets it.
+    /// `v` of the smoothed friction law, if the file sets it: `tanh(ω / v)` for bearings
+    /// (rad/s), `tanh(v_slide / v)` for guides (m/s).
     pub fn friction_smoothing(&self) -> Option<f64> {
         self.friction_smoothing
     }

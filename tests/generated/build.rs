@@ -1,6 +1,7 @@
 //! Generates code for the paper's three examples, twelve seeded random mechanisms, five with
 //! bearing friction (Example 2 and four random ones), three with fixed guides, Example 2
-//! with capstan friction on its guides (alone and with a fourth tendon), two with a turning
+//! with capstan friction on its guides (alone and with a fourth tendon), Example 3 with
+//! capstan friction on every idler (exact and smoothed law), two with a turning
 //! idler after a guide with friction, the five mechanisms of the scale benchmarks, and a
 //! few mechanisms of the stress suite into `OUT_DIR`, with every output each mechanism can
 //! provide, plus a small adapter per mechanism that the agreement test calls with slices.
@@ -113,6 +114,19 @@ fn main() {
         "example2_capstan_friction_antagonist".to_string(),
         antagonist,
     ));
+    // Example 3 with every idler a guide with capstan friction (a 3 x 4 `E` with every
+    // column scaled, traced), under the exact law and the smoothed one.
+    let example3 = std::fs::read_to_string(root.join("example3_stanford_jpl.ron")).unwrap();
+    let guides_everywhere = tendyn_spec::guides::idlers_as_capstans(&example3, 0.1);
+    let floor = "tension_floor: 5.0,";
+    assert!(
+        guides_everywhere.contains(floor),
+        "example3_stanford_jpl.ron"
+    );
+    let smoothed =
+        guides_everywhere.replacen(floor, &format!("{floor} friction_smoothing: 0.01,"), 1);
+    mechanisms.push(("capstan_guides_everywhere".to_string(), guides_everywhere));
+    mechanisms.push(("capstan_guides_everywhere_smoothed".to_string(), smoothed));
     // The scale benchmarks' mechanisms (issue 16): a finger, a random arm with gears, and
     // chains of 7, 8 and 12 links (the last with 13 unknowns); and the arm with gears and a
     // drum whose mass regrouping moves.
