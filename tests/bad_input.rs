@@ -412,7 +412,7 @@ fn a_negative_mass_is_rejected_naming_the_link() {
     assert_invalid(
         &text,
         "link2",
-        "name: \"link2\"",
+        "mass: -0.8,",
         "mass is -0.8 kg; a mass must be positive",
     );
 }
@@ -427,7 +427,7 @@ fn a_zero_mass_with_an_inertia_is_rejected_naming_the_pulley() {
     assert_invalid(
         &text,
         "idler3",
-        "name: \"idler3\"",
+        "mass: 0.0,",
         "mass is zero but the inertia is not",
     );
 }
@@ -447,7 +447,7 @@ fn the_line_is_that_of_the_definition_even_where_the_name_is_referenced_first() 
     );
     parse(&reordered).unwrap();
     let text = with(&reordered, "mass: 1.2,", "mass: -1.2,");
-    assert_invalid(&text, "link1", "name: \"link1\"", "mass is -1.2 kg");
+    assert_invalid(&text, "link1", "mass: -1.2,", "mass is -1.2 kg");
 }
 
 /// A value just below zero is shown as it was written, not as 300 digits: a mass, the
@@ -485,7 +485,7 @@ fn an_inertia_that_is_not_positive_semidefinite_is_rejected_naming_the_link() {
     assert_invalid(
         &text,
         "link1",
-        "name: \"link1\"",
+        "yz: 0.01)",
         "inertia is not positive semi-definite",
     );
 }
@@ -500,7 +500,7 @@ fn inertia_violating_the_triangle_inequality_is_rejected_naming_the_link() {
     assert_invalid(
         &text,
         "link2",
-        "name: \"link2\"",
+        "yy: 0.001, zz",
         "violate the triangle inequality",
     );
 }
@@ -759,12 +759,9 @@ fn infinite_and_nan_literals_in_the_file_are_rejected_naming_the_item() {
         ),
     ] {
         let text = with(OPEN_ENDED, from, to);
-        let err = assert_invalid(
-            &text,
-            item,
-            &format!("name: \"{item}\""),
-            "every number must be finite",
-        );
+        // At the line of the number.
+        let line = to.lines().next().unwrap();
+        let err = assert_invalid(&text, item, line, "every number must be finite");
         assert!(err.to_string().contains(field), "{err}");
     }
 }
@@ -806,7 +803,7 @@ fn a_radius_too_small_to_turn_its_pulley_at_a_finite_rate_is_rejected_naming_the
     assert_invalid(
         &text,
         "idler3",
-        "name: \"idler3\"",
+        "radius: 1e-320,",
         "`radius` is 1e-320 m, below the smallest pitch radius of 1e-9 m",
     );
 }
@@ -1294,7 +1291,7 @@ fn c3_a_leading_byte_order_mark_is_skipped() {
     let Error::Invalid { at, .. } = err else {
         unreachable!()
     };
-    assert_eq!((at.line, at.column), (1, column_of(one_line, "\"arm\"")));
+    assert_eq!((at.line, at.column), (1, column_of(one_line, "mass: -1.0")));
 }
 
 #[test]
@@ -1432,7 +1429,8 @@ fn each_number_outside_its_range_of_magnitude_is_rejected_naming_the_item() {
         ),
     ] {
         let text = with(OPEN_ENDED, from, to);
-        let err = assert_invalid(&text, item, &format!("name: \"{item}\""), phrase);
+        // At the line of the number.
+        let err = assert_invalid(&text, item, to, phrase);
         assert!(
             err.to_string()
                 .contains("format.md §12, ranges of magnitude"),
@@ -1454,7 +1452,7 @@ fn each_number_outside_its_range_of_magnitude_is_rejected_naming_the_item() {
         ),
     ] {
         let text = with(&with_pose(OPEN_ENDED), from, to);
-        assert_invalid(&text, "gear", "name: \"gear\"", phrase);
+        assert_invalid(&text, "gear", to, phrase);
     }
     // The external wrench's point, at the `external_wrench:` line.
     let text = with(
@@ -1492,7 +1490,7 @@ fn a_runtime_parameter_outside_its_range_is_rejected() {
     );
     // Its nominal value is checked like any number.
     let text = with(&text, "value: 0.8", "value: 1e13");
-    assert_invalid(&text, "link2", "name: \"link2\"", "`mass` is 1e13 kg");
+    assert_invalid(&text, "link2", "mass: \"payload\"", "`mass` is 1e13 kg");
     // The external wrench's point.
     let text = with(
         OPEN_ENDED,
@@ -1579,7 +1577,7 @@ fn negative_bearing_friction_is_rejected_at_the_body_that_has_it() {
             "            mass: 1.2,",
             &format!("            mass: 1.2,\n            friction: {friction},"),
         );
-        assert_invalid(&text, "link1", "name: \"link1\"", phrase);
+        assert_invalid(&text, "link1", &format!("friction: {friction}"), phrase);
     }
     let text = with(
         OPEN_ENDED,
@@ -1589,7 +1587,7 @@ fn negative_bearing_friction_is_rejected_at_the_body_that_has_it() {
     assert_invalid(
         &text,
         "idler3",
-        "name: \"idler3\"",
+        "friction: (viscous: -1.0)",
         "`friction.viscous` is -1 N·m·s/rad",
     );
 }
@@ -1658,9 +1656,39 @@ fn a_joint_range_that_is_empty_reversed_or_absurd_is_rejected_at_its_link() {
         let Error::Invalid { at, .. } = &err else {
             panic!("{err:?}")
         };
-        assert_eq!(at.line, line_of(&text, "name: \"link1\""), "{err}");
+        assert_eq!(at.line, line_of(&text, "range: "), "{err}");
         assert!(err.to_string().contains(says), "{range}: {err}");
     }
+}
+
+/// An error about one field is at that field's line, whether the item writes it before or
+/// after its `name`, and never at a like-named field of the next item.
+#[test]
+fn an_error_about_a_field_is_at_the_fields_line_before_or_after_the_name() {
+    let before = with(
+        OPEN_ENDED,
+        "        (\n            name: \"idler3\",",
+        "        (\n            mass: -0.05,\n            name: \"idler3\",",
+    );
+    let before = with(
+        &before,
+        "radius: 0.03,\n            mass: 0.05,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+        "radius: 0.03,\n            inertia: (xx: 0.00001125, yy: 0.00001125, zz: 0.0000225),\n        ),\n        (\n            name: \"idler4\"",
+    );
+    assert_invalid(&before, "idler3", "mass: -0.05,", "mass is -0.05 kg");
+    // A zero mass by default, with an inertia: not at the mass idler3 writes before
+    // idler4's name (outside idler4's parentheses), but at idler4's name.
+    let unwritten = with(
+        OPEN_ENDED,
+        "height: -0.01),\n            radius: 0.03,\n            mass: 0.05,\n",
+        "height: -0.01),\n            radius: 0.03,\n",
+    );
+    assert_invalid(
+        &unwritten,
+        "idler4",
+        "name: \"idler4\"",
+        "mass is zero but the inertia is not",
+    );
 }
 
 #[test]

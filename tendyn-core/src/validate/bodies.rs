@@ -139,8 +139,9 @@ impl Validator<'_> {
         let m = Matrix3::new(i.xx, i.xy, i.xz, i.xy, i.yy, i.yz, i.xz, i.yz, i.zz);
         let nonzero_inertia = m.iter().any(|&x| x != 0.0);
         if mass < 0.0 {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 item,
+                "mass",
                 format!(
                     "mass is {} kg; a mass must be positive (or zero for a massless body)",
                     shown(mass)
@@ -151,8 +152,9 @@ impl Validator<'_> {
         self.within(item, "com", &com, Range::Length)?;
         self.within(item, "inertia", &mp.inertia, Range::Inertia)?;
         if mass == 0.0 && nonzero_inertia {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 item,
+                "mass",
                 "mass is zero but the inertia is not: a body with inertia needs a positive mass; \
                  give it its mass or drop its inertia",
             ));
@@ -163,8 +165,9 @@ impl Validator<'_> {
             l.sort_by(f64::total_cmp);
             let scale = l[2].abs().max(f64::MIN_POSITIVE);
             if l[0] < -1e-12 * scale {
-                return Err(self.invalid(
+                return Err(self.invalid_field(
                     item,
+                    "inertia",
                     format!(
                         "inertia is not positive semi-definite (principal moments {:.6e}, {:.6e}, \
                          {:.6e} kg·m²); off-diagonal entries are tensor entries I_xy = -∫xy dm, \
@@ -174,8 +177,9 @@ impl Validator<'_> {
                 ));
             }
             if l[0] + l[1] < l[2] * (1.0 - 1e-12) {
-                return Err(self.invalid(
+                return Err(self.invalid_field(
                     item,
+                    "inertia",
                     format!(
                         "principal moments {:.6e}, {:.6e}, {:.6e} kg·m² violate the triangle \
                          inequality (the two smaller must add up to at least the largest): no \
@@ -196,8 +200,9 @@ impl Validator<'_> {
         self.finite(&l.name, "range", &range)?;
         self.within(&l.name, "range", &range, Range::Angle)?;
         if range[0] >= range[1] {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &l.name,
+                "range",
                 format!(
                     "`range` is ({}, {}); its lower end must be below its upper one",
                     range[0], range[1]
@@ -254,8 +259,9 @@ impl Validator<'_> {
         self.mass_properties(&p.name, &mp)?;
         let friction = self.friction(&p.name, p.friction.as_ref())?;
         if p.fixed && friction.is_some() {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &p.name,
+                "friction",
                 "a `fixed` drum does not turn on its carrier, so its bearing has no friction: \
                  remove `friction`, or drop `fixed: true` if the pulley turns (a tendon sliding \
                  over a fixed guide loses tension by its `mu`)"
@@ -265,16 +271,18 @@ impl Validator<'_> {
         let mu = p.mu.unwrap_or(0.0);
         self.finite(&p.name, "mu", &[mu])?;
         if !p.fixed && p.mu.is_some() {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &p.name,
+                "mu",
                 "`mu` is the capstan coefficient of a fixed guide a tendon slides over; this \
                  pulley turns with the tendon, so nothing slides: remove `mu` (its bearing's \
                  losses are `friction`), or add `fixed: true` if it is a pin",
             ));
         }
         if !(0.0..=MAX_MU).contains(&mu) {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &p.name,
+                "mu",
                 format!(
                     "`mu` is {}; a capstan coefficient is between 0 (frictionless) and \
                      {MAX_MU} (format.md §6a)",
@@ -284,14 +292,16 @@ impl Validator<'_> {
         }
         self.finite(&p.name, "radius", &[p.radius])?;
         if p.radius <= 0.0 {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &p.name,
+                "radius",
                 format!("radius is {} m; a pitch radius must be positive", p.radius),
             ));
         }
         if p.radius < MIN_RADIUS {
-            return Err(self.invalid(
+            return Err(self.invalid_field(
                 &p.name,
+                "radius",
                 format!(
                     "`radius` is {} m, below the smallest pitch radius of {MIN_RADIUS:e} m \
                      (format.md §12, ranges of magnitude): couplings are ratios of radii and the \

@@ -132,6 +132,83 @@ fn string_literals(line: &str) -> Vec<(usize, &str)> {
     found
 }
 
+/// The unmatched `(` before `at` and `)` after it (outside strings and `//` comments): the
+/// bounds of the item whose field `at` is; the start or end of the text where there is none.
+fn enclosing_parentheses(text: &str, at: Location) -> (Location, Location) {
+    let mut code = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let mut quoted = false;
+        let mut previous = ' ';
+        for (column, c) in line.chars().enumerate() {
+            if c == '/' && previous == '/' && !quoted {
+                break;
+            }
+            quoted ^= c == '"';
+            if !quoted && (c == '(' || c == ')') {
+                let place = Location {
+                    line: i + 1,
+                    column: column + 1,
+                };
+                code.push((place, c));
+            }
+            previous = c;
+        }
+    }
+    let order = |l: &Location| (l.line, l.column);
+    let split = code.partition_point(|(l, _)| order(l) < order(&at));
+    let mut depth = 0i32;
+    let open = code[..split].iter().rev().find(|(_, c)| {
+        depth += if *c == ')' { 1 } else { -1 };
+        depth < 0
+    });
+    depth = 0;
+    let close = code[split..].iter().find(|(_, c)| {
+        depth += if *c == '(' { 1 } else { -1 };
+        depth < 0
+    });
+    let end = Location {
+        line: usize::MAX,
+        column: 0,
+    };
+    (
+        open.map_or(Location::default(), |(l, _)| *l),
+        close.map_or(end, |(l, _)| *l),
+    )
+}
+
+/// The places of `key:` (a whole word, outside `//` comments) from `start` up to, not
+/// including, `end`, in the order of the text.
+fn keys_between(text: &str, key: &str, start: Location, end: Location) -> Vec<Location> {
+    let order = |l: &Location| (l.line, l.column);
+    let mut found = Vec::new();
+    for (i, line) in text.lines().enumerate().skip(start.line.saturating_sub(1)) {
+        let code = line.find("//").map_or(line, |c| &line[..c]);
+        for (col, _) in code.match_indices(key) {
+            let before_ok = !code[..col]
+                .chars()
+                .next_back()
+                .is_some_and(|c| c.is_alphanumeric() || c == '_');
+            let place = Location {
+                line: i + 1,
+                column: code[..col].chars().count() + 1,
+            };
+            if order(&place) >= order(&end) {
+                return found;
+            }
+            if before_ok
+                && code[col + key.len()..].trim_start().starts_with(':')
+                && order(&place) >= order(&start)
+            {
+                found.push(place);
+            }
+        }
+        if i + 1 >= end.line {
+            break;
+        }
+    }
+    found
+}
+
 /// Whether the text before a quoted string ends in `name:` (the string is an item's name).
 fn is_name_field(before: &str) -> bool {
     let Some(rest) = before.trim_end().strip_suffix(':') else {
@@ -178,22 +255,53 @@ impl Validator<'_> {
 
     /// Line and column of a top-level field `key:` (`gravity`, `external_wrench`, …).
     pub(super) fn locate_key(&self, key: &str) -> Location {
-        for (i, line) in self.text.lines().enumerate() {
-            let code = line.find("//").map_or(line, |c| &line[..c]);
-            for (col, _) in code.match_indices(key) {
-                let before_ok = !code[..col]
-                    .chars()
-                    .next_back()
-                    .is_some_and(|c| c.is_alphanumeric() || c == '_');
-                if before_ok && code[col + key.len()..].trim_start().starts_with(':') {
-                    return Location {
-                        line: i + 1,
-                        column: code[..col].chars().count() + 1,
-                    };
-                }
-            }
+        let end = Location {
+            line: usize::MAX,
+            column: 0,
+        };
+        keys_between(self.text, key, Location::default(), end)
+            .into_iter()
+            .next()
+            .unwrap_or_default()
+    }
+
+    /// Line and column of the field `path` of the item named `name` (`"mu"`, or
+    /// `"friction.coulomb"`: each key within the one before), within the parentheses of the
+    /// item whose `name: "…"` it is: after the name, then before it; the item's name where
+    /// the field is not written (a default), or a name given twice: its first definition.
+    pub(super) fn locate_field(&self, name: &str, path: &str) -> Location {
+        let at = self.locate(name);
+        if at.line == 0 {
+            return at;
         }
-        Location::default()
+        let (open, close) = enclosing_parentheses(self.text, at);
+        let mut keys = path.split('.');
+        let first = keys.next().unwrap_or(path);
+        let chain = |start: Location, end: Location| {
+            keys.clone().try_fold(start, |from, key| {
+                keys_between(self.text, key, from, end).into_iter().next()
+            })
+        };
+        let after = keys_between(self.text, first, at, close).into_iter().next();
+        let before = keys_between(self.text, first, open, at).into_iter().last();
+        (after.and_then(|k| chain(k, close)))
+            .or_else(|| before.and_then(|k| chain(k, at)))
+            .unwrap_or(at)
+    }
+
+    /// A file's error about the field `path` of `item` ([`Validator::locate_field`]), at
+    /// that field's place.
+    pub(super) fn invalid_field(
+        &self,
+        item: &str,
+        path: &str,
+        problem: impl Into<String>,
+    ) -> Error {
+        Error::Invalid {
+            item: item.to_string(),
+            at: self.locate_field(item, path),
+            problem: problem.into(),
+        }
     }
 
     /// A file's error about `item`, at the place of its name.

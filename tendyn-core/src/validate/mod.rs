@@ -98,8 +98,9 @@ impl<'a> Validator<'a> {
         self.finite_in(item, field, values, false)
     }
 
-    /// Every number of `field` is finite; the error is at the item's line, or at the
-    /// top-level `field:` line when `top_level` (the mechanism's `gravity`, …).
+    /// Every number of `field` is finite; the error is at the field's line in the item
+    /// (at the item's name, should it not be found), or at the top-level `field:` line when
+    /// `top_level` (the mechanism's `gravity`, …).
     fn finite_in(&self, item: &str, field: &str, values: &[f64], top_level: bool) -> Result<()> {
         match values.iter().find(|v| !v.is_finite()) {
             Some(v) => {
@@ -107,7 +108,7 @@ impl<'a> Validator<'a> {
                 Err(if top_level {
                     self.invalid_at_key(item, field, problem)
                 } else {
-                    self.invalid(item, problem)
+                    self.invalid_field(item, field, problem)
                 })
             }
             None => Ok(()),
@@ -119,7 +120,7 @@ impl<'a> Validator<'a> {
     fn within(&self, item: &str, field: &str, values: &[f64], range: Range) -> Result<()> {
         match beyond(field, values, range) {
             None => Ok(()),
-            Some(problem) => Err(self.invalid(item, problem)),
+            Some(problem) => Err(self.invalid_field(item, field, problem)),
         }
     }
 
@@ -150,8 +151,9 @@ impl<'a> Validator<'a> {
             self.finite(item, field, &[v])?;
             if v < 0.0 {
                 let (_, unit, _) = range.described();
-                return Err(self.invalid(
+                return Err(self.invalid_field(
                     item,
+                    field,
                     format!(
                         "`{field}` is {} {unit}; friction opposes motion, so give its size, a \
                          number >= 0",
