@@ -1689,6 +1689,13 @@ fn an_error_about_a_field_is_at_the_fields_line_before_or_after_the_name() {
         "name: \"idler4\"",
         "mass is zero but the inertia is not",
     );
+    // Keys within strings and comments are not fields.
+    let one_line = "(name: \"one\", links: [(name: \"arm mass: 2\", /* mass: 1, ( */ dh: (a: 0.2, alpha: 0.0, d: 0.0), mass: -1.0)])";
+    let err = rejected(one_line);
+    let Error::Invalid { at, .. } = err else {
+        panic!("{err:?}")
+    };
+    assert_eq!((at.line, at.column), (1, column_of(one_line, "mass: -1.0")));
 }
 
 #[test]

@@ -132,37 +132,89 @@ fn string_literals(line: &str) -> Vec<(usize, &str)> {
     found
 }
 
-/// The unmatched `(` before `at` and `)` after it (outside strings and `//` comments): the
-/// bounds of the item whose field `at` is; the start or end of the text where there is none.
-fn enclosing_parentheses(text: &str, at: Location) -> (Location, Location) {
-    let mut code = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let mut quoted = false;
-        let mut previous = ' ';
-        for (column, c) in line.chars().enumerate() {
-            if c == '/' && previous == '/' && !quoted {
-                break;
-            }
-            quoted ^= c == '"';
-            if !quoted && (c == '(' || c == ')') {
-                let place = Location {
-                    line: i + 1,
-                    column: column + 1,
-                };
-                code.push((place, c));
-            }
-            previous = c;
-        }
+/// `text`'s lines with every string literal (escapes included) and comment (`//` and
+/// `/* */`) blanked, each of their characters a space: keys and parentheses are looked for
+/// in code alone, at the columns they have in the text.
+fn code_lines(text: &str) -> Vec<String> {
+    #[derive(PartialEq)]
+    enum In {
+        Code,
+        String,
+        Comment,
     }
+    let mut state = In::Code;
+    let mut lines = Vec::new();
+    for line in text.lines() {
+        let chars: Vec<char> = line.chars().collect();
+        let mut code = String::with_capacity(line.len());
+        let mut i = 0;
+        while i < chars.len() {
+            let (c, next) = (chars[i], chars.get(i + 1).copied());
+            let (keep, width) = match state {
+                In::Code => match (c, next) {
+                    ('/', Some('/')) => (false, chars.len() - i),
+                    ('/', Some('*')) => {
+                        state = In::Comment;
+                        (false, 2)
+                    }
+                    ('"', _) => {
+                        state = In::String;
+                        (false, 1)
+                    }
+                    _ => (true, 1),
+                },
+                In::String => {
+                    if c == '"' {
+                        state = In::Code;
+                    }
+                    (false, if c == '\\' { 2 } else { 1 })
+                }
+                In::Comment => {
+                    if (c, next) == ('*', Some('/')) {
+                        state = In::Code;
+                        (false, 2)
+                    } else {
+                        (false, 1)
+                    }
+                }
+            };
+            let width = width.min(chars.len() - i);
+            match keep {
+                true => code.push(c),
+                false => code.extend(std::iter::repeat_n(' ', width)),
+            }
+            i += width;
+        }
+        lines.push(code);
+    }
+    lines
+}
+
+/// The unmatched `(` before `at` and `)` after it in `code` ([`code_lines`]): the bounds of
+/// the item whose field `at` is; the start or end of the text where there is none.
+fn enclosing_parentheses(code: &[String], at: Location) -> (Location, Location) {
+    let parentheses: Vec<(Location, char)> = (code.iter().enumerate())
+        .flat_map(|(i, line)| {
+            (line.chars().enumerate())
+                .filter(|&(_, c)| c == '(' || c == ')')
+                .map(move |(column, c)| {
+                    let place = Location {
+                        line: i + 1,
+                        column: column + 1,
+                    };
+                    (place, c)
+                })
+        })
+        .collect();
     let order = |l: &Location| (l.line, l.column);
-    let split = code.partition_point(|(l, _)| order(l) < order(&at));
+    let split = parentheses.partition_point(|(l, _)| order(l) < order(&at));
     let mut depth = 0i32;
-    let open = code[..split].iter().rev().find(|(_, c)| {
+    let open = parentheses[..split].iter().rev().find(|(_, c)| {
         depth += if *c == ')' { 1 } else { -1 };
         depth < 0
     });
     depth = 0;
-    let close = code[split..].iter().find(|(_, c)| {
+    let close = parentheses[split..].iter().find(|(_, c)| {
         depth += if *c == '(' { 1 } else { -1 };
         depth < 0
     });
@@ -176,27 +228,26 @@ fn enclosing_parentheses(text: &str, at: Location) -> (Location, Location) {
     )
 }
 
-/// The places of `key:` (a whole word, outside `//` comments) from `start` up to, not
+/// The places of `key:` (a whole word of `code`, [`code_lines`]) from `start` up to, not
 /// including, `end`, in the order of the text.
-fn keys_between(text: &str, key: &str, start: Location, end: Location) -> Vec<Location> {
+fn keys_between(code: &[String], key: &str, start: Location, end: Location) -> Vec<Location> {
     let order = |l: &Location| (l.line, l.column);
     let mut found = Vec::new();
-    for (i, line) in text.lines().enumerate().skip(start.line.saturating_sub(1)) {
-        let code = line.find("//").map_or(line, |c| &line[..c]);
-        for (col, _) in code.match_indices(key) {
-            let before_ok = !code[..col]
+    for (i, line) in code.iter().enumerate().skip(start.line.saturating_sub(1)) {
+        for (col, _) in line.match_indices(key) {
+            let before_ok = !line[..col]
                 .chars()
                 .next_back()
                 .is_some_and(|c| c.is_alphanumeric() || c == '_');
             let place = Location {
                 line: i + 1,
-                column: code[..col].chars().count() + 1,
+                column: line[..col].chars().count() + 1,
             };
             if order(&place) >= order(&end) {
                 return found;
             }
             if before_ok
-                && code[col + key.len()..].trim_start().starts_with(':')
+                && line[col + key.len()..].trim_start().starts_with(':')
                 && order(&place) >= order(&start)
             {
                 found.push(place);
@@ -259,7 +310,7 @@ impl Validator<'_> {
             line: usize::MAX,
             column: 0,
         };
-        keys_between(self.text, key, Location::default(), end)
+        keys_between(&code_lines(self.text), key, Location::default(), end)
             .into_iter()
             .next()
             .unwrap_or_default()
@@ -274,16 +325,17 @@ impl Validator<'_> {
         if at.line == 0 {
             return at;
         }
-        let (open, close) = enclosing_parentheses(self.text, at);
+        let code = code_lines(self.text);
+        let (open, close) = enclosing_parentheses(&code, at);
         let mut keys = path.split('.');
         let first = keys.next().unwrap_or(path);
         let chain = |start: Location, end: Location| {
             keys.clone().try_fold(start, |from, key| {
-                keys_between(self.text, key, from, end).into_iter().next()
+                keys_between(&code, key, from, end).into_iter().next()
             })
         };
-        let after = keys_between(self.text, first, at, close).into_iter().next();
-        let before = keys_between(self.text, first, open, at).into_iter().last();
+        let after = keys_between(&code, first, at, close).into_iter().next();
+        let before = keys_between(&code, first, open, at).into_iter().last();
         (after.and_then(|k| chain(k, close)))
             .or_else(|| before.and_then(|k| chain(k, at)))
             .unwrap_or(at)
