@@ -1,5 +1,7 @@
-//! Places in the RON text: a syntax error's span, an item's name or a top-level key, turned
-//! into the line and column an error shows, and the errors that carry them. Invariant: a
+//! Places in the RON text: a syntax error's span, an item's name, a field within an item
+//! or a top-level key, turned into the line and column an error shows, and the errors that
+//! carry them. Keys and parentheses are sought in code alone (strings and comments
+//! blanked); names by their `name: "…"` definitions. Invariant: a
 //! place is 1-based (lines, and columns in characters) in the text as written after a
 //! byte-order mark, found from the text alone; `0:0` when it is not found (no text).
 
