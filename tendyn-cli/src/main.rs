@@ -919,7 +919,7 @@ fn identification_samples(
 
 fn eval_text(m: &Model<f64>, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<String, String> {
     let (r, js) = evaluate(m, q, qd, qdd)?;
-    Ok(report::inverse_text(m, &r, &js))
+    Ok(report::inverse_text(m, [q, qd, qdd], &r, &js))
 }
 
 fn eval_json(

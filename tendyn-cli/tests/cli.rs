@@ -261,6 +261,42 @@ fn forward_flags_the_bearings_and_guides_it_took_at_rest_without_friction() {
     assert!(out.contains(r#""sticking":["link1"]"#), "{out}");
 }
 
+/// `eval`'s text shows each guide with friction as its JSON does: wrap angle, sliding speed,
+/// direction and dissipated power, or that it is at rest.
+#[test]
+fn eval_text_shows_each_guide_with_friction_as_the_json_does() {
+    let capstan = "examples/mechanisms/example2_capstan.ron";
+    let eval = |qd: &str, json: bool| {
+        let mut args = vec![
+            "eval", capstan, "--q", "0.3,0.2", "--qd", qd, "--qdd", "1,2",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let (ok, out, err) = tendyn(&args);
+        assert!(ok, "{err}");
+        out
+    };
+    let text = eval("0.5,-1", false);
+    let v: serde_json::Value = serde_json::from_str(&eval("0.5,-1", true)).unwrap();
+    for g in v["guides"].as_array().unwrap() {
+        let pulley = g["pulley"].as_str().unwrap();
+        let line = (text.lines())
+            .find(|l| l.trim_start().starts_with(&format!("guide {pulley} ")))
+            .unwrap_or_else(|| panic!("no line for {pulley} in:\n{text}"));
+        let degrees = g["wrap_angle"].as_f64().unwrap().to_degrees();
+        assert!(line.contains(&format!("wrap {degrees:.3}°")), "{line}");
+        let power = g["dissipated_power"].as_f64().unwrap();
+        assert!(power > 0.0 && line.contains("dissipates"), "{line}");
+    }
+    let at_rest = eval("0,0", false);
+    assert_eq!(
+        at_rest.matches("(at rest: the impending motion's)").count(),
+        2,
+        "{at_rest}"
+    );
+}
+
 #[test]
 fn generate_writes_straight_line_rust_and_reports_operation_counts() {
     let dir = scratch_dir("tendyn_gen");

@@ -586,9 +586,14 @@ pub const BUILT_IN: [(&str, &str); 3] = [
     ),
 ];
 
-/// A readable summary of inverse dynamics at one state (what `tendyn eval` prints without
-/// `--json`, and what `tendyn demo` shows).
-pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -> String {
+/// A readable summary of inverse dynamics at `state` (`[q, q̇, q̈]`: what `tendyn eval`
+/// prints without `--json`, and what `tendyn demo` shows).
+pub fn inverse_text(
+    m: &Model<f64>,
+    state: [&[f64]; 3],
+    r: &InverseDynamics<f64>,
+    js: &JointSpace,
+) -> String {
     let (mass, bias, gravity) = (&js.mass, &js.bias, &js.gravity);
     let mut s = String::new();
     let mut line = |t: String| {
@@ -654,6 +659,26 @@ pub fn inverse_text(m: &Model<f64>, r: &InverseDynamics<f64>, js: &JointSpace) -
                 "  (at rest: against the impending motion)"
             } else {
                 ""
+            }
+        ));
+    }
+    let guides = tendyn_core::friction::guide_states(m, state, r.segment_tensions.as_deref());
+    for g in guides {
+        let mu = (m.strands()[g.strand].idlers[g.idler].guide.as_ref()).map_or(0.0, |g| g.mu);
+        if mu == 0.0 {
+            continue;
+        }
+        line(format!(
+            "  guide {:<10} {:<8} wrap {:.3}°, sliding {} m/s, direction {}{}",
+            m.bodies()[g.body].name,
+            m.strands()[g.strand].name,
+            g.wrap_angle.to_degrees(),
+            number(g.sliding_speed),
+            number(g.direction + 0.0),
+            match (g.sticking, g.dissipated_power) {
+                (true, _) => "  (at rest: the impending motion's)".to_string(),
+                (false, Some(p)) => format!(", dissipates {} W", number(p + 0.0)),
+                (false, None) => String::new(),
             }
         ));
     }
