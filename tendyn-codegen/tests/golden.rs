@@ -13,20 +13,12 @@ use tendyn_codegen::{available_outputs, generate, Output, Scalar};
 
 #[test]
 fn generated_paper_examples_match_the_golden_files() {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     for name in [
         "example1_endless",
         "example2_open_ended",
         "example3_stanford_jpl",
     ] {
-        let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
-        let outputs = available_outputs(&model);
-        compare(
-            name,
-            &model,
-            &outputs,
-            &format!("{root}/tendyn-codegen/golden/{name}.rs"),
-        );
+        example_matches_its_golden_file(name);
     }
 }
 
@@ -35,17 +27,22 @@ fn generated_paper_examples_match_the_golden_files() {
 /// (`tests/no-std`) compiles these too.
 #[test]
 fn generated_friction_examples_match_the_golden_files() {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     for name in ["example2_friction", "example2_capstan"] {
-        let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
-        let outputs = available_outputs(&model);
-        compare(
-            name,
-            &model,
-            &outputs,
-            &format!("{root}/tendyn-codegen/golden/{name}.rs"),
-        );
+        example_matches_its_golden_file(name);
     }
+}
+
+/// `examples/mechanisms/NAME.ron` with every output it provides against `golden/NAME.rs`.
+fn example_matches_its_golden_file(name: &str) {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let model = tendyn_core::load(format!("{root}/examples/mechanisms/{name}.ron")).unwrap();
+    let outputs = available_outputs(&model);
+    compare(
+        name,
+        &model,
+        &outputs,
+        &format!("{root}/tendyn-codegen/golden/{name}.rs"),
+    );
 }
 
 #[test]
