@@ -486,16 +486,16 @@ pub fn inverse_json(
         "null_space_tensions": m.tendons().iter().zip(&r.null_space_tensions).map(|(t, v)| (t.name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "loops": m.loops().iter().zip(&r.loop_sides).zip(r.slack_loops()).map(|((l, s), slack)| (l.name.clone(), json!({"ccw_side": s[0], "cw_side": s[1], "slack": slack}))).collect::<serde_json::Map<_, _>>(),
         "pulley_moments": r.pulley_demands.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(v + 0.0))).collect::<serde_json::Map<_, _>>(),
+        "bearing_friction": r.bearing_friction.iter().map(|(b, v)| (m.bodies()[*b].name.clone(), json!(unsigned_zero(*v)))).collect::<serde_json::Map<_, _>>(),
         "sticking": r.sticking.iter().map(|b| m.bodies()[*b].name.clone()).collect::<Vec<_>>(),
         "guides": tendyn_core::friction::guide_states(m, [q, qd, qdd], r.segment_tensions.as_deref()).into_iter().map(|g| json!({
             "pulley": m.bodies()[g.body].name,
             "tendon": m.strands()[g.strand].name,
             "wrap_angle": g.wrap_angle,
             "sliding_speed": g.sliding_speed,
-            "direction": g.direction + 0.0,
+            "direction": unsigned_zero(g.direction),
             "sticking": g.sticking,
-            "dissipated_power": g.dissipated_power.map(|p| p + 0.0),
+            "dissipated_power": g.dissipated_power.map(unsigned_zero),
         })).collect::<Vec<_>>(),
         "mass_matrix": mass,
         "bias": bias,
@@ -586,6 +586,12 @@ pub const BUILT_IN: [(&str, &str); 3] = [
     ),
 ];
 
+/// `x` with `-0` as `0`: friction that vanishes (at rest, or frictionless) has no sign
+/// to show.
+fn unsigned_zero(x: f64) -> f64 {
+    x + 0.0
+}
+
 /// A readable summary of inverse dynamics at `state` (`[q, q̇, q̈]`: what `tendyn eval`
 /// prints without `--json`, and what `tendyn demo` shows).
 pub fn inverse_text(
@@ -674,10 +680,10 @@ pub fn inverse_text(
             m.strands()[g.strand].name,
             g.wrap_angle.to_degrees(),
             number(g.sliding_speed),
-            number(g.direction + 0.0),
+            number(unsigned_zero(g.direction)),
             match (g.sticking, g.dissipated_power) {
                 (true, _) => "  (at rest: the impending motion's)".to_string(),
-                (false, Some(p)) => format!(", dissipates {} W", number(p + 0.0)),
+                (false, Some(p)) => format!(", dissipates {} W", number(unsigned_zero(p))),
                 (false, None) => String::new(),
             }
         ));
